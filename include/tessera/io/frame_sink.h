@@ -1,0 +1,48 @@
+// Destinations for a sequence of frames: an animated GIF, a PNG sequence, or a single PNG.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <tessera/base/expected.h>
+
+namespace tessera::io {
+
+class FrameSink {
+ public:
+  virtual ~FrameSink() = default;  // a sink destroyed before finish() leaves no output file
+  // RGBA8 pixels, R in the low byte, row 0 at the top, width*height of them.
+  virtual Expected<void> addFrame(const uint32_t* pixels) = 0;
+  // Completes the output: every file appears whole, or none does.
+  virtual Expected<void> finish() = 0;
+};
+
+struct AnimationSettings {
+  int width = 0;
+  int height = 0;
+  int fps = 30;
+  bool loop = true;
+};
+
+// GIF frame delays in centiseconds that add up to the exact duration: frame i lasts
+// floor((i+1)*100/fps) - floor(i*100/fps) (at 30 fps: 3, 3, 4, 3, 3, 4, ...).
+int gifFrameDelayCs(int frame_index, int fps);
+
+// The path of frame `index` for a template containing "{frame}" (replaced by the index, zero
+// padded to 4 digits).
+std::filesystem::path formatFramePath(const std::string& path_template, int index);
+
+// An animated GIF (giflib, one libimagequant palette per frame with dithering).
+Expected<std::unique_ptr<FrameSink>> openGifSink(const std::filesystem::path& path,
+                                                 const AnimationSettings& settings);
+// A PNG per frame, named by formatFramePath.
+Expected<std::unique_ptr<FrameSink>> openPngSequenceSink(const std::string& path_template,
+                                                         const AnimationSettings& settings);
+// Picks by the path: a "{frame}" template -> PNG sequence, ".gif" -> GIF. Anything else is an
+// error naming the supported forms.
+Expected<std::unique_ptr<FrameSink>> openFrameSink(const std::string& path,
+                                                   const AnimationSettings& settings);
+
+}  // namespace tessera::io

@@ -1,0 +1,39 @@
+// The CPU pipeline: vertex -> clip -> setup -> bin -> raster -> shade -> resolve.
+// A CpuRenderer owns every per-frame buffer and its worker threads; after the first frame at a
+// resolution it allocates nothing (unless the scene grows). The image is bit-identical for any
+// worker count.
+#pragma once
+
+#include <memory>
+
+#include <tessera/render/backend.h>
+
+namespace tessera {
+
+struct PipelineStats {
+  size_t triangles_in = 0;
+  size_t triangles_culled = 0;   // back/front-face culled, degenerate, non-finite or off-screen
+  size_t triangles_clipped = 0;  // triangles that crossed near/far or left the guard band
+  size_t triangles_setup = 0;    // setup records (after clipping)
+};
+
+class CpuRenderer final : public Backend {
+ public:
+  // workers: 0 = one per hardware thread, 1 = run on the calling thread only.
+  explicit CpuRenderer(int workers = 0);
+  ~CpuRenderer() override;
+  CpuRenderer(const CpuRenderer&) = delete;
+  CpuRenderer& operator=(const CpuRenderer&) = delete;
+
+  const char* name() const override { return "cpu"; }
+  void render(const Scene& scene, const RenderOptions& options, Frame& frame) override;
+
+  int workerCount() const;
+  const PipelineStats& lastStats() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace tessera

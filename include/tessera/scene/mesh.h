@@ -1,0 +1,45 @@
+// Indexed triangle mesh. Every attribute array is either empty or has one entry per vertex.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <tessera/math/vec.h>
+
+namespace tessera {
+
+struct Bounds {
+  float3 min{1e30f, 1e30f, 1e30f};
+  float3 max{-1e30f, -1e30f, -1e30f};
+
+  bool empty() const { return min.x > max.x; }
+  void add(float3 p) {
+    min = tessera::min(min, p);
+    max = tessera::max(max, p);
+  }
+  float3 center() const { return (min + max) * 0.5f; }
+  float3 extent() const { return max - min; }
+  float radius() const { return empty() ? 0.0f : 0.5f * length(extent()); }
+};
+
+struct Mesh {
+  std::vector<float3> positions;
+  std::vector<float3> normals;     // empty: generate them (generateSmoothNormals) or draw flat
+  std::vector<float2> uvs;         // empty: no texture coordinates
+  std::vector<float4> colors;      // linear RGBA; empty: white
+  std::vector<uint32_t> indices;   // three per triangle
+  std::vector<uint16_t> triangle_materials;  // one per triangle, index into Object::materials;
+                                             // empty: material 0 everywhere
+
+  size_t vertexCount() const { return positions.size(); }
+  size_t triangleCount() const { return indices.size() / 3; }
+
+  // Bounds of the finite positions.
+  Bounds bounds() const;
+};
+
+// Smooth, area-weighted vertex normals (each face adds its unnormalized cross product).
+// Vertices that no finite, non-degenerate face touches get (0, 0, 1).
+void generateSmoothNormals(Mesh& mesh);
+
+}  // namespace tessera

@@ -1,0 +1,99 @@
+// The scene: objects (mesh + materials + transform), lights, camera and line lists.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <tessera/math/math.h>
+#include <tessera/scene/mesh.h>
+#include <tessera/scene/texture.h>
+
+namespace tessera {
+
+struct Material {
+  float4 base_color{0.8f, 0.8f, 0.8f, 1.0f};  // linear RGBA
+  std::shared_ptr<const Texture> albedo;       // optional; multiplies base_color
+  Sampler sampler;
+};
+
+enum class Shading : uint8_t {
+  kFlat,     // one face normal per triangle
+  kGouraud,  // lighting per vertex, interpolated
+  kPhong,    // normals interpolated, lighting per pixel
+  kUnlit,    // albedo only
+};
+
+enum class CullMode : uint8_t { kBack, kFront, kNone };
+
+struct Transform {
+  float3 translation{0, 0, 0};
+  quat rotation{};
+  float3 scale{1, 1, 1};
+
+  // T * R * S
+  float4x4 matrix() const { return tessera::translation(translation) * toMatrix4(rotation) * scaling(scale); }
+};
+
+struct Object {
+  std::shared_ptr<const Mesh> mesh;
+  std::vector<Material> materials{Material{}};  // at least one
+  Transform transform;
+  Shading shading = Shading::kFlat;
+  CullMode cull = CullMode::kBack;
+  bool show_axes = false;  // draw the object's local X/Y/Z axes (red, green, blue)
+};
+
+// Light travelling along `direction` (world space, from the light towards the scene).
+struct DirectionalLight {
+  float3 direction{0, 0, -1};
+  float3 color{1, 1, 1};  // linear radiance
+};
+
+struct Camera {
+  float3 position{0, 0, 5};
+  float3 target{0, 0, 0};
+  float3 up{0, 1, 0};
+  float fov_y_degrees = 50.0f;
+  float near_z = 0.1f;
+  float far_z = 100.0f;
+
+  float4x4 view() const { return lookAt(position, target, up); }
+  float4x4 projection(float aspect) const {
+    return perspective(radians(fov_y_degrees), aspect, near_z, far_z);
+  }
+};
+
+// World-space line segments: points[2i] to points[2i+1] in colors[i] (linear RGB).
+struct LineList {
+  std::vector<float3> points;
+  std::vector<float3> colors;
+
+  void add(float3 a, float3 b, float3 color) {
+    points.push_back(a);
+    points.push_back(b);
+    colors.push_back(color);
+  }
+};
+
+struct Scene {
+  std::vector<Object> objects;
+  std::vector<DirectionalLight> lights;
+  float3 ambient{0.15f, 0.15f, 0.15f};
+  Camera camera;
+  float4 background{0.0f, 0.0f, 0.0f, 1.0f};  // linear RGBA
+  LineList lines;
+  bool show_world_axes = false;
+  float world_axes_length = 1.0f;
+
+  size_t triangleCount() const;
+  // World-space bounds of every object's finite vertices.
+  Bounds bounds() const;
+};
+
+// A camera that frames `bounds` from `direction` (pointing from the model to the camera),
+// with near and far fitted to the bounds.
+Camera frameBounds(const Bounds& bounds, float3 direction, float3 up, float fov_y_degrees,
+                   float aspect);
+
+}  // namespace tessera

@@ -1,0 +1,58 @@
+#include <tessera/scene/color.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace tessera {
+
+float srgbToLinear(float encoded) {
+  return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+float linearToSrgb(float linear) {
+  return linear <= 0.0031308f ? linear * 12.92f : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+namespace {
+
+constexpr int kEncodeTableSize = 65536;
+
+struct SrgbTables {
+  std::array<float, 256> decode;
+  std::array<uint8_t, kEncodeTableSize> encode;
+
+  SrgbTables() {
+    for (int i = 0; i < 256; ++i) decode[i] = srgbToLinear(i / 255.0f);
+    for (int i = 0; i < kEncodeTableSize; ++i) {
+      float linear = static_cast<float>(i) / (kEncodeTableSize - 1);
+      encode[i] = static_cast<uint8_t>(std::lround(linearToSrgb(linear) * 255.0f));
+    }
+  }
+};
+
+const SrgbTables& tables() {
+  static const SrgbTables t;
+  return t;
+}
+
+}  // namespace
+
+const float* srgbDecodeTable() { return tables().decode.data(); }
+
+uint8_t encodeSrgb8(float linear) {
+  // NaN compares false: it lands on 0 like negative values.
+  float clamped = linear > 0.0f ? std::min(linear, 1.0f) : 0.0f;
+  int index = static_cast<int>(clamped * (kEncodeTableSize - 1) + 0.5f);
+  return tables().encode[index];
+}
+
+uint32_t packSrgba8(float4 linear) {
+  float a = linear.w > 0.0f ? std::min(linear.w, 1.0f) : 0.0f;
+  uint32_t alpha = static_cast<uint32_t>(a * 255.0f + 0.5f);
+  return static_cast<uint32_t>(encodeSrgb8(linear.x)) |
+         (static_cast<uint32_t>(encodeSrgb8(linear.y)) << 8) |
+         (static_cast<uint32_t>(encodeSrgb8(linear.z)) << 16) | (alpha << 24);
+}
+
+}  // namespace tessera
