@@ -1,0 +1,263 @@
+// The CPU backend: runs the stages in order over a worker pool.
+//
+//   vertex:  parallel over fixed ranges of vertices
+//   setup:   parallel over fixed chunks of triangles (assembly, cull, clip, setup, bin per chunk)
+//   raster:  parallel over 64x64 tiles; each tile reads the chunks' bins in chunk order
+//   resolve: in the same tile job, shade each visible pixel once and write the frame
+//   lines:   on the calling thread, after every tile
+//
+// Chunk and job boundaries depend only on the scene, never on the worker count, and a tile is
+// processed by one worker in submission order: the image is bit-identical for any worker count.
+#include <tessera/render/cpu_renderer.h>
+
+#include <algorithm>
+#include <memory>
+
+#include <tessera/base/check.h>
+
+#include "render/bin.h"
+#include "render/clip.h"
+#include "render/fixed_point.h"
+#include "render/lines.h"
+#include "render/raster.h"
+#include "render/resolve.h"
+#include "render/setup.h"
+#include "render/vertex.h"
+#include "render/worker_pool.h"
+
+namespace tessera {
+
+using namespace render;
+
+namespace {
+
+constexpr size_t kVerticesPerJob = 16384;
+constexpr size_t kMinTrianglesPerChunk = 4096;
+
+struct VertexJob {
+  uint32_t object;
+  size_t first;
+  size_t count;
+};
+
+}  // namespace
+
+struct CpuRenderer::State {
+  explicit State(int workers) : pool(workers) {
+    for (int i = 0; i < pool.size(); ++i) tiles.push_back(std::make_unique<TileVisibility>());
+  }
+
+  WorkerPool pool;
+  std::vector<ObjectTransforms> objects;
+  std::vector<VertexJob> vertex_jobs;
+  VertexBuffer vertices;
+  std::vector<TriangleChunk> chunks;
+  size_t chunk_count = 0;
+  std::vector<std::unique_ptr<TileVisibility>> tiles;  // one per worker
+  LineList lines;
+  PipelineStats stats;
+
+  void setupChunk(const Scene& scene, const TileGrid& grid, const GuardBand& guard,
+                  TriangleChunk& chunk) const;
+};
+
+CpuRenderer::CpuRenderer(int workers) : state_(std::make_unique<State>(workers)) {}
+CpuRenderer::~CpuRenderer() = default;
+
+int CpuRenderer::workerCount() const { return state_->pool.size(); }
+const PipelineStats& CpuRenderer::lastStats() const { return state_->stats; }
+
+void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
+                                    const GuardBand& guard, TriangleChunk& chunk) const {
+  chunk.raster.clear();
+  chunk.shade.clear();
+  chunk.bins.reset(grid.tileCount());
+  chunk.culled = 0;
+  chunk.clipped = 0;
+
+  const size_t begin = chunk.first_triangle, end = begin + chunk.triangle_count;
+  // The object holding `begin`: the last one whose triangle_base is <= begin.
+  size_t object_index =
+      std::upper_bound(objects.begin(), objects.end(), begin,
+                       [](size_t t, const ObjectTransforms& o) { return t < o.triangle_base; }) -
+      objects.begin() - 1;
+
+  RasterTriangle raster;
+  ShadeTriangle shade;
+  auto emit = [&](const SetupContext& ctx, const ClipVertex v[3], float3 face_normal,
+                  uint32_t id, uint16_t material) {
+    if (setupTriangle(ctx, v, face_normal, id, material, raster, shade) != SetupResult::kVisible)
+      return false;
+    const uint32_t local = static_cast<uint32_t>(chunk.raster.size());
+    TESSERA_CHECK(local < kMaxTrianglesPerChunk) << "chunk holds too many triangles";
+    chunk.raster.push_back(raster);
+    chunk.shade.push_back(shade);
+    chunk.bins.add(grid, raster, local);
+    return true;
+  };
+
+  for (size_t t = begin; t < end; ++object_index) {
+    const Object& object = scene.objects[object_index];
+    const ObjectTransforms& xf = objects[object_index];
+    const size_t object_end = xf.triangle_base + (object.mesh ? object.mesh->triangleCount() : 0);
+    if (!object.mesh || t >= object_end) continue;
+    const Mesh& mesh = *object.mesh;
+    const size_t vertex_count = mesh.vertexCount();
+    const bool has_uv = mesh.uvs.size() == vertex_count;
+    const bool has_color = mesh.colors.size() == vertex_count;
+
+    SetupContext ctx;
+    ctx.width = grid.width;
+    ctx.height = grid.height;
+    ctx.cull = object.cull;
+    ctx.shading = object.shading;
+    ctx.scene = &scene;
+    ctx.object = static_cast<uint32_t>(object_index);
+    ctx.has_uv = has_uv;
+
+    for (; t < std::min(end, object_end); ++t) {
+      const size_t local = t - xf.triangle_base;
+      const uint32_t idx[3] = {mesh.indices[local * 3], mesh.indices[local * 3 + 1],
+                               mesh.indices[local * 3 + 2]};
+      if (idx[0] >= vertex_count || idx[1] >= vertex_count || idx[2] >= vertex_count) {
+        ++chunk.culled;
+        continue;
+      }
+      ClipVertex v[3];
+      uint32_t codes[3];
+      bool finite = true;
+      for (int k = 0; k < 3; ++k) {
+        const size_t g = xf.vertex_base + idx[k];
+        v[k].position = vertices.clip(g);
+        finite = finite && std::isfinite(v[k].position.x) && std::isfinite(v[k].position.y) &&
+                 std::isfinite(v[k].position.z) && std::isfinite(v[k].position.w);
+        codes[k] = outcode(v[k].position, guard);
+      }
+      // Non-finite vertices drop their triangle; so does one wholly outside a frustum plane.
+      if (!finite || (codes[0] & codes[1] & codes[2] & kRejectPlanes)) {
+        ++chunk.culled;
+        continue;
+      }
+      for (int k = 0; k < 3; ++k) {
+        const size_t g = xf.vertex_base + idx[k];
+        v[k].normal = vertices.normal(g);
+        v[k].uv = has_uv ? mesh.uvs[idx[k]] : float2{};
+        v[k].color = has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1};
+      }
+      const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
+                   p2 = mesh.positions[idx[2]];
+      const float3 face_normal = xf.normal_matrix * cross(p1 - p0, p2 - p0) * xf.winding_sign;
+      const uint16_t material = mesh.triangle_materials.size() == mesh.triangleCount()
+                                    ? mesh.triangle_materials[local]
+                                    : uint16_t{0};
+      const uint32_t id = static_cast<uint32_t>(t);
+
+      const uint32_t cut = (codes[0] | codes[1] | codes[2]) & kCutPlanes;
+      if (!cut) {
+        if (!emit(ctx, v, face_normal, id, material)) ++chunk.culled;
+        continue;
+      }
+      ++chunk.clipped;
+      ClipVertex polygon[kMaxClippedVertices];
+      const int n = clipTriangle(v, cut, guard, polygon);
+      bool any = false;
+      for (int k = 1; k + 1 < n; ++k) {
+        const ClipVertex fan[3] = {polygon[0], polygon[k], polygon[k + 1]};
+        any = emit(ctx, fan, face_normal, id, material) || any;
+      }
+      if (!any) ++chunk.culled;
+    }
+  }
+  chunk.bins.finish();
+}
+
+void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
+  TESSERA_CHECK(options.width > 0 && options.height > 0 && options.width <= kMaxViewport &&
+                options.height <= kMaxViewport)
+      << "viewport " << options.width << "x" << options.height << " is outside 1.."
+      << kMaxViewport;
+  State& s = *state_;
+  frame.resize(options.width, options.height, options.normals);
+
+  const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
+  const float4x4 view_projection = scene.camera.projection(aspect) * scene.camera.view();
+
+  // Per-object constants, vertex and triangle bases.
+  s.objects.resize(scene.objects.size());
+  s.vertex_jobs.clear();
+  size_t vertex_total = 0, triangle_total = 0;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const Object& object = scene.objects[i];
+    TESSERA_CHECK(!object.materials.empty()) << "object " << i << " has no material";
+    s.objects[i] = makeObjectTransforms(object, view_projection);
+    s.objects[i].vertex_base = vertex_total;
+    s.objects[i].triangle_base = triangle_total;
+    if (!object.mesh) continue;
+    const size_t count = object.mesh->vertexCount();
+    for (size_t first = 0; first < count; first += kVerticesPerJob)
+      s.vertex_jobs.push_back({static_cast<uint32_t>(i), first,
+                               std::min(kVerticesPerJob, count - first)});
+    vertex_total += count;
+    triangle_total += object.mesh->triangleCount();
+  }
+
+  // Vertex stage.
+  s.vertices.resize(vertex_total);
+  s.pool.parallelFor(s.vertex_jobs.size(), [&](size_t j, int) {
+    const VertexJob& job = s.vertex_jobs[j];
+    transformVertices(*scene.objects[job.object].mesh, s.objects[job.object], job.first, job.count,
+                      s.vertices);
+  });
+
+  // Assembly, culling, clipping, setup and binning, per chunk.
+  const TileGrid grid = TileGrid::forViewport(options.width, options.height);
+  const GuardBand guard = makeGuardBand(options.width, options.height);
+  const size_t chunk_size =
+      std::max(kMinTrianglesPerChunk, (triangle_total + kMaxChunks - 1) / kMaxChunks);
+  s.chunk_count = (triangle_total + chunk_size - 1) / chunk_size;
+  if (s.chunks.size() < s.chunk_count) s.chunks.resize(s.chunk_count);
+  for (size_t c = 0; c < s.chunk_count; ++c) {
+    s.chunks[c].first_triangle = c * chunk_size;
+    s.chunks[c].triangle_count = std::min(chunk_size, triangle_total - c * chunk_size);
+  }
+  s.pool.parallelFor(s.chunk_count,
+                     [&](size_t c, int) { s.setupChunk(scene, grid, guard, s.chunks[c]); });
+
+  // Raster and resolve, per tile.
+  s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile, int worker) {
+    TileVisibility& visibility = *s.tiles[static_cast<size_t>(worker)];
+    const int tx = static_cast<int>(tile) % grid.columns, ty = static_cast<int>(tile) / grid.columns;
+    const int x0 = tx * kTileSize, y0 = ty * kTileSize;
+    visibility.clear(x0, y0, std::min(kTileSize, options.width - x0),
+                     std::min(kTileSize, options.height - y0));
+    for (size_t c = 0; c < s.chunk_count; ++c) {
+      const TriangleChunk& chunk = s.chunks[c];
+      for (const uint32_t* it = chunk.bins.begin(static_cast<int>(tile));
+           it != chunk.bins.end(static_cast<int>(tile)); ++it)
+        rasterTriangle(chunk.raster[*it], makeKey(static_cast<uint32_t>(c), *it), visibility);
+    }
+    resolveTile(visibility, s.chunks, scene, frame);
+  });
+
+  // Lines.
+  if (options.lines) {
+    s.lines.points.assign(scene.lines.points.begin(), scene.lines.points.end());
+    s.lines.colors.assign(scene.lines.colors.begin(), scene.lines.colors.end());
+    if (scene.show_world_axes) appendAxes(s.lines, float4x4::identity(), scene.world_axes_length);
+    for (size_t i = 0; i < scene.objects.size(); ++i)
+      if (scene.objects[i].show_axes)
+        appendAxes(s.lines, s.objects[i].model, scene.objects[i].axes_length);
+    drawLines(s.lines, view_projection, frame);
+  }
+
+  // Statistics.
+  s.stats = {};
+  s.stats.triangles_in = triangle_total;
+  for (size_t c = 0; c < s.chunk_count; ++c) {
+    s.stats.triangles_culled += s.chunks[c].culled;
+    s.stats.triangles_clipped += s.chunks[c].clipped;
+    s.stats.triangles_setup += s.chunks[c].raster.size();
+  }
+}
+
+}  // namespace tessera

@@ -1,0 +1,73 @@
+#include "render/lines.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tessera/scene/color.h>
+
+namespace tessera::render {
+
+void appendAxes(LineList& lines, const float4x4& m, float length) {
+  const float3 origin = (m * float4{0, 0, 0, 1}).xyz();
+  const float3 colors[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (int axis = 0; axis < 3; ++axis) {
+    float3 end{0, 0, 0};
+    end[axis] = length;
+    lines.add(origin, (m * float4{end, 1}).xyz(), colors[axis]);
+  }
+}
+
+namespace {
+
+// Clips the segment a-b (clip space) to the view frustum; false if nothing is left.
+bool clipSegment(float4& a, float4& b) {
+  float t0 = 0.0f, t1 = 1.0f;
+  // Plane distances (inside >= 0) for x, y, z against +-w.
+  auto distances = [](float4 p, float d[6]) {
+    d[0] = p.w + p.x, d[1] = p.w - p.x, d[2] = p.w + p.y;
+    d[3] = p.w - p.y, d[4] = p.w + p.z, d[5] = p.w - p.z;
+  };
+  float da[6], db[6];
+  distances(a, da);
+  distances(b, db);
+  for (int i = 0; i < 6; ++i) {
+    if (da[i] < 0 && db[i] < 0) return false;
+    if (da[i] < 0) t0 = std::max(t0, da[i] / (da[i] - db[i]));
+    else if (db[i] < 0) t1 = std::min(t1, da[i] / (da[i] - db[i]));
+  }
+  if (t0 > t1) return false;
+  const float4 a0 = a;
+  a = lerp(a0, b, t0);
+  b = lerp(a0, b, t1);
+  return true;
+}
+
+}  // namespace
+
+void drawLines(const LineList& lines, const float4x4& view_projection, Frame& frame) {
+  const float w = static_cast<float>(frame.width), h = static_cast<float>(frame.height);
+  for (size_t i = 0; i + 1 < lines.points.size(); i += 2) {
+    float4 a = view_projection * float4{lines.points[i], 1.0f};
+    float4 b = view_projection * float4{lines.points[i + 1], 1.0f};
+    if (!clipSegment(a, b)) continue;
+    const uint32_t color = packSrgba8(float4{lines.colors[i / 2], 1.0f});
+    auto window = [&](float4 p) {
+      return float3{(p.x / p.w * 0.5f + 0.5f) * w, (0.5f - p.y / p.w * 0.5f) * h,
+                    p.z / p.w * 0.5f + 0.5f};
+    };
+    const float3 sa = window(a), sb = window(b);
+    if (!isFinite(sa) || !isFinite(sb)) continue;
+    const float steps = std::ceil(std::max(std::fabs(sb.x - sa.x), std::fabs(sb.y - sa.y)));
+    const int n = static_cast<int>(std::min(steps, 4.0f * (w + h)));
+    for (int s = 0; s <= n; ++s) {
+      const float t = n > 0 ? static_cast<float>(s) / n : 0.0f;
+      const float3 p = lerp(sa, sb, t);
+      const int x = static_cast<int>(std::floor(p.x)), y = static_cast<int>(std::floor(p.y));
+      if (x < 0 || y < 0 || x >= frame.width || y >= frame.height) continue;
+      const size_t index = static_cast<size_t>(y) * frame.width + x;
+      if (p.z < frame.depth[index]) frame.color[index] = color;
+    }
+  }
+}
+
+}  // namespace tessera::render

@@ -1,0 +1,54 @@
+#include "render/vertex.h"
+
+#include <cmath>
+
+namespace tessera::render {
+
+ObjectTransforms makeObjectTransforms(const Object& object, const float4x4& view_projection) {
+  ObjectTransforms t;
+  t.model = object.transform.matrix();
+  t.model_view_projection = view_projection * t.model;
+  t.normal_matrix = normalMatrix(t.model);
+  t.winding_sign = determinant(upper3x3(t.model)) < 0.0f ? -1.0f : 1.0f;
+  t.vertex_base = 0;
+  t.triangle_base = 0;
+  return t;
+}
+
+void VertexBuffer::resize(size_t count) {
+  for (std::vector<float>* v :
+       {&clip_x, &clip_y, &clip_z, &clip_w, &normal_x, &normal_y, &normal_z})
+    v->resize(count);
+}
+
+void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms, size_t first,
+                       size_t count, VertexBuffer& out) {
+  const float4x4& m = transforms.model_view_projection;
+  const size_t base = transforms.vertex_base;
+  // Written as plain loops over arrays so the compiler vectorizes them.
+  for (size_t i = first; i < first + count; ++i) {
+    const float3 p = mesh.positions[i];
+    const size_t o = base + i;
+    out.clip_x[o] = m.col[0].x * p.x + m.col[1].x * p.y + m.col[2].x * p.z + m.col[3].x;
+    out.clip_y[o] = m.col[0].y * p.x + m.col[1].y * p.y + m.col[2].y * p.z + m.col[3].y;
+    out.clip_z[o] = m.col[0].z * p.x + m.col[1].z * p.y + m.col[2].z * p.z + m.col[3].z;
+    out.clip_w[o] = m.col[0].w * p.x + m.col[1].w * p.y + m.col[2].w * p.z + m.col[3].w;
+  }
+  if (mesh.normals.size() != mesh.positions.size()) {
+    for (size_t i = first; i < first + count; ++i) {
+      const size_t o = base + i;
+      out.normal_x[o] = out.normal_y[o] = out.normal_z[o] = 0.0f;
+    }
+    return;
+  }
+  const float3x3& n = transforms.normal_matrix;
+  for (size_t i = first; i < first + count; ++i) {
+    float3 w = normalize(n * mesh.normals[i]);
+    const size_t o = base + i;
+    out.normal_x[o] = w.x;
+    out.normal_y[o] = w.y;
+    out.normal_z[o] = w.z;
+  }
+}
+
+}  // namespace tessera::render

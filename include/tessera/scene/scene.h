@@ -41,7 +41,8 @@ struct Object {
   Transform transform;
   Shading shading = Shading::kFlat;
   CullMode cull = CullMode::kBack;
-  bool show_axes = false;  // draw the object's local X/Y/Z axes (red, green, blue)
+  bool show_axes = false;    // draw the object's local X/Y/Z axes (red, green, blue)
+  float axes_length = 1.0f;  // their length, in the object's own units
 };
 
 // Light travelling along `direction` (world space, from the light towards the scene).

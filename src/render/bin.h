@@ -1,0 +1,64 @@
+// Binning: each set-up triangle goes into the bins of the screen tiles its bounding box touches.
+// Every chunk of triangles bins into its own ChunkBins (no locks); the rasterizer reads the
+// chunks in order, so a tile sees its triangles in submission order.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/fixed_point.h"
+#include "render/setup.h"
+
+namespace tessera::render {
+
+struct TileGrid {
+  int width = 0, height = 0;  // pixels
+  int columns = 0, rows = 0;  // tiles
+
+  static TileGrid forViewport(int width, int height) {
+    return {width, height, (width + kTileSize - 1) / kTileSize,
+            (height + kTileSize - 1) / kTileSize};
+  }
+  int tileCount() const { return columns * rows; }
+};
+
+class ChunkBins {
+ public:
+  // Empties the bins for a grid of `tile_count` tiles (keeps the memory).
+  void reset(int tile_count);
+  // Adds triangle `local_index` to every tile its bounding box overlaps.
+  void add(const TileGrid& grid, const RasterTriangle& triangle, uint32_t local_index);
+  // Groups the entries by tile, keeping their order within each tile. Call once after the adds.
+  void finish();
+
+  // The triangles of `tile`, in the order they were added.
+  const uint32_t* begin(int tile) const { return sorted_.data() + offsets_[tile]; }
+  const uint32_t* end(int tile) const { return sorted_.data() + offsets_[tile + 1]; }
+
+ private:
+  struct Entry {
+    uint32_t tile;
+    uint32_t triangle;
+  };
+  std::vector<Entry> entries_;
+  std::vector<uint32_t> counts_;
+  std::vector<uint32_t> offsets_;  // tile_count + 1
+  std::vector<uint32_t> sorted_;
+};
+
+}  // namespace tessera::render
+
+namespace tessera::render {
+
+// The output of setup for one fixed range of the scene's triangles.
+struct TriangleChunk {
+  size_t first_triangle = 0;  // scene triangle index range [first, first + count)
+  size_t triangle_count = 0;
+  std::vector<RasterTriangle> raster;
+  std::vector<ShadeTriangle> shade;
+  ChunkBins bins;
+  size_t culled = 0;
+  size_t clipped = 0;
+};
+
+}  // namespace tessera::render

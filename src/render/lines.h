@@ -1,0 +1,19 @@
+// The line pass: world and object axes and the scene's line lists, drawn after the triangles,
+// depth-tested against them but not writing depth.
+#pragma once
+
+#include <tessera/math/math.h>
+#include <tessera/render/frame.h>
+#include <tessera/scene/scene.h>
+
+namespace tessera::render {
+
+// Appends the X (red), Y (green) and Z (blue) axes of `frame_matrix` from its origin, each
+// `length` long in the frame's own units.
+void appendAxes(LineList& lines, const float4x4& frame_matrix, float length);
+
+// Draws each segment (one pixel wide, clipped to the view frustum) where it is nearer than the
+// frame's depth.
+void drawLines(const LineList& lines, const float4x4& view_projection, Frame& frame);
+
+}  // namespace tessera::render

@@ -1,0 +1,45 @@
+// Tile rasterization into a visibility buffer: for each pixel of a 64x64 tile, the nearest depth
+// and the key of the triangle that owns it. Depth passes when z < stored (first wins ties, and
+// triangles arrive in submission order, so the result does not depend on the worker count).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include "render/fixed_point.h"
+#include "render/setup.h"
+
+namespace tessera::render {
+
+// A triangle's key: its chunk and its index in that chunk's records.
+constexpr int kChunkKeyBits = 7;
+constexpr uint32_t kMaxChunks = 1u << kChunkKeyBits;
+constexpr int kLocalKeyBits = 32 - kChunkKeyBits;
+constexpr uint32_t kMaxTrianglesPerChunk = (1u << kLocalKeyBits) - 1;  // the all-ones key is empty
+constexpr uint32_t kEmptyKey = 0xffffffffu;
+
+constexpr uint32_t makeKey(uint32_t chunk, uint32_t local) {
+  return (chunk << kLocalKeyBits) | local;
+}
+constexpr uint32_t keyChunk(uint32_t key) { return key >> kLocalKeyBits; }
+constexpr uint32_t keyLocal(uint32_t key) { return key & ((1u << kLocalKeyBits) - 1); }
+
+struct TileVisibility {
+  int x0 = 0, y0 = 0;          // the tile's first pixel
+  int width = 0, height = 0;   // <= kTileSize at the right and bottom borders
+  alignas(64) float depth[kTileSize * kTileSize];
+  alignas(64) uint32_t key[kTileSize * kTileSize];
+
+  void clear(int tile_x0, int tile_y0, int tile_width, int tile_height) {
+    x0 = tile_x0, y0 = tile_y0, width = tile_width, height = tile_height;
+    for (int i = 0; i < kTileSize * kTileSize; ++i) {
+      depth[i] = std::numeric_limits<float>::infinity();
+      key[i] = kEmptyKey;
+    }
+  }
+};
+
+// Depth-tests every covered pixel of `triangle` inside the tile and records `key` where it wins.
+void rasterTriangle(const RasterTriangle& triangle, uint32_t key, TileVisibility& tile);
+
+}  // namespace tessera::render

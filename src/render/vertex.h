@@ -1,0 +1,39 @@
+// Vertex stage: object-space positions to clip space and normals to world space, for every
+// vertex of every object, into structure-of-arrays buffers.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <tessera/math/math.h>
+#include <tessera/scene/scene.h>
+
+namespace tessera::render {
+
+// Per-object constants of one frame.
+struct ObjectTransforms {
+  float4x4 model;
+  float4x4 model_view_projection;
+  float3x3 normal_matrix;  // inverse transpose of the model's upper 3x3
+  float winding_sign;      // sign of det(model): a mirrored object flips face normals
+  size_t vertex_base;      // first vertex in the VertexBuffer
+  size_t triangle_base;    // first triangle in the scene's triangle list (the id base)
+};
+
+ObjectTransforms makeObjectTransforms(const Object& object, const float4x4& view_projection);
+
+// Transformed vertices of the whole scene, objects one after another.
+struct VertexBuffer {
+  std::vector<float> clip_x, clip_y, clip_z, clip_w;
+  std::vector<float> normal_x, normal_y, normal_z;  // world space, unit (zero if the mesh has none)
+
+  void resize(size_t count);
+  float4 clip(size_t i) const { return {clip_x[i], clip_y[i], clip_z[i], clip_w[i]}; }
+  float3 normal(size_t i) const { return {normal_x[i], normal_y[i], normal_z[i]}; }
+};
+
+// Transforms mesh vertices [first, first + count) into the buffer at transforms.vertex_base.
+void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms, size_t first,
+                       size_t count, VertexBuffer& out);
+
+}  // namespace tessera::render

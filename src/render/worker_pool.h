@@ -1,0 +1,55 @@
+// A fixed set of worker threads that run parallel-for loops. The calling thread takes part as
+// worker 0, so a pool of one runs everything inline.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace tessera::render {
+
+class WorkerPool {
+ public:
+  // workers: 0 = one per hardware thread.
+  explicit WorkerPool(int workers);
+  ~WorkerPool();
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  int size() const { return static_cast<int>(threads_.size()) + 1; }
+
+  // Calls body(index, worker) for every index in [0, count), spread over the workers; returns
+  // when all are done. Indices are handed out in increasing order.
+  template <typename Body>
+  void parallelFor(size_t count, Body&& body) {
+    auto invoke = [](void* context, size_t index, int worker) {
+      (*static_cast<Body*>(context))(index, worker);
+    };
+    run(count, &body, invoke);
+  }
+
+ private:
+  using Invoker = void (*)(void*, size_t, int);
+  void run(size_t count, void* context, Invoker invoker);
+  void workerLoop(int worker);
+  void drain(int worker);
+
+  std::vector<std::thread> threads_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::condition_variable done_;
+  uint64_t generation_ = 0;
+  int busy_ = 0;
+  bool stopping_ = false;
+
+  // The current job.
+  void* context_ = nullptr;
+  Invoker invoker_ = nullptr;
+  size_t count_ = 0;
+  std::atomic<size_t> next_{0};
+};
+
+}  // namespace tessera::render
