@@ -1,1 +1,544 @@
+// Tests of the CPU pipeline through its public seam, on scenes small enough to reason about
+// pixel by pixel.
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <cstring>
+#include <map>
+#include <random>
+#include <set>
+
+#include <tessera/render/cpu_renderer.h>
+#include <tessera/scene/color.h>
+#include <tessera/scene/primitives.h>
+
+using namespace tessera;
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// A scene whose camera maps object coordinates straight to clip space.
+Scene clipSpaceScene() {
+  Scene scene;
+  scene.camera.view_override = float4x4::identity();
+  scene.camera.projection_override = float4x4::identity();
+  scene.ambient = float3(1.0f);
+  return scene;
+}
+
+// Window coordinates (pixels, y down) and NDC depth to a clip-space position with w = 1.
+float3 windowToNdc(float x, float y, float z, int width, int height) {
+  return {2.0f * x / width - 1.0f, 1.0f - 2.0f * y / height, z};
+}
+
+Object unlitObject(Mesh mesh, CullMode cull = CullMode::kNone) {
+  Object o;
+  o.mesh = std::make_shared<Mesh>(std::move(mesh));
+  o.materials[0].base_color = {1, 1, 1, 1};
+  o.shading = Shading::kUnlit;
+  o.cull = cull;
+  return o;
+}
+
+Frame renderScene(const Scene& scene, int width, int height, int workers = 1,
+                  PipelineStats* stats = nullptr, bool normals = false) {
+  CpuRenderer renderer(workers);
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.normals = normals;
+  Frame frame;
+  renderer.render(scene, options, frame);
+  if (stats) *stats = renderer.lastStats();
+  return frame;
+}
+
+// One triangle given in window coordinates.
+Mesh windowTriangle(float3 a, float3 b, float3 c, int width, int height) {
+  Mesh m;
+  m.positions = {windowToNdc(a.x, a.y, a.z, width, height),
+                 windowToNdc(b.x, b.y, b.z, width, height),
+                 windowToNdc(c.x, c.y, c.z, width, height)};
+  m.indices = {0, 1, 2};
+  return m;
+}
+
+int coveredCount(const Frame& f) {
+  int n = 0;
+  for (uint32_t id : f.triangle_id) n += id != kNoTriangle;
+  return n;
+}
+
+}  // namespace
+
+TEST(Raster, SharedEdgeGridCoversEachPixelOnce) {
+  constexpr int kW = 64, kH = 48;
+  // Vertex columns and rows on pixel centres (x.5) and off them; the 7x7 cells have diagonals
+  // that pass exactly through pixel centres.
+  const float xs[] = {0, 7.5f, 14.5f, 20.5f, 31.5f, 40.5f, 47.5f, 55.25f, 64};
+  const float ys[] = {0, 5.5f, 12.5f, 18.5f, 29.5f, 36.5f, 48};
+  std::vector<float3> triangles;
+  for (int r = 0; r + 1 < 7; ++r) {
+    for (int c = 0; c + 1 < 9; ++c) {
+      float3 p00{xs[c], ys[r], 0}, p10{xs[c + 1], ys[r], 0}, p01{xs[c], ys[r + 1], 0},
+          p11{xs[c + 1], ys[r + 1], 0};
+      // Alternate the diagonal, and the winding, from cell to cell.
+      bool flip = (r + c) % 2 == 1;
+      if (flip)
+        triangles.insert(triangles.end(), {p00, p10, p11, p00, p11, p01});
+      else
+        triangles.insert(triangles.end(), {p00, p01, p10, p10, p01, p11});
+      if (c % 3 == 0) std::swap(triangles[triangles.size() - 1], triangles[triangles.size() - 2]);
+    }
+  }
+  std::vector<int> coverage(kW * kH, 0);
+  for (size_t t = 0; t < triangles.size(); t += 3) {
+    Scene scene = clipSpaceScene();
+    scene.objects.push_back(unlitObject(
+        windowTriangle(triangles[t], triangles[t + 1], triangles[t + 2], kW, kH)));
+    Frame f = renderScene(scene, kW, kH);
+    for (int i = 0; i < kW * kH; ++i) coverage[i] += f.triangle_id[i] != kNoTriangle;
+  }
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      EXPECT_EQ(coverage[y * kW + x], 1) << "pixel " << x << "," << y;
+}
+
+TEST(Raster, TopLeftRuleOnEdgesThroughPixelCentres) {
+  constexpr int kW = 10, kH = 10;
+  // A square whose four edges pass exactly through pixel centres: the top and left edges own
+  // their centres, the bottom and right ones do not.
+  Scene scene = clipSpaceScene();
+  Mesh quad;
+  for (float3 p : {float3{2.5f, 2.5f, 0}, float3{6.5f, 2.5f, 0}, float3{6.5f, 6.5f, 0},
+                   float3{2.5f, 6.5f, 0}})
+    quad.positions.push_back(windowToNdc(p.x, p.y, p.z, kW, kH));
+  quad.indices = {0, 2, 1, 0, 3, 2};
+  scene.objects.push_back(unlitObject(quad));
+  Frame f = renderScene(scene, kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      bool inside = x >= 2 && x <= 5 && y >= 2 && y <= 5;
+      EXPECT_EQ(f.idAt(x, y) != kNoTriangle, inside) << x << "," << y;
+    }
+}
+
+TEST(Raster, TopLeftRuleForASingleTriangle) {
+  constexpr int kW = 8, kH = 8;
+  // Right triangle: horizontal top edge on row 1's centres (top: owned), vertical left edge on
+  // column 1's centres (left: owned), hypotenuse through centres (bottom-right: not owned).
+  Scene scene = clipSpaceScene();
+  scene.objects.push_back(
+      unlitObject(windowTriangle({1.5f, 1.5f, 0}, {5.5f, 1.5f, 0}, {1.5f, 5.5f, 0}, kW, kH)));
+  Frame f = renderScene(scene, kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      // Centre (x+0.5, y+0.5) strictly inside or on an owned edge: x >= 1, y >= 1, x + y < 6.
+      bool expected = x >= 1 && y >= 1 && (x + y) < 6;
+      EXPECT_EQ(f.idAt(x, y) != kNoTriangle, expected) << x << "," << y;
+    }
+}
+
+TEST(Raster, SubpixelTriangleBetweenCentresCoversNothing) {
+  Scene scene = clipSpaceScene();
+  scene.objects.push_back(
+      unlitObject(windowTriangle({3.6f, 3.6f, 0}, {3.9f, 3.6f, 0}, {3.6f, 3.9f, 0}, 8, 8)));
+  PipelineStats stats;
+  Frame f = renderScene(scene, 8, 8, 1, &stats);
+  EXPECT_EQ(coveredCount(f), 0);
+  EXPECT_EQ(stats.triangles_setup, 0u);
+  EXPECT_EQ(stats.triangles_culled, 1u);
+}
+
+TEST(Raster, TriangleFarOutsideTheGuardBandIsClippedAndFillsTheScreen) {
+  constexpr int kW = 40, kH = 30;
+  Scene scene = clipSpaceScene();
+  Mesh huge;
+  huge.positions = {{-1e6f, -1e6f, 0.0f}, {1e6f, -1e6f, 0.0f}, {0.0f, 1e6f, 0.0f}};
+  huge.indices = {0, 1, 2};
+  scene.objects.push_back(unlitObject(huge));
+  PipelineStats stats;
+  Frame f = renderScene(scene, kW, kH, 1, &stats);
+  EXPECT_EQ(stats.triangles_clipped, 1u);
+  EXPECT_EQ(coveredCount(f), kW * kH);
+  for (float z : f.depth) EXPECT_NEAR(z, 0.5f, 1e-6f);
+}
+
+TEST(Raster, TriangleCrossingTheNearPlaneMatchesTheAnalyticFloor) {
+  // A floor at y = -1 running from behind the camera to z = -40; the camera at the origin looks
+  // down -Z with a 90 degree field of view.
+  constexpr int kW = 64, kH = 48;
+  Scene scene;
+  scene.ambient = float3(1.0f);
+  scene.camera.position = {0, 0, 0};
+  scene.camera.target = {0, 0, -1};
+  scene.camera.fov_y_degrees = 90.0f;
+  scene.camera.near_z = 0.5f;
+  scene.camera.far_z = 100.0f;
+  Mesh floor;
+  floor.positions = {{-30, -1, 10}, {30, -1, 10}, {30, -1, -40}, {-30, -1, -40}};
+  floor.indices = {0, 1, 2, 0, 2, 3};
+  scene.objects.push_back(unlitObject(floor, CullMode::kBack));
+  PipelineStats stats;
+  Frame f = renderScene(scene, kW, kH, 1, &stats);
+  EXPECT_EQ(stats.triangles_clipped, 2u);
+
+  const float aspect = static_cast<float>(kW) / kH;
+  const float4x4 projection = scene.camera.projection(aspect);
+  int checked = 0;
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) {
+      float ndc_x = 2.0f * (x + 0.5f) / kW - 1.0f, ndc_y = 1.0f - 2.0f * (y + 0.5f) / kH;
+      float3 dir{ndc_x * aspect, ndc_y, -1.0f};  // tan(45 deg) = 1
+      bool hit = false;
+      float t = 0;
+      if (dir.y < 0) {
+        t = -1.0f / dir.y;  // view distance along -Z
+        float3 p = dir * t;
+        // Skip pixels within a pixel's worth of the floor's far edge or sides.
+        float margin = 0.6f * t * 2.0f / kH;
+        if (std::fabs(p.z + 40.0f) < margin * 3 || std::fabs(std::fabs(p.x) - 30.0f) < margin * 3)
+          continue;
+        hit = p.z > -40.0f && std::fabs(p.x) < 30.0f;
+      }
+      EXPECT_EQ(f.idAt(x, y) != kNoTriangle, hit) << x << "," << y;
+      if (hit) {
+        float4 clip = projection * float4{dir * t, 1.0f};
+        // Vertices snap to 1/256 pixel and the plane is evaluated in float: near the horizon
+        // that moves depth by a few 1e-5.
+        EXPECT_NEAR(f.depthAt(x, y), clip.z / clip.w * 0.5f + 0.5f, 1e-4f) << x << "," << y;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, kW * kH / 3);
+}
+
+TEST(Raster, InterpenetratingTrianglesResolveByDepth) {
+  constexpr int kW = 32, kH = 16;
+  Scene scene = clipSpaceScene();
+  Mesh m;
+  // Quad A leans from z = -0.5 (left, near) to z = 0.5 (right, far); quad B is flat at z = 0.
+  m.positions = {{-1, -1, -0.5f}, {1, -1, 0.5f}, {1, 1, 0.5f}, {-1, 1, -0.5f},
+                 {-1, -1, 0.0f},  {1, -1, 0.0f}, {1, 1, 0.0f}, {-1, 1, 0.0f}};
+  m.indices = {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7};
+  scene.objects.push_back(unlitObject(m));
+  Frame f = renderScene(scene, kW, kH);
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) {
+      uint32_t id = f.idAt(x, y);
+      if (x < kW / 2 - 1) {
+        EXPECT_TRUE(id == 1 || id == 2) << x << "," << y << " id " << id;
+      }
+      if (x > kW / 2) {
+        EXPECT_TRUE(id == 3 || id == 4) << x << "," << y << " id " << id;
+      }
+      // Depth is the nearer of the two planes.
+      float z_a = 0.5f * ((x + 0.5f) / kW * 2.0f - 1.0f) * 0.5f + 0.5f;
+      EXPECT_NEAR(f.depthAt(x, y), std::min(z_a, 0.5f), 1e-6f);
+    }
+  }
+}
+
+TEST(Raster, BackfaceCullModes) {
+  constexpr int kW = 16, kH = 8;
+  Mesh m;
+  // Left triangle counter-clockwise in NDC (front), right one clockwise (back).
+  m.positions = {{-0.9f, -0.9f, 0}, {-0.1f, -0.9f, 0}, {-0.5f, 0.9f, 0},
+                 {0.1f, -0.9f, 0},  {0.5f, 0.9f, 0},   {0.9f, -0.9f, 0}};
+  m.indices = {0, 1, 2, 3, 4, 5};
+  auto ids = [&](CullMode cull) {
+    Scene scene = clipSpaceScene();
+    scene.objects.push_back(unlitObject(m, cull));
+    Frame f = renderScene(scene, kW, kH);
+    std::set<uint32_t> seen(f.triangle_id.begin(), f.triangle_id.end());
+    seen.erase(kNoTriangle);
+    return seen;
+  };
+  EXPECT_EQ(ids(CullMode::kBack), (std::set<uint32_t>{1}));
+  EXPECT_EQ(ids(CullMode::kFront), (std::set<uint32_t>{2}));
+  EXPECT_EQ(ids(CullMode::kNone), (std::set<uint32_t>{1, 2}));
+}
+
+TEST(Raster, NonFiniteDegenerateAndOutOfRangeTrianglesAreDropped) {
+  Scene scene = clipSpaceScene();
+  Mesh m;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {nan, 0, 0}, {0.5f, 0.5f, 0}, {kInf, 0, 0}};
+  m.indices = {0, 1, 3,    // NaN vertex
+               0, 1, 5,    // infinite vertex
+               0, 2, 4,    // collinear? no: a real triangle, kept below
+               0, 0, 1,    // degenerate
+               0, 1, 99,   // index past the end
+               0, 1, 2};   // valid
+  scene.objects.push_back(unlitObject(m));
+  PipelineStats stats;
+  Frame f = renderScene(scene, 16, 16, 1, &stats);
+  EXPECT_EQ(stats.triangles_in, 6u);
+  EXPECT_EQ(stats.triangles_culled, 4u);
+  std::set<uint32_t> seen(f.triangle_id.begin(), f.triangle_id.end());
+  EXPECT_TRUE(seen.count(6));
+  EXPECT_FALSE(seen.count(1) || seen.count(2) || seen.count(4) || seen.count(5));
+}
+
+TEST(Raster, IdsFollowSceneTriangleOrderAcrossObjects) {
+  Scene scene = clipSpaceScene();
+  Mesh left, right;
+  left.positions = {{-1, -1, 0}, {-0.1f, -1, 0}, {-1, 1, 0}, {-0.1f, 1, 0}};
+  left.indices = {0, 1, 2, 1, 3, 2};
+  right.positions = {{0.1f, -1, 0}, {1, -1, 0}, {0.1f, 1, 0}};
+  right.indices = {0, 1, 2};
+  scene.objects.push_back(unlitObject(left));
+  scene.objects.push_back(unlitObject(right));
+  Frame f = renderScene(scene, 20, 10);
+  EXPECT_EQ(f.idAt(1, 8), 1u);  // lower-left: first triangle of the first object
+  EXPECT_EQ(f.idAt(7, 1), 2u);
+  EXPECT_EQ(f.idAt(12, 8), 3u);  // the second object's triangle follows the first's two
+}
+
+TEST(Shading, PerspectiveCorrectUvOnARecedingCheckerboard) {
+  constexpr int kW = 96, kH = 64;
+  constexpr int kChecks = 16;
+  auto texture = std::make_shared<Texture>();
+  texture->width = texture->height = kChecks;
+  for (int y = 0; y < kChecks; ++y)
+    for (int x = 0; x < kChecks; ++x) texture->texels.push_back((x + y) % 2 ? 0xffffffffu : 0xff000000u);
+
+  Scene scene;
+  scene.camera.position = {0, 1, 0};
+  scene.camera.target = {0, 0.2f, -4};
+  scene.camera.fov_y_degrees = 60;
+  scene.camera.near_z = 0.1f;
+  scene.camera.far_z = 100;
+  // Floor y = 0 from z = -0.5 to z = -30.5, x in [-15, 15]; u along x, v along -z.
+  const float z_near = -0.5f, z_far = -30.5f, half_x = 15.0f;
+  Mesh floor;
+  floor.positions = {{-half_x, 0, z_near}, {half_x, 0, z_near}, {half_x, 0, z_far},
+                     {-half_x, 0, z_far}};
+  floor.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  floor.indices = {0, 1, 2, 0, 2, 3};
+  Object o = unlitObject(floor, CullMode::kBack);
+  o.materials[0].albedo = texture;
+  o.materials[0].sampler = {TextureFilter::kNearest, TextureWrap::kClamp};
+  scene.objects.push_back(o);
+  Frame f = renderScene(scene, kW, kH);
+
+  const float aspect = static_cast<float>(kW) / kH;
+  const float4x4 inverse_vp = inverse(scene.camera.projection(aspect) * scene.camera.view());
+  int checked = 0, wrong = 0;
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) {
+      // Unproject the pixel centre to a world ray and intersect it with the floor.
+      float ndc_x = 2.0f * (x + 0.5f) / kW - 1.0f, ndc_y = 1.0f - 2.0f * (y + 0.5f) / kH;
+      float4 a = inverse_vp * float4{ndc_x, ndc_y, -1, 1}, b = inverse_vp * float4{ndc_x, ndc_y, 1, 1};
+      float3 p0 = a.xyz() * (1 / a.w), p1 = b.xyz() * (1 / b.w);
+      if (!(p1.y < p0.y)) continue;
+      float3 hit = p0 + (p1 - p0) * (p0.y / (p0.y - p1.y));
+      float u = (hit.x + half_x) / (2 * half_x), v = (z_near - hit.z) / (z_near - z_far);
+      if (u <= 0 || u >= 1 || v <= 0 || v >= 1) continue;
+      float tu = u * kChecks, tv = (1 - v) * kChecks;
+      // Skip centres within a sliver of a check boundary, where rounding may go either way.
+      float du = std::fabs(tu - std::round(tu)), dv = std::fabs(tv - std::round(tv));
+      float slack = 0.02f * (1 + 20 * (v));
+      if (du < slack || dv < slack) continue;
+      bool white = (static_cast<int>(tu) + static_cast<int>(tv)) % 2 == 1;
+      uint32_t expected = white ? 0xffffffffu : 0xff000000u;
+      ++checked;
+      wrong += f.colorAt(x, y) != expected;
+    }
+  }
+  EXPECT_GT(checked, kW * kH / 4);
+  EXPECT_EQ(wrong, 0) << "of " << checked;
+}
+
+TEST(Shading, LambertWithAmbientInLinearLight) {
+  Scene scene = clipSpaceScene();
+  scene.ambient = float3(0.1f);
+  // A light shining straight at a face that looks at the viewer (+Z in clip space = towards
+  // the viewer with the identity camera), at 60 degrees: cos = 0.5.
+  scene.lights.push_back({normalize(float3{0, -std::sqrt(3.0f), -1}), float3(0.8f)});
+  Mesh quad;
+  quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  Object o = unlitObject(quad, CullMode::kBack);
+  o.shading = Shading::kFlat;
+  o.materials[0].base_color = {0.5f, 0.25f, 1.0f, 1.0f};
+  scene.objects.push_back(o);
+  Frame f = renderScene(scene, 8, 8);
+  const float e = 0.1f + 0.8f * 0.5f;
+  const uint32_t expected = packSrgba8({0.5f * e, 0.25f * e, 1.0f * e, 1.0f});
+  for (uint32_t c : f.color) EXPECT_EQ(c, expected);
+}
+
+TEST(Shading, FlatGouraudAndPhongDifferAsExpectedOnASphere) {
+  auto render = [](Shading shading) {
+    Scene scene;
+    scene.camera.position = {0, 0, 3};
+    scene.lights.push_back({normalize(float3{-1, -1, -1}), float3(1.0f)});
+    Object o;
+    o.mesh = std::make_shared<Mesh>(makeUvSphere(12, 6));
+    o.shading = shading;
+    scene.objects.push_back(o);
+    return renderScene(scene, 64, 64);
+  };
+  Frame flat = render(Shading::kFlat), gouraud = render(Shading::kGouraud),
+        phong = render(Shading::kPhong);
+  // Same coverage, different colours.
+  EXPECT_EQ(flat.triangle_id, gouraud.triangle_id);
+  EXPECT_EQ(flat.triangle_id, phong.triangle_id);
+  EXPECT_NE(flat.color, gouraud.color);
+  EXPECT_NE(gouraud.color, phong.color);
+  // Flat: one colour per triangle.
+  std::map<uint32_t, uint32_t> colour_of;
+  for (size_t i = 0; i < flat.color.size(); ++i) {
+    if (flat.triangle_id[i] == kNoTriangle) continue;
+    auto [it, inserted] = colour_of.emplace(flat.triangle_id[i], flat.color[i]);
+    EXPECT_EQ(it->second, flat.color[i]);
+  }
+  EXPECT_GT(colour_of.size(), 20u);
+}
+
+TEST(Shading, NormalAovIsUnitAndFacesTheViewer) {
+  Scene scene;
+  scene.camera.position = {0, 0, 3};
+  Object o;
+  o.mesh = std::make_shared<Mesh>(makeUvSphere(24, 12));
+  o.shading = Shading::kPhong;
+  scene.objects.push_back(o);
+  Frame f = renderScene(scene, 48, 48, 1, nullptr, true);
+  int covered = 0;
+  for (size_t i = 0; i < f.pixelCount(); ++i) {
+    if (f.triangle_id[i] == kNoTriangle) {
+      EXPECT_EQ(f.normal[i], float3{});
+      continue;
+    }
+    ++covered;
+    EXPECT_NEAR(length(f.normal[i]), 1.0f, 1e-4f);
+    EXPECT_GT(f.normal[i].z, -0.05f);
+  }
+  EXPECT_GT(covered, 48 * 48 / 4);
+  // The centre pixel looks straight at the camera.
+  EXPECT_GT(f.normal[24 * 48 + 24].z, 0.99f);
+}
+
+TEST(Lines, AxesAreDepthTestedButDoNotWriteDepth) {
+  constexpr int kW = 40, kH = 20;
+  Scene scene = clipSpaceScene();
+  // A wall at NDC z = 0 over the left half; a red line at z = 0.5 (behind it) across the image.
+  Mesh wall;
+  wall.positions = {{-1, -1, 0}, {0, -1, 0}, {0, 1, 0}, {-1, 1, 0}};
+  wall.indices = {0, 1, 2, 0, 2, 3};
+  Object o = unlitObject(wall);
+  o.materials[0].base_color = {0, 0, 1, 1};
+  scene.objects.push_back(o);
+  scene.lines.add({-1, 0.05f, 0.5f}, {1, 0.05f, 0.5f}, {1, 0, 0});
+  Frame f = renderScene(scene, kW, kH);
+  const uint32_t red = 0xff0000ffu, blue = 0xffff0000u;
+  int red_right = 0;
+  for (int x = 0; x < kW; ++x) {
+    for (int y = 0; y < kH; ++y) {
+      if (x < kW / 2) {
+        EXPECT_EQ(f.colorAt(x, y), blue) << x << "," << y;
+      }
+      if (x >= kW / 2 && f.colorAt(x, y) == red) {
+        ++red_right;
+        EXPECT_EQ(f.depthAt(x, y), kInf);
+      }
+    }
+  }
+  EXPECT_GE(red_right, kW / 2 - 1);
+}
+
+TEST(Lines, WorldAxesPointAlongPositiveAxes) {
+  Scene scene = clipSpaceScene();
+  scene.show_world_axes = true;
+  scene.world_axes_length = 0.9f;
+  Frame f = renderScene(scene, 21, 21);
+  // X (red) runs right from the centre, Y (green) runs up.
+  EXPECT_EQ(f.colorAt(17, 10), 0xff0000ffu);
+  EXPECT_EQ(f.colorAt(10, 3), 0xff00ff00u);
+  EXPECT_EQ(f.colorAt(3, 10), packSrgba8(scene.background));
+}
+
+TEST(Renderer, ImageIsBitIdenticalForAnyWorkerCount) {
+  Scene scene;
+  scene.camera.position = {0, 2, 6};
+  scene.camera.near_z = 0.5f;
+  scene.lights.push_back({normalize(float3{-1, -2, -1}), float3(0.9f)});
+  scene.show_world_axes = true;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> unit(-1, 1);
+  auto sphere = std::make_shared<Mesh>(makeUvSphere(20, 10));
+  auto cube = std::make_shared<Mesh>(makeCube());
+  for (int i = 0; i < 60; ++i) {
+    Object o;
+    o.mesh = i % 3 ? sphere : cube;
+    o.shading = static_cast<Shading>(i % 4);
+    o.cull = static_cast<CullMode>(i % 3);
+    o.transform.translation = {unit(rng) * 4, unit(rng) * 3, unit(rng) * 6};  // some cross near
+    o.transform.rotation = fromEuler({unit(rng), unit(rng), unit(rng)});
+    o.transform.scale = float3(0.3f + 0.5f * std::fabs(unit(rng)));
+    o.materials[0].base_color = {std::fabs(unit(rng)), std::fabs(unit(rng)), 0.5f, 1};
+    o.show_axes = i % 7 == 0;
+    scene.objects.push_back(o);
+  }
+  PipelineStats stats;
+  Frame one = renderScene(scene, 333, 217, 1, &stats, true);
+  EXPECT_GT(stats.triangles_clipped, 0u);
+  EXPECT_GT(stats.triangles_setup, 1000u);
+  for (int workers : {2, 7}) {
+    Frame many = renderScene(scene, 333, 217, workers, nullptr, true);
+    EXPECT_EQ(one.color, many.color) << workers << " workers";
+    EXPECT_EQ(one.triangle_id, many.triangle_id) << workers << " workers";
+    EXPECT_EQ(0, std::memcmp(one.depth.data(), many.depth.data(), one.depth.size() * 4));
+    EXPECT_EQ(0, std::memcmp(one.normal.data(), many.normal.data(), one.normal.size() * 12));
+  }
+}
+
+TEST(Renderer, ReusesItsBuffersAcrossFramesAndSizes) {
+  Scene scene;
+  Object o;
+  o.mesh = std::make_shared<Mesh>(makeCube());
+  scene.objects.push_back(o);
+  CpuRenderer renderer(2);
+  RenderOptions options;
+  Frame frame;
+  options.width = 50, options.height = 40;
+  renderer.render(scene, options, frame);
+  Frame first = frame;
+  options.width = 130, options.height = 70;
+  renderer.render(scene, options, frame);
+  EXPECT_EQ(frame.color.size(), 130u * 70u);
+  options.width = 50, options.height = 40;
+  renderer.render(scene, options, frame);
+  EXPECT_EQ(frame.color, first.color);
+  EXPECT_EQ(frame.triangle_id, first.triangle_id);
+}
+
+TEST(Renderer, CameraInsideAClosedModelSeesItsInsideFaces) {
+  Scene scene;
+  scene.camera.position = {0.1f, 0.05f, 0.2f};
+  scene.camera.target = {0, 0, -1};
+  scene.camera.near_z = 0.01f;
+  Object o;
+  o.mesh = std::make_shared<Mesh>(makeCube());
+  o.cull = CullMode::kNone;
+  o.transform.scale = float3(2.0f);
+  scene.objects.push_back(o);
+  PipelineStats stats;
+  Frame f = renderScene(scene, 64, 48, 2, &stats);
+  EXPECT_EQ(coveredCount(f), 64 * 48);
+  // With back faces culled the inside is invisible.
+  scene.objects[0].cull = CullMode::kBack;
+  EXPECT_EQ(coveredCount(renderScene(scene, 64, 48)), 0);
+}
+
+TEST(Renderer, EmptySceneIsAllBackground) {
+  Scene scene;
+  scene.background = {0.2f, 0.4f, 0.6f, 1.0f};
+  Frame f = renderScene(scene, 7, 5);
+  for (uint32_t c : f.color) EXPECT_EQ(c, packSrgba8(scene.background));
+  for (float z : f.depth) EXPECT_EQ(z, kInf);
+}

@@ -1,1 +1,141 @@
 #include <gtest/gtest.h>
+
+#include <tessera/scene/color.h>
+#include <tessera/scene/primitives.h>
+#include <tessera/scene/scene.h>
+
+using namespace tessera;
+
+namespace {
+
+// Every triangle is counter-clockwise seen from outside: its geometric normal points away from
+// the centre of a convex, origin-centred mesh.
+void expectOutwardWinding(const Mesh& mesh) {
+  for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+    float3 a = mesh.positions[mesh.indices[3 * t]], b = mesh.positions[mesh.indices[3 * t + 1]],
+           c = mesh.positions[mesh.indices[3 * t + 2]];
+    float3 n = cross(b - a, c - a);
+    ASSERT_GT(length(n), 0.0f) << "degenerate triangle " << t;
+    EXPECT_GT(dot(n, (a + b + c) * (1.0f / 3.0f)), 0.0f) << "triangle " << t;
+  }
+}
+
+}  // namespace
+
+TEST(Primitives, CubeHasOutwardFacesAndFlatNormals) {
+  Mesh cube = makeCube();
+  EXPECT_EQ(cube.vertexCount(), 24u);
+  EXPECT_EQ(cube.triangleCount(), 12u);
+  expectOutwardWinding(cube);
+  for (size_t t = 0; t < cube.triangleCount(); ++t) {
+    float3 a = cube.positions[cube.indices[3 * t]], b = cube.positions[cube.indices[3 * t + 1]],
+           c = cube.positions[cube.indices[3 * t + 2]];
+    float3 face = normalize(cross(b - a, c - a));
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(cube.normals[cube.indices[3 * t + k]], face);
+  }
+  Bounds b = cube.bounds();
+  EXPECT_EQ(b.min, float3(-0.5f));
+  EXPECT_EQ(b.max, float3(0.5f));
+}
+
+TEST(Primitives, SphereIsClosedWithUnitNormals) {
+  Mesh sphere = makeUvSphere(16, 8);
+  expectOutwardWinding(sphere);
+  // 16 segments, 8 rings: 2 triangles per quad except one at each pole.
+  EXPECT_EQ(sphere.triangleCount(), 16u * (2 * 8 - 2));
+  for (size_t i = 0; i < sphere.vertexCount(); ++i) {
+    EXPECT_NEAR(length(sphere.normals[i]), 1.0f, 1e-5f);
+    EXPECT_NEAR(length(sphere.positions[i]), 1.0f, 1e-5f);
+  }
+}
+
+TEST(Mesh, SmoothNormalsAreAreaWeighted) {
+  // Two triangles meeting at vertex 0: a large one in the XY plane, a small one in the XZ plane.
+  Mesh mesh;
+  mesh.positions = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, -1}, {1, 0, 0}};
+  mesh.indices = {0, 1, 2, 0, 3, 4};
+  generateSmoothNormals(mesh);
+  // Large face normal (0,0,1) with weight 100, small one (0,-1,0) with weight 1.
+  float3 expected = normalize(float3{0, -1, 100});
+  EXPECT_NEAR(mesh.normals[0].y, expected.y, 1e-5f);
+  EXPECT_NEAR(mesh.normals[0].z, expected.z, 1e-5f);
+  EXPECT_EQ(mesh.normals[2], float3(0, 0, 1));
+}
+
+TEST(Mesh, SmoothNormalsSurviveDegenerateAndNonFiniteFaces) {
+  Mesh mesh;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {nan, 0, 0}};
+  mesh.indices = {0, 1, 2, 0, 1, 3};
+  generateSmoothNormals(mesh);
+  for (const float3& n : mesh.normals) {
+    EXPECT_TRUE(isFinite(n));
+    EXPECT_NEAR(length(n), 1.0f, 1e-6f);
+  }
+}
+
+TEST(Color, SrgbRoundTripsEvery8BitCode) {
+  for (int code = 0; code < 256; ++code) {
+    float linear = decodeSrgb8(static_cast<uint8_t>(code));
+    EXPECT_NEAR(linear, srgbToLinear(code / 255.0f), 1e-7f);
+    EXPECT_EQ(encodeSrgb8(linear), code);
+  }
+}
+
+TEST(Color, EncodeMatchesTheExactCurve) {
+  EXPECT_EQ(encodeSrgb8(0.0f), 0);
+  EXPECT_EQ(encodeSrgb8(1.0f), 255);
+  EXPECT_EQ(encodeSrgb8(2.0f), 255);
+  EXPECT_EQ(encodeSrgb8(-1.0f), 0);
+  EXPECT_EQ(encodeSrgb8(std::numeric_limits<float>::quiet_NaN()), 0);
+  // Mid grey in linear light is code 188 in sRGB, not 128.
+  EXPECT_EQ(encodeSrgb8(0.5f), 188);
+  int mismatches = 0;
+  for (int i = 0; i <= 10000; ++i) {
+    float linear = i / 10000.0f;
+    float exact = linearToSrgb(linear) * 255.0f;
+    int got = encodeSrgb8(linear);
+    EXPECT_LE(std::fabs(got - exact), 0.56f) << linear;
+    mismatches += got != static_cast<int>(std::lround(exact));
+  }
+  EXPECT_LT(mismatches, 50);
+}
+
+TEST(Texture, NearestAndBilinearInLinearSpace) {
+  Texture t;
+  t.width = 2;
+  t.height = 1;
+  t.texels = {0xff000000u, 0xffffffffu};  // black, white
+  Sampler nearest{TextureFilter::kNearest, TextureWrap::kClamp};
+  EXPECT_EQ(t.sample({0.25f, 0.5f}, nearest).x, 0.0f);
+  EXPECT_EQ(t.sample({0.75f, 0.5f}, nearest).x, 1.0f);
+  Sampler bilinear{TextureFilter::kBilinear, TextureWrap::kClamp};
+  // Halfway between the texel centres: the average of the linear values, 0.5.
+  EXPECT_NEAR(t.sample({0.5f, 0.5f}, bilinear).x, 0.5f, 1e-6f);
+  // Clamp holds the edge texel; repeat wraps to the other side.
+  EXPECT_EQ(t.sample({-3.0f, 0.5f}, nearest).x, 0.0f);
+  EXPECT_EQ(t.sample({-0.25f, 0.5f}, Sampler{TextureFilter::kNearest, TextureWrap::kRepeat}).x,
+            1.0f);
+  // Non-finite coordinates do not crash.
+  float4 v = t.sample({std::numeric_limits<float>::infinity(), 0.5f}, bilinear);
+  EXPECT_TRUE(std::isfinite(v.x));
+}
+
+TEST(Camera, FrameBoundsSeesTheWholeModelWithNearAndFarAroundIt) {
+  Bounds b;
+  b.add({-100, 0, 0});
+  b.add({100, 20, 30});
+  Camera c = frameBounds(b, {1, 1, 1}, {0, 1, 0}, 50.0f, 2.0f);
+  float4x4 vp = c.projection(2.0f) * c.view();
+  for (int i = 0; i < 8; ++i) {
+    float3 corner{i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y,
+                  i & 4 ? b.max.z : b.min.z};
+    float4 clip = vp * float4{corner, 1};
+    float3 ndc = clip.xyz() * (1.0f / clip.w);
+    EXPECT_LE(std::fabs(ndc.x), 1.0f);
+    EXPECT_LE(std::fabs(ndc.y), 1.0f);
+    EXPECT_GT(ndc.z, -1.0f);
+    EXPECT_LT(ndc.z, 1.0f);
+  }
+  EXPECT_GT(c.near_z, 0.0f);
+}

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <tessera/math/math.h>
@@ -59,9 +60,15 @@ struct Camera {
   float near_z = 0.1f;
   float far_z = 100.0f;
 
-  float4x4 view() const { return lookAt(position, target, up); }
+  // When set, these replace the matrices built from the fields above (custom projections,
+  // tests that place vertices directly in clip space).
+  std::optional<float4x4> view_override;
+  std::optional<float4x4> projection_override;
+
+  float4x4 view() const { return view_override ? *view_override : lookAt(position, target, up); }
   float4x4 projection(float aspect) const {
-    return perspective(radians(fov_y_degrees), aspect, near_z, far_z);
+    return projection_override ? *projection_override
+                               : perspective(radians(fov_y_degrees), aspect, near_z, far_z);
   }
 };
 
