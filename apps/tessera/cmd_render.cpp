@@ -1,0 +1,277 @@
+// tessera render MODEL: a model to a PNG (colour or an AOV), a turntable GIF or a PNG sequence.
+// Flags follow f3d's names where f3d has one.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include <tessera/io/frame_sink.h>
+#include <tessera/io/image_writer.h>
+#include <tessera/io/model_loader.h>
+#include <tessera/render/cpu_renderer.h>
+#include <tessera/scene/color.h>
+
+#include "commands.h"
+#include "flags.h"
+
+namespace tessera::cli {
+
+namespace {
+
+struct RenderSettings {
+  std::string output;
+  int width = 1000, height = 600;
+  float3 background{0.2f, 0.2f, 0.2f};
+  float3 camera_position, camera_focal_point, camera_view_up{0, 1, 0};
+  bool has_position = false, has_focal_point = false, has_view_up = false;
+  float view_angle = 30.0f;
+  std::string up = "+Y";
+  std::string shading = "smooth";
+  std::string backface = "visible";
+  std::string aov = "color";
+  std::string backend = "cpu";
+  int turntable = 0;
+  int fps = 30;
+  int workers = 0;
+  bool axes = false;
+};
+
+enum class OutputKind { kPng, kGif, kSequence };
+
+bool endsWithIgnoringCase(const std::string& text, const std::string& suffix) {
+  if (text.size() < suffix.size()) return false;
+  return std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(),
+                    [](char a, char b) { return std::tolower(a) == std::tolower(b); });
+}
+
+// Near and far that bracket the bounds as seen from the camera.
+void fitNearFar(Camera& camera, const Bounds& bounds) {
+  const float3 forward = normalize(camera.target - camera.position);
+  float nearest = 1e30f, farthest = -1e30f;
+  for (int i = 0; i < 8; ++i) {
+    float3 corner{i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
+                  i & 4 ? bounds.max.z : bounds.min.z};
+    float d = dot(corner - camera.position, forward);
+    nearest = std::min(nearest, d);
+    farthest = std::max(farthest, d);
+  }
+  camera.far_z = farthest > 0.0f ? farthest * 1.01f + 1e-6f : 1.0f;
+  // A camera inside the bounds still gets a near plane; 1e-4 of far keeps depth precise.
+  camera.near_z = std::max(nearest * 0.99f, camera.far_z * 1e-4f);
+}
+
+// A key light from above-left of the camera and a fill from the right, fixed to the view.
+void addViewLights(Scene& scene) {
+  const Camera& c = scene.camera;
+  const float3 forward = normalize(c.target - c.position);
+  float3 right = normalize(cross(forward, c.up));
+  if (length(right) == 0.0f) right = normalize(cross(forward, float3{1, 0, 0}));
+  const float3 up = cross(right, forward);
+  scene.lights.clear();
+  scene.lights.push_back({normalize(forward + right * 0.5f - up * 0.8f), float3(0.8f)});
+  scene.lights.push_back({normalize(forward - right * 0.7f - up * 0.1f), float3(0.3f)});
+  scene.ambient = float3(0.18f);
+}
+
+Expected<void> writeStill(const std::filesystem::path& path, const Frame& frame,
+                          const std::string& aov) {
+  if (aov == "id") return io::writeIdPng(path, frame);
+  if (aov == "depth") return io::writeDepthPng(path, frame);
+  if (aov == "normal") return io::writeNormalPng(path, frame);
+  return io::writePngRgba8(path, frame.width, frame.height, frame.color.data());
+}
+
+}  // namespace
+
+int runRender(const std::vector<std::string>& args) {
+  RenderSettings s;
+  FlagSet flags("tessera render MODEL [-o OUTPUT] [flags]");
+  flags.addString("o|output", &s.output,
+                  "output: .png; .gif or a {frame} PNG template for a turntable "
+                  "(default MODEL's name with .png, in the current folder)");
+  flags.addCustom("resolution", "W,H", "image size in pixels (default 1000,600)",
+                  [&](const std::string& v) -> std::string {
+                    size_t comma = v.find(',');
+                    long long w, h;
+                    if (comma == std::string::npos || !parseIntStrict(v.substr(0, comma), w) ||
+                        !parseIntStrict(v.substr(comma + 1), h))
+                      return "expected W,H, got '" + v + "'";
+                    if (w < 1 || h < 1 || w > 16384 || h > 16384)
+                      return "each side must be between 1 and 16384";
+                    s.width = static_cast<int>(w);
+                    s.height = static_cast<int>(h);
+                    return "";
+                  });
+  flags.addCustom("background-color", "R,G,B", "background, sRGB 0..1 (default 0.2,0.2,0.2)",
+                  [&](const std::string& v) -> std::string {
+                    Expected<float3> c = parseFloat3(v);
+                    if (!c) return c.error().message;
+                    for (int i = 0; i < 3; ++i)
+                      if ((*c)[i] < 0.0f || (*c)[i] > 1.0f) return "each channel must be in 0..1";
+                    s.background = *c;
+                    return "";
+                  });
+  flags.addFloat3("camera-position", &s.camera_position, &s.has_position,
+                  "camera position (model units)");
+  flags.addFloat3("camera-focal-point", &s.camera_focal_point, &s.has_focal_point,
+                  "point the camera looks at");
+  flags.addFloat3("camera-view-up", &s.camera_view_up, &s.has_view_up, "camera up direction");
+  flags.addFloat("camera-view-angle", &s.view_angle, "vertical field of view in degrees (30)",
+                 1.0f, 170.0f);
+  flags.addChoice("up", &s.up, {"+Y", "+Z"}, "the model's up axis (default +Y)");
+  flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit"},
+                  "flat, smooth (per-pixel), gouraud (per-vertex) or unlit (default smooth)");
+  flags.addChoice("backface-type", &s.backface, {"visible", "hidden"},
+                  "draw or cull back faces (default visible)");
+  flags.addChoice("aov", &s.aov, {"color", "id", "depth", "normal"},
+                  "what to write: colour, triangle id, window depth or world normal");
+  flags.addInt("turntable", &s.turntable, "frames of one full turn about the up axis", 1, 100000);
+  flags.addInt("fps", &s.fps, "frames per second of a turntable (default 30)", 1, 100);
+  flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
+  flags.addChoice("backend", &s.backend, {"cpu"}, "renderer (default cpu)");
+  flags.addSwitch("axes", &s.axes, "draw the world axes");
+
+  Expected<std::vector<std::string>> positional = flags.parse(args);
+  if (flags.helpRequested()) {
+    std::cout << flags.usage();
+    return kExitOk;
+  }
+  auto usageError = [&](const std::string& message) {
+    printError("render", message);
+    std::cerr << flags.usage();
+    return kExitUsage;
+  };
+  if (!positional) return usageError(positional.error().message);
+  if (positional->size() != 1)
+    return usageError(positional->empty() ? "no model given" : "more than one model given");
+  const std::filesystem::path model_path = positional->front();
+  if (s.output.empty()) s.output = model_path.stem().string() + ".png";
+
+  OutputKind kind;
+  if (s.output.find("{frame}") != std::string::npos) {
+    if (!endsWithIgnoringCase(s.output, ".png"))
+      return usageError("a {frame} output must end in .png");
+    kind = OutputKind::kSequence;
+  } else if (endsWithIgnoringCase(s.output, ".gif")) {
+    kind = OutputKind::kGif;
+  } else if (endsWithIgnoringCase(s.output, ".png")) {
+    kind = OutputKind::kPng;
+  } else {
+    return usageError("output '" + s.output + "' must end in .png or .gif, or be a {frame} .png template");
+  }
+  if (kind == OutputKind::kPng && s.turntable > 1)
+    return usageError("--turntable writes several frames: use a .gif or a {frame} .png output");
+  if (kind == OutputKind::kGif && s.aov != "color")
+    return usageError("--aov " + s.aov + " needs PNG output (a .png or a {frame} template)");
+
+  // Load.
+  Expected<io::Model> model = io::loadModel(model_path);
+  if (!model) {
+    printError("render", model.error().message);
+    return kExitFailure;
+  }
+  for (const std::string& warning : model->warnings)
+    std::cerr << "tessera render: warning: " << warning << "\n";
+  const Bounds bounds = model->mesh.bounds();
+  if (bounds.empty()) {
+    printError("render", model_path.string() + ": the model has no finite vertices");
+    return kExitFailure;
+  }
+
+  // Scene.
+  Scene scene;
+  Object object;
+  object.mesh = std::make_shared<Mesh>(std::move(model->mesh));
+  object.materials = model->materials;
+  if (object.materials.empty()) object.materials.push_back(Material{});
+  object.shading = s.shading == "flat"      ? Shading::kFlat
+                   : s.shading == "gouraud" ? Shading::kGouraud
+                   : s.shading == "unlit"   ? Shading::kUnlit
+                                            : Shading::kPhong;
+  object.cull = s.backface == "hidden" ? CullMode::kBack : CullMode::kNone;
+  scene.objects.push_back(object);
+  scene.background = {srgbToLinear(s.background.x), srgbToLinear(s.background.y),
+                      srgbToLinear(s.background.z), 1.0f};
+
+  const float3 up = s.up == "+Z" ? float3{0, 0, 1} : float3{0, 1, 0};
+  const float3 toward_viewer = s.up == "+Z" ? float3{0, -1, 0} : float3{0, 0, 1};
+  const float3 right{1, 0, 0};
+  const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
+  // A three-quarter view from the front, right and above.
+  Camera camera = frameBounds(bounds, toward_viewer + right * 0.6f + up * 0.45f, up,
+                              s.view_angle, aspect);
+  if (s.has_position || s.has_focal_point || s.has_view_up) {
+    if (s.has_position) camera.position = s.camera_position;
+    if (s.has_focal_point) camera.target = s.camera_focal_point;
+    camera.up = s.has_view_up ? s.camera_view_up : up;
+    if (length(camera.target - camera.position) == 0.0f)
+      return usageError("the camera position and focal point are the same point");
+    if (length(camera.up) == 0.0f) return usageError("--camera-view-up must not be zero");
+    fitNearFar(camera, bounds);
+  }
+  scene.camera = camera;
+  addViewLights(scene);
+  if (s.axes) {
+    scene.show_world_axes = true;
+    scene.world_axes_length = std::max(bounds.radius(), 1e-6f);
+  }
+
+  // Render.
+  CpuRenderer renderer(s.workers);
+  RenderOptions options;
+  options.width = s.width;
+  options.height = s.height;
+  options.normals = s.aov == "normal";
+  options.lines = s.aov == "color";
+  Frame frame;
+  const int frame_count = std::max(s.turntable, 1);
+  std::unique_ptr<io::FrameSink> sink;
+  if (kind == OutputKind::kGif) {
+    Expected<std::unique_ptr<io::FrameSink>> opened =
+        io::openGifSink(s.output, {s.width, s.height, s.fps, true});
+    if (!opened) {
+      printError("render", opened.error().message);
+      return kExitFailure;
+    }
+    sink = std::move(*opened);
+  }
+  const float3 center = bounds.center();
+  Progress progress("render: frame", frame_count);
+  for (int i = 0; i < frame_count; ++i) {
+    // The turntable turns the model about the up axis through its centre.
+    const quat turn =
+        quat::fromAxisAngle(up, 2.0f * kPi * static_cast<float>(i) / static_cast<float>(frame_count));
+    scene.objects[0].transform.rotation = turn;
+    scene.objects[0].transform.translation = center - rotate(turn, center);
+    renderer.render(scene, options, frame);
+    Expected<void> written;
+    if (sink) {
+      written = sink->addFrame(frame.color.data());
+    } else {
+      std::filesystem::path path =
+          kind == OutputKind::kSequence ? io::formatFramePath(s.output, i)
+                                        : std::filesystem::path(s.output);
+      written = writeStill(path, frame, s.aov);
+    }
+    if (!written) {
+      printError("render", written.error().message);
+      return kExitFailure;
+    }
+    if (frame_count > 1) progress.update(i + 1);
+  }
+  if (sink) {
+    if (Expected<void> done = sink->finish(); !done) {
+      printError("render", done.error().message);
+      return kExitFailure;
+    }
+  }
+  if (frame_count > 1) progress.finish();
+  std::cout << "wrote " << s.output << " (" << s.width << "x" << s.height << ", "
+            << renderer.lastStats().triangles_in << " triangles";
+  if (frame_count > 1) std::cout << ", " << frame_count << " frames";
+  std::cout << ")\n";
+  return kExitOk;
+}
+
+}  // namespace tessera::cli

@@ -1,1 +1,63 @@
-int main() { return 0; }
+// tessera: a software 3D rendering pipeline. Subcommands: cube, render.
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "commands.h"
+
+namespace tessera::cli {
+
+void printError(const std::string& command, const std::string& message) {
+  std::cerr << "tessera " << command << ": error: " << message << std::endl;
+}
+
+Progress::Progress(std::string label, int total)
+    : label_(std::move(label)), total_(total), enabled_(isatty(STDERR_FILENO) == 1) {}
+
+void Progress::update(int done) {
+  if (!enabled_) return;
+  std::fprintf(stderr, "\r%s %d/%d", label_.c_str(), done, total_);
+  std::fflush(stderr);
+}
+
+void Progress::finish() {
+  if (!enabled_) return;
+  std::fprintf(stderr, "\r%s %d/%d done\n", label_.c_str(), total_, total_);
+}
+
+}  // namespace tessera::cli
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: tessera <command> [flags]\n"
+    "\n"
+    "commands:\n"
+    "  cube            render the rotating-cube demo to an animated GIF (no input needed)\n"
+    "  render MODEL    render an OBJ model to PNG (colour or an AOV), GIF or a PNG sequence\n"
+    "\n"
+    "Run 'tessera <command> --help' for the flags of a command.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace tessera::cli;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty()) {
+    std::cerr << kUsage;
+    return kExitUsage;
+  }
+  const std::string command = args.front();
+  args.erase(args.begin());
+  if (command == "cube") return runCube(args);
+  if (command == "render") return runRender(args);
+  if (command == "--help" || command == "-h" || command == "help") {
+    std::cout << kUsage;
+    return kExitOk;
+  }
+  std::cerr << "tessera: unknown command '" << command << "'\n\n" << kUsage;
+  return kExitUsage;
+}

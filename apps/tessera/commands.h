@@ -1,0 +1,33 @@
+// The subcommands of the tessera executable, and what they share.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace tessera::cli {
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailure = 1;  // the work could not be done (bad model, unwritable output)
+constexpr int kExitUsage = 2;    // the command line was wrong
+
+int runCube(const std::vector<std::string>& args);
+int runRender(const std::vector<std::string>& args);
+
+// Prints "tessera <command>: error: <message>" to stderr.
+void printError(const std::string& command, const std::string& message);
+
+// A one-line progress counter on stderr, shown only when stderr is a terminal.
+class Progress {
+ public:
+  Progress(std::string label, int total);
+  void update(int done);
+  void finish();
+
+ private:
+  std::string label_;
+  int total_;
+  bool enabled_;
+};
+
+}  // namespace tessera::cli
