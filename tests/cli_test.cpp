@@ -1,1 +1,282 @@
+// End-to-end tests of the tessera executable: real processes, real files, decoded back.
 #include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "decode.h"
+
+namespace fs = std::filesystem;
+using tessera::test::DecodedGif;
+using tessera::test::DecodedPng;
+
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("tessera_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs tessera with `args` (a shell-quoted string) in the test's folder.
+  RunResult run(const std::string& args) {
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    std::string command = "cd '" + dir_.string() + "' && '" TESSERA_EXE "' " + args + " > '" +
+                          out.string() + "' 2> '" + err.string() + "' < /dev/null";
+    int status = std::system(command.c_str());
+    RunResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+  static std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  void writeFile(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+  }
+
+  // A unit quad facing +Z split into two triangles, and a tetrahedron behind it.
+  void writeQuadObj(const std::string& name) {
+    writeFile(name,
+              "# a quad in the XY plane\n"
+              "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+              "f 1 2 3 4\n");
+  }
+
+  std::set<std::string> filesInDir() {
+    std::set<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_)) names.insert(e.path().filename().string());
+    return names;
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(Cli, CubeWithNoFlagsWritesTheDefaultGif) {
+  RunResult r = run("cube");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  DecodedGif gif;
+  ASSERT_TRUE(tessera::test::decodeGif((dir_ / "cube.gif").string(), gif));
+  EXPECT_EQ(gif.width, 480);
+  EXPECT_EQ(gif.height, 480);
+  ASSERT_EQ(gif.frames_rgb.size(), 120u);  // 4 s at 30 fps
+  EXPECT_TRUE(gif.loops);
+  int total = 0;
+  for (size_t i = 0; i < gif.delays_cs.size(); ++i) {
+    EXPECT_EQ(gif.delays_cs[i], i % 3 == 2 ? 4 : 3) << "frame " << i;
+    total += gif.delays_cs[i];
+  }
+  EXPECT_EQ(total, 400);  // exactly the duration
+  // The cube covers a sensible share of every frame: not empty, not the whole frame.
+  const uint32_t background = gif.frames_rgb[0][0];
+  std::vector<uint32_t> previous;
+  for (const auto& frame : gif.frames_rgb) {
+    int cube = 0;
+    for (uint32_t c : frame) {
+      int dr = std::abs(static_cast<int>(c >> 16) - static_cast<int>(background >> 16));
+      int dg = std::abs(static_cast<int>((c >> 8) & 255) - static_cast<int>((background >> 8) & 255));
+      int db = std::abs(static_cast<int>(c & 255) - static_cast<int>(background & 255));
+      cube += dr + dg + db > 24;
+    }
+    double share = static_cast<double>(cube) / (480.0 * 480.0);
+    EXPECT_GT(share, 0.08);
+    EXPECT_LT(share, 0.6);
+    EXPECT_NE(frame, previous);  // it turns
+    previous = frame;
+  }
+}
+
+TEST_F(Cli, CubeFlagsSetSizeFramesAndOutput) {
+  RunResult r = run("cube -w 64 -h 48 -fps 10 -dur 1.5s -fov 60 -out small.gif -workers 2 -axes");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  DecodedGif gif;
+  ASSERT_TRUE(tessera::test::decodeGif((dir_ / "small.gif").string(), gif));
+  EXPECT_EQ(gif.width, 64);
+  EXPECT_EQ(gif.height, 48);
+  EXPECT_EQ(gif.frames_rgb.size(), 15u);
+  int total = 0;
+  for (int d : gif.delays_cs) total += d;
+  EXPECT_EQ(total, 150);
+  EXPECT_FALSE(fs::exists(dir_ / "cube.gif"));
+}
+
+TEST_F(Cli, CubeFramesAreIdenticalForAnyWorkerCount) {
+  for (int workers : {1, 2, 7}) {
+    std::string args = "cube -w 96 -h 80 -fps 4 -dur 1s -axes -workers " +
+                       std::to_string(workers) + " -out w" + std::to_string(workers) +
+                       "_{frame}.png";
+    RunResult r = run(args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  for (int frame = 0; frame < 4; ++frame) {
+    char name[32];
+    std::snprintf(name, sizeof name, "_%04d.png", frame);
+    std::string one = slurp(dir_ / ("w1" + std::string(name)));
+    ASSERT_FALSE(one.empty());
+    EXPECT_EQ(one, slurp(dir_ / ("w2" + std::string(name))));
+    EXPECT_EQ(one, slurp(dir_ / ("w7" + std::string(name))));
+  }
+}
+
+TEST_F(Cli, BadFlagsPrintUsageAndExitTwo) {
+  for (const char* args :
+       {"cube -w abc", "cube --bogus", "cube -w", "cube -fps 0", "cube -dur -3s", "cube extra",
+        "render", "render a.obj b.obj", "render m.obj --resolution 10", "render m.obj --aov rgb",
+        "render m.obj --camera-position 1,2", "render m.obj -o out.bmp", "frobnicate"}) {
+    RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.err.find("usage"), std::string::npos) << args << ": " << r.err;
+  }
+  EXPECT_TRUE(filesInDir().empty());
+}
+
+TEST_F(Cli, HelpExitsZeroAndListsTheFlags) {
+  RunResult r = run("cube --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* flag : {"-w", "-h", "-fps", "-dur", "-fov", "-out", "-workers", "-axes"})
+    EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
+  r = run("render --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("--camera-position"), std::string::npos);
+}
+
+TEST_F(Cli, UnwritableOutputFailsCleanly) {
+  RunResult r = run("cube -w 32 -h 32 -dur 0.2s -out /nonexistent_dir/x/cube.gif");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("/nonexistent_dir/x/cube.gif"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists("/nonexistent_dir"));
+  writeQuadObj("quad.obj");
+  fs::create_directories(dir_ / "locked");
+  fs::permissions(dir_ / "locked", fs::perms::owner_read | fs::perms::owner_exec);
+  r = run("render quad.obj --resolution 16,16 -o locked/out.png");
+  // Root may write anywhere: then the file must simply be complete.
+  if (::geteuid() != 0) {
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(fs::is_empty(dir_ / "locked"));
+  }
+  fs::permissions(dir_ / "locked", fs::perms::owner_all);
+}
+
+TEST_F(Cli, MissingOrBrokenModelNamesTheFileAndExitsOne) {
+  RunResult r = run("render missing.obj");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("missing.obj"), std::string::npos) << r.err;
+  writeFile("broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
+  r = run("render broken.obj -o broken.png");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("broken.obj"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "broken.png"));
+}
+
+TEST_F(Cli, RenderIdAovEncodesTriangleIndexPlusOne) {
+  writeQuadObj("quad.obj");
+  RunResult r = run("render quad.obj --resolution 40,30 --aov id -o id.png "
+                    "--camera-position 0,0,3 --camera-focal-point 0,0,0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  DecodedPng png;
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "id.png").string(), png));
+  EXPECT_EQ(png.width, 40);
+  EXPECT_EQ(png.height, 30);
+  ASSERT_EQ(png.channels, 3);
+  std::set<int> ids;
+  for (int y = 0; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x)
+      ids.insert(png.at(x, y, 0) + 256 * png.at(x, y, 1) + 65536 * png.at(x, y, 2));
+  // The quad is fan-split from its first vertex: triangles 1 and 2, and background 0.
+  EXPECT_EQ(ids, (std::set<int>{0, 1, 2}));
+  // Corner pixels are background; the centre is covered. Lower-right is triangle (1,2,3) = id 1.
+  EXPECT_EQ(png.at(0, 0, 0), 0);
+  EXPECT_EQ(png.at(25, 20, 0), 1);
+  EXPECT_EQ(png.at(14, 10, 0), 2);
+}
+
+TEST_F(Cli, RenderDepthAndNormalAovs) {
+  writeQuadObj("quad.obj");
+  RunResult r = run("render quad.obj --resolution 40,30 --aov depth -o depth.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  DecodedPng depth;
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "depth.png").string(), depth));
+  EXPECT_EQ(depth.channels, 1);
+  EXPECT_EQ(depth.bit_depth, 16);
+  EXPECT_EQ(depth.at(0, 0, 0), 65535);  // nothing drawn: far
+  EXPECT_LT(depth.at(20, 15, 0), 65535);
+  EXPECT_GT(depth.at(20, 15, 0), 0);
+
+  r = run("render quad.obj --resolution 40,30 --aov normal -o normal.png "
+          "--camera-position 0,0,3 --camera-focal-point 0,0,0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  DecodedPng normal;
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "normal.png").string(), normal));
+  // The quad faces +Z: normal (0, 0, 1) encodes as (128, 128, 255).
+  EXPECT_NEAR(normal.at(20, 15, 0), 128, 1);
+  EXPECT_NEAR(normal.at(20, 15, 1), 128, 1);
+  EXPECT_EQ(normal.at(20, 15, 2), 255);
+  EXPECT_EQ(normal.at(0, 0, 2), 0);
+}
+
+TEST_F(Cli, RenderColourUsesTheBackgroundAndFramesTheModel) {
+  writeQuadObj("quad.obj");
+  RunResult r = run("render quad.obj --resolution 50,40 --background-color 1,0,0 --shading flat");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  DecodedPng png;
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "quad.png").string(), png));  // default name
+  EXPECT_EQ(png.at(0, 0, 0), 255);
+  EXPECT_EQ(png.at(0, 0, 1), 0);
+  // Framed: the model is in the middle and covers a good part of the image.
+  int covered = 0;
+  for (int y = 0; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x) covered += !(png.at(x, y, 0) == 255 && png.at(x, y, 1) == 0);
+  EXPECT_GT(covered, 50 * 40 / 6);
+  EXPECT_LT(covered, 50 * 40);
+  EXPECT_FALSE(png.at(25, 20, 0) == 255 && png.at(25, 20, 1) == 0);
+}
+
+TEST_F(Cli, RenderTurntableWritesAPngSequence) {
+  writeQuadObj("quad.obj");
+  RunResult r = run("render quad.obj --resolution 24,24 --turntable 4 -o turn_{frame}.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (int i = 0; i < 4; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "turn_%04d.png", i);
+    EXPECT_TRUE(fs::exists(dir_ / name)) << name;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "turn_0004.png"));
+}
+
+TEST_F(Cli, CameraLookingAlongItsUpVectorStillRenders) {
+  writeQuadObj("quad.obj");
+  RunResult r = run("render quad.obj --resolution 20,20 --camera-position 0,0,5 "
+                    "--camera-focal-point 0,0,0 --camera-view-up 0,0,1 -o up.png");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "up.png"));
+  r = run("render quad.obj --camera-position 1,1,1 --camera-focal-point 1,1,1");
+  EXPECT_EQ(r.exit_code, 2);
+}
