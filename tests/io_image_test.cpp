@@ -72,6 +72,103 @@ void writeText(const fs::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
 }
 
+constexpr uint32_t packRgba(uint32_t r, uint32_t g, uint32_t b, uint32_t a = 255) {
+  return r | (g << 8) | (b << 16) | (a << 24);
+}
+
+// Makes writes past `bytes` fail with EFBIG (instead of raising SIGXFSZ) while it lives: a
+// full disk, without needing one.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    TESSERA_CHECK(getrlimit(RLIMIT_FSIZE, &saved_) == 0) << "getrlimit";
+    previous_handler_ = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit limited = saved_;
+    limited.rlim_cur = std::min(bytes, saved_.rlim_max);
+    TESSERA_CHECK(setrlimit(RLIMIT_FSIZE, &limited) == 0) << "setrlimit";
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, previous_handler_);
+  }
+
+ private:
+  rlimit saved_{};
+  void (*previous_handler_)(int) = SIG_DFL;
+};
+
+std::vector<uint32_t> noiseFrame(int width, int height) {
+  std::vector<uint32_t> pixels(static_cast<size_t>(width) * height);
+  uint32_t state = 1;
+  for (uint32_t& p : pixels) {
+    state = state * 1664525u + 1013904223u;  // Numerical Recipes LCG
+    p = (state >> 8) | 0xFF000000u;
+  }
+  return pixels;
+}
+
+// ---- PNG decoding with libpng, keeping the file's own layout ----
+
+struct DecodedPng {
+  int width = 0;
+  int height = 0;
+  int bit_depth = 0;
+  int color_type = -1;
+  size_t row_bytes = 0;
+  std::vector<uint8_t> bytes;  // the rows as stored: 16-bit samples big-endian
+
+  const uint8_t* at(int x, int y, int bytes_per_pixel) const {
+    return bytes.data() + static_cast<size_t>(y) * row_bytes +
+           static_cast<size_t>(x) * bytes_per_pixel;
+  }
+  std::array<int, 3> rgb(int x, int y) const {
+    const uint8_t* p = at(x, y, 3);
+    return {p[0], p[1], p[2]};
+  }
+  std::array<int, 4> rgba(int x, int y) const {
+    const uint8_t* p = at(x, y, 4);
+    return {p[0], p[1], p[2], p[3]};
+  }
+  int gray16(int x, int y) const {
+    const uint8_t* p = at(x, y, 2);
+    return (p[0] << 8) | p[1];
+  }
+};
+
+// Only plain C state lives across setjmp; the decoded rows go to the caller's object.
+bool decodePngInto(const char* path, DecodedPng* out) {
+  std::FILE* file = std::fopen(path, "rb");
+  if (file == nullptr) return false;
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    std::fclose(file);
+    return false;
+  }
+  png_init_io(png, file);
+  png_read_info(png, info);
+  out->width = static_cast<int>(png_get_image_width(png, info));
+  out->height = static_cast<int>(png_get_image_height(png, info));
+  out->bit_depth = png_get_bit_depth(png, info);
+  out->color_type = png_get_color_type(png, info);
+  out->row_bytes = png_get_rowbytes(png, info);
+  out->bytes.resize(out->row_bytes * static_cast<size_t>(out->height));
+  for (int y = 0; y < out->height; ++y) {
+    png_read_row(png, out->bytes.data() + static_cast<size_t>(y) * out->row_bytes, nullptr);
+  }
+  png_read_end(png, nullptr);
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::fclose(file);
+  return true;
+}
+
+std::optional<DecodedPng> decodePng(const fs::path& path) {
+  DecodedPng decoded;
+  if (!decodePngInto(path.c_str(), &decoded)) return std::nullopt;
+  return decoded;
+}
+
 // ---- AtomicFile ----
 
 TEST(IoAtomicFile, TargetAppearsOnlyOnCommit) {
@@ -152,6 +249,196 @@ TEST(IoAtomicFile, MovedFileCommitsOnceAndOriginalRemovesNothing) {
   }
   EXPECT_EQ(readText(target), "moved");
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"out.txt"});
+}
+
+// ---- PNG writer ----
+
+TEST(IoPngWriter, RgbRoundTripIsExactAndDropsAlpha) {
+  TempDir dir;
+  const int width = 3;
+  const int height = 2;
+  const std::vector<uint32_t> pixels = {packRgba(255, 0, 0, 10),   packRgba(0, 255, 0, 0),
+                                        packRgba(0, 0, 255),       packRgba(1, 2, 3, 128),
+                                        packRgba(250, 128, 7, 77), packRgba(0, 0, 0)};
+  const fs::path path = dir / "rgb.png";
+  ASSERT_TRUE(writePngRgba8(path, width, height, pixels.data()).ok());
+
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->width, width);
+  EXPECT_EQ(png->height, height);
+  EXPECT_EQ(png->bit_depth, 8);
+  EXPECT_EQ(png->color_type, PNG_COLOR_TYPE_RGB);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const uint32_t p = pixels[static_cast<size_t>(y) * width + x];
+      const std::array<int, 3> expected = {static_cast<int>(p & 255),
+                                           static_cast<int>((p >> 8) & 255),
+                                           static_cast<int>((p >> 16) & 255)};
+      EXPECT_EQ(png->rgb(x, y), expected) << "pixel " << x << "," << y;
+    }
+  }
+}
+
+TEST(IoPngWriter, RgbaRoundTripKeepsAlpha) {
+  TempDir dir;
+  const std::vector<uint32_t> pixels = {packRgba(10, 20, 30, 0), packRgba(40, 50, 60, 128),
+                                        packRgba(70, 80, 90, 255), packRgba(255, 254, 253, 1)};
+  const fs::path path = dir / "rgba.png";
+  ASSERT_TRUE(writePngRgba8(path, 2, 2, pixels.data(), /*keep_alpha=*/true).ok());
+
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->color_type, PNG_COLOR_TYPE_RGB_ALPHA);
+  EXPECT_EQ(png->bit_depth, 8);
+  EXPECT_EQ(png->rgba(0, 0), (std::array<int, 4>{10, 20, 30, 0}));
+  EXPECT_EQ(png->rgba(1, 0), (std::array<int, 4>{40, 50, 60, 128}));
+  EXPECT_EQ(png->rgba(0, 1), (std::array<int, 4>{70, 80, 90, 255}));
+  EXPECT_EQ(png->rgba(1, 1), (std::array<int, 4>{255, 254, 253, 1}));
+}
+
+TEST(IoPngWriter, Gray16RoundTripIsExact) {
+  TempDir dir;
+  // Values whose two bytes differ, so a byte-order mistake shows.
+  const std::vector<uint16_t> pixels = {0, 1, 255, 256, 0x1234, 0xABCD, 65534, 65535};
+  const fs::path path = dir / "gray.png";
+  ASSERT_TRUE(writePngGray16(path, 4, 2, pixels.data()).ok());
+
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->color_type, PNG_COLOR_TYPE_GRAY);
+  EXPECT_EQ(png->bit_depth, 16);
+  EXPECT_EQ(png->width, 4);
+  EXPECT_EQ(png->height, 2);
+  for (int i = 0; i < 8; ++i) {
+    EXPECT_EQ(png->gray16(i % 4, i / 4), pixels[i]) << "pixel " << i;
+  }
+}
+
+TEST(IoPngWriter, MissingFolderIsAnErrorAndLeavesNoFile) {
+  TempDir dir;
+  const fs::path path = dir / "missing" / "x.png";
+  const std::vector<uint32_t> pixels(4, packRgba(1, 2, 3));
+  Expected<void> written = writePngRgba8(path, 2, 2, pixels.data());
+  ASSERT_FALSE(written.ok());
+  EXPECT_NE(written.error().message.find(path.string()), std::string::npos);
+  EXPECT_NE(written.error().message.find("No such file or directory"), std::string::npos);
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoPngWriter, ExistingTargetIsReplaced) {
+  TempDir dir;
+  const fs::path path = dir / "out.png";
+  writeText(path, "not a png");
+  const std::vector<uint32_t> pixels(1, packRgba(9, 8, 7));
+  ASSERT_TRUE(writePngRgba8(path, 1, 1, pixels.data()).ok());
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->rgb(0, 0), (std::array<int, 3>{9, 8, 7}));
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"out.png"});
+}
+
+TEST(IoPngWriter, WriteFailureIsAnErrorAndKeepsExistingTarget) {
+  TempDir dir;
+  const fs::path path = dir / "noise.png";
+  writeText(path, "old");
+  const std::vector<uint32_t> pixels = noiseFrame(64, 64);  // ~12 KB that do not compress
+  Expected<void> written = [&] {
+    FileSizeLimit limit(1024);
+    return writePngRgba8(path, 64, 64, pixels.data());
+  }();
+  ASSERT_FALSE(written.ok());
+  EXPECT_EQ(written.error().message, "cannot write '" + path.string() + "': File too large");
+  EXPECT_EQ(readText(path), "old");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"noise.png"});
+}
+
+// ---- AOV encodings ----
+
+Frame aovFrame(int width, int height, bool with_normals) {
+  Frame frame;
+  frame.width = width;
+  frame.height = height;
+  const size_t count = frame.pixelCount();
+  frame.color.assign(count, 0);
+  frame.depth.assign(count, std::numeric_limits<float>::infinity());
+  frame.triangle_id.assign(count, kNoTriangle);
+  if (with_normals) frame.normal.assign(count, float3(0.0f));
+  return frame;
+}
+
+TEST(IoAovPng, IdSplitsIntoRgbBytesLowFirst) {
+  TempDir dir;
+  Frame frame = aovFrame(5, 1, false);
+  frame.triangle_id = {kNoTriangle, 1, 70000, 0x00FFFFFF, 0x00010203};
+  const fs::path path = dir / "id.png";
+  ASSERT_TRUE(writeIdPng(path, frame).ok());
+
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->color_type, PNG_COLOR_TYPE_RGB);
+  EXPECT_EQ(png->bit_depth, 8);
+  EXPECT_EQ(png->rgb(0, 0), (std::array<int, 3>{0, 0, 0}));
+  EXPECT_EQ(png->rgb(1, 0), (std::array<int, 3>{1, 0, 0}));
+  EXPECT_EQ(png->rgb(2, 0), (std::array<int, 3>{112, 17, 1}));  // 70000 = 112 + 17*256 + 65536
+  EXPECT_EQ(png->rgb(3, 0), (std::array<int, 3>{255, 255, 255}));
+  EXPECT_EQ(png->rgb(4, 0), (std::array<int, 3>{3, 2, 1}));
+}
+
+TEST(IoAovPng, IdAboveTwentyFourBitsIsAnError) {
+  TempDir dir;
+  Frame frame = aovFrame(2, 1, false);
+  frame.triangle_id = {1, 0x01000000};
+  Expected<void> written = writeIdPng(dir / "id.png", frame);
+  ASSERT_FALSE(written.ok());
+  EXPECT_NE(written.error().message.find("16777216"), std::string::npos) << written.error().message;
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoAovPng, DepthMapsUnitRangeToSixteenBits) {
+  TempDir dir;
+  Frame frame = aovFrame(8, 1, false);
+  const float inf = std::numeric_limits<float>::infinity();
+  frame.depth = {0.0f, 1.0f, 0.5f, 0.25f, inf, -0.5f, 1.5f, 1.0f / 65535.0f};
+  const fs::path path = dir / "depth.png";
+  ASSERT_TRUE(writeDepthPng(path, frame).ok());
+
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->color_type, PNG_COLOR_TYPE_GRAY);
+  EXPECT_EQ(png->bit_depth, 16);
+  const std::array<int, 8> expected = {0, 65535, 32768, 16384, 65535, 0, 65535, 1};
+  for (int x = 0; x < 8; ++x) {
+    EXPECT_EQ(png->gray16(x, 0), expected[x]) << "depth " << frame.depth[x];
+  }
+}
+
+TEST(IoAovPng, NormalMapsToHalfOffsetRgbAndBlackWhereNothingWasDrawn) {
+  TempDir dir;
+  Frame frame = aovFrame(4, 1, true);
+  frame.triangle_id = {1, 2, 3, kNoTriangle};
+  frame.normal = {float3(1.0f, 0.0f, 0.0f), float3(0.0f, -1.0f, 0.0f), float3(0.28f, 0.96f, 0.0f),
+                  float3(0.0f, 0.0f, 1.0f)};
+  const fs::path path = dir / "normal.png";
+  ASSERT_TRUE(writeNormalPng(path, frame).ok());
+
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->color_type, PNG_COLOR_TYPE_RGB);
+  EXPECT_EQ(png->rgb(0, 0), (std::array<int, 3>{255, 128, 128}));
+  EXPECT_EQ(png->rgb(1, 0), (std::array<int, 3>{128, 0, 128}));
+  EXPECT_EQ(png->rgb(2, 0), (std::array<int, 3>{163, 250, 128}));  // 163.2, 249.9, 127.5
+  EXPECT_EQ(png->rgb(3, 0), (std::array<int, 3>{0, 0, 0}));
+}
+
+TEST(IoAovPng, NormalWithoutRenderedNormalsIsAnError) {
+  TempDir dir;
+  Frame frame = aovFrame(2, 2, false);
+  Expected<void> written = writeNormalPng(dir / "normal.png", frame);
+  ASSERT_FALSE(written.ok());
+  EXPECT_NE(written.error().message.find("normals were not rendered"), std::string::npos)
+      << written.error().message;
+  EXPECT_TRUE(dir.entries().empty());
 }
 
 }  // namespace
