@@ -1,1 +1,943 @@
+// The image and animation writers, checked by decoding their output with independent decoders
+// (libpng for PNG, giflib's own reader for GIF).
+#include <gif_lib.h>
+#include <png.h>
+#include <stdlib.h>
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <csetjmp>
+#include <csignal>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
 #include <gtest/gtest.h>
+
+#include <tessera/io/atomic_file.h>
+#include <tessera/io/frame_sink.h>
+#include <tessera/io/image_writer.h>
+#include <tessera/render/frame.h>
+
+namespace tessera::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh folder per test, removed with everything in it.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "tessera_io_test_XXXXXX").string();
+    TESSERA_CHECK(mkdtemp(pattern.data()) != nullptr) << "mkdtemp " << pattern;
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  const fs::path& path() const { return path_; }
+  fs::path operator/(const std::string& name) const { return path_ / name; }
+
+  // Every name in the folder, hidden temporaries included, sorted.
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const fs::directory_entry& entry : fs::directory_iterator(path_)) {
+      names.push_back(entry.path().filename().string());
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+ private:
+  fs::path path_;
+};
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+constexpr uint32_t packRgba(uint32_t r, uint32_t g, uint32_t b, uint32_t a = 255) {
+  return r | (g << 8) | (b << 16) | (a << 24);
+}
+
+// Makes writes past `bytes` fail with EFBIG (instead of raising SIGXFSZ) while it lives: a
+// full disk, without needing one.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    TESSERA_CHECK(getrlimit(RLIMIT_FSIZE, &saved_) == 0) << "getrlimit";
+    previous_handler_ = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit limited = saved_;
+    limited.rlim_cur = std::min(bytes, saved_.rlim_max);
+    TESSERA_CHECK(setrlimit(RLIMIT_FSIZE, &limited) == 0) << "setrlimit";
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, previous_handler_);
+  }
+
+ private:
+  rlimit saved_{};
+  void (*previous_handler_)(int) = SIG_DFL;
+};
+
+std::vector<uint32_t> noiseFrame(int width, int height) {
+  std::vector<uint32_t> pixels(static_cast<size_t>(width) * height);
+  uint32_t state = 1;
+  for (uint32_t& p : pixels) {
+    state = state * 1664525u + 1013904223u;  // Numerical Recipes LCG
+    p = (state >> 8) | 0xFF000000u;
+  }
+  return pixels;
+}
+
+// ---- PNG decoding with libpng, keeping the file's own layout ----
+
+struct DecodedPng {
+  int width = 0;
+  int height = 0;
+  int bit_depth = 0;
+  int color_type = -1;
+  size_t row_bytes = 0;
+  std::vector<uint8_t> bytes;  // the rows as stored: 16-bit samples big-endian
+
+  const uint8_t* at(int x, int y, int bytes_per_pixel) const {
+    return bytes.data() + static_cast<size_t>(y) * row_bytes +
+           static_cast<size_t>(x) * bytes_per_pixel;
+  }
+  std::array<int, 3> rgb(int x, int y) const {
+    const uint8_t* p = at(x, y, 3);
+    return {p[0], p[1], p[2]};
+  }
+  std::array<int, 4> rgba(int x, int y) const {
+    const uint8_t* p = at(x, y, 4);
+    return {p[0], p[1], p[2], p[3]};
+  }
+  int gray16(int x, int y) const {
+    const uint8_t* p = at(x, y, 2);
+    return (p[0] << 8) | p[1];
+  }
+};
+
+// Only plain C state lives across setjmp; the decoded rows go to the caller's object.
+bool decodePngInto(const char* path, DecodedPng* out) {
+  std::FILE* file = std::fopen(path, "rb");
+  if (file == nullptr) return false;
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    std::fclose(file);
+    return false;
+  }
+  png_init_io(png, file);
+  png_read_info(png, info);
+  out->width = static_cast<int>(png_get_image_width(png, info));
+  out->height = static_cast<int>(png_get_image_height(png, info));
+  out->bit_depth = png_get_bit_depth(png, info);
+  out->color_type = png_get_color_type(png, info);
+  out->row_bytes = png_get_rowbytes(png, info);
+  out->bytes.resize(out->row_bytes * static_cast<size_t>(out->height));
+  for (int y = 0; y < out->height; ++y) {
+    png_read_row(png, out->bytes.data() + static_cast<size_t>(y) * out->row_bytes, nullptr);
+  }
+  png_read_end(png, nullptr);
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::fclose(file);
+  return true;
+}
+
+std::optional<DecodedPng> decodePng(const fs::path& path) {
+  DecodedPng decoded;
+  if (!decodePngInto(path.c_str(), &decoded)) return std::nullopt;
+  return decoded;
+}
+
+// ---- GIF decoding with giflib's reader ----
+
+struct GifCloser {
+  void operator()(GifFileType* gif) const { DGifCloseFile(gif, nullptr); }
+};
+using DecodedGif = std::unique_ptr<GifFileType, GifCloser>;
+
+DecodedGif decodeGif(const fs::path& path) {
+  int error = 0;
+  DecodedGif gif(DGifOpenFileName(path.c_str(), &error));
+  if (!gif) return nullptr;
+  if (DGifSlurp(gif.get()) != GIF_OK) return nullptr;
+  return gif;
+}
+
+std::array<int, 3> gifPixel(const GifFileType* gif, int frame, int x, int y) {
+  const SavedImage& image = gif->SavedImages[frame];
+  const ColorMapObject* map =
+      image.ImageDesc.ColorMap != nullptr ? image.ImageDesc.ColorMap : gif->SColorMap;
+  const int index = image.RasterBits[static_cast<size_t>(y) * image.ImageDesc.Width + x];
+  const GifColorType colour = map->Colors[index];
+  return {colour.Red, colour.Green, colour.Blue};
+}
+
+int gifDelayCs(GifFileType* gif, int frame) {
+  GraphicsControlBlock control{};
+  if (DGifSavedExtensionToGCB(gif, frame, &control) != GIF_OK) return -1;
+  return control.DelayTime;
+}
+
+// The NETSCAPE2.0 loop count, wherever giflib filed the extension (before the first image, or
+// after the last).
+std::optional<int> gifLoopCount(const GifFileType* gif) {
+  auto search = [](const ExtensionBlock* blocks, int count) -> std::optional<int> {
+    for (int i = 0; i + 1 < count; ++i) {
+      const ExtensionBlock& application = blocks[i];
+      const ExtensionBlock& data = blocks[i + 1];
+      if (application.Function == APPLICATION_EXT_FUNC_CODE && application.ByteCount == 11 &&
+          std::memcmp(application.Bytes, "NETSCAPE2.0", 11) == 0 &&
+          data.Function == CONTINUE_EXT_FUNC_CODE && data.ByteCount == 3 && data.Bytes[0] == 1) {
+        return data.Bytes[1] | (data.Bytes[2] << 8);
+      }
+    }
+    return std::nullopt;
+  };
+  if (gif->ImageCount > 0) {
+    const SavedImage& first = gif->SavedImages[0];
+    if (auto count = search(first.ExtensionBlocks, first.ExtensionBlockCount)) return count;
+  }
+  return search(gif->ExtensionBlocks, gif->ExtensionBlockCount);
+}
+
+int maxChannelDifference(const std::array<int, 3>& a, const std::array<int, 3>& b) {
+  return std::max({std::abs(a[0] - b[0]), std::abs(a[1] - b[1]), std::abs(a[2] - b[2])});
+}
+
+std::vector<uint32_t> solidFrame(int width, int height, uint32_t colour) {
+  return std::vector<uint32_t>(static_cast<size_t>(width) * height, colour);
+}
+
+AnimationSettings settingsOf(int width, int height, int fps = 30, bool loop = true) {
+  AnimationSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.fps = fps;
+  settings.loop = loop;
+  return settings;
+}
+
+// ---- AtomicFile ----
+
+TEST(IoAtomicFile, TargetAppearsOnlyOnCommit) {
+  TempDir dir;
+  const fs::path target = dir / "out.txt";
+  Expected<AtomicFile> file = AtomicFile::create(target);
+  ASSERT_TRUE(file.ok()) << file.error().message;
+  EXPECT_EQ(file->temporaryPath().parent_path(), dir.path());
+  ASSERT_TRUE(file->write("hello", 5).ok());
+  EXPECT_FALSE(fs::exists(target));
+  EXPECT_TRUE(fs::exists(file->temporaryPath()));
+
+  ASSERT_TRUE(file->commit().ok());
+  EXPECT_EQ(readText(target), "hello");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"out.txt"});
+}
+
+TEST(IoAtomicFile, DestroyedWithoutCommitLeavesNothing) {
+  TempDir dir;
+  {
+    Expected<AtomicFile> file = AtomicFile::create(dir / "out.txt");
+    ASSERT_TRUE(file.ok()) << file.error().message;
+    ASSERT_TRUE(file->write("partial", 7).ok());
+    ASSERT_EQ(dir.entries().size(), 1u);  // the temporary, so its removal below is real
+  }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoAtomicFile, UncommittedWriteKeepsExistingTarget) {
+  TempDir dir;
+  const fs::path target = dir / "out.txt";
+  writeText(target, "old");
+  {
+    Expected<AtomicFile> file = AtomicFile::create(target);
+    ASSERT_TRUE(file.ok()) << file.error().message;
+    ASSERT_TRUE(file->write("new", 3).ok());
+  }
+  EXPECT_EQ(readText(target), "old");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"out.txt"});
+}
+
+TEST(IoAtomicFile, MissingFolderIsAnErrorNamingPathAndReason) {
+  TempDir dir;
+  const fs::path target = dir / "missing" / "x.png";
+  Expected<AtomicFile> file = AtomicFile::create(target);
+  ASSERT_FALSE(file.ok());
+  EXPECT_EQ(file.error().message,
+            "cannot write '" + target.string() + "': No such file or directory");
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoAtomicFile, FailedRenameRemovesTemporaryAndKeepsTarget) {
+  TempDir dir;
+  // rename() cannot put a file over a non-empty folder.
+  const fs::path target = dir / "occupied";
+  fs::create_directory(target);
+  writeText(target / "keep.txt", "kept");
+  Expected<AtomicFile> file = AtomicFile::create(target);
+  ASSERT_TRUE(file.ok()) << file.error().message;
+  ASSERT_TRUE(file->write("data", 4).ok());
+  Expected<void> committed = file->commit();
+  ASSERT_FALSE(committed.ok());
+  EXPECT_NE(committed.error().message.find(target.string()), std::string::npos)
+      << committed.error().message;
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"occupied"});
+  EXPECT_EQ(readText(target / "keep.txt"), "kept");
+}
+
+TEST(IoAtomicFile, MovedFileCommitsOnceAndOriginalRemovesNothing) {
+  TempDir dir;
+  const fs::path target = dir / "out.txt";
+  Expected<AtomicFile> created = AtomicFile::create(target);
+  ASSERT_TRUE(created.ok()) << created.error().message;
+  {
+    AtomicFile moved = std::move(*created);
+    ASSERT_TRUE(moved.write("moved", 5).ok());
+    ASSERT_TRUE(moved.commit().ok());
+  }
+  EXPECT_EQ(readText(target), "moved");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"out.txt"});
+}
+
+// ---- PNG writer ----
+
+TEST(IoPngWriter, RgbRoundTripIsExactAndDropsAlpha) {
+  TempDir dir;
+  const int width = 3;
+  const int height = 2;
+  const std::vector<uint32_t> pixels = {packRgba(255, 0, 0, 10),   packRgba(0, 255, 0, 0),
+                                        packRgba(0, 0, 255),       packRgba(1, 2, 3, 128),
+                                        packRgba(250, 128, 7, 77), packRgba(0, 0, 0)};
+  const fs::path path = dir / "rgb.png";
+  ASSERT_TRUE(writePngRgba8(path, width, height, pixels.data()).ok());
+
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->width, width);
+  EXPECT_EQ(png->height, height);
+  EXPECT_EQ(png->bit_depth, 8);
+  EXPECT_EQ(png->color_type, PNG_COLOR_TYPE_RGB);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const uint32_t p = pixels[static_cast<size_t>(y) * width + x];
+      const std::array<int, 3> expected = {static_cast<int>(p & 255),
+                                           static_cast<int>((p >> 8) & 255),
+                                           static_cast<int>((p >> 16) & 255)};
+      EXPECT_EQ(png->rgb(x, y), expected) << "pixel " << x << "," << y;
+    }
+  }
+}
+
+TEST(IoPngWriter, RgbaRoundTripKeepsAlpha) {
+  TempDir dir;
+  const std::vector<uint32_t> pixels = {packRgba(10, 20, 30, 0), packRgba(40, 50, 60, 128),
+                                        packRgba(70, 80, 90, 255), packRgba(255, 254, 253, 1)};
+  const fs::path path = dir / "rgba.png";
+  ASSERT_TRUE(writePngRgba8(path, 2, 2, pixels.data(), /*keep_alpha=*/true).ok());
+
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->color_type, PNG_COLOR_TYPE_RGB_ALPHA);
+  EXPECT_EQ(png->bit_depth, 8);
+  EXPECT_EQ(png->rgba(0, 0), (std::array<int, 4>{10, 20, 30, 0}));
+  EXPECT_EQ(png->rgba(1, 0), (std::array<int, 4>{40, 50, 60, 128}));
+  EXPECT_EQ(png->rgba(0, 1), (std::array<int, 4>{70, 80, 90, 255}));
+  EXPECT_EQ(png->rgba(1, 1), (std::array<int, 4>{255, 254, 253, 1}));
+}
+
+TEST(IoPngWriter, Gray16RoundTripIsExact) {
+  TempDir dir;
+  // Values whose two bytes differ, so a byte-order mistake shows.
+  const std::vector<uint16_t> pixels = {0, 1, 255, 256, 0x1234, 0xABCD, 65534, 65535};
+  const fs::path path = dir / "gray.png";
+  ASSERT_TRUE(writePngGray16(path, 4, 2, pixels.data()).ok());
+
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->color_type, PNG_COLOR_TYPE_GRAY);
+  EXPECT_EQ(png->bit_depth, 16);
+  EXPECT_EQ(png->width, 4);
+  EXPECT_EQ(png->height, 2);
+  for (int i = 0; i < 8; ++i) {
+    EXPECT_EQ(png->gray16(i % 4, i / 4), pixels[i]) << "pixel " << i;
+  }
+}
+
+TEST(IoPngWriter, MissingFolderIsAnErrorAndLeavesNoFile) {
+  TempDir dir;
+  const fs::path path = dir / "missing" / "x.png";
+  const std::vector<uint32_t> pixels(4, packRgba(1, 2, 3));
+  Expected<void> written = writePngRgba8(path, 2, 2, pixels.data());
+  ASSERT_FALSE(written.ok());
+  EXPECT_NE(written.error().message.find(path.string()), std::string::npos);
+  EXPECT_NE(written.error().message.find("No such file or directory"), std::string::npos);
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoPngWriter, ExistingTargetIsReplaced) {
+  TempDir dir;
+  const fs::path path = dir / "out.png";
+  writeText(path, "not a png");
+  const std::vector<uint32_t> pixels(1, packRgba(9, 8, 7));
+  ASSERT_TRUE(writePngRgba8(path, 1, 1, pixels.data()).ok());
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->rgb(0, 0), (std::array<int, 3>{9, 8, 7}));
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"out.png"});
+}
+
+TEST(IoPngWriter, WriteFailureIsAnErrorAndKeepsExistingTarget) {
+  TempDir dir;
+  const fs::path path = dir / "noise.png";
+  writeText(path, "old");
+  const std::vector<uint32_t> pixels = noiseFrame(64, 64);  // ~12 KB that do not compress
+  Expected<void> written = [&] {
+    FileSizeLimit limit(1024);
+    return writePngRgba8(path, 64, 64, pixels.data());
+  }();
+  ASSERT_FALSE(written.ok());
+  EXPECT_EQ(written.error().message, "cannot write '" + path.string() + "': File too large");
+  EXPECT_EQ(readText(path), "old");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"noise.png"});
+}
+
+// ---- AOV encodings ----
+
+Frame aovFrame(int width, int height, bool with_normals) {
+  Frame frame;
+  frame.width = width;
+  frame.height = height;
+  const size_t count = frame.pixelCount();
+  frame.color.assign(count, 0);
+  frame.depth.assign(count, std::numeric_limits<float>::infinity());
+  frame.triangle_id.assign(count, kNoTriangle);
+  if (with_normals) frame.normal.assign(count, float3(0.0f));
+  return frame;
+}
+
+TEST(IoAovPng, IdSplitsIntoRgbBytesLowFirst) {
+  TempDir dir;
+  Frame frame = aovFrame(5, 1, false);
+  frame.triangle_id = {kNoTriangle, 1, 70000, 0x00FFFFFF, 0x00010203};
+  const fs::path path = dir / "id.png";
+  ASSERT_TRUE(writeIdPng(path, frame).ok());
+
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->color_type, PNG_COLOR_TYPE_RGB);
+  EXPECT_EQ(png->bit_depth, 8);
+  EXPECT_EQ(png->rgb(0, 0), (std::array<int, 3>{0, 0, 0}));
+  EXPECT_EQ(png->rgb(1, 0), (std::array<int, 3>{1, 0, 0}));
+  EXPECT_EQ(png->rgb(2, 0), (std::array<int, 3>{112, 17, 1}));  // 70000 = 112 + 17*256 + 65536
+  EXPECT_EQ(png->rgb(3, 0), (std::array<int, 3>{255, 255, 255}));
+  EXPECT_EQ(png->rgb(4, 0), (std::array<int, 3>{3, 2, 1}));
+}
+
+TEST(IoAovPng, IdAboveTwentyFourBitsIsAnError) {
+  TempDir dir;
+  Frame frame = aovFrame(2, 1, false);
+  frame.triangle_id = {1, 0x01000000};
+  Expected<void> written = writeIdPng(dir / "id.png", frame);
+  ASSERT_FALSE(written.ok());
+  EXPECT_NE(written.error().message.find("16777216"), std::string::npos) << written.error().message;
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoAovPng, DepthMapsUnitRangeToSixteenBits) {
+  TempDir dir;
+  Frame frame = aovFrame(8, 1, false);
+  const float inf = std::numeric_limits<float>::infinity();
+  frame.depth = {0.0f, 1.0f, 0.5f, 0.25f, inf, -0.5f, 1.5f, 1.0f / 65535.0f};
+  const fs::path path = dir / "depth.png";
+  ASSERT_TRUE(writeDepthPng(path, frame).ok());
+
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->color_type, PNG_COLOR_TYPE_GRAY);
+  EXPECT_EQ(png->bit_depth, 16);
+  const std::array<int, 8> expected = {0, 65535, 32768, 16384, 65535, 0, 65535, 1};
+  for (int x = 0; x < 8; ++x) {
+    EXPECT_EQ(png->gray16(x, 0), expected[x]) << "depth " << frame.depth[x];
+  }
+}
+
+TEST(IoAovPng, NormalMapsToHalfOffsetRgbAndBlackWhereNothingWasDrawn) {
+  TempDir dir;
+  Frame frame = aovFrame(4, 1, true);
+  frame.triangle_id = {1, 2, 3, kNoTriangle};
+  frame.normal = {float3(1.0f, 0.0f, 0.0f), float3(0.0f, -1.0f, 0.0f), float3(0.28f, 0.96f, 0.0f),
+                  float3(0.0f, 0.0f, 1.0f)};
+  const fs::path path = dir / "normal.png";
+  ASSERT_TRUE(writeNormalPng(path, frame).ok());
+
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->color_type, PNG_COLOR_TYPE_RGB);
+  EXPECT_EQ(png->rgb(0, 0), (std::array<int, 3>{255, 128, 128}));
+  EXPECT_EQ(png->rgb(1, 0), (std::array<int, 3>{128, 0, 128}));
+  EXPECT_EQ(png->rgb(2, 0), (std::array<int, 3>{163, 250, 128}));  // 163.2, 249.9, 127.5
+  EXPECT_EQ(png->rgb(3, 0), (std::array<int, 3>{0, 0, 0}));
+}
+
+TEST(IoAovPng, NormalWithoutRenderedNormalsIsAnError) {
+  TempDir dir;
+  Frame frame = aovFrame(2, 2, false);
+  Expected<void> written = writeNormalPng(dir / "normal.png", frame);
+  ASSERT_FALSE(written.ok());
+  EXPECT_NE(written.error().message.find("normals were not rendered"), std::string::npos)
+      << written.error().message;
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+// ---- frame timing and naming ----
+
+TEST(IoGifFrameDelay, ThirtyFpsRepeatsThreeThreeFour) {
+  const std::array<int, 9> expected = {3, 3, 4, 3, 3, 4, 3, 3, 4};
+  for (int i = 0; i < 9; ++i) EXPECT_EQ(gifFrameDelayCs(i, 30), expected[i]) << "frame " << i;
+}
+
+TEST(IoGifFrameDelay, DelaysAddUpToTheExactDuration) {
+  for (int fps : {1, 7, 24, 25, 30, 60, 144, 1000}) {
+    int total = 0;
+    for (int i = 0; i < 3 * fps; ++i) total += gifFrameDelayCs(i, fps);
+    EXPECT_EQ(total, 300) << fps << " fps over 3 seconds";
+  }
+}
+
+TEST(IoFramePath, ReplacesFrameWithZeroPaddedIndex) {
+  EXPECT_EQ(formatFramePath("out_{frame}.png", 7), fs::path("out_0007.png"));
+  EXPECT_EQ(formatFramePath("dir/{frame}.png", 0), fs::path("dir/0000.png"));
+  EXPECT_EQ(formatFramePath("f{frame}.png", 12345), fs::path("f12345.png"));
+  EXPECT_EQ(formatFramePath("{frame}/{frame}.png", 42), fs::path("0042/0042.png"));
+}
+
+// ---- GIF sink ----
+
+TEST(IoGifSink, DecodesWithFrameCountSizeAndDelays) {
+  TempDir dir;
+  const fs::path path = dir / "anim.gif";
+  const int width = 7;
+  const int height = 5;  // not square, so a swapped width and height shows
+  const int frames = 7;
+  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(width, height, 30));
+  ASSERT_TRUE(sink.ok()) << sink.error().message;
+  for (int i = 0; i < frames; ++i) {
+    const std::vector<uint32_t> pixels = solidFrame(width, height, packRgba(i * 30, 0, 0));
+    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  }
+  ASSERT_TRUE((*sink)->finish().ok());
+
+  DecodedGif gif = decodeGif(path);
+  ASSERT_TRUE(gif);
+  EXPECT_EQ(gif->SWidth, width);
+  EXPECT_EQ(gif->SHeight, height);
+  ASSERT_EQ(gif->ImageCount, frames);
+  const std::array<int, frames> expected_delays = {3, 3, 4, 3, 3, 4, 3};
+  int total = 0;
+  for (int i = 0; i < frames; ++i) {
+    EXPECT_EQ(gif->SavedImages[i].ImageDesc.Width, width);
+    EXPECT_EQ(gif->SavedImages[i].ImageDesc.Height, height);
+    EXPECT_EQ(gifDelayCs(gif.get(), i), expected_delays[i]) << "frame " << i;
+    total += gifDelayCs(gif.get(), i);
+  }
+  EXPECT_EQ(total, frames * 100 / 30);  // 7 frames at 30 fps: 0.23 s
+}
+
+TEST(IoGifSink, SolidFramesKeepTheirColours) {
+  TempDir dir;
+  const fs::path path = dir / "solid.gif";
+  const std::array<uint32_t, 5> colours = {packRgba(255, 0, 0), packRgba(0, 255, 0),
+                                           packRgba(0, 0, 255), packRgba(12, 200, 99),
+                                           packRgba(128, 128, 128, 0)};
+  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(6, 4));
+  ASSERT_TRUE(sink.ok()) << sink.error().message;
+  for (uint32_t colour : colours) {
+    const std::vector<uint32_t> pixels = solidFrame(6, 4, colour);
+    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  }
+  ASSERT_TRUE((*sink)->finish().ok());
+
+  DecodedGif gif = decodeGif(path);
+  ASSERT_TRUE(gif);
+  ASSERT_EQ(gif->ImageCount, static_cast<int>(colours.size()));
+  constexpr int kTolerance = 2;
+  for (size_t i = 0; i < colours.size(); ++i) {
+    const std::array<int, 3> expected = {static_cast<int>(colours[i] & 255),
+                                         static_cast<int>((colours[i] >> 8) & 255),
+                                         static_cast<int>((colours[i] >> 16) & 255)};
+    for (int y = 0; y < 4; ++y) {
+      for (int x = 0; x < 6; ++x) {
+        EXPECT_LE(maxChannelDifference(gifPixel(gif.get(), static_cast<int>(i), x, y), expected),
+                  kTolerance)
+            << "frame " << i << " pixel " << x << "," << y;
+      }
+    }
+  }
+}
+
+TEST(IoGifSink, ManyColouredFrameKeepsLocalAverages) {
+  TempDir dir;
+  const fs::path path = dir / "gradient.gif";
+  // 4096 distinct colours: more than a palette holds, so quantization and dithering both work.
+  const int size = 64;
+  std::vector<uint32_t> pixels(static_cast<size_t>(size) * size);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) pixels[y * size + x] = packRgba(x * 4, y * 4, 255 - x * 2);
+  }
+  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(size, size));
+  ASSERT_TRUE(sink.ok()) << sink.error().message;
+  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  ASSERT_TRUE((*sink)->finish().ok());
+
+  DecodedGif gif = decodeGif(path);
+  ASSERT_TRUE(gif);
+  ASSERT_EQ(gif->ImageCount, 1);
+  // Dithering trades per-pixel error for local averages: compare 8x8 block means.
+  constexpr int kBlock = 8;
+  constexpr double kMaxBlockMeanError = 3.0;
+  for (int by = 0; by < size; by += kBlock) {
+    for (int bx = 0; bx < size; bx += kBlock) {
+      std::array<double, 3> input{};
+      std::array<double, 3> output{};
+      for (int y = by; y < by + kBlock; ++y) {
+        for (int x = bx; x < bx + kBlock; ++x) {
+          const uint32_t p = pixels[y * size + x];
+          const std::array<int, 3> decoded = gifPixel(gif.get(), 0, x, y);
+          for (int c = 0; c < 3; ++c) {
+            input[c] += (p >> (8 * c)) & 255;
+            output[c] += decoded[c];
+          }
+        }
+      }
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_LE(std::abs(input[c] - output[c]) / (kBlock * kBlock), kMaxBlockMeanError)
+            << "block " << bx << "," << by << " channel " << c;
+      }
+    }
+  }
+}
+
+TEST(IoGifSink, DithersAGradientThePaletteCannotCover) {
+  TempDir dir;
+  const fs::path path = dir / "dither.gif";
+  // Noise fills most of the frame and so claims most of the palette; the grey ramp below it is
+  // left with a few entries. Undithered, each ramp row is a staircase (it changes index about
+  // as often as it has distinct indices); dithered, neighbouring pixels alternate between them.
+  const int size = 256;
+  const int ramp_top = 240;
+  std::vector<uint32_t> pixels(static_cast<size_t>(size) * size);
+  uint32_t state = 12345;
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      uint32_t& p = pixels[static_cast<size_t>(y) * size + x];
+      if (y < ramp_top) {
+        state = state * 1664525u + 1013904223u;  // Numerical Recipes LCG
+        p = (state >> 8) | 0xFF000000u;
+      } else {
+        p = packRgba(x, x, x);
+      }
+    }
+  }
+  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(size, size));
+  ASSERT_TRUE(sink.ok()) << sink.error().message;
+  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  ASSERT_TRUE((*sink)->finish().ok());
+
+  DecodedGif gif = decodeGif(path);
+  ASSERT_TRUE(gif);
+  ASSERT_EQ(gif->ImageCount, 1);
+  const GifByteType* raster = gif->SavedImages[0].RasterBits;
+  int index_changes = 0;
+  int staircase_steps = 0;
+  for (int y = ramp_top; y < size; ++y) {
+    const GifByteType* row = raster + static_cast<size_t>(y) * size;
+    std::vector<bool> seen(256, false);
+    int distinct = 0;
+    for (int x = 0; x < size; ++x) {
+      if (!seen[row[x]]) ++distinct;
+      seen[row[x]] = true;
+      if (x > 0 && row[x] != row[x - 1]) ++index_changes;
+    }
+    staircase_steps += distinct - 1;
+  }
+  EXPECT_GT(index_changes, 2 * staircase_steps)
+      << index_changes << " index changes in " << staircase_steps << " staircase steps";
+}
+
+TEST(IoGifSink, LoopingGifHasInfiniteLoopExtension) {
+  TempDir dir;
+  const fs::path path = dir / "loop.gif";
+  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(2, 2, 30, true));
+  ASSERT_TRUE(sink.ok()) << sink.error().message;
+  const std::vector<uint32_t> pixels = solidFrame(2, 2, packRgba(5, 6, 7));
+  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  ASSERT_TRUE((*sink)->finish().ok());
+
+  DecodedGif gif = decodeGif(path);
+  ASSERT_TRUE(gif);
+  std::optional<int> loop_count = gifLoopCount(gif.get());
+  ASSERT_TRUE(loop_count.has_value());
+  EXPECT_EQ(*loop_count, 0);  // 0 = forever
+}
+
+TEST(IoGifSink, NonLoopingGifHasNoLoopExtension) {
+  TempDir dir;
+  const fs::path path = dir / "once.gif";
+  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(2, 2, 30, false));
+  ASSERT_TRUE(sink.ok()) << sink.error().message;
+  const std::vector<uint32_t> pixels = solidFrame(2, 2, packRgba(5, 6, 7));
+  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  ASSERT_TRUE((*sink)->finish().ok());
+
+  DecodedGif gif = decodeGif(path);
+  ASSERT_TRUE(gif);
+  EXPECT_EQ(gif->ImageCount, 1);
+  EXPECT_FALSE(gifLoopCount(gif.get()).has_value());
+}
+
+TEST(IoGifSink, AppearsOnlyWhenFinished) {
+  TempDir dir;
+  const fs::path path = dir / "anim.gif";
+  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(3, 3));
+  ASSERT_TRUE(sink.ok()) << sink.error().message;
+  const std::vector<uint32_t> pixels = solidFrame(3, 3, packRgba(1, 1, 1));
+  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  EXPECT_FALSE(fs::exists(path));
+  ASSERT_TRUE((*sink)->finish().ok());
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"anim.gif"});
+}
+
+TEST(IoGifSink, DestroyedWithoutFinishLeavesNoFile) {
+  TempDir dir;
+  {
+    Expected<std::unique_ptr<FrameSink>> sink = openGifSink(dir / "anim.gif", settingsOf(3, 3));
+    ASSERT_TRUE(sink.ok()) << sink.error().message;
+    const std::vector<uint32_t> pixels = solidFrame(3, 3, packRgba(1, 1, 1));
+    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+    ASSERT_FALSE(dir.entries().empty());  // the temporary exists while the sink does
+  }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoGifSink, UnfinishedSinkKeepsExistingTarget) {
+  TempDir dir;
+  const fs::path path = dir / "anim.gif";
+  writeText(path, "previous animation");
+  {
+    Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(3, 3));
+    ASSERT_TRUE(sink.ok()) << sink.error().message;
+    const std::vector<uint32_t> pixels = solidFrame(3, 3, packRgba(1, 1, 1));
+    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  }
+  EXPECT_EQ(readText(path), "previous animation");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"anim.gif"});
+}
+
+TEST(IoGifSink, FinishedSinkReplacesExistingTarget) {
+  TempDir dir;
+  const fs::path path = dir / "anim.gif";
+  writeText(path, "previous animation");
+  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(3, 3));
+  ASSERT_TRUE(sink.ok()) << sink.error().message;
+  const std::vector<uint32_t> pixels = solidFrame(3, 3, packRgba(1, 1, 1));
+  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  ASSERT_TRUE((*sink)->finish().ok());
+  DecodedGif gif = decodeGif(path);
+  ASSERT_TRUE(gif);
+  EXPECT_EQ(gif->ImageCount, 1);
+}
+
+TEST(IoGifSink, FinishWithoutFramesIsAnErrorAndKeepsExistingTarget) {
+  TempDir dir;
+  const fs::path path = dir / "anim.gif";
+  writeText(path, "previous animation");
+  {
+    Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(3, 3));
+    ASSERT_TRUE(sink.ok()) << sink.error().message;
+    Expected<void> finished = (*sink)->finish();
+    ASSERT_FALSE(finished.ok());
+    EXPECT_NE(finished.error().message.find("no frames"), std::string::npos)
+        << finished.error().message;
+  }
+  EXPECT_EQ(readText(path), "previous animation");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"anim.gif"});
+}
+
+TEST(IoGifSink, WriteFailureIsAnErrorAndLeavesNoFile) {
+  TempDir dir;
+  const fs::path path = dir / "noise.gif";
+  const std::vector<uint32_t> pixels = noiseFrame(64, 64);
+  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(64, 64));
+  ASSERT_TRUE(sink.ok()) << sink.error().message;
+  std::string error;
+  {
+    FileSizeLimit limit(1024);
+    // The failure may surface at a frame or, for bytes still buffered, at finish().
+    for (int i = 0; i < 4 && error.empty(); ++i) {
+      if (Expected<void> added = (*sink)->addFrame(pixels.data()); !added) {
+        error = added.error().message;
+      }
+    }
+    if (error.empty()) {
+      if (Expected<void> finished = (*sink)->finish(); !finished) error = finished.error().message;
+    }
+  }
+  EXPECT_EQ(error, "cannot write '" + path.string() + "': File too large");
+  sink->reset();
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoGifSink, MissingFolderIsAnErrorAndLeavesNoFile) {
+  TempDir dir;
+  const fs::path path = dir / "missing" / "anim.gif";
+  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(3, 3));
+  ASSERT_FALSE(sink.ok());
+  EXPECT_EQ(sink.error().message,
+            "cannot write '" + path.string() + "': No such file or directory");
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+// ---- PNG sequence and single PNG sinks ----
+
+TEST(IoPngSequenceSink, WritesEachFrameToItsNumberedPathOnFinish) {
+  TempDir dir;
+  const std::string path_template = (dir / "out_{frame}.png").string();
+  Expected<std::unique_ptr<FrameSink>> sink = openPngSequenceSink(path_template, settingsOf(2, 1));
+  ASSERT_TRUE(sink.ok()) << sink.error().message;
+  const std::array<uint32_t, 3> colours = {packRgba(10, 0, 0), packRgba(0, 20, 0),
+                                           packRgba(0, 0, 30)};
+  for (uint32_t colour : colours) {
+    const std::vector<uint32_t> pixels = solidFrame(2, 1, colour);
+    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  }
+  for (int i = 0; i < 3; ++i) EXPECT_FALSE(fs::exists(formatFramePath(path_template, i)));
+  ASSERT_TRUE((*sink)->finish().ok());
+
+  EXPECT_EQ(dir.entries(),
+            (std::vector<std::string>{"out_0000.png", "out_0001.png", "out_0002.png"}));
+  for (int i = 0; i < 3; ++i) {
+    std::optional<DecodedPng> png = decodePng(formatFramePath(path_template, i));
+    ASSERT_TRUE(png.has_value()) << "frame " << i;
+    EXPECT_EQ(png->rgb(1, 0), (std::array<int, 3>{static_cast<int>(colours[i] & 255),
+                                                  static_cast<int>((colours[i] >> 8) & 255),
+                                                  static_cast<int>((colours[i] >> 16) & 255)}));
+  }
+}
+
+TEST(IoPngSequenceSink, DestroyedWithoutFinishLeavesNoFiles) {
+  TempDir dir;
+  {
+    Expected<std::unique_ptr<FrameSink>> sink =
+        openPngSequenceSink((dir / "out_{frame}.png").string(), settingsOf(2, 2));
+    ASSERT_TRUE(sink.ok()) << sink.error().message;
+    const std::vector<uint32_t> pixels = solidFrame(2, 2, packRgba(1, 2, 3));
+    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+    ASSERT_EQ(dir.entries().size(), 2u);  // the two temporaries
+  }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoPngSequenceSink, TemplateWithoutFrameIsAnError) {
+  TempDir dir;
+  Expected<std::unique_ptr<FrameSink>> sink =
+      openPngSequenceSink((dir / "out.png").string(), settingsOf(2, 2));
+  ASSERT_FALSE(sink.ok());
+  EXPECT_NE(sink.error().message.find("{frame}"), std::string::npos) << sink.error().message;
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoSinglePngSink, WritesOneFrameAndRejectsASecond) {
+  TempDir dir;
+  const fs::path path = dir / "still.png";
+  Expected<std::unique_ptr<FrameSink>> sink = openFrameSink(path.string(), settingsOf(2, 2));
+  ASSERT_TRUE(sink.ok()) << sink.error().message;
+  const std::vector<uint32_t> pixels = solidFrame(2, 2, packRgba(40, 50, 60));
+  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  Expected<void> second = (*sink)->addFrame(pixels.data());
+  ASSERT_FALSE(second.ok());
+  EXPECT_NE(second.error().message.find(".gif"), std::string::npos) << second.error().message;
+  ASSERT_TRUE((*sink)->finish().ok());
+
+  std::optional<DecodedPng> png = decodePng(path);
+  ASSERT_TRUE(png.has_value());
+  EXPECT_EQ(png->rgb(0, 0), (std::array<int, 3>{40, 50, 60}));
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"still.png"});
+}
+
+// ---- choosing and validating ----
+
+TEST(IoFrameSink, PicksTheSinkByPath) {
+  TempDir dir;
+  const std::vector<uint32_t> pixels = solidFrame(2, 2, packRgba(200, 100, 50));
+  for (const std::string name : {"a.gif", "b.GIF", "c_{frame}.png", "d.png"}) {
+    Expected<std::unique_ptr<FrameSink>> sink =
+        openFrameSink((dir / name).string(), settingsOf(2, 2));
+    ASSERT_TRUE(sink.ok()) << name << ": " << sink.error().message;
+    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok()) << name;
+    ASSERT_TRUE((*sink)->finish().ok()) << name;
+  }
+  EXPECT_TRUE(decodeGif(dir / "a.gif"));
+  EXPECT_TRUE(decodeGif(dir / "b.GIF"));
+  EXPECT_TRUE(decodePng(dir / "c_0000.png").has_value());
+  EXPECT_TRUE(decodePng(dir / "d.png").has_value());
+  EXPECT_FALSE(decodeGif(dir / "d.png"));  // a PNG, not a GIF named .png
+}
+
+TEST(IoFrameSink, UnsupportedPathIsAnErrorNamingTheSupportedForms) {
+  TempDir dir;
+  for (const std::string name : {"movie.avi", "noextension", "frames_{frame}.gif"}) {
+    Expected<std::unique_ptr<FrameSink>> sink =
+        openFrameSink((dir / name).string(), settingsOf(2, 2));
+    ASSERT_FALSE(sink.ok()) << name;
+    EXPECT_NE(sink.error().message.find(".png"), std::string::npos) << sink.error().message;
+    EXPECT_NE(sink.error().message.find(name), std::string::npos) << sink.error().message;
+  }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoFrameSink, OutOfRangeSettingsAreErrors) {
+  TempDir dir;
+  const std::array<AnimationSettings, 6> bad = {settingsOf(0, 10),     settingsOf(10, -1),
+                                                settingsOf(16385, 10), settingsOf(10, 16385),
+                                                settingsOf(10, 10, 0), settingsOf(10, 10, 1001)};
+  for (const AnimationSettings& settings : bad) {
+    for (const std::string name : {"a.gif", "b_{frame}.png", "c.png"}) {
+      Expected<std::unique_ptr<FrameSink>> sink = openFrameSink((dir / name).string(), settings);
+      ASSERT_FALSE(sink.ok()) << name << " " << settings.width << "x" << settings.height << "@"
+                              << settings.fps;
+      EXPECT_NE(sink.error().message.find("must be between"), std::string::npos)
+          << sink.error().message;
+    }
+  }
+  EXPECT_TRUE(dir.entries().empty());
+  // The limits themselves are accepted.
+  Expected<std::unique_ptr<FrameSink>> edge =
+      openFrameSink((dir / "edge.gif").string(), settingsOf(16384, 1, 1000));
+  EXPECT_TRUE(edge.ok()) << edge.error().message;
+}
+
+}  // namespace
+}  // namespace tessera::io

@@ -2,6 +2,7 @@
 // which is renamed over the target on commit() and removed if the AtomicFile is destroyed first.
 #pragma once
 
+#include <cstddef>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -22,18 +23,31 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
   ~AtomicFile();  // removes the temporary file unless committed
 
+  // The open temporary file; null once close() or commit() has run.
   std::FILE* file() const { return file_; }
   const std::filesystem::path& target() const { return target_; }
   const std::filesystem::path& temporaryPath() const { return temporary_; }
 
-  // Flushes, closes and renames over the target. Fails on any write error seen so far.
+  // Appends bytes to the temporary file. The first failure is remembered (with the OS reason)
+  // and returned again by close() and commit().
+  Expected<void> write(const void* data, size_t size);
+
+  // Flushes, syncs and closes the temporary file but does not rename it yet, so a caller can
+  // hold many finished files (a PNG sequence) without holding a descriptor for each.
+  Expected<void> close();
+
+  // Closes (if still open) and renames over the target. Fails on any write error seen so far;
+  // on failure the temporary file is removed and the target is left as it was.
   Expected<void> commit();
 
  private:
   AtomicFile() = default;
   void discard();
+  Error failWith(const std::string& reason);
 
   std::FILE* file_ = nullptr;
+  bool temporary_exists_ = false;  // ours to remove: created, not yet renamed or removed
+  std::string first_error_;        // first write failure, reported by close() and commit()
   std::filesystem::path target_;
   std::filesystem::path temporary_;
 };

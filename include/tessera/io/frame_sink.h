@@ -37,11 +37,14 @@ std::filesystem::path formatFramePath(const std::string& path_template, int inde
 // An animated GIF (giflib, one libimagequant palette per frame with dithering).
 Expected<std::unique_ptr<FrameSink>> openGifSink(const std::filesystem::path& path,
                                                  const AnimationSettings& settings);
-// A PNG per frame, named by formatFramePath.
+// A PNG per frame, named by formatFramePath. Each frame is encoded when added; the files are
+// renamed into place together by finish().
 Expected<std::unique_ptr<FrameSink>> openPngSequenceSink(const std::string& path_template,
                                                          const AnimationSettings& settings);
-// Picks by the path: a "{frame}" template -> PNG sequence, ".gif" -> GIF. Anything else is an
-// error naming the supported forms.
+// Picks by the path: a "{frame}" template ending in .png -> PNG sequence, ".gif" -> GIF, ".png"
+// -> a single PNG (a second frame is an error). Extensions are case-insensitive. Anything else
+// is an error naming the supported forms. Every opener validates the settings (1..16384 pixels
+// a side, 1..1000 fps) and checks that the output folder can be written.
 Expected<std::unique_ptr<FrameSink>> openFrameSink(const std::string& path,
                                                    const AnimationSettings& settings);
 
