@@ -5,10 +5,10 @@
 
 #include <tessera/io/frame_sink.h>
 #include <tessera/io/image_writer.h>
-#include <tessera/render/cpu_renderer.h>
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
 
+#include "backends.h"
 #include "commands.h"
 #include "flags.h"
 
@@ -24,6 +24,8 @@ struct CubeSettings {
   float fov = 50.0f;
   std::string output = "cube.gif";
   int workers = 0;
+  std::string backend = "cpu";
+  int device = -1;
   bool axes = false;
 };
 
@@ -68,6 +70,8 @@ int runCube(const std::vector<std::string>& args) {
                   "(default cube.gif)");
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
   flags.addSwitch("axes", &s.axes, "draw the world axes and the cube's own axes");
+  flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
+  flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
 
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {
@@ -97,8 +101,13 @@ int runCube(const std::vector<std::string>& args) {
     return kExitFailure;
   }
 
+  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
+  if (!backend) {
+    printError("cube", backend.error().message);
+    return kExitFailure;
+  }
+  Backend& renderer = **backend;
   Scene scene = makeCubeScene(s);
-  CpuRenderer renderer(s.workers);
   RenderOptions options;
   options.width = s.width;
   options.height = s.height;

@@ -12,6 +12,7 @@
 #include <tessera/render/cpu_renderer.h>
 #include <tessera/scene/color.h>
 
+#include "backends.h"
 #include "commands.h"
 #include "flags.h"
 
@@ -34,6 +35,7 @@ struct RenderSettings {
   int turntable = 0;
   int fps = 30;
   int workers = 0;
+  int device = -1;
   bool axes = false;
 };
 
@@ -129,7 +131,8 @@ int runRender(const std::vector<std::string>& args) {
   flags.addInt("turntable", &s.turntable, "frames of one full turn about the up axis", 1, 100000);
   flags.addInt("fps", &s.fps, "frames per second of a turntable (default 30)", 1, 100);
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
-  flags.addChoice("backend", &s.backend, {"cpu"}, "renderer (default cpu)");
+  flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
+  flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
   flags.addSwitch("axes", &s.axes, "draw the world axes");
 
   Expected<std::vector<std::string>> positional = flags.parse(args);
@@ -218,7 +221,12 @@ int runRender(const std::vector<std::string>& args) {
   }
 
   // Render.
-  CpuRenderer renderer(s.workers);
+  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
+  if (!backend) {
+    printError("render", backend.error().message);
+    return kExitFailure;
+  }
+  Backend& renderer = **backend;
   RenderOptions options;
   options.width = s.width;
   options.height = s.height;
@@ -268,7 +276,7 @@ int runRender(const std::vector<std::string>& args) {
   }
   if (frame_count > 1) progress.finish();
   std::cout << "wrote " << s.output << " (" << s.width << "x" << s.height << ", "
-            << renderer.lastStats().triangles_in << " triangles";
+            << scene.triangleCount() << " triangles";
   if (frame_count > 1) std::cout << ", " << frame_count << " frames";
   std::cout << ")\n";
   return kExitOk;
