@@ -1,0 +1,412 @@
+#version 460
+// Pass 3, setup and cull: one invocation per scene triangle. Trivial reject against the frustum,
+// Sutherland-Hodgman clipping against near and far (and the guard band where a triangle leaves
+// it), backface culling by the signed area on the snapped grid, fixed-point edge functions with
+// 8 sub-pixel bits and the top-left rule, the bounding box, the depth plane and the
+// perspective-correct barycentric planes. This is src/render/clip.cpp and src/render/setup.cpp
+// operation for operation (precise everywhere: no fused multiply-adds), so coverage is the CPU's
+// exactly.
+//
+// Records: fan piece 0 of triangle t goes to slot t; the other pieces of a clipped triangle go to
+// slots triangle_count + extra_base[t] + piece - 1, allocated with one atomic add. Every record
+// that survives is appended to the visible list (in any order: the fine raster's atomic min
+// makes the result independent of it). A record's key is t << 3 | piece, which orders records as
+// the CPU submits them, so equal depths resolve to the same triangle.
+//
+// TESSERA_FP64 = 1: the depth and barycentric planes in double, as the CPU; = 0: in float, for
+// devices without shaderFloat64 (coverage is still exact; depth may differ in the last bit).
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#include "common.glsl"
+#include "records.glsl"
+
+layout(local_size_x = 64) in;
+
+#if TESSERA_FP64
+#define real double
+#else
+#define real float
+#endif
+
+// src/render/clip.h
+const uint kClipNear = 1u;
+const uint kClipFar = 2u;
+const uint kClipLeft = 4u;
+const uint kClipRight = 8u;
+const uint kClipBottom = 16u;
+const uint kClipTop = 32u;
+const uint kGuardLeft = 64u;
+const uint kGuardRight = 128u;
+const uint kGuardBottom = 256u;
+const uint kGuardTop = 512u;
+const uint kRejectPlanes = 63u;
+const uint kCutPlanes = kClipNear | kClipFar | kGuardLeft | kGuardRight | kGuardBottom | kGuardTop;
+const int kMaxClippedVertices = 9;
+
+// a / b rounded once to float. In double the quotient is correctly rounded even where a GPU's
+// float division is allowed 2.5 ulp of error (a double quotient rounded to float is the
+// correctly rounded float quotient).
+float divideRounded(float a, float b) {
+#if TESSERA_FP64
+  precise double q = double(a) / double(b);
+  return float(q);
+#else
+  precise float q = a / b;
+  return q;
+#endif
+}
+
+uint outcode(vec4 p) {
+  uint code = 0u;
+  if (p.z < -p.w) code |= kClipNear;
+  if (p.z > p.w) code |= kClipFar;
+  if (p.x < -p.w) code |= kClipLeft;
+  if (p.x > p.w) code |= kClipRight;
+  if (p.y < -p.w) code |= kClipBottom;
+  if (p.y > p.w) code |= kClipTop;
+  precise float gx = frame.guard_x * p.w;
+  precise float gy = frame.guard_y * p.w;
+  if (p.x < -gx) code |= kGuardLeft;
+  if (p.x > gx) code |= kGuardRight;
+  if (p.y < -gy) code |= kGuardBottom;
+  if (p.y > gy) code |= kGuardTop;
+  return code;
+}
+
+// A clipped vertex: its clip-space position and its weights over the source triangle's three
+// vertices (the CPU carries the attributes themselves; the weights give the same values).
+struct ClipVertex {
+  vec4 position;
+  vec3 weights;
+};
+
+float planeDistance(uint plane, vec4 p) {
+  precise float d;
+  if (plane == kClipNear) d = p.z + p.w;
+  else if (plane == kClipFar) d = p.w - p.z;
+  else if (plane == kGuardLeft) d = p.x + frame.guard_x * p.w;
+  else if (plane == kGuardRight) d = frame.guard_x * p.w - p.x;
+  else if (plane == kGuardBottom) d = p.y + frame.guard_y * p.w;
+  else d = frame.guard_y * p.w - p.y;
+  return d;
+}
+
+ClipVertex interpolate(ClipVertex inside, ClipVertex outside, float t) {
+  precise vec4 position = inside.position + (outside.position - inside.position) * t;
+  precise vec3 weights = inside.weights + (outside.weights - inside.weights) * t;
+  return ClipVertex(position, weights);
+}
+
+ClipVertex polygon[2][kMaxClippedVertices];
+
+// Clips polygon[0][0..2] against `planes`; the result is polygon[result & 1][0..count), count in
+// result >> 1 (0 when nothing is left).
+uint clipTriangle(uint planes) {
+  const uint order[6] = uint[6](kClipNear, kClipFar, kGuardLeft, kGuardRight, kGuardBottom,
+                                kGuardTop);
+  int count = 3;
+  uint src = 0u;
+  for (int p = 0; p < 6; ++p) {
+    const uint plane = order[p];
+    if ((planes & plane) == 0u) continue;
+    const uint dst = 1u - src;
+    int out_count = 0;
+    for (int i = 0; i < count; ++i) {
+      const ClipVertex a = polygon[src][i];
+      const ClipVertex b = polygon[src][(i + 1) % count];
+      precise float da = planeDistance(plane, a.position);
+      precise float db = planeDistance(plane, b.position);
+      const bool a_in = da >= 0.0, b_in = db >= 0.0;
+      if (a_in) polygon[dst][out_count++] = a;
+      if (a_in != b_in) {
+        // Always from the inside vertex towards the outside one (see src/render/clip.h).
+        precise float a_minus_b = da - db;
+        precise float b_minus_a = db - da;
+        polygon[dst][out_count++] = a_in ? interpolate(a, b, divideRounded(da, a_minus_b))
+                                         : interpolate(b, a, divideRounded(db, b_minus_a));
+      }
+    }
+    count = out_count;
+    src = dst;
+    if (count < 3) return 0u;
+  }
+  return (uint(count) << 1) | src;
+}
+
+// What setup needs about the source triangle beyond its clip-space vertices.
+struct TriangleContext {
+  uint triangle;  // scene triangle index
+  uint object;
+  uint material;
+  uint cull;
+  uint shading;
+  bool has_uv;
+  bool clipped;
+  vec3 face_normal;  // world space, unnormalized
+  vec3 normal[3];    // the source vertices' attributes
+  vec2 uv[3];
+  vec4 color[3];
+};
+
+// std::lround of a window coordinate in 1/256 pixel: half away from zero, exactly.
+int snap(float window_coordinate) {
+  precise float v = window_coordinate * float(kSubpixelOne);
+  const float a = abs(v);
+  const float whole = floor(a);
+  precise float fraction = a - whole;  // exact: the bits of a below the binary point
+  const int n = int(whole) + (fraction >= 0.5 ? 1 : 0);
+  return v < 0.0 ? -n : n;
+}
+
+int64_t floorDiv(int64_t n, int64_t d) { return n >= 0 ? n / d : -((-n + d - 1) / d); }
+
+// First and last pixel whose centre lies in [lo, hi] (fixed point), clamped to [0, size - 1].
+ivec2 pixelRange(int lo, int hi, int size) {
+  int first = int(-floorDiv(-(int64_t(lo) - kSubpixelHalf), kSubpixelOne));
+  int last = int(floorDiv(int64_t(hi) - kSubpixelHalf, kSubpixelOne));
+  return ivec2(max(first, 0), min(last, size - 1));
+}
+
+// Edge from a to b: (b - a) x (p - a) with y down; the top-left bias folded into c.
+void makeEdge(int ax, int ay, int bx, int by, out int a, out int b, out int64_t c) {
+  a = ay - by;
+  b = bx - ax;
+  c = int64_t(by - ay) * int64_t(ax) - int64_t(bx - ax) * int64_t(ay);
+  const int dx = bx - ax, dy = by - ay;
+  const bool top_left = dy < 0 || (dy == 0 && dx > 0);
+  if (!top_left) c -= 1l;
+}
+
+vec3 weighted3(vec3 values[3], vec3 w) {
+  precise vec3 r = values[0] * w.x + values[1] * w.y + values[2] * w.z;
+  return r;
+}
+vec2 weighted2(vec2 values[3], vec3 w) {
+  precise vec2 r = values[0] * w.x + values[1] * w.y + values[2] * w.z;
+  return r;
+}
+vec4 weighted4(vec4 values[3], vec3 w) {
+  precise vec4 r = values[0] * w.x + values[1] * w.y + values[2] * w.z;
+  return r;
+}
+
+// src/render/setup.cpp setupTriangle(): true when the triangle is visible.
+bool setupTriangle(ClipVertex v[3], TriangleContext ctx, out RasterRecord raster,
+                   out ShadeRecord shade) {
+  float wz[3], inv_w[3];
+  int fx[3], fy[3];
+  for (int i = 0; i < 3; ++i) {
+    const vec4 p = v[i].position;
+    inv_w[i] = divideRounded(1.0, p.w);
+    precise float wx = (p.x * inv_w[i] * 0.5 + 0.5) * float(frame.width);
+    precise float wy = (0.5 - p.y * inv_w[i] * 0.5) * float(frame.height);
+    precise float z = p.z * inv_w[i] * 0.5 + 0.5;
+    wz[i] = z;
+    fx[i] = snap(wx);
+    fy[i] = snap(wy);
+  }
+
+  // Signed area on the snapped grid, y down: front faces (counter-clockwise in NDC) are negative.
+  int64_t area = int64_t(fx[1] - fx[0]) * int64_t(fy[2] - fy[0]) -
+                 int64_t(fy[1] - fy[0]) * int64_t(fx[2] - fx[0]);
+  if (area == 0l) return false;
+  const bool back_facing = area > 0l;
+  if ((back_facing && ctx.cull == kCullBack) || (!back_facing && ctx.cull == kCullFront))
+    return false;
+
+  // The rasterizer takes positive areas only: front faces are reordered 0, 2, 1.
+  int order[3] = int[3](0, 1, 2);
+  if (area < 0l) {
+    order[1] = 2;
+    order[2] = 1;
+    area = -area;
+  }
+  const int i0 = order[0], i1 = order[1], i2 = order[2];
+
+  const ivec2 xs = pixelRange(min(fx[0], min(fx[1], fx[2])), max(fx[0], max(fx[1], fx[2])),
+                              frame.width);
+  const ivec2 ys = pixelRange(min(fy[0], min(fy[1], fy[2])), max(fy[0], max(fy[1], fy[2])),
+                              frame.height);
+  if (xs.x > xs.y || ys.x > ys.y) return false;
+  raster.min_x = xs.x;
+  raster.max_x = xs.y;
+  raster.min_y = ys.x;
+  raster.max_y = ys.y;
+
+  // Edge k is opposite vertex k: edge 0 = v1->v2, edge 1 = v2->v0, edge 2 = v0->v1.
+  makeEdge(fx[i1], fy[i1], fx[i2], fy[i2], raster.a[0], raster.b[0], raster.c[0]);
+  makeEdge(fx[i2], fy[i2], fx[i0], fy[i0], raster.a[1], raster.b[1], raster.c[1]);
+  makeEdge(fx[i0], fy[i0], fx[i1], fy[i1], raster.a[2], raster.b[2], raster.c[2]);
+
+  // Screen-space planes on the snapped positions. lambda_1 = E_20 / area, lambda_2 = E_01 / area.
+  // (The CPU divides by 256 and 65536; multiplying by their exact reciprocals is the same
+  // operation, exact, on any device.)
+  const real inv_scale = real(1.0 / 256.0);
+  precise real x0 = real(fx[i0]) * inv_scale, y0 = real(fy[i0]) * inv_scale;
+  precise real x1 = real(fx[i1]) * inv_scale, y1 = real(fy[i1]) * inv_scale;
+  precise real x2 = real(fx[i2]) * inv_scale, y2 = real(fy[i2]) * inv_scale;
+  precise real area_px = real(area) * (inv_scale * inv_scale);
+  precise real l1dx = (y2 - y0) / area_px, l1dy = (x0 - x2) / area_px;
+  precise real l2dx = (y0 - y1) / area_px, l2dy = (x1 - x0) / area_px;
+
+  const real z0 = real(wz[i0]), z1 = real(wz[i1]), z2 = real(wz[i2]);
+  precise real dzdx = (z1 - z0) * l1dx + (z2 - z0) * l2dx;
+  precise real dzdy = (z1 - z0) * l1dy + (z2 - z0) * l2dy;
+  raster.x0 = float(x0);
+  raster.y0 = float(y0);
+  raster.z0 = float(z0);
+  raster.dzdx = float(dzdx);
+  raster.dzdy = float(dzdy);
+
+  const real q0 = real(inv_w[i0]), q1 = real(inv_w[i1]), q2 = real(inv_w[i2]);
+  precise real p1dx = q1 * l1dx, p1dy = q1 * l1dy, p2dx = q2 * l2dx, p2dy = q2 * l2dy;
+  precise real sdx = (q1 - q0) * l1dx + (q2 - q0) * l2dx;
+  precise real sdy = (q1 - q0) * l1dy + (q2 - q0) * l2dy;
+  shade.inv_w0 = float(q0);
+  shade.p1dx = float(p1dx);
+  shade.p1dy = float(p1dy);
+  shade.p2dx = float(p2dx);
+  shade.p2dy = float(p2dy);
+  shade.sdx = float(sdx);
+  shade.sdy = float(sdy);
+
+  // Attributes. Back faces that are drawn are lit from the viewer's side (two-sided lighting).
+  const float flip = back_facing ? -1.0 : 1.0;
+  precise vec3 flat_normal = normalizeAsCpu(ctx.face_normal) * flip;
+  for (int k = 0; k < 3; ++k) {
+    const int source = order[k];
+    vec3 vertex_normal = ctx.normal[source];
+    vec2 uv = ctx.uv[source];
+    vec4 color = ctx.color[source];
+    if (ctx.clipped) {
+      vertex_normal = weighted3(ctx.normal, v[source].weights);
+      uv = weighted2(ctx.uv, v[source].weights);
+      color = weighted4(ctx.color, v[source].weights);
+    }
+    precise vec3 n = ctx.shading == kShadingFlat ? flat_normal
+                                                 : normalizeAsCpu(vertex_normal) * flip;
+    if (n.x * n.x + n.y * n.y + n.z * n.z == 0.0) n = flat_normal;
+    shade.normal[k] = vec4(n, 0.0);
+    shade.uv[k] = uv;
+    shade.color[k] = color;
+  }
+  shade.triangle_id = ctx.triangle;
+  shade.object = ctx.object;
+  shade.material_shading = (ctx.material & 0xffffu) | (ctx.shading << 16) |
+                           (ctx.has_uv ? (1u << 24) : 0u);
+  return true;
+}
+
+// The object holding triangle t: the last one whose triangle_base is <= t.
+uint objectOfTriangle(uint t) {
+  uint lo = 0u, hi = frame.object_count;
+  while (lo < hi) {
+    const uint mid = (lo + hi) / 2u;
+    if (objects[mid].triangle_base <= t) lo = mid + 1u;
+    else hi = mid;
+  }
+  return lo - 1u;
+}
+
+bool isFiniteVec4(vec4 p) { return !any(isinf(p)) && !any(isnan(p)); }
+
+void emit(uint slot, RasterRecord raster, ShadeRecord shade) {
+  raster_records[slot] = raster;
+  shade_records[slot] = shade;
+  visible_list[atomicAdd(counters.visible, 1u)] = slot;
+}
+
+void main() {
+  const uint t = flatWorkgroupIndex() * 64u + gl_LocalInvocationIndex;
+  if (t >= frame.triangle_count) return;
+  const uint object_index = objectOfTriangle(t);
+  const GpuObject object = objects[object_index];
+  const uint idx[3] = uint[3](indices[3u * t], indices[3u * t + 1u], indices[3u * t + 2u]);
+  if (idx[0] >= object.vertex_count || idx[1] >= object.vertex_count ||
+      idx[2] >= object.vertex_count) {
+    atomicAdd(counters.culled, 1u);
+    return;
+  }
+
+  ClipVertex v[3];
+  uint codes[3];
+  bool finite = true;
+  for (int k = 0; k < 3; ++k) {
+    v[k].position = transformed[object.vertex_base + idx[k]].clip;
+    v[k].weights = vec3(k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0);
+    finite = finite && isFiniteVec4(v[k].position);
+    codes[k] = outcode(v[k].position);
+  }
+  // Non-finite vertices drop their triangle; so does one wholly outside a frustum plane.
+  if (!finite || (codes[0] & codes[1] & codes[2] & kRejectPlanes) != 0u) {
+    atomicAdd(counters.culled, 1u);
+    return;
+  }
+
+  TriangleContext ctx;
+  ctx.triangle = t;
+  ctx.object = object_index;
+  ctx.material = (object.flags & kObjectHasTriangleMaterials) != 0u ? triangle_materials[t] : 0u;
+  ctx.cull = object.cull;
+  ctx.shading = object.shading;
+  ctx.has_uv = (object.flags & kObjectHasUv) != 0u;
+  const bool has_color = (object.flags & kObjectHasColor) != 0u;
+  vec3 p[3];
+  for (int k = 0; k < 3; ++k) {
+    const uint g = object.vertex_base + idx[k];
+    ctx.normal[k] = transformed[g].normal.xyz;
+    ctx.uv[k] = ctx.has_uv ? vertexUv(g) : vec2(0.0);
+    ctx.color[k] = has_color ? vertexColor(g) : vec4(1.0);
+    p[k] = vertexPosition(g);
+  }
+  precise vec3 e1 = p[1] - p[0];
+  precise vec3 e2 = p[2] - p[0];
+  precise vec3 edge_cross = vec3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
+                                 e1.x * e2.y - e1.y * e2.x);
+  precise vec3 face_normal = multiply3x3(object.normal_matrix, edge_cross) * object.winding_sign;
+  ctx.face_normal = face_normal;
+
+  RasterRecord raster;
+  ShadeRecord shade;
+  const uint cut = (codes[0] | codes[1] | codes[2]) & kCutPlanes;
+  if (cut == 0u) {
+    ctx.clipped = false;
+    if (setupTriangle(v, ctx, raster, shade)) {
+      raster.key = t << 3;
+      emit(t, raster, shade);
+    } else {
+      atomicAdd(counters.culled, 1u);
+    }
+    return;
+  }
+
+  atomicAdd(counters.clipped, 1u);
+  ctx.clipped = true;
+  polygon[0][0] = v[0];
+  polygon[0][1] = v[1];
+  polygon[0][2] = v[2];
+  const uint clipped = clipTriangle(cut);
+  const int count = int(clipped >> 1);
+  const uint src = clipped & 1u;
+  if (count < 3) {
+    atomicAdd(counters.culled, 1u);
+    return;
+  }
+  // Pieces 1..count-3 take extra slots. When they do not fit, the counter still records how many
+  // were asked for: the host grows the buffer and renders the frame again.
+  const uint extra_needed = uint(count - 3);
+  uint base = 0u;
+  if (extra_needed > 0u) base = atomicAdd(counters.extra, extra_needed);
+  extra_base[t] = base;
+  bool any_visible = false;
+  for (int k = 1; k + 1 < count; ++k) {
+    const uint piece = uint(k - 1);
+    if (piece > 0u && base + piece - 1u >= frame.extra_capacity) continue;
+    const ClipVertex fan[3] = ClipVertex[3](polygon[src][0], polygon[src][k], polygon[src][k + 1]);
+    if (setupTriangle(fan, ctx, raster, shade)) {
+      raster.key = (t << 3) | piece;
+      emit(piece == 0u ? t : frame.triangle_count + base + piece - 1u, raster, shade);
+      any_visible = true;
+    }
+  }
+  if (!any_visible) atomicAdd(counters.culled, 1u);
+}
