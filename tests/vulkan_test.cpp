@@ -390,3 +390,334 @@ TEST(VulkanCompute, MatchesCpuOnTexturedPlane) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   expectComputeMatchesCpu("textured plane", texturedScene());
 }
+
+TEST(VulkanCompute, NormalAovMatchesCpu) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  const Scene scene = sphereScene(32, 16, Shading::kPhong);
+  const RenderOptions o = options(kWidth, kHeight, /*normals=*/true);
+  const Frame cpu = renderCpu(scene, o);
+  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  const Frame frame = renderWith(*gpu, scene, o);
+  ASSERT_EQ(frame.normal.size(), cpu.normal.size());
+  size_t close = 0, drawn = 0;
+  for (size_t i = 0; i < frame.pixelCount(); ++i) {
+    if (cpu.triangle_id[i] == kNoTriangle) continue;
+    ++drawn;
+    close += length(frame.normal[i] - cpu.normal[i]) < 1e-5f;
+    EXPECT_EQ(frame.depth[i], cpu.depth[i]) << "pixel " << i;
+  }
+  EXPECT_GT(drawn, 1000u);
+  EXPECT_EQ(close, drawn);
+}
+
+// ---- the fallbacks: still the CPU's image ----
+
+TEST(VulkanCompute, ThirtyTwoBitCommitMatchesCpu) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.force_32bit_atomics = true;
+  std::unique_ptr<ComputeBackend> gpu = makeCompute(vk);
+  ASSERT_TRUE(gpu);
+  expectComputeMatchesCpu("32-bit commit, dense", denseScene(), vk, gpu.get());
+  EXPECT_FALSE(gpu->lastStats().int64_atomics);
+  expectComputeMatchesCpu("32-bit commit, one tile", randomTriangles(3000, 12.0f, 80, 80, 4, 3),
+                          vk, gpu.get());
+}
+
+TEST(VulkanCompute, DeviceWithoutInt64AtomicsTakesThe32BitPath) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.pretend_missing_features = {"shaderBufferInt64Atomics"};
+  std::unique_ptr<ComputeBackend> gpu = makeCompute(vk);
+  ASSERT_TRUE(gpu);
+  EXPECT_FALSE(gpu->device().int64_atomics);
+  EXPECT_NE(gpu->device().compute_note.find("32-bit"), std::string::npos)
+      << gpu->device().compute_note;
+  expectComputeMatchesCpu("no int64 atomics, cube", cubeScene(), vk, gpu.get());
+  EXPECT_FALSE(gpu->lastStats().int64_atomics);
+}
+
+TEST(VulkanCompute, FloatSetupKeepsCoverageExact) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.force_fp32_setup = true;
+  std::unique_ptr<ComputeBackend> gpu = makeCompute(vk);
+  ASSERT_TRUE(gpu);
+  expectComputeMatchesCpu("float setup, dense", denseScene(), vk, gpu.get());
+  EXPECT_FALSE(gpu->lastStats().fp64_setup);
+}
+
+// ---- binning ----
+
+TEST(VulkanCompute, ManyTrianglesInOneTileStillMatch) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  // 5000 triangles over one 16x16 tile (and its neighbours): the tile's list is split into
+  // several raster workgroups that commit into the same pixels.
+  const Scene scene = randomTriangles(5000, 14.0f, 66.0f, 66.0f, 6.0f, 11);
+  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  expectComputeMatchesCpu("5000 triangles in one tile", scene, {}, gpu.get());
+  const vulkan::ComputeStats& stats = gpu->lastStats();
+  EXPECT_GE(stats.max_tile_entries, 4000u);
+  EXPECT_GT(stats.raster_workgroups, stats.tiles_occupied);
+}
+
+TEST(VulkanCompute, BinOverflowRendersAgainWithLargerBins) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.initial_bin_capacity = 64;  // far too few: the first round overflows
+  std::unique_ptr<ComputeBackend> gpu = makeCompute(vk);
+  ASSERT_TRUE(gpu);
+  expectComputeMatchesCpu("overflowing bins", denseScene(), vk, gpu.get());
+  const vulkan::ComputeStats& stats = gpu->lastStats();
+  EXPECT_GE(stats.bin_overflows, 1u);
+  EXPECT_GE(stats.bin_capacity, stats.bin_entries);
+  // The grown buffer is kept: the next frame fits at once.
+  expectComputeMatchesCpu("overflowing bins, next frame", denseScene(), vk, gpu.get());
+  EXPECT_EQ(gpu->lastStats().bin_overflows, 0u);
+}
+
+TEST(VulkanCompute, ManyClippedTrianglesGrowTheClipRecords) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  // 3000 triangles with one corner behind the camera: the near plane cuts each into a quad, two
+  // records, which is more extra records than the first frame's allowance.
+  Scene scene;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> where(-1.5f, 1.5f), width(0.05f, 0.4f);
+  Mesh mesh;
+  for (uint32_t t = 0; t < 3000; ++t) {
+    const float x = where(rng), y = where(rng), w = width(rng);
+    mesh.positions.insert(mesh.positions.end(),
+                          {{x, y, 1.0f}, {x - w, y, -4.0f + x}, {x + w, y + w, -4.0f - y}});
+    mesh.indices.insert(mesh.indices.end(), {3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  Object object;
+  object.mesh = std::make_shared<Mesh>(mesh);
+  object.cull = CullMode::kNone;
+  scene.objects.push_back(object);
+  addLights(scene);
+  scene.camera.position = {0, 0, 0};
+  scene.camera.target = {0, 0, -1};
+  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  expectComputeMatchesCpu("3000 triangles through the near plane", scene, {}, gpu.get());
+  EXPECT_GT(gpu->lastStats().triangles_clipped, 2000u);
+  EXPECT_GE(gpu->lastStats().bin_overflows, 1u);
+}
+
+TEST(VulkanCompute, StatsAndTimingsAreFilled) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  const Scene scene = denseScene();
+  renderWith(*gpu, scene, options());
+  const vulkan::ComputeStats& s = gpu->lastStats();
+  EXPECT_EQ(s.triangles_in, scene.triangleCount());
+  EXPECT_GT(s.triangles_culled, s.triangles_in / 3);  // the back half of the sphere, at least
+  EXPECT_GT(s.triangles_binned, 0u);
+  EXPECT_LE(s.triangles_binned, s.triangles_setup);
+  EXPECT_GE(s.bin_entries, s.triangles_binned);
+  EXPECT_EQ(s.tiles, static_cast<size_t>((kWidth / 16) * (kHeight / 16)));
+  EXPECT_GT(s.tiles_occupied, 0u);
+  EXPECT_LE(s.tiles_occupied, s.tiles);
+  if (s.timings.valid) {
+    EXPECT_GT(s.timings.total, 0.0);
+    EXPECT_GE(s.timings.total + 1e-9, s.timings.setup + s.timings.raster + s.timings.shade);
+  }
+  std::printf("[ stats    ] %zu in, %zu culled, %zu clipped, %zu set up, %zu binned, %zu entries "
+              "in %zu/%zu tiles (max %zu), %zu raster workgroups\n",
+              s.triangles_in, s.triangles_culled, s.triangles_clipped, s.triangles_setup,
+              s.triangles_binned, s.bin_entries, s.tiles_occupied, s.tiles, s.max_tile_entries,
+              s.raster_workgroups);
+  std::printf("[ timings  ] clear %.3f, transform %.3f, setup %.3f, bin %.3f, raster %.3f, "
+              "shade %.3f, total %.3f ms (valid %d)\n",
+              s.timings.clear, s.timings.transform, s.timings.setup, s.timings.bin,
+              s.timings.raster, s.timings.shade, s.timings.total, s.timings.valid);
+}
+
+TEST(VulkanCompute, HeatmapShowsTileOccupancy) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  // Triangles only in the left half: the right half's tiles are empty and stay black.
+  const Scene scene = randomTriangles(2000, 6.0f, 8.0f, 8.0f, 100.0f, 5);
+  renderWith(*gpu, scene, options());
+  const vulkan::TileOccupancy& occupancy = gpu->lastTileOccupancy();
+  ASSERT_EQ(occupancy.entries.size(), static_cast<size_t>(occupancy.columns * occupancy.rows));
+  const std::vector<uint32_t> image = vulkan::makeOccupancyHeatmap(occupancy, kWidth, kHeight);
+  ASSERT_EQ(image.size(), static_cast<size_t>(kWidth * kHeight));
+  size_t lit = 0;
+  for (uint32_t pixel : image) lit += (pixel & 0xffffffu) != 0;
+  EXPECT_GT(lit, 1000u);
+  EXPECT_EQ(image[static_cast<size_t>(kHeight - 2) * kWidth + kWidth - 2] & 0xffffffu, 0u);
+  EXPECT_NE(image[static_cast<size_t>(60) * kWidth + 60] & 0xffffffu, 0u);
+}
+
+// ---- the raster backend against the CPU ----
+
+TEST(VulkanRaster, MatchesCpuIds) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  std::unique_ptr<RasterBackend> raster = makeRaster();
+  ASSERT_TRUE(raster);
+  expectRasterMatchesCpu("raster: cube", cubeScene(), *raster);
+  expectRasterMatchesCpu("raster: sphere", sphereScene(48, 24, Shading::kPhong), *raster);
+  expectRasterMatchesCpu("raster: dense", denseScene(), *raster);
+  expectRasterMatchesCpu("raster: near plane", nearPlaneScene(), *raster);
+  expectRasterMatchesCpu("raster: textured", texturedScene(), *raster);
+  expectRasterMatchesCpu("raster: sub-pixel", randomTriangles(20000, 0.9f, 0, 0, 190, 7),
+                         *raster);
+  EXPECT_EQ(raster->lastStats().draws, 1u);
+}
+
+TEST(VulkanRaster, DropsTheTrianglesTheCpuDrops) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  // An index past the end and a non-finite vertex: the CPU draws neither triangle.
+  Scene scene = clipSpaceScene();
+  Mesh mesh;
+  mesh.positions = {{-0.8f, -0.8f, 0}, {0.8f, -0.8f, 0}, {0, 0.8f, 0},
+                    {0, 0, 0}, {NAN, 0, 0}};
+  mesh.indices = {0, 1, 2, 0, 1, 9, 0, 4, 2};
+  Object object;
+  object.mesh = std::make_shared<Mesh>(mesh);
+  object.shading = Shading::kUnlit;
+  object.cull = CullMode::kNone;
+  scene.objects.push_back(object);
+  std::unique_ptr<RasterBackend> raster = makeRaster();
+  ASSERT_TRUE(raster);
+  expectRasterMatchesCpu("raster: dropped triangles", scene, *raster);
+  expectComputeMatchesCpu("compute: dropped triangles", scene);
+}
+
+// ---- errors: clear messages, never a hang ----
+
+TEST(VulkanErrors, FenceTimeoutIsAnErrorAndTheBackendRecovers) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  const Scene scene = denseScene();
+  Frame frame;
+  // A zero timeout: the wait returns before the GPU can have finished.
+  gpu->setFenceTimeout(0);
+  bool timed_out = false;
+  for (int attempt = 0; attempt < 5 && !timed_out; ++attempt) {
+    gpu->render(scene, options(1024, 768), frame);
+    if (Expected<void> r = gpu->lastResult(); !r) {
+      EXPECT_NE(r.error().message.find("did not finish"), std::string::npos) << r.error().message;
+      timed_out = true;
+    }
+  }
+  EXPECT_TRUE(timed_out);
+  EXPECT_EQ(std::count(frame.triangle_id.begin(), frame.triangle_id.end(), kNoTriangle),
+            static_cast<long>(frame.pixelCount()))
+      << "a failed frame is left empty";
+  // With a real timeout the same backend renders again (after the abandoned frame finishes).
+  gpu->setFenceTimeout(20000);
+  expectComputeMatchesCpu("after a timeout", scene, {}, gpu.get());
+}
+
+TEST(VulkanErrors, MissingLoaderIsAnError) {
+  ASSERT_EQ(setenv("TESSERA_VULKAN_LOADER", "/nonexistent/libvulkan.so.1", 1), 0);
+  Expected<std::unique_ptr<ComputeBackend>> gpu = ComputeBackend::create();
+  Expected<std::vector<vulkan::DeviceInfo>> devices = vulkan::listDevices();
+  unsetenv("TESSERA_VULKAN_LOADER");
+  ASSERT_FALSE(gpu.ok());
+  EXPECT_NE(gpu.error().message.find("Vulkan loader"), std::string::npos) << gpu.error().message;
+  ASSERT_FALSE(devices.ok());
+  EXPECT_NE(devices.error().message.find("/nonexistent/libvulkan.so.1"), std::string::npos);
+}
+
+TEST(VulkanErrors, NoDriverIsAnError) {
+  TESSERA_SKIP_WITHOUT_VULKAN();  // needs a loader
+  // A loader that finds no driver at all.
+  ASSERT_EQ(setenv("VK_ICD_FILENAMES", "/nonexistent/icd.json", 1), 0);
+  ASSERT_EQ(setenv("VK_DRIVER_FILES", "/nonexistent/icd.json", 1), 0);
+  Expected<std::unique_ptr<ComputeBackend>> gpu = ComputeBackend::create();
+  unsetenv("VK_ICD_FILENAMES");
+  unsetenv("VK_DRIVER_FILES");
+  ASSERT_FALSE(gpu.ok());
+  EXPECT_NE(gpu.error().message.find("no Vulkan"), std::string::npos) << gpu.error().message;
+}
+
+TEST(VulkanErrors, DeviceIndexOutOfRangeIsAnError) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.device = 63;
+  Expected<std::unique_ptr<RasterBackend>> raster = RasterBackend::create(vk);
+  ASSERT_FALSE(raster.ok());
+  EXPECT_NE(raster.error().message.find("device 63 does not exist"), std::string::npos)
+      << raster.error().message;
+}
+
+TEST(VulkanErrors, MissingFeatureIsNamed) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.pretend_missing_features = {"shaderInt64"};
+  Expected<std::unique_ptr<ComputeBackend>> gpu = ComputeBackend::create(vk);
+  ASSERT_FALSE(gpu.ok());
+  EXPECT_NE(gpu.error().message.find("shaderInt64"), std::string::npos) << gpu.error().message;
+  vk.pretend_missing_features = {"geometryShader"};
+  Expected<std::unique_ptr<RasterBackend>> raster = RasterBackend::create(vk);
+  ASSERT_FALSE(raster.ok());
+  EXPECT_NE(raster.error().message.find("geometryShader"), std::string::npos)
+      << raster.error().message;
+}
+
+TEST(VulkanErrors, SceneTooLargeForTheDeviceIsAnError) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.pretend_max_buffer_bytes = 300 * 1024;  // the visibility buffer alone needs 384 KiB
+  std::unique_ptr<ComputeBackend> gpu = makeCompute(vk);
+  ASSERT_TRUE(gpu);
+  Frame frame;
+  gpu->render(cubeScene(), options(), frame);
+  Expected<void> result = gpu->lastResult();
+  ASSERT_FALSE(result.ok());
+  EXPECT_NE(result.error().message.find("maxStorageBufferRange"), std::string::npos)
+      << result.error().message;
+  // A smaller image fits, and renders.
+  gpu->render(cubeScene(), options(64, 48), frame);
+  EXPECT_TRUE(gpu->lastResult().ok());
+}
+
+// ---- the device list ----
+
+TEST(VulkanDevices, ListsUsableDevices) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  Expected<std::vector<vulkan::DeviceInfo>> devices = vulkan::listDevices();
+  ASSERT_TRUE(devices.ok());
+  ASSERT_FALSE(devices->empty());
+  for (const vulkan::DeviceInfo& d : *devices) {
+    EXPECT_FALSE(d.name.empty());
+    EXPECT_FALSE(d.compute_note.empty());
+    std::printf("[ device   ] %d: %s (%s, Vulkan %s): vulkan %s (%s); vulkan-raster %s (%s)\n",
+                d.index, d.name.c_str(), d.type.c_str(), d.api_version.c_str(),
+                d.compute_usable ? "yes" : "no", d.compute_note.c_str(),
+                d.raster_usable ? "yes" : "no", d.raster_note.c_str());
+  }
+}
+
+// ---- validation ----
+
+TEST(Vulkan, ValidationLayersReportNoErrors) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.validation = true;
+  std::unique_ptr<ComputeBackend> gpu = makeCompute(vk);
+  ASSERT_TRUE(gpu);
+  expectComputeMatchesCpu("validated: near plane", nearPlaneScene(), vk, gpu.get());
+  expectComputeMatchesCpu("validated: textured", texturedScene(), vk, gpu.get(), true);
+  vk.force_32bit_atomics = true;
+  vk.initial_bin_capacity = 16;
+  std::unique_ptr<ComputeBackend> fallback = makeCompute(vk);
+  ASSERT_TRUE(fallback);
+  expectComputeMatchesCpu("validated: 32-bit, overflow", cubeScene(), vk, fallback.get());
+  std::unique_ptr<RasterBackend> raster = makeRaster(vk);
+  ASSERT_TRUE(raster);
+  expectRasterMatchesCpu("validated: raster", texturedScene(), *raster);
+  // renderWith() fails the test on any validation error; check once more after teardown-free
+  // idle.
+  EXPECT_TRUE(gpu->validationErrors().empty());
+  EXPECT_TRUE(fallback->validationErrors().empty());
+  EXPECT_TRUE(raster->validationErrors().empty());
+}

@@ -119,6 +119,10 @@ int runCube(const std::vector<std::string>& args) {
     scene.objects[0].transform.rotation =
         quat::fromAxisAngle({0, 1, 0}, angle) * quat::fromAxisAngle({1, 0, 0}, 0.35f);
     renderer.render(scene, options, frame);
+    if (Expected<void> rendered = renderer.lastResult(); !rendered) {
+      printError("cube", rendered.error().message);
+      return kExitFailure;
+    }
     if (Expected<void> added = (*sink)->addFrame(frame.color.data()); !added) {
       printError("cube", added.error().message);
       return kExitFailure;

@@ -253,6 +253,10 @@ int runRender(const std::vector<std::string>& args) {
     scene.objects[0].transform.rotation = turn;
     scene.objects[0].transform.translation = center - rotate(turn, center);
     renderer.render(scene, options, frame);
+    if (Expected<void> rendered = renderer.lastResult(); !rendered) {
+      printError("render", rendered.error().message);
+      return kExitFailure;
+    }
     Expected<void> written;
     if (sink) {
       written = sink->addFrame(frame.color.data());

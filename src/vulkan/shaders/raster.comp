@@ -2,8 +2,9 @@
 // Pass 5, fine raster: one workgroup per segment of a tile's list (a tile with few triangles is
 // one segment), one invocation per pixel of the 16x16 tile. The segment's records are staged in
 // shared memory 128 at a time; each invocation evaluates the three edge functions at its pixel
-// centre in 64-bit integers and the depth plane in float, exactly as src/render/raster.cpp, and
-// keeps the smallest (ordered depth << 32 | triangle key) in a register. Then one commit per
+// centre (exactly: the 64-bit edge test of src/render/raster.cpp, reduced per tile to an
+// equivalent 32-bit one) and the depth plane in float as the CPU does, and keeps the smallest
+// (ordered depth, triangle key) pair in registers. Then one commit per
 // pixel into the visibility buffer, by atomic min, since several segments of one tile may run at
 // once.
 //
@@ -29,28 +30,40 @@ layout(std430, set = 0, binding = 17) buffer VisibilityBuffer { uint visibility_
 #endif
 
 const uint kBatch = 128u;
-shared int64_t s_c0[kBatch], s_c1[kBatch], s_c2[kBatch];
-shared int s_a0[kBatch], s_a1[kBatch], s_a2[kBatch];
-shared int s_b0[kBatch], s_b1[kBatch], s_b2[kBatch];
+// Per staged record: the edge coefficients and, per edge, the threshold that turns the 64-bit
+// test into a 32-bit one (below); the depth plane; the key.
+shared ivec3 s_a[kBatch], s_b[kBatch], s_threshold[kBatch];
 shared float s_x0[kBatch], s_y0[kBatch], s_z0[kBatch], s_dzdx[kBatch], s_dzdy[kBatch];
 shared uint s_key[kBatch];
+
+// Edge k at the pixel (tile_x + lx, tile_y + ly) is e = origin + 256 * (a lx + b ly), with
+// origin its (64-bit) value at the tile's first pixel centre. Since |a|, |b| < 2^24 and
+// lx, ly < 16, d = a lx + b ly is below 2^29 in magnitude: an exact int32. And e >= 0 exactly
+// when d >= ceil(-origin / 256) = -(origin >> 8) (arithmetic shift: floor). Clamping that
+// threshold to +-2^30 keeps every outcome (d never reaches it) and makes it an int32 too.
+int edgeThreshold(int64_t origin) {
+  const int64_t threshold = -(origin >> 8);
+  return int(clamp(threshold, -(1l << 30), 1l << 30));
+}
 
 void main() {
   const uint segment_index = flatWorkgroupIndex();
   if (segment_index >= counters.segments) return;  // uniform over the workgroup
   const uvec4 segment = segments[segment_index];
   const uint tile = segment.x;
-  const int x = int(tile % uint(frame.tile_columns)) * kTileSize + int(gl_LocalInvocationID.x);
-  const int y = int(tile / uint(frame.tile_columns)) * kTileSize + int(gl_LocalInvocationID.y);
+  const int tile_x = int(tile % uint(frame.tile_columns)) * kTileSize;
+  const int tile_y = int(tile / uint(frame.tile_columns)) * kTileSize;
+  const int lx = int(gl_LocalInvocationID.x), ly = int(gl_LocalInvocationID.y);
+  const int x = tile_x + lx, y = tile_y + ly;
   const bool inside = x < frame.width && y < frame.height;
   const uint pixel = uint(y) * uint(frame.width) + uint(x);
-  const int64_t px = int64_t(x) * kSubpixelOne + kSubpixelHalf;
-  const int64_t py = int64_t(y) * kSubpixelOne + kSubpixelHalf;
+  const int64_t origin_x = int64_t(tile_x) * kSubpixelOne + kSubpixelHalf;
+  const int64_t origin_y = int64_t(tile_y) * kSubpixelOne + kSubpixelHalf;
   precise float centre_x = float(x) + 0.5;
   precise float centre_y = float(y) + 0.5;
 
 #if TESSERA_RASTER_MODE == 0
-  uint64_t best = ~0ul;
+  uint best_depth = kEmptyWord, best_key = kEmptyWord;
 #elif TESSERA_RASTER_MODE == 1
   uint best_depth = kEmptyWord;
 #else
@@ -64,15 +77,13 @@ void main() {
     const uint lane = gl_LocalInvocationIndex;
     if (lane < n) {
       const RasterRecord r = raster_records[bin_entries[first + lane]];
-      s_c0[lane] = r.c[0];
-      s_c1[lane] = r.c[1];
-      s_c2[lane] = r.c[2];
-      s_a0[lane] = r.a[0];
-      s_a1[lane] = r.a[1];
-      s_a2[lane] = r.a[2];
-      s_b0[lane] = r.b[0];
-      s_b1[lane] = r.b[1];
-      s_b2[lane] = r.b[2];
+      const ivec3 a = ivec3(r.a[0], r.a[1], r.a[2]), b = ivec3(r.b[0], r.b[1], r.b[2]);
+      s_a[lane] = a;
+      s_b[lane] = b;
+      s_threshold[lane] =
+          ivec3(edgeThreshold(int64_t(a.x) * origin_x + int64_t(b.x) * origin_y + r.c[0]),
+                edgeThreshold(int64_t(a.y) * origin_x + int64_t(b.y) * origin_y + r.c[1]),
+                edgeThreshold(int64_t(a.z) * origin_x + int64_t(b.z) * origin_y + r.c[2]));
       s_x0[lane] = r.x0;
       s_y0[lane] = r.y0;
       s_z0[lane] = r.z0;
@@ -83,10 +94,8 @@ void main() {
     barrier();  // the batch is staged before any lane reads it
     if (!inside) continue;
     for (uint j = 0u; j < n; ++j) {
-      const int64_t e0 = int64_t(s_a0[j]) * px + int64_t(s_b0[j]) * py + s_c0[j];
-      const int64_t e1 = int64_t(s_a1[j]) * px + int64_t(s_b1[j]) * py + s_c1[j];
-      const int64_t e2 = int64_t(s_a2[j]) * px + int64_t(s_b2[j]) * py + s_c2[j];
-      if ((e0 | e1 | e2) < 0l) continue;
+      const ivec3 d = s_a[j] * lx + s_b[j] * ly;
+      if (any(lessThan(d, s_threshold[j]))) continue;
       // Window z at the pixel centre, as the CPU: z0 + dzdy * dy, then + dzdx * dx.
       precise float dy = centre_y - s_y0[j];
       precise float z_row = s_z0[j] + s_dzdy[j] * dy;
@@ -95,7 +104,10 @@ void main() {
       if (!(z < uintBitsToFloat(0x7f800000u))) continue;  // NaN or +inf never pass z < stored
       const uint depth = orderedDepth(z);
 #if TESSERA_RASTER_MODE == 0
-      best = min(best, (uint64_t(depth) << 32) | uint64_t(s_key[j]));
+      if (depth < best_depth || (depth == best_depth && s_key[j] < best_key)) {
+        best_depth = depth;
+        best_key = s_key[j];
+      }
 #elif TESSERA_RASTER_MODE == 1
       best_depth = min(best_depth, depth);
 #else
@@ -106,7 +118,8 @@ void main() {
 
   if (!inside) return;
 #if TESSERA_RASTER_MODE == 0
-  if (best != ~0ul) atomicMin(visibility[pixel], best);
+  if (best_depth != kEmptyWord)
+    atomicMin(visibility[pixel], (uint64_t(best_depth) << 32) | uint64_t(best_key));
 #elif TESSERA_RASTER_MODE == 1
   if (best_depth != kEmptyWord) atomicMin(visibility_words[2u * pixel + 1u], best_depth);
 #else
