@@ -34,6 +34,7 @@ class ChunkBins {
   // The triangles of `tile`, in the order they were added.
   const uint32_t* begin(int tile) const { return sorted_.data() + offsets_[tile]; }
   const uint32_t* end(int tile) const { return sorted_.data() + offsets_[tile + 1]; }
+  size_t count(int tile) const { return offsets_[tile + 1] - offsets_[tile]; }
 
  private:
   struct Entry {

@@ -14,6 +14,7 @@
 #include <memory>
 
 #include <tessera/base/check.h>
+#include <tessera/scene/color.h>
 
 #include "render/bin.h"
 #include "render/clip.h"
@@ -22,6 +23,7 @@
 #include "render/raster.h"
 #include "render/resolve.h"
 #include "render/setup.h"
+#include "render/shade.h"
 #include "render/vertex.h"
 #include "render/worker_pool.h"
 
@@ -44,7 +46,10 @@ struct VertexJob {
 
 struct CpuRenderer::State {
   explicit State(int workers) : pool(workers) {
-    for (int i = 0; i < pool.size(); ++i) tiles.push_back(std::make_unique<TileVisibility>());
+    for (int i = 0; i < pool.size(); ++i) {
+      tiles.push_back(std::make_unique<TileVisibility>());
+      shaded.push_back(std::make_unique<ShadedTile>());
+    }
   }
 
   WorkerPool pool;
@@ -54,6 +59,7 @@ struct CpuRenderer::State {
   std::vector<TriangleChunk> chunks;
   size_t chunk_count = 0;
   std::vector<std::unique_ptr<TileVisibility>> tiles;  // one per worker
+  std::vector<std::unique_ptr<ShadedTile>> shaded;     // one per worker
   LineList lines;
   PipelineStats stats;
 
@@ -112,8 +118,9 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
     ctx.cull = object.cull;
     ctx.shading = object.shading;
     ctx.scene = &scene;
-    ctx.object = static_cast<uint32_t>(object_index);
+    ctx.object = &object;
     ctx.has_uv = has_uv;
+    ctx.has_color = has_color;
 
     for (; t < std::min(end, object_end); ++t) {
       const size_t local = t - xf.triangle_base;
@@ -223,20 +230,30 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   s.pool.parallelFor(s.chunk_count,
                      [&](size_t c, int) { s.setupChunk(scene, grid, guard, s.chunks[c]); });
 
-  // Raster and resolve, per tile.
-  s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile, int worker) {
-    TileVisibility& visibility = *s.tiles[static_cast<size_t>(worker)];
-    const int tx = static_cast<int>(tile) % grid.columns, ty = static_cast<int>(tile) / grid.columns;
+  // Raster, shade and resolve, per tile.
+  const uint32_t background = packSrgba8(scene.background);
+  s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile_index, int worker) {
+    const int tile = static_cast<int>(tile_index);
+    const int tx = tile % grid.columns, ty = tile / grid.columns;
     const int x0 = tx * kTileSize, y0 = ty * kTileSize;
-    visibility.clear(x0, y0, std::min(kTileSize, options.width - x0),
-                     std::min(kTileSize, options.height - y0));
+    const int width = std::min(kTileSize, options.width - x0);
+    const int height = std::min(kTileSize, options.height - y0);
+    size_t binned = 0;
+    for (size_t c = 0; c < s.chunk_count; ++c) binned += s.chunks[c].bins.count(tile);
+    if (binned == 0) {
+      resolveEmptyTile(x0, y0, width, height, background, frame);
+      return;
+    }
+    TileVisibility& visibility = *s.tiles[static_cast<size_t>(worker)];
+    visibility.clear(x0, y0, width, height);
     for (size_t c = 0; c < s.chunk_count; ++c) {
       const TriangleChunk& chunk = s.chunks[c];
-      for (const uint32_t* it = chunk.bins.begin(static_cast<int>(tile));
-           it != chunk.bins.end(static_cast<int>(tile)); ++it)
+      for (const uint32_t* it = chunk.bins.begin(tile); it != chunk.bins.end(tile); ++it)
         rasterTriangle(chunk.raster[*it], makeKey(static_cast<uint32_t>(c), *it), visibility);
     }
-    resolveTile(visibility, s.chunks, scene, frame);
+    ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
+    shadeTile(visibility, tile, s.chunks, s.chunk_count, scene, options.normals, shaded);
+    resolveTile(visibility, shaded, background, frame);
   });
 
   // Lines.

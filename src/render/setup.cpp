@@ -137,11 +137,11 @@ SetupResult setupTriangle(const SetupContext& ctx, const ClipVertex in[3], float
     shade.irradiance[k] =
         ctx.shading == Shading::kGouraud ? irradiance(*ctx.scene, n) : flat_irradiance;
   }
+  shade.material = &ctx.object->materials[material < ctx.object->materials.size() ? material : 0];
   shade.triangle_id = triangle_id;
-  shade.object = ctx.object;
-  shade.material = material;
   shade.shading = ctx.shading;
-  shade.has_uv = ctx.has_uv;
+  shade.has_uv = ctx.has_uv && shade.material->albedo != nullptr;
+  shade.has_color = ctx.has_color;
   return SetupResult::kVisible;
 }
 

@@ -33,11 +33,11 @@ struct ShadeTriangle {
   float3 irradiance[3];  // lighting at the vertices (Gouraud)
   float2 uv[3];
   float4 color[3];
+  const Material* material;
   uint32_t triangle_id;  // index in the scene's triangle list
-  uint32_t object;
-  uint16_t material;
   Shading shading;
-  bool has_uv;
+  bool has_uv;     // sample the albedo texture (the mesh has UVs and the material a texture)
+  bool has_color;  // multiply by the interpolated vertex colours
 };
 
 struct SetupContext {
@@ -45,8 +45,9 @@ struct SetupContext {
   CullMode cull = CullMode::kBack;
   Shading shading = Shading::kFlat;
   const Scene* scene = nullptr;
-  uint32_t object = 0;
+  const Object* object = nullptr;
   bool has_uv = false;
+  bool has_color = false;
 };
 
 enum class SetupResult { kVisible, kCulled };
