@@ -89,19 +89,23 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
       objects.begin() - 1;
 
   RasterTriangle raster;
-  ShadeTriangle shade;
-  auto emit = [&](const SetupContext& ctx, const ClipVertex v[3], float3 face_normal,
-                  uint32_t id, uint16_t material) {
-    if (setupTriangle(ctx, v, face_normal, id, material, raster, shade) != SetupResult::kVisible)
-      return false;
+  TriangleOrientation orientation;
+  // Appends a visible triangle's records and bins it; the attributes are fetched only then.
+  auto emit = [&](const SetupContext& ctx, const ScreenVertex sv[3], auto&& attributes,
+                  auto&& face_normal, uint32_t id, uint16_t material) {
+    if (!setupRaster(ctx, sv, raster, orientation)) return false;
     const uint32_t local = static_cast<uint32_t>(chunk.raster.size());
     TESSERA_CHECK(local < kMaxTrianglesPerChunk) << "chunk holds too many triangles";
+    VertexAttributes a[3];
+    attributes(a);
     chunk.raster.push_back(raster);
-    chunk.shade.push_back(shade);
+    chunk.shade.emplace_back();
+    setupShade(ctx, sv, a, orientation, raster, face_normal(), id, material, chunk.shade.back());
     chunk.bins.add(grid, raster, local);
     return true;
   };
 
+  const float width = static_cast<float>(grid.width), height = static_cast<float>(grid.height);
   for (size_t t = begin; t < end; ++object_index) {
     const Object& object = scene.objects[object_index];
     const ObjectTransforms& xf = objects[object_index];
@@ -111,6 +115,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
     const size_t vertex_count = mesh.vertexCount();
     const bool has_uv = mesh.uvs.size() == vertex_count;
     const bool has_color = mesh.colors.size() == vertex_count;
+    const bool has_materials = mesh.triangle_materials.size() == mesh.triangleCount();
 
     SetupContext ctx;
     ctx.width = grid.width;
@@ -130,47 +135,55 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         ++chunk.culled;
         continue;
       }
-      ClipVertex v[3];
-      uint32_t codes[3];
-      bool finite = true;
-      for (int k = 0; k < 3; ++k) {
-        const size_t g = xf.vertex_base + idx[k];
-        v[k].position = vertices.clip(g);
-        finite = finite && std::isfinite(v[k].position.x) && std::isfinite(v[k].position.y) &&
-                 std::isfinite(v[k].position.z) && std::isfinite(v[k].position.w);
-        codes[k] = outcode(v[k].position, guard);
-      }
+      const size_t g[3] = {xf.vertex_base + idx[0], xf.vertex_base + idx[1],
+                           xf.vertex_base + idx[2]};
+      const uint32_t c0 = vertices.outcode[g[0]], c1 = vertices.outcode[g[1]],
+                     c2 = vertices.outcode[g[2]];
       // Non-finite vertices drop their triangle; so does one wholly outside a frustum plane.
-      if (!finite || (codes[0] & codes[1] & codes[2] & kRejectPlanes)) {
+      if (((c0 | c1 | c2) & kNonFinite) || (c0 & c1 & c2 & kRejectPlanes)) {
         ++chunk.culled;
         continue;
       }
-      for (int k = 0; k < 3; ++k) {
-        const size_t g = xf.vertex_base + idx[k];
-        v[k].normal = vertices.normal(g);
-        v[k].uv = has_uv ? mesh.uvs[idx[k]] : float2{};
-        v[k].color = has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1};
-      }
-      const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
-                   p2 = mesh.positions[idx[2]];
-      const float3 face_normal = xf.normal_matrix * cross(p1 - p0, p2 - p0) * xf.winding_sign;
-      const uint16_t material = mesh.triangle_materials.size() == mesh.triangleCount()
-                                    ? mesh.triangle_materials[local]
-                                    : uint16_t{0};
+      const uint16_t material = has_materials ? mesh.triangle_materials[local] : uint16_t{0};
       const uint32_t id = static_cast<uint32_t>(t);
+      auto face_normal = [&] {
+        const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
+                     p2 = mesh.positions[idx[2]];
+        return xf.normal_matrix * cross(p1 - p0, p2 - p0) * xf.winding_sign;
+      };
+      auto mesh_attributes = [&](int k) {
+        return VertexAttributes{vertices.normal(g[k]), has_uv ? mesh.uvs[idx[k]] : float2{},
+                                has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1}};
+      };
 
-      const uint32_t cut = (codes[0] | codes[1] | codes[2]) & kCutPlanes;
+      const uint32_t cut = (c0 | c1 | c2) & kCutPlanes;
       if (!cut) {
-        if (!emit(ctx, v, face_normal, id, material)) ++chunk.culled;
+        const ScreenVertex sv[3] = {vertices.screen[g[0]], vertices.screen[g[1]],
+                                    vertices.screen[g[2]]};
+        auto attributes = [&](VertexAttributes a[3]) {
+          for (int k = 0; k < 3; ++k) a[k] = mesh_attributes(k);
+        };
+        if (!emit(ctx, sv, attributes, face_normal, id, material)) ++chunk.culled;
         continue;
       }
+      // Crosses the near or far plane or leaves the guard band: clip, then fan.
       ++chunk.clipped;
+      ClipVertex in[3];
+      for (int k = 0; k < 3; ++k) {
+        const VertexAttributes a = mesh_attributes(k);
+        in[k] = {vertices.clip(g[k]), a.normal, a.uv, a.color};
+      }
       ClipVertex polygon[kMaxClippedVertices];
-      const int n = clipTriangle(v, cut, guard, polygon);
+      const int n = clipTriangle(in, cut, guard, polygon);
       bool any = false;
       for (int k = 1; k + 1 < n; ++k) {
-        const ClipVertex fan[3] = {polygon[0], polygon[k], polygon[k + 1]};
-        any = emit(ctx, fan, face_normal, id, material) || any;
+        const ClipVertex* fan[3] = {&polygon[0], &polygon[k], &polygon[k + 1]};
+        ScreenVertex sv[3];
+        for (int i = 0; i < 3; ++i) sv[i] = projectToScreen(fan[i]->position, width, height);
+        auto attributes = [&](VertexAttributes a[3]) {
+          for (int i = 0; i < 3; ++i) a[i] = {fan[i]->normal, fan[i]->uv, fan[i]->color};
+        };
+        any = emit(ctx, sv, attributes, face_normal, id, material) || any;
       }
       if (!any) ++chunk.culled;
     }
@@ -209,16 +222,18 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   }
 
   // Vertex stage.
+  const TileGrid grid = TileGrid::forViewport(options.width, options.height);
+  const GuardBand guard = makeGuardBand(options.width, options.height);
+  const ViewportTransform viewport{static_cast<float>(options.width),
+                                   static_cast<float>(options.height), guard};
   s.vertices.resize(vertex_total);
   s.pool.parallelFor(s.vertex_jobs.size(), [&](size_t j, int) {
     const VertexJob& job = s.vertex_jobs[j];
-    transformVertices(*scene.objects[job.object].mesh, s.objects[job.object], job.first, job.count,
-                      s.vertices);
+    transformVertices(*scene.objects[job.object].mesh, s.objects[job.object], viewport, job.first,
+                      job.count, s.vertices);
   });
 
   // Assembly, culling, clipping, setup and binning, per chunk.
-  const TileGrid grid = TileGrid::forViewport(options.width, options.height);
-  const GuardBand guard = makeGuardBand(options.width, options.height);
   const size_t chunk_size =
       std::max(kMinTrianglesPerChunk, (triangle_total + kMaxChunks - 1) / kMaxChunks);
   s.chunk_count = (triangle_total + chunk_size - 1) / chunk_size;
