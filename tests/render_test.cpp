@@ -542,3 +542,31 @@ TEST(Renderer, EmptySceneIsAllBackground) {
   for (uint32_t c : f.color) EXPECT_EQ(c, packSrgba8(scene.background));
   for (float z : f.depth) EXPECT_EQ(z, kInf);
 }
+
+TEST(Renderer, AovsAreFilledOnlyWhenAskedAndDoNotChangeTheColour) {
+  Scene scene;
+  Object o;
+  o.mesh = std::make_shared<Mesh>(makeUvSphere(16, 8));
+  o.shading = Shading::kPhong;
+  scene.objects.push_back(o);
+  CpuRenderer renderer(2);
+  RenderOptions options;
+  options.width = 70;
+  options.height = 50;
+  Frame all, colour_only;
+  options.normals = true;
+  renderer.render(scene, options, all);
+  options.depth = options.ids = options.normals = false;
+  renderer.render(scene, options, colour_only);
+  EXPECT_EQ(all.color, colour_only.color);
+  EXPECT_EQ(all.depth.size(), 70u * 50u);
+  EXPECT_EQ(all.normal.size(), 70u * 50u);
+  EXPECT_TRUE(colour_only.depth.empty());
+  EXPECT_TRUE(colour_only.triangle_id.empty());
+  EXPECT_TRUE(colour_only.normal.empty());
+  // Lines need depth: a scene with axes keeps a depth buffer.
+  scene.show_world_axes = true;
+  renderer.render(scene, options, colour_only);
+  EXPECT_EQ(colour_only.depth.size(), 70u * 50u);
+  EXPECT_TRUE(colour_only.triangle_id.empty());
+}

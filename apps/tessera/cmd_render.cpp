@@ -230,6 +230,8 @@ int runRender(const std::vector<std::string>& args) {
   RenderOptions options;
   options.width = s.width;
   options.height = s.height;
+  options.depth = s.aov == "depth";
+  options.ids = s.aov == "id" || s.aov == "normal";
   options.normals = s.aov == "normal";
   options.lines = s.aov == "color";
   Frame frame;

@@ -197,7 +197,11 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       << "viewport " << options.width << "x" << options.height << " is outside 1.."
       << kMaxViewport;
   State& s = *state_;
-  frame.resize(options.width, options.height, options.normals);
+  const bool draws_lines = options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
+                                             std::any_of(scene.objects.begin(), scene.objects.end(),
+                                                         [](const Object& o) { return o.show_axes; }));
+  frame.resize(options.width, options.height, options.depth || draws_lines, options.ids,
+               options.normals);
 
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
   const float4x4 view_projection = scene.camera.projection(aspect) * scene.camera.view();
@@ -263,8 +267,11 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     visibility.clear(x0, y0, width, height);
     for (size_t c = 0; c < s.chunk_count; ++c) {
       const TriangleChunk& chunk = s.chunks[c];
-      for (const uint32_t* it = chunk.bins.begin(tile); it != chunk.bins.end(tile); ++it)
+      const uint32_t* end = chunk.bins.end(tile);
+      for (const uint32_t* it = chunk.bins.begin(tile); it != end; ++it) {
+        if (it + 1 != end) __builtin_prefetch(&chunk.raster[it[1]]);
         rasterTriangle(chunk.raster[*it], makeKey(static_cast<uint32_t>(c), *it), visibility);
+      }
     }
     ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
     shadeTile(visibility, tile, s.chunks, s.chunk_count, scene, options.normals, shaded);
@@ -272,7 +279,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   });
 
   // Lines.
-  if (options.lines) {
+  if (draws_lines) {
     s.lines.points.assign(scene.lines.points.begin(), scene.lines.points.end());
     s.lines.colors.assign(scene.lines.colors.begin(), scene.lines.colors.end());
     if (scene.show_world_axes) appendAxes(s.lines, float4x4::identity(), scene.world_axes_length);
