@@ -75,8 +75,7 @@ const PipelineStats& CpuRenderer::lastStats() const { return state_->stats; }
 
 void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
                                     const GuardBand& guard, TriangleChunk& chunk) const {
-  chunk.raster.clear();
-  chunk.shade.clear();
+  chunk.size = 0;
   chunk.bins.reset(grid.tileCount());
   chunk.culled = 0;
   chunk.clipped = 0;
@@ -94,13 +93,16 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
   auto emit = [&](const SetupContext& ctx, const ScreenVertex sv[3], auto&& attributes,
                   auto&& face_normal, uint32_t id, uint16_t material) {
     if (!setupRaster(ctx, sv, raster, orientation)) return false;
-    const uint32_t local = static_cast<uint32_t>(chunk.raster.size());
+    const uint32_t local = static_cast<uint32_t>(chunk.size++);
     TESSERA_CHECK(local < kMaxTrianglesPerChunk) << "chunk holds too many triangles";
+    if (local == chunk.raster.size()) {
+      chunk.raster.emplace_back();
+      chunk.shade.emplace_back();
+    }
     VertexAttributes a[3];
     attributes(a);
-    chunk.raster.push_back(raster);
-    chunk.shade.emplace_back();
-    setupShade(ctx, sv, a, orientation, raster, face_normal(), id, material, chunk.shade.back());
+    chunk.raster[local] = raster;
+    setupShade(ctx, sv, a, orientation, raster, face_normal(), id, material, chunk.shade[local]);
     chunk.bins.add(grid, raster, local);
     return true;
   };
@@ -295,7 +297,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   for (size_t c = 0; c < s.chunk_count; ++c) {
     s.stats.triangles_culled += s.chunks[c].culled;
     s.stats.triangles_clipped += s.chunks[c].clipped;
-    s.stats.triangles_setup += s.chunks[c].raster.size();
+    s.stats.triangles_setup += s.chunks[c].size;
   }
 }
 
