@@ -109,26 +109,27 @@ void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAt
   shade.sdx = (q1 - q0) * o.l1dx + (q2 - q0) * o.l2dx;
   shade.sdy = (q1 - q0) * o.l1dy + (q2 - q0) * o.l2dy;
 
+  const Material& m = ctx.object->materials[material < ctx.object->materials.size() ? material : 0];
+  const float3 base = m.base_color.xyz();
   // Back faces that are drawn are lit from the viewer's side (two-sided lighting).
   const float flip = o.back_facing ? -1.0f : 1.0f;
   const float3 flat_normal = normalize(face_normal) * flip;
   const float3 flat_irradiance =
-      ctx.shading == Shading::kFlat ? irradiance(*ctx.scene, flat_normal) : float3{};
+      ctx.shading == Shading::kFlat ? irradiance(*ctx.scene, flat_normal) : float3(1.0f);
   for (int k = 0; k < 3; ++k) {
     const VertexAttributes& va = a[o.order[k]];
     float3 n = ctx.shading == Shading::kFlat ? flat_normal : normalize(va.normal) * flip;
     if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) n = flat_normal;
     shade.normal[k] = n;
     shade.uv[k] = va.uv;
-    shade.color[k] = va.color;
-    shade.irradiance[k] =
-        ctx.shading == Shading::kGouraud ? irradiance(*ctx.scene, n) : flat_irradiance;
+    const float3 albedo = ctx.has_color ? base * va.color.xyz() : base;
+    shade.color[k] = albedo * (ctx.shading == Shading::kGouraud ? irradiance(*ctx.scene, n)
+                                                                 : flat_irradiance);
   }
-  shade.material = &ctx.object->materials[material < ctx.object->materials.size() ? material : 0];
+  shade.material = &m;
   shade.triangle_id = triangle_id;
   shade.shading = ctx.shading;
-  shade.has_uv = ctx.has_uv && shade.material->albedo != nullptr;
-  shade.has_color = ctx.has_color;
+  shade.has_uv = ctx.has_uv && m.albedo != nullptr;
 }
 
 }  // namespace tessera::render
