@@ -54,12 +54,18 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangl
     return false;
 
   // Bounding box over pixel centres.
-  pixelRange(std::min({v[0].x, v[1].x, v[2].x}), std::max({v[0].x, v[1].x, v[2].x}), ctx.width,
-             raster.min_x, raster.max_x);
+  const int32_t min_fx = std::min({v[0].x, v[1].x, v[2].x}), max_fx = std::max({v[0].x, v[1].x, v[2].x});
+  const int32_t min_fy = std::min({v[0].y, v[1].y, v[2].y}), max_fy = std::max({v[0].y, v[1].y, v[2].y});
+  pixelRange(min_fx, max_fx, ctx.width, raster.min_x, raster.max_x);
   if (raster.min_x > raster.max_x) return false;
-  pixelRange(std::min({v[0].y, v[1].y, v[2].y}), std::max({v[0].y, v[1].y, v[2].y}), ctx.height,
-             raster.min_y, raster.max_y);
+  pixelRange(min_fy, max_fy, ctx.height, raster.min_y, raster.max_y);
   if (raster.min_y > raster.max_y) return false;
+  // An edge value at a point of the box is |a| dx + |b| dy at most, with |a| <= box height and
+  // |b| <= box width (sub-pixels); the kernel also evaluates up to 7 pixels past the right end.
+  // Below 2^30 the 32-bit path cannot overflow.
+  const int64_t box_w = static_cast<int64_t>(max_fx) - min_fx;
+  const int64_t box_h = static_cast<int64_t>(max_fy) - min_fy;
+  raster.small = box_h * (2 * box_w + 8 * kSubpixelOne) + box_w < (int64_t{1} << 30);
 
   // The rasterizer takes positive areas only: front faces are reordered 0, 2, 1.
   o.order[0] = 0, o.order[1] = 1, o.order[2] = 2;

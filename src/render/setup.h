@@ -43,6 +43,7 @@ struct RasterTriangle {
   int32_t a[3];
   int32_t b[3];
   int32_t min_x, min_y, max_x, max_y;  // inclusive pixel bounds, clipped to the viewport
+  bool small;  // every edge value over the bounding box (plus 8 pixels right) fits in int32
   // Window z at pixel centre (x + 0.5, y + 0.5) = z0 + dzdx * (x + 0.5 - x0) + dzdy * (y + 0.5 - y0)
   float x0, y0, z0, dzdx, dzdy;
 };
