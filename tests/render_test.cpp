@@ -2,7 +2,10 @@
 // pixel by pixel.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <cstdlib>
+#include <new>
 #include <limits>
 #include <cstring>
 #include <map>
@@ -14,6 +17,24 @@
 #include <tessera/scene/primitives.h>
 
 using namespace tessera;
+
+// Counts heap allocations while a test asks for it (for the no-allocation-per-frame test).
+static std::atomic<bool> g_count_allocations{false};
+static std::atomic<size_t> g_allocations{0};
+
+// A place for a debugger's breakpoint: every counted allocation passes here.
+__attribute__((noinline)) void countedAllocation() { g_allocations.fetch_add(1); }
+
+void* operator new(size_t size) {
+  if (g_count_allocations.load(std::memory_order_relaxed)) countedAllocation();
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, size_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
 
 namespace {
 
@@ -549,6 +570,39 @@ TEST(Renderer, ImageIsBitIdenticalForEverySimdLevel) {
     EXPECT_EQ(scalar.color, other.color) << static_cast<int>(level);
     EXPECT_EQ(0, std::memcmp(scalar.depth.data(), other.depth.data(), scalar.depth.size() * 4));
   }
+}
+
+TEST(Renderer, AllocatesNothingPerFrameAfterWarmUp) {
+  Scene scene;
+  scene.camera.position = {0, 0.5f, 2.5f};
+  scene.camera.near_z = 1.8f;  // some triangles cross the near plane
+  scene.lights.push_back({normalize(float3{-1, -2, -1}), float3(0.9f)});
+  scene.show_world_axes = true;
+  Object sphere;
+  sphere.mesh = std::make_shared<Mesh>(makeUvSphere(64, 32));
+  sphere.shading = Shading::kPhong;
+  sphere.show_axes = true;
+  scene.objects.push_back(sphere);
+  CpuRenderer renderer(3);
+  RenderOptions options;
+  options.width = 320;
+  options.height = 200;
+  options.normals = true;
+  Frame frame;
+  // Warm up on the same frames: buffers grow to the largest frame seen, then stay.
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      g_allocations = 0;
+      g_count_allocations = true;
+    }
+    for (int i = 0; i < 3; ++i) {
+      scene.objects[0].transform.rotation = quat::fromAxisAngle({0, 1, 0}, 0.1f * i);
+      renderer.render(scene, options, frame);
+    }
+  }
+  g_count_allocations = false;
+  EXPECT_GT(renderer.lastStats().triangles_clipped, 0u);
+  EXPECT_EQ(g_allocations.load(), 0u);
 }
 
 TEST(Renderer, ReusesItsBuffersAcrossFramesAndSizes) {
