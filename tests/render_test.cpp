@@ -374,6 +374,54 @@ TEST(Shading, PerspectiveCorrectUvOnARecedingCheckerboard) {
   EXPECT_EQ(wrong, 0) << "of " << checked;
 }
 
+TEST(Shading, TrilinearFilteringAveragesAFineCheckerInTheDistance) {
+  // A fine checker on a floor running to the horizon: far away, many texels fall in one pixel.
+  // Without mip levels the samples alias to black and white; with them they blend to grey.
+  constexpr int kW = 120, kH = 80;
+  auto texture = std::make_shared<Texture>();
+  texture->width = texture->height = 256;
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 256; ++x)
+      texture->texels.push_back((x + y) % 2 ? 0xffffffffu : 0xff000000u);
+  auto render = [&](bool mipmapped) {
+    auto t = std::make_shared<Texture>(*texture);
+    if (mipmapped) generateMipmaps(*t);
+    Scene scene;
+    scene.camera.position = {0, 0.5f, 0};
+    scene.camera.target = {0, 0.3f, -4};
+    scene.camera.near_z = 0.1f;
+    scene.camera.far_z = 200;
+    Mesh floor;
+    floor.positions = {{-50, 0, -1}, {50, 0, -1}, {50, 0, -150}, {-50, 0, -150}};
+    floor.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    floor.indices = {0, 1, 2, 0, 2, 3};
+    Object o = unlitObject(floor, CullMode::kBack);
+    o.materials[0].albedo = t;
+    o.materials[0].sampler = {TextureFilter::kTrilinear, TextureWrap::kRepeat};
+    scene.objects.push_back(o);
+    return renderScene(scene, kW, kH);
+  };
+  // Pixels in the distant band that are far from the checker's mean (linear 0.5 = sRGB 188).
+  auto extremes = [&](const Frame& f) {
+    int top = 0;  // the first row with floor in it: the far edge, near the horizon
+    while (top < kH && f.idAt(kW / 2, top) == kNoTriangle) ++top;
+    int count = 0, covered = 0;
+    for (int y = top; y < top + 4 && y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (f.idAt(x, y) == kNoTriangle) continue;
+        ++covered;
+        const uint32_t r = f.colorAt(x, y) & 0xff;
+        count += std::abs(static_cast<int>(r) - 188) > 30;
+      }
+    EXPECT_GT(covered, kW * 3);
+    return count;
+  };
+  const int aliased = extremes(render(false));
+  const int filtered = extremes(render(true));
+  EXPECT_GT(aliased, kW);
+  EXPECT_LT(filtered, kW / 10);
+}
+
 TEST(Shading, LambertWithAmbientInLinearLight) {
   Scene scene = clipSpaceScene();
   scene.ambient = float3(0.1f);

@@ -1,24 +1,54 @@
 #include "render/shade.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace tessera::render {
 
-float3 shadePixel(const ShadeTriangle& t, const Scene& scene, float x, float y, float3* normal) {
-  // Perspective-correct barycentrics from the 1/w-weighted planes.
+namespace {
+
+struct Barycentrics {
+  float b0, b1, b2;
+};
+
+// Perspective-correct barycentrics at window point (x, y) from the 1/w-weighted planes.
+inline Barycentrics barycentricsAt(const ShadeTriangle& t, float x, float y) {
   const float dx = x - t.x0, dy = y - t.y0;
   const float inv_s = 1.0f / (t.inv_w0 + t.sdx * dx + t.sdy * dy);
   const float b1 = (t.p1dx * dx + t.p1dy * dy) * inv_s;
   const float b2 = (t.p2dx * dx + t.p2dy * dy) * inv_s;
-  const float b0 = 1.0f - b1 - b2;
+  return {1.0f - b1 - b2, b1, b2};
+}
 
-  float3 color = t.color[0] * b0 + t.color[1] * b1 + t.color[2] * b2;
-  if (t.has_uv) {
-    const float2 uv = t.uv[0] * b0 + t.uv[1] * b1 + t.uv[2] * b2;
-    color = color * t.material->albedo->sample(uv, t.material->sampler).xyz();
-  }
+inline float2 uvAt(const ShadeTriangle& t, const Barycentrics& b) {
+  return t.uv[0] * b.b0 + t.uv[1] * b.b1 + t.uv[2] * b.b2;
+}
+
+// The albedo texture at this pixel. Trilinear filtering takes its level of detail from the
+// UV footprint of the pixel: the UVs at the next pixel centres right and down, in texels.
+float3 sampleAlbedo(const ShadeTriangle& t, const Barycentrics& b, float x, float y) {
+  const Texture& texture = *t.material->albedo;
+  const Sampler& sampler = t.material->sampler;
+  const float2 uv = uvAt(t, b);
+  if (sampler.filter != TextureFilter::kTrilinear || texture.mips.empty())
+    return texture.sample(uv, sampler).xyz();
+  const float2 size{static_cast<float>(texture.width), static_cast<float>(texture.height)};
+  const float2 du = uvAt(t, barycentricsAt(t, x + 1.0f, y)) - uv;
+  const float2 dv = uvAt(t, barycentricsAt(t, x, y + 1.0f)) - uv;
+  const float2 dx{du.x * size.x, du.y * size.y}, dy{dv.x * size.x, dv.y * size.y};
+  const float rho2 = std::max(dx.x * dx.x + dx.y * dx.y, dy.x * dy.x + dy.y * dy.y);
+  const float lod = rho2 > 0.0f ? 0.5f * std::log2(rho2) : 0.0f;
+  return texture.sampleLod(uv, lod, sampler).xyz();
+}
+
+}  // namespace
+
+float3 shadePixel(const ShadeTriangle& t, const Scene& scene, float x, float y, float3* normal) {
+  const Barycentrics b = barycentricsAt(t, x, y);
+  float3 color = t.color[0] * b.b0 + t.color[1] * b.b1 + t.color[2] * b.b2;
+  if (t.has_uv) color = color * sampleAlbedo(t, b, x, y);
   if (t.shading == Shading::kPhong || (normal && t.shading != Shading::kFlat)) {
-    const float3 n = normalize(t.normal[0] * b0 + t.normal[1] * b1 + t.normal[2] * b2);
+    const float3 n = normalize(t.normal[0] * b.b0 + t.normal[1] * b.b1 + t.normal[2] * b.b2);
     if (t.shading == Shading::kPhong) color = color * irradiance(scene, n);
     if (normal) *normal = n;
   } else if (normal) {
