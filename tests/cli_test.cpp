@@ -363,3 +363,35 @@ TEST_F(Cli, MaterialsModelMatchesItsReferenceImage) {
   tessera::test::expectMatchesReference((dir_ / "scene.png").string(), "obj_materials",
                                         {2, 4});
 }
+
+// Framing fits near and far to the model: two planes 1% of the model's size apart resolve
+// cleanly at any scale (no z-fighting), and the picture does not depend on the scale.
+TEST_F(Cli, FramingKeepsDepthPreciseForTinyAndHugeModels) {
+  std::string reference_ids;
+  for (double scale : {1e-4, 1.0, 1e5}) {
+    std::ostringstream obj;
+    auto v = [&](double x, double y, double z) {
+      obj << "v " << x * scale << " " << y * scale << " " << z * scale << "\n";
+    };
+    v(-1, -1, 0.01), v(1, -1, 0.01), v(1, 1, 0.01), v(-1, 1, 0.01);  // front plane
+    v(-1, -1, 0), v(1, -1, 0), v(1, 1, 0), v(-1, 1, 0);              // back plane
+    obj << "f 1 2 3 4\nf 5 6 7 8\n";
+    writeFile("planes.obj", obj.str());
+    RunResult r = run("render planes.obj --resolution 48,32 --aov id -o ids.png");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    DecodedPng png;
+    ASSERT_TRUE(tessera::test::decodePng((dir_ / "ids.png").string(), png));
+    int front = 0, back = 0;
+    for (int y = 0; y < png.height; ++y)
+      for (int x = 0; x < png.width; ++x) {
+        const int id = png.at(x, y, 0);
+        front += id == 1 || id == 2;
+        back += id == 3 || id == 4;
+      }
+    EXPECT_GT(front, 48 * 32 / 8) << "scale " << scale;
+    EXPECT_EQ(back, 0) << "scale " << scale;
+    const std::string ids = slurp(dir_ / "ids.png");
+    if (reference_ids.empty()) reference_ids = ids;
+    EXPECT_EQ(ids, reference_ids) << "scale " << scale;
+  }
+}
