@@ -11,6 +11,7 @@
 #include <tessera/render/cpu_renderer.h>
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 
 #include <tessera/base/check.h>
@@ -248,6 +249,12 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     triangle_total += object.mesh->triangleCount();
   }
 
+  using Clock = std::chrono::steady_clock;
+  auto elapsed_ms = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+  };
+  const Clock::time_point t_start = Clock::now();
+
   // Vertex stage.
   const TileGrid grid = TileGrid::forViewport(options.width, options.height);
   const GuardBand guard = makeGuardBand(options.width, options.height);
@@ -260,6 +267,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
                       job.count, s.vertices);
   });
 
+  const Clock::time_point t_vertex = Clock::now();
+
   // Assembly, culling, clipping, setup and binning, per chunk.
   const size_t chunk_size =
       std::max(kMinTrianglesPerChunk, (triangle_total + kMaxChunks - 1) / kMaxChunks);
@@ -271,6 +280,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   }
   s.pool.parallelFor(s.chunk_count,
                      [&](size_t c, int) { s.setupChunk(scene, grid, guard, s.chunks[c]); });
+
+  const Clock::time_point t_setup = Clock::now();
 
   // Raster, shade and resolve, per tile.
   const uint32_t background = packSrgba8(scene.background);
@@ -301,6 +312,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     resolveTile(visibility, shaded, background, frame);
   });
 
+  const Clock::time_point t_tiles = Clock::now();
+
   // Lines.
   if (draws_lines) {
     s.lines.points.assign(scene.lines.points.begin(), scene.lines.points.end());
@@ -312,8 +325,14 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     drawLines(s.lines, view_projection, frame);
   }
 
+  const Clock::time_point t_lines = Clock::now();
+
   // Statistics.
   s.stats = {};
+  s.stats.vertex_ms = elapsed_ms(t_start, t_vertex);
+  s.stats.setup_ms = elapsed_ms(t_vertex, t_setup);
+  s.stats.tiles_ms = elapsed_ms(t_setup, t_tiles);
+  s.stats.lines_ms = elapsed_ms(t_tiles, t_lines);
   s.stats.triangles_in = triangle_total;
   for (size_t c = 0; c < s.chunk_count; ++c) {
     s.stats.triangles_culled += s.chunks[c].culled;

@@ -49,6 +49,11 @@ struct RasterTriangle {
 };
 
 struct ShadeTriangle {
+  // Laid out so that untextured flat and Gouraud pixels read only the first two cache lines.
+  const Material* material;
+  uint32_t triangle_id;  // index in the scene's triangle list
+  Shading shading;
+  bool has_uv;  // sample the albedo texture (the mesh has UVs and the material a texture)
   // Perspective-correct barycentrics at window point p, with d = p - (x0, y0):
   //   s = inv_w0 + sdx*d.x + sdy*d.y;  b1 = (p1dx*d.x + p1dy*d.y) / s;  b2 = (...) / s;  b0 = 1-b1-b2
   float x0, y0, inv_w0;
@@ -58,10 +63,6 @@ struct ShadeTriangle {
   float3 color[3];
   float3 normal[3];  // world shading normals, facing the viewer for drawn back faces
   float2 uv[3];
-  const Material* material;
-  uint32_t triangle_id;  // index in the scene's triangle list
-  Shading shading;
-  bool has_uv;  // sample the albedo texture (the mesh has UVs and the material a texture)
 };
 
 struct SetupContext {
