@@ -47,7 +47,10 @@ struct VertexJob {
 
 struct CpuRenderer::State {
   State(int workers, RasterIsa isa)
-      : pool(workers), raster_isa(isa), raster_triangle(rasterTriangleFunction(isa)) {
+      : pool(workers),
+        raster_isa(isa),
+        raster_triangle(rasterTriangleFunction(isa)),
+        shade_tile(shadeTileFunction(isa)) {
     for (int i = 0; i < pool.size(); ++i) {
       tiles.push_back(std::make_unique<TileVisibility>());
       shaded.push_back(std::make_unique<ShadedTile>());
@@ -57,6 +60,7 @@ struct CpuRenderer::State {
   WorkerPool pool;
   RasterIsa raster_isa;
   RasterTriangleFn raster_triangle;
+  ShadeTileFn shade_tile;
   std::vector<ObjectTransforms> objects;
   std::vector<VertexJob> vertex_jobs;
   VertexBuffer vertices;
@@ -308,7 +312,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       }
     }
     ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
-    shadeTile(visibility, tile, s.chunks, s.chunk_count, scene, options.normals, shaded);
+    s.shade_tile(visibility, tile, s.chunks, s.chunk_count, scene, options.normals, shaded);
     resolveTile(visibility, shaded, background, frame);
   });
 

@@ -1,4 +1,4 @@
-// The tile raster kernel, written once against eight-lane types (raster_lanes.h) and compiled
+// The tile raster kernel, written once against eight-lane types (simd_lanes.h) and compiled
 // once per instruction set (raster_<isa>.cpp). Every variant runs the same arithmetic in the same
 // order, so they produce the same bits.
 //
@@ -14,7 +14,7 @@
 #include <cstdint>
 
 #include "render/raster.h"
-#include "render/raster_lanes.h"
+#include "render/simd_lanes.h"
 
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set

@@ -1,5 +1,5 @@
 // The raster kernel compiled for scalar (see CMakeLists.txt for this file's flags).
-#define TESSERA_RASTER_SCALAR 1
+#define TESSERA_SIMD_SCALAR 1
 #include "render/raster_kernel.h"
 
 namespace tessera::render {

@@ -21,10 +21,10 @@ void resolveTile(const TileVisibility& tile, const ShadedTile& shaded, uint32_t 
         color[tx] = background;
         continue;
       }
-      const float3 c = shaded.color[t0 + tx];
-      color[tx] = static_cast<uint32_t>(encodeSrgb8(c.x)) |
-                  (static_cast<uint32_t>(encodeSrgb8(c.y)) << 8) |
-                  (static_cast<uint32_t>(encodeSrgb8(c.z)) << 16) | 0xff000000u;
+      const int t = t0 + tx;
+      color[tx] = static_cast<uint32_t>(encodeSrgb8(shaded.red[t])) |
+                  (static_cast<uint32_t>(encodeSrgb8(shaded.green[t])) << 8) |
+                  (static_cast<uint32_t>(encodeSrgb8(shaded.blue[t])) << 16) | 0xff000000u;
     }
     if (depth) std::memcpy(&frame.depth[row], &tile.depth[t0], sizeof(float) * tile.width);
     if (ids) {
@@ -34,7 +34,10 @@ void resolveTile(const TileVisibility& tile, const ShadedTile& shaded, uint32_t 
     }
     if (normals) {
       for (int tx = 0; tx < tile.width; ++tx)
-        frame.normal[row + tx] = tile.key[t0 + tx] == kEmptyKey ? float3{} : shaded.normal[t0 + tx];
+        frame.normal[row + tx] =
+            tile.key[t0 + tx] == kEmptyKey
+                ? float3{}
+                : float3{shaded.normal_x[t0 + tx], shaded.normal_y[t0 + tx], shaded.normal_z[t0 + tx]};
     }
   }
 }

@@ -1,9 +1,10 @@
-// Eight-lane integer and float types for the raster kernel. In the vector translation units they
+// Eight-lane integer and float types for the raster and shading kernels. In the vector translation units they
 // are GCC/Clang vector extensions (one AVX2 register, two SSE2 ones, or half an AVX-512 one); in
 // the scalar one they are plain arrays whose operators loop over the lanes. The kernel is written
 // once against the operations below, so every variant computes the same values.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
@@ -13,7 +14,7 @@
 namespace tessera::render {
 namespace {
 
-#if defined(TESSERA_RASTER_SCALAR)
+#if defined(TESSERA_SIMD_SCALAR)
 
 template <typename T>
 struct Lanes {
@@ -33,6 +34,7 @@ using F32x8 = Lanes<float>;
 TESSERA_LANES_BINARY(+)
 TESSERA_LANES_BINARY(-)
 TESSERA_LANES_BINARY(*)
+TESSERA_LANES_BINARY(/)
 TESSERA_LANES_BINARY(&)
 TESSERA_LANES_BINARY(|)
 #undef TESSERA_LANES_BINARY
@@ -86,6 +88,24 @@ TESSERA_LANES_INLINE bool any(I32x8 mask) {
   for (int l = 0; l < 8; ++l) r |= mask.v[l];
   return r != 0;
 }
+TESSERA_LANES_INLINE I32x8 equal(I32x8 a, I32x8 b) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] == b.v[l] ? -1 : 0;
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 positive(F32x8 a) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] > 0.0f ? -1 : 0;
+  return r;
+}
+TESSERA_LANES_INLINE F32x8 squareRoot(F32x8 a) {
+  F32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = std::sqrt(a.v[l]);
+  return r;
+}
+TESSERA_LANES_INLINE float lane(F32x8 a, int l) { return a.v[l]; }
+TESSERA_LANES_INLINE int32_t lane(I32x8 a, int l) { return a.v[l]; }
+TESSERA_LANES_INLINE void setLane(F32x8& a, int l, float x) { a.v[l] = x; }
 
 #else  // vector extensions
 
@@ -116,11 +136,20 @@ TESSERA_LANES_INLINE I64x8 widen(I32x8 a) { return __builtin_convertvector(a, I6
 TESSERA_LANES_INLINE I32x8 select(I32x8 mask, I32x8 a, I32x8 b) { return mask ? a : b; }
 TESSERA_LANES_INLINE F32x8 select(I32x8 mask, F32x8 a, F32x8 b) { return mask ? a : b; }
 TESSERA_LANES_INLINE bool any(I32x8 mask) {
-  I32x8 folded = mask;
   int32_t r = 0;
-  for (int l = 0; l < 8; ++l) r |= folded[l];
+  for (int l = 0; l < 8; ++l) r |= mask[l];
   return r != 0;
 }
+TESSERA_LANES_INLINE I32x8 equal(I32x8 a, I32x8 b) { return a == b; }
+TESSERA_LANES_INLINE I32x8 positive(F32x8 a) { return a > 0.0f; }
+TESSERA_LANES_INLINE F32x8 squareRoot(F32x8 a) {
+  F32x8 r;
+  for (int l = 0; l < 8; ++l) r[l] = __builtin_sqrtf(a[l]);  // becomes one vector sqrt
+  return r;
+}
+TESSERA_LANES_INLINE float lane(F32x8 a, int l) { return a[l]; }
+TESSERA_LANES_INLINE int32_t lane(I32x8 a, int l) { return a[l]; }
+TESSERA_LANES_INLINE void setLane(F32x8& a, int l, float x) { a[l] = x; }
 
 #endif
 
