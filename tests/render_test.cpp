@@ -2,7 +2,10 @@
 // pixel by pixel.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <cstdlib>
+#include <new>
 #include <limits>
 #include <cstring>
 #include <map>
@@ -14,6 +17,24 @@
 #include <tessera/scene/primitives.h>
 
 using namespace tessera;
+
+// Counts heap allocations while a test asks for it (for the no-allocation-per-frame test).
+static std::atomic<bool> g_count_allocations{false};
+static std::atomic<size_t> g_allocations{0};
+
+// A place for a debugger's breakpoint: every counted allocation passes here.
+__attribute__((noinline)) void countedAllocation() { g_allocations.fetch_add(1); }
+
+void* operator new(size_t size) {
+  if (g_count_allocations.load(std::memory_order_relaxed)) countedAllocation();
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, size_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
 
 namespace {
 
@@ -353,6 +374,54 @@ TEST(Shading, PerspectiveCorrectUvOnARecedingCheckerboard) {
   EXPECT_EQ(wrong, 0) << "of " << checked;
 }
 
+TEST(Shading, TrilinearFilteringAveragesAFineCheckerInTheDistance) {
+  // A fine checker on a floor running to the horizon: far away, many texels fall in one pixel.
+  // Without mip levels the samples alias to black and white; with them they blend to grey.
+  constexpr int kW = 120, kH = 80;
+  auto texture = std::make_shared<Texture>();
+  texture->width = texture->height = 256;
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 256; ++x)
+      texture->texels.push_back((x + y) % 2 ? 0xffffffffu : 0xff000000u);
+  auto render = [&](bool mipmapped) {
+    auto t = std::make_shared<Texture>(*texture);
+    if (mipmapped) generateMipmaps(*t);
+    Scene scene;
+    scene.camera.position = {0, 0.5f, 0};
+    scene.camera.target = {0, 0.3f, -4};
+    scene.camera.near_z = 0.1f;
+    scene.camera.far_z = 200;
+    Mesh floor;
+    floor.positions = {{-50, 0, -1}, {50, 0, -1}, {50, 0, -150}, {-50, 0, -150}};
+    floor.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    floor.indices = {0, 1, 2, 0, 2, 3};
+    Object o = unlitObject(floor, CullMode::kBack);
+    o.materials[0].albedo = t;
+    o.materials[0].sampler = {TextureFilter::kTrilinear, TextureWrap::kRepeat};
+    scene.objects.push_back(o);
+    return renderScene(scene, kW, kH);
+  };
+  // Pixels in the distant band that are far from the checker's mean (linear 0.5 = sRGB 188).
+  auto extremes = [&](const Frame& f) {
+    int top = 0;  // the first row with floor in it: the far edge, near the horizon
+    while (top < kH && f.idAt(kW / 2, top) == kNoTriangle) ++top;
+    int count = 0, covered = 0;
+    for (int y = top; y < top + 4 && y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (f.idAt(x, y) == kNoTriangle) continue;
+        ++covered;
+        const uint32_t r = f.colorAt(x, y) & 0xff;
+        count += std::abs(static_cast<int>(r) - 188) > 30;
+      }
+    EXPECT_GT(covered, kW * 3);
+    return count;
+  };
+  const int aliased = extremes(render(false));
+  const int filtered = extremes(render(true));
+  EXPECT_GT(aliased, kW);
+  EXPECT_LT(filtered, kW / 10);
+}
+
 TEST(Shading, LambertWithAmbientInLinearLight) {
   Scene scene = clipSpaceScene();
   scene.ambient = float3(0.1f);
@@ -497,6 +566,93 @@ TEST(Renderer, ImageIsBitIdenticalForAnyWorkerCount) {
   }
 }
 
+TEST(Renderer, ImageIsBitIdenticalForEverySimdLevel) {
+  // Small triangles (a dense sphere), large ones (a floor through the near plane, screen-sized
+  // quads), thin slivers and sub-pixel ones: both raster paths of every kernel variant.
+  Scene scene;
+  scene.camera.position = {0, 1, 4};
+  scene.camera.near_z = 0.3f;
+  scene.lights.push_back({normalize(float3{-1, -2, -1}), float3(0.9f)});
+  Object sphere;
+  sphere.mesh = std::make_shared<Mesh>(makeUvSphere(96, 48));
+  sphere.shading = Shading::kPhong;
+  scene.objects.push_back(sphere);
+  Mesh floor;
+  floor.positions = {{-40, -1, 30}, {40, -1, 30}, {40, -1, -40}, {-40, -1, -40}};
+  floor.indices = {0, 1, 2, 0, 2, 3};
+  Object floor_object;
+  floor_object.mesh = std::make_shared<Mesh>(floor);
+  scene.objects.push_back(floor_object);
+  Mesh slivers;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> unit(-1.5f, 1.5f);
+  for (int i = 0; i < 400; ++i) {
+    float3 a{unit(rng), unit(rng), unit(rng)};
+    float3 b = a + float3{unit(rng), unit(rng), unit(rng)} * (i % 2 ? 1.0f : 0.004f);
+    float3 c = a + (b - a) * 0.5f + float3{0.002f, -0.001f, 0.003f};
+    uint32_t base = static_cast<uint32_t>(slivers.positions.size());
+    slivers.positions.insert(slivers.positions.end(), {a, b, c});
+    slivers.indices.insert(slivers.indices.end(), {base, base + 1, base + 2});
+  }
+  generateSmoothNormals(slivers);
+  Object sliver_object;
+  sliver_object.mesh = std::make_shared<Mesh>(slivers);
+  sliver_object.cull = CullMode::kNone;
+  sliver_object.shading = Shading::kGouraud;
+  scene.objects.push_back(sliver_object);
+
+  RenderOptions options;
+  options.width = 301;
+  options.height = 203;
+  auto render = [&](SimdLevel level) {
+    CpuRenderer renderer(2, level);
+    Frame frame;
+    renderer.render(scene, options, frame);
+    return frame;
+  };
+  Frame scalar = render(SimdLevel::kScalar);
+  EXPECT_GT(coveredCount(scalar), 301 * 203 / 3);
+  for (SimdLevel level : {SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512, SimdLevel::kAuto}) {
+    Frame other = render(level);
+    EXPECT_EQ(scalar.triangle_id, other.triangle_id) << static_cast<int>(level);
+    EXPECT_EQ(scalar.color, other.color) << static_cast<int>(level);
+    EXPECT_EQ(0, std::memcmp(scalar.depth.data(), other.depth.data(), scalar.depth.size() * 4));
+  }
+}
+
+TEST(Renderer, AllocatesNothingPerFrameAfterWarmUp) {
+  Scene scene;
+  scene.camera.position = {0, 0.5f, 2.5f};
+  scene.camera.near_z = 1.8f;  // some triangles cross the near plane
+  scene.lights.push_back({normalize(float3{-1, -2, -1}), float3(0.9f)});
+  scene.show_world_axes = true;
+  Object sphere;
+  sphere.mesh = std::make_shared<Mesh>(makeUvSphere(64, 32));
+  sphere.shading = Shading::kPhong;
+  sphere.show_axes = true;
+  scene.objects.push_back(sphere);
+  CpuRenderer renderer(3);
+  RenderOptions options;
+  options.width = 320;
+  options.height = 200;
+  options.normals = true;
+  Frame frame;
+  // Warm up on the same frames: buffers grow to the largest frame seen, then stay.
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      g_allocations = 0;
+      g_count_allocations = true;
+    }
+    for (int i = 0; i < 3; ++i) {
+      scene.objects[0].transform.rotation = quat::fromAxisAngle({0, 1, 0}, 0.1f * i);
+      renderer.render(scene, options, frame);
+    }
+  }
+  g_count_allocations = false;
+  EXPECT_GT(renderer.lastStats().triangles_clipped, 0u);
+  EXPECT_EQ(g_allocations.load(), 0u);
+}
+
 TEST(Renderer, ReusesItsBuffersAcrossFramesAndSizes) {
   Scene scene;
   Object o;
@@ -541,4 +697,32 @@ TEST(Renderer, EmptySceneIsAllBackground) {
   Frame f = renderScene(scene, 7, 5);
   for (uint32_t c : f.color) EXPECT_EQ(c, packSrgba8(scene.background));
   for (float z : f.depth) EXPECT_EQ(z, kInf);
+}
+
+TEST(Renderer, AovsAreFilledOnlyWhenAskedAndDoNotChangeTheColour) {
+  Scene scene;
+  Object o;
+  o.mesh = std::make_shared<Mesh>(makeUvSphere(16, 8));
+  o.shading = Shading::kPhong;
+  scene.objects.push_back(o);
+  CpuRenderer renderer(2);
+  RenderOptions options;
+  options.width = 70;
+  options.height = 50;
+  Frame all, colour_only;
+  options.normals = true;
+  renderer.render(scene, options, all);
+  options.depth = options.ids = options.normals = false;
+  renderer.render(scene, options, colour_only);
+  EXPECT_EQ(all.color, colour_only.color);
+  EXPECT_EQ(all.depth.size(), 70u * 50u);
+  EXPECT_EQ(all.normal.size(), 70u * 50u);
+  EXPECT_TRUE(colour_only.depth.empty());
+  EXPECT_TRUE(colour_only.triangle_id.empty());
+  EXPECT_TRUE(colour_only.normal.empty());
+  // Lines need depth: a scene with axes keeps a depth buffer.
+  scene.show_world_axes = true;
+  renderer.render(scene, options, colour_only);
+  EXPECT_EQ(colour_only.depth.size(), 70u * 50u);
+  EXPECT_TRUE(colour_only.triangle_id.empty());
 }

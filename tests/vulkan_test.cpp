@@ -296,8 +296,9 @@ std::shared_ptr<Texture> checkerTexture(int size, bool srgb) {
   return texture;
 }
 
-// A checkered floor seen at a grazing angle (bilinear, repeat, sRGB texels) and a tilted quad
-// (nearest, clamp, linear texels) with UVs beyond [0, 1].
+// A checkered floor seen at a grazing angle (bilinear, repeat, sRGB texels), a tilted quad
+// (nearest, clamp, linear texels) with UVs beyond [0, 1], and a far wall with mip levels
+// (trilinear).
 Scene texturedScene() {
   Scene scene;
   Object floor;
@@ -305,6 +306,7 @@ Scene texturedScene() {
   floor.shading = Shading::kFlat;
   floor.materials[0].base_color = {1, 1, 1, 1};
   floor.materials[0].albedo = checkerTexture(64, true);
+  floor.materials[0].sampler.filter = TextureFilter::kBilinear;
   floor.transform.translation = {0, -0.8f, -2.0f};
   scene.objects.push_back(floor);
   Object card;
@@ -313,6 +315,16 @@ Scene texturedScene() {
   card.cull = CullMode::kNone;
   card.materials[0].base_color = {1, 0.9f, 0.8f, 1};
   card.materials[0].albedo = checkerTexture(16, false);
+  // A third texture with mip levels, sampled trilinearly (the default sampler).
+  Object far_wall;
+  far_wall.mesh = std::make_shared<Mesh>(makeGrid(2, 6.0f, 12.0f));
+  far_wall.shading = Shading::kGouraud;
+  std::shared_ptr<Texture> mipmapped = checkerTexture(128, true);
+  generateMipmaps(*mipmapped);
+  far_wall.materials[0].albedo = mipmapped;
+  far_wall.transform.translation = {0.0f, 0.0f, -9.0f};
+  far_wall.transform.rotation = quat::fromAxisAngle({1, 0, 0}, 1.3f);
+  scene.objects.push_back(far_wall);
   card.materials[0].sampler = {TextureFilter::kNearest, TextureWrap::kClamp};
   card.transform.translation = {0.4f, 0.1f, -1.5f};
   card.transform.rotation = quat::fromAxisAngle({1, 0, 0}, 1.2f);

@@ -111,6 +111,8 @@ int runCube(const std::vector<std::string>& args) {
   RenderOptions options;
   options.width = s.width;
   options.height = s.height;
+  options.depth = false;
+  options.ids = false;
   Frame frame;
   Progress progress("cube: frame", static_cast<int>(frame_count));
   for (long long i = 0; i < frame_count; ++i) {

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include <tessera/io/frame_sink.h>
+#include <tessera/io/image_loader.h>
 #include <tessera/io/image_writer.h>
 #include <tessera/io/model_loader.h>
 #include <tessera/render/cpu_renderer.h>
@@ -37,9 +38,11 @@ struct RenderSettings {
   int workers = 0;
   int device = -1;
   bool axes = false;
+  bool info = false;
+  std::string texture;
 };
 
-enum class OutputKind { kPng, kGif, kSequence };
+enum class OutputKind { kPng, kVideo, kSequence };  // kVideo: .gif or .mp4
 
 bool endsWithIgnoringCase(const std::string& text, const std::string& suffix) {
   if (text.size() < suffix.size()) return false;
@@ -71,9 +74,9 @@ void addViewLights(Scene& scene) {
   if (length(right) == 0.0f) right = normalize(cross(forward, float3{1, 0, 0}));
   const float3 up = cross(right, forward);
   scene.lights.clear();
-  scene.lights.push_back({normalize(forward + right * 0.5f - up * 0.8f), float3(0.8f)});
-  scene.lights.push_back({normalize(forward - right * 0.7f - up * 0.1f), float3(0.3f)});
-  scene.ambient = float3(0.18f);
+  scene.lights.push_back({normalize(forward + right * 0.5f - up * 0.8f), float3(0.75f)});
+  scene.lights.push_back({normalize(forward - right * 0.7f - up * 0.1f), float3(0.2f)});
+  scene.ambient = float3(0.08f);
 }
 
 Expected<void> writeStill(const std::filesystem::path& path, const Frame& frame,
@@ -90,7 +93,7 @@ int runRender(const std::vector<std::string>& args) {
   RenderSettings s;
   FlagSet flags("tessera render MODEL [-o OUTPUT] [flags]");
   flags.addString("o|output", &s.output,
-                  "output: .png; .gif or a {frame} PNG template for a turntable "
+                  "output: .png; .gif, .mp4 or a {frame} PNG template for a turntable "
                   "(default MODEL's name with .png, in the current folder)");
   flags.addCustom("resolution", "W,H", "image size in pixels (default 1000,600)",
                   [&](const std::string& v) -> std::string {
@@ -134,6 +137,8 @@ int runRender(const std::vector<std::string>& args) {
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
   flags.addSwitch("axes", &s.axes, "draw the world axes");
+  flags.addString("texture", &s.texture, "an albedo texture (PNG, JPEG, BMP, TGA) for every material");
+  flags.addSwitch("info", &s.info, "print the model's counts, bounds and warnings; do not render");
 
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {
@@ -156,16 +161,18 @@ int runRender(const std::vector<std::string>& args) {
     if (!endsWithIgnoringCase(s.output, ".png"))
       return usageError("a {frame} output must end in .png");
     kind = OutputKind::kSequence;
-  } else if (endsWithIgnoringCase(s.output, ".gif")) {
-    kind = OutputKind::kGif;
+  } else if (endsWithIgnoringCase(s.output, ".gif") || endsWithIgnoringCase(s.output, ".mp4")) {
+    kind = OutputKind::kVideo;
   } else if (endsWithIgnoringCase(s.output, ".png")) {
     kind = OutputKind::kPng;
   } else {
-    return usageError("output '" + s.output + "' must end in .png or .gif, or be a {frame} .png template");
+    return usageError("output '" + s.output +
+                      "' must end in .png, .gif or .mp4, or be a {frame} .png template");
   }
   if (kind == OutputKind::kPng && s.turntable > 1)
-    return usageError("--turntable writes several frames: use a .gif or a {frame} .png output");
-  if (kind == OutputKind::kGif && s.aov != "color")
+    return usageError(
+        "--turntable writes several frames: use a .gif, .mp4 or {frame} .png output");
+  if (kind == OutputKind::kVideo && s.aov != "color")
     return usageError("--aov " + s.aov + " needs PNG output (a .png or a {frame} template)");
 
   // Load.
@@ -174,8 +181,29 @@ int runRender(const std::vector<std::string>& args) {
     printError("render", model.error().message);
     return kExitFailure;
   }
+  if (s.info) {
+    printModelInfo(model_path.string(), *model, std::cout);
+    return kExitOk;
+  }
   for (const std::string& warning : model->warnings)
     std::cerr << "tessera render: warning: " << warning << "\n";
+  if (!s.texture.empty()) {
+    Expected<Texture> texture = io::loadTexture(s.texture);
+    if (!texture) {
+      printError("render", texture.error().message);
+      return kExitFailure;
+    }
+    if (model->mesh.uvs.empty())
+      std::cerr << "tessera render: warning: " << model_path.string()
+                << " has no texture coordinates: --texture has no effect\n";
+    auto shared = std::make_shared<const Texture>(std::move(*texture));
+    if (model->materials.empty()) model->materials.push_back(Material{});
+    // The texture is the albedo, as it is: it replaces any base colour.
+    for (Material& m : model->materials) {
+      m.albedo = shared;
+      m.base_color = {1, 1, 1, 1};
+    }
+  }
   const Bounds bounds = model->mesh.bounds();
   if (bounds.empty()) {
     printError("render", model_path.string() + ": the model has no finite vertices");
@@ -230,14 +258,16 @@ int runRender(const std::vector<std::string>& args) {
   RenderOptions options;
   options.width = s.width;
   options.height = s.height;
+  options.depth = s.aov == "depth";
+  options.ids = s.aov == "id" || s.aov == "normal";
   options.normals = s.aov == "normal";
   options.lines = s.aov == "color";
   Frame frame;
   const int frame_count = std::max(s.turntable, 1);
   std::unique_ptr<io::FrameSink> sink;
-  if (kind == OutputKind::kGif) {
+  if (kind == OutputKind::kVideo) {
     Expected<std::unique_ptr<io::FrameSink>> opened =
-        io::openGifSink(s.output, {s.width, s.height, s.fps, true});
+        io::openFrameSink(s.output, {s.width, s.height, s.fps, true});
     if (!opened) {
       printError("render", opened.error().message);
       return kExitFailure;

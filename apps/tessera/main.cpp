@@ -37,7 +37,8 @@ constexpr const char* kUsage =
     "\n"
     "commands:\n"
     "  cube            render the rotating-cube demo to an animated GIF (no input needed)\n"
-    "  render MODEL    render an OBJ model to PNG (colour or an AOV), GIF or a PNG sequence\n"
+    "  render MODEL    render a model to PNG (colour or an AOV), GIF, MP4 or a PNG sequence\n"
+    "  info MODEL      print a model's counts, bounds and warnings without rendering it\n"
     "  devices         list the Vulkan devices and the backends each can run\n"
     "\n"
     "Run 'tessera <command> --help' for the flags of a command.\n";
@@ -55,6 +56,7 @@ int main(int argc, char** argv) {
   args.erase(args.begin());
   if (command == "cube") return runCube(args);
   if (command == "render") return runRender(args);
+  if (command == "info") return runInfo(args);
   if (command == "devices") return runDevices(args);
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << kUsage;

@@ -34,6 +34,7 @@ class ChunkBins {
   // The triangles of `tile`, in the order they were added.
   const uint32_t* begin(int tile) const { return sorted_.data() + offsets_[tile]; }
   const uint32_t* end(int tile) const { return sorted_.data() + offsets_[tile + 1]; }
+  size_t count(int tile) const { return offsets_[tile + 1] - offsets_[tile]; }
 
  private:
   struct Entry {
@@ -54,6 +55,9 @@ namespace tessera::render {
 struct TriangleChunk {
   size_t first_triangle = 0;  // scene triangle index range [first, first + count)
   size_t triangle_count = 0;
+  // records [0, size) are this frame's; the vectors only grow, so a frame after warm-up neither
+  // allocates nor initializes what it then overwrites.
+  size_t size = 0;
   std::vector<RasterTriangle> raster;
   std::vector<ShadeTriangle> shade;
   ChunkBins bins;

@@ -29,6 +29,7 @@ enum ClipPlaneBit : uint32_t {
   kGuardRight = 1u << 7,
   kGuardBottom = 1u << 8,
   kGuardTop = 1u << 9,
+  kNonFinite = 1u << 10,  // a NaN or infinite coordinate: the triangle is dropped
 };
 constexpr uint32_t kRejectPlanes = kClipNear | kClipFar | kClipLeft | kClipRight | kClipBottom |
                                    kClipTop;

@@ -11,9 +11,11 @@
 #include <tessera/render/cpu_renderer.h>
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 
 #include <tessera/base/check.h>
+#include <tessera/scene/color.h>
 
 #include "render/bin.h"
 #include "render/clip.h"
@@ -22,6 +24,7 @@
 #include "render/raster.h"
 #include "render/resolve.h"
 #include "render/setup.h"
+#include "render/shade.h"
 #include "render/vertex.h"
 #include "render/worker_pool.h"
 
@@ -43,17 +46,28 @@ struct VertexJob {
 }  // namespace
 
 struct CpuRenderer::State {
-  explicit State(int workers) : pool(workers) {
-    for (int i = 0; i < pool.size(); ++i) tiles.push_back(std::make_unique<TileVisibility>());
+  State(int workers, RasterIsa isa)
+      : pool(workers),
+        raster_isa(isa),
+        raster_triangle(rasterTriangleFunction(isa)),
+        shade_tile(shadeTileFunction(isa)) {
+    for (int i = 0; i < pool.size(); ++i) {
+      tiles.push_back(std::make_unique<TileVisibility>());
+      shaded.push_back(std::make_unique<ShadedTile>());
+    }
   }
 
   WorkerPool pool;
+  RasterIsa raster_isa;
+  RasterTriangleFn raster_triangle;
+  ShadeTileFn shade_tile;
   std::vector<ObjectTransforms> objects;
   std::vector<VertexJob> vertex_jobs;
   VertexBuffer vertices;
   std::vector<TriangleChunk> chunks;
   size_t chunk_count = 0;
   std::vector<std::unique_ptr<TileVisibility>> tiles;  // one per worker
+  std::vector<std::unique_ptr<ShadedTile>> shaded;     // one per worker
   LineList lines;
   PipelineStats stats;
 
@@ -61,16 +75,33 @@ struct CpuRenderer::State {
                   TriangleChunk& chunk) const;
 };
 
-CpuRenderer::CpuRenderer(int workers) : state_(std::make_unique<State>(workers)) {}
+namespace {
+
+RasterIsa chooseIsa(SimdLevel level) {
+  const RasterIsa best = detectRasterIsa();
+  switch (level) {
+    case SimdLevel::kAuto: return best;
+    case SimdLevel::kScalar: return RasterIsa::kScalar;
+    case SimdLevel::kSse2: return best >= RasterIsa::kSse2 ? RasterIsa::kSse2 : best;
+    case SimdLevel::kAvx2: return best >= RasterIsa::kAvx2 ? RasterIsa::kAvx2 : best;
+    case SimdLevel::kAvx512: return best;
+  }
+  return best;
+}
+
+}  // namespace
+
+CpuRenderer::CpuRenderer(int workers, SimdLevel simd)
+    : state_(std::make_unique<State>(workers, chooseIsa(simd))) {}
 CpuRenderer::~CpuRenderer() = default;
 
 int CpuRenderer::workerCount() const { return state_->pool.size(); }
+const char* CpuRenderer::simdName() const { return rasterIsaName(state_->raster_isa); }
 const PipelineStats& CpuRenderer::lastStats() const { return state_->stats; }
 
 void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
                                     const GuardBand& guard, TriangleChunk& chunk) const {
-  chunk.raster.clear();
-  chunk.shade.clear();
+  chunk.size = 0;
   chunk.bins.reset(grid.tileCount());
   chunk.culled = 0;
   chunk.clipped = 0;
@@ -83,19 +114,26 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
       objects.begin() - 1;
 
   RasterTriangle raster;
-  ShadeTriangle shade;
-  auto emit = [&](const SetupContext& ctx, const ClipVertex v[3], float3 face_normal,
-                  uint32_t id, uint16_t material) {
-    if (setupTriangle(ctx, v, face_normal, id, material, raster, shade) != SetupResult::kVisible)
-      return false;
-    const uint32_t local = static_cast<uint32_t>(chunk.raster.size());
+  TriangleOrientation orientation;
+  // Appends a visible triangle's records and bins it; the attributes are fetched only then.
+  auto emit = [&](const SetupContext& ctx, const ScreenVertex sv[3], auto&& attributes,
+                  auto&& face_normal, uint32_t id, uint16_t material) {
+    if (!setupRaster(ctx, sv, raster, orientation)) return false;
+    const uint32_t local = static_cast<uint32_t>(chunk.size++);
     TESSERA_CHECK(local < kMaxTrianglesPerChunk) << "chunk holds too many triangles";
-    chunk.raster.push_back(raster);
-    chunk.shade.push_back(shade);
+    if (local == chunk.raster.size()) {
+      chunk.raster.emplace_back();
+      chunk.shade.emplace_back();
+    }
+    VertexAttributes a[3];
+    attributes(a);
+    chunk.raster[local] = raster;
+    setupShade(ctx, sv, a, orientation, raster, face_normal(), id, material, chunk.shade[local]);
     chunk.bins.add(grid, raster, local);
     return true;
   };
 
+  const float width = static_cast<float>(grid.width), height = static_cast<float>(grid.height);
   for (size_t t = begin; t < end; ++object_index) {
     const Object& object = scene.objects[object_index];
     const ObjectTransforms& xf = objects[object_index];
@@ -105,6 +143,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
     const size_t vertex_count = mesh.vertexCount();
     const bool has_uv = mesh.uvs.size() == vertex_count;
     const bool has_color = mesh.colors.size() == vertex_count;
+    const bool has_materials = mesh.triangle_materials.size() == mesh.triangleCount();
 
     SetupContext ctx;
     ctx.width = grid.width;
@@ -112,8 +151,9 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
     ctx.cull = object.cull;
     ctx.shading = object.shading;
     ctx.scene = &scene;
-    ctx.object = static_cast<uint32_t>(object_index);
+    ctx.object = &object;
     ctx.has_uv = has_uv;
+    ctx.has_color = has_color;
 
     for (; t < std::min(end, object_end); ++t) {
       const size_t local = t - xf.triangle_base;
@@ -123,47 +163,55 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         ++chunk.culled;
         continue;
       }
-      ClipVertex v[3];
-      uint32_t codes[3];
-      bool finite = true;
-      for (int k = 0; k < 3; ++k) {
-        const size_t g = xf.vertex_base + idx[k];
-        v[k].position = vertices.clip(g);
-        finite = finite && std::isfinite(v[k].position.x) && std::isfinite(v[k].position.y) &&
-                 std::isfinite(v[k].position.z) && std::isfinite(v[k].position.w);
-        codes[k] = outcode(v[k].position, guard);
-      }
+      const size_t g[3] = {xf.vertex_base + idx[0], xf.vertex_base + idx[1],
+                           xf.vertex_base + idx[2]};
+      const uint32_t c0 = vertices.outcode[g[0]], c1 = vertices.outcode[g[1]],
+                     c2 = vertices.outcode[g[2]];
       // Non-finite vertices drop their triangle; so does one wholly outside a frustum plane.
-      if (!finite || (codes[0] & codes[1] & codes[2] & kRejectPlanes)) {
+      if (((c0 | c1 | c2) & kNonFinite) || (c0 & c1 & c2 & kRejectPlanes)) {
         ++chunk.culled;
         continue;
       }
-      for (int k = 0; k < 3; ++k) {
-        const size_t g = xf.vertex_base + idx[k];
-        v[k].normal = vertices.normal(g);
-        v[k].uv = has_uv ? mesh.uvs[idx[k]] : float2{};
-        v[k].color = has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1};
-      }
-      const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
-                   p2 = mesh.positions[idx[2]];
-      const float3 face_normal = xf.normal_matrix * cross(p1 - p0, p2 - p0) * xf.winding_sign;
-      const uint16_t material = mesh.triangle_materials.size() == mesh.triangleCount()
-                                    ? mesh.triangle_materials[local]
-                                    : uint16_t{0};
+      const uint16_t material = has_materials ? mesh.triangle_materials[local] : uint16_t{0};
       const uint32_t id = static_cast<uint32_t>(t);
+      auto face_normal = [&] {
+        const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
+                     p2 = mesh.positions[idx[2]];
+        return xf.normal_matrix * cross(p1 - p0, p2 - p0) * xf.winding_sign;
+      };
+      auto mesh_attributes = [&](int k) {
+        return VertexAttributes{vertices.normal(g[k]), has_uv ? mesh.uvs[idx[k]] : float2{},
+                                has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1}};
+      };
 
-      const uint32_t cut = (codes[0] | codes[1] | codes[2]) & kCutPlanes;
+      const uint32_t cut = (c0 | c1 | c2) & kCutPlanes;
       if (!cut) {
-        if (!emit(ctx, v, face_normal, id, material)) ++chunk.culled;
+        const ScreenVertex sv[3] = {vertices.screen[g[0]], vertices.screen[g[1]],
+                                    vertices.screen[g[2]]};
+        auto attributes = [&](VertexAttributes a[3]) {
+          for (int k = 0; k < 3; ++k) a[k] = mesh_attributes(k);
+        };
+        if (!emit(ctx, sv, attributes, face_normal, id, material)) ++chunk.culled;
         continue;
       }
+      // Crosses the near or far plane or leaves the guard band: clip, then fan.
       ++chunk.clipped;
+      ClipVertex in[3];
+      for (int k = 0; k < 3; ++k) {
+        const VertexAttributes a = mesh_attributes(k);
+        in[k] = {vertices.clip(g[k]), a.normal, a.uv, a.color};
+      }
       ClipVertex polygon[kMaxClippedVertices];
-      const int n = clipTriangle(v, cut, guard, polygon);
+      const int n = clipTriangle(in, cut, guard, polygon);
       bool any = false;
       for (int k = 1; k + 1 < n; ++k) {
-        const ClipVertex fan[3] = {polygon[0], polygon[k], polygon[k + 1]};
-        any = emit(ctx, fan, face_normal, id, material) || any;
+        const ClipVertex* fan[3] = {&polygon[0], &polygon[k], &polygon[k + 1]};
+        ScreenVertex sv[3];
+        for (int i = 0; i < 3; ++i) sv[i] = projectToScreen(fan[i]->position, width, height);
+        auto attributes = [&](VertexAttributes a[3]) {
+          for (int i = 0; i < 3; ++i) a[i] = {fan[i]->normal, fan[i]->uv, fan[i]->color};
+        };
+        any = emit(ctx, sv, attributes, face_normal, id, material) || any;
       }
       if (!any) ++chunk.culled;
     }
@@ -177,7 +225,11 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       << "viewport " << options.width << "x" << options.height << " is outside 1.."
       << kMaxViewport;
   State& s = *state_;
-  frame.resize(options.width, options.height, options.normals);
+  const bool draws_lines = options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
+                                             std::any_of(scene.objects.begin(), scene.objects.end(),
+                                                         [](const Object& o) { return o.show_axes; }));
+  frame.resize(options.width, options.height, options.depth || draws_lines, options.ids,
+               options.normals);
 
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
   const float4x4 view_projection = scene.camera.projection(aspect) * scene.camera.view();
@@ -201,17 +253,27 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     triangle_total += object.mesh->triangleCount();
   }
 
+  using Clock = std::chrono::steady_clock;
+  auto elapsed_ms = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+  };
+  const Clock::time_point t_start = Clock::now();
+
   // Vertex stage.
+  const TileGrid grid = TileGrid::forViewport(options.width, options.height);
+  const GuardBand guard = makeGuardBand(options.width, options.height);
+  const ViewportTransform viewport{static_cast<float>(options.width),
+                                   static_cast<float>(options.height), guard};
   s.vertices.resize(vertex_total);
   s.pool.parallelFor(s.vertex_jobs.size(), [&](size_t j, int) {
     const VertexJob& job = s.vertex_jobs[j];
-    transformVertices(*scene.objects[job.object].mesh, s.objects[job.object], job.first, job.count,
-                      s.vertices);
+    transformVertices(*scene.objects[job.object].mesh, s.objects[job.object], viewport, job.first,
+                      job.count, s.vertices);
   });
 
+  const Clock::time_point t_vertex = Clock::now();
+
   // Assembly, culling, clipping, setup and binning, per chunk.
-  const TileGrid grid = TileGrid::forViewport(options.width, options.height);
-  const GuardBand guard = makeGuardBand(options.width, options.height);
   const size_t chunk_size =
       std::max(kMinTrianglesPerChunk, (triangle_total + kMaxChunks - 1) / kMaxChunks);
   s.chunk_count = (triangle_total + chunk_size - 1) / chunk_size;
@@ -223,24 +285,41 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   s.pool.parallelFor(s.chunk_count,
                      [&](size_t c, int) { s.setupChunk(scene, grid, guard, s.chunks[c]); });
 
-  // Raster and resolve, per tile.
-  s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile, int worker) {
-    TileVisibility& visibility = *s.tiles[static_cast<size_t>(worker)];
-    const int tx = static_cast<int>(tile) % grid.columns, ty = static_cast<int>(tile) / grid.columns;
+  const Clock::time_point t_setup = Clock::now();
+
+  // Raster, shade and resolve, per tile.
+  const uint32_t background = packSrgba8(scene.background);
+  s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile_index, int worker) {
+    const int tile = static_cast<int>(tile_index);
+    const int tx = tile % grid.columns, ty = tile / grid.columns;
     const int x0 = tx * kTileSize, y0 = ty * kTileSize;
-    visibility.clear(x0, y0, std::min(kTileSize, options.width - x0),
-                     std::min(kTileSize, options.height - y0));
+    const int width = std::min(kTileSize, options.width - x0);
+    const int height = std::min(kTileSize, options.height - y0);
+    size_t binned = 0;
+    for (size_t c = 0; c < s.chunk_count; ++c) binned += s.chunks[c].bins.count(tile);
+    if (binned == 0) {
+      resolveEmptyTile(x0, y0, width, height, background, frame);
+      return;
+    }
+    TileVisibility& visibility = *s.tiles[static_cast<size_t>(worker)];
+    visibility.clear(x0, y0, width, height);
     for (size_t c = 0; c < s.chunk_count; ++c) {
       const TriangleChunk& chunk = s.chunks[c];
-      for (const uint32_t* it = chunk.bins.begin(static_cast<int>(tile));
-           it != chunk.bins.end(static_cast<int>(tile)); ++it)
-        rasterTriangle(chunk.raster[*it], makeKey(static_cast<uint32_t>(c), *it), visibility);
+      const uint32_t* end = chunk.bins.end(tile);
+      for (const uint32_t* it = chunk.bins.begin(tile); it != end; ++it) {
+        if (it + 1 != end) __builtin_prefetch(&chunk.raster[it[1]]);
+        s.raster_triangle(chunk.raster[*it], makeKey(static_cast<uint32_t>(c), *it), visibility);
+      }
     }
-    resolveTile(visibility, s.chunks, scene, frame);
+    ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
+    s.shade_tile(visibility, tile, s.chunks, s.chunk_count, scene, options.normals, shaded);
+    resolveTile(visibility, shaded, background, frame);
   });
 
+  const Clock::time_point t_tiles = Clock::now();
+
   // Lines.
-  if (options.lines) {
+  if (draws_lines) {
     s.lines.points.assign(scene.lines.points.begin(), scene.lines.points.end());
     s.lines.colors.assign(scene.lines.colors.begin(), scene.lines.colors.end());
     if (scene.show_world_axes) appendAxes(s.lines, float4x4::identity(), scene.world_axes_length);
@@ -250,13 +329,19 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     drawLines(s.lines, view_projection, frame);
   }
 
+  const Clock::time_point t_lines = Clock::now();
+
   // Statistics.
   s.stats = {};
+  s.stats.vertex_ms = elapsed_ms(t_start, t_vertex);
+  s.stats.setup_ms = elapsed_ms(t_vertex, t_setup);
+  s.stats.tiles_ms = elapsed_ms(t_setup, t_tiles);
+  s.stats.lines_ms = elapsed_ms(t_tiles, t_lines);
   s.stats.triangles_in = triangle_total;
   for (size_t c = 0; c < s.chunk_count; ++c) {
     s.stats.triangles_culled += s.chunks[c].culled;
     s.stats.triangles_clipped += s.chunks[c].clipped;
-    s.stats.triangles_setup += s.chunks[c].raster.size();
+    s.stats.triangles_setup += s.chunks[c].size;
   }
 }
 

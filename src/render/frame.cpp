@@ -4,17 +4,14 @@
 
 namespace tessera {
 
-void Frame::resize(int w, int h, bool with_normals) {
+void Frame::resize(int w, int h, bool with_depth, bool with_ids, bool with_normals) {
   width = w;
   height = h;
-  size_t n = pixelCount();
+  const size_t n = pixelCount();
   color.resize(n);
-  depth.resize(n, std::numeric_limits<float>::infinity());
-  triangle_id.resize(n);
-  if (with_normals)
-    normal.resize(n);
-  else
-    normal.clear();
+  depth.resize(with_depth ? n : 0, std::numeric_limits<float>::infinity());
+  triangle_id.resize(with_ids ? n : 0);
+  normal.resize(with_normals ? n : 0);
 }
 
 }  // namespace tessera

@@ -1,38 +1,56 @@
 #include "render/resolve.h"
 
-#include <tessera/scene/color.h>
+#include <algorithm>
+#include <cstring>
+#include <limits>
 
-#include "render/shade.h"
+#include <tessera/scene/color.h>
 
 namespace tessera::render {
 
-void resolveTile(const TileVisibility& tile, const std::vector<TriangleChunk>& chunks,
-                 const Scene& scene, Frame& frame) {
-  const uint32_t background = packSrgba8(scene.background);
-  const bool normals = !frame.normal.empty();
+void resolveTile(const TileVisibility& tile, const ShadedTile& shaded, uint32_t background,
+                 Frame& frame) {
+  const bool depth = !frame.depth.empty(), ids = !frame.triangle_id.empty(),
+             normals = !frame.normal.empty();
   for (int ty = 0; ty < tile.height; ++ty) {
-    const int y = tile.y0 + ty;
-    const size_t row = static_cast<size_t>(y) * frame.width;
+    const size_t row = static_cast<size_t>(tile.y0 + ty) * frame.width + tile.x0;
+    const int t0 = ty * kTileSize;
+    uint32_t* color = &frame.color[row];
     for (int tx = 0; tx < tile.width; ++tx) {
-      const int x = tile.x0 + tx;
-      const size_t p = row + x;
-      const int t = ty * kTileSize + tx;
-      const uint32_t key = tile.key[t];
-      if (key == kEmptyKey) {
-        frame.color[p] = background;
-        frame.depth[p] = tile.depth[t];
-        frame.triangle_id[p] = kNoTriangle;
-        if (normals) frame.normal[p] = float3{};
+      if (tile.key[t0 + tx] == kEmptyKey) {
+        color[tx] = background;
         continue;
       }
-      const ShadeTriangle& triangle = chunks[keyChunk(key)].shade[keyLocal(key)];
-      const ShadedPixel shaded =
-          shadePixel(triangle, scene, static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
-      frame.color[p] = packSrgba8(float4{shaded.color.xyz(), 1.0f});
-      frame.depth[p] = tile.depth[t];
-      frame.triangle_id[p] = triangle.triangle_id + 1;
-      if (normals) frame.normal[p] = shaded.normal;
+      const int t = t0 + tx;
+      color[tx] = static_cast<uint32_t>(encodeSrgb8(shaded.red[t])) |
+                  (static_cast<uint32_t>(encodeSrgb8(shaded.green[t])) << 8) |
+                  (static_cast<uint32_t>(encodeSrgb8(shaded.blue[t])) << 16) | 0xff000000u;
     }
+    if (depth) std::memcpy(&frame.depth[row], &tile.depth[t0], sizeof(float) * tile.width);
+    if (ids) {
+      for (int tx = 0; tx < tile.width; ++tx)
+        frame.triangle_id[row + tx] =
+            tile.key[t0 + tx] == kEmptyKey ? kNoTriangle : shaded.triangle_id[t0 + tx];
+    }
+    if (normals) {
+      for (int tx = 0; tx < tile.width; ++tx)
+        frame.normal[row + tx] =
+            tile.key[t0 + tx] == kEmptyKey
+                ? float3{}
+                : float3{shaded.normal_x[t0 + tx], shaded.normal_y[t0 + tx], shaded.normal_z[t0 + tx]};
+    }
+  }
+}
+
+void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background, Frame& frame) {
+  const bool depth = !frame.depth.empty(), ids = !frame.triangle_id.empty(),
+             normals = !frame.normal.empty();
+  for (int y = y0; y < y0 + height; ++y) {
+    const size_t row = static_cast<size_t>(y) * frame.width + x0;
+    std::fill_n(&frame.color[row], width, background);
+    if (depth) std::fill_n(&frame.depth[row], width, std::numeric_limits<float>::infinity());
+    if (ids) std::fill_n(&frame.triangle_id[row], width, kNoTriangle);
+    if (normals) std::fill_n(&frame.normal[row], width, float3{});
   }
 }
 

@@ -1,5 +1,5 @@
-// Resolve: shade each visible pixel of a tile once, encode sRGB, and write colour and the AOVs
-// (triangle id, depth, normal) into the frame.
+// Resolve: encode a shaded tile to sRGB and write it, with the AOVs (triangle id, depth,
+// normal), into the frame.
 #pragma once
 
 #include <vector>
@@ -9,10 +9,14 @@
 
 #include "render/bin.h"
 #include "render/raster.h"
+#include "render/shade.h"
 
 namespace tessera::render {
 
-void resolveTile(const TileVisibility& tile, const std::vector<TriangleChunk>& chunks,
-                 const Scene& scene, Frame& frame);
+void resolveTile(const TileVisibility& tile, const ShadedTile& shaded, uint32_t background,
+                 Frame& frame);
+
+// A tile no triangle touches: background colour, no id, depth +inf (and zero normals).
+void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background, Frame& frame);
 
 }  // namespace tessera::render

@@ -1,17 +1,40 @@
-// Triangle setup: snap to the sub-pixel grid, orient, cull, build the fixed-point edge equations
-// with the top-left bias, the bounding box, the depth plane and the perspective-correct
-// barycentric planes. Produces one RasterTriangle (hot: what coverage and depth need) and one
-// ShadeTriangle (cold: what shading a visible pixel needs) per visible triangle.
+// Triangle setup, in two steps so that culled triangles cost as little as possible:
+//   setupRaster: snapped positions -> orientation, cull, bounding box, the fixed-point edge
+//                equations with the top-left bias, the depth plane (RasterTriangle: what coverage
+//                and depth need);
+//   setupShade:  for visible triangles only, the perspective-correct barycentric planes and the
+//                vertex attributes (ShadeTriangle: what shading a visible pixel needs).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include <tessera/math/vec.h>
 #include <tessera/scene/scene.h>
 
 #include "render/clip.h"
+#include "render/fixed_point.h"
 
 namespace tessera::render {
+
+// A vertex after the perspective divide and the viewport, snapped to the sub-pixel grid.
+struct ScreenVertex {
+  int32_t x, y;  // window position in 1/256 pixel, y down
+  float z;       // window depth in [0, 1]
+  float inv_w;   // 1 / clip w
+};
+
+// The one place clip space becomes window space: the vertex stage and the clipper both use it,
+// so a vertex shared by a clipped and an unclipped triangle snaps to the same point. Snapping
+// rounds half to even (lrint in the default rounding mode; roundEven in GLSL).
+inline ScreenVertex projectToScreen(float4 clip, float width, float height) {
+  const float inv_w = 1.0f / clip.w;
+  const float wx = (clip.x * inv_w * 0.5f + 0.5f) * width;
+  const float wy = (0.5f - clip.y * inv_w * 0.5f) * height;
+  return {static_cast<int32_t>(std::lrint(wx * static_cast<float>(kSubpixelOne))),
+          static_cast<int32_t>(std::lrint(wy * static_cast<float>(kSubpixelOne))),
+          clip.z * inv_w * 0.5f + 0.5f, inv_w};
+}
 
 struct RasterTriangle {
   // Edge i covers pixel centre (px, py) (in 1/256 pixel) when a*px + b*py + c >= 0; the top-left
@@ -20,24 +43,26 @@ struct RasterTriangle {
   int32_t a[3];
   int32_t b[3];
   int32_t min_x, min_y, max_x, max_y;  // inclusive pixel bounds, clipped to the viewport
+  bool small;  // every edge value over the bounding box (plus 8 pixels right) fits in int32
   // Window z at pixel centre (x + 0.5, y + 0.5) = z0 + dzdx * (x + 0.5 - x0) + dzdy * (y + 0.5 - y0)
   float x0, y0, z0, dzdx, dzdy;
 };
 
 struct ShadeTriangle {
+  // Laid out so that untextured flat and Gouraud pixels read only the first two cache lines.
+  const Material* material;
+  uint32_t triangle_id;  // index in the scene's triangle list
+  Shading shading;
+  bool has_uv;  // sample the albedo texture (the mesh has UVs and the material a texture)
   // Perspective-correct barycentrics at window point p, with d = p - (x0, y0):
   //   s = inv_w0 + sdx*d.x + sdy*d.y;  b1 = (p1dx*d.x + p1dy*d.y) / s;  b2 = (...) / s;  b0 = 1-b1-b2
   float x0, y0, inv_w0;
   float p1dx, p1dy, p2dx, p2dy, sdx, sdy;
-  float3 normal[3];      // world shading normals, facing the viewer for drawn back faces
-  float3 irradiance[3];  // lighting at the vertices (Gouraud)
+  // Per-vertex colour, interpolated: base colour x vertex colour, already lit for flat (the
+  // face's irradiance) and Gouraud (each vertex's); Phong multiplies by the per-pixel lighting.
+  float3 color[3];
+  float3 normal[3];  // world shading normals, facing the viewer for drawn back faces
   float2 uv[3];
-  float4 color[3];
-  uint32_t triangle_id;  // index in the scene's triangle list
-  uint32_t object;
-  uint16_t material;
-  Shading shading;
-  bool has_uv;
 };
 
 struct SetupContext {
@@ -45,17 +70,35 @@ struct SetupContext {
   CullMode cull = CullMode::kBack;
   Shading shading = Shading::kFlat;
   const Scene* scene = nullptr;
-  uint32_t object = 0;
+  const Object* object = nullptr;
   bool has_uv = false;
+  bool has_color = false;
 };
 
-enum class SetupResult { kVisible, kCulled };
+// What setupRaster learnt that setupShade needs.
+struct TriangleOrientation {
+  int order[3];      // rasterizer vertex k is input vertex order[k] (positive area)
+  bool back_facing;  // drawn with its back to the viewer
+  float l1dx, l1dy, l2dx, l2dy;  // screen gradients of barycentrics 1 and 2
+};
 
-// Sets up one triangle whose clip-space vertices lie inside the guard band and in front of the
-// near plane. `face_normal` is the world-space geometric normal (for flat shading).
-SetupResult setupTriangle(const SetupContext& context, const ClipVertex v[3], float3 face_normal,
-                          uint32_t triangle_id, uint16_t material, RasterTriangle& raster,
-                          ShadeTriangle& shade);
+// False when the triangle is culled: degenerate, facing away (per ctx.cull) or covering no pixel
+// centre's bounding box inside the viewport.
+bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangle& raster,
+                 TriangleOrientation& orientation);
+
+struct VertexAttributes {
+  float3 normal;  // world, not necessarily unit; zero when the mesh has none
+  float2 uv;
+  float4 color;
+};
+
+// `face_normal` is the world-space geometric normal (used for flat shading and where vertex
+// normals are missing). Attributes are given in input order.
+void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAttributes a[3],
+                const TriangleOrientation& orientation, const RasterTriangle& raster,
+                float3 face_normal, uint32_t triangle_id, uint16_t material,
+                ShadeTriangle& shade);
 
 // Lambert irradiance: ambient plus every directional light, for unit normal n.
 float3 irradiance(const Scene& scene, float3 n);

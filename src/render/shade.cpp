@@ -1,43 +1,53 @@
 #include "render/shade.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace tessera::render {
 
-ShadedPixel shadePixel(const ShadeTriangle& t, const Scene& scene, float x, float y) {
-  // Perspective-correct barycentrics from the 1/w-weighted planes.
+Barycentrics barycentricsAt(const ShadeTriangle& t, float x, float y) {
   const float dx = x - t.x0, dy = y - t.y0;
-  const float s = t.inv_w0 + t.sdx * dx + t.sdy * dy;
-  const float inv_s = 1.0f / s;
+  const float inv_s = 1.0f / (t.inv_w0 + t.sdx * dx + t.sdy * dy);
   const float b1 = (t.p1dx * dx + t.p1dy * dy) * inv_s;
   const float b2 = (t.p2dx * dx + t.p2dy * dy) * inv_s;
-  const float b0 = 1.0f - b1 - b2;
+  return {1.0f - b1 - b2, b1, b2};
+}
 
-  const Object& object = scene.objects[t.object];
-  const Material& material = object.materials[t.material < object.materials.size() ? t.material : 0];
+namespace {
 
-  float4 albedo = material.base_color;
-  albedo = albedo * (t.color[0] * b0 + t.color[1] * b1 + t.color[2] * b2);
-  if (material.albedo && t.has_uv) {
-    const float2 uv = t.uv[0] * b0 + t.uv[1] * b1 + t.uv[2] * b2;
-    albedo = albedo * material.albedo->sample(uv, material.sampler);
+float2 uvAt(const ShadeTriangle& t, const Barycentrics& b) {
+  return t.uv[0] * b.b0 + t.uv[1] * b.b1 + t.uv[2] * b.b2;
+}
+
+}  // namespace
+
+float3 sampleAlbedo(const ShadeTriangle& t, const Barycentrics& b, float x, float y) {
+  const Texture& texture = *t.material->albedo;
+  const Sampler& sampler = t.material->sampler;
+  const float2 uv = uvAt(t, b);
+  if (sampler.filter != TextureFilter::kTrilinear || texture.mips.empty())
+    return texture.sample(uv, sampler).xyz();
+  const float2 size{static_cast<float>(texture.width), static_cast<float>(texture.height)};
+  const float2 du = uvAt(t, barycentricsAt(t, x + 1.0f, y)) - uv;
+  const float2 dv = uvAt(t, barycentricsAt(t, x, y + 1.0f)) - uv;
+  const float2 dx{du.x * size.x, du.y * size.y}, dy{dv.x * size.x, dv.y * size.y};
+  const float rho2 = std::max(dx.x * dx.x + dx.y * dx.y, dy.x * dy.x + dy.y * dy.y);
+  const float lod = rho2 > 0.0f ? 0.5f * std::log2(rho2) : 0.0f;
+  return texture.sampleLod(uv, lod, sampler).xyz();
+}
+
+ShadeTileFn shadeTileFunction(RasterIsa isa) {
+  switch (isa) {
+    case RasterIsa::kScalar: return shadeTileScalar;
+#if defined(__x86_64__) || defined(__i386__)
+    case RasterIsa::kSse2: return shadeTileSse2;
+    case RasterIsa::kAvx2: return shadeTileAvx2;
+    case RasterIsa::kAvx512: return shadeTileAvx512;
+#else
+    default: return shadeTileScalar;
+#endif
   }
-
-  ShadedPixel out;
-  switch (t.shading) {
-    case Shading::kFlat: out.normal = t.normal[0]; break;
-    default: out.normal = normalize(t.normal[0] * b0 + t.normal[1] * b1 + t.normal[2] * b2); break;
-  }
-
-  float3 light{1, 1, 1};
-  switch (t.shading) {
-    case Shading::kFlat: light = t.irradiance[0]; break;  // lit once, in setup
-    case Shading::kPhong: light = irradiance(scene, out.normal); break;
-    case Shading::kGouraud:
-      light = t.irradiance[0] * b0 + t.irradiance[1] * b1 + t.irradiance[2] * b2;
-      break;
-    case Shading::kUnlit: break;
-  }
-  out.color = float4{albedo.xyz() * light, albedo.w};
-  return out;
+  return shadeTileScalar;
 }
 
 }  // namespace tessera::render

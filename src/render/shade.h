@@ -1,19 +1,59 @@
-// Shading: once per visible pixel, from the triangle that owns it in the visibility buffer.
+// Shading: once per visible pixel of a tile, from the triangle that owns it in the visibility
+// buffer, into a tile of linear colours (and world normals when asked).
+//
+// shadeTile walks the tile's triangles in bin order (so the setup records are read in the order
+// they were written, not at random) and shades the pixels each one owns, eight at a time. Like
+// the raster kernel it is written once (shade_kernel.h) and compiled per instruction set.
 #pragma once
+
+#include <vector>
 
 #include <tessera/math/vec.h>
 #include <tessera/scene/scene.h>
 
+#include "render/bin.h"
+#include "render/raster.h"
 #include "render/setup.h"
 
 namespace tessera::render {
 
-struct ShadedPixel {
-  float4 color;  // linear RGBA
-  float3 normal; // world shading normal (unit)
+// Structure of arrays, laid out like TileVisibility (row y at y * kTileSize, padded).
+struct ShadedTile {
+  static constexpr int kSize = kTileSize * kTileSize + 8;
+  alignas(64) float red[kSize];  // linear RGB; unset where no triangle
+  alignas(64) float green[kSize];
+  alignas(64) float blue[kSize];
+  alignas(64) uint32_t triangle_id[kSize];  // scene triangle index + 1
+  alignas(64) float normal_x[kSize];        // world shading normal; filled only when asked
+  alignas(64) float normal_y[kSize];
+  alignas(64) float normal_z[kSize];
 };
 
-// Shades window point (x, y) (a pixel centre) of triangle `t`.
-ShadedPixel shadePixel(const ShadeTriangle& t, const Scene& scene, float x, float y);
+struct Barycentrics {
+  float b0, b1, b2;
+};
+
+// Perspective-correct barycentrics at window point (x, y) from the 1/w-weighted planes.
+Barycentrics barycentricsAt(const ShadeTriangle& t, float x, float y);
+
+// The albedo texture of `t` at window point (x, y), with barycentrics b there. Trilinear
+// filtering takes its level of detail from the UVs at the next pixel centres right and down.
+float3 sampleAlbedo(const ShadeTriangle& t, const Barycentrics& b, float x, float y);
+
+using ShadeTileFn = void (*)(const TileVisibility& tile, int tile_index,
+                             const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                             const Scene& scene, bool want_normals, ShadedTile& out);
+
+// Shades every pixel of the tile that has a triangle; compiled for `isa`.
+ShadeTileFn shadeTileFunction(RasterIsa isa);
+
+void shadeTileScalar(const TileVisibility&, int, const std::vector<TriangleChunk>&, size_t,
+                     const Scene&, bool, ShadedTile&);
+void shadeTileSse2(const TileVisibility&, int, const std::vector<TriangleChunk>&, size_t,
+                   const Scene&, bool, ShadedTile&);
+void shadeTileAvx2(const TileVisibility&, int, const std::vector<TriangleChunk>&, size_t,
+                   const Scene&, bool, ShadedTile&);
+void shadeTileAvx512(const TileVisibility&, int, const std::vector<TriangleChunk>&, size_t,
+                     const Scene&, bool, ShadedTile&);
 
 }  // namespace tessera::render

@@ -19,10 +19,13 @@ void VertexBuffer::resize(size_t count) {
   for (std::vector<float>* v :
        {&clip_x, &clip_y, &clip_z, &clip_w, &normal_x, &normal_y, &normal_z})
     v->resize(count);
+  outcode.resize(count);
+  screen.resize(count);
 }
 
-void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms, size_t first,
-                       size_t count, VertexBuffer& out) {
+void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms,
+                       const ViewportTransform& viewport, size_t first, size_t count,
+                       VertexBuffer& out) {
   const float4x4& m = transforms.model_view_projection;
   const size_t base = transforms.vertex_base;
   // Written as plain loops over arrays so the compiler vectorizes them.
@@ -33,6 +36,14 @@ void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms, siz
     out.clip_y[o] = m.col[0].y * p.x + m.col[1].y * p.y + m.col[2].y * p.z + m.col[3].y;
     out.clip_z[o] = m.col[0].z * p.x + m.col[1].z * p.y + m.col[2].z * p.z + m.col[3].z;
     out.clip_w[o] = m.col[0].w * p.x + m.col[1].w * p.y + m.col[2].w * p.z + m.col[3].w;
+  }
+  for (size_t o = base + first; o < base + first + count; ++o) {
+    const float4 c = out.clip(o);
+    const bool finite = std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) &&
+                        std::isfinite(c.w);
+    const uint32_t code = finite ? outcode(c, viewport.guard) : kNonFinite;
+    out.outcode[o] = static_cast<uint16_t>(code);
+    if (!(code & kCutPlanes)) out.screen[o] = projectToScreen(c, viewport.width, viewport.height);
   }
   if (mesh.normals.size() != mesh.positions.size()) {
     for (size_t i = first; i < first + count; ++i) {

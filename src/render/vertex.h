@@ -8,6 +8,9 @@
 #include <tessera/math/math.h>
 #include <tessera/scene/scene.h>
 
+#include "render/clip.h"
+#include "render/setup.h"
+
 namespace tessera::render {
 
 // Per-object constants of one frame.
@@ -26,14 +29,24 @@ ObjectTransforms makeObjectTransforms(const Object& object, const float4x4& view
 struct VertexBuffer {
   std::vector<float> clip_x, clip_y, clip_z, clip_w;
   std::vector<float> normal_x, normal_y, normal_z;  // world space, unit (zero if the mesh has none)
+  std::vector<uint16_t> outcode;       // clip planes the vertex is outside of (clip.h)
+  std::vector<ScreenVertex> screen;    // valid only where outcode has no kCutPlanes bit
 
   void resize(size_t count);
   float4 clip(size_t i) const { return {clip_x[i], clip_y[i], clip_z[i], clip_w[i]}; }
   float3 normal(size_t i) const { return {normal_x[i], normal_y[i], normal_z[i]}; }
 };
 
-// Transforms mesh vertices [first, first + count) into the buffer at transforms.vertex_base.
-void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms, size_t first,
-                       size_t count, VertexBuffer& out);
+struct ViewportTransform {
+  float width = 0, height = 0;
+  GuardBand guard;
+};
+
+// Transforms mesh vertices [first, first + count) into the buffer at transforms.vertex_base:
+// clip position, outcode, and (inside the guard band and the depth range) the snapped screen
+// position; world normals.
+void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms,
+                       const ViewportTransform& viewport, size_t first, size_t count,
+                       VertexBuffer& out);
 
 }  // namespace tessera::render

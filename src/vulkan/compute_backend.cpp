@@ -395,6 +395,10 @@ void ComputeBackend::State::readTimings() {
 
 Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const RenderOptions& options,
                                                   Frame& frame) {
+  // Nothing the GPU may still read (an earlier frame abandoned after a timeout) is touched
+  // before that frame has finished: buffers, descriptors and mapped inputs alike.
+  if (Expected<void> r = context->waitForPending(); !r)
+    return makeError("an earlier frame is still running: " + r.error().message);
   if (Expected<void> r = packScene(scene, options, IndexPolicy::kAsGiven, packed); !r) return r;
   if (Expected<void> r = uploadScene(*context, packed, scene_buffers); !r) return r;
 
@@ -430,12 +434,9 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   // Results.
   const size_t n = frame.pixelCount();
   const uint32_t* words = static_cast<const uint32_t*>(output.mapped);
-  std::memcpy(frame.color.data(), words, n * sizeof(uint32_t));
-  std::memcpy(frame.depth.data(), words + n, n * sizeof(float));
-  std::memcpy(frame.triangle_id.data(), words + 2 * n, n * sizeof(uint32_t));
-  static_assert(sizeof(float3) == 3 * sizeof(float));
-  if (options.normals)
-    std::memcpy(static_cast<void*>(frame.normal.data()), words + 3 * n, n * sizeof(float3));
+  copyResults(words, words + n, words + 2 * n,
+              options.normals ? reinterpret_cast<const float*>(words + 3 * n) : nullptr, 3,
+              frame);
   drawSceneLines(scene, options, packed, frame);
 
   stats.triangles_in = packed.triangle_count;
@@ -484,15 +485,9 @@ void ComputeBackend::render(const Scene& scene, const RenderOptions& options, Fr
                 options.width <= render::kMaxViewport && options.height <= render::kMaxViewport)
       << "viewport " << options.width << "x" << options.height << " is outside 1.."
       << render::kMaxViewport;
-  frame.resize(options.width, options.height, options.normals);
+  resizeFrame(scene, options, frame);
   state_->last_result = state_->renderFrame(scene, options, frame);
-  if (!state_->last_result) {
-    // A failed frame is empty, never half drawn.
-    std::fill(frame.color.begin(), frame.color.end(), 0u);
-    std::fill(frame.depth.begin(), frame.depth.end(), std::numeric_limits<float>::infinity());
-    std::fill(frame.triangle_id.begin(), frame.triangle_id.end(), kNoTriangle);
-    std::fill(frame.normal.begin(), frame.normal.end(), float3{});
-  }
+  if (!state_->last_result) clearFrame(frame);
 }
 
 Expected<void> ComputeBackend::lastResult() const { return state_->last_result; }

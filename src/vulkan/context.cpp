@@ -226,9 +226,18 @@ Expected<void> Context::createInstance(const VulkanOptions& options) {
   messenger_info.pfnUserCallback = &Context::onDebugMessage;
   messenger_info.pUserData = this;
 
+  // Synchronization validation too: it checks every barrier against the accesses it orders.
+  const VkValidationFeatureEnableEXT enables[] = {
+      VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+  VkValidationFeaturesEXT features{};
+  features.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT;
+  features.pNext = &messenger_info;
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = enables;
+
   VkInstanceCreateInfo create{};
   create.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
-  create.pNext = options.validation ? &messenger_info : nullptr;
+  create.pNext = options.validation ? &features : nullptr;
   create.pApplicationInfo = &app;
   create.enabledLayerCount = static_cast<uint32_t>(layers.size());
   create.ppEnabledLayerNames = layers.data();

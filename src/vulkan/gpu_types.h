@@ -48,6 +48,10 @@ constexpr uint32_t kTexturePresent = 1u;
 constexpr uint32_t kTextureSrgb = 2u;
 constexpr uint32_t kTextureNearest = 4u;
 constexpr uint32_t kTextureClamp = 8u;
+constexpr uint32_t kTextureTrilinear = 16u;  // and the texture has mip levels
+
+// A texture in the texel buffer: a header (level count, then offset, width and height of each
+// level, offsets in words from the start of the buffer), then the levels' texels.
 
 // Tiles and the fine raster.
 constexpr int kGpuTileSizeLog2 = 4;
@@ -88,7 +92,7 @@ static_assert(sizeof(GpuObject) == 224);
 
 struct GpuMaterial {
   float base_color[4];
-  uint32_t texel_offset;
+  uint32_t texel_offset;  // the texture's header
   int32_t texture_width, texture_height;
   uint32_t texture_flags;
 };
@@ -118,15 +122,17 @@ struct GpuRasterRecord {
 };
 static_assert(sizeof(GpuRasterRecord) == 88);
 
-// Setup's output for shading (the CPU's ShadeTriangle, without the Gouraud irradiance, which the
-// shade pass computes from the normals with the same arithmetic).
+// Setup's output for shading (the CPU's ShadeTriangle).
 struct GpuShadeRecord {
-  float normal[3][4];
-  float color[3][4];
+  float normal[3][4];  // xyz
+  float color[3][4];   // xyz: base x vertex colour, lit for flat and Gouraud
   float uv[3][2];
   float inv_w0, p1dx, p1dy, p2dx, p2dy, sdx, sdy;
-  uint32_t triangle_id, object, material_shading;
+  uint32_t triangle_id;
+  uint32_t material;  // index into the material buffer
+  uint32_t shading;   // Shading | kShadeHasUv
 };
+constexpr uint32_t kShadeHasUv = 1u << 8;
 static_assert(sizeof(GpuShadeRecord) == 160);
 
 struct GpuCounters {

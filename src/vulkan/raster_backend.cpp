@@ -346,6 +346,10 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
                                                  Frame& frame) {
   Context& c = *context;
   const VulkanFunctions& vk = c.vk;
+  // Nothing the GPU may still read (an earlier frame abandoned after a timeout) is touched
+  // before that frame has finished: buffers, descriptors and mapped inputs alike.
+  if (Expected<void> r = c.waitForPending(); !r)
+    return makeError("an earlier frame is still running: " + r.error().message);
   if (Expected<void> r = packScene(scene, options, IndexPolicy::kDegenerateDropped, packed); !r)
     return r;
   if (Expected<void> r = uploadScene(c, packed, scene_buffers); !r) return r;
@@ -431,18 +435,14 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
     vk.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, 1);
   if (Expected<void> r = c.submitAndWait(); !r) return r;
 
-  const char* bytes = static_cast<const char*>(readback.mapped);
-  std::memcpy(frame.color.data(), bytes + offsets[0], pixels * 4);
-  std::memcpy(frame.triangle_id.data(), bytes + offsets[1], pixels * 4);
-  std::memcpy(frame.depth.data(), bytes + offsets[3], pixels * 4);
-  const float* normals = reinterpret_cast<const float*>(bytes + offsets[2]);
-  for (size_t p = 0; p < pixels; ++p) {
-    // The CPU's empty pixels are +inf; the depth attachment clears to 1.
-    if (frame.triangle_id[p] == kNoTriangle)
-      frame.depth[p] = std::numeric_limits<float>::infinity();
-    if (options.normals)
-      frame.normal[p] = float3{normals[4 * p], normals[4 * p + 1], normals[4 * p + 2]};
-  }
+  char* bytes = static_cast<char*>(readback.mapped);
+  uint32_t* ids = reinterpret_cast<uint32_t*>(bytes + offsets[1]);
+  float* depths = reinterpret_cast<float*>(bytes + offsets[3]);
+  // The CPU's empty pixels are +inf deep; the depth attachment clears to 1.
+  for (size_t p = 0; p < pixels; ++p)
+    if (ids[p] == kNoTriangle) depths[p] = std::numeric_limits<float>::infinity();
+  copyResults(reinterpret_cast<const uint32_t*>(bytes + offsets[0]), reinterpret_cast<const uint32_t*>(depths), ids,
+              reinterpret_cast<const float*>(bytes + offsets[2]), 4, frame);
   drawSceneLines(scene, options, packed, frame);
 
   if (timestamps) {
@@ -477,14 +477,9 @@ void RasterBackend::render(const Scene& scene, const RenderOptions& options, Fra
                 options.width <= render::kMaxViewport && options.height <= render::kMaxViewport)
       << "viewport " << options.width << "x" << options.height << " is outside 1.."
       << render::kMaxViewport;
-  frame.resize(options.width, options.height, options.normals);
+  resizeFrame(scene, options, frame);
   state_->last_result = state_->renderFrame(scene, options, frame);
-  if (!state_->last_result) {
-    std::fill(frame.color.begin(), frame.color.end(), 0u);
-    std::fill(frame.depth.begin(), frame.depth.end(), std::numeric_limits<float>::infinity());
-    std::fill(frame.triangle_id.begin(), frame.triangle_id.end(), kNoTriangle);
-    std::fill(frame.normal.begin(), frame.normal.end(), float3{});
-  }
+  if (!state_->last_result) clearFrame(frame);
 }
 
 Expected<void> RasterBackend::lastResult() const { return state_->last_result; }

@@ -1,7 +1,9 @@
 #include "vulkan/scene_upload.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include <tessera/base/check.h>
 #include <tessera/scene/color.h>
@@ -34,13 +36,34 @@ float4x4 zeroToOneProjection(const Camera& camera, float aspect) {
 
 bool isFinite3(float3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
+bool levelIsWhole(int width, int height, const std::vector<uint32_t>& texels) {
+  return width > 0 && height > 0 && texels.size() >= static_cast<size_t>(width) * height;
+}
+
+// Appends the texture (header, then every level) once per frame; returns its header's offset.
 uint32_t textureOffset(const Texture& texture, PackedScene& out) {
   auto found = out.texture_offsets.find(&texture);
   if (found != out.texture_offsets.end()) return found->second;
-  const uint32_t offset = static_cast<uint32_t>(out.texels.size());
-  out.texels.insert(out.texels.end(), texture.texels.begin(), texture.texels.end());
-  out.texture_offsets.emplace(&texture, offset);
-  return offset;
+  // Mip levels are used only when every one of them is whole.
+  bool mips_whole = true;
+  for (const TextureLevel& level : texture.mips)
+    mips_whole = mips_whole && levelIsWhole(level.width, level.height, level.texels);
+  const size_t levels = 1 + (mips_whole ? texture.mips.size() : 0);
+  const uint32_t header = static_cast<uint32_t>(out.texels.size());
+  out.texels.push_back(static_cast<uint32_t>(levels));
+  out.texels.resize(out.texels.size() + 3 * levels);
+  for (size_t i = 0; i < levels; ++i) {
+    const int w = i == 0 ? texture.width : texture.mips[i - 1].width;
+    const int h = i == 0 ? texture.height : texture.mips[i - 1].height;
+    const std::vector<uint32_t>& texels = i == 0 ? texture.texels : texture.mips[i - 1].texels;
+    out.texels[header + 1 + 3 * i] = static_cast<uint32_t>(out.texels.size());
+    out.texels[header + 2 + 3 * i] = static_cast<uint32_t>(w);
+    out.texels[header + 3 + 3 * i] = static_cast<uint32_t>(h);
+    out.texels.insert(out.texels.end(), texels.begin(),
+                      texels.begin() + static_cast<ptrdiff_t>(static_cast<size_t>(w) * h));
+  }
+  out.texture_offsets.emplace(&texture, header);
+  return header;
 }
 
 }  // namespace
@@ -96,14 +119,15 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
       const Texture* texture = material.albedo.get();
       if (texture) {
         m.texture_flags = kTexturePresent;
-        if (texture->width > 0 && texture->height > 0 &&
-            texture->texels.size() >= static_cast<size_t>(texture->width) * texture->height) {
+        if (levelIsWhole(texture->width, texture->height, texture->texels)) {
           m.texel_offset = textureOffset(*texture, out);
           m.texture_width = texture->width;
           m.texture_height = texture->height;
         }
         if (texture->srgb) m.texture_flags |= kTextureSrgb;
         if (material.sampler.filter == TextureFilter::kNearest) m.texture_flags |= kTextureNearest;
+        if (material.sampler.filter == TextureFilter::kTrilinear && !texture->mips.empty())
+          m.texture_flags |= kTextureTrilinear;
         if (material.sampler.wrap == TextureWrap::kClamp) m.texture_flags |= kTextureClamp;
       }
       out.materials.push_back(m);
@@ -261,9 +285,45 @@ void appendSceneDescriptors(const SceneBuffers& buffers,
     infos.push_back(VkDescriptorBufferInfo{b->buffer, 0, VK_WHOLE_SIZE});
 }
 
+namespace {
+
+bool drawsLines(const Scene& scene, const RenderOptions& options) {
+  return options.lines &&
+         (!scene.lines.points.empty() || scene.show_world_axes ||
+          std::any_of(scene.objects.begin(), scene.objects.end(),
+                      [](const Object& o) { return o.show_axes; }));
+}
+
+}  // namespace
+
+void resizeFrame(const Scene& scene, const RenderOptions& options, Frame& frame) {
+  frame.resize(options.width, options.height, options.depth || drawsLines(scene, options),
+               options.ids, options.normals);
+}
+
+void copyResults(const uint32_t* color, const uint32_t* depth, const uint32_t* ids,
+                 const float* normals, int normal_stride, Frame& frame) {
+  const size_t n = frame.pixelCount();
+  std::memcpy(frame.color.data(), color, n * sizeof(uint32_t));
+  if (!frame.depth.empty()) std::memcpy(frame.depth.data(), depth, n * sizeof(float));
+  if (!frame.triangle_id.empty()) std::memcpy(frame.triangle_id.data(), ids, n * sizeof(uint32_t));
+  if (!frame.normal.empty() && normals)
+    for (size_t p = 0; p < n; ++p) {
+      const float* v = normals + p * static_cast<size_t>(normal_stride);
+      frame.normal[p] = float3{v[0], v[1], v[2]};
+    }
+}
+
+void clearFrame(Frame& frame) {
+  std::fill(frame.color.begin(), frame.color.end(), 0u);
+  std::fill(frame.depth.begin(), frame.depth.end(), std::numeric_limits<float>::infinity());
+  std::fill(frame.triangle_id.begin(), frame.triangle_id.end(), kNoTriangle);
+  std::fill(frame.normal.begin(), frame.normal.end(), float3{});
+}
+
 void drawSceneLines(const Scene& scene, const RenderOptions& options, const PackedScene& packed,
                     Frame& frame) {
-  if (!options.lines) return;
+  if (!drawsLines(scene, options)) return;
   LineList lines;
   lines.points.assign(scene.lines.points.begin(), scene.lines.points.end());
   lines.colors.assign(scene.lines.colors.begin(), scene.lines.colors.end());

@@ -57,6 +57,16 @@ void destroySceneBuffers(Context& context, SceneBuffers& buffers);
 void appendSceneDescriptors(const SceneBuffers& buffers,
                             std::vector<VkDescriptorBufferInfo>& infos);
 
+// Sizes the frame as the CPU renderer does: colour always; depth when asked for or when lines
+// are drawn (they are depth-tested); ids and normals when asked for.
+void resizeFrame(const Scene& scene, const RenderOptions& options, Frame& frame);
+// Copies the results the frame holds buffers for (words of `pixels` each: colour, depth bits, id;
+// then three floats a pixel of normal, when `normals` is given).
+void copyResults(const uint32_t* color, const uint32_t* depth, const uint32_t* ids,
+                 const float* normals, int normal_stride, Frame& frame);
+// Clears a frame whose render failed: empty, never half drawn.
+void clearFrame(Frame& frame);
+
 // The CPU's line pass on the finished frame (scene lines, world and object axes).
 void drawSceneLines(const Scene& scene, const RenderOptions& options, const PackedScene& packed,
                     Frame& frame);

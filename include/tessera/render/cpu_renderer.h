@@ -15,12 +15,21 @@ struct PipelineStats {
   size_t triangles_culled = 0;   // back/front-face culled, degenerate, non-finite or off-screen
   size_t triangles_clipped = 0;  // triangles that crossed near/far or left the guard band
   size_t triangles_setup = 0;    // setup records (after clipping)
+  // Wall-clock milliseconds of each stage of the last frame (all workers together).
+  double vertex_ms = 0;  // vertex stage
+  double setup_ms = 0;   // assembly, cull, clip, setup and binning
+  double tiles_ms = 0;   // raster, shade and resolve
+  double lines_ms = 0;   // the line pass
 };
+
+// The instruction set of the raster kernel. Every choice gives the same image; kAuto takes the
+// best the CPU runs. A choice the CPU cannot run falls back to kAuto's.
+enum class SimdLevel { kAuto, kScalar, kSse2, kAvx2, kAvx512 };
 
 class CpuRenderer final : public Backend {
  public:
   // workers: 0 = one per hardware thread, 1 = run on the calling thread only.
-  explicit CpuRenderer(int workers = 0);
+  explicit CpuRenderer(int workers = 0, SimdLevel simd = SimdLevel::kAuto);
   ~CpuRenderer() override;
   CpuRenderer(const CpuRenderer&) = delete;
   CpuRenderer& operator=(const CpuRenderer&) = delete;
@@ -29,6 +38,7 @@ class CpuRenderer final : public Backend {
   void render(const Scene& scene, const RenderOptions& options, Frame& frame) override;
 
   int workerCount() const;
+  const char* simdName() const;  // the raster kernel in use: scalar, sse2, avx2 or avx512
   const PipelineStats& lastStats() const;
 
  private:

@@ -14,13 +14,14 @@ struct Frame {
   int width = 0;
   int height = 0;
   std::vector<uint32_t> color;        // RGBA8 sRGB, R in the low byte, row 0 at the top
+  // The AOVs: each is empty unless RenderOptions asked for it.
   std::vector<float> depth;           // window z in [0, 1]; +inf where nothing was drawn
   std::vector<uint32_t> triangle_id;  // scene triangle index + 1; kNoTriangle where none
-  std::vector<float3> normal;         // world normal (unit); zero where none. Filled only when
-                                      // RenderOptions::normals is set.
+  std::vector<float3> normal;         // world shading normal (unit); zero where none
 
-  // Sizes every buffer for w x h; a no-op when the size is unchanged (no allocation).
-  void resize(int w, int h, bool with_normals);
+  // Sizes the colour buffer and the AOVs asked for to w x h and empties the others; keeps the
+  // memory of a buffer whose size is unchanged (no allocation).
+  void resize(int w, int h, bool with_depth, bool with_ids, bool with_normals);
   size_t pixelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
   uint32_t colorAt(int x, int y) const { return color[static_cast<size_t>(y) * width + x]; }
   uint32_t idAt(int x, int y) const { return triangle_id[static_cast<size_t>(y) * width + x]; }

@@ -11,6 +11,8 @@ const uint kTexturePresent = 1u;
 const uint kTextureSrgb = 2u;
 const uint kTextureNearest = 4u;
 const uint kTextureClamp = 8u;
+const uint kTextureTrilinear = 16u;
+const uint kShadeHasUv = 256u;
 
 // tessera::Shading and tessera::CullMode.
 const uint kShadingFlat = 0u;
@@ -47,7 +49,7 @@ struct GpuObject {
 
 struct GpuMaterial {
   vec4 base_color;
-  uint texel_offset;
+  uint texel_offset;  // the texture's header: level count, then offset, width, height per level
   int texture_width, texture_height;
   uint texture_flags;
 };

@@ -9,15 +9,16 @@ layout(push_constant) uniform Draw { uint object; } draw;
 
 layout(location = 0) in vec3 in_normal;
 layout(location = 1) in vec2 in_uv;
-layout(location = 2) in vec4 in_color;
-layout(location = 3) in vec3 in_irradiance_front;
-layout(location = 4) in vec3 in_irradiance_back;
+layout(location = 2) in vec3 in_color_front;
+layout(location = 3) in vec3 in_color_back;
 
 layout(location = 0) out uint out_color;
 layout(location = 1) out uint out_id;
 layout(location = 2) out vec4 out_normal;
 
 void main() {
+  // Derivatives first, in uniform control flow.
+  const vec2 uv_dx = dFdx(in_uv), uv_dy = dFdy(in_uv);
   const GpuObject object = objects[draw.object];
   const uint t = object.triangle_base + uint(gl_PrimitiveID);
   const float flip = gl_FrontFacing ? 1.0 : -1.0;
@@ -40,22 +41,27 @@ void main() {
 
   const uint m = (object.flags & kObjectHasTriangleMaterials) != 0u ? triangle_materials[t] : 0u;
   const GpuMaterial material = objectMaterial(object, m);
-  vec4 albedo = material.base_color * in_color;
-  if ((material.texture_flags & kTexturePresent) != 0u && (object.flags & kObjectHasUv) != 0u)
-    albedo = albedo * sampleTexture(material, in_uv);
+  vec3 color = material.base_color.xyz * (gl_FrontFacing ? in_color_front : in_color_back);
+  if ((material.texture_flags & kTexturePresent) != 0u && (object.flags & kObjectHasUv) != 0u) {
+    if ((material.texture_flags & kTextureTrilinear) != 0u) {
+      // The level of detail from the UV footprint of the pixel, as the CPU's sampleAlbedo.
+      const vec2 size = vec2(float(material.texture_width), float(material.texture_height));
+      const vec2 dx = uv_dx * size, dy = uv_dy * size;
+      const float rho2 = max(dot(dx, dx), dot(dy, dy));
+      color *= sampleTextureTrilinear(material, in_uv, rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0).xyz;
+    } else {
+      color *= sampleTexture(material, in_uv).xyz;
+    }
+  }
 
   vec3 normal = face_normal;
   if (shading != kShadingFlat) {
     normal = normalizeAsCpu(in_normal) * flip;
     if (dot(normal, normal) == 0.0) normal = face_normal;
   }
-  vec3 light = vec3(1.0);
-  if (shading == kShadingFlat || shading == kShadingPhong)
-    light = irradiance(normal);
-  else if (shading == kShadingGouraud)
-    light = gl_FrontFacing ? in_irradiance_front : in_irradiance_back;
+  if (shading == kShadingFlat || shading == kShadingPhong) color *= irradiance(normal);
 
-  out_color = packColor(albedo.xyz * light);
+  out_color = packColor(color);
   out_id = t + 1u;
   out_normal = vec4(normal, 0.0);
 }

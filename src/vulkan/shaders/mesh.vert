@@ -14,11 +14,11 @@ layout(location = 3) in vec4 in_color;
 
 layout(location = 0) out vec3 out_normal;
 layout(location = 1) out vec2 out_uv;
-layout(location = 2) out vec4 out_color;
-// Gouraud: the lighting at the vertex for the front and for the back side (two-sided lighting
-// flips the normal of a back face; the fragment stage picks by gl_FrontFacing).
-layout(location = 3) out vec3 out_irradiance_front;
-layout(location = 4) out vec3 out_irradiance_back;
+// The vertex colour; for Gouraud already lit, for the front and for the back side (two-sided
+// lighting flips the normal of a back face; the fragment stage picks by gl_FrontFacing). The
+// material's base colour, constant over a triangle, is applied per fragment.
+layout(location = 2) out vec3 out_color_front;
+layout(location = 3) out vec3 out_color_back;
 
 void main() {
   const GpuObject object = objects[draw.object];
@@ -35,12 +35,9 @@ void main() {
     normal = normalizeAsCpu(multiply3x3(object.normal_matrix, in_normal));
   out_normal = normal;
   out_uv = (object.flags & kObjectHasUv) != 0u ? in_uv : vec2(0.0);
-  out_color = (object.flags & kObjectHasColor) != 0u ? in_color : vec4(1.0);
-  if (object.shading == kShadingGouraud) {
-    out_irradiance_front = irradiance(normal);
-    out_irradiance_back = irradiance(-normal);
-  } else {
-    out_irradiance_front = vec3(0.0);
-    out_irradiance_back = vec3(0.0);
-  }
+  const vec3 color = (object.flags & kObjectHasColor) != 0u ? in_color.xyz : vec3(1.0);
+  const bool gouraud =
+      object.shading == kShadingGouraud && (object.flags & kObjectHasNormals) != 0u;
+  out_color_front = gouraud ? color * irradiance(normal) : color;
+  out_color_back = gouraud ? color * irradiance(-normal) : color;
 }

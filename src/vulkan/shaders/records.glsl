@@ -17,12 +17,15 @@ struct RasterRecord {
   uint key;  // scene triangle index << 3 | fan piece
 };
 
+// The CPU's ShadeTriangle.
 struct ShadeRecord {
-  vec4 normal[3];
-  vec4 color[3];
+  vec4 normal[3];  // world shading normals, facing the viewer for drawn back faces
+  vec4 color[3];   // base colour x vertex colour, already lit for flat and Gouraud
   vec2 uv[3];
   float inv_w0, p1dx, p1dy, p2dx, p2dy, sdx, sdy;
-  uint triangle_id, object, material_shading;  // material | shading << 16 | has_uv << 24
+  uint triangle_id;
+  uint material;  // index into the material buffer
+  uint shading;   // Shading | kShadeHasUv
 };
 
 struct Counters {

@@ -13,11 +13,13 @@
 // makes the result independent of it). A record's key is t << 3 | piece, which orders records as
 // the CPU submits them, so equal depths resolve to the same triangle.
 //
-// TESSERA_FP64 = 1: the depth and barycentric planes in double, as the CPU; = 0: in float, for
-// devices without shaderFloat64 (coverage is still exact; depth may differ in the last bit).
+// TESSERA_FP64 = 1: divisions and the area's reciprocal in double, rounded once to float, as the
+// CPU; = 0: in float, for devices without shaderFloat64 (coverage of unclipped triangles is
+// still exact; depth and the clipped vertices may differ in the last bit).
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "common.glsl"
 #include "records.glsl"
+#include "shading.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -135,11 +137,11 @@ uint clipTriangle(uint planes) {
 // What setup needs about the source triangle beyond its clip-space vertices.
 struct TriangleContext {
   uint triangle;  // scene triangle index
-  uint object;
-  uint material;
+  uint material;  // index into the material buffer
   uint cull;
   uint shading;
   bool has_uv;
+  bool has_color;
   bool clipped;
   vec3 face_normal;  // world space, unnormalized
   vec3 normal[3];    // the source vertices' attributes
@@ -147,23 +149,22 @@ struct TriangleContext {
   vec4 color[3];
 };
 
-// std::lround of a window coordinate in 1/256 pixel: half away from zero, exactly.
-int snap(float window_coordinate) {
-  precise float v = window_coordinate * float(kSubpixelOne);
-  const float a = abs(v);
-  const float whole = floor(a);
-  precise float fraction = a - whole;  // exact: the bits of a below the binary point
-  const int n = int(whole) + (fraction >= 0.5 ? 1 : 0);
-  return v < 0.0 ? -n : n;
-}
+// render::ScreenVertex: window position in 1/256 pixel (y down), window depth, 1 / clip w.
+struct ScreenVertex {
+  int x, y;
+  float z, inv_w;
+};
 
-int64_t floorDiv(int64_t n, int64_t d) { return n >= 0 ? n / d : -((-n + d - 1) / d); }
-
-// First and last pixel whose centre lies in [lo, hi] (fixed point), clamped to [0, size - 1].
-ivec2 pixelRange(int lo, int hi, int size) {
-  int first = int(-floorDiv(-(int64_t(lo) - kSubpixelHalf), kSubpixelOne));
-  int last = int(floorDiv(int64_t(hi) - kSubpixelHalf, kSubpixelOne));
-  return ivec2(max(first, 0), min(last, size - 1));
+// render::projectToScreen, the one place clip space becomes window space: snapping rounds half
+// to even (lrint).
+ScreenVertex projectToScreen(vec4 clip) {
+  const float inv_w = divideRounded(1.0, clip.w);
+  precise float wx = (clip.x * inv_w * 0.5 + 0.5) * float(frame.width);
+  precise float wy = (0.5 - clip.y * inv_w * 0.5) * float(frame.height);
+  precise float z = clip.z * inv_w * 0.5 + 0.5;
+  precise float sx = wx * float(kSubpixelOne);
+  precise float sy = wy * float(kSubpixelOne);
+  return ScreenVertex(int(roundEven(sx)), int(roundEven(sy)), z, inv_w);
 }
 
 // Edge from a to b: (b - a) x (p - a) with y down; the top-left bias folded into c.
@@ -189,29 +190,30 @@ vec4 weighted4(vec4 values[3], vec3 w) {
   return r;
 }
 
-// src/render/setup.cpp setupTriangle(): true when the triangle is visible.
+// src/render/setup.cpp, setupRaster then setupShade: true when the triangle is visible.
 bool setupTriangle(ClipVertex v[3], TriangleContext ctx, out RasterRecord raster,
                    out ShadeRecord shade) {
-  float wz[3], inv_w[3];
-  int fx[3], fy[3];
-  for (int i = 0; i < 3; ++i) {
-    const vec4 p = v[i].position;
-    inv_w[i] = divideRounded(1.0, p.w);
-    precise float wx = (p.x * inv_w[i] * 0.5 + 0.5) * float(frame.width);
-    precise float wy = (0.5 - p.y * inv_w[i] * 0.5) * float(frame.height);
-    precise float z = p.z * inv_w[i] * 0.5 + 0.5;
-    wz[i] = z;
-    fx[i] = snap(wx);
-    fy[i] = snap(wy);
-  }
+  ScreenVertex sv[3];
+  for (int i = 0; i < 3; ++i) sv[i] = projectToScreen(v[i].position);
 
   // Signed area on the snapped grid, y down: front faces (counter-clockwise in NDC) are negative.
-  int64_t area = int64_t(fx[1] - fx[0]) * int64_t(fy[2] - fy[0]) -
-                 int64_t(fy[1] - fy[0]) * int64_t(fx[2] - fx[0]);
+  int64_t area = int64_t(sv[1].x - sv[0].x) * int64_t(sv[2].y - sv[0].y) -
+                 int64_t(sv[1].y - sv[0].y) * int64_t(sv[2].x - sv[0].x);
   if (area == 0l) return false;
   const bool back_facing = area > 0l;
   if ((back_facing && ctx.cull == kCullBack) || (!back_facing && ctx.cull == kCullFront))
     return false;
+
+  // Bounding box over pixel centres: the centre of pixel i is i*256 + 128, so
+  // first = ceil((lo - 128) / 256) and last = floor((hi - 128) / 256) (arithmetic shifts floor).
+  const int lo_x = min(sv[0].x, min(sv[1].x, sv[2].x)), hi_x = max(sv[0].x, max(sv[1].x, sv[2].x));
+  const int lo_y = min(sv[0].y, min(sv[1].y, sv[2].y)), hi_y = max(sv[0].y, max(sv[1].y, sv[2].y));
+  raster.min_x = max(-((kSubpixelHalf - lo_x) >> kSubpixelBits), 0);
+  raster.max_x = min((hi_x - kSubpixelHalf) >> kSubpixelBits, frame.width - 1);
+  if (raster.min_x > raster.max_x) return false;
+  raster.min_y = max(-((kSubpixelHalf - lo_y) >> kSubpixelBits), 0);
+  raster.max_y = min((hi_y - kSubpixelHalf) >> kSubpixelBits, frame.height - 1);
+  if (raster.min_y > raster.max_y) return false;
 
   // The rasterizer takes positive areas only: front faces are reordered 0, 2, 1.
   int order[3] = int[3](0, 1, 2);
@@ -220,58 +222,56 @@ bool setupTriangle(ClipVertex v[3], TriangleContext ctx, out RasterRecord raster
     order[2] = 1;
     area = -area;
   }
-  const int i0 = order[0], i1 = order[1], i2 = order[2];
-
-  const ivec2 xs = pixelRange(min(fx[0], min(fx[1], fx[2])), max(fx[0], max(fx[1], fx[2])),
-                              frame.width);
-  const ivec2 ys = pixelRange(min(fy[0], min(fy[1], fy[2])), max(fy[0], max(fy[1], fy[2])),
-                              frame.height);
-  if (xs.x > xs.y || ys.x > ys.y) return false;
-  raster.min_x = xs.x;
-  raster.max_x = xs.y;
-  raster.min_y = ys.x;
-  raster.max_y = ys.y;
+  const ScreenVertex v0 = sv[order[0]], v1 = sv[order[1]], v2 = sv[order[2]];
 
   // Edge k is opposite vertex k: edge 0 = v1->v2, edge 1 = v2->v0, edge 2 = v0->v1.
-  makeEdge(fx[i1], fy[i1], fx[i2], fy[i2], raster.a[0], raster.b[0], raster.c[0]);
-  makeEdge(fx[i2], fy[i2], fx[i0], fy[i0], raster.a[1], raster.b[1], raster.c[1]);
-  makeEdge(fx[i0], fy[i0], fx[i1], fy[i1], raster.a[2], raster.b[2], raster.c[2]);
+  makeEdge(v1.x, v1.y, v2.x, v2.y, raster.a[0], raster.b[0], raster.c[0]);
+  makeEdge(v2.x, v2.y, v0.x, v0.y, raster.a[1], raster.b[1], raster.c[1]);
+  makeEdge(v0.x, v0.y, v1.x, v1.y, raster.a[2], raster.b[2], raster.c[2]);
 
-  // Screen-space planes on the snapped positions. lambda_1 = E_20 / area, lambda_2 = E_01 / area.
-  // (The CPU divides by 256 and 65536; multiplying by their exact reciprocals is the same
-  // operation, exact, on any device.)
-  const real inv_scale = real(1.0 / 256.0);
-  precise real x0 = real(fx[i0]) * inv_scale, y0 = real(fy[i0]) * inv_scale;
-  precise real x1 = real(fx[i1]) * inv_scale, y1 = real(fy[i1]) * inv_scale;
-  precise real x2 = real(fx[i2]) * inv_scale, y2 = real(fy[i2]) * inv_scale;
-  precise real area_px = real(area) * (inv_scale * inv_scale);
-  precise real l1dx = (y2 - y0) / area_px, l1dy = (x0 - x2) / area_px;
-  precise real l2dx = (y0 - y1) / area_px, l2dy = (x1 - x0) / area_px;
+  // Screen-space gradients of barycentrics 1 and 2: (edge coefficient) * 256 / area, the
+  // reciprocal rounded once to float from double, as the CPU.
+#if TESSERA_FP64
+  precise double inv_area_wide = 256.0lf / double(area);
+  const float inv_area = float(inv_area_wide);
+#else
+  precise float inv_area = 256.0 / float(area);
+#endif
+  precise float l1dx = float(v2.y - v0.y) * inv_area;
+  precise float l1dy = float(v0.x - v2.x) * inv_area;
+  precise float l2dx = float(v0.y - v1.y) * inv_area;
+  precise float l2dy = float(v1.x - v0.x) * inv_area;
 
-  const real z0 = real(wz[i0]), z1 = real(wz[i1]), z2 = real(wz[i2]);
-  precise real dzdx = (z1 - z0) * l1dx + (z2 - z0) * l2dx;
-  precise real dzdy = (z1 - z0) * l1dy + (z2 - z0) * l2dy;
-  raster.x0 = float(x0);
-  raster.y0 = float(y0);
-  raster.z0 = float(z0);
-  raster.dzdx = float(dzdx);
-  raster.dzdy = float(dzdy);
+  const float scale = 1.0 / float(kSubpixelOne);
+  precise float x0 = float(v0.x) * scale;
+  precise float y0 = float(v0.y) * scale;
+  raster.x0 = x0;
+  raster.y0 = y0;
+  raster.z0 = v0.z;
+  precise float dz1 = v1.z - v0.z, dz2 = v2.z - v0.z;
+  precise float dzdx = dz1 * l1dx + dz2 * l2dx;
+  precise float dzdy = dz1 * l1dy + dz2 * l2dy;
+  raster.dzdx = dzdx;
+  raster.dzdy = dzdy;
 
-  const real q0 = real(inv_w[i0]), q1 = real(inv_w[i1]), q2 = real(inv_w[i2]);
-  precise real p1dx = q1 * l1dx, p1dy = q1 * l1dy, p2dx = q2 * l2dx, p2dy = q2 * l2dy;
-  precise real sdx = (q1 - q0) * l1dx + (q2 - q0) * l2dx;
-  precise real sdy = (q1 - q0) * l1dy + (q2 - q0) * l2dy;
-  shade.inv_w0 = float(q0);
-  shade.p1dx = float(p1dx);
-  shade.p1dy = float(p1dy);
-  shade.p2dx = float(p2dx);
-  shade.p2dy = float(p2dy);
-  shade.sdx = float(sdx);
-  shade.sdy = float(sdy);
+  const float q0 = v0.inv_w, q1 = v1.inv_w, q2 = v2.inv_w;
+  shade.inv_w0 = q0;
+  precise float p1dx = q1 * l1dx, p1dy = q1 * l1dy, p2dx = q2 * l2dx, p2dy = q2 * l2dy;
+  precise float sdx = (q1 - q0) * l1dx + (q2 - q0) * l2dx;
+  precise float sdy = (q1 - q0) * l1dy + (q2 - q0) * l2dy;
+  shade.p1dx = p1dx;
+  shade.p1dy = p1dy;
+  shade.p2dx = p2dx;
+  shade.p2dy = p2dy;
+  shade.sdx = sdx;
+  shade.sdy = sdy;
 
-  // Attributes. Back faces that are drawn are lit from the viewer's side (two-sided lighting).
+  const GpuMaterial material = materials[ctx.material];
+  const vec3 base = material.base_color.xyz;
+  // Back faces that are drawn are lit from the viewer's side (two-sided lighting).
   const float flip = back_facing ? -1.0 : 1.0;
   precise vec3 flat_normal = normalizeAsCpu(ctx.face_normal) * flip;
+  const vec3 flat_irradiance = ctx.shading == kShadingFlat ? irradiance(flat_normal) : vec3(1.0);
   for (int k = 0; k < 3; ++k) {
     const int source = order[k];
     vec3 vertex_normal = ctx.normal[source];
@@ -284,15 +284,19 @@ bool setupTriangle(ClipVertex v[3], TriangleContext ctx, out RasterRecord raster
     }
     precise vec3 n = ctx.shading == kShadingFlat ? flat_normal
                                                  : normalizeAsCpu(vertex_normal) * flip;
-    if (n.x * n.x + n.y * n.y + n.z * n.z == 0.0) n = flat_normal;
+    if (n.x == 0.0 && n.y == 0.0 && n.z == 0.0) n = flat_normal;
     shade.normal[k] = vec4(n, 0.0);
     shade.uv[k] = uv;
-    shade.color[k] = color;
+    precise vec3 albedo = ctx.has_color ? base * color.xyz : base;
+    precise vec3 lit =
+        albedo * (ctx.shading == kShadingGouraud ? irradiance(n) : flat_irradiance);
+    shade.color[k] = vec4(lit, 0.0);
   }
   shade.triangle_id = ctx.triangle;
-  shade.object = ctx.object;
-  shade.material_shading = (ctx.material & 0xffffu) | (ctx.shading << 16) |
-                           (ctx.has_uv ? (1u << 24) : 0u);
+  shade.material = ctx.material;
+  shade.shading =
+      ctx.shading | (ctx.has_uv && (material.texture_flags & kTexturePresent) != 0u ? kShadeHasUv
+                                                                                     : 0u);
   return true;
 }
 
@@ -344,18 +348,18 @@ void main() {
 
   TriangleContext ctx;
   ctx.triangle = t;
-  ctx.object = object_index;
-  ctx.material = (object.flags & kObjectHasTriangleMaterials) != 0u ? triangle_materials[t] : 0u;
+  ctx.material = objectMaterialIndex(
+      object, (object.flags & kObjectHasTriangleMaterials) != 0u ? triangle_materials[t] : 0u);
   ctx.cull = object.cull;
   ctx.shading = object.shading;
   ctx.has_uv = (object.flags & kObjectHasUv) != 0u;
-  const bool has_color = (object.flags & kObjectHasColor) != 0u;
+  ctx.has_color = (object.flags & kObjectHasColor) != 0u;
   vec3 p[3];
   for (int k = 0; k < 3; ++k) {
     const uint g = object.vertex_base + idx[k];
     ctx.normal[k] = transformed[g].normal.xyz;
     ctx.uv[k] = ctx.has_uv ? vertexUv(g) : vec2(0.0);
-    ctx.color[k] = has_color ? vertexColor(g) : vec4(1.0);
+    ctx.color[k] = ctx.has_color ? vertexColor(g) : vec4(1.0);
     p[k] = vertexPosition(g);
   }
   precise vec3 e1 = p[1] - p[0];

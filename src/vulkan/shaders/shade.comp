@@ -17,6 +17,38 @@ layout(std430, set = 0, binding = 17) readonly buffer VisibilityBuffer {
   uint visibility_words[];
 };
 
+// Perspective-correct barycentrics (b0, b1, b2) at window point p, from the 1/w-weighted planes
+// (render::barycentricsAt).
+vec3 barycentricsAt(ShadeRecord s, vec2 origin, vec2 p) {
+  precise float dx = p.x - origin.x;
+  precise float dy = p.y - origin.y;
+  precise float inv_s = 1.0 / (s.inv_w0 + s.sdx * dx + s.sdy * dy);
+  precise float b1 = (s.p1dx * dx + s.p1dy * dy) * inv_s;
+  precise float b2 = (s.p2dx * dx + s.p2dy * dy) * inv_s;
+  precise float b0 = 1.0 - b1 - b2;
+  return vec3(b0, b1, b2);
+}
+
+vec2 uvAt(ShadeRecord s, vec3 b) {
+  precise vec2 uv = s.uv[0] * b.x + s.uv[1] * b.y + s.uv[2] * b.z;
+  return uv;
+}
+
+// render::sampleAlbedo: trilinear filtering takes its level of detail from the UVs at the next
+// pixel centres right and down.
+vec3 sampleAlbedo(ShadeRecord s, vec2 origin, vec3 b, vec2 centre) {
+  const GpuMaterial m = materials[s.material];
+  const vec2 uv = uvAt(s, b);
+  if ((m.texture_flags & kTextureTrilinear) == 0u) return sampleTexture(m, uv).xyz;
+  const vec2 size = vec2(float(m.texture_width), float(m.texture_height));
+  precise vec2 du = uvAt(s, barycentricsAt(s, origin, centre + vec2(1.0, 0.0))) - uv;
+  precise vec2 dv = uvAt(s, barycentricsAt(s, origin, centre + vec2(0.0, 1.0))) - uv;
+  precise vec2 dx = du * size, dy = dv * size;
+  precise float rho2 = max(dx.x * dx.x + dx.y * dx.y, dy.x * dy.x + dy.y * dy.y);
+  const float lod = rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0;
+  return sampleTextureTrilinear(m, uv, lod).xyz;
+}
+
 void main() {
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= frame.width || y >= frame.height) return;
@@ -38,45 +70,19 @@ void main() {
   const uint t = key >> 3, piece = key & 7u;
   const uint slot = piece == 0u ? t : frame.triangle_count + extra_base[t] + piece - 1u;
   const ShadeRecord s = shade_records[slot];
-  const float x0 = raster_records[slot].x0, y0 = raster_records[slot].y0;
+  const vec2 origin = vec2(raster_records[slot].x0, raster_records[slot].y0);
+  const vec2 centre = vec2(float(x) + 0.5, float(y) + 0.5);
+  const vec3 b = barycentricsAt(s, origin, centre);
 
-  // Perspective-correct barycentrics from the 1/w-weighted planes.
-  precise float dx = (float(x) + 0.5) - x0;
-  precise float dy = (float(y) + 0.5) - y0;
-  precise float w_sum = s.inv_w0 + s.sdx * dx + s.sdy * dy;
-  precise float inv_s = 1.0 / w_sum;
-  precise float b1 = (s.p1dx * dx + s.p1dy * dy) * inv_s;
-  precise float b2 = (s.p2dx * dx + s.p2dy * dy) * inv_s;
-  precise float b0 = 1.0 - b1 - b2;
-
-  const GpuObject object = objects[s.object];
-  const uint shading = (s.material_shading >> 16) & 255u;
-  const bool has_uv = (s.material_shading & (1u << 24)) != 0u;
-  const GpuMaterial material = objectMaterial(object, s.material_shading & 0xffffu);
-
-  precise vec4 albedo = material.base_color;
-  albedo = albedo * (s.color[0] * b0 + s.color[1] * b1 + s.color[2] * b2);
-  if ((material.texture_flags & kTexturePresent) != 0u && has_uv) {
-    precise vec2 uv = s.uv[0] * b0 + s.uv[1] * b1 + s.uv[2] * b2;
-    albedo = albedo * sampleTexture(material, uv);
+  const uint shading = s.shading & 255u;
+  precise vec3 color = s.color[0].xyz * b.x + s.color[1].xyz * b.y + s.color[2].xyz * b.z;
+  if ((s.shading & kShadeHasUv) != 0u) color = color * sampleAlbedo(s, origin, b, centre);
+  vec3 normal = s.normal[0].xyz;
+  if (shading == kShadingPhong || (normals && shading != kShadingFlat)) {
+    normal = normalizeAsCpu(s.normal[0].xyz * b.x + s.normal[1].xyz * b.y +
+                            s.normal[2].xyz * b.z);
+    if (shading == kShadingPhong) color = color * irradiance(normal);
   }
-
-  vec3 normal;
-  if (shading == kShadingFlat)
-    normal = s.normal[0].xyz;
-  else
-    normal = normalizeAsCpu(s.normal[0].xyz * b0 + s.normal[1].xyz * b1 + s.normal[2].xyz * b2);
-
-  precise vec3 light = vec3(1.0);
-  if (shading == kShadingFlat) {
-    light = irradiance(s.normal[0].xyz);
-  } else if (shading == kShadingPhong) {
-    light = irradiance(normal);
-  } else if (shading == kShadingGouraud) {
-    light = irradiance(s.normal[0].xyz) * b0 + irradiance(s.normal[1].xyz) * b1 +
-            irradiance(s.normal[2].xyz) * b2;
-  }
-  precise vec3 color = albedo.xyz * light;
 
   output_words[pixel] = packColor(color);
   output_words[n + pixel] = floatBitsToUint(depthFromOrdered(visibility_words[2u * pixel + 1u]));
