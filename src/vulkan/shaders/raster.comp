@@ -29,12 +29,19 @@ layout(std430, set = 0, binding = 17) buffer VisibilityBuffer { uint64_t visibil
 layout(std430, set = 0, binding = 17) buffer VisibilityBuffer { uint visibility_words[]; };
 #endif
 
-const uint kBatch = 128u;
+const uint kBatch = 64u;
 // Per staged record: the edge coefficients and, per edge, the threshold that turns the 64-bit
 // test into a 32-bit one (below); the depth plane; the key.
 shared ivec3 s_a[kBatch], s_b[kBatch], s_threshold[kBatch];
 shared float s_x0[kBatch], s_y0[kBatch], s_z0[kBatch], s_dzdx[kBatch], s_dzdy[kBatch];
 shared uint s_key[kBatch];
+// The batch's records sorted into half-rows of the tile (16 rows x 2 halves of 8 pixels): each
+// pixel walks only the records whose bounding box touches its half-row. On a GPU the lanes of a
+// subgroup share a few lists; on a CPU driver (lavapipe runs 8 lanes at a time, one half-row)
+// every lane of a SIMD step walks the same list.
+const uint kBuckets = 32u;
+shared uint s_bucket_count[kBuckets];
+shared uint s_bucket[kBuckets][kBatch];
 
 // Edge k at the pixel (tile_x + lx, tile_y + ly) is e = origin + 256 * (a lx + b ly), with
 // origin its (64-bit) value at the tile's first pixel centre. Since |a|, |b| < 2^24 and
@@ -75,6 +82,8 @@ void main() {
     const uint n = min(kBatch, segment.z - first);
     barrier();  // every lane is done with the previous batch before it is overwritten
     const uint lane = gl_LocalInvocationIndex;
+    if (lane < kBuckets) s_bucket_count[lane] = 0u;
+    barrier();  // the buckets are empty before any record is added to them
     if (lane < n) {
       const RasterRecord r = raster_records[bin_entries[first + lane]];
       const ivec3 a = ivec3(r.a[0], r.a[1], r.a[2]), b = ivec3(r.b[0], r.b[1], r.b[2]);
@@ -90,10 +99,24 @@ void main() {
       s_dzdx[lane] = r.dzdx;
       s_dzdy[lane] = r.dzdy;
       s_key[lane] = r.key;
+      // Covered pixels lie inside the bounding box (setup's pixel range), so a half-row outside
+      // it has nothing to find.
+      const int row0 = max(r.min_y - tile_y, 0), row1 = min(r.max_y - tile_y, kTileSize - 1);
+      const int column0 = max(r.min_x - tile_x, 0) >> 3;
+      const int column1 = min(r.max_x - tile_x, kTileSize - 1) >> 3;
+      for (int row = row0; row <= row1; ++row) {
+        for (int column = column0; column <= column1; ++column) {
+          const uint bucket = uint(row * 2 + column);
+          s_bucket[bucket][atomicAdd(s_bucket_count[bucket], 1u)] = lane;
+        }
+      }
     }
-    barrier();  // the batch is staged before any lane reads it
+    barrier();  // the batch is staged and sorted before any lane reads it
     if (!inside) continue;
-    for (uint j = 0u; j < n; ++j) {
+    const uint bucket = uint(ly * 2 + (lx >> 3));
+    const uint count = s_bucket_count[bucket];
+    for (uint i = 0u; i < count; ++i) {
+      const uint j = s_bucket[bucket][i];
       const ivec3 d = s_a[j] * lx + s_b[j] * ly;
       if (any(lessThan(d, s_threshold[j]))) continue;
       // Window z at the pixel centre, as the CPU: z0 + dzdy * dy, then + dzdx * dx.
