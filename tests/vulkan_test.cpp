@@ -29,9 +29,9 @@ constexpr int kHeight = 192;
 
 // Skips the test when there is no Vulkan device at all; otherwise does nothing (a device that
 // exists but cannot run a backend is a failure, not a skip).
-#define TESSERA_SKIP_WITHOUT_VULKAN()                                                         \
-  do {                                                                                        \
-    const std::string tessera_no_device = noVulkanDeviceReason();                             \
+#define TESSERA_SKIP_WITHOUT_VULKAN()                                                          \
+  do {                                                                                         \
+    const std::string tessera_no_device = noVulkanDeviceReason();                              \
     if (!tessera_no_device.empty()) GTEST_SKIP() << "no Vulkan device: " << tessera_no_device; \
   } while (false)
 
@@ -87,9 +87,9 @@ Frame renderWith(B& backend, const Scene& scene, const RenderOptions& o) {
 
 struct Parity {
   size_t pixels = 0;
-  size_t covered = 0;        // pixels where either frame has a triangle
-  size_t same_id = 0;        // of those, pixels with the same id
-  size_t close_color = 0;    // pixels whose channels are all within 2/255
+  size_t covered = 0;      // pixels where either frame has a triangle
+  size_t same_id = 0;      // of those, pixels with the same id
+  size_t close_color = 0;  // pixels whose channels are all within 2/255
   int max_channel_diff = 0;
   double idRatio() const { return covered ? static_cast<double>(same_id) / covered : 1.0; }
   double colorRatio() const { return pixels ? static_cast<double>(close_color) / pixels : 1.0; }
@@ -118,9 +118,10 @@ Parity compare(const Frame& a, const Frame& b) {
 }
 
 void report(const char* what, const Parity& p) {
-  std::printf("[ parity   ] %s: %zu covered pixels, ids %.4f%% equal, colours within 2/255 on "
-              "%.4f%%, max channel difference %d\n",
-              what, p.covered, 100.0 * p.idRatio(), 100.0 * p.colorRatio(), p.max_channel_diff);
+  std::printf(
+      "[ parity   ] %s: %zu covered pixels, ids %.4f%% equal, colours within 2/255 on "
+      "%.4f%%, max channel difference %d\n",
+      what, p.covered, 100.0 * p.idRatio(), 100.0 * p.colorRatio(), p.max_channel_diff);
 }
 
 // The held-to numbers of the issue.
@@ -259,8 +260,8 @@ float3 windowToNdc(float x, float y, float z, int width, int height) {
 Scene randomTriangles(int count, float size, float x0, float y0, float span, uint32_t seed) {
   Scene scene = clipSpaceScene();
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> where(0.0f, span), offset(0.0f, size),
-      depth(-0.9f, 0.9f), shade(0.2f, 1.0f);
+  std::uniform_real_distribution<float> where(0.0f, span), offset(0.0f, size), depth(-0.9f, 0.9f),
+      shade(0.2f, 1.0f);
   Mesh mesh;
   for (int t = 0; t < count; ++t) {
     const float cx = x0 + where(rng), cy = y0 + where(rng), z = depth(rng);
@@ -377,8 +378,7 @@ TEST(VulkanCompute, MatchesCpuOnSpheres) {
   std::unique_ptr<ComputeBackend> gpu = makeCompute();
   ASSERT_TRUE(gpu);
   expectComputeMatchesCpu("sphere, flat", sphereScene(24, 12, Shading::kFlat), {}, gpu.get());
-  expectComputeMatchesCpu("sphere, Gouraud", sphereScene(32, 16, Shading::kGouraud), {},
-                          gpu.get());
+  expectComputeMatchesCpu("sphere, Gouraud", sphereScene(32, 16, Shading::kGouraud), {}, gpu.get());
   expectComputeMatchesCpu("sphere, Phong", sphereScene(48, 24, Shading::kPhong), {}, gpu.get());
 }
 
@@ -433,8 +433,8 @@ TEST(VulkanCompute, ThirtyTwoBitCommitMatchesCpu) {
   ASSERT_TRUE(gpu);
   expectComputeMatchesCpu("32-bit commit, dense", denseScene(), vk, gpu.get());
   EXPECT_FALSE(gpu->lastStats().int64_atomics);
-  expectComputeMatchesCpu("32-bit commit, one tile", randomTriangles(3000, 12.0f, 80, 80, 4, 3),
-                          vk, gpu.get());
+  expectComputeMatchesCpu("32-bit commit, one tile", randomTriangles(3000, 12.0f, 80, 80, 4, 3), vk,
+                          gpu.get());
 }
 
 TEST(VulkanCompute, DeviceWithoutInt64AtomicsTakesThe32BitPath) {
@@ -537,15 +537,17 @@ TEST(VulkanCompute, StatsAndTimingsAreFilled) {
     EXPECT_GT(s.timings.total, 0.0);
     EXPECT_GE(s.timings.total + 1e-9, s.timings.setup + s.timings.raster + s.timings.shade);
   }
-  std::printf("[ stats    ] %zu in, %zu culled, %zu clipped, %zu set up, %zu binned, %zu entries "
-              "in %zu/%zu tiles (max %zu), %zu raster workgroups\n",
-              s.triangles_in, s.triangles_culled, s.triangles_clipped, s.triangles_setup,
-              s.triangles_binned, s.bin_entries, s.tiles_occupied, s.tiles, s.max_tile_entries,
-              s.raster_workgroups);
-  std::printf("[ timings  ] clear %.3f, transform %.3f, setup %.3f, bin %.3f, raster %.3f, "
-              "shade %.3f, total %.3f ms (valid %d)\n",
-              s.timings.clear, s.timings.transform, s.timings.setup, s.timings.bin,
-              s.timings.raster, s.timings.shade, s.timings.total, s.timings.valid);
+  std::printf(
+      "[ stats    ] %zu in, %zu culled, %zu clipped, %zu set up, %zu binned, %zu entries "
+      "in %zu/%zu tiles (max %zu), %zu raster workgroups\n",
+      s.triangles_in, s.triangles_culled, s.triangles_clipped, s.triangles_setup,
+      s.triangles_binned, s.bin_entries, s.tiles_occupied, s.tiles, s.max_tile_entries,
+      s.raster_workgroups);
+  std::printf(
+      "[ timings  ] clear %.3f, transform %.3f, setup %.3f, bin %.3f, raster %.3f, "
+      "shade %.3f, total %.3f ms (valid %d)\n",
+      s.timings.clear, s.timings.transform, s.timings.setup, s.timings.bin, s.timings.raster,
+      s.timings.shade, s.timings.total, s.timings.valid);
 }
 
 TEST(VulkanCompute, HeatmapShowsTileOccupancy) {
@@ -577,8 +579,7 @@ TEST(VulkanRaster, MatchesCpuIds) {
   expectRasterMatchesCpu("raster: dense", denseScene(), *raster);
   expectRasterMatchesCpu("raster: near plane", nearPlaneScene(), *raster);
   expectRasterMatchesCpu("raster: textured", texturedScene(), *raster);
-  expectRasterMatchesCpu("raster: sub-pixel", randomTriangles(20000, 0.9f, 0, 0, 190, 7),
-                         *raster);
+  expectRasterMatchesCpu("raster: sub-pixel", randomTriangles(20000, 0.9f, 0, 0, 190, 7), *raster);
   EXPECT_EQ(raster->lastStats().draws, 1u);
 }
 
@@ -587,8 +588,7 @@ TEST(VulkanRaster, DropsTheTrianglesTheCpuDrops) {
   // An index past the end and a non-finite vertex: the CPU draws neither triangle.
   Scene scene = clipSpaceScene();
   Mesh mesh;
-  mesh.positions = {{-0.8f, -0.8f, 0}, {0.8f, -0.8f, 0}, {0, 0.8f, 0},
-                    {0, 0, 0}, {NAN, 0, 0}};
+  mesh.positions = {{-0.8f, -0.8f, 0}, {0.8f, -0.8f, 0}, {0, 0.8f, 0}, {0, 0, 0}, {NAN, 0, 0}};
   mesh.indices = {0, 1, 2, 0, 1, 9, 0, 4, 2};
   Object object;
   object.mesh = std::make_shared<Mesh>(mesh);

@@ -14,8 +14,7 @@ int runDevices(const std::vector<std::string>& args) {
   FlagSet flags("tessera devices");
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {
-    std::cout << flags.usage()
-              << "Lists the Vulkan devices; the number is what --device takes.\n";
+    std::cout << flags.usage() << "Lists the Vulkan devices; the number is what --device takes.\n";
     return kExitOk;
   }
   if (!positional || !positional->empty()) {
@@ -37,15 +36,16 @@ int runDevices(const std::vector<std::string>& args) {
   for (const vulkan::DeviceInfo& d : *devices) {
     std::cout << d.index << ": " << d.name << " (" << d.type << ", Vulkan " << d.api_version
               << ")\n"
-              << "   vulkan:        " << (d.compute_usable ? "yes" : "no") << " ("
-              << d.compute_note << ")\n"
+              << "   vulkan:        " << (d.compute_usable ? "yes" : "no") << " (" << d.compute_note
+              << ")\n"
               << "   vulkan-raster: " << (d.raster_usable ? "yes" : "no") << " (" << d.raster_note
               << ")\n";
   }
   return kExitOk;
 #else
-  printError("devices", "tessera was built without Vulkan (configure with TESSERA_VULKAN=ON "
-                        "and the Vulkan headers and glslc installed)");
+  printError("devices",
+             "tessera was built without Vulkan (configure with TESSERA_VULKAN=ON "
+             "and the Vulkan headers and glslc installed)");
   return kExitFailure;
 #endif
 }

@@ -227,11 +227,12 @@ Expected<void> ComputeBackend::State::ensureWorkingBuffers(const RenderOptions& 
       {&segments, segment_capacity * 4 * sizeof(uint32_t), kStorage, MemoryKind::kDevice,
        "raster segment"},
       {&visibility, pixels * sizeof(uint64_t), kStorage, MemoryKind::kDevice, "visibility"},
-      {&output, pixels * (options.normals ? 6 : 3) * sizeof(uint32_t), kStorage,
-       MemoryKind::kHost, "output image"},
+      {&output, pixels * (options.normals ? 6 : 3) * sizeof(uint32_t), kStorage, MemoryKind::kHost,
+       "output image"},
   };
   for (const Need& need : needs)
-    if (Expected<void> r = c.ensureBuffer(*need.buffer, need.bytes, need.usage, need.kind, need.what);
+    if (Expected<void> r =
+            c.ensureBuffer(*need.buffer, need.bytes, need.usage, need.kind, need.what);
         !r)
       return r;
   return {};
@@ -435,8 +436,7 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   const size_t n = frame.pixelCount();
   const uint32_t* words = static_cast<const uint32_t*>(output.mapped);
   copyResults(words, words + n, words + 2 * n,
-              options.normals ? reinterpret_cast<const float*>(words + 3 * n) : nullptr, 3,
-              frame);
+              options.normals ? reinterpret_cast<const float*>(words + 3 * n) : nullptr, 3, frame);
   drawSceneLines(scene, options, packed, frame);
 
   stats.triangles_in = packed.triangle_count;
@@ -481,8 +481,8 @@ ComputeBackend::ComputeBackend(std::unique_ptr<State> state) : state_(std::move(
 ComputeBackend::~ComputeBackend() = default;
 
 void ComputeBackend::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
-  TESSERA_CHECK(options.width > 0 && options.height > 0 &&
-                options.width <= render::kMaxViewport && options.height <= render::kMaxViewport)
+  TESSERA_CHECK(options.width > 0 && options.height > 0 && options.width <= render::kMaxViewport &&
+                options.height <= render::kMaxViewport)
       << "viewport " << options.width << "x" << options.height << " is outside 1.."
       << render::kMaxViewport;
   resizeFrame(scene, options, frame);
@@ -490,10 +490,18 @@ void ComputeBackend::render(const Scene& scene, const RenderOptions& options, Fr
   if (!state_->last_result) clearFrame(frame);
 }
 
-Expected<void> ComputeBackend::lastResult() const { return state_->last_result; }
-const ComputeStats& ComputeBackend::lastStats() const { return state_->stats; }
-const TileOccupancy& ComputeBackend::lastTileOccupancy() const { return state_->occupancy; }
-const DeviceInfo& ComputeBackend::device() const { return state_->context->info; }
+Expected<void> ComputeBackend::lastResult() const {
+  return state_->last_result;
+}
+const ComputeStats& ComputeBackend::lastStats() const {
+  return state_->stats;
+}
+const TileOccupancy& ComputeBackend::lastTileOccupancy() const {
+  return state_->occupancy;
+}
+const DeviceInfo& ComputeBackend::device() const {
+  return state_->context->info;
+}
 std::vector<std::string> ComputeBackend::validationErrors() const {
   return state_->context->validationErrors();
 }

@@ -29,11 +29,16 @@ bool pretends(const std::vector<std::string>& missing, const char* feature) {
 // Discrete GPUs first, the CPU last: the order in which -1 picks a device.
 int typeRank(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
-    default: return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return 3;
+    default:
+      return 4;
   }
 }
 
@@ -107,7 +112,8 @@ std::string missingRequirements(const DeviceCapabilities& caps, BackendKind kind
     if (limits.maxComputeSharedMemorySize < 16384)
       missing.push_back("16 KiB of workgroup shared memory");
     if (limits.maxPerStageDescriptorStorageBuffers < kComputeBindingCount)
-      missing.push_back(std::to_string(kComputeBindingCount) + " storage buffers per stage (maxPerStageDescriptorStorageBuffers is " +
+      missing.push_back(std::to_string(kComputeBindingCount) +
+                        " storage buffers per stage (maxPerStageDescriptorStorageBuffers is " +
                         std::to_string(limits.maxPerStageDescriptorStorageBuffers) + ")");
   } else {
     if (caps.graphics_queue_family < 0) missing.push_back("a graphics queue");
@@ -128,11 +134,21 @@ DeviceInfo describeDevice(const DeviceCapabilities& caps, int index) {
   info.index = index;
   info.name = caps.properties.deviceName;
   switch (caps.properties.deviceType) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: info.type = "discrete GPU"; break;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: info.type = "integrated GPU"; break;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: info.type = "virtual GPU"; break;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: info.type = "CPU"; break;
-    default: info.type = "other"; break;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      info.type = "discrete GPU";
+      break;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      info.type = "integrated GPU";
+      break;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      info.type = "virtual GPU";
+      break;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      info.type = "CPU";
+      break;
+    default:
+      info.type = "other";
+      break;
   }
   info.api_version = versionString(caps.api_version);
   info.driver = "driver version " + std::to_string(caps.properties.driverVersion);
@@ -143,8 +159,8 @@ DeviceInfo describeDevice(const DeviceCapabilities& caps, int index) {
   if (info.compute_usable) {
     info.compute_note = caps.int64_atomics ? "64-bit atomic visibility commits"
                                            : "no shaderBufferInt64Atomics: two-pass 32-bit commits";
-    info.compute_note += caps.shader_float64 ? ", double-precision setup"
-                                             : ", no shaderFloat64: float depth planes";
+    info.compute_note +=
+        caps.shader_float64 ? ", double-precision setup" : ", no shaderFloat64: float depth planes";
   } else {
     info.compute_note = "missing " + compute_missing;
   }
@@ -154,8 +170,7 @@ DeviceInfo describeDevice(const DeviceCapabilities& caps, int index) {
   return info;
 }
 
-Expected<std::unique_ptr<Context>> Context::create(const VulkanOptions& options,
-                                                   BackendKind kind) {
+Expected<std::unique_ptr<Context>> Context::create(const VulkanOptions& options, BackendKind kind) {
   std::unique_ptr<Context> context(new Context());
   context->fence_timeout_ms = options.fence_timeout_ms;
   if (Expected<void> r = loadGlobalFunctions(context->vk); !r) return r.error();
@@ -164,7 +179,8 @@ Expected<std::unique_ptr<Context>> Context::create(const VulkanOptions& options,
   if (Expected<void> r = context->createDevice(kind); !r) return r.error();
   context->max_buffer_bytes = context->caps.properties.limits.maxStorageBufferRange;
   if (options.pretend_max_buffer_bytes > 0)
-    context->max_buffer_bytes = std::min(context->max_buffer_bytes, options.pretend_max_buffer_bytes);
+    context->max_buffer_bytes =
+        std::min(context->max_buffer_bytes, options.pretend_max_buffer_bytes);
   return context;
 }
 
@@ -187,7 +203,8 @@ std::vector<std::string> Context::validationErrors() const {
 
 Expected<void> Context::createInstance(const VulkanOptions& options) {
   uint32_t loader_version = VK_API_VERSION_1_0;
-  if (vk.vkEnumerateInstanceVersion) TESSERA_VK_CHECK(vk.vkEnumerateInstanceVersion(&loader_version));
+  if (vk.vkEnumerateInstanceVersion)
+    TESSERA_VK_CHECK(vk.vkEnumerateInstanceVersion(&loader_version));
   if (loader_version < kRequiredApi)
     return makeError("the Vulkan loader supports Vulkan " + versionString(loader_version) +
                      "; tessera needs 1.2");
@@ -245,8 +262,9 @@ Expected<void> Context::createInstance(const VulkanOptions& options) {
   create.ppEnabledExtensionNames = extensions.data();
   const VkResult created = vk.vkCreateInstance(&create, nullptr, &instance);
   if (created == VK_ERROR_INCOMPATIBLE_DRIVER)
-    return makeError("no Vulkan driver found (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER); "
-                     "install one (Debian: mesa-vulkan-drivers provides lavapipe)");
+    return makeError(
+        "no Vulkan driver found (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER); "
+        "install one (Debian: mesa-vulkan-drivers provides lavapipe)");
   TESSERA_VK_CHECK(created);
   if (Expected<void> r = loadInstanceFunctions(vk, instance, options.validation); !r) return r;
   if (options.validation)
@@ -261,8 +279,9 @@ Expected<void> Context::pickDevice(const VulkanOptions& options, BackendKind kin
   std::vector<VkPhysicalDevice> physical(count);
   TESSERA_VK_CHECK(vk.vkEnumeratePhysicalDevices(instance, &count, physical.data()));
   if (count == 0)
-    return makeError("no Vulkan device found (the loader found no driver with a device; "
-                     "Debian: mesa-vulkan-drivers provides lavapipe)");
+    return makeError(
+        "no Vulkan device found (the loader found no driver with a device; "
+        "Debian: mesa-vulkan-drivers provides lavapipe)");
   const char* backend = kind == BackendKind::kCompute ? "vulkan" : "vulkan-raster";
 
   if (options.device >= 0) {
@@ -299,8 +318,8 @@ Expected<void> Context::pickDevice(const VulkanOptions& options, BackendKind kin
     }
   }
   if (best < 0)
-    return makeError(std::string("no Vulkan device can run the ") + backend + " backend: " +
-                     reasons);
+    return makeError(std::string("no Vulkan device can run the ") + backend +
+                     " backend: " + reasons);
   info = describeDevice(caps, best);
   return {};
 }
@@ -416,9 +435,10 @@ Expected<void> Context::ensureBuffer(Buffer& buffer, VkDeviceSize bytes, VkBuffe
   vk.vkGetBufferMemoryRequirements(device, buffer.buffer, &requirements);
   Expected<uint32_t> type =
       kind == MemoryKind::kHost
-          ? findMemoryType(requirements.memoryTypeBits,
-                           VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
-                           VK_MEMORY_PROPERTY_HOST_CACHED_BIT)
+          ? findMemoryType(
+                requirements.memoryTypeBits,
+                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                VK_MEMORY_PROPERTY_HOST_CACHED_BIT)
           : findMemoryType(requirements.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   if (!type) return type.error();
   VkMemoryAllocateInfo allocate{};

@@ -26,8 +26,9 @@ Expected<std::vector<DeviceInfo>> enumerate(VulkanFunctions& vk, InstanceGuard& 
   create.pApplicationInfo = &app;
   const VkResult created = vk.vkCreateInstance(&create, nullptr, &guard.instance);
   if (created == VK_ERROR_INCOMPATIBLE_DRIVER)
-    return makeError("no Vulkan driver found (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER); "
-                     "install one (Debian: mesa-vulkan-drivers provides lavapipe)");
+    return makeError(
+        "no Vulkan driver found (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER); "
+        "install one (Debian: mesa-vulkan-drivers provides lavapipe)");
   TESSERA_VK_CHECK(created);
   if (Expected<void> r = loadInstanceFunctions(vk, guard.instance, false); !r) return r.error();
   uint32_t count = 0;

@@ -136,10 +136,10 @@ constexpr uint32_t kShadeHasUv = 1u << 8;
 static_assert(sizeof(GpuShadeRecord) == 160);
 
 struct GpuCounters {
-  uint32_t visible;         // records in the visible list
-  uint32_t extra;           // extra records the clipped triangles asked for
+  uint32_t visible;  // records in the visible list
+  uint32_t extra;    // extra records the clipped triangles asked for
   uint32_t culled, clipped;
-  uint32_t bin_entries;     // asked for; more than the capacity means overflow
+  uint32_t bin_entries;  // asked for; more than the capacity means overflow
   uint32_t segments;
   uint32_t max_tile_entries, occupied_tiles;
   uint32_t binned_records;

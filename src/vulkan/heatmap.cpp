@@ -20,8 +20,10 @@ uint32_t ramp(float t) {
   struct Stop {
     float t, r, g, b;
   };
-  constexpr Stop kStops[] = {{0.0f, 0.05f, 0.05f, 0.35f}, {0.25f, 0.1f, 0.3f, 1.0f},
-                             {0.5f, 0.1f, 0.8f, 0.3f},    {0.75f, 1.0f, 0.9f, 0.1f},
+  constexpr Stop kStops[] = {{0.0f, 0.05f, 0.05f, 0.35f},
+                             {0.25f, 0.1f, 0.3f, 1.0f},
+                             {0.5f, 0.1f, 0.8f, 0.3f},
+                             {0.75f, 1.0f, 0.9f, 0.1f},
                              {1.0f, 1.0f, 1.0f, 1.0f}};
   for (size_t i = 1; i < std::size(kStops); ++i) {
     if (t <= kStops[i].t) {

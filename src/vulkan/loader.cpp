@@ -31,30 +31,30 @@ struct LoaderLibrary {
 // Each library is opened once per process and never closed: instances made from it may outlive
 // any one backend. Keyed by name, so that TESSERA_VULKAN_LOADER is honoured whenever it is read.
 LoaderLibrary openLoader(const std::string& name) {
-    LoaderLibrary result;
+  LoaderLibrary result;
 #if defined(_WIN32)
-    HMODULE handle = LoadLibraryA(name.c_str());
-    if (!handle) {
-      result.error = "cannot open the Vulkan loader " + name + " (is a Vulkan driver installed?)";
-      return result;
-    }
-    result.get_instance_proc_addr = reinterpret_cast<PFN_vkGetInstanceProcAddr>(
-        reinterpret_cast<void*>(GetProcAddress(handle, "vkGetInstanceProcAddr")));
-#else
-    void* handle = dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      const char* why = dlerror();
-      result.error = "cannot open the Vulkan loader " + name + " (" + (why ? why : "unknown") +
-                     "); install a Vulkan loader and driver (Debian: libvulkan1 and "
-                     "mesa-vulkan-drivers)";
-      return result;
-    }
-    result.get_instance_proc_addr =
-        reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(handle, "vkGetInstanceProcAddr"));
-#endif
-    if (!result.get_instance_proc_addr)
-      result.error = "the Vulkan loader " + name + " has no vkGetInstanceProcAddr";
+  HMODULE handle = LoadLibraryA(name.c_str());
+  if (!handle) {
+    result.error = "cannot open the Vulkan loader " + name + " (is a Vulkan driver installed?)";
     return result;
+  }
+  result.get_instance_proc_addr = reinterpret_cast<PFN_vkGetInstanceProcAddr>(
+      reinterpret_cast<void*>(GetProcAddress(handle, "vkGetInstanceProcAddr")));
+#else
+  void* handle = dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    const char* why = dlerror();
+    result.error = "cannot open the Vulkan loader " + name + " (" + (why ? why : "unknown") +
+                   "); install a Vulkan loader and driver (Debian: libvulkan1 and "
+                   "mesa-vulkan-drivers)";
+    return result;
+  }
+  result.get_instance_proc_addr =
+      reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(handle, "vkGetInstanceProcAddr"));
+#endif
+  if (!result.get_instance_proc_addr)
+    result.error = "the Vulkan loader " + name + " has no vkGetInstanceProcAddr";
+  return result;
 }
 
 LoaderLibrary loaderLibrary() {
@@ -74,7 +74,7 @@ Expected<void> loadGlobalFunctions(VulkanFunctions& vk) {
   const LoaderLibrary library = loaderLibrary();
   if (!library.get_instance_proc_addr) return makeError(library.error);
   vk.vkGetInstanceProcAddr = library.get_instance_proc_addr;
-#define TESSERA_VK_LOAD(name)                                                                \
+#define TESSERA_VK_LOAD(name)                                                              \
   vk.name = reinterpret_cast<PFN_##name>(vk.vkGetInstanceProcAddr(VK_NULL_HANDLE, #name)); \
   if (!vk.name) return makeError("the Vulkan loader does not provide " #name);
   TESSERA_VK_GLOBAL_FUNCTIONS(TESSERA_VK_LOAD)
@@ -85,7 +85,7 @@ Expected<void> loadGlobalFunctions(VulkanFunctions& vk) {
 }
 
 Expected<void> loadInstanceFunctions(VulkanFunctions& vk, VkInstance instance, bool debug_utils) {
-#define TESSERA_VK_LOAD(name)                                                          \
+#define TESSERA_VK_LOAD(name)                                                        \
   vk.name = reinterpret_cast<PFN_##name>(vk.vkGetInstanceProcAddr(instance, #name)); \
   if (!vk.name) return makeError("the Vulkan instance does not provide " #name);
   TESSERA_VK_INSTANCE_FUNCTIONS(TESSERA_VK_LOAD)
@@ -97,7 +97,7 @@ Expected<void> loadInstanceFunctions(VulkanFunctions& vk, VkInstance instance, b
 }
 
 Expected<void> loadDeviceFunctions(VulkanFunctions& vk, VkDevice device) {
-#define TESSERA_VK_LOAD(name)                                                      \
+#define TESSERA_VK_LOAD(name)                                                    \
   vk.name = reinterpret_cast<PFN_##name>(vk.vkGetDeviceProcAddr(device, #name)); \
   if (!vk.name) return makeError("the Vulkan device does not provide " #name);
   TESSERA_VK_DEVICE_FUNCTIONS(TESSERA_VK_LOAD)
@@ -108,7 +108,8 @@ Expected<void> loadDeviceFunctions(VulkanFunctions& vk, VkDevice device) {
 const char* resultName(VkResult result) {
   switch (result) {
 #define TESSERA_VK_RESULT(name) \
-  case name: return #name;
+  case name:                    \
+    return #name;
     TESSERA_VK_RESULT(VK_SUCCESS)
     TESSERA_VK_RESULT(VK_NOT_READY)
     TESSERA_VK_RESULT(VK_TIMEOUT)
@@ -133,7 +134,8 @@ const char* resultName(VkResult result) {
     TESSERA_VK_RESULT(VK_ERROR_FRAGMENTATION)
     TESSERA_VK_RESULT(VK_ERROR_INVALID_OPAQUE_CAPTURE_ADDRESS)
 #undef TESSERA_VK_RESULT
-    default: return "VkResult(unknown)";
+    default:
+      return "VkResult(unknown)";
   }
 }
 

@@ -15,28 +15,28 @@
 namespace tessera::vulkan {
 
 // Functions obtained from the loader before an instance exists.
-#define TESSERA_VK_GLOBAL_FUNCTIONS(X)    \
-  X(vkCreateInstance)                     \
+#define TESSERA_VK_GLOBAL_FUNCTIONS(X)      \
+  X(vkCreateInstance)                       \
   X(vkEnumerateInstanceExtensionProperties) \
   X(vkEnumerateInstanceLayerProperties)
 
 // Functions of an instance.
-#define TESSERA_VK_INSTANCE_FUNCTIONS(X)        \
-  X(vkDestroyInstance)                          \
-  X(vkEnumeratePhysicalDevices)                 \
-  X(vkGetPhysicalDeviceProperties)              \
-  X(vkGetPhysicalDeviceProperties2)             \
-  X(vkGetPhysicalDeviceFeatures2)               \
-  X(vkGetPhysicalDeviceQueueFamilyProperties)   \
-  X(vkGetPhysicalDeviceMemoryProperties)        \
-  X(vkGetPhysicalDeviceFormatProperties)        \
-  X(vkEnumerateDeviceExtensionProperties)       \
-  X(vkCreateDevice)                             \
+#define TESSERA_VK_INSTANCE_FUNCTIONS(X)      \
+  X(vkDestroyInstance)                        \
+  X(vkEnumeratePhysicalDevices)               \
+  X(vkGetPhysicalDeviceProperties)            \
+  X(vkGetPhysicalDeviceProperties2)           \
+  X(vkGetPhysicalDeviceFeatures2)             \
+  X(vkGetPhysicalDeviceQueueFamilyProperties) \
+  X(vkGetPhysicalDeviceMemoryProperties)      \
+  X(vkGetPhysicalDeviceFormatProperties)      \
+  X(vkEnumerateDeviceExtensionProperties)     \
+  X(vkCreateDevice)                           \
   X(vkGetDeviceProcAddr)
 
 // Functions of the debug-utils extension (present only when validation is on).
-#define TESSERA_VK_DEBUG_FUNCTIONS(X)  \
-  X(vkCreateDebugUtilsMessengerEXT)    \
+#define TESSERA_VK_DEBUG_FUNCTIONS(X) \
+  X(vkCreateDebugUtilsMessengerEXT)   \
   X(vkDestroyDebugUtilsMessengerEXT)
 
 // Functions of a device.
@@ -137,9 +137,9 @@ Error vulkanError(const char* call, VkResult result);
 // The one checking macro: evaluates a call returning VkResult and, unless it is VK_SUCCESS,
 // returns from the enclosing function (which returns an Expected or an Error) with an Error
 // naming the call and the result.
-#define TESSERA_VK_CHECK(call)                                       \
-  do {                                                               \
-    const VkResult tessera_vk_result_ = (call);                      \
-    if (tessera_vk_result_ != VK_SUCCESS)                            \
+#define TESSERA_VK_CHECK(call)                                          \
+  do {                                                                  \
+    const VkResult tessera_vk_result_ = (call);                         \
+    if (tessera_vk_result_ != VK_SUCCESS)                               \
       return ::tessera::vulkan::vulkanError(#call, tessera_vk_result_); \
   } while (false)

@@ -131,10 +131,9 @@ Expected<void> RasterBackend::State::createPipelines() {
     attachments[i].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     attachments[i].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
   }
-  const VkAttachmentReference color_refs[3] = {
-      {0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
-      {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
-      {2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}};
+  const VkAttachmentReference color_refs[3] = {{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
+                                               {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
+                                               {2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}};
   const VkAttachmentReference depth_ref{3, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
   VkSubpassDescription subpass{};
   subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
@@ -149,13 +148,20 @@ Expected<void> RasterBackend::State::createPipelines() {
   VkSubpassDependency dependencies[2]{};
   // Orders this frame's clears (and the layout transitions out of UNDEFINED) after the previous
   // frame's copies out of the same images.
-  dependencies[0] = {VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, kAttachmentStages,
-                     VK_ACCESS_TRANSFER_READ_BIT,
-                     kAttachmentWrites | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT, 0};
+  dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+  dependencies[0].dstSubpass = 0;
+  dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  dependencies[0].dstStageMask = kAttachmentStages;
+  dependencies[0].srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+  dependencies[0].dstAccessMask = kAttachmentWrites | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
   // Orders the attachment writes (and the transition to TRANSFER_SRC_OPTIMAL) before the copies
   // into the readback buffer.
-  dependencies[1] = {0, VK_SUBPASS_EXTERNAL, kAttachmentStages, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                     kAttachmentWrites, VK_ACCESS_TRANSFER_READ_BIT, 0};
+  dependencies[1].srcSubpass = 0;
+  dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+  dependencies[1].srcStageMask = kAttachmentStages;
+  dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  dependencies[1].srcAccessMask = kAttachmentWrites;
+  dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
   VkRenderPassCreateInfo pass_info{};
   pass_info.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
   pass_info.attachmentCount = kAttachmentCount;
@@ -232,7 +238,7 @@ Expected<void> RasterBackend::State::createPipelines() {
   VkGraphicsPipelineCreateInfo create[3]{};
   VkPipelineRasterizationStateCreateInfo rasterizations[3] = {rasterization, rasterization,
                                                               rasterization};
-  rasterizations[0].cullMode = VK_CULL_MODE_BACK_BIT;  // CullMode::kBack
+  rasterizations[0].cullMode = VK_CULL_MODE_BACK_BIT;   // CullMode::kBack
   rasterizations[1].cullMode = VK_CULL_MODE_FRONT_BIT;  // CullMode::kFront
   rasterizations[2].cullMode = VK_CULL_MODE_NONE;       // CullMode::kNone
   for (int i = 0; i < 3; ++i) {
@@ -318,10 +324,9 @@ Expected<void> RasterBackend::State::ensureTargets(int w, int h) {
     view.image = image.image;
     view.viewType = VK_IMAGE_VIEW_TYPE_2D;
     view.format = formats[i];
-    view.subresourceRange = {
-        static_cast<VkImageAspectFlags>(is_depth ? VK_IMAGE_ASPECT_DEPTH_BIT
-                                                 : VK_IMAGE_ASPECT_COLOR_BIT),
-        0, 1, 0, 1};
+    view.subresourceRange = {static_cast<VkImageAspectFlags>(is_depth ? VK_IMAGE_ASPECT_DEPTH_BIT
+                                                                      : VK_IMAGE_ASPECT_COLOR_BIT),
+                             0, 1, 0, 1};
     TESSERA_VK_CHECK(c.vk.vkCreateImageView(c.device, &view, nullptr, &image.view));
     views[i] = image.view;
   }
@@ -388,8 +393,11 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
   begin.pClearValues = clears;
   vk.vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
   // Negative height: y = 0 of the framebuffer is NDC y = +1, the top row, as the CPU's viewport.
-  const VkViewport viewport{0.0f, static_cast<float>(height), static_cast<float>(width),
-                            -static_cast<float>(height), 0.0f, 1.0f};
+  VkViewport viewport{};
+  viewport.y = static_cast<float>(height);
+  viewport.width = static_cast<float>(width);
+  viewport.height = -static_cast<float>(height);
+  viewport.maxDepth = 1.0f;
   vk.vkCmdSetViewport(cmd, 0, 1, &viewport);
   const VkRect2D scissor{{0, 0}, {static_cast<uint32_t>(width), static_cast<uint32_t>(height)}};
   vk.vkCmdSetScissor(cmd, 0, 1, &scissor);
@@ -403,7 +411,8 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
   for (uint32_t i = 0; i < packed.objects.size(); ++i) {
     const GpuObject& object = packed.objects[i];
     if (object.triangle_count == 0) continue;
-    vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines[std::min(object.cull, 2u)]);
+    vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                         pipelines[std::min(object.cull, 2u)]);
     vk.vkCmdPushConstants(cmd, pipeline_layout,
                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                           sizeof(uint32_t), &i);
@@ -419,10 +428,9 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
   for (int i = 0; i < kAttachmentCount; ++i) {
     VkBufferImageCopy region{};
     region.bufferOffset = offsets[i];
-    region.imageSubresource = {
-        static_cast<VkImageAspectFlags>(i == 3 ? VK_IMAGE_ASPECT_DEPTH_BIT
-                                               : VK_IMAGE_ASPECT_COLOR_BIT),
-        0, 0, 1};
+    region.imageSubresource = {static_cast<VkImageAspectFlags>(i == 3 ? VK_IMAGE_ASPECT_DEPTH_BIT
+                                                                      : VK_IMAGE_ASPECT_COLOR_BIT),
+                               0, 0, 1};
     region.imageExtent = {static_cast<uint32_t>(width), static_cast<uint32_t>(height), 1};
     vk.vkCmdCopyImageToBuffer(cmd, attachments[i].image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                               readback.buffer, 1, &region);
@@ -431,8 +439,7 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
   // fence).
   memoryBarrier(vk, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-  if (timestamps)
-    vk.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, 1);
+  if (timestamps) vk.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, 1);
   if (Expected<void> r = c.submitAndWait(); !r) return r;
 
   char* bytes = static_cast<char*>(readback.mapped);
@@ -441,14 +448,14 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
   // The CPU's empty pixels are +inf deep; the depth attachment clears to 1.
   for (size_t p = 0; p < pixels; ++p)
     if (ids[p] == kNoTriangle) depths[p] = std::numeric_limits<float>::infinity();
-  copyResults(reinterpret_cast<const uint32_t*>(bytes + offsets[0]), reinterpret_cast<const uint32_t*>(depths), ids,
+  copyResults(reinterpret_cast<const uint32_t*>(bytes + offsets[0]),
+              reinterpret_cast<const uint32_t*>(depths), ids,
               reinterpret_cast<const float*>(bytes + offsets[2]), 4, frame);
   drawSceneLines(scene, options, packed, frame);
 
   if (timestamps) {
     uint64_t ticks[2] = {};
-    if (vk.vkGetQueryPoolResults(c.device, timestamps, 0, 2, sizeof(ticks), ticks,
-                                 sizeof(uint64_t),
+    if (vk.vkGetQueryPoolResults(c.device, timestamps, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS) {
       const uint32_t bits = c.caps.timestamp_valid_bits;
       const uint64_t mask = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
@@ -473,8 +480,8 @@ RasterBackend::RasterBackend(std::unique_ptr<State> state) : state_(std::move(st
 RasterBackend::~RasterBackend() = default;
 
 void RasterBackend::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
-  TESSERA_CHECK(options.width > 0 && options.height > 0 &&
-                options.width <= render::kMaxViewport && options.height <= render::kMaxViewport)
+  TESSERA_CHECK(options.width > 0 && options.height > 0 && options.width <= render::kMaxViewport &&
+                options.height <= render::kMaxViewport)
       << "viewport " << options.width << "x" << options.height << " is outside 1.."
       << render::kMaxViewport;
   resizeFrame(scene, options, frame);
@@ -482,9 +489,15 @@ void RasterBackend::render(const Scene& scene, const RenderOptions& options, Fra
   if (!state_->last_result) clearFrame(frame);
 }
 
-Expected<void> RasterBackend::lastResult() const { return state_->last_result; }
-const RasterStats& RasterBackend::lastStats() const { return state_->stats; }
-const DeviceInfo& RasterBackend::device() const { return state_->context->info; }
+Expected<void> RasterBackend::lastResult() const {
+  return state_->last_result;
+}
+const RasterStats& RasterBackend::lastStats() const {
+  return state_->stats;
+}
+const DeviceInfo& RasterBackend::device() const {
+  return state_->context->info;
+}
 std::vector<std::string> RasterBackend::validationErrors() const {
   return state_->context->validationErrors();
 }

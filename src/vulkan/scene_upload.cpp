@@ -26,15 +26,16 @@ void storeMatrix(const float4x4& m, float out[16]) {
 // a custom projection keeps its x, y and w and has z remapped from [-w, w] to [0, w].
 float4x4 zeroToOneProjection(const Camera& camera, float aspect) {
   if (!camera.projection_override)
-    return perspectiveZeroToOne(radians(camera.fov_y_degrees), aspect, camera.near_z,
-                                camera.far_z);
+    return perspectiveZeroToOne(radians(camera.fov_y_degrees), aspect, camera.near_z, camera.far_z);
   float4x4 remap;
   remap(2, 2) = 0.5f;
   remap(2, 3) = 0.5f;
   return remap * *camera.projection_override;
 }
 
-bool isFinite3(float3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+bool isFinite3(float3 p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
 
 bool levelIsWhole(int width, int height, const std::vector<uint32_t>& texels) {
   return width > 0 && height > 0 && texels.size() >= static_cast<size_t>(width) * height;
@@ -78,8 +79,8 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
 
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
   out.view_projection = scene.camera.projection(aspect) * scene.camera.view();
-  const float4x4 view_projection_zo = zeroToOneProjection(scene.camera, aspect) *
-                                      scene.camera.view();
+  const float4x4 view_projection_zo =
+      zeroToOneProjection(scene.camera, aspect) * scene.camera.view();
 
   out.objects.clear();
   out.models.clear();
@@ -247,16 +248,21 @@ Expected<void> uploadScene(Context& context, const PackedScene& packed, SceneBuf
 
   Expected<void> r = uploadArray(context, buffers.objects, packed.objects.data(),
                                  packed.objects.size(), kStorage, "object");
-  if (r) r = uploadArray(context, buffers.materials, packed.materials.data(),
-                         packed.materials.size(), kStorage, "material");
-  if (r) r = uploadArray(context, buffers.vertices, packed.vertices.data(), packed.vertices.size(),
-                         kStorage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertex");
-  if (r) r = uploadArray(context, buffers.indices, packed.indices.data(), packed.indices.size(),
-                         kStorage | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "index");
-  if (r) r = uploadArray(context, buffers.triangle_materials, packed.triangle_materials.data(),
-                         packed.triangle_materials.size(), kStorage, "triangle material");
-  if (r) r = uploadArray(context, buffers.texels, packed.texels.data(), packed.texels.size(),
-                         kStorage, "texture");
+  if (r)
+    r = uploadArray(context, buffers.materials, packed.materials.data(), packed.materials.size(),
+                    kStorage, "material");
+  if (r)
+    r = uploadArray(context, buffers.vertices, packed.vertices.data(), packed.vertices.size(),
+                    kStorage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertex");
+  if (r)
+    r = uploadArray(context, buffers.indices, packed.indices.data(), packed.indices.size(),
+                    kStorage | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "index");
+  if (r)
+    r = uploadArray(context, buffers.triangle_materials, packed.triangle_materials.data(),
+                    packed.triangle_materials.size(), kStorage, "triangle material");
+  if (r)
+    r = uploadArray(context, buffers.texels, packed.texels.data(), packed.texels.size(), kStorage,
+                    "texture");
   if (!r) return r;
   if (!buffers.color_tables_written) {
     const std::vector<uint32_t> tables = makeColorTables();
@@ -270,28 +276,27 @@ Expected<void> uploadScene(Context& context, const PackedScene& packed, SceneBuf
 }
 
 void destroySceneBuffers(Context& context, SceneBuffers& buffers) {
-  for (Buffer* b : {&buffers.frame, &buffers.objects, &buffers.materials, &buffers.vertices,
-                    &buffers.indices, &buffers.triangle_materials, &buffers.texels,
-                    &buffers.color_tables})
+  for (Buffer* b :
+       {&buffers.frame, &buffers.objects, &buffers.materials, &buffers.vertices, &buffers.indices,
+        &buffers.triangle_materials, &buffers.texels, &buffers.color_tables})
     context.destroyBuffer(*b);
   buffers.color_tables_written = false;
 }
 
 void appendSceneDescriptors(const SceneBuffers& buffers,
                             std::vector<VkDescriptorBufferInfo>& infos) {
-  for (const Buffer* b : {&buffers.frame, &buffers.objects, &buffers.materials, &buffers.vertices,
-                          &buffers.indices, &buffers.triangle_materials, &buffers.texels,
-                          &buffers.color_tables})
+  for (const Buffer* b :
+       {&buffers.frame, &buffers.objects, &buffers.materials, &buffers.vertices, &buffers.indices,
+        &buffers.triangle_materials, &buffers.texels, &buffers.color_tables})
     infos.push_back(VkDescriptorBufferInfo{b->buffer, 0, VK_WHOLE_SIZE});
 }
 
 namespace {
 
 bool drawsLines(const Scene& scene, const RenderOptions& options) {
-  return options.lines &&
-         (!scene.lines.points.empty() || scene.show_world_axes ||
-          std::any_of(scene.objects.begin(), scene.objects.end(),
-                      [](const Object& o) { return o.show_axes; }));
+  return options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
+                           std::any_of(scene.objects.begin(), scene.objects.end(),
+                                       [](const Object& o) { return o.show_axes; }));
 }
 
 }  // namespace

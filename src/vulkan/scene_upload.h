@@ -35,9 +35,9 @@ struct PackedScene {
 };
 
 enum class IndexPolicy {
-  kAsGiven,           // the compute backend checks indices and finiteness itself, as the CPU
-  kDegenerateDropped, // the raster backend: triangles the CPU drops (an index past the end, a
-                      // non-finite vertex) become degenerate, so the rasterizer draws nothing
+  kAsGiven,            // the compute backend checks indices and finiteness itself, as the CPU
+  kDegenerateDropped,  // the raster backend: triangles the CPU drops (an index past the end, a
+                       // non-finite vertex) become degenerate, so the rasterizer draws nothing
 };
 
 // Fills `out` (reusing its memory). An Error for a scene beyond what the shaders can address.

@@ -25,11 +25,11 @@ namespace tessera::vulkan {
 
 // A physical device as the Vulkan loader reports it, and whether each backend can run on it.
 struct DeviceInfo {
-  int index = 0;             // the number --device takes
-  std::string name;          // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
-  std::string type;          // "discrete GPU", "integrated GPU", "virtual GPU", "CPU", "other"
-  std::string driver;        // driver name and version string
-  std::string api_version;   // e.g. "1.3.230"
+  int index = 0;                // the number --device takes
+  std::string name;             // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+  std::string type;             // "discrete GPU", "integrated GPU", "virtual GPU", "CPU", "other"
+  std::string driver;           // driver name and version string
+  std::string api_version;      // e.g. "1.3.230"
   bool compute_usable = false;  // the "vulkan" backend runs on it
   std::string compute_note;     // what is missing, or which paths the backend takes
   bool raster_usable = false;   // the "vulkan-raster" backend runs on it
@@ -135,8 +135,8 @@ class ComputeBackend final : public Backend {
 // What the raster backend did in its last frame.
 struct RasterStats {
   size_t triangles_in = 0;
-  size_t draws = 0;       // one indexed draw per object
-  double gpu_ms = 0;      // render pass and copies, from timestamps (0 without timestamps)
+  size_t draws = 0;   // one indexed draw per object
+  double gpu_ms = 0;  // render pass and copies, from timestamps (0 without timestamps)
   bool timings_valid = false;
 };
 
