@@ -10,6 +10,7 @@ packages=(
   libtinyobjloader-dev libstb-dev libtinygltf-dev nlohmann-json3-dev
   libspng-dev libpng-dev libgif-dev libimagequant-dev
   ffmpeg glmark2-data
+  libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers
 )
 
 missing=()

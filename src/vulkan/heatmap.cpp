@@ -1,4 +1,4 @@
-// makeOccupancyHeatmap(): tile occupancy as an image, on a log scale.
+// makeOccupancyHeatmap(): tile occupancy as an image.
 #include <tessera/vulkan/vulkan_backend.h>
 
 #include <algorithm>
@@ -43,7 +43,7 @@ std::vector<uint32_t> makeOccupancyHeatmap(const TileOccupancy& occupancy, int w
                               packRgb(0, 0, 0));
   if (occupancy.entries.empty() || occupancy.tile_size <= 0) return image;
   const uint32_t most = *std::max_element(occupancy.entries.begin(), occupancy.entries.end());
-  const float scale = most > 0 ? 1.0f / std::log2(1.0f + static_cast<float>(most)) : 0.0f;
+  const float scale = most > 0 ? 1.0f / static_cast<float>(most) : 0.0f;
   const int size = occupancy.tile_size;
   for (int y = 0; y < height; ++y) {
     const int ty = y / size;
@@ -52,7 +52,7 @@ std::vector<uint32_t> makeOccupancyHeatmap(const TileOccupancy& occupancy, int w
       if (tx >= occupancy.columns || ty >= occupancy.rows) continue;
       const uint32_t count = occupancy.entries[static_cast<size_t>(ty) * occupancy.columns + tx];
       if (count == 0) continue;
-      uint32_t color = ramp(std::log2(1.0f + static_cast<float>(count)) * scale);
+      uint32_t color = ramp(static_cast<float>(count) * scale);
       // A darker one-pixel border shows the tile grid.
       if (x % size == 0 || y % size == 0) color = (color >> 1) & 0x7f7f7fu;
       image[static_cast<size_t>(y) * width + x] = color | (255u << 24);

@@ -103,8 +103,9 @@ struct TileOccupancy {
 };
 
 // An RGBA8 image (R in the low byte, row 0 at the top) of width x height pixels that colours each
-// tile by its entry count on a log scale: black for empty, through blue, green and yellow, to
-// white for the fullest tile; a one-pixel darker border separates the tiles.
+// tile by its entry count, in proportion to the fullest tile's: black for an empty tile, then
+// dark blue, blue, green and yellow to white for the fullest; a darker one-pixel border shows the
+// tile grid.
 std::vector<uint32_t> makeOccupancyHeatmap(const TileOccupancy& occupancy, int width, int height);
 
 class ComputeBackend final : public Backend {
