@@ -27,7 +27,8 @@
 #include "shaders/SetupFp32.spv.h"
 #include "shaders/SetupFp64.spv.h"
 #include "shaders/Shade.spv.h"
-#include "shaders/Transform.spv.h"
+#include "shaders/TransformFp32.spv.h"
+#include "shaders/TransformFp64.spv.h"
 #include "vulkan/context.h"
 #include "vulkan/gpu_types.h"
 #include "vulkan/scene_upload.h"
@@ -158,7 +159,8 @@ Expected<void> ComputeBackend::State::createPipelines() {
   };
   std::vector<Entry> entries = {
       {&clear, spirv::kClear},
-      {&transform, spirv::kTransform},
+      {&transform, fp64 ? std::span<const uint32_t>(spirv::kTransformFp64)
+                        : std::span<const uint32_t>(spirv::kTransformFp32)},
       {&setup, fp64 ? std::span<const uint32_t>(spirv::kSetupFp64)
                     : std::span<const uint32_t>(spirv::kSetupFp32)},
       {&bin_args, spirv::kBinArgs},

@@ -106,11 +106,15 @@ struct GpuVertex {
 };
 static_assert(sizeof(GpuVertex) == 48);
 
+// The transform pass's output per vertex (the CPU's VertexBuffer entry).
 struct GpuTransformedVertex {
   float clip[4];
-  float normal[4];
+  float normal[3];
+  uint32_t outcode;
+  int32_t screen[2];  // snapped window position in 1/256 pixel
+  float z, inv_w;
 };
-static_assert(sizeof(GpuTransformedVertex) == 32);
+static_assert(sizeof(GpuTransformedVertex) == 48);
 
 // Setup's output for coverage and depth (the CPU's RasterTriangle).
 struct GpuRasterRecord {

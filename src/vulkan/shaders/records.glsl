@@ -1,9 +1,14 @@
 // The compute backend's working buffers (bindings 8..16 and 18), as src/vulkan/gpu_types.h.
 // Needs GL_EXT_shader_explicit_arithmetic_types_int64.
 
+// The transform pass's output (the CPU's VertexBuffer).
 struct TransformedVertex {
   vec4 clip;
-  vec4 normal;  // world space, unit (zero when the mesh has none)
+  vec3 normal;   // world space, unit (zero when the mesh has none)
+  uint outcode;  // clip planes the vertex is outside of, or kNonFinite (screen.glsl)
+  ivec2 screen;  // snapped window position, valid only without a cut-plane bit in outcode
+  float z;       // window depth
+  float inv_w;   // 1 / clip w
 };
 
 // The CPU's RasterTriangle: edge k covers pixel centre (px, py) (1/256 pixel) when

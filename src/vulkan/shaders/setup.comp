@@ -19,6 +19,7 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "common.glsl"
 #include "records.glsl"
+#include "screen.glsl"
 #include "shading.glsl"
 
 layout(local_size_x = 64) in;
@@ -29,50 +30,7 @@ layout(local_size_x = 64) in;
 #define real float
 #endif
 
-// src/render/clip.h
-const uint kClipNear = 1u;
-const uint kClipFar = 2u;
-const uint kClipLeft = 4u;
-const uint kClipRight = 8u;
-const uint kClipBottom = 16u;
-const uint kClipTop = 32u;
-const uint kGuardLeft = 64u;
-const uint kGuardRight = 128u;
-const uint kGuardBottom = 256u;
-const uint kGuardTop = 512u;
-const uint kRejectPlanes = 63u;
-const uint kCutPlanes = kClipNear | kClipFar | kGuardLeft | kGuardRight | kGuardBottom | kGuardTop;
 const int kMaxClippedVertices = 9;
-
-// a / b rounded once to float. In double the quotient is correctly rounded even where a GPU's
-// float division is allowed 2.5 ulp of error (a double quotient rounded to float is the
-// correctly rounded float quotient).
-float divideRounded(float a, float b) {
-#if TESSERA_FP64
-  precise double q = double(a) / double(b);
-  return float(q);
-#else
-  precise float q = a / b;
-  return q;
-#endif
-}
-
-uint outcode(vec4 p) {
-  uint code = 0u;
-  if (p.z < -p.w) code |= kClipNear;
-  if (p.z > p.w) code |= kClipFar;
-  if (p.x < -p.w) code |= kClipLeft;
-  if (p.x > p.w) code |= kClipRight;
-  if (p.y < -p.w) code |= kClipBottom;
-  if (p.y > p.w) code |= kClipTop;
-  precise float gx = frame.guard_x * p.w;
-  precise float gy = frame.guard_y * p.w;
-  if (p.x < -gx) code |= kGuardLeft;
-  if (p.x > gx) code |= kGuardRight;
-  if (p.y < -gy) code |= kGuardBottom;
-  if (p.y > gy) code |= kGuardTop;
-  return code;
-}
 
 // A clipped vertex: its clip-space position and its weights over the source triangle's three
 // vertices (the CPU carries the attributes themselves; the weights give the same values).
@@ -149,24 +107,6 @@ struct TriangleContext {
   vec4 color[3];
 };
 
-// render::ScreenVertex: window position in 1/256 pixel (y down), window depth, 1 / clip w.
-struct ScreenVertex {
-  int x, y;
-  float z, inv_w;
-};
-
-// render::projectToScreen, the one place clip space becomes window space: snapping rounds half
-// to even (lrint).
-ScreenVertex projectToScreen(vec4 clip) {
-  const float inv_w = divideRounded(1.0, clip.w);
-  precise float wx = (clip.x * inv_w * 0.5 + 0.5) * float(frame.width);
-  precise float wy = (0.5 - clip.y * inv_w * 0.5) * float(frame.height);
-  precise float z = clip.z * inv_w * 0.5 + 0.5;
-  precise float sx = wx * float(kSubpixelOne);
-  precise float sy = wy * float(kSubpixelOne);
-  return ScreenVertex(int(roundEven(sx)), int(roundEven(sy)), z, inv_w);
-}
-
 // Edge from a to b: (b - a) x (p - a) with y down; the top-left bias folded into c.
 void makeEdge(int ax, int ay, int bx, int by, out int a, out int b, out int64_t c) {
   a = ay - by;
@@ -191,11 +131,9 @@ vec4 weighted4(vec4 values[3], vec3 w) {
 }
 
 // src/render/setup.cpp, setupRaster then setupShade: true when the triangle is visible.
-bool setupTriangle(ClipVertex v[3], TriangleContext ctx, out RasterRecord raster,
-                   out ShadeRecord shade) {
-  ScreenVertex sv[3];
-  for (int i = 0; i < 3; ++i) sv[i] = projectToScreen(v[i].position);
-
+// sv: the snapped vertices; v: their weights over the source triangle (when clipped).
+bool setupTriangle(ScreenVertex sv[3], ClipVertex v[3], TriangleContext ctx,
+                   out RasterRecord raster, out ShadeRecord shade) {
   // Signed area on the snapped grid, y down: front faces (counter-clockwise in NDC) are negative.
   int64_t area = int64_t(sv[1].x - sv[0].x) * int64_t(sv[2].y - sv[0].y) -
                  int64_t(sv[1].y - sv[0].y) * int64_t(sv[2].x - sv[0].x);
@@ -311,8 +249,6 @@ uint objectOfTriangle(uint t) {
   return lo - 1u;
 }
 
-bool isFiniteVec4(vec4 p) { return !any(isinf(p)) && !any(isnan(p)); }
-
 void emit(uint slot, RasterRecord raster, ShadeRecord shade) {
   raster_records[slot] = raster;
   shade_records[slot] = shade;
@@ -332,16 +268,18 @@ void main() {
   }
 
   ClipVertex v[3];
+  ScreenVertex sv[3];
   uint codes[3];
-  bool finite = true;
   for (int k = 0; k < 3; ++k) {
-    v[k].position = transformed[object.vertex_base + idx[k]].clip;
+    const TransformedVertex tv = transformed[object.vertex_base + idx[k]];
+    v[k].position = tv.clip;
     v[k].weights = vec3(k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0);
-    finite = finite && isFiniteVec4(v[k].position);
-    codes[k] = outcode(v[k].position);
+    codes[k] = tv.outcode;
+    sv[k] = ScreenVertex(tv.screen.x, tv.screen.y, tv.z, tv.inv_w);
   }
   // Non-finite vertices drop their triangle; so does one wholly outside a frustum plane.
-  if (!finite || (codes[0] & codes[1] & codes[2] & kRejectPlanes) != 0u) {
+  if (((codes[0] | codes[1] | codes[2]) & kNonFinite) != 0u ||
+      (codes[0] & codes[1] & codes[2] & kRejectPlanes) != 0u) {
     atomicAdd(counters.culled, 1u);
     return;
   }
@@ -357,7 +295,7 @@ void main() {
   vec3 p[3];
   for (int k = 0; k < 3; ++k) {
     const uint g = object.vertex_base + idx[k];
-    ctx.normal[k] = transformed[g].normal.xyz;
+    ctx.normal[k] = transformed[g].normal;
     ctx.uv[k] = ctx.has_uv ? vertexUv(g) : vec2(0.0);
     ctx.color[k] = ctx.has_color ? vertexColor(g) : vec4(1.0);
     p[k] = vertexPosition(g);
@@ -374,7 +312,7 @@ void main() {
   const uint cut = (codes[0] | codes[1] | codes[2]) & kCutPlanes;
   if (cut == 0u) {
     ctx.clipped = false;
-    if (setupTriangle(v, ctx, raster, shade)) {
+    if (setupTriangle(sv, v, ctx, raster, shade)) {
       raster.key = t << 3;
       emit(t, raster, shade);
     } else {
@@ -406,7 +344,10 @@ void main() {
     const uint piece = uint(k - 1);
     if (piece > 0u && base + piece - 1u >= frame.extra_capacity) continue;
     const ClipVertex fan[3] = ClipVertex[3](polygon[src][0], polygon[src][k], polygon[src][k + 1]);
-    if (setupTriangle(fan, ctx, raster, shade)) {
+    const ScreenVertex fan_screen[3] = ScreenVertex[3](projectToScreen(fan[0].position),
+                                                       projectToScreen(fan[1].position),
+                                                       projectToScreen(fan[2].position));
+    if (setupTriangle(fan_screen, fan, ctx, raster, shade)) {
       raster.key = (t << 3) | piece;
       emit(piece == 0u ? t : frame.triangle_count + base + piece - 1u, raster, shade);
       any_visible = true;

@@ -1,10 +1,13 @@
 #version 460
-// Pass 2, transform: every vertex of every object to clip space (P * V * M, OpenGL clip space)
-// and its normal to world space, as the CPU's src/render/vertex.cpp: the same sums in the same
-// order, so clip positions are bit-identical.
+// Pass 2, transform: every vertex of every object to clip space (P * V * M, OpenGL clip space),
+// its outcode and, inside the guard band and the depth range, 1/w and its snapped window
+// position; its normal to world space. As the CPU's src/render/vertex.cpp: the same sums in the
+// same order, so positions are bit-identical, and a vertex shared by many triangles is projected
+// once.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "common.glsl"
 #include "records.glsl"
+#include "screen.glsl"
 
 layout(local_size_x = 256) in;
 
@@ -32,6 +35,11 @@ void main() {
   vec3 normal = vec3(0.0);
   if ((object.flags & kObjectHasNormals) != 0u)
     normal = normalizeAsCpu(multiply3x3(object.normal_matrix, vertexNormal(v)));
-  transformed[v].clip = vec4(x, y, z, w);
-  transformed[v].normal = vec4(normal, 0.0);
+  const vec4 clip = vec4(x, y, z, w);
+  const bool finite = !any(isinf(clip)) && !any(isnan(clip));
+  const uint code = finite ? outcode(clip) : kNonFinite;
+  ScreenVertex screen = ScreenVertex(0, 0, 0.0, 0.0);
+  if ((code & kCutPlanes) == 0u) screen = projectToScreen(clip);
+  transformed[v] = TransformedVertex(clip, normal, code, ivec2(screen.x, screen.y), screen.z,
+                                     screen.inv_w);
 }
