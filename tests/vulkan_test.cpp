@@ -5,11 +5,17 @@
 // test fails on any validation error; Vulkan.ValidationLayersReportNoErrors turns it on by itself.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <random>
+#include <sstream>
 #include <string>
 
 #include <tessera/render/cpu_renderer.h>
@@ -733,3 +739,92 @@ TEST(Vulkan, ValidationLayersReportNoErrors) {
   EXPECT_TRUE(fallback->validationErrors().empty());
   EXPECT_TRUE(raster->validationErrors().empty());
 }
+
+// ---- the CLI ----
+#ifdef TESSERA_EXE
+
+namespace {
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Runs tessera with `args` (shell-quoted) and `environment` (NAME=value ... or empty) in a
+// fresh folder, which `folder` receives.
+CliResult runCli(const std::string& environment, const std::string& args,
+                 std::filesystem::path* folder = nullptr) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() / ("tessera_vulkan_cli_" + std::to_string(::getpid()) + "_" +
+                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string command = "cd '" + dir.string() + "' && " + environment +
+                              " '" TESSERA_EXE "' " + args + " > '" + out.string() + "' 2> '" +
+                              err.string() + "' < /dev/null";
+  const int status = std::system(command.c_str());
+  CliResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  fs::remove(out);
+  fs::remove(err);
+  if (folder) *folder = dir;
+  return r;
+}
+
+}  // namespace
+
+TEST(VulkanCli, DevicesListsEachDeviceAndBackend) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  const CliResult r = runCli("", "devices");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("0: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("vulkan:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("vulkan-raster:"), std::string::npos) << r.out;
+}
+
+TEST(VulkanCli, CubeRendersWithBothVulkanBackends) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  for (const char* backend : {"vulkan", "vulkan-raster"}) {
+    std::filesystem::path dir;
+    const CliResult r = runCli(
+        "", std::string("cube -w 64 -h 48 -fps 4 -dur 0.5s -out c.gif --backend ") + backend, &dir);
+    EXPECT_EQ(r.exit_code, 0) << backend << ": " << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "c.gif")) << backend;
+    std::filesystem::remove_all(dir);
+  }
+}
+
+TEST(VulkanCli, MissingLoaderFailsWithAMessageAndNoOutput) {
+  std::filesystem::path dir;
+  const CliResult r = runCli("TESSERA_VULKAN_LOADER=/nonexistent/libvulkan.so.1",
+                             "cube -w 64 -h 48 -dur 0.25s -out c.gif --backend vulkan", &dir);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("cannot open the Vulkan loader"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.gif"));
+  std::filesystem::remove_all(dir);
+  const CliResult devices = runCli("TESSERA_VULKAN_LOADER=/nonexistent/libvulkan.so.1", "devices");
+  EXPECT_EQ(devices.exit_code, 1);
+  EXPECT_NE(devices.err.find("Vulkan loader"), std::string::npos) << devices.err;
+}
+
+TEST(VulkanCli, DeviceOutOfRangeFails) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  const CliResult r = runCli("",
+                             "cube -w 64 -h 48 -dur 0.25s -out c.gif --backend vulkan-raster "
+                             "--device 40");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("device 40 does not exist"), std::string::npos) << r.err;
+}
+
+#endif  // TESSERA_EXE
