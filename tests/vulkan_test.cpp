@@ -429,6 +429,44 @@ TEST(VulkanCompute, NormalAovMatchesCpu) {
   EXPECT_EQ(close, drawn);
 }
 
+TEST(VulkanCompute, EdgeCasesMatchCpu) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  std::unique_ptr<RasterBackend> raster = makeRaster();
+  ASSERT_TRUE(gpu && raster);
+  // An empty scene, an object without a mesh between two with, odd and tiny viewports, no
+  // AOVs at all.
+  Scene empty;
+  empty.background = {0.3f, 0.1f, 0.2f, 1.0f};
+  Scene gaps = cubeScene();
+  gaps.objects.insert(gaps.objects.begin(), Object{});
+  gaps.objects.push_back(Object{});
+  gaps.objects.push_back(cubeScene(1.9f).objects[0]);
+  gaps.objects.back().transform.translation = {0.4f, -0.3f, -0.5f};
+  struct Case {
+    const Scene* scene;
+    int width, height;
+  };
+  for (const Case& c : {Case{&empty, 40, 30}, Case{&gaps, 1, 1}, Case{&gaps, 17, 9},
+                        Case{&gaps, 300, 7}, Case{&gaps, 131, 97}}) {
+    for (bool aovs : {true, false}) {
+      RenderOptions o = options(c.width, c.height);
+      o.depth = o.ids = aovs;
+      const Frame cpu = renderCpu(*c.scene, o);
+      Frame frame;
+      gpu->render(*c.scene, o, frame);
+      ASSERT_TRUE(gpu->lastResult().ok()) << gpu->lastResult().error().message;
+      EXPECT_EQ(frame.color, cpu.color) << c.width << "x" << c.height;
+      EXPECT_EQ(frame.triangle_id, cpu.triangle_id) << c.width << "x" << c.height;
+      EXPECT_EQ(frame.depth, cpu.depth) << c.width << "x" << c.height;
+      raster->render(*c.scene, o, frame);
+      ASSERT_TRUE(raster->lastResult().ok()) << raster->lastResult().error().message;
+      EXPECT_EQ(frame.triangle_id.size(), cpu.triangle_id.size());
+      EXPECT_EQ(frame.depth.size(), cpu.depth.size());
+    }
+  }
+}
+
 // ---- the fallbacks: still the CPU's image ----
 
 TEST(VulkanCompute, ThirtyTwoBitCommitMatchesCpu) {

@@ -81,7 +81,10 @@ struct ComputeBackend::State {
 ComputeBackend::State::~State() {
   if (!context) return;
   Context& c = *context;
-  if (!c.waitForPending()) return;  // the Context leaks everything rather than hang
+  // Teardown waits at least 5 s (still bounded) for a frame a short timeout abandoned; past that
+  // the Context leaks everything rather than hang.
+  c.fence_timeout_ms = std::max<uint32_t>(c.fence_timeout_ms, 5000);
+  if (!c.waitForPending()) return;
   VkDevice device = c.device;
   for (VkPipeline p : {clear, transform, setup, bin_args, bin, scan, raster, raster_id, shade})
     if (p) c.vk.vkDestroyPipeline(device, p, nullptr);

@@ -379,6 +379,7 @@ Context::~Context() {
   if (device) {
     // Never destroy what the GPU may still use; and never wait without bound. A device that
     // does not finish within the timeout leaks its objects rather than hanging the program.
+    fence_timeout_ms = std::max<uint32_t>(fence_timeout_ms, 5000);
     if (pending_ && !waitForPending()) {
       std::cerr << "tessera: vulkan: the GPU is still busy; leaking its resources\n";
       return;

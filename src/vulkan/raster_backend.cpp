@@ -69,7 +69,10 @@ struct RasterBackend::State {
 RasterBackend::State::~State() {
   if (!context) return;
   Context& c = *context;
-  if (!c.waitForPending()) return;  // the Context leaks everything rather than hang
+  // Teardown waits at least 5 s (still bounded) for a frame a short timeout abandoned; past that
+  // the Context leaks everything rather than hang.
+  c.fence_timeout_ms = std::max<uint32_t>(c.fence_timeout_ms, 5000);
+  if (!c.waitForPending()) return;
   destroyTargets();
   for (VkPipeline p : pipelines)
     if (p) c.vk.vkDestroyPipeline(c.device, p, nullptr);
