@@ -312,8 +312,9 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       }
     }
     ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
-    s.shade_tile(visibility, tile, s.chunks, s.chunk_count, scene, options.normals, shaded);
-    resolveTile(visibility, shaded, background, frame);
+    s.shade_tile(visibility, tile, s.chunks, s.chunk_count, scene, options.normals, background,
+                 shaded);
+    resolveTile(visibility, shaded, frame);
   });
 
   const Clock::time_point t_tiles = Clock::now();

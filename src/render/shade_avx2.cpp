@@ -5,8 +5,8 @@ namespace tessera::render {
 
 void shadeTileAvx2(const TileVisibility& tile, int tile_index,
                    const std::vector<TriangleChunk>& chunks, size_t chunk_count,
-                   const Scene& scene, bool want_normals, ShadedTile& out) {
-  shadeTileKernel(tile, tile_index, chunks, chunk_count, scene, want_normals, out);
+                   const Scene& scene, bool want_normals, uint32_t background, ShadedTile& out) {
+  shadeTileKernel(tile, tile_index, chunks, chunk_count, scene, want_normals, background, out);
 }
 
 }  // namespace tessera::render

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 
+#include <tessera/scene/color.h>
+
 #include "render/shade.h"
 #include "render/simd_lanes.h"
 
@@ -46,6 +48,22 @@ TESSERA_LANES_INLINE Vec3x8 irradiance8(const Scene& scene, const Vec3x8& n) {
     e.z = e.z + select(lit, splat(light.color.z) * cos_theta, zero);
   }
   return e;
+}
+
+// Eight encodeSrgb8s (tessera/scene/color.h), the same operations lane by lane.
+TESSERA_LANES_INLINE I32x8 encodeSrgb8x8(F32x8 linear, const SrgbEncodeTable& table) {
+  const F32x8 zero = splat(0.0f), one = splat(1.0f);
+  const F32x8 c = select(positive(linear), select(lessThan(linear, one), linear, one), zero);
+  const I32x8 small = lessThan(c, splat(0x1p-12f));
+  const I32x8 bits = bitsOf(c);
+  const I32x8 bucket = select(
+      small, splat(int32_t{0}),
+      shiftRight(bits - splat(static_cast<int32_t>(SrgbEncodeTable::kFirstBits)),
+                 SrgbEncodeTable::kShift));
+  const F32x8 t = toFloat(bits & splat(static_cast<int32_t>((1u << SrgbEncodeTable::kShift) - 1)));
+  const F32x8 code = select(small, c * splat(12.92f * 255.0f),
+                            gather(table.offset, bucket) + gather(table.slope, bucket) * t);
+  return truncate(code + splat(0.5f));
 }
 
 template <typename V>
@@ -98,10 +116,34 @@ TESSERA_LANES_INLINE void shadeRow8(const ShadeTriangle& t, const Scene& scene, 
   storeMasked(out.triangle_id + index, mask, splat(static_cast<int32_t>(t.triangle_id + 1)));
 }
 
+// Encodes the shaded pixels of the tile to sRGB, eight at a time; the background elsewhere.
+TESSERA_LANES_INLINE void encodeTile(const TileVisibility& tile, uint32_t background,
+                                     ShadedTile& out) {
+  const SrgbEncodeTable& table = srgbEncodeTable();
+  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
+  const I32x8 fill = splat(static_cast<int32_t>(background));
+  const I32x8 opaque = splat(static_cast<int32_t>(0xff000000u));
+  for (int ty = 0; ty < tile.height; ++ty) {
+    for (int tx = 0; tx < tile.width; tx += 8) {
+      const int i = ty * kTileSize + tx;
+      const I32x8 drawn = ~equal(load<I32x8>(tile.key + i), empty);
+      if (!any(drawn)) {
+        store(out.rgba + i, fill);
+        continue;
+      }
+      const I32x8 rgba = encodeSrgb8x8(load<F32x8>(out.red + i), table) |
+                         shiftLeft(encodeSrgb8x8(load<F32x8>(out.green + i), table), 8) |
+                         shiftLeft(encodeSrgb8x8(load<F32x8>(out.blue + i), table), 16) | opaque;
+      store(out.rgba + i, select(drawn, rgba, fill));
+    }
+  }
+}
+
 TESSERA_LANES_INLINE void shadeTileKernel(const TileVisibility& tile, int tile_index,
                                           const std::vector<TriangleChunk>& chunks,
                                           size_t chunk_count, const Scene& scene,
-                                          bool want_normals, ShadedTile& out) {
+                                          bool want_normals, uint32_t background,
+                                          ShadedTile& out) {
   const int tile_x1 = tile.x0 + tile.width - 1, tile_y1 = tile.y0 + tile.height - 1;
   for (size_t c = 0; c < chunk_count; ++c) {
     const TriangleChunk& chunk = chunks[c];
@@ -127,6 +169,7 @@ TESSERA_LANES_INLINE void shadeTileKernel(const TileVisibility& tile, int tile_i
       }
     }
   }
+  encodeTile(tile, background, out);
 }
 
 }  // namespace

@@ -39,6 +39,11 @@ TESSERA_LANES_BINARY(&)
 TESSERA_LANES_BINARY(|)
 #undef TESSERA_LANES_BINARY
 
+TESSERA_LANES_INLINE Lanes<int32_t> operator~(Lanes<int32_t> a) {
+  for (int l = 0; l < 8; ++l) a.v[l] = ~a.v[l];
+  return a;
+}
+
 template <typename T>
 TESSERA_LANES_INLINE Lanes<T> splat(T x) {
   Lanes<T> r;
@@ -103,6 +108,31 @@ TESSERA_LANES_INLINE F32x8 squareRoot(F32x8 a) {
   for (int l = 0; l < 8; ++l) r.v[l] = std::sqrt(a.v[l]);
   return r;
 }
+TESSERA_LANES_INLINE I32x8 bitsOf(F32x8 a) {
+  I32x8 r;
+  std::memcpy(&r, &a, sizeof r);
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 shiftRight(I32x8 a, int n) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] >> n;
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 shiftLeft(I32x8 a, int n) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = static_cast<int32_t>(static_cast<uint32_t>(a.v[l]) << n);
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 truncate(F32x8 a) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = static_cast<int32_t>(a.v[l]);
+  return r;
+}
+TESSERA_LANES_INLINE F32x8 gather(const float* table, I32x8 index) {
+  F32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = table[index.v[l]];
+  return r;
+}
 TESSERA_LANES_INLINE float lane(F32x8 a, int l) { return a.v[l]; }
 TESSERA_LANES_INLINE int32_t lane(I32x8 a, int l) { return a.v[l]; }
 TESSERA_LANES_INLINE void setLane(F32x8& a, int l, float x) { a.v[l] = x; }
@@ -112,6 +142,7 @@ TESSERA_LANES_INLINE void setLane(F32x8& a, int l, float x) { a.v[l] = x; }
 typedef int32_t I32x8 __attribute__((vector_size(32)));
 typedef int64_t I64x8 __attribute__((vector_size(64)));
 typedef float F32x8 __attribute__((vector_size(32)));
+typedef uint32_t U32x8 __attribute__((vector_size(32)));
 
 template <typename T>
 TESSERA_LANES_INLINE auto splat(T x) {
@@ -145,6 +176,17 @@ TESSERA_LANES_INLINE I32x8 positive(F32x8 a) { return a > 0.0f; }
 TESSERA_LANES_INLINE F32x8 squareRoot(F32x8 a) {
   F32x8 r;
   for (int l = 0; l < 8; ++l) r[l] = __builtin_sqrtf(a[l]);  // becomes one vector sqrt
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 bitsOf(F32x8 a) { return reinterpret_cast<I32x8>(a); }
+TESSERA_LANES_INLINE I32x8 shiftRight(I32x8 a, int n) { return a >> n; }
+TESSERA_LANES_INLINE I32x8 shiftLeft(I32x8 a, int n) {
+  return reinterpret_cast<I32x8>(reinterpret_cast<U32x8>(a) << n);
+}
+TESSERA_LANES_INLINE I32x8 truncate(F32x8 a) { return __builtin_convertvector(a, I32x8); }
+TESSERA_LANES_INLINE F32x8 gather(const float* table, I32x8 index) {
+  F32x8 r;
+  for (int l = 0; l < 8; ++l) r[l] = table[index[l]];
   return r;
 }
 TESSERA_LANES_INLINE float lane(F32x8 a, int l) { return a[l]; }
