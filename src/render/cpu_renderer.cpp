@@ -11,6 +11,7 @@
 #include <tessera/render/cpu_renderer.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <memory>
 
@@ -125,10 +126,10 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
       chunk.raster.emplace_back();
       chunk.shade.emplace_back();
     }
-    VertexAttributes a[3];
-    attributes(a);
+    const std::array<VertexAttributes, 3> a = attributes();
     chunk.raster[local] = raster;
-    setupShade(ctx, sv, a, orientation, raster, face_normal(), id, material, chunk.shade[local]);
+    setupShade(ctx, sv, a.data(), orientation, raster, face_normal(), id, material,
+               chunk.shade[local]);
     chunk.bins.add(grid, raster, local);
     return true;
   };
@@ -180,7 +181,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         return xf.normal_matrix * cross(p1 - p0, p2 - p0) * xf.winding_sign;
       };
       auto mesh_attributes = [&](int k) {
-        return VertexAttributes{vertices.normal(g[k]), has_uv ? mesh.uvs[idx[k]] : float2{},
+        return VertexAttributes{vertices.normal[g[k]], has_uv ? mesh.uvs[idx[k]] : float2{},
                                 has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1}};
       };
 
@@ -188,8 +189,9 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
       if (!cut) {
         const ScreenVertex sv[3] = {vertices.screen[g[0]], vertices.screen[g[1]],
                                     vertices.screen[g[2]]};
-        auto attributes = [&](VertexAttributes a[3]) {
-          for (int k = 0; k < 3; ++k) a[k] = mesh_attributes(k);
+        auto attributes = [&] {
+          return std::array<VertexAttributes, 3>{mesh_attributes(0), mesh_attributes(1),
+                                                 mesh_attributes(2)};
         };
         if (!emit(ctx, sv, attributes, face_normal, id, material)) ++chunk.culled;
         continue;
@@ -208,8 +210,11 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         const ClipVertex* fan[3] = {&polygon[0], &polygon[k], &polygon[k + 1]};
         ScreenVertex sv[3];
         for (int i = 0; i < 3; ++i) sv[i] = projectToScreen(fan[i]->position, width, height);
-        auto attributes = [&](VertexAttributes a[3]) {
-          for (int i = 0; i < 3; ++i) a[i] = {fan[i]->normal, fan[i]->uv, fan[i]->color};
+        auto attributes = [&] {
+          return std::array<VertexAttributes, 3>{
+              VertexAttributes{fan[0]->normal, fan[0]->uv, fan[0]->color},
+              VertexAttributes{fan[1]->normal, fan[1]->uv, fan[1]->color},
+              VertexAttributes{fan[2]->normal, fan[2]->uv, fan[2]->color}};
         };
         any = emit(ctx, sv, attributes, face_normal, id, material) || any;
       }

@@ -17,8 +17,9 @@ ObjectTransforms makeObjectTransforms(const Object& object, const float4x4& view
 
 void VertexBuffer::resize(size_t count) {
   for (std::vector<float>* v :
-       {&clip_x, &clip_y, &clip_z, &clip_w, &normal_x, &normal_y, &normal_z})
+       {&clip_x, &clip_y, &clip_z, &clip_w})
     v->resize(count);
+  normal.resize(count);
   outcode.resize(count);
   screen.resize(count);
 }
@@ -48,7 +49,7 @@ void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms,
   if (mesh.normals.size() != mesh.positions.size()) {
     for (size_t i = first; i < first + count; ++i) {
       const size_t o = base + i;
-      out.normal_x[o] = out.normal_y[o] = out.normal_z[o] = 0.0f;
+      out.normal[o] = float3{};
     }
     return;
   }
@@ -56,9 +57,7 @@ void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms,
   for (size_t i = first; i < first + count; ++i) {
     float3 w = normalize(n * mesh.normals[i]);
     const size_t o = base + i;
-    out.normal_x[o] = w.x;
-    out.normal_y[o] = w.y;
-    out.normal_z[o] = w.z;
+    out.normal[o] = w;
   }
 }
 
