@@ -4,7 +4,9 @@
 
 namespace tessera::cli {
 
-std::vector<std::string> backendNames() { return {"cpu"}; }
+std::vector<std::string> backendNames() {
+  return {"cpu"};
+}
 
 Expected<std::unique_ptr<Backend>> makeBackend(const std::string& name, int workers, int device) {
   (void)device;

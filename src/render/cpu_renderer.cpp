@@ -21,6 +21,7 @@
 #include "render/bin.h"
 #include "render/clip.h"
 #include "render/fixed_point.h"
+#include "render/kernels.h"
 #include "render/lines.h"
 #include "render/raster.h"
 #include "render/resolve.h"
@@ -47,11 +48,7 @@ struct VertexJob {
 }  // namespace
 
 struct CpuRenderer::State {
-  State(int workers, RasterIsa isa)
-      : pool(workers),
-        raster_isa(isa),
-        raster_triangle(rasterTriangleFunction(isa)),
-        shade_tile(shadeTileFunction(isa)) {
+  State(int workers, Isa isa) : pool(workers), isa(isa), kernels(tileKernels(isa)) {
     for (int i = 0; i < pool.size(); ++i) {
       tiles.push_back(std::make_unique<TileVisibility>());
       shaded.push_back(std::make_unique<ShadedTile>());
@@ -59,9 +56,8 @@ struct CpuRenderer::State {
   }
 
   WorkerPool pool;
-  RasterIsa raster_isa;
-  RasterTriangleFn raster_triangle;
-  ShadeTileFn shade_tile;
+  Isa isa;
+  TileKernels kernels;
   std::vector<ObjectTransforms> objects;
   std::vector<VertexJob> vertex_jobs;
   VertexBuffer vertices;
@@ -78,14 +74,19 @@ struct CpuRenderer::State {
 
 namespace {
 
-RasterIsa chooseIsa(SimdLevel level) {
-  const RasterIsa best = detectRasterIsa();
+Isa chooseIsa(SimdLevel level) {
+  const Isa best = detectIsa();
   switch (level) {
-    case SimdLevel::kAuto: return best;
-    case SimdLevel::kScalar: return RasterIsa::kScalar;
-    case SimdLevel::kSse2: return best >= RasterIsa::kSse2 ? RasterIsa::kSse2 : best;
-    case SimdLevel::kAvx2: return best >= RasterIsa::kAvx2 ? RasterIsa::kAvx2 : best;
-    case SimdLevel::kAvx512: return best;
+    case SimdLevel::kAuto:
+      return best;
+    case SimdLevel::kScalar:
+      return Isa::kScalar;
+    case SimdLevel::kSse2:
+      return best >= Isa::kSse2 ? Isa::kSse2 : best;
+    case SimdLevel::kAvx2:
+      return best >= Isa::kAvx2 ? Isa::kAvx2 : best;
+    case SimdLevel::kAvx512:
+      return best;
   }
   return best;
 }
@@ -96,9 +97,15 @@ CpuRenderer::CpuRenderer(int workers, SimdLevel simd)
     : state_(std::make_unique<State>(workers, chooseIsa(simd))) {}
 CpuRenderer::~CpuRenderer() = default;
 
-int CpuRenderer::workerCount() const { return state_->pool.size(); }
-const char* CpuRenderer::simdName() const { return rasterIsaName(state_->raster_isa); }
-const PipelineStats& CpuRenderer::lastStats() const { return state_->stats; }
+int CpuRenderer::workerCount() const {
+  return state_->pool.size();
+}
+const char* CpuRenderer::simdName() const {
+  return isaName(state_->isa);
+}
+const PipelineStats& CpuRenderer::lastStats() const {
+  return state_->stats;
+}
 
 void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
                                     const GuardBand& guard, TriangleChunk& chunk) const {
@@ -227,12 +234,12 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
 void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
   TESSERA_CHECK(options.width > 0 && options.height > 0 && options.width <= kMaxViewport &&
                 options.height <= kMaxViewport)
-      << "viewport " << options.width << "x" << options.height << " is outside 1.."
-      << kMaxViewport;
+      << "viewport " << options.width << "x" << options.height << " is outside 1.." << kMaxViewport;
   State& s = *state_;
-  const bool draws_lines = options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
-                                             std::any_of(scene.objects.begin(), scene.objects.end(),
-                                                         [](const Object& o) { return o.show_axes; }));
+  const bool draws_lines =
+      options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
+                        std::any_of(scene.objects.begin(), scene.objects.end(),
+                                    [](const Object& o) { return o.show_axes; }));
   frame.resize(options.width, options.height, options.depth || draws_lines, options.ids,
                options.normals);
 
@@ -252,8 +259,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     if (!object.mesh) continue;
     const size_t count = object.mesh->vertexCount();
     for (size_t first = 0; first < count; first += kVerticesPerJob)
-      s.vertex_jobs.push_back({static_cast<uint32_t>(i), first,
-                               std::min(kVerticesPerJob, count - first)});
+      s.vertex_jobs.push_back(
+          {static_cast<uint32_t>(i), first, std::min(kVerticesPerJob, count - first)});
     vertex_total += count;
     triangle_total += object.mesh->triangleCount();
   }
@@ -313,12 +320,13 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       const uint32_t* end = chunk.bins.end(tile);
       for (const uint32_t* it = chunk.bins.begin(tile); it != end; ++it) {
         if (it + 1 != end) __builtin_prefetch(&chunk.raster[it[1]]);
-        s.raster_triangle(chunk.raster[*it], makeKey(static_cast<uint32_t>(c), *it), visibility);
+        s.kernels.raster_triangle(chunk.raster[*it], makeKey(static_cast<uint32_t>(c), *it),
+                                  visibility);
       }
     }
     ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
-    s.shade_tile(visibility, tile, s.chunks, s.chunk_count, scene, options.normals, background,
-                 shaded);
+    s.kernels.shade_tile(visibility, tile, s.chunks, s.chunk_count, scene, options.normals,
+                         background, shaded);
     resolveTile(visibility, shaded, frame);
   });
 

@@ -23,10 +23,10 @@ void resolveTile(const TileVisibility& tile, const ShadedTile& shaded, Frame& fr
     }
     if (normals) {
       for (int tx = 0; tx < tile.width; ++tx)
-        frame.normal[row + tx] =
-            tile.key[t0 + tx] == kEmptyKey
-                ? float3{}
-                : float3{shaded.normal_x[t0 + tx], shaded.normal_y[t0 + tx], shaded.normal_z[t0 + tx]};
+        frame.normal[row + tx] = tile.key[t0 + tx] == kEmptyKey
+                                     ? float3{}
+                                     : float3{shaded.normal_x[t0 + tx], shaded.normal_y[t0 + tx],
+                                              shaded.normal_z[t0 + tx]};
     }
   }
 }

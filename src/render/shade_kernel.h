@@ -39,9 +39,9 @@ TESSERA_LANES_INLINE Vec3x8 irradiance8(const Scene& scene, const Vec3x8& n) {
   Vec3x8 e{splat(scene.ambient.x), splat(scene.ambient.y), splat(scene.ambient.z)};
   const F32x8 zero = splat(0.0f);
   for (const DirectionalLight& light : scene.lights) {
-    const F32x8 cos_theta = zero - (n.x * splat(light.direction.x) +
-                                    n.y * splat(light.direction.y) +
-                                    n.z * splat(light.direction.z));
+    const F32x8 cos_theta =
+        zero - (n.x * splat(light.direction.x) + n.y * splat(light.direction.y) +
+                n.z * splat(light.direction.z));
     const I32x8 lit = positive(cos_theta);
     e.x = e.x + select(lit, splat(light.color.x) * cos_theta, zero);
     e.y = e.y + select(lit, splat(light.color.y) * cos_theta, zero);
@@ -56,10 +56,10 @@ TESSERA_LANES_INLINE I32x8 encodeSrgb8x8(F32x8 linear, const SrgbEncodeTable& ta
   const F32x8 c = select(positive(linear), select(lessThan(linear, one), linear, one), zero);
   const I32x8 small = lessThan(c, splat(0x1p-12f));
   const I32x8 bits = bitsOf(c);
-  const I32x8 bucket = select(
-      small, splat(int32_t{0}),
-      shiftRight(bits - splat(static_cast<int32_t>(SrgbEncodeTable::kFirstBits)),
-                 SrgbEncodeTable::kShift));
+  const I32x8 bucket =
+      select(small, splat(int32_t{0}),
+             shiftRight(bits - splat(static_cast<int32_t>(SrgbEncodeTable::kFirstBits)),
+                        SrgbEncodeTable::kShift));
   const F32x8 t = toFloat(bits & splat(static_cast<int32_t>((1u << SrgbEncodeTable::kShift) - 1)));
   const F32x8 code = select(small, c * splat(12.92f * 255.0f),
                             gather(table.offset, bucket) + gather(table.slope, bucket) * t);
@@ -139,11 +139,9 @@ TESSERA_LANES_INLINE void encodeTile(const TileVisibility& tile, uint32_t backgr
   }
 }
 
-TESSERA_LANES_INLINE void shadeTileKernel(const TileVisibility& tile, int tile_index,
-                                          const std::vector<TriangleChunk>& chunks,
-                                          size_t chunk_count, const Scene& scene,
-                                          bool want_normals, uint32_t background,
-                                          ShadedTile& out) {
+void shadeTileKernel(const TileVisibility& tile, int tile_index,
+                     const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                     const Scene& scene, bool want_normals, uint32_t background, ShadedTile& out) {
   const int tile_x1 = tile.x0 + tile.width - 1, tile_y1 = tile.y0 + tile.height - 1;
   for (size_t c = 0; c < chunk_count; ++c) {
     const TriangleChunk& chunk = chunks[c];
@@ -160,8 +158,8 @@ TESSERA_LANES_INLINE void shadeTileKernel(const TileVisibility& tile, int tile_i
       for (int y = y0; y <= y1; ++y) {
         const int row = (y - tile.y0) * kTileSize - tile.x0;
         for (int x = x0; x <= x1; x += 8) {
-          const I32x8 mask = equal(load<I32x8>(tile.key + row + x), key) &
-                             lessOrEqual(splat(x) + iota(), last);
+          const I32x8 mask =
+              equal(load<I32x8>(tile.key + row + x), key) & lessOrEqual(splat(x) + iota(), last);
           if (!any(mask)) continue;
           if (!triangle) triangle = &chunk.shade[*it];
           shadeRow8(*triangle, scene, want_normals, x, y, mask, row + x, out);

@@ -31,8 +31,8 @@ struct VertexBuffer {
   // World space, unit (zero if the mesh has none). One array of float3: setup fetches normals by
   // index, and one cache line beats three.
   std::vector<float3> normal;
-  std::vector<uint16_t> outcode;       // clip planes the vertex is outside of (clip.h)
-  std::vector<ScreenVertex> screen;    // valid only where outcode has no kCutPlanes bit
+  std::vector<uint16_t> outcode;     // clip planes the vertex is outside of (clip.h)
+  std::vector<ScreenVertex> screen;  // valid only where outcode has no kCutPlanes bit
 
   void resize(size_t count);
   float4 clip(size_t i) const { return {clip_x[i], clip_y[i], clip_z[i], clip_w[i]}; }

@@ -25,14 +25,15 @@ struct SrgbDecodeTable {
 
 // The exact curve in double precision, in code units.
 double exactCode(double linear) {
-  return 255.0 * (linear <= 0.0031308 ? linear * 12.92
-                                      : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055);
+  return 255.0 *
+         (linear <= 0.0031308 ? linear * 12.92 : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055);
 }
 
 SrgbEncodeTable makeEncodeTable() {
   SrgbEncodeTable table;
   for (int k = 0; k < SrgbEncodeTable::kBuckets; ++k) {
-    const uint32_t start = SrgbEncodeTable::kFirstBits + (static_cast<uint32_t>(k) << SrgbEncodeTable::kShift);
+    const uint32_t start =
+        SrgbEncodeTable::kFirstBits + (static_cast<uint32_t>(k) << SrgbEncodeTable::kShift);
     const uint32_t next = start + (1u << SrgbEncodeTable::kShift);
     const double x0 = __builtin_bit_cast(float, start), x1 = __builtin_bit_cast(float, next);
     const double c0 = exactCode(std::min(x0, 1.0)), c1 = exactCode(std::min(x1, 1.0));

@@ -13,7 +13,9 @@ float linearToSrgb(float linear);
 
 // The linear value of each 8-bit sRGB code.
 const float* srgbDecodeTable();
-inline float decodeSrgb8(uint8_t code) { return srgbDecodeTable()[code]; }
+inline float decodeSrgb8(uint8_t code) {
+  return srgbDecodeTable()[code];
+}
 
 // The encode table: linear [2^-12, 1] in 384 buckets of 1/32 octave (by the float's exponent and
 // top 5 mantissa bits); within a bucket the code is a straight line in the remaining 18 mantissa
@@ -23,8 +25,8 @@ struct SrgbEncodeTable {
   static constexpr uint32_t kFirstBits = 0x39800000u;  // the float 2^-12
   static constexpr int kShift = 18;                    // mantissa bits below the bucket index
   static constexpr int kBuckets = 12 * 32 + 1;         // + one for exactly 1.0
-  float offset[kBuckets];  // the code at the bucket's start
-  float slope[kBuckets];   // code per unit of the low 18 mantissa bits
+  float offset[kBuckets];                              // the code at the bucket's start
+  float slope[kBuckets];                               // code per unit of the low 18 mantissa bits
 };
 const SrgbEncodeTable& srgbEncodeTable();
 
@@ -43,7 +45,9 @@ inline uint8_t encodeSrgb8(float linear, const SrgbEncodeTable& table) {
   }
   return static_cast<uint8_t>(static_cast<int32_t>(code + 0.5f));
 }
-inline uint8_t encodeSrgb8(float linear) { return encodeSrgb8(linear, srgbEncodeTable()); }
+inline uint8_t encodeSrgb8(float linear) {
+  return encodeSrgb8(linear, srgbEncodeTable());
+}
 
 // Linear RGBA to packed RGBA8 (sRGB RGB, linear alpha), R in the low byte.
 uint32_t packSrgba8(float4 linear);
