@@ -4,11 +4,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <array>
 #include <set>
 #include <sstream>
 
@@ -106,7 +106,8 @@ TEST_F(Cli, CubeWithNoFlagsWritesTheDefaultGif) {
     int cube = 0;
     for (uint32_t c : frame) {
       int dr = std::abs(static_cast<int>(c >> 16) - static_cast<int>(background >> 16));
-      int dg = std::abs(static_cast<int>((c >> 8) & 255) - static_cast<int>((background >> 8) & 255));
+      int dg =
+          std::abs(static_cast<int>((c >> 8) & 255) - static_cast<int>((background >> 8) & 255));
       int db = std::abs(static_cast<int>(c & 255) - static_cast<int>(background & 255));
       cube += dr + dg + db > 24;
     }
@@ -134,9 +135,8 @@ TEST_F(Cli, CubeFlagsSetSizeFramesAndOutput) {
 
 TEST_F(Cli, CubeFramesAreIdenticalForAnyWorkerCount) {
   for (int workers : {1, 2, 7}) {
-    std::string args = "cube -w 96 -h 80 -fps 4 -dur 1s -axes -workers " +
-                       std::to_string(workers) + " -out w" + std::to_string(workers) +
-                       "_{frame}.png";
+    std::string args = "cube -w 96 -h 80 -fps 4 -dur 1s -axes -workers " + std::to_string(workers) +
+                       " -out w" + std::to_string(workers) + "_{frame}.png";
     RunResult r = run(args);
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
@@ -202,8 +202,9 @@ TEST_F(Cli, MissingOrBrokenModelNamesTheFileAndExitsOne) {
 
 TEST_F(Cli, RenderIdAovEncodesTriangleIndexPlusOne) {
   writeQuadObj("quad.obj");
-  RunResult r = run("render quad.obj --resolution 40,30 --aov id -o id.png "
-                    "--camera-position 0,0,3 --camera-focal-point 0,0,0");
+  RunResult r =
+      run("render quad.obj --resolution 40,30 --aov id -o id.png "
+          "--camera-position 0,0,3 --camera-focal-point 0,0,0");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   DecodedPng png;
   ASSERT_TRUE(tessera::test::decodePng((dir_ / "id.png").string(), png));
@@ -234,7 +235,8 @@ TEST_F(Cli, RenderDepthAndNormalAovs) {
   EXPECT_LT(depth.at(20, 15, 0), 65535);
   EXPECT_GT(depth.at(20, 15, 0), 0);
 
-  r = run("render quad.obj --resolution 40,30 --aov normal -o normal.png "
+  r =
+      run("render quad.obj --resolution 40,30 --aov normal -o normal.png "
           "--camera-position 0,0,3 --camera-focal-point 0,0,0");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   DecodedPng normal;
@@ -257,7 +259,8 @@ TEST_F(Cli, RenderColourUsesTheBackgroundAndFramesTheModel) {
   // Framed: the model is in the middle and covers a good part of the image.
   int covered = 0;
   for (int y = 0; y < png.height; ++y)
-    for (int x = 0; x < png.width; ++x) covered += !(png.at(x, y, 0) == 255 && png.at(x, y, 1) == 0);
+    for (int x = 0; x < png.width; ++x)
+      covered += !(png.at(x, y, 0) == 255 && png.at(x, y, 1) == 0);
   EXPECT_GT(covered, 50 * 40 / 6);
   EXPECT_LT(covered, 50 * 40);
   EXPECT_FALSE(png.at(25, 20, 0) == 255 && png.at(25, 20, 1) == 0);
@@ -277,8 +280,9 @@ TEST_F(Cli, RenderTurntableWritesAPngSequence) {
 
 TEST_F(Cli, CameraLookingAlongItsUpVectorStillRenders) {
   writeQuadObj("quad.obj");
-  RunResult r = run("render quad.obj --resolution 20,20 --camera-position 0,0,5 "
-                    "--camera-focal-point 0,0,0 --camera-view-up 0,0,1 -o up.png");
+  RunResult r =
+      run("render quad.obj --resolution 20,20 --camera-position 0,0,5 "
+          "--camera-focal-point 0,0,0 --camera-view-up 0,0,1 -o up.png");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir_ / "up.png"));
   r = run("render quad.obj --camera-position 1,1,1 --camera-focal-point 1,1,1");
@@ -313,9 +317,10 @@ TEST_F(Cli, TextureFlagSuppliesTheAlbedo) {
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) texels[y * 4 + x] = quadrant[(y / 2) * 2 + x / 2];
   ASSERT_TRUE(tessera::io::writePngRgba8((dir_ / "tex.png").string(), 4, 4, texels).ok());
-  RunResult r = run("render quad.obj --texture tex.png --shading unlit --resolution 40,40 "
-                    "--camera-position 0,0,2.2 --camera-focal-point 0,0,0 "
-                    "--camera-view-angle 60 -o out.png");
+  RunResult r =
+      run("render quad.obj --texture tex.png --shading unlit --resolution 40,40 "
+          "--camera-position 0,0,2.2 --camera-focal-point 0,0,0 "
+          "--camera-view-angle 60 -o out.png");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   DecodedPng png;
   ASSERT_TRUE(tessera::test::decodePng((dir_ / "out.png").string(), png));
@@ -353,15 +358,14 @@ TEST_F(Cli, MaterialsModelMatchesItsReferenceImage) {
             "newmtl blue\nKd 0.1 0.2 0.8\n");
   writeFile("scene.obj",
             "mtllib scene.mtl\n"
-            "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\n"            // floor
+            "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\n"                   // floor
             "v -0.5 0 0\nv 0.5 0 0\nv 0.5 1 0\nv 0 0.4 0\nv -0.5 1 0\n"  // concave wall
             "usemtl blue\nf 1 4 3 2\n"
             "usemtl red\nf 5 6 7 8 9\n");
   RunResult r = run("render scene.obj --resolution 96,64 --shading flat -o scene.png");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // Same machine arithmetic everywhere: allow rounding of a code here and there only.
-  tessera::test::expectMatchesReference((dir_ / "scene.png").string(), "obj_materials",
-                                        {2, 4});
+  tessera::test::expectMatchesReference((dir_ / "scene.png").string(), "obj_materials", {2, 4});
 }
 
 // Framing fits near and far to the model: two planes 1% of the model's size apart resolve

@@ -961,8 +961,8 @@ std::string captureOutput(const std::string& command) {
 TEST(IoMp4Sink, FfmpegWritesTheFramesAndTheFileAppearsOnFinish) {
   if (captureOutput("command -v ffmpeg ffprobe").empty())
     GTEST_SKIP() << "ffmpeg/ffprobe are not installed (scripts/setup.sh installs them)";
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("tessera_mp4_" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("tessera_mp4_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::filesystem::path path = dir / "clip.mp4";
   tessera::io::AnimationSettings settings{33, 24, 10, true};  // odd width: padded to even
@@ -979,7 +979,8 @@ TEST(IoMp4Sink, FfmpegWritesTheFramesAndTheFileAppearsOnFinish) {
   ASSERT_TRUE(std::filesystem::exists(path));
   const std::string probe = captureOutput(
       "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-      "stream=width,height,nb_read_frames,codec_name -of csv=p=0 '" + path.string() + "'");
+      "stream=width,height,nb_read_frames,codec_name -of csv=p=0 '" +
+      path.string() + "'");
   EXPECT_EQ(probe, "h264,34,24,7\n");
   // Nothing but the MP4 is left in the folder.
   int files = 0;
@@ -989,8 +990,8 @@ TEST(IoMp4Sink, FfmpegWritesTheFramesAndTheFileAppearsOnFinish) {
 }
 
 TEST(IoMp4Sink, MissingFfmpegIsAClearErrorAndLeavesNothing) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("tessera_noffmpeg_" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("tessera_noffmpeg_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string saved = std::getenv("PATH") ? std::getenv("PATH") : "";
   ::setenv("PATH", dir.c_str(), 1);  // a folder with no ffmpeg in it

@@ -5,10 +5,10 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
-#include <new>
-#include <limits>
 #include <cstring>
+#include <limits>
 #include <map>
+#include <new>
 #include <random>
 #include <set>
 
@@ -23,7 +23,9 @@ static std::atomic<bool> g_count_allocations{false};
 static std::atomic<size_t> g_allocations{0};
 
 // A place for a debugger's breakpoint: every counted allocation passes here.
-__attribute__((noinline)) void countedAllocation() { g_allocations.fetch_add(1); }
+__attribute__((noinline)) void countedAllocation() {
+  g_allocations.fetch_add(1);
+}
 
 void* operator new(size_t size) {
   if (g_count_allocations.load(std::memory_order_relaxed)) countedAllocation();
@@ -32,8 +34,12 @@ void* operator new(size_t size) {
 }
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, size_t) noexcept { std::free(p); }
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, size_t) noexcept {
+  std::free(p);
+}
 #pragma GCC diagnostic pop
 
 namespace {
@@ -117,14 +123,13 @@ TEST(Raster, SharedEdgeGridCoversEachPixelOnce) {
   std::vector<int> coverage(kW * kH, 0);
   for (size_t t = 0; t < triangles.size(); t += 3) {
     Scene scene = clipSpaceScene();
-    scene.objects.push_back(unlitObject(
-        windowTriangle(triangles[t], triangles[t + 1], triangles[t + 2], kW, kH)));
+    scene.objects.push_back(
+        unlitObject(windowTriangle(triangles[t], triangles[t + 1], triangles[t + 2], kW, kH)));
     Frame f = renderScene(scene, kW, kH);
     for (int i = 0; i < kW * kH; ++i) coverage[i] += f.triangle_id[i] != kNoTriangle;
   }
   for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x)
-      EXPECT_EQ(coverage[y * kW + x], 1) << "pixel " << x << "," << y;
+    for (int x = 0; x < kW; ++x) EXPECT_EQ(coverage[y * kW + x], 1) << "pixel " << x << "," << y;
 }
 
 TEST(Raster, TopLeftRuleOnEdgesThroughPixelCentres) {
@@ -133,8 +138,8 @@ TEST(Raster, TopLeftRuleOnEdgesThroughPixelCentres) {
   // their centres, the bottom and right ones do not.
   Scene scene = clipSpaceScene();
   Mesh quad;
-  for (float3 p : {float3{2.5f, 2.5f, 0}, float3{6.5f, 2.5f, 0}, float3{6.5f, 6.5f, 0},
-                   float3{2.5f, 6.5f, 0}})
+  for (float3 p :
+       {float3{2.5f, 2.5f, 0}, float3{6.5f, 2.5f, 0}, float3{6.5f, 6.5f, 0}, float3{2.5f, 6.5f, 0}})
     quad.positions.push_back(windowToNdc(p.x, p.y, p.z, kW, kH));
   quad.indices = {0, 2, 1, 0, 3, 2};
   scene.objects.push_back(unlitObject(quad));
@@ -288,12 +293,12 @@ TEST(Raster, NonFiniteDegenerateAndOutOfRangeTrianglesAreDropped) {
   Mesh m;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {nan, 0, 0}, {0.5f, 0.5f, 0}, {kInf, 0, 0}};
-  m.indices = {0, 1, 3,    // NaN vertex
-               0, 1, 5,    // infinite vertex
-               0, 2, 4,    // collinear? no: a real triangle, kept below
-               0, 0, 1,    // degenerate
-               0, 1, 99,   // index past the end
-               0, 1, 2};   // valid
+  m.indices = {0, 1, 3,   // NaN vertex
+               0, 1, 5,   // infinite vertex
+               0, 2, 4,   // collinear? no: a real triangle, kept below
+               0, 0, 1,   // degenerate
+               0, 1, 99,  // index past the end
+               0, 1, 2};  // valid
   scene.objects.push_back(unlitObject(m));
   PipelineStats stats;
   Frame f = renderScene(scene, 16, 16, 1, &stats);
@@ -325,7 +330,8 @@ TEST(Shading, PerspectiveCorrectUvOnARecedingCheckerboard) {
   auto texture = std::make_shared<Texture>();
   texture->width = texture->height = kChecks;
   for (int y = 0; y < kChecks; ++y)
-    for (int x = 0; x < kChecks; ++x) texture->texels.push_back((x + y) % 2 ? 0xffffffffu : 0xff000000u);
+    for (int x = 0; x < kChecks; ++x)
+      texture->texels.push_back((x + y) % 2 ? 0xffffffffu : 0xff000000u);
 
   Scene scene;
   scene.camera.position = {0, 1, 0};
@@ -336,8 +342,8 @@ TEST(Shading, PerspectiveCorrectUvOnARecedingCheckerboard) {
   // Floor y = 0 from z = -0.5 to z = -30.5, x in [-15, 15]; u along x, v along -z.
   const float z_near = -0.5f, z_far = -30.5f, half_x = 15.0f;
   Mesh floor;
-  floor.positions = {{-half_x, 0, z_near}, {half_x, 0, z_near}, {half_x, 0, z_far},
-                     {-half_x, 0, z_far}};
+  floor.positions = {
+      {-half_x, 0, z_near}, {half_x, 0, z_near}, {half_x, 0, z_far}, {-half_x, 0, z_far}};
   floor.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   floor.indices = {0, 1, 2, 0, 2, 3};
   Object o = unlitObject(floor, CullMode::kBack);
@@ -353,7 +359,8 @@ TEST(Shading, PerspectiveCorrectUvOnARecedingCheckerboard) {
     for (int x = 0; x < kW; ++x) {
       // Unproject the pixel centre to a world ray and intersect it with the floor.
       float ndc_x = 2.0f * (x + 0.5f) / kW - 1.0f, ndc_y = 1.0f - 2.0f * (y + 0.5f) / kH;
-      float4 a = inverse_vp * float4{ndc_x, ndc_y, -1, 1}, b = inverse_vp * float4{ndc_x, ndc_y, 1, 1};
+      float4 a = inverse_vp * float4{ndc_x, ndc_y, -1, 1},
+             b = inverse_vp * float4{ndc_x, ndc_y, 1, 1};
       float3 p0 = a.xyz() * (1 / a.w), p1 = b.xyz() * (1 / b.w);
       if (!(p1.y < p0.y)) continue;
       float3 hit = p0 + (p1 - p0) * (p0.y / (p0.y - p1.y));
@@ -612,7 +619,8 @@ TEST(Renderer, ImageIsBitIdenticalForEverySimdLevel) {
   };
   Frame scalar = render(SimdLevel::kScalar);
   EXPECT_GT(coveredCount(scalar), 301 * 203 / 3);
-  for (SimdLevel level : {SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512, SimdLevel::kAuto}) {
+  for (SimdLevel level :
+       {SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512, SimdLevel::kAuto}) {
     Frame other = render(level);
     EXPECT_EQ(scalar.triangle_id, other.triangle_id) << static_cast<int>(level);
     EXPECT_EQ(scalar.color, other.color) << static_cast<int>(level);

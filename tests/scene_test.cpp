@@ -130,8 +130,7 @@ TEST(Camera, FrameBoundsSeesTheWholeModelWithNearAndFarAroundIt) {
   Camera c = frameBounds(b, {1, 1, 1}, {0, 1, 0}, 50.0f, 2.0f);
   float4x4 vp = c.projection(2.0f) * c.view();
   for (int i = 0; i < 8; ++i) {
-    float3 corner{i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y,
-                  i & 4 ? b.max.z : b.min.z};
+    float3 corner{i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z};
     float4 clip = vp * float4{corner, 1};
     float3 ndc = clip.xyz() * (1.0f / clip.w);
     EXPECT_LE(std::fabs(ndc.x), 1.0f);

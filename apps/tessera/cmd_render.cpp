@@ -122,8 +122,8 @@ int runRender(const std::vector<std::string>& args) {
   flags.addFloat3("camera-focal-point", &s.camera_focal_point, &s.has_focal_point,
                   "point the camera looks at");
   flags.addFloat3("camera-view-up", &s.camera_view_up, &s.has_view_up, "camera up direction");
-  flags.addFloat("camera-view-angle", &s.view_angle, "vertical field of view in degrees (30)",
-                 1.0f, 170.0f);
+  flags.addFloat("camera-view-angle", &s.view_angle, "vertical field of view in degrees (30)", 1.0f,
+                 170.0f);
   flags.addChoice("up", &s.up, {"+Y", "+Z"}, "the model's up axis (default +Y)");
   flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit"},
                   "flat, smooth (per-pixel), gouraud (per-vertex) or unlit (default smooth)");
@@ -137,7 +137,8 @@ int runRender(const std::vector<std::string>& args) {
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
   flags.addSwitch("axes", &s.axes, "draw the world axes");
-  flags.addString("texture", &s.texture, "an albedo texture (PNG, JPEG, BMP, TGA) for every material");
+  flags.addString("texture", &s.texture,
+                  "an albedo texture (PNG, JPEG, BMP, TGA) for every material");
   flags.addSwitch("info", &s.info, "print the model's counts, bounds and warnings; do not render");
 
   Expected<std::vector<std::string>> positional = flags.parse(args);
@@ -170,8 +171,7 @@ int runRender(const std::vector<std::string>& args) {
                       "' must end in .png, .gif or .mp4, or be a {frame} .png template");
   }
   if (kind == OutputKind::kPng && s.turntable > 1)
-    return usageError(
-        "--turntable writes several frames: use a .gif, .mp4 or {frame} .png output");
+    return usageError("--turntable writes several frames: use a .gif, .mp4 or {frame} .png output");
   if (kind == OutputKind::kVideo && s.aov != "color")
     return usageError("--aov " + s.aov + " needs PNG output (a .png or a {frame} template)");
 
@@ -230,8 +230,8 @@ int runRender(const std::vector<std::string>& args) {
   const float3 right{1, 0, 0};
   const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
   // A three-quarter view from the front, right and above.
-  Camera camera = frameBounds(bounds, toward_viewer + right * 0.6f + up * 0.45f, up,
-                              s.view_angle, aspect);
+  Camera camera =
+      frameBounds(bounds, toward_viewer + right * 0.6f + up * 0.45f, up, s.view_angle, aspect);
   if (s.has_position || s.has_focal_point || s.has_view_up) {
     if (s.has_position) camera.position = s.camera_position;
     if (s.has_focal_point) camera.target = s.camera_focal_point;
@@ -278,8 +278,8 @@ int runRender(const std::vector<std::string>& args) {
   Progress progress("render: frame", frame_count);
   for (int i = 0; i < frame_count; ++i) {
     // The turntable turns the model about the up axis through its centre.
-    const quat turn =
-        quat::fromAxisAngle(up, 2.0f * kPi * static_cast<float>(i) / static_cast<float>(frame_count));
+    const quat turn = quat::fromAxisAngle(
+        up, 2.0f * kPi * static_cast<float>(i) / static_cast<float>(frame_count));
     scene.objects[0].transform.rotation = turn;
     scene.objects[0].transform.translation = center - rotate(turn, center);
     renderer.render(scene, options, frame);
@@ -291,9 +291,8 @@ int runRender(const std::vector<std::string>& args) {
     if (sink) {
       written = sink->addFrame(frame.color.data());
     } else {
-      std::filesystem::path path =
-          kind == OutputKind::kSequence ? io::formatFramePath(s.output, i)
-                                        : std::filesystem::path(s.output);
+      std::filesystem::path path = kind == OutputKind::kSequence ? io::formatFramePath(s.output, i)
+                                                                 : std::filesystem::path(s.output);
       written = writeStill(path, frame, s.aov);
     }
     if (!written) {

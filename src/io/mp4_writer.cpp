@@ -77,15 +77,35 @@ class Mp4Sink : public FrameSink {
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_adddup2(&actions, fds[0], STDIN_FILENO);
-    const std::string size = std::to_string(settings_.width) + "x" + std::to_string(settings_.height);
+    const std::string size =
+        std::to_string(settings_.width) + "x" + std::to_string(settings_.height);
     const std::string rate = std::to_string(settings_.fps);
     // yuv420p needs even sizes: pad odd ones by a pixel.
-    std::vector<std::string> args = {"ffmpeg", "-nostdin", "-y", "-loglevel", "error",
-                                     "-f", "rawvideo", "-pix_fmt", "rgba", "-s", size,
-                                     "-r", rate, "-i", "-",
-                                     "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                     "-c:v", "libx264", "-pix_fmt", "yuv420p",
-                                     "-movflags", "+faststart", "-f", "mp4",
+    std::vector<std::string> args = {"ffmpeg",
+                                     "-nostdin",
+                                     "-y",
+                                     "-loglevel",
+                                     "error",
+                                     "-f",
+                                     "rawvideo",
+                                     "-pix_fmt",
+                                     "rgba",
+                                     "-s",
+                                     size,
+                                     "-r",
+                                     rate,
+                                     "-i",
+                                     "-",
+                                     "-vf",
+                                     "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                     "-c:v",
+                                     "libx264",
+                                     "-pix_fmt",
+                                     "yuv420p",
+                                     "-movflags",
+                                     "+faststart",
+                                     "-f",
+                                     "mp4",
                                      temporary_.string()};
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());

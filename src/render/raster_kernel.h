@@ -122,8 +122,7 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
   }
 }
 
-TESSERA_LANES_INLINE void rasterTriangleKernel(const RasterTriangle& t, uint32_t key,
-                                               TileVisibility& tile) {
+void rasterTriangleKernel(const RasterTriangle& t, uint32_t key, TileVisibility& tile) {
   const int x_begin = std::max(t.min_x, tile.x0);
   const int x_end = std::min(t.max_x, tile.x0 + tile.width - 1);
   const int y_begin = std::max(t.min_y, tile.y0);

@@ -17,8 +17,7 @@ namespace {
 
 // Edge from a to b, evaluated at p: (b - a) x (p - a) with y pointing down. Positive inside for
 // triangles whose signed area is positive (clockwise as seen on screen).
-void makeEdge(int32_t ax, int32_t ay, int32_t bx, int32_t by, int32_t& a, int32_t& b,
-              int64_t& c) {
+void makeEdge(int32_t ax, int32_t ay, int32_t bx, int32_t by, int32_t& a, int32_t& b, int64_t& c) {
   a = ay - by;
   b = bx - ax;
   c = static_cast<int64_t>(by - ay) * ax - static_cast<int64_t>(bx - ax) * ay;
@@ -54,8 +53,10 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangl
     return false;
 
   // Bounding box over pixel centres.
-  const int32_t min_fx = std::min({v[0].x, v[1].x, v[2].x}), max_fx = std::max({v[0].x, v[1].x, v[2].x});
-  const int32_t min_fy = std::min({v[0].y, v[1].y, v[2].y}), max_fy = std::max({v[0].y, v[1].y, v[2].y});
+  const int32_t min_fx = std::min({v[0].x, v[1].x, v[2].x}),
+                max_fx = std::max({v[0].x, v[1].x, v[2].x});
+  const int32_t min_fy = std::min({v[0].y, v[1].y, v[2].y}),
+                max_fy = std::max({v[0].y, v[1].y, v[2].y});
   pixelRange(min_fx, max_fx, ctx.width, raster.min_x, raster.max_x);
   if (raster.min_x > raster.max_x) return false;
   pixelRange(min_fy, max_fy, ctx.height, raster.min_y, raster.max_y);
@@ -129,8 +130,8 @@ void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAt
     shade.normal[k] = n;
     shade.uv[k] = va.uv;
     const float3 albedo = ctx.has_color ? base * va.color.xyz() : base;
-    shade.color[k] = albedo * (ctx.shading == Shading::kGouraud ? irradiance(*ctx.scene, n)
-                                                                 : flat_irradiance);
+    shade.color[k] =
+        albedo * (ctx.shading == Shading::kGouraud ? irradiance(*ctx.scene, n) : flat_irradiance);
   }
   shade.material = &m;
   shade.triangle_id = triangle_id;

@@ -44,7 +44,8 @@ struct RasterTriangle {
   int32_t b[3];
   int32_t min_x, min_y, max_x, max_y;  // inclusive pixel bounds, clipped to the viewport
   bool small;  // every edge value over the bounding box (plus 8 pixels right) fits in int32
-  // Window z at pixel centre (x + 0.5, y + 0.5) = z0 + dzdx * (x + 0.5 - x0) + dzdy * (y + 0.5 - y0)
+  // Window z at pixel centre (x + 0.5, y + 0.5) = z0 + dzdx * (x + 0.5 - x0) + dzdy * (y + 0.5 -
+  // y0)
   float x0, y0, z0, dzdx, dzdy;
 };
 
@@ -55,7 +56,8 @@ struct ShadeTriangle {
   Shading shading;
   bool has_uv;  // sample the albedo texture (the mesh has UVs and the material a texture)
   // Perspective-correct barycentrics at window point p, with d = p - (x0, y0):
-  //   s = inv_w0 + sdx*d.x + sdy*d.y;  b1 = (p1dx*d.x + p1dy*d.y) / s;  b2 = (...) / s;  b0 = 1-b1-b2
+  //   s = inv_w0 + sdx*d.x + sdy*d.y;  b1 = (p1dx*d.x + p1dy*d.y) / s;  b2 = (...) / s;  b0 =
+  //   1-b1-b2
   float x0, y0, inv_w0;
   float p1dx, p1dy, p2dx, p2dy, sdx, sdy;
   // Per-vertex colour, interpolated: base colour x vertex colour, already lit for flat (the
@@ -77,8 +79,8 @@ struct SetupContext {
 
 // What setupRaster learnt that setupShade needs.
 struct TriangleOrientation {
-  int order[3];      // rasterizer vertex k is input vertex order[k] (positive area)
-  bool back_facing;  // drawn with its back to the viewer
+  int order[3];                  // rasterizer vertex k is input vertex order[k] (positive area)
+  bool back_facing;              // drawn with its back to the viewer
   float l1dx, l1dy, l2dx, l2dy;  // screen gradients of barycentrics 1 and 2
 };
 
@@ -97,8 +99,7 @@ struct VertexAttributes {
 // normals are missing). Attributes are given in input order.
 void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAttributes a[3],
                 const TriangleOrientation& orientation, const RasterTriangle& raster,
-                float3 face_normal, uint32_t triangle_id, uint16_t material,
-                ShadeTriangle& shade);
+                float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade);
 
 // Lambert irradiance: ambient plus every directional light, for unit normal n.
 float3 irradiance(const Scene& scene, float3 n);

@@ -36,18 +36,4 @@ float3 sampleAlbedo(const ShadeTriangle& t, const Barycentrics& b, float x, floa
   return texture.sampleLod(uv, lod, sampler).xyz();
 }
 
-ShadeTileFn shadeTileFunction(RasterIsa isa) {
-  switch (isa) {
-    case RasterIsa::kScalar: return shadeTileScalar;
-#if defined(__x86_64__) || defined(__i386__)
-    case RasterIsa::kSse2: return shadeTileSse2;
-    case RasterIsa::kAvx2: return shadeTileAvx2;
-    case RasterIsa::kAvx512: return shadeTileAvx512;
-#else
-    default: return shadeTileScalar;
-#endif
-  }
-  return shadeTileScalar;
-}
-
 }  // namespace tessera::render

@@ -23,6 +23,7 @@ struct ShadedTile {
   alignas(64) float red[kSize];  // linear RGB; unset where no triangle
   alignas(64) float green[kSize];
   alignas(64) float blue[kSize];
+  alignas(64) uint32_t rgba[kSize];         // the final colour: sRGB-encoded, or the background
   alignas(64) uint32_t triangle_id[kSize];  // scene triangle index + 1
   alignas(64) float normal_x[kSize];        // world shading normal; filled only when asked
   alignas(64) float normal_y[kSize];
@@ -42,18 +43,10 @@ float3 sampleAlbedo(const ShadeTriangle& t, const Barycentrics& b, float x, floa
 
 using ShadeTileFn = void (*)(const TileVisibility& tile, int tile_index,
                              const std::vector<TriangleChunk>& chunks, size_t chunk_count,
-                             const Scene& scene, bool want_normals, ShadedTile& out);
+                             const Scene& scene, bool want_normals, uint32_t background,
+                             ShadedTile& out);
 
-// Shades every pixel of the tile that has a triangle; compiled for `isa`.
-ShadeTileFn shadeTileFunction(RasterIsa isa);
-
-void shadeTileScalar(const TileVisibility&, int, const std::vector<TriangleChunk>&, size_t,
-                     const Scene&, bool, ShadedTile&);
-void shadeTileSse2(const TileVisibility&, int, const std::vector<TriangleChunk>&, size_t,
-                   const Scene&, bool, ShadedTile&);
-void shadeTileAvx2(const TileVisibility&, int, const std::vector<TriangleChunk>&, size_t,
-                   const Scene&, bool, ShadedTile&);
-void shadeTileAvx512(const TileVisibility&, int, const std::vector<TriangleChunk>&, size_t,
-                     const Scene&, bool, ShadedTile&);
+// shade_kernel.h; one variant per instruction set (kernels.h). Shades every pixel of the tile that
+// has a triangle, then encodes the tile to sRGB (the background where no triangle is).
 
 }  // namespace tessera::render

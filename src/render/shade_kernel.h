@@ -6,6 +6,8 @@
 
 #include <algorithm>
 
+#include <tessera/scene/color.h>
+
 #include "render/shade.h"
 #include "render/simd_lanes.h"
 
@@ -37,15 +39,31 @@ TESSERA_LANES_INLINE Vec3x8 irradiance8(const Scene& scene, const Vec3x8& n) {
   Vec3x8 e{splat(scene.ambient.x), splat(scene.ambient.y), splat(scene.ambient.z)};
   const F32x8 zero = splat(0.0f);
   for (const DirectionalLight& light : scene.lights) {
-    const F32x8 cos_theta = zero - (n.x * splat(light.direction.x) +
-                                    n.y * splat(light.direction.y) +
-                                    n.z * splat(light.direction.z));
+    const F32x8 cos_theta =
+        zero - (n.x * splat(light.direction.x) + n.y * splat(light.direction.y) +
+                n.z * splat(light.direction.z));
     const I32x8 lit = positive(cos_theta);
     e.x = e.x + select(lit, splat(light.color.x) * cos_theta, zero);
     e.y = e.y + select(lit, splat(light.color.y) * cos_theta, zero);
     e.z = e.z + select(lit, splat(light.color.z) * cos_theta, zero);
   }
   return e;
+}
+
+// Eight encodeSrgb8s (tessera/scene/color.h), the same operations lane by lane.
+TESSERA_LANES_INLINE I32x8 encodeSrgb8x8(F32x8 linear, const SrgbEncodeTable& table) {
+  const F32x8 zero = splat(0.0f), one = splat(1.0f);
+  const F32x8 c = select(positive(linear), select(lessThan(linear, one), linear, one), zero);
+  const I32x8 small = lessThan(c, splat(0x1p-12f));
+  const I32x8 bits = bitsOf(c);
+  const I32x8 bucket =
+      select(small, splat(int32_t{0}),
+             shiftRight(bits - splat(static_cast<int32_t>(SrgbEncodeTable::kFirstBits)),
+                        SrgbEncodeTable::kShift));
+  const F32x8 t = toFloat(bits & splat(static_cast<int32_t>((1u << SrgbEncodeTable::kShift) - 1)));
+  const F32x8 code = select(small, c * splat(12.92f * 255.0f),
+                            gather(table.offset, bucket) + gather(table.slope, bucket) * t);
+  return truncate(code + splat(0.5f));
 }
 
 template <typename V>
@@ -98,10 +116,32 @@ TESSERA_LANES_INLINE void shadeRow8(const ShadeTriangle& t, const Scene& scene, 
   storeMasked(out.triangle_id + index, mask, splat(static_cast<int32_t>(t.triangle_id + 1)));
 }
 
-TESSERA_LANES_INLINE void shadeTileKernel(const TileVisibility& tile, int tile_index,
-                                          const std::vector<TriangleChunk>& chunks,
-                                          size_t chunk_count, const Scene& scene,
-                                          bool want_normals, ShadedTile& out) {
+// Encodes the shaded pixels of the tile to sRGB, eight at a time; the background elsewhere.
+TESSERA_LANES_INLINE void encodeTile(const TileVisibility& tile, uint32_t background,
+                                     ShadedTile& out) {
+  const SrgbEncodeTable& table = srgbEncodeTable();
+  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
+  const I32x8 fill = splat(static_cast<int32_t>(background));
+  const I32x8 opaque = splat(static_cast<int32_t>(0xff000000u));
+  for (int ty = 0; ty < tile.height; ++ty) {
+    for (int tx = 0; tx < tile.width; tx += 8) {
+      const int i = ty * kTileSize + tx;
+      const I32x8 drawn = ~equal(load<I32x8>(tile.key + i), empty);
+      if (!any(drawn)) {
+        store(out.rgba + i, fill);
+        continue;
+      }
+      const I32x8 rgba = encodeSrgb8x8(load<F32x8>(out.red + i), table) |
+                         shiftLeft(encodeSrgb8x8(load<F32x8>(out.green + i), table), 8) |
+                         shiftLeft(encodeSrgb8x8(load<F32x8>(out.blue + i), table), 16) | opaque;
+      store(out.rgba + i, select(drawn, rgba, fill));
+    }
+  }
+}
+
+void shadeTileKernel(const TileVisibility& tile, int tile_index,
+                     const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                     const Scene& scene, bool want_normals, uint32_t background, ShadedTile& out) {
   const int tile_x1 = tile.x0 + tile.width - 1, tile_y1 = tile.y0 + tile.height - 1;
   for (size_t c = 0; c < chunk_count; ++c) {
     const TriangleChunk& chunk = chunks[c];
@@ -118,8 +158,8 @@ TESSERA_LANES_INLINE void shadeTileKernel(const TileVisibility& tile, int tile_i
       for (int y = y0; y <= y1; ++y) {
         const int row = (y - tile.y0) * kTileSize - tile.x0;
         for (int x = x0; x <= x1; x += 8) {
-          const I32x8 mask = equal(load<I32x8>(tile.key + row + x), key) &
-                             lessOrEqual(splat(x) + iota(), last);
+          const I32x8 mask =
+              equal(load<I32x8>(tile.key + row + x), key) & lessOrEqual(splat(x) + iota(), last);
           if (!any(mask)) continue;
           if (!triangle) triangle = &chunk.shade[*it];
           shadeRow8(*triangle, scene, want_normals, x, y, mask, row + x, out);
@@ -127,6 +167,7 @@ TESSERA_LANES_INLINE void shadeTileKernel(const TileVisibility& tile, int tile_i
       }
     }
   }
+  encodeTile(tile, background, out);
 }
 
 }  // namespace

@@ -29,7 +29,9 @@ float4 decodeTexel(uint32_t c, bool srgb) {
 }
 
 // Keeps float-to-int conversions defined for huge or non-finite coordinates.
-float sanitize(float v) { return std::isfinite(v) ? std::fmod(v, 65536.0f) : 0.0f; }
+float sanitize(float v) {
+  return std::isfinite(v) ? std::fmod(v, 65536.0f) : 0.0f;
+}
 
 float4 sampleLevel(const LevelView& level, bool srgb, float2 uv, TextureFilter filter,
                    TextureWrap wrap) {
@@ -65,8 +67,8 @@ LevelView levelView(const Texture& t, int level) {
 
 float4 Texture::sample(float2 uv, const Sampler& sampler) const {
   if (width <= 0 || height <= 0) return {1, 1, 1, 1};
-  const TextureFilter filter =
-      sampler.filter == TextureFilter::kNearest ? TextureFilter::kNearest : TextureFilter::kBilinear;
+  const TextureFilter filter = sampler.filter == TextureFilter::kNearest ? TextureFilter::kNearest
+                                                                         : TextureFilter::kBilinear;
   return sampleLevel(levelView(*this, 0), srgb, uv, filter, sampler.wrap);
 }
 
@@ -113,11 +115,11 @@ void generateMipmaps(Texture& texture) {
         auto unorm = [](float v) {
           return static_cast<uint32_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
         };
-        const uint32_t rgb =
-            texture.srgb ? (static_cast<uint32_t>(encodeSrgb8(mean.x)) |
-                            (static_cast<uint32_t>(encodeSrgb8(mean.y)) << 8) |
-                            (static_cast<uint32_t>(encodeSrgb8(mean.z)) << 16))
-                         : (unorm(mean.x) | (unorm(mean.y) << 8) | (unorm(mean.z) << 16));
+        const uint32_t rgb = texture.srgb
+                                 ? (static_cast<uint32_t>(encodeSrgb8(mean.x)) |
+                                    (static_cast<uint32_t>(encodeSrgb8(mean.y)) << 8) |
+                                    (static_cast<uint32_t>(encodeSrgb8(mean.z)) << 16))
+                                 : (unorm(mean.x) | (unorm(mean.y) << 8) | (unorm(mean.z) << 16));
         level.texels[static_cast<size_t>(y) * level.width + x] = rgb | (unorm(mean.w) << 24);
       }
     }

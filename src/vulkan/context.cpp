@@ -526,15 +526,14 @@ void memoryBarrier(const VulkanFunctions& vk, VkCommandBuffer commands,
 }
 
 std::vector<uint32_t> makeColorTables() {
-  std::vector<uint32_t> words(kColorTableWords, 0);
-  const float* decode = srgbDecodeTable();
-  for (int i = 0; i < 256; ++i) std::memcpy(&words[static_cast<size_t>(i)], &decode[i], 4);
-  // The encode table indexed as the CPU indexes it: i = round(linear * 65535); encoding i/65535
-  // lands back on entry i.
-  for (uint32_t i = 0; i < 65536; ++i) {
-    const uint32_t code = encodeSrgb8(static_cast<float>(i) / 65535.0f);
-    words[256 + i / 4] |= code << (8 * (i % 4));
-  }
+  static_assert(SrgbEncodeTable::kBuckets == 385, "kColorTableWords assumes 385 buckets");
+  std::vector<float> values(srgbDecodeTable(), srgbDecodeTable() + 256);
+  const SrgbEncodeTable& encode = srgbEncodeTable();
+  values.insert(values.end(), encode.offset, encode.offset + SrgbEncodeTable::kBuckets);
+  values.insert(values.end(), encode.slope, encode.slope + SrgbEncodeTable::kBuckets);
+  values.push_back(12.92f * 255.0f);
+  std::vector<uint32_t> words(values.size());
+  std::memcpy(words.data(), values.data(), values.size() * sizeof(float));
   return words;
 }
 

@@ -120,9 +120,10 @@ void memoryBarrier(const VulkanFunctions& vk, VkCommandBuffer commands,
                    VkPipelineStageFlags src_stage, VkAccessFlags src_access,
                    VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
 
-// The linear value of each 8-bit sRGB code (256 floats), then the 65536-entry encode table
-// packed four codes to a word: exactly the CPU's tables (tessera/scene/color.h).
+// The CPU's sRGB tables (tessera/scene/color.h) as float words: the decode table (256), the
+// encode table's bucket offsets and slopes (SrgbEncodeTable::kBuckets each), then the factor of
+// the linear segment (12.92 * 255, as the CPU rounds it).
 std::vector<uint32_t> makeColorTables();
-constexpr size_t kColorTableWords = 256 + 65536 / 4;
+constexpr size_t kColorTableWords = 256 + 2 * 385 + 1;
 
 }  // namespace tessera::vulkan

@@ -47,9 +47,10 @@ Expected<std::unique_ptr<FrameSink>> openPngSequenceSink(const std::string& path
 Expected<std::unique_ptr<FrameSink>> openMp4Sink(const std::filesystem::path& path,
                                                  const AnimationSettings& settings);
 // Picks by the path: a "{frame}" template ending in .png -> PNG sequence, ".gif" -> GIF, ".mp4"
-// -> MP4 through ffmpeg, ".png" -> a single PNG (a second frame is an error). Extensions are case-insensitive. Anything else
-// is an error naming the supported forms. Every opener validates the settings (1..16384 pixels
-// a side, 1..1000 fps) and checks that the output folder can be written.
+// -> MP4 through ffmpeg, ".png" -> a single PNG (a second frame is an error). Extensions are
+// case-insensitive. Anything else is an error naming the supported forms. Every opener validates
+// the settings (1..16384 pixels a side, 1..1000 fps) and checks that the output folder can be
+// written.
 Expected<std::unique_ptr<FrameSink>> openFrameSink(const std::string& path,
                                                    const AnimationSettings& settings);
 

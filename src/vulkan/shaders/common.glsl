@@ -74,7 +74,9 @@ layout(std430, set = 0, binding = 5) readonly buffer TriangleMaterialBuffer {
 };
 layout(std430, set = 0, binding = 6) readonly buffer TexelBuffer { uint texels[]; };
 layout(std430, set = 0, binding = 7) readonly buffer ColorTableBuffer {
-  uint color_tables[];  // [0, 256): decode (float bits); then the encode bytes, four per word
+  // Float bits: [0, 256) the decode table; then the encode table's 385 bucket offsets, its 385
+  // slopes, and the factor of its linear segment (tessera::SrgbEncodeTable).
+  uint color_tables[];
 };
 
 vec3 vertexPosition(uint v) {

@@ -121,12 +121,26 @@ vec4 sampleTextureTrilinear(GpuMaterial m, vec2 uv, float lod) {
 
 // ---- output (src/scene/color.cpp) ----
 
-// Linear [0, 1] (clamped; NaN to 0) to the 8-bit sRGB code, through the CPU's 65536-entry table.
+// tessera::encodeSrgb8: linear [0, 1] (clamped; NaN to 0) to the 8-bit sRGB code through the
+// CPU's bucket table: 1/32-octave buckets above 2^-12 (a straight line in the low 18 mantissa
+// bits within each), the linear segment below.
+const uint kEncodeFirstBits = 0x39800000u;  // the float 2^-12
+const uint kEncodeShift = 18u;
+const uint kEncodeBuckets = 385u;
 uint encodeSrgb8(float linear) {
-  const float clamped = linear > 0.0 ? min(linear, 1.0) : 0.0;
-  precise float scaled = clamped * 65535.0 + 0.5;
-  const uint index = uint(scaled);
-  return (color_tables[256u + index / 4u] >> (8u * (index % 4u))) & 255u;
+  const float c = linear > 0.0 ? (linear < 1.0 ? linear : 1.0) : 0.0;
+  precise float code;
+  if (c < uintBitsToFloat(kEncodeFirstBits)) {
+    code = c * uintBitsToFloat(color_tables[256u + 2u * kEncodeBuckets]);
+  } else {
+    const uint bits = floatBitsToUint(c);
+    const uint bucket = (bits - kEncodeFirstBits) >> kEncodeShift;
+    const float t = float(bits & ((1u << kEncodeShift) - 1u));
+    code = uintBitsToFloat(color_tables[256u + bucket]) +
+           uintBitsToFloat(color_tables[256u + kEncodeBuckets + bucket]) * t;
+  }
+  precise float rounded = code + 0.5;
+  return uint(int(rounded));
 }
 
 // packSrgba8(float4{rgb, 1}): R in the low byte, alpha 255.
