@@ -107,7 +107,7 @@ class Context {
   std::vector<std::string> validation_errors_;
 };
 
-// Splits a count of workgroups into a grid the device accepts (x at most 65535); shaders
+// Splits a count of workgroups into a grid every device accepts (x at most 32768); shaders
 // flatten it back with gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x.
 struct DispatchGrid {
   uint32_t x = 0, y = 0;
