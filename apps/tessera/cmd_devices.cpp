@@ -34,8 +34,8 @@ int runDevices(const std::vector<std::string>& args) {
     return kExitFailure;
   }
   for (const vulkan::DeviceInfo& d : *devices) {
-    std::cout << d.index << ": " << d.name << " (" << d.type << ", Vulkan " << d.api_version
-              << ")\n"
+    std::cout << d.index << ": " << d.name << " (" << d.type << ", Vulkan " << d.api_version << ", "
+              << d.driver << ")\n"
               << "   vulkan:        " << (d.compute_usable ? "yes" : "no") << " (" << d.compute_note
               << ")\n"
               << "   vulkan-raster: " << (d.raster_usable ? "yes" : "no") << " (" << d.raster_note

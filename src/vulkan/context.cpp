@@ -72,7 +72,16 @@ DeviceCapabilities queryDevice(const VulkanFunctions& vk, VkPhysicalDevice physi
     caps.timestamp_valid_bits =
         families[static_cast<size_t>(caps.compute_queue_family)].timestampValidBits;
 
+  caps.driver = "driver version " + std::to_string(caps.properties.driverVersion);
   if (caps.api_version >= kRequiredApi) {
+    VkPhysicalDeviceDriverProperties driver{};
+    driver.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES;
+    VkPhysicalDeviceProperties2 properties{};
+    properties.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+    properties.pNext = &driver;
+    vk.vkGetPhysicalDeviceProperties2(physical, &properties);
+    caps.driver = std::string(driver.driverName) + ", " + driver.driverInfo;
+
     VkPhysicalDeviceVulkan12Features features12{};
     features12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
     VkPhysicalDeviceFeatures2 features{};
@@ -151,7 +160,7 @@ DeviceInfo describeDevice(const DeviceCapabilities& caps, int index) {
       break;
   }
   info.api_version = versionString(caps.api_version);
-  info.driver = "driver version " + std::to_string(caps.properties.driverVersion);
+  info.driver = caps.driver;
   info.int64_atomics = caps.int64_atomics;
   info.float64 = caps.shader_float64;
   const std::string compute_missing = missingRequirements(caps, BackendKind::kCompute);

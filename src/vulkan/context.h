@@ -25,6 +25,7 @@ struct DeviceCapabilities {
   VkPhysicalDevice physical = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties{};
   uint32_t api_version = 0;
+  std::string driver;              // driver name and version, e.g. "llvmpipe, Mesa 22.3.6 (...)"
   int compute_queue_family = -1;   // a family with COMPUTE (graphics and compute preferred)
   int graphics_queue_family = -1;  // a family with GRAPHICS and COMPUTE
   bool shader_int64 = false;
