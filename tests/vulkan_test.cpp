@@ -51,16 +51,30 @@ std::string noVulkanDeviceReason() {
   return reason;
 }
 
-std::unique_ptr<ComputeBackend> makeCompute(VulkanOptions options = {}) {
+// Deletes a backend after failing the test on any validation error it recorded (none are
+// recorded unless validation is on), so every test that makes one is checked.
+struct ValidationCheck {
+  template <typename B>
+  void operator()(B* backend) const {
+    const std::vector<std::string> errors = backend->validationErrors();
+    EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: "
+                                << (errors.empty() ? "" : errors.front());
+    delete backend;
+  }
+};
+using ComputePtr = std::unique_ptr<ComputeBackend, ValidationCheck>;
+using RasterPtr = std::unique_ptr<RasterBackend, ValidationCheck>;
+
+ComputePtr makeCompute(VulkanOptions options = {}) {
   Expected<std::unique_ptr<ComputeBackend>> backend = ComputeBackend::create(options);
   EXPECT_TRUE(backend.ok()) << (backend ? "" : backend.error().message);
-  return backend ? std::move(*backend) : nullptr;
+  return ComputePtr(backend ? backend->release() : nullptr);
 }
 
-std::unique_ptr<RasterBackend> makeRaster(VulkanOptions options = {}) {
+RasterPtr makeRaster(VulkanOptions options = {}) {
   Expected<std::unique_ptr<RasterBackend>> backend = RasterBackend::create(options);
   EXPECT_TRUE(backend.ok()) << (backend ? "" : backend.error().message);
-  return backend ? std::move(*backend) : nullptr;
+  return RasterPtr(backend ? backend->release() : nullptr);
 }
 
 RenderOptions options(int width = kWidth, int height = kHeight, bool normals = false) {
@@ -347,7 +361,7 @@ void expectComputeMatchesCpu(const char* what, const Scene& scene, VulkanOptions
   const RenderOptions o = options(kWidth, kHeight, normals);
   PipelineStats cpu_stats;
   const Frame cpu = renderCpu(scene, o, &cpu_stats);
-  std::unique_ptr<ComputeBackend> owned;
+  ComputePtr owned;
   if (!reuse) {
     owned = makeCompute(vk);
     ASSERT_TRUE(owned);
@@ -381,7 +395,7 @@ TEST(VulkanCompute, MatchesCpuOnCube) {
 
 TEST(VulkanCompute, MatchesCpuOnSpheres) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  ComputePtr gpu = makeCompute();
   ASSERT_TRUE(gpu);
   expectComputeMatchesCpu("sphere, flat", sphereScene(24, 12, Shading::kFlat), {}, gpu.get());
   expectComputeMatchesCpu("sphere, Gouraud", sphereScene(32, 16, Shading::kGouraud), {}, gpu.get());
@@ -414,7 +428,7 @@ TEST(VulkanCompute, NormalAovMatchesCpu) {
   const Scene scene = sphereScene(32, 16, Shading::kPhong);
   const RenderOptions o = options(kWidth, kHeight, /*normals=*/true);
   const Frame cpu = renderCpu(scene, o);
-  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  ComputePtr gpu = makeCompute();
   ASSERT_TRUE(gpu);
   const Frame frame = renderWith(*gpu, scene, o);
   ASSERT_EQ(frame.normal.size(), cpu.normal.size());
@@ -431,8 +445,8 @@ TEST(VulkanCompute, NormalAovMatchesCpu) {
 
 TEST(VulkanCompute, EdgeCasesMatchCpu) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  std::unique_ptr<ComputeBackend> gpu = makeCompute();
-  std::unique_ptr<RasterBackend> raster = makeRaster();
+  ComputePtr gpu = makeCompute();
+  RasterPtr raster = makeRaster();
   ASSERT_TRUE(gpu && raster);
   // An empty scene, an object without a mesh between two with, odd and tiny viewports, no
   // AOVs at all.
@@ -473,7 +487,7 @@ TEST(VulkanCompute, ThirtyTwoBitCommitMatchesCpu) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   VulkanOptions vk;
   vk.force_32bit_atomics = true;
-  std::unique_ptr<ComputeBackend> gpu = makeCompute(vk);
+  ComputePtr gpu = makeCompute(vk);
   ASSERT_TRUE(gpu);
   expectComputeMatchesCpu("32-bit commit, dense", denseScene(), vk, gpu.get());
   EXPECT_FALSE(gpu->lastStats().int64_atomics);
@@ -485,7 +499,7 @@ TEST(VulkanCompute, DeviceWithoutInt64AtomicsTakesThe32BitPath) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   VulkanOptions vk;
   vk.pretend_missing_features = {"shaderBufferInt64Atomics"};
-  std::unique_ptr<ComputeBackend> gpu = makeCompute(vk);
+  ComputePtr gpu = makeCompute(vk);
   ASSERT_TRUE(gpu);
   EXPECT_FALSE(gpu->device().int64_atomics);
   EXPECT_NE(gpu->device().compute_note.find("32-bit"), std::string::npos)
@@ -498,7 +512,7 @@ TEST(VulkanCompute, FloatSetupKeepsCoverageExact) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   VulkanOptions vk;
   vk.force_fp32_setup = true;
-  std::unique_ptr<ComputeBackend> gpu = makeCompute(vk);
+  ComputePtr gpu = makeCompute(vk);
   ASSERT_TRUE(gpu);
   expectComputeMatchesCpu("float setup, dense", denseScene(), vk, gpu.get());
   EXPECT_FALSE(gpu->lastStats().fp64_setup);
@@ -511,7 +525,7 @@ TEST(VulkanCompute, ManyTrianglesInOneTileStillMatch) {
   // 5000 triangles over one 16x16 tile (and its neighbours): the tile's list is split into
   // several raster workgroups that commit into the same pixels.
   const Scene scene = randomTriangles(5000, 14.0f, 66.0f, 66.0f, 6.0f, 11);
-  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  ComputePtr gpu = makeCompute();
   ASSERT_TRUE(gpu);
   expectComputeMatchesCpu("5000 triangles in one tile", scene, {}, gpu.get());
   const vulkan::ComputeStats& stats = gpu->lastStats();
@@ -523,7 +537,7 @@ TEST(VulkanCompute, BinOverflowRendersAgainWithLargerBins) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   VulkanOptions vk;
   vk.initial_bin_capacity = 64;  // far too few: the first round overflows
-  std::unique_ptr<ComputeBackend> gpu = makeCompute(vk);
+  ComputePtr gpu = makeCompute(vk);
   ASSERT_TRUE(gpu);
   expectComputeMatchesCpu("overflowing bins", denseScene(), vk, gpu.get());
   const vulkan::ComputeStats& stats = gpu->lastStats();
@@ -555,7 +569,7 @@ TEST(VulkanCompute, ManyClippedTrianglesGrowTheClipRecords) {
   addLights(scene);
   scene.camera.position = {0, 0, 0};
   scene.camera.target = {0, 0, -1};
-  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  ComputePtr gpu = makeCompute();
   ASSERT_TRUE(gpu);
   expectComputeMatchesCpu("3000 triangles through the near plane", scene, {}, gpu.get());
   EXPECT_GT(gpu->lastStats().triangles_clipped, 2000u);
@@ -564,7 +578,7 @@ TEST(VulkanCompute, ManyClippedTrianglesGrowTheClipRecords) {
 
 TEST(VulkanCompute, StatsAndTimingsAreFilled) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  ComputePtr gpu = makeCompute();
   ASSERT_TRUE(gpu);
   const Scene scene = denseScene();
   renderWith(*gpu, scene, options());
@@ -596,7 +610,7 @@ TEST(VulkanCompute, StatsAndTimingsAreFilled) {
 
 TEST(VulkanCompute, HeatmapShowsTileOccupancy) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  ComputePtr gpu = makeCompute();
   ASSERT_TRUE(gpu);
   // Triangles only in the left half: the right half's tiles are empty and stay black.
   const Scene scene = randomTriangles(2000, 6.0f, 8.0f, 8.0f, 100.0f, 5);
@@ -616,7 +630,7 @@ TEST(VulkanCompute, HeatmapShowsTileOccupancy) {
 
 TEST(VulkanRaster, MatchesCpuIds) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  std::unique_ptr<RasterBackend> raster = makeRaster();
+  RasterPtr raster = makeRaster();
   ASSERT_TRUE(raster);
   expectRasterMatchesCpu("raster: cube", cubeScene(), *raster);
   expectRasterMatchesCpu("raster: sphere", sphereScene(48, 24, Shading::kPhong), *raster);
@@ -639,7 +653,7 @@ TEST(VulkanRaster, DropsTheTrianglesTheCpuDrops) {
   object.shading = Shading::kUnlit;
   object.cull = CullMode::kNone;
   scene.objects.push_back(object);
-  std::unique_ptr<RasterBackend> raster = makeRaster();
+  RasterPtr raster = makeRaster();
   ASSERT_TRUE(raster);
   expectRasterMatchesCpu("raster: dropped triangles", scene, *raster);
   expectComputeMatchesCpu("compute: dropped triangles", scene);
@@ -649,7 +663,7 @@ TEST(VulkanRaster, DropsTheTrianglesTheCpuDrops) {
 
 TEST(VulkanErrors, FenceTimeoutIsAnErrorAndTheBackendRecovers) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  std::unique_ptr<ComputeBackend> gpu = makeCompute();
+  ComputePtr gpu = makeCompute();
   ASSERT_TRUE(gpu);
   const Scene scene = denseScene();
   Frame frame;
@@ -723,7 +737,7 @@ TEST(VulkanErrors, SceneTooLargeForTheDeviceIsAnError) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   VulkanOptions vk;
   vk.pretend_max_buffer_bytes = 300 * 1024;  // the visibility buffer alone needs 384 KiB
-  std::unique_ptr<ComputeBackend> gpu = makeCompute(vk);
+  ComputePtr gpu = makeCompute(vk);
   ASSERT_TRUE(gpu);
   Frame frame;
   gpu->render(cubeScene(), options(), frame);
@@ -759,16 +773,16 @@ TEST(Vulkan, ValidationLayersReportNoErrors) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   VulkanOptions vk;
   vk.validation = true;
-  std::unique_ptr<ComputeBackend> gpu = makeCompute(vk);
+  ComputePtr gpu = makeCompute(vk);
   ASSERT_TRUE(gpu);
   expectComputeMatchesCpu("validated: near plane", nearPlaneScene(), vk, gpu.get());
   expectComputeMatchesCpu("validated: textured", texturedScene(), vk, gpu.get(), true);
   vk.force_32bit_atomics = true;
   vk.initial_bin_capacity = 16;
-  std::unique_ptr<ComputeBackend> fallback = makeCompute(vk);
+  ComputePtr fallback = makeCompute(vk);
   ASSERT_TRUE(fallback);
   expectComputeMatchesCpu("validated: 32-bit, overflow", cubeScene(), vk, fallback.get());
-  std::unique_ptr<RasterBackend> raster = makeRaster(vk);
+  RasterPtr raster = makeRaster(vk);
   ASSERT_TRUE(raster);
   expectRasterMatchesCpu("validated: raster", texturedScene(), *raster);
   // renderWith() fails the test on any validation error; check once more after teardown-free

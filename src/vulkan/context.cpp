@@ -219,6 +219,7 @@ Expected<void> Context::createInstance(const VulkanOptions& options) {
                      "; tessera needs 1.2");
 
   std::vector<const char*> layers, extensions;
+  bool sync_validation = false;
   if (options.validation) {
     uint32_t count = 0;
     TESSERA_VK_CHECK(vk.vkEnumerateInstanceLayerProperties(&count, nullptr));
@@ -231,7 +232,23 @@ Expected<void> Context::createInstance(const VulkanOptions& options) {
       return makeError(std::string("validation was requested but ") + kValidationLayer +
                        " is not installed (Debian: vulkan-validationlayers)");
     layers.push_back(kValidationLayer);
+    // The layer provides the debug-utils and validation-features extensions.
+    uint32_t extension_count = 0;
+    TESSERA_VK_CHECK(
+        vk.vkEnumerateInstanceExtensionProperties(kValidationLayer, &extension_count, nullptr));
+    std::vector<VkExtensionProperties> layer_extensions(extension_count);
+    TESSERA_VK_CHECK(vk.vkEnumerateInstanceExtensionProperties(kValidationLayer, &extension_count,
+                                                               layer_extensions.data()));
+    auto provides = [&](const char* name) {
+      return std::any_of(layer_extensions.begin(), layer_extensions.end(),
+                         [&](const auto& e) { return std::strcmp(e.extensionName, name) == 0; });
+    };
+    if (!provides(VK_EXT_DEBUG_UTILS_EXTENSION_NAME))
+      return makeError(std::string(kValidationLayer) + " does not provide " +
+                       VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    sync_validation = provides(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+    if (sync_validation) extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
   }
 
   VkApplicationInfo app{};
@@ -263,7 +280,9 @@ Expected<void> Context::createInstance(const VulkanOptions& options) {
 
   VkInstanceCreateInfo create{};
   create.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
-  create.pNext = options.validation ? &features : nullptr;
+  create.pNext = !options.validation ? nullptr
+                 : sync_validation   ? static_cast<const void*>(&features)
+                                     : static_cast<const void*>(&messenger_info);
   create.pApplicationInfo = &app;
   create.enabledLayerCount = static_cast<uint32_t>(layers.size());
   create.ppEnabledLayerNames = layers.data();

@@ -427,7 +427,9 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
 
   // The render pass's outgoing dependency orders the attachment writes before these copies.
   const size_t pixels = static_cast<size_t>(width) * height;
-  const VkDeviceSize offsets[kAttachmentCount] = {0, pixels * 4, pixels * 8, pixels * 24};
+  // Each region starts at a multiple of its texel size: the 16-byte normals first, then colour,
+  // id and depth (4 bytes each).
+  const VkDeviceSize offsets[kAttachmentCount] = {pixels * 16, pixels * 20, 0, pixels * 24};
   for (int i = 0; i < kAttachmentCount; ++i) {
     VkBufferImageCopy region{};
     region.bufferOffset = offsets[i];
