@@ -38,6 +38,7 @@ constexpr const char* kUsage =
     "commands:\n"
     "  cube            render the rotating-cube demo to an animated GIF (no input needed)\n"
     "  render MODEL    render an OBJ model to PNG (colour or an AOV), GIF or a PNG sequence\n"
+    "  view [MODEL]    look at a model (or the cube) in a window: orbit, zoom, pan, screenshots\n"
     "\n"
     "Run 'tessera <command> --help' for the flags of a command.\n";
 
@@ -54,6 +55,7 @@ int main(int argc, char** argv) {
   args.erase(args.begin());
   if (command == "cube") return runCube(args);
   if (command == "render") return runRender(args);
+  if (command == "view") return runView(args);
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << kUsage;
     return kExitOk;
