@@ -390,8 +390,12 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
   const int margin = std::max(6, font_size_ / 2);
   const int wrap = pixel_width - 4 * margin;
   if (stats_) {
+    // fps: frames presented per second of wall-clock time (0 until the first half second is
+    // measured); render: the backend's own time for the last frame, whatever the pacing.
+    char fps[32] = "-- fps";
+    if (fps_ > 0.0) std::snprintf(fps, sizeof fps, "%.1f fps", fps_);
     char text[256];
-    std::snprintf(text, sizeof text, "%.1f fps\nrender %.2f ms\n%d x %d, %zu triangles, %s", fps_,
+    std::snprintf(text, sizeof text, "%s\nrender %.2f ms\n%d x %d, %zu triangles, %s", fps,
                   render_ms_, pixel_width, pixel_height, scene_.triangleCount(), backend_.name());
     drawTextBox(text, margin, margin, false, SDL_Color{255, 255, 255, 255}, wrap);
   }
