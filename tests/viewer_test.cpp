@@ -310,16 +310,23 @@ TEST(SceneLoader, RunsOffTheCallingThreadAndHandsTheResultOverOnce) {
   std::atomic<bool> release{false};
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<bool> other_thread{false};
+  std::atomic<bool> finished{false};
   loader.start("cube.obj", [&]() -> Expected<Scene> {
     other_thread = std::this_thread::get_id() != caller;
     while (!release) std::this_thread::yield();
-    return cubeScene();
+    Scene scene = cubeScene();
+    finished = true;
+    return scene;
   });
   EXPECT_EQ(loader.name(), "cube.obj");
   // While the load runs, the caller is not blocked and there is no result.
   EXPECT_TRUE(loader.busy());
   EXPECT_FALSE(loader.takeResult());
   release = true;
+  while (!finished) std::this_thread::yield();
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  // Finished but not taken: still busy, so a caller that polls while busy() gets the result.
+  EXPECT_TRUE(loader.busy());
   std::optional<Expected<Scene>> result = waitForResult(loader);
   ASSERT_TRUE(result);
   ASSERT_TRUE(result->ok());

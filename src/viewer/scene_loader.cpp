@@ -40,10 +40,6 @@ void SceneLoader::start(std::string name, LoadFunction load) {
   jobs_.push_back(std::move(job));
 }
 
-bool SceneLoader::busy() const {
-  return latest_ != nullptr && !latest_->done.load(std::memory_order_acquire);
-}
-
 std::optional<Expected<Scene>> SceneLoader::takeResult() {
   std::optional<Expected<Scene>> taken;
   if (latest_ != nullptr && latest_->done.load(std::memory_order_acquire)) {

@@ -26,8 +26,9 @@ class SceneLoader {
   // Runs `load` on a new thread; `name` is what the window shows while it runs. An exception
   // thrown by `load` (out of memory) becomes an error result.
   void start(std::string name, LoadFunction load);
-  // The latest load is still running.
-  bool busy() const;
+  // The latest load is running, or has finished and its result is waiting for takeResult().
+  // (A caller that polls while busy() never misses a result that lands between two polls.)
+  bool busy() const { return latest_ != nullptr; }
   // The name given to the latest start().
   const std::string& name() const { return name_; }
   // The latest load's result, once, when it has finished; nullopt while it runs (or after the
