@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "decode.h"
+#include "xdnd_drop.h"
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -409,6 +410,48 @@ TEST_F(ViewerWindow, AModelThatFailsToLoadShowsTheCubeAndTheError) {
       if (p.r > 150 && p.r > p.g + 60 && p.r > p.b + 60) ++reddish;
     }
   EXPECT_GT(reddish, 30);
+  xdotool({"key", "Escape"});
+  EXPECT_EQ(viewer_->waitExit(), 0);
+}
+
+TEST_F(ViewerWindow, DroppingAFileLoadsItAndABadFileKeepsTheModelAndShowsTheError) {
+  std::string why;
+  if (!startX(why)) GTEST_SKIP() << why;
+  std::ofstream(dir_ / "tetra.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                       "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  std::ofstream(dir_ / "broken.obj") << "v 0 0 0\nf 1 2 9\n";
+  startViewer({"-w", "240", "-h", "180", "-workers", "1"});
+  ASSERT_TRUE(viewer_->waitForLine("tessera view: showing cube"));
+  const std::string window = findWindow();
+  ASSERT_FALSE(window.empty());
+  xdotool({"mousemove", "--window", window, "120", "90"});
+  const DecodedPng cube = screenshot();
+
+  // A real XDND drop, as from a file manager: the model loads and replaces the cube.
+  EXPECT_EQ(tessera::test::dropFileOnWindow(display_, std::stoul(window),
+                                            (dir_ / "tetra.obj").string(), 120, 90, 60),
+            "");
+  ASSERT_TRUE(viewer_->waitForLine("tessera view: showing tetra.obj (4 triangles"))
+      << viewer_->output() << slurp(dir_ / "viewer.err");
+  const DecodedPng tetra = screenshot();
+  ASSERT_EQ(tetra.width, 240);
+  ASSERT_EQ(cube.width, 240);
+  EXPECT_GT(countDifferent(cube, tetra, 0, 0, 240, 180), 240 * 180 / 20);
+
+  // A file that fails to load: the error is reported and the tetrahedron stays.
+  EXPECT_EQ(tessera::test::dropFileOnWindow(display_, std::stoul(window),
+                                            (dir_ / "broken.obj").string(), 120, 90, 60),
+            "");
+  const Clock::time_point deadline = Clock::now() + kTimeout;
+  while (slurp(dir_ / "viewer.err").find("broken.obj") == std::string::npos &&
+         Clock::now() < deadline)
+    ::usleep(20 * 1000);
+  ASSERT_NE(slurp(dir_ / "viewer.err").find("broken.obj"), std::string::npos);
+  const DecodedPng after = screenshot();
+  ASSERT_EQ(after.width, 240);
+  // The model is untouched above the message box, and the message is drawn below.
+  EXPECT_EQ(countDifferent(tetra, after, 0, 0, 240, 60), 0);
+  EXPECT_GT(countDifferent(tetra, after, 0, 120, 240, 180), 100);
   xdotool({"key", "Escape"});
   EXPECT_EQ(viewer_->waitExit(), 0);
 }

@@ -232,6 +232,7 @@ class Viewer {
   bool dirty_ = true;
   bool screenshot_requested_ = false;
   std::string error_;  // the last load error, shown until the next load
+  fs::path loading_path_;
   Clock::time_point load_started_;
 
   double render_ms_ = 0.0;
@@ -276,6 +277,7 @@ void Viewer::ensureFont(float pixel_scale) {
 
 void Viewer::startLoad(const fs::path& path) {
   const std::string name = path.filename().string();
+  loading_path_ = path;
   load_started_ = Clock::now();
   error_.clear();
   std::function<Expected<Scene>(const fs::path&)> load_file = hooks_.load_file;
@@ -312,6 +314,12 @@ void Viewer::takeLoadResult() {
     error_ = result->error().message;
   }
   std::cerr << "tessera view: error: " << error_ << std::endl;
+  // In the window the file's folder is noise that pushes the message over the model.
+  const std::string folder = loading_path_.parent_path().string();
+  if (!folder.empty()) {
+    for (size_t at; (at = error_.find(folder + "/")) != std::string::npos;)
+      error_.erase(at, folder.size() + 1);
+  }
   // The model given at start failed: show the default scene under the message.
   if (!has_scene_) showScene(hooks_.default_scene(), "cube");
 }
