@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include <tessera/io/image_writer.h>
+
 #include "decode.h"
 #include "xdnd_drop.h"
 
@@ -456,6 +458,29 @@ TEST_F(ViewerWindow, DroppingAFileLoadsItAndABadFileKeepsTheModelAndShowsTheErro
   EXPECT_EQ(viewer_->waitExit(), 0);
 }
 
+TEST_F(ViewerWindow, FullscreenFillsTheScreenAndTextureIsTheAlbedo) {
+  std::string why;
+  if (!startX(why)) GTEST_SKIP() << why;
+  // A 2x2 pure blue texture: the orange cube turns blue.
+  const uint32_t blue[4] = {0xffff0000u, 0xffff0000u, 0xffff0000u, 0xffff0000u};
+  ASSERT_TRUE(tessera::io::writePngRgba8(dir_ / "blue.png", 2, 2, blue));
+  startViewer({"-fullscreen", "-texture", "blue.png", "-workers", "1"});
+  ASSERT_TRUE(viewer_->waitForLine("tessera view: showing cube"))
+      << viewer_->output() << slurp(dir_ / "viewer.err");
+  const std::string window = findWindow();
+  ASSERT_FALSE(window.empty());
+  xdotool({"mousemove", "--window", window, "512", "384"});
+  const DecodedPng shot = screenshot();
+  EXPECT_EQ(shot.width, 1024);  // the Xvfb screen
+  EXPECT_EQ(shot.height, 768);
+  if (shot.width == 1024) {
+    const Rgb centre = pixel(shot, 512, 384);
+    EXPECT_GT(centre.b, centre.r + 40) << centre.r << "," << centre.g << "," << centre.b;
+  }
+  xdotool({"key", "Escape"});
+  EXPECT_EQ(viewer_->waitExit(), 0);
+}
+
 // Runs `tessera view` without X and returns its exit status and stderr.
 std::pair<int, std::string> runWithoutWindow(const std::vector<std::string>& args,
                                              const std::map<std::string, std::string>& env) {
@@ -489,6 +514,12 @@ TEST(ViewerErrors, AMissingModelIsAClearErrorWithStatus1) {
   auto [status, err] = runWithoutWindow({"no-such-model.obj"}, {});
   EXPECT_EQ(status, 1);
   EXPECT_NE(err.find("no-such-model.obj: no such file"), std::string::npos) << err;
+}
+
+TEST(ViewerErrors, AnUnreadableTextureIsAClearErrorWithStatus1) {
+  auto [status, err] = runWithoutWindow({"-texture", "no-such-texture.png"}, {});
+  EXPECT_EQ(status, 1);
+  EXPECT_NE(err.find("no-such-texture.png"), std::string::npos) << err;
 }
 
 TEST(ViewerErrors, BadFlagsAreAUsageErrorWithStatus2) {

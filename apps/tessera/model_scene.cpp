@@ -22,8 +22,13 @@ Expected<Scene> makeModelScene(io::Model model, const std::filesystem::path& pat
   object.mesh = std::make_shared<Mesh>(std::move(model.mesh));
   object.materials = std::move(model.materials);
   if (object.materials.empty()) object.materials.push_back(Material{});
-  if (settings.albedo)
-    for (Material& material : object.materials) material.albedo = settings.albedo;
+  // The texture is the albedo: a white base colour lets it show as it is (alpha is kept).
+  if (settings.albedo) {
+    for (Material& material : object.materials) {
+      material.albedo = settings.albedo;
+      material.base_color = {1.0f, 1.0f, 1.0f, material.base_color.w};
+    }
+  }
   object.shading = settings.shading;
   object.cull = settings.cull;
   scene.objects.push_back(std::move(object));

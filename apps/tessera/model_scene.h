@@ -16,7 +16,8 @@ struct ModelSceneSettings {
   Shading shading = Shading::kPhong;
   CullMode cull = CullMode::kNone;
   float3 background_srgb{0.2f, 0.2f, 0.2f};  // sRGB, 0..1
-  std::shared_ptr<const Texture> albedo;     // when set, the albedo of every material
+  // When set, the albedo of every material (their base colours become white).
+  std::shared_ptr<const Texture> albedo;
 };
 
 // "flat", "smooth" (per-pixel), "gouraud" (per-vertex) or "unlit".
