@@ -229,7 +229,8 @@ class Viewer {
   bool world_axes_ = false;
   bool object_axes_ = false;
   bool quit_ = false;
-  bool dirty_ = true;
+  bool dirty_ = true;         // the window needs presenting again
+  bool view_changed_ = true;  // ...and the scene rendering again (camera, scene or axes changed)
   bool screenshot_requested_ = false;
   std::string error_;  // the last load error, shown until the next load
   fs::path loading_path_;
@@ -296,7 +297,7 @@ void Viewer::showScene(Scene scene, const std::string& name) {
   for (Object& object : scene_.objects)
     if (object.mesh) object.axes_length = axesLength(object.mesh->bounds()) * 0.75f;
   SDL_SetWindowTitle(window_.get(), ("tessera view: " + name).c_str());
-  dirty_ = true;
+  dirty_ = view_changed_ = true;
 }
 
 void Viewer::takeLoadResult() {
@@ -326,7 +327,7 @@ void Viewer::takeLoadResult() {
 
 void Viewer::handleAction(const Action& action) {
   if (applyCameraAction(action, camera_)) {
-    dirty_ = true;
+    dirty_ = view_changed_ = true;
     return;
   }
   switch (action.type) {
@@ -336,9 +337,11 @@ void Viewer::handleAction(const Action& action) {
       break;
     case Action::Type::kToggleWorldAxes:
       world_axes_ = !world_axes_;
+      view_changed_ = true;
       break;
     case Action::Type::kToggleObjectAxes:
       object_axes_ = !object_axes_;
+      view_changed_ = true;
       break;
     case Action::Type::kScreenshot:
       screenshot_requested_ = true;
@@ -454,22 +457,25 @@ void Viewer::drawFrame() {
     if (texture_) SDL_SetTextureBlendMode(texture_.get(), SDL_BLENDMODE_NONE);
   }
 
-  scene_.camera = camera_.camera();
-  scene_.show_world_axes = world_axes_;
-  for (Object& object : scene_.objects) object.show_axes = object_axes_;
-  if (hooks_.place_lights) hooks_.place_lights(scene_);
-  render_options_.width = pixel_w;
-  render_options_.height = pixel_h;
-  const Clock::time_point start = Clock::now();
-  backend_.render(scene_, render_options_, frame_);
-  render_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  // The scene is rendered again only when it would look different, or continuously while the
+  // stats are shown (they measure it); an overlay-only update reuses the last frame.
+  if (view_changed_ || stats_ || frame_.width != pixel_w || frame_.height != pixel_h) {
+    view_changed_ = false;
+    scene_.camera = camera_.camera();
+    scene_.show_world_axes = world_axes_;
+    for (Object& object : scene_.objects) object.show_axes = object_axes_;
+    if (hooks_.place_lights) hooks_.place_lights(scene_);
+    render_options_.width = pixel_w;
+    render_options_.height = pixel_h;
+    const Clock::time_point start = Clock::now();
+    backend_.render(scene_, render_options_, frame_);
+    render_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    if (texture_) SDL_UpdateTexture(texture_.get(), nullptr, frame_.color.data(), pixel_w * 4);
+  }
 
   SDL_SetRenderDrawColor(renderer_.get(), 0, 0, 0, 255);
   SDL_RenderClear(renderer_.get());
-  if (texture_) {
-    SDL_UpdateTexture(texture_.get(), nullptr, frame_.color.data(), pixel_w * 4);
-    SDL_RenderCopy(renderer_.get(), texture_.get(), nullptr, nullptr);
-  }
+  if (texture_) SDL_RenderCopy(renderer_.get(), texture_.get(), nullptr, nullptr);
   drawOverlay(pixel_w, pixel_h);
   if (screenshot_requested_) {
     screenshot_requested_ = false;
@@ -501,16 +507,21 @@ void Viewer::run(const std::optional<fs::path>& model) {
   }
   const auto frame_interval = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(1.0 / options_.fps));
-  Clock::time_point next_frame = Clock::now();
+  // While only the "loading..." line changes, ten updates a second are plenty and leave the
+  // CPU to the loading thread.
+  const auto loading_interval =
+      std::max<Clock::duration>(frame_interval, std::chrono::milliseconds(100));
+  auto nextDraw = [&](Clock::time_point last_draw) {
+    return last_draw + (dirty_ || stats_ ? frame_interval : loading_interval);
+  };
+  Clock::time_point last_draw = Clock::now() - loading_interval;
   while (!quit_) {
-    // Keep drawing while something changes by itself (the stats, a load in progress); otherwise
-    // sleep until an event arrives.
-    const bool animating = stats_ || loader_.busy();
-    const bool want_frame = dirty_ || animating;
+    // Draw when something changed, and keep drawing while something changes by itself (the
+    // stats, a load in progress); otherwise sleep until an event arrives.
     int timeout_ms = -1;
-    if (want_frame) {
+    if (dirty_ || stats_ || loader_.busy()) {
       const auto wait =
-          std::chrono::duration_cast<std::chrono::milliseconds>(next_frame - Clock::now());
+          std::chrono::duration_cast<std::chrono::milliseconds>(nextDraw(last_draw) - Clock::now());
       timeout_ms = static_cast<int>(std::max<long long>(0, wait.count()));
     }
     SDL_Event event;
@@ -520,10 +531,11 @@ void Viewer::run(const std::optional<fs::path>& model) {
     }
     if (quit_) break;
     takeLoadResult();
-    if ((dirty_ || stats_ || loader_.busy()) && Clock::now() >= next_frame) {
+    const Clock::time_point now = Clock::now();
+    if ((dirty_ || stats_ || loader_.busy()) && now >= nextDraw(last_draw)) {
       dirty_ = false;
+      last_draw = now;
       drawFrame();
-      next_frame = std::max(next_frame + frame_interval, Clock::now());
     }
   }
 }
