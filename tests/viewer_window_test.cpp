@@ -99,12 +99,13 @@ class Process {
     return true;
   }
 
-  // Reads lines from `fd` until one starts with `prefix`; returns it, or nullopt at the deadline
-  // or end of file.
+  // Reads lines from `fd` until one starts with `prefix`; returns it, or nullopt once `timeout`
+  // has passed or at end of file.
   static std::optional<std::string> readLine(int fd, std::string& buffer,
                                              std::vector<std::string>& seen,
-                                             const std::string& prefix) {
-    const Clock::time_point deadline = Clock::now() + kTimeout;
+                                             const std::string& prefix,
+                                             Clock::duration timeout = kTimeout) {
+    const Clock::time_point deadline = Clock::now() + timeout;
     while (true) {
       size_t newline;
       while ((newline = buffer.find('\n')) != std::string::npos) {
@@ -115,9 +116,11 @@ class Process {
       }
       const auto left =
           std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
-      if (left <= 0) return std::nullopt;
       pollfd p{fd, POLLIN, 0};
-      if (::poll(&p, 1, static_cast<int>(left)) <= 0) continue;
+      if (::poll(&p, 1, static_cast<int>(std::max<long long>(left, 0))) <= 0) {
+        if (left <= 0) return std::nullopt;
+        continue;
+      }
       char chunk[4096];
       ssize_t n = ::read(fd, chunk, sizeof chunk);
       if (n <= 0) return std::nullopt;
@@ -127,6 +130,10 @@ class Process {
 
   std::optional<std::string> waitForLine(const std::string& prefix) {
     return readLine(out_fd_, buffer_, lines_, prefix);
+  }
+  // Only what the process has printed so far.
+  std::optional<std::string> waitForLineNow(const std::string& prefix) {
+    return readLine(out_fd_, buffer_, lines_, prefix, Clock::duration::zero());
   }
   int extraFd() const { return extra_fd_; }
 
@@ -387,6 +394,44 @@ TEST_F(ViewerWindow, LoadsAModelInTheBackgroundAndKeysChangeTheView) {
   const DecodedPng axes = screenshot();
   ASSERT_EQ(axes.width, 200);
   EXPECT_GT(countDifferent(top, axes, 0, 0, 200, 200), 20);
+  xdotool({"key", "Escape"});
+  EXPECT_EQ(viewer_->waitExit(), 0);
+}
+
+TEST_F(ViewerWindow, TheWindowStaysLiveWhileAModelLoads) {
+  std::string why;
+  if (!startX(why)) GTEST_SKIP() << why;
+  std::ofstream(dir_ / "tetra.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                       "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  // The load waits on this file (a test hook of `tessera view`), as a large model would.
+  const fs::path hold = dir_ / "hold";
+  std::ofstream(hold) << "";
+  std::vector<std::string> argv{TESSERA_EXE, "view", "tetra.obj", "-w", "320", "-h", "240"};
+  std::map<std::string, std::string> env = viewerEnv();
+  env["TESSERA_VIEW_TEST_HOLD_LOADS"] = hold.string();
+  viewer_ = std::make_unique<Process>();
+  ASSERT_TRUE(viewer_->start(argv, dir_, env, dir_ / "viewer.err"));
+  const std::string window = findWindow();
+  ASSERT_FALSE(window.empty());
+  xdotool({"mousemove", "--window", window, "160", "120"});
+  // The window answers keys during the load: F1 brings up the stats, F12 saves what is shown.
+  xdotool({"key", "F1"});
+  const DecodedPng loading = screenshot();
+  ASSERT_EQ(loading.width, 320);
+  // "loading tetra.obj... (0.1 s)" in white at the bottom left; the stats in the top left.
+  auto whiteIn = [&](const DecodedPng& png, int x0, int y0, int x1, int y1) {
+    int count = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x)
+        if (near(pixel(png, x, y), {255, 255, 255}, 40)) ++count;
+    return count;
+  };
+  EXPECT_GT(whiteIn(loading, 0, 200, 320, 240), 30);
+  EXPECT_GT(whiteIn(loading, 0, 0, 200, 40), 30);
+  EXPECT_FALSE(viewer_->waitForLineNow("tessera view: showing"));
+  fs::remove(hold);
+  ASSERT_TRUE(viewer_->waitForLine("tessera view: showing tetra.obj (4 triangles"))
+      << viewer_->output() << slurp(dir_ / "viewer.err");
   xdotool({"key", "Escape"});
   EXPECT_EQ(viewer_->waitExit(), 0);
 }

@@ -1,8 +1,11 @@
 // tessera view [MODEL]: the interactive viewer (an SDL2 window). Built only with TESSERA_VIEWER;
 // otherwise the command says so.
+#include <chrono>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <thread>
 
 #include <tessera/io/image_loader.h>
 #include <tessera/io/model_loader.h>
@@ -115,8 +118,19 @@ int runView(const std::vector<std::string>& args) {
   }
 
   viewer::ViewerHooks hooks;
+  // For tests only: while the file named by TESSERA_VIEW_TEST_HOLD_LOADS exists (at most a
+  // minute), loads wait, so that a test can see the window during a load that takes long.
+  std::string hold_file;
+  if (const char* hold = std::getenv("TESSERA_VIEW_TEST_HOLD_LOADS")) hold_file = hold;
   // Runs on the loading thread: it owns its copy of the settings.
-  hooks.load_file = [scene_settings](const std::filesystem::path& path) -> Expected<Scene> {
+  hooks.load_file = [scene_settings,
+                     hold_file](const std::filesystem::path& path) -> Expected<Scene> {
+    if (!hold_file.empty()) {
+      const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+      std::error_code ec;
+      while (std::filesystem::exists(hold_file, ec) && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
     Expected<io::Model> model = io::loadModel(path);
     if (!model) return model.error();
     for (const std::string& warning : model->warnings)
