@@ -201,6 +201,29 @@ int countDifferent(const DecodedPng& a, const DecodedPng& b, int x0, int y0, int
   return count;
 }
 
+// The share of the picture that is not background, and the centre of that part.
+struct Coverage {
+  double share = 0;
+  double centre_x = 0, centre_y = 0;
+};
+
+Coverage coverage(const DecodedPng& png, Rgb background) {
+  Coverage c;
+  long long count = 0;
+  for (int y = 0; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x)
+      if (!near(pixel(png, x, y), background, 8)) {
+        ++count;
+        c.centre_x += x;
+        c.centre_y += y;
+      }
+  if (count == 0) return c;
+  c.share = static_cast<double>(count) / (static_cast<double>(png.width) * png.height);
+  c.centre_x /= static_cast<double>(count);
+  c.centre_y /= static_cast<double>(count);
+  return c;
+}
+
 class ViewerWindow : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -321,13 +344,9 @@ TEST_F(ViewerWindow, ShowsTheCubeReactsToInputResizesAndQuitsOnEscape) {
   ASSERT_EQ(first.height, 240);
   const Rgb background = pixel(first, 2, 2);
   EXPECT_TRUE(near(background, {51, 51, 51}, 2)) << background.r << "," << background.g;
-  int covered = 0;
-  for (int y = 0; y < first.height; ++y)
-    for (int x = 0; x < first.width; ++x)
-      if (!near(pixel(first, x, y), background, 8)) ++covered;
-  const double share = static_cast<double>(covered) / (first.width * first.height);
-  EXPECT_GT(share, 0.15);
-  EXPECT_LT(share, 0.85);
+  const Coverage framed = coverage(first, background);
+  EXPECT_GT(framed.share, 0.15);
+  EXPECT_LT(framed.share, 0.85);
   // The cube is orange: more red than blue at the centre.
   const Rgb centre = pixel(first, 160, 120);
   EXPECT_GT(centre.r, centre.b + 60);
@@ -357,6 +376,23 @@ TEST_F(ViewerWindow, ShowsTheCubeReactsToInputResizesAndQuitsOnEscape) {
   ASSERT_EQ(hidden.width, 320);
   EXPECT_EQ(countDifferent(reset, hidden, 0, 0, 320, 240), 0);
 
+  // Two wheel steps towards the screen zoom in: the cube covers more.
+  xdotool({"click", "4"});
+  xdotool({"click", "4"});
+  const DecodedPng zoomed = screenshot();
+  ASSERT_EQ(zoomed.width, 320);
+  const Coverage closer = coverage(zoomed, background);
+  EXPECT_GT(closer.share, framed.share * 1.15);
+
+  // A middle drag pans: the cube follows the pointer, 40 points right and 20 down.
+  xdotool({"mousemove", "--window", window, "100", "100", "mousedown", "2", "mousemove", "--window",
+           window, "120", "110", "mousemove", "--window", window, "140", "120", "mouseup", "2"});
+  const DecodedPng panned = screenshot();
+  ASSERT_EQ(panned.width, 320);
+  const Coverage moved = coverage(panned, background);
+  EXPECT_NEAR(moved.centre_x - closer.centre_x, 40.0, 8.0);
+  EXPECT_NEAR(moved.centre_y - closer.centre_y, 20.0, 8.0);
+
   // The framebuffer follows the window's size.
   xdotool({"windowsize", window, "400", "300"});
   const DecodedPng resized = screenshot();
@@ -365,7 +401,7 @@ TEST_F(ViewerWindow, ShowsTheCubeReactsToInputResizesAndQuitsOnEscape) {
 
   // Screenshots take the next free number in the working folder.
   EXPECT_TRUE(fs::exists(dir_ / "screenshot-0001.png"));
-  EXPECT_TRUE(fs::exists(dir_ / "screenshot-0006.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "screenshot-0008.png"));
 
   xdotool({"key", "Escape"});
   EXPECT_EQ(viewer_->waitExit(), 0) << viewer_->output() << slurp(dir_ / "viewer.err");
