@@ -1,7 +1,7 @@
 // XDND version 5 as the source side (freedesktop.org's Drag-and-Drop Protocol for the X Window
 // System): XdndEnter, XdndPosition, wait for XdndStatus, XdndDrop, serve the selection, wait for
-// XdndFinished.
-#include "xdnd_drop.h"
+// XdndFinished. And the ICCCM close request.
+#include "x11_client.h"
 
 #include <X11/Xatom.h>
 #include <X11/Xlib.h>
@@ -119,6 +119,18 @@ std::string dropFileOnWindow(const std::string& display_name, unsigned long targ
   XDestroyWindow(display, source);
   XCloseDisplay(display);
   return result;
+}
+
+std::string requestClose(const std::string& display_name, unsigned long window) {
+  Display* display = XOpenDisplay(display_name.c_str());
+  if (display == nullptr) return "cannot open display " + display_name;
+  const Atom protocols = XInternAtom(display, "WM_PROTOCOLS", False);
+  const Atom delete_window = XInternAtom(display, "WM_DELETE_WINDOW", False);
+  sendClientMessage(display, window, protocols, static_cast<long>(delete_window), CurrentTime, 0, 0,
+                    0);
+  XSync(display, False);
+  XCloseDisplay(display);
+  return "";
 }
 
 }  // namespace tessera::test
