@@ -46,6 +46,10 @@ class SdlSession {
     if (video_) SDL_Quit();
   }
   Expected<void> start() {
+    // A desktop citizen: let the screen saver run, and let the first click on the window start
+    // a drag rather than only focus it.
+    SDL_SetHint(SDL_HINT_VIDEO_ALLOW_SCREENSAVER, "1");
+    SDL_SetHint(SDL_HINT_MOUSE_FOCUS_CLICKTHROUGH, "1");
     if (SDL_Init(SDL_INIT_VIDEO) != 0) {
       const char* driver = std::getenv("SDL_VIDEODRIVER");
       std::string message = std::string("cannot open a window: ") + SDL_GetError();
