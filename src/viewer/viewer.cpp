@@ -64,7 +64,7 @@ class SdlSession {
     // shows nothing is no viewer, unless that driver was asked for by name.
     const std::string current = SDL_GetCurrentVideoDriver() ? SDL_GetCurrentVideoDriver() : "";
     const char* requested = std::getenv("SDL_VIDEODRIVER");
-    if ((current == "offscreen" || current == "dummy") &&
+    if ((current == "offscreen" || current == "dummy" || current == "evdev") &&
         (requested == nullptr || current != requested))
       return makeError("cannot open a window: no display (SDL found none and fell back to its '" +
                        current +
