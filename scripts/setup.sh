@@ -10,6 +10,7 @@ packages=(
   libtinyobjloader-dev libstb-dev libtinygltf-dev nlohmann-json3-dev
   libspng-dev libpng-dev libgif-dev libimagequant-dev
   ffmpeg glmark2-data
+  libsdl2-dev libsdl2-ttf-dev fonts-dejavu-core xvfb xauth xdotool
   libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers
 )
 

@@ -16,6 +16,7 @@
 #include "backends.h"
 #include "commands.h"
 #include "flags.h"
+#include "model_scene.h"
 
 namespace tessera::cli {
 
@@ -48,35 +49,6 @@ bool endsWithIgnoringCase(const std::string& text, const std::string& suffix) {
   if (text.size() < suffix.size()) return false;
   return std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(),
                     [](char a, char b) { return std::tolower(a) == std::tolower(b); });
-}
-
-// Near and far that bracket the bounds as seen from the camera.
-void fitNearFar(Camera& camera, const Bounds& bounds) {
-  const float3 forward = normalize(camera.target - camera.position);
-  float nearest = 1e30f, farthest = -1e30f;
-  for (int i = 0; i < 8; ++i) {
-    float3 corner{i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
-                  i & 4 ? bounds.max.z : bounds.min.z};
-    float d = dot(corner - camera.position, forward);
-    nearest = std::min(nearest, d);
-    farthest = std::max(farthest, d);
-  }
-  camera.far_z = farthest > 0.0f ? farthest * 1.01f + 1e-6f : 1.0f;
-  // A camera inside the bounds still gets a near plane; 1e-4 of far keeps depth precise.
-  camera.near_z = std::max(nearest * 0.99f, camera.far_z * 1e-4f);
-}
-
-// A key light from above-left of the camera and a fill from the right, fixed to the view.
-void addViewLights(Scene& scene) {
-  const Camera& c = scene.camera;
-  const float3 forward = normalize(c.target - c.position);
-  float3 right = normalize(cross(forward, c.up));
-  if (length(right) == 0.0f) right = normalize(cross(forward, float3{1, 0, 0}));
-  const float3 up = cross(right, forward);
-  scene.lights.clear();
-  scene.lights.push_back({normalize(forward + right * 0.5f - up * 0.8f), float3(0.75f)});
-  scene.lights.push_back({normalize(forward - right * 0.7f - up * 0.1f), float3(0.2f)});
-  scene.ambient = float3(0.08f);
 }
 
 Expected<void> writeStill(const std::filesystem::path& path, const Frame& frame,
@@ -187,6 +159,7 @@ int runRender(const std::vector<std::string>& args) {
   }
   for (const std::string& warning : model->warnings)
     std::cerr << "tessera render: warning: " << warning << "\n";
+  ModelSceneSettings scene_settings;
   if (!s.texture.empty()) {
     Expected<Texture> texture = io::loadTexture(s.texture);
     if (!texture) {
@@ -196,13 +169,7 @@ int runRender(const std::vector<std::string>& args) {
     if (model->mesh.uvs.empty())
       std::cerr << "tessera render: warning: " << model_path.string()
                 << " has no texture coordinates: --texture has no effect\n";
-    auto shared = std::make_shared<const Texture>(std::move(*texture));
-    if (model->materials.empty()) model->materials.push_back(Material{});
-    // The texture is the albedo, as it is: it replaces any base colour.
-    for (Material& m : model->materials) {
-      m.albedo = shared;
-      m.base_color = {1, 1, 1, 1};
-    }
+    scene_settings.albedo = std::make_shared<const Texture>(std::move(*texture));
   }
   const Bounds bounds = model->mesh.bounds();
   if (bounds.empty()) {
@@ -211,27 +178,20 @@ int runRender(const std::vector<std::string>& args) {
   }
 
   // Scene.
-  Scene scene;
-  Object object;
-  object.mesh = std::make_shared<Mesh>(std::move(model->mesh));
-  object.materials = model->materials;
-  if (object.materials.empty()) object.materials.push_back(Material{});
-  object.shading = s.shading == "flat"      ? Shading::kFlat
-                   : s.shading == "gouraud" ? Shading::kGouraud
-                   : s.shading == "unlit"   ? Shading::kUnlit
-                                            : Shading::kPhong;
-  object.cull = s.backface == "hidden" ? CullMode::kBack : CullMode::kNone;
-  scene.objects.push_back(object);
-  scene.background = {srgbToLinear(s.background.x), srgbToLinear(s.background.y),
-                      srgbToLinear(s.background.z), 1.0f};
+  scene_settings.shading = shadingFromName(s.shading);
+  scene_settings.cull = s.backface == "hidden" ? CullMode::kBack : CullMode::kNone;
+  scene_settings.background_srgb = s.background;
+  Expected<Scene> made = makeModelScene(std::move(*model), model_path, scene_settings);
+  if (!made) {
+    printError("render", made.error().message);
+    return kExitFailure;
+  }
+  Scene scene = std::move(*made);
 
   const float3 up = s.up == "+Z" ? float3{0, 0, 1} : float3{0, 1, 0};
-  const float3 toward_viewer = s.up == "+Z" ? float3{0, -1, 0} : float3{0, 0, 1};
-  const float3 right{1, 0, 0};
   const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
   // A three-quarter view from the front, right and above.
-  Camera camera =
-      frameBounds(bounds, toward_viewer + right * 0.6f + up * 0.45f, up, s.view_angle, aspect);
+  Camera camera = frameBounds(bounds, threeQuarterDirection(up), up, s.view_angle, aspect);
   if (s.has_position || s.has_focal_point || s.has_view_up) {
     if (s.has_position) camera.position = s.camera_position;
     if (s.has_focal_point) camera.target = s.camera_focal_point;

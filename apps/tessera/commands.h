@@ -19,6 +19,7 @@ constexpr int kExitUsage = 2;    // the command line was wrong
 int runCube(const std::vector<std::string>& args);
 int runRender(const std::vector<std::string>& args);
 int runInfo(const std::vector<std::string>& args);
+int runView(const std::vector<std::string>& args);
 
 // Counts, bounds and warnings of a loaded model.
 void printModelInfo(const std::string& path, const io::Model& model, std::ostream& out);

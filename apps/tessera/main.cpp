@@ -39,6 +39,7 @@ constexpr const char* kUsage =
     "  cube            render the rotating-cube demo to an animated GIF (no input needed)\n"
     "  render MODEL    render a model to PNG (colour or an AOV), GIF, MP4 or a PNG sequence\n"
     "  info MODEL      print a model's counts, bounds and warnings without rendering it\n"
+    "  view [MODEL]    look at a model (or the cube) in a window: orbit, zoom, pan, screenshots\n"
     "  devices         list the Vulkan devices and the backends each can run\n"
     "\n"
     "Run 'tessera <command> --help' for the flags of a command.\n";
@@ -57,6 +58,7 @@ int main(int argc, char** argv) {
   if (command == "cube") return runCube(args);
   if (command == "render") return runRender(args);
   if (command == "info") return runInfo(args);
+  if (command == "view") return runView(args);
   if (command == "devices") return runDevices(args);
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << kUsage;
