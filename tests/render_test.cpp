@@ -268,6 +268,48 @@ TEST(Raster, InterpenetratingTrianglesResolveByDepth) {
   }
 }
 
+TEST(Raster, HiZRejectsOnlyWhatIsHidden) {
+  // A screen-covering wall at z = 0 drawn first (it sets the blocks' depth bounds), then small
+  // and large triangles behind it (all hidden) and in front of it (all visible), interleaved.
+  constexpr int kW = 128, kH = 96;
+  Scene scene = clipSpaceScene();
+  Mesh m;
+  auto quad = [&](float x0, float y0, float x1, float y1, float z) {
+    const uint32_t base = static_cast<uint32_t>(m.positions.size());
+    m.positions.insert(m.positions.end(), {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}});
+    m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  };
+  quad(-1, -1, 1, 1, 0.0f);  // ids 1, 2
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> pos(-0.95f, 0.8f);
+  std::vector<std::pair<float, float>> in_front;
+  for (int i = 0; i < 60; ++i) {
+    const float x = pos(rng), y = pos(rng);
+    const float size = i % 10 == 0 ? 0.6f : 0.08f;  // some large, most small
+    const bool front = i % 3 == 0;
+    quad(x, y, x + size, y + size, front ? -0.2f - 0.001f * i : 0.3f);
+    if (front) in_front.emplace_back(x, y);
+  }
+  scene.objects.push_back(unlitObject(m, CullMode::kBack));
+  Frame f = renderScene(scene, kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const uint32_t id = f.idAt(x, y);
+      ASSERT_NE(id, kNoTriangle);
+      // Triangle index id - 1 belongs to quad (id - 1) / 2; quad 0 is the wall, quad q >= 1 is
+      // random quad q - 1, in front when (q - 1) % 3 == 0.
+      const int q = static_cast<int>(id - 1) / 2;
+      EXPECT_TRUE(q == 0 || (q - 1) % 3 == 0) << "hidden quad " << q << " at " << x << "," << y;
+    }
+  // Every quad in front owns the pixel at its lower-left corner's inside.
+  for (auto [qx, qy] : in_front) {
+    const int px = static_cast<int>((qx + 1.0f) * 0.5f * kW) + 1;
+    const int py = static_cast<int>((1.0f - (qy + 0.02f)) * 0.5f * kH) - 1;
+    const int q = static_cast<int>(f.idAt(px, py) - 1) / 2;
+    EXPECT_NE(q, 0) << "a quad in front is missing at " << px << "," << py;
+  }
+}
+
 TEST(Raster, BackfaceCullModes) {
   constexpr int kW = 16, kH = 8;
   Mesh m;

@@ -35,6 +35,11 @@ struct TileVisibility {
   // past the end of the last row.
   alignas(64) float depth[kTileSize * kTileSize + 8];
   alignas(64) uint32_t key[kTileSize * kTileSize + 8];
+  // Hi-Z: an upper bound of the stored depths of each 8x8 block (row-major, 8 blocks a row).
+  // A triangle whose nearest depth is not below a block's bound cannot win a pixel there.
+  static constexpr int kHiZBlock = 8;
+  static constexpr int kHiZBlocksPerRow = kTileSize / kHiZBlock;
+  float block_max_depth[kHiZBlocksPerRow * kHiZBlocksPerRow];
 
   void clear(int tile_x0, int tile_y0, int tile_width, int tile_height) {
     x0 = tile_x0, y0 = tile_y0, width = tile_width, height = tile_height;
@@ -42,6 +47,7 @@ struct TileVisibility {
       depth[i] = std::numeric_limits<float>::infinity();
       key[i] = kEmptyKey;
     }
+    for (float& z : block_max_depth) z = std::numeric_limits<float>::infinity();
   }
 };
 

@@ -99,6 +99,7 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangl
   const float dz1 = v1.z - v0.z, dz2 = v2.z - v0.z;
   raster.dzdx = dz1 * o.l1dx + dz2 * o.l2dx;
   raster.dzdy = dz1 * o.l1dy + dz2 * o.l2dy;
+  raster.z_min = std::min({v0.z, v1.z, v2.z});
   return true;
 }
 

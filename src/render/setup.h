@@ -47,6 +47,7 @@ struct RasterTriangle {
   // Window z at pixel centre (x + 0.5, y + 0.5) = z0 + dzdx * (x + 0.5 - x0) + dzdy * (y + 0.5 -
   // y0)
   float x0, y0, z0, dzdx, dzdy;
+  float z_min;  // the nearest depth of the triangle (at a vertex), for Hi-Z
 };
 
 struct ShadeTriangle {

@@ -110,6 +110,10 @@ TESSERA_LANES_INLINE F32x8 squareRoot(F32x8 a) {
   for (int l = 0; l < 8; ++l) r.v[l] = std::sqrt(a.v[l]);
   return r;
 }
+TESSERA_LANES_INLINE F32x8 maximum(F32x8 a, F32x8 b) {
+  for (int l = 0; l < 8; ++l) a.v[l] = a.v[l] < b.v[l] ? b.v[l] : a.v[l];
+  return a;
+}
 TESSERA_LANES_INLINE I32x8 bitsOf(F32x8 a) {
   I32x8 r;
   std::memcpy(&r, &a, sizeof r);
@@ -206,9 +210,8 @@ TESSERA_LANES_INLINE F32x8 squareRoot(F32x8 a) {
   for (int l = 0; l < 8; ++l) r[l] = __builtin_sqrtf(a[l]);  // becomes one vector sqrt
   return r;
 }
-TESSERA_LANES_INLINE I32x8 bitsOf(F32x8 a) {
-  return reinterpret_cast<I32x8>(a);
-}
+TESSERA_LANES_INLINE F32x8 maximum(F32x8 a, F32x8 b) { return a < b ? b : a; }
+TESSERA_LANES_INLINE I32x8 bitsOf(F32x8 a) { return reinterpret_cast<I32x8>(a); }
 TESSERA_LANES_INLINE I32x8 shiftRight(I32x8 a, int n) {
   return a >> n;
 }
