@@ -69,7 +69,7 @@ struct CpuRenderer::State {
   PipelineStats stats;
 
   void setupChunk(const Scene& scene, const TileGrid& grid, const GuardBand& guard,
-                  TriangleChunk& chunk) const;
+                  bool want_normals, TriangleChunk& chunk) const;
 };
 
 namespace {
@@ -108,7 +108,8 @@ const PipelineStats& CpuRenderer::lastStats() const {
 }
 
 void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
-                                    const GuardBand& guard, TriangleChunk& chunk) const {
+                                    const GuardBand& guard, bool want_normals,
+                                    TriangleChunk& chunk) const {
   chunk.size = 0;
   chunk.bins.reset(grid.tileCount());
   chunk.culled = 0;
@@ -162,6 +163,10 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
     ctx.object = &object;
     ctx.has_uv = has_uv;
     ctx.has_color = has_color;
+    ctx.want_normals = want_normals;
+    // Flat shading lights the face; so do vertices of a mesh without normals.
+    const bool needs_face_normal =
+        object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;
 
     for (; t < std::min(end, object_end); ++t) {
       const size_t local = t - xf.triangle_base;
@@ -183,13 +188,14 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
       const uint16_t material = has_materials ? mesh.triangle_materials[local] : uint16_t{0};
       const uint32_t id = static_cast<uint32_t>(t);
       auto face_normal = [&] {
+        if (!needs_face_normal) return float3{};
         const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
                      p2 = mesh.positions[idx[2]];
         return xf.normal_matrix * cross(p1 - p0, p2 - p0) * xf.winding_sign;
       };
       auto mesh_attributes = [&](int k) {
         return VertexAttributes{vertices.normal[g[k]], has_uv ? mesh.uvs[idx[k]] : float2{},
-                                has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1}};
+                                has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1}, true};
       };
 
       const uint32_t cut = (c0 | c1 | c2) & kCutPlanes;
@@ -219,9 +225,9 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         for (int i = 0; i < 3; ++i) sv[i] = projectToScreen(fan[i]->position, width, height);
         auto attributes = [&] {
           return std::array<VertexAttributes, 3>{
-              VertexAttributes{fan[0]->normal, fan[0]->uv, fan[0]->color},
-              VertexAttributes{fan[1]->normal, fan[1]->uv, fan[1]->color},
-              VertexAttributes{fan[2]->normal, fan[2]->uv, fan[2]->color}};
+              VertexAttributes{fan[0]->normal, fan[0]->uv, fan[0]->color, false},
+              VertexAttributes{fan[1]->normal, fan[1]->uv, fan[1]->color, false},
+              VertexAttributes{fan[2]->normal, fan[2]->uv, fan[2]->color, false}};
         };
         any = emit(ctx, sv, attributes, face_normal, id, material) || any;
       }
@@ -294,8 +300,9 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     s.chunks[c].first_triangle = c * chunk_size;
     s.chunks[c].triangle_count = std::min(chunk_size, triangle_total - c * chunk_size);
   }
-  s.pool.parallelFor(s.chunk_count,
-                     [&](size_t c, int) { s.setupChunk(scene, grid, guard, s.chunks[c]); });
+  s.pool.parallelFor(s.chunk_count, [&](size_t c, int) {
+    s.setupChunk(scene, grid, guard, options.normals, s.chunks[c]);
+  });
 
   const Clock::time_point t_setup = Clock::now();
 

@@ -121,15 +121,23 @@ void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAt
   const float3 base = m.base_color.xyz();
   // Back faces that are drawn are lit from the viewer's side (two-sided lighting).
   const float flip = o.back_facing ? -1.0f : 1.0f;
-  const float3 flat_normal = normalize(face_normal) * flip;
+  // A zero face normal (not computed: the vertex normals serve) falls back to +Z.
+  float3 flat_normal = normalize(face_normal) * flip;
+  if (flat_normal.x == 0.0f && flat_normal.y == 0.0f && flat_normal.z == 0.0f)
+    flat_normal = float3{0, 0, flip};
   const float3 flat_irradiance =
       ctx.shading == Shading::kFlat ? irradiance(*ctx.scene, flat_normal) : float3(1.0f);
+  const bool keep_normals = ctx.shading == Shading::kPhong || ctx.want_normals;
   for (int k = 0; k < 3; ++k) {
     const VertexAttributes& va = a[o.order[k]];
-    float3 n = ctx.shading == Shading::kFlat ? flat_normal : normalize(va.normal) * flip;
-    if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) n = flat_normal;
-    shade.normal[k] = n;
-    shade.uv[k] = va.uv;
+    float3 n = flat_normal;
+    if (ctx.shading != Shading::kFlat) {
+      // The vertex stage's normals are unit already; clipped vertices' are interpolated.
+      n = (va.unit_normal ? va.normal : normalize(va.normal)) * flip;
+      if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) n = flat_normal;
+    }
+    if (keep_normals) shade.normal[k] = n;
+    if (ctx.has_uv) shade.uv[k] = va.uv;
     const float3 albedo = ctx.has_color ? base * va.color.xyz() : base;
     shade.color[k] =
         albedo * (ctx.shading == Shading::kGouraud ? irradiance(*ctx.scene, n) : flat_irradiance);

@@ -76,6 +76,7 @@ struct SetupContext {
   const Object* object = nullptr;
   bool has_uv = false;
   bool has_color = false;
+  bool want_normals = false;  // the normal AOV is asked for
 };
 
 // What setupRaster learnt that setupShade needs.
@@ -91,13 +92,14 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangl
                  TriangleOrientation& orientation);
 
 struct VertexAttributes {
-  float3 normal;  // world, not necessarily unit; zero when the mesh has none
+  float3 normal;  // world; zero when the mesh has none
   float2 uv;
   float4 color;
+  bool unit_normal;  // `normal` is unit length or zero already (not interpolated by clipping)
 };
 
-// `face_normal` is the world-space geometric normal (used for flat shading and where vertex
-// normals are missing). Attributes are given in input order.
+// `face_normal` is the world-space geometric normal (flat shading, and vertices without a normal);
+// zero when the caller knows it is not needed. Attributes are given in input order.
 void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAttributes a[3],
                 const TriangleOrientation& orientation, const RasterTriangle& raster,
                 float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade);
