@@ -623,48 +623,59 @@ class Flattener {
     return roots;
   }
 
-  // glTF nodes form trees: a child index in range, at most one parent, and no node its own
-  // ancestor. With one parent each, the parent links form chains; a cycle is a chain that
-  // returns to where it started, found in one pass (each node is walked once).
+  // glTF nodes form trees: child indices in range, no node its own ancestor, at most one
+  // parent each. Cycles first (a depth-first search over the child links, iterative and linear),
+  // since a cycle reached from elsewhere also gives one of its nodes a second parent.
   Expected<void> checkNodeTree() {
     const size_t node_count = gltf_.nodes.size();
-    constexpr int kNoParent = -1;
-    std::vector<int> parent(node_count, kNoParent);
     for (size_t n = 0; n < node_count; ++n) {
       for (int child : gltf_.nodes[n].children) {
         if (child < 0 || static_cast<size_t>(child) >= node_count)
           return makeError(name_ + ": node " + std::to_string(n) + " lists child " +
                            std::to_string(child) + ", but the file has " +
                            std::to_string(node_count) + " nodes");
-        const auto c = static_cast<size_t>(child);
-        if (c == n)
+        if (static_cast<size_t>(child) == n)
           return makeError(name_ + ": node " + std::to_string(n) +
                            " is its own child (the node graph must be a tree)");
+      }
+    }
+    enum : char { kUnseen, kOnPath, kDone };
+    std::vector<char> state(node_count, kUnseen);
+    std::vector<std::pair<size_t, size_t>> path;  // node, next child to visit
+    for (size_t start = 0; start < node_count; ++start) {
+      if (state[start] != kUnseen) continue;
+      state[start] = kOnPath;
+      path.push_back({start, 0});
+      while (!path.empty()) {
+        auto& [node, next] = path.back();
+        const std::vector<int>& children = gltf_.nodes[node].children;
+        if (next == children.size()) {
+          state[node] = kDone;
+          path.pop_back();
+          continue;
+        }
+        const auto child = static_cast<size_t>(children[next++]);
+        if (state[child] == kOnPath)
+          return makeError(name_ + ": node " + std::to_string(child) +
+                           " is its own ancestor (its children lead back to it); the node "
+                           "graph must be a tree");
+        if (state[child] == kUnseen) {
+          state[child] = kOnPath;
+          path.push_back({child, 0});
+        }
+      }
+    }
+    constexpr int kNoParent = -1;
+    std::vector<int> parent(node_count, kNoParent);
+    for (size_t n = 0; n < node_count; ++n) {
+      for (int child : gltf_.nodes[n].children) {
+        const auto c = static_cast<size_t>(child);
         if (parent[c] != kNoParent)
           return makeError(name_ + ": node " + std::to_string(c) + " is a child of node " +
                            std::to_string(parent[c]) + " and of node " + std::to_string(n) +
                            " (glTF nodes have at most one parent)");
         parent[c] = static_cast<int>(n);
       }
-    }
-    enum : char { kUnseen, kOnWalk, kDone };
-    std::vector<char> state(node_count, kUnseen);
-    std::vector<size_t> walk;
-    for (size_t start = 0; start < node_count; ++start) {
-      walk.clear();
-      size_t n = start;
-      while (true) {
-        if (state[n] == kDone) break;
-        if (state[n] == kOnWalk)
-          return makeError(name_ + ": node " + std::to_string(n) +
-                           " is its own ancestor (its children lead back to it); the node "
-                           "graph must be a tree");
-        state[n] = kOnWalk;
-        walk.push_back(n);
-        if (parent[n] == kNoParent) break;
-        n = static_cast<size_t>(parent[n]);
-      }
-      for (size_t w : walk) state[w] = kDone;
     }
     return {};
   }
