@@ -16,9 +16,10 @@ for tool in clang clang++; do
 done
 
 # A separate build, its own type: optimized, with debug info for readable reports.
+mkdir -p "$build"
 cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTESSERA_FUZZ=ON -DTESSERA_TESTS=OFF -DTESSERA_BENCH=OFF \
-  >"$build.configure.log" 2>&1 || { cat "$build.configure.log" >&2; exit 1; }
+  >"$build/configure.log" 2>&1 || { cat "$build/configure.log" >&2; exit 1; }
 targets=()
 for f in "${formats[@]}"; do targets+=("tessera_fuzz_$f"); done
 cmake --build "$build" -j"${JOBS:-$(nproc)}" --target "${targets[@]}"
