@@ -33,7 +33,10 @@ for f in "${formats[@]}"; do
   log="$build/fuzz_$f.log"
   # -timeout: an input taking 10 s counts as a hang; -rss_limit_mb: libFuzzer's 2 GiB default,
   # stated; -max_len: room for small glTF files with embedded buffers.
-  if "$build/fuzz/tessera_fuzz_$f" "$work" "$root/fuzz/corpus/$f" \
+  # A dictionary of the format's keywords helps the fuzzer past its syntax.
+  dict=()
+  [ -f "$root/fuzz/dict/$f.dict" ] && dict=(-dict="$root/fuzz/dict/$f.dict")
+  if "$build/fuzz/tessera_fuzz_$f" "$work" "$root/fuzz/corpus/$f" "${dict[@]}" \
       -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=16384 \
       -print_final_stats=1 -artifact_prefix="$build/artifacts/$f-" >"$log" 2>&1; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
