@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libtinyobjloader-dev libstb-dev libtinygltf-dev nlohmann-json3-dev
   libspng-dev libpng-dev libgif-dev libimagequant-dev
+  clang libclang-rt-14-dev
 )
 
 missing=()

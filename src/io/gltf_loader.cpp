@@ -569,13 +569,16 @@ class Flattener {
  private:
   // ---- Warnings ----
 
-  void warn(const std::string& text) {
+  // A warning about the model file; at most kMaxWarnings distinct ones are listed.
+  void warn(const std::string& text) { warnAbout(name_ + ": " + text); }
+  // A warning that names its own file (a texture's).
+  void warnAbout(const std::string& text) {
     if (!warned_.insert(text).second) return;
     if (warned_.size() > kMaxWarnings) {
       ++unlisted_warnings_;
       return;
     }
-    model_.warnings.push_back(name_ + ": " + text);
+    model_.warnings.push_back(text);
   }
 
   // ---- Extensions, scene, node tree ----
@@ -1038,13 +1041,13 @@ class Flattener {
       }
       std::error_code error;
       if (!fs::is_regular_file(*path, error)) {
-        model_.warnings.push_back(path->string() + ": texture not found" + dropped);
+        warnAbout(path->string() + ": texture not found" + dropped);
         return nullptr;
       }
       decoded = loadTexture(*path, /*srgb=*/true);
     }
     if (!decoded) {
-      model_.warnings.push_back(decoded.error().message + dropped);
+      warnAbout(decoded.error().message + dropped);
       return nullptr;
     }
     if (decoded->texels.size() > kMaxTotalTexels - total_texels_) {
@@ -1288,18 +1291,21 @@ class Flattener {
   size_t unlisted_warnings_ = 0;
 };
 
-// tinygltf's messages are lines ending in '\n'; this joins them into one.
+// tinygltf's messages are lines ending in '\n'; this joins the first few into one.
 std::string joinedLines(const std::string& text) {
+  constexpr size_t kMaxLines = 5;
   std::string out;
-  size_t begin = 0;
+  size_t lines = 0, begin = 0;
   while (begin < text.size()) {
     size_t end = std::min(text.find('\n', begin), text.size());
     std::string line = trimmed(std::string_view(text).substr(begin, end - begin));
     begin = end + 1;
     if (line.empty()) continue;
+    if (++lines > kMaxLines) continue;
     if (!out.empty()) out += "; ";
     out += line;
   }
+  if (lines > kMaxLines) out += "; and " + std::to_string(lines - kMaxLines) + " more";
   return out;
 }
 
