@@ -11,14 +11,16 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$root/build-fuzz"
 formats=(obj mtl stl gltf)
 
-for tool in clang clang++; do
+for tool in clang++; do
   command -v "$tool" >/dev/null || { echo "run_all: $tool not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }
 done
 
-# A separate build, its own type: optimized, with debug info for readable reports.
+# A separate build at -O1 with line tables (as OSS-Fuzz builds): quick to compile, readable
+# reports.
 mkdir -p "$build"
-cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTESSERA_FUZZ=ON -DTESSERA_TESTS=OFF -DTESSERA_BENCH=OFF \
+cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=None \
+  "-DCMAKE_CXX_FLAGS=-O1 -gline-tables-only" -DTESSERA_FUZZ=ON -DTESSERA_TESTS=OFF \
+  -DTESSERA_BENCH=OFF \
   >"$build/configure.log" 2>&1 || { cat "$build/configure.log" >&2; exit 1; }
 targets=()
 for f in "${formats[@]}"; do targets+=("tessera_fuzz_$f"); done
