@@ -530,27 +530,25 @@ class Flattener {
     if (!roots) return roots.error();
     if (Expected<void> ok = checkNodeTree(); !ok) return ok;
 
-    // Depth-first, a node's own mesh before its children, without recursion: a hierarchy may be
-    // as deep as the file is long.
-    struct Pending {
-      int node;
-      Matrix parent;
+    // Depth-first, a node's own mesh before its children, without recursion (a hierarchy may be
+    // as deep as the file is long): the path from the root is the only state, one entry per
+    // level with that node's global matrix and its next child.
+    struct Level {
+      size_t node;
+      size_t next_child;
+      Matrix global;
     };
-    std::vector<Pending> stack;
-    for (auto it = roots->rbegin(); it != roots->rend(); ++it) stack.push_back({*it, Matrix{}});
+    std::vector<Level> path;
     std::vector<char> drawn(gltf_.nodes.size(), 0);
-    while (!stack.empty()) {
-      Pending pending = std::move(stack.back());
-      stack.pop_back();
-      const auto index = static_cast<size_t>(pending.node);
+    auto enter = [&](size_t index, const Matrix& parent) -> Expected<void> {
       if (drawn[index]) {
         warn("node " + std::to_string(index) +
              " is reached more than once from the scene's roots; it is drawn once");
-        continue;
+        return {};
       }
       drawn[index] = 1;
       const tinygltf::Node& node = gltf_.nodes[index];
-      const Matrix global = pending.parent * localMatrix(node, index);
+      Matrix global = parent * localMatrix(node, index);
       if (node.mesh >= 0) {
         if (static_cast<size_t>(node.mesh) >= gltf_.meshes.size())
           return makeError(name_ + ": node " + std::to_string(index) + " refers to mesh " +
@@ -560,8 +558,23 @@ class Flattener {
           warn("skins are not applied: skinned meshes are drawn in their bind pose");
         if (Expected<void> ok = drawMesh(static_cast<size_t>(node.mesh), global); !ok) return ok;
       }
-      for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
-        stack.push_back({*child, global});
+      path.push_back({index, 0, global});
+      return {};
+    };
+    for (int root : *roots) {
+      if (Expected<void> ok = enter(static_cast<size_t>(root), Matrix{}); !ok) return ok;
+      while (!path.empty()) {
+        Level& level = path.back();
+        const std::vector<int>& children = gltf_.nodes[level.node].children;
+        if (level.next_child == children.size()) {
+          path.pop_back();
+          continue;
+        }
+        const auto child = static_cast<size_t>(children[level.next_child++]);
+        // `level` is not used past this point: entering a child may move the path.
+        const Matrix parent = level.global;
+        if (Expected<void> ok = enter(child, parent); !ok) return ok;
+      }
     }
     return finish();
   }
