@@ -852,6 +852,15 @@ TEST_F(GltfFiles, DeeplyNestedJsonIsRefused) {
                       "the JSON nests deeper than 64 levels");
 }
 
+TEST_F(GltfFiles, ObjectsWorthGigabytesOfParserStructuresAreRefused) {
+  // 3 bytes of text per material, 2 KiB per tinygltf::Material: 1.4 GiB from a 1.8 MB file.
+  std::string materials = "\"materials\":[{}";
+  for (int i = 1; i < 600000; ++i) materials += ",{}";
+  materials += "]";
+  expectErrorContains(loadJson("{\"asset\":{\"version\":\"2.0\"}," + materials + "}"),
+                      "the JSON describes more objects than tessera parses");
+}
+
 TEST_F(GltfFiles, InvalidJsonNamesTheLine) {
   expectErrorContains(loadJson("{\"asset\":{\"version\":\"2.0\"},\n\"nodes\":[{]\n}"),
                       "model.gltf: not valid JSON: parse error at line 2");

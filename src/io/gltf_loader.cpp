@@ -65,6 +65,10 @@ constexpr uintmax_t kMaxBufferFileBytes = uintmax_t{2} << 30;
 // JSON shape: far beyond real files, far below what tinygltf's recursion and memory can take.
 constexpr int kMaxJsonDepth = 64;
 constexpr size_t kMaxJsonContainers = size_t{1} << 22;
+// tinygltf turns each JSON object into a struct of its own, up to 2 KiB (a material) for as
+// little as 3 bytes of text ("{},"). Files whose objects would take more than this are refused;
+// a large real scene takes a few hundred MiB at most.
+constexpr uint64_t kMaxParsedBytes = uint64_t{1} << 30;
 // The flattened scene. Instancing can multiply a small file into a huge mesh; past this many
 // triangles or vertices the file is refused rather than eating the machine.
 constexpr size_t kMaxTriangles = size_t{1} << 25;
@@ -141,11 +145,28 @@ std::optional<uint64_t> gltfSize(const Json& object, const char* key) {
   return it->get<uint64_t>();
 }
 
+// What tinygltf allocates for one element of a top-level array.
+uint64_t structBytes(const std::string& top_key) {
+  if (top_key == "materials") return sizeof(tinygltf::Material);
+  if (top_key == "nodes") return sizeof(tinygltf::Node);
+  if (top_key == "accessors") return sizeof(tinygltf::Accessor);
+  if (top_key == "meshes") return sizeof(tinygltf::Mesh);
+  if (top_key == "images") return sizeof(tinygltf::Image);
+  if (top_key == "textures") return sizeof(tinygltf::Texture);
+  if (top_key == "bufferViews") return sizeof(tinygltf::BufferView);
+  if (top_key == "buffers") return sizeof(tinygltf::Buffer);
+  if (top_key == "samplers") return sizeof(tinygltf::Sampler);
+  if (top_key == "scenes") return sizeof(tinygltf::Scene);
+  return sizeof(tinygltf::Camera);  // the largest of the rest (animations, skins, cameras)
+}
+
 // Parses the JSON once, keeping only what the image check needs, and refuses shapes tinygltf
 // cannot take safely: nesting too deep, too many objects, images whose buffer view lies outside
 // its buffer (tinygltf reads those bytes unchecked).
 Expected<void> checkJsonShape(std::string_view text, const std::string& name) {
   size_t containers = 0;
+  uint64_t parsed_bytes = 0;
+  std::string top_key;  // the key at depth 1: what an object at depth 2 will become
   auto keep = [&](int depth, Json::parse_event_t event, Json& parsed) -> bool {
     switch (event) {
       case Json::parse_event_t::object_start:
@@ -156,9 +177,23 @@ Expected<void> checkJsonShape(std::string_view text, const std::string& name) {
         if (++containers > kMaxJsonContainers)
           throw JsonShapeError{"the JSON has more than " + std::to_string(kMaxJsonContainers) +
                                " objects and arrays"};
+        // The JSON value itself and tinygltf's copy of it (extras become tinygltf::Values).
+        parsed_bytes += 256;
+        if (event == Json::parse_event_t::object_start && depth == 2)
+          parsed_bytes += structBytes(top_key);
+        // Objects in the arrays of those: primitives, animation channels and samplers.
+        if (event == Json::parse_event_t::object_start && depth == 4)
+          parsed_bytes += std::max(sizeof(tinygltf::Primitive), sizeof(tinygltf::AnimationChannel));
+        if (parsed_bytes > kMaxParsedBytes)
+          throw JsonShapeError{"the JSON describes more objects than tessera parses (over " +
+                               std::to_string(kMaxParsedBytes >> 20) +
+                               " MiB of parser structures)"};
         return true;
       case Json::parse_event_t::key:
-        if (depth == 1) return parsed == "images" || parsed == "bufferViews" || parsed == "buffers";
+        if (depth == 1) {
+          top_key = parsed.get<std::string>();
+          return parsed == "images" || parsed == "bufferViews" || parsed == "buffers";
+        }
         if (depth == 3)
           return parsed == "bufferView" || parsed == "buffer" || parsed == "byteOffset" ||
                  parsed == "byteLength";
