@@ -76,7 +76,7 @@ def gltf_model():
         ],
         "materials": [
             {"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
-                                      "baseColorFactor": [1, 1, 1, 1]}},
+                                      "baseColorFactor": [1, 1, 1, 1]}, "doubleSided": True},
             {"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.9, 0.9, 1]}, "doubleSided": True},
         ],
         "textures": [{"source": 0, "sampler": 0}],
