@@ -15,6 +15,7 @@
 #include "backends.h"
 #include "commands.h"
 #include "flags.h"
+#include "view_setup.h"
 
 namespace tessera::cli {
 
@@ -24,10 +25,7 @@ struct RenderSettings {
   std::string output;
   int width = 1000, height = 600;
   float3 background{0.2f, 0.2f, 0.2f};
-  float3 camera_position, camera_focal_point, camera_view_up{0, 1, 0};
-  bool has_position = false, has_focal_point = false, has_view_up = false;
-  float view_angle = 30.0f;
-  std::string up = "+Y";
+  CameraSettings camera;
   std::string shading = "smooth";
   std::string backface = "visible";
   std::string aov = "color";
@@ -45,35 +43,6 @@ bool endsWithIgnoringCase(const std::string& text, const std::string& suffix) {
   if (text.size() < suffix.size()) return false;
   return std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(),
                     [](char a, char b) { return std::tolower(a) == std::tolower(b); });
-}
-
-// Near and far that bracket the bounds as seen from the camera.
-void fitNearFar(Camera& camera, const Bounds& bounds) {
-  const float3 forward = normalize(camera.target - camera.position);
-  float nearest = 1e30f, farthest = -1e30f;
-  for (int i = 0; i < 8; ++i) {
-    float3 corner{i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
-                  i & 4 ? bounds.max.z : bounds.min.z};
-    float d = dot(corner - camera.position, forward);
-    nearest = std::min(nearest, d);
-    farthest = std::max(farthest, d);
-  }
-  camera.far_z = farthest > 0.0f ? farthest * 1.01f + 1e-6f : 1.0f;
-  // A camera inside the bounds still gets a near plane; 1e-4 of far keeps depth precise.
-  camera.near_z = std::max(nearest * 0.99f, camera.far_z * 1e-4f);
-}
-
-// A key light from above-left of the camera and a fill from the right, fixed to the view.
-void addViewLights(Scene& scene) {
-  const Camera& c = scene.camera;
-  const float3 forward = normalize(c.target - c.position);
-  float3 right = normalize(cross(forward, c.up));
-  if (length(right) == 0.0f) right = normalize(cross(forward, float3{1, 0, 0}));
-  const float3 up = cross(right, forward);
-  scene.lights.clear();
-  scene.lights.push_back({normalize(forward + right * 0.5f - up * 0.8f), float3(0.8f)});
-  scene.lights.push_back({normalize(forward - right * 0.7f - up * 0.1f), float3(0.3f)});
-  scene.ambient = float3(0.18f);
 }
 
 Expected<void> writeStill(const std::filesystem::path& path, const Frame& frame,
@@ -114,14 +83,7 @@ int runRender(const std::vector<std::string>& args) {
                     s.background = *c;
                     return "";
                   });
-  flags.addFloat3("camera-position", &s.camera_position, &s.has_position,
-                  "camera position (model units)");
-  flags.addFloat3("camera-focal-point", &s.camera_focal_point, &s.has_focal_point,
-                  "point the camera looks at");
-  flags.addFloat3("camera-view-up", &s.camera_view_up, &s.has_view_up, "camera up direction");
-  flags.addFloat("camera-view-angle", &s.view_angle, "vertical field of view in degrees (30)",
-                 1.0f, 170.0f);
-  flags.addChoice("up", &s.up, {"+Y", "+Z"}, "the model's up axis (default +Y)");
+  addCameraFlags(flags, s.camera);
   flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit"},
                   "flat, smooth (per-pixel), gouraud (per-vertex) or unlit (default smooth)");
   flags.addChoice("backface-type", &s.backface, {"visible", "hidden"},
@@ -197,23 +159,11 @@ int runRender(const std::vector<std::string>& args) {
   scene.background = {srgbToLinear(s.background.x), srgbToLinear(s.background.y),
                       srgbToLinear(s.background.z), 1.0f};
 
-  const float3 up = s.up == "+Z" ? float3{0, 0, 1} : float3{0, 1, 0};
-  const float3 toward_viewer = s.up == "+Z" ? float3{0, -1, 0} : float3{0, 0, 1};
-  const float3 right{1, 0, 0};
+  const float3 up = s.camera.upAxis();
   const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
-  // A three-quarter view from the front, right and above.
-  Camera camera = frameBounds(bounds, toward_viewer + right * 0.6f + up * 0.45f, up,
-                              s.view_angle, aspect);
-  if (s.has_position || s.has_focal_point || s.has_view_up) {
-    if (s.has_position) camera.position = s.camera_position;
-    if (s.has_focal_point) camera.target = s.camera_focal_point;
-    camera.up = s.has_view_up ? s.camera_view_up : up;
-    if (length(camera.target - camera.position) == 0.0f)
-      return usageError("the camera position and focal point are the same point");
-    if (length(camera.up) == 0.0f) return usageError("--camera-view-up must not be zero");
-    fitNearFar(camera, bounds);
-  }
-  scene.camera = camera;
+  Expected<Camera> camera = makeCamera(s.camera, bounds, aspect);
+  if (!camera) return usageError(camera.error().message);
+  scene.camera = *camera;
   addViewLights(scene);
   if (s.axes) {
     scene.show_world_axes = true;

@@ -13,6 +13,7 @@ constexpr int kExitUsage = 2;    // the command line was wrong
 
 int runCube(const std::vector<std::string>& args);
 int runRender(const std::vector<std::string>& args);
+int runBench(const std::vector<std::string>& args);
 
 // Prints "tessera <command>: error: <message>" to stderr.
 void printError(const std::string& command, const std::string& message);

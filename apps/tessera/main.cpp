@@ -1,4 +1,4 @@
-// tessera: a software 3D rendering pipeline. Subcommands: cube, render.
+// tessera: a software 3D rendering pipeline. Subcommands: cube, render, bench.
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -38,6 +38,7 @@ constexpr const char* kUsage =
     "commands:\n"
     "  cube            render the rotating-cube demo to an animated GIF (no input needed)\n"
     "  render MODEL    render an OBJ model to PNG (colour or an AOV), GIF or a PNG sequence\n"
+    "  bench [SCENE]   time built-in scenes or models, beside Mesa's llvmpipe with --vs llvmpipe\n"
     "\n"
     "Run 'tessera <command> --help' for the flags of a command.\n";
 
@@ -54,6 +55,7 @@ int main(int argc, char** argv) {
   args.erase(args.begin());
   if (command == "cube") return runCube(args);
   if (command == "render") return runRender(args);
+  if (command == "bench") return runBench(args);
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << kUsage;
     return kExitOk;
