@@ -497,6 +497,60 @@ TEST(Renderer, ImageIsBitIdenticalForAnyWorkerCount) {
   }
 }
 
+TEST(Renderer, ImageIsBitIdenticalForEverySimdLevel) {
+  // Small triangles (a dense sphere), large ones (a floor through the near plane, screen-sized
+  // quads), thin slivers and sub-pixel ones: both raster paths of every kernel variant.
+  Scene scene;
+  scene.camera.position = {0, 1, 4};
+  scene.camera.near_z = 0.3f;
+  scene.lights.push_back({normalize(float3{-1, -2, -1}), float3(0.9f)});
+  Object sphere;
+  sphere.mesh = std::make_shared<Mesh>(makeUvSphere(96, 48));
+  sphere.shading = Shading::kPhong;
+  scene.objects.push_back(sphere);
+  Mesh floor;
+  floor.positions = {{-40, -1, 30}, {40, -1, 30}, {40, -1, -40}, {-40, -1, -40}};
+  floor.indices = {0, 1, 2, 0, 2, 3};
+  Object floor_object;
+  floor_object.mesh = std::make_shared<Mesh>(floor);
+  scene.objects.push_back(floor_object);
+  Mesh slivers;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> unit(-1.5f, 1.5f);
+  for (int i = 0; i < 400; ++i) {
+    float3 a{unit(rng), unit(rng), unit(rng)};
+    float3 b = a + float3{unit(rng), unit(rng), unit(rng)} * (i % 2 ? 1.0f : 0.004f);
+    float3 c = a + (b - a) * 0.5f + float3{0.002f, -0.001f, 0.003f};
+    uint32_t base = static_cast<uint32_t>(slivers.positions.size());
+    slivers.positions.insert(slivers.positions.end(), {a, b, c});
+    slivers.indices.insert(slivers.indices.end(), {base, base + 1, base + 2});
+  }
+  generateSmoothNormals(slivers);
+  Object sliver_object;
+  sliver_object.mesh = std::make_shared<Mesh>(slivers);
+  sliver_object.cull = CullMode::kNone;
+  sliver_object.shading = Shading::kGouraud;
+  scene.objects.push_back(sliver_object);
+
+  RenderOptions options;
+  options.width = 301;
+  options.height = 203;
+  auto render = [&](SimdLevel level) {
+    CpuRenderer renderer(2, level);
+    Frame frame;
+    renderer.render(scene, options, frame);
+    return frame;
+  };
+  Frame scalar = render(SimdLevel::kScalar);
+  EXPECT_GT(coveredCount(scalar), 301 * 203 / 3);
+  for (SimdLevel level : {SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512, SimdLevel::kAuto}) {
+    Frame other = render(level);
+    EXPECT_EQ(scalar.triangle_id, other.triangle_id) << static_cast<int>(level);
+    EXPECT_EQ(scalar.color, other.color) << static_cast<int>(level);
+    EXPECT_EQ(0, std::memcmp(scalar.depth.data(), other.depth.data(), scalar.depth.size() * 4));
+  }
+}
+
 TEST(Renderer, ReusesItsBuffersAcrossFramesAndSizes) {
   Scene scene;
   Object o;

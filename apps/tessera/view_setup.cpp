@@ -43,9 +43,9 @@ void addViewLights(Scene& scene) {
   if (length(right) == 0.0f) right = normalize(cross(forward, float3{1, 0, 0}));
   const float3 up = cross(right, forward);
   scene.lights.clear();
-  scene.lights.push_back({normalize(forward + right * 0.5f - up * 0.8f), float3(0.8f)});
-  scene.lights.push_back({normalize(forward - right * 0.7f - up * 0.1f), float3(0.3f)});
-  scene.ambient = float3(0.18f);
+  scene.lights.push_back({normalize(forward + right * 0.5f - up * 0.8f), float3(0.75f)});
+  scene.lights.push_back({normalize(forward - right * 0.7f - up * 0.1f), float3(0.2f)});
+  scene.ambient = float3(0.08f);
 }
 
 }  // namespace tessera::cli

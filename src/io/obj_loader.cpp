@@ -1,0 +1,899 @@
+// Wavefront OBJ + MTL through tinyobjloader. tinyobjloader does the parsing; everything it hands
+// back is validated here, polygons are split here (the triangle-id contract fixes the order), and
+// every file the model refers to is opened here, only from beneath the model's folder.
+#include <tessera/io/model_loader.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <new>
+#include <numbers>
+#include <set>
+#include <span>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <tessera/io/image_loader.h>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#pragma GCC diagnostic ignored "-Wpedantic"
+#include <tiny_obj_loader.h>
+#pragma GCC diagnostic pop
+
+namespace tessera::io {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+static_assert(std::is_same_v<tinyobj::real_t, float>,
+              "link the float build of tinyobjloader (tinyobjloader::tinyobjloader)");
+
+constexpr uintmax_t kMaxObjBytes = uintmax_t{2} << 30;
+// MTL files are a few kilobytes of text; one this big is not a material library.
+constexpr uintmax_t kMaxMtlBytes = uintmax_t{64} << 20;
+// tinyobjloader stores a face's corner count in an unsigned char.
+constexpr size_t kMaxFaceCorners = 255;
+// Mesh::triangle_materials holds uint16_t.
+constexpr size_t kMaxMaterials = size_t{1} << 16;
+// 2 GiB of RGBA8 over all of a model's textures (a single texture is at most 16384^2 = 1 GiB).
+constexpr size_t kMaxTotalTexels = size_t{1} << 29;
+// Reflex-vertex tests the ear clipper may make for one file: a few seconds of work. Real models
+// use a tiny fraction; a file of huge concave polygons built to be slow is refused instead.
+constexpr uint64_t kEarClipBudget = 1'000'000'000;
+// Distinct tinyobjloader warnings passed on per file; the rest are counted.
+constexpr size_t kMaxLibraryWarnings = 10;
+
+bool isBlank(char c) {
+  return c == ' ' || c == '\t';
+}
+
+std::string trimmed(std::string_view text) {
+  const char* kSpace = " \t\r\n";
+  size_t begin = text.find_first_not_of(kSpace);
+  if (begin == std::string_view::npos) return {};
+  size_t end = text.find_last_not_of(kSpace);
+  return std::string(text.substr(begin, end - begin + 1));
+}
+
+bool equalsIgnoreCase(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) ==
+                  std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
+// Passes tinyobjloader's warnings on, except those this loader reports better itself.
+void forwardLibraryWarnings(const std::string& file, const std::string& text,
+                            std::vector<std::string>& warnings) {
+  static constexpr std::string_view kReplaced[] = {
+      "Degenerated face",        "Vertex indices out of bounds", "Vertex normal indices",
+      "Vertex texcoord indices", "Failed to load material",      "Material file",
+  };
+  std::set<std::string> seen;
+  size_t skipped = 0;
+  size_t begin = 0;
+  while (begin < text.size()) {
+    size_t end = std::min(text.find('\n', begin), text.size());
+    std::string line = trimmed(std::string_view(text).substr(begin, end - begin));
+    begin = end + 1;
+    // "Degenerated face found\n." leaves a '.' at the start of the next message.
+    line.erase(0, line.find_first_not_of(". "));
+    if (line.empty()) continue;
+    bool replaced = std::any_of(std::begin(kReplaced), std::end(kReplaced),
+                                [&](std::string_view prefix) { return line.starts_with(prefix); });
+    if (replaced || !seen.insert(line).second) continue;
+    if (seen.size() > kMaxLibraryWarnings) {
+      ++skipped;
+      continue;
+    }
+    warnings.push_back(file + ": " + line);
+  }
+  if (skipped > 0)
+    warnings.push_back(file + ": " + std::to_string(skipped) + " more warnings like these");
+}
+
+// ---- Files the model refers to ----
+
+// Resolves a file named inside the model (an MTL library, a texture) to a path beneath `folder`,
+// or says why it is refused: URIs, absolute paths and `..` that climbs out of the folder (after
+// normalizing), and symbolic links that lead outside. '\' is taken as a separator, since Windows
+// exporters write `.\tex\a.png`.
+Expected<fs::path> resolveReferencedFile(const fs::path& folder, std::string_view reference) {
+  std::string name = trimmed(reference);
+  if (name.empty()) return makeError("the file name is empty");
+  // A scheme (http:, file:, data:) or a drive letter (C:) ahead of any separator.
+  size_t scheme_end = 0;
+  while (scheme_end < name.size()) {
+    unsigned char c = static_cast<unsigned char>(name[scheme_end]);
+    if (!std::isalnum(c) && c != '+' && c != '-' && c != '.') break;
+    ++scheme_end;
+  }
+  if (scheme_end > 0 && scheme_end < name.size() && name[scheme_end] == ':' &&
+      std::isalpha(static_cast<unsigned char>(name[0]))) {
+    if (scheme_end == 1) return makeError("it is an absolute path");
+    return makeError("it is a URI; only files beneath the model's folder are read");
+  }
+  std::replace(name.begin(), name.end(), '\\', '/');
+  if (name.front() == '/') return makeError("it is an absolute path");
+
+  std::vector<std::string> parts;
+  size_t begin = 0;
+  while (begin <= name.size()) {
+    size_t end = std::min(name.find('/', begin), name.size());
+    std::string part = name.substr(begin, end - begin);
+    begin = end + 1;
+    if (part.empty() || part == ".") continue;
+    if (part == "..") {
+      if (parts.empty()) return makeError("it leads out of the model's folder");
+      parts.pop_back();
+      continue;
+    }
+    parts.push_back(std::move(part));
+  }
+  if (parts.empty()) return makeError("it names the model's folder, not a file");
+  fs::path full = folder;
+  for (const std::string& part : parts) full /= part;
+
+  // The lexical check cannot see a symbolic link beneath the folder that points outside it.
+  std::error_code error;
+  if (fs::exists(full, error)) {
+    std::error_code folder_error;
+    fs::path real = fs::canonical(full, error);
+    fs::path real_folder = fs::canonical(folder, folder_error);
+    if (error || folder_error) return makeError("its location cannot be resolved");
+    fs::path inside = real.lexically_relative(real_folder);
+    if (inside.empty() || *inside.begin() == "..")
+      return makeError("it leads out of the model's folder through a symbolic link");
+  }
+  return full;
+}
+
+// ---- Line scans ----
+
+// Calls `visit(line, number)` for each line, split as tinyobjloader splits them (\n, \r\n and a
+// lone \r) and cut at a NUL, since tinyobjloader reads each line as a C string.
+template <typename Visit>
+void forEachLine(std::istream& in, Visit visit) {
+  uint32_t number = 0;
+  std::string raw;
+  while (std::getline(in, raw)) {
+    if (!raw.empty() && raw.back() == '\r') raw.pop_back();
+    size_t begin = 0;
+    while (true) {
+      size_t end = raw.find('\r', begin);
+      std::string_view line = std::string_view(raw).substr(
+          begin, (end == std::string::npos ? raw.size() : end) - begin);
+      visit(line.substr(0, line.find('\0')), ++number);
+      if (end == std::string::npos) break;
+      begin = end + 1;
+    }
+  }
+}
+
+std::string_view skipBlanks(std::string_view line) {
+  size_t start = 0;
+  while (start < line.size() && isBlank(line[start])) ++start;
+  return line.substr(start);
+}
+
+// `keyword` followed by a blank, as tinyobjloader matches its keywords.
+bool startsWithKeyword(std::string_view line, std::string_view keyword) {
+  return line.size() > keyword.size() && line.starts_with(keyword) && isBlank(line[keyword.size()]);
+}
+
+// What a light pass over the OBJ's lines finds, splitting lines as tinyobjloader does (\n, \r\n
+// and a lone \r) and spotting `f` and `mtllib` lines as it does. tinyobjloader does not report
+// which line a face came from; this does, for error messages.
+struct ObjLineIndex {
+  std::vector<uint32_t> face_lines;   // line of every face tinyobjloader keeps (3+ corners)
+  size_t short_faces = 0;             // faces with fewer than 3 corners (tinyobjloader drops them)
+  uint32_t first_long_face_line = 0;  // first face with more corners than tinyobjloader records
+  size_t first_long_face_corners = 0;
+  std::vector<std::string> material_libraries;  // the text after each `mtllib`, as written
+};
+
+void scanObjLine(std::string_view line, uint32_t line_number, ObjLineIndex& index) {
+  line = skipBlanks(line);
+  if (startsWithKeyword(line, "f")) {
+    size_t corners = 0;
+    bool in_token = false;
+    for (char c : line.substr(2)) {
+      if (isBlank(c)) {
+        in_token = false;
+      } else if (!in_token) {
+        in_token = true;
+        ++corners;
+      }
+    }
+    if (corners < 3) {
+      ++index.short_faces;
+      return;
+    }
+    index.face_lines.push_back(line_number);
+    if (corners > kMaxFaceCorners && index.first_long_face_line == 0) {
+      index.first_long_face_line = line_number;
+      index.first_long_face_corners = corners;
+    }
+  } else if (startsWithKeyword(line, "mtllib")) {
+    index.material_libraries.emplace_back(line.substr(7));
+  }
+}
+
+ObjLineIndex scanObjLines(std::istream& in) {
+  ObjLineIndex index;
+  forEachLine(in,
+              [&](std::string_view line, uint32_t number) { scanObjLine(line, number, index); });
+  return index;
+}
+
+// Names of the materials in an MTL text that set Kd. tinyobjloader does not say whether Kd was
+// given: it puts 0.6 in its place for a textured material, or 0 once any earlier material had a
+// Kd (its flag is never reset). Either would darken the texture; without Kd, the texture is
+// meant as it is.
+std::set<std::string> materialsWithKd(std::istream& in) {
+  std::set<std::string> names;
+  std::string current;
+  forEachLine(in, [&](std::string_view line, uint32_t) {
+    line = skipBlanks(line);
+    if (startsWithKeyword(line, "newmtl")) {
+      std::string rest(line.substr(7));
+      current = rest.substr(0, rest.find_last_not_of(" \t") + 1);  // as tinyobjloader trims
+    } else if (startsWithKeyword(line, "Kd")) {
+      names.insert(current);
+    }
+  });
+  return names;
+}
+
+// ---- Material libraries ----
+
+// Reads the MTL libraries the OBJ names, from beneath the OBJ's folder only, so tinyobjloader
+// never opens a path itself. tinyobjloader passes names after its own splitting, which treats
+// '\' as an escape and so mangles Windows paths, and it stops at the first library of an
+// `mtllib` line that loads. So the first call loads every library of every `mtllib` line from
+// the text as written (found by the line index) and later calls add nothing. A `usemtl` can then
+// also find a material from a library named further down the file.
+class FolderMaterialReader : public tinyobj::MaterialReader {
+ public:
+  FolderMaterialReader(fs::path folder, std::string obj_name,
+                       const std::vector<std::string>& libraries,
+                       std::vector<std::string>& warnings)
+      : folder_(std::move(folder)),
+        obj_name_(std::move(obj_name)),
+        libraries_(libraries),
+        warnings_(warnings) {}
+
+  // Per library material (tinyobjloader's numbering): whether its MTL block set Kd.
+  bool hasKd(size_t material) const { return material < has_kd_.size() && has_kd_[material]; }
+
+  bool operator()(const std::string& /*tinyobj_name*/, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* material_map, std::string* /*warn*/,
+                  std::string* /*err*/) override {
+    if (done_) return true;
+    done_ = true;
+    // Each library once, however often it is named: a file cannot make us parse one repeatedly.
+    std::set<fs::path> seen;
+    for (const std::string& text : libraries_)
+      for (const std::string& name : libraryNames(text)) load(name, materials, material_map, seen);
+    return true;
+  }
+
+ private:
+  // The names on one `mtllib` line. Exporters write a name with spaces either as it is or with
+  // "\ "; a whole line that names an existing file is taken as one name.
+  std::vector<std::string> libraryNames(const std::string& text) const {
+    std::string whole = trimmed(text);
+    if (whole.empty()) return {};
+    Expected<fs::path> as_one = resolveReferencedFile(folder_, whole);
+    std::error_code error;
+    if (as_one && fs::is_regular_file(*as_one, error)) return {whole};
+    std::vector<std::string> names;
+    std::string current;
+    for (size_t i = 0; i < whole.size(); ++i) {
+      if (whole[i] == '\\' && i + 1 < whole.size() && whole[i + 1] == ' ') {
+        current += ' ';
+        ++i;
+      } else if (isBlank(whole[i])) {
+        if (!current.empty()) names.push_back(std::move(current));
+        current.clear();
+      } else {
+        current += whole[i];
+      }
+    }
+    if (!current.empty()) names.push_back(std::move(current));
+    return names;
+  }
+
+  void load(const std::string& name, std::vector<tinyobj::material_t>* materials,
+            std::map<std::string, int>* material_map, std::set<fs::path>& seen) {
+    const std::string fallback = "; its materials fall back to the default";
+    Expected<fs::path> path = resolveReferencedFile(folder_, name);
+    if (!path) {
+      warnings_.push_back(obj_name_ + ": material file '" + name +
+                          "' refused: " + path.error().message + fallback);
+      return;
+    }
+    if (!seen.insert(*path).second) return;
+    const std::string path_name = path->string();
+    std::error_code error;
+    if (!fs::is_regular_file(*path, error)) {
+      warnings_.push_back(path_name + ": material file not found" + fallback);
+      return;
+    }
+    uintmax_t size = fs::file_size(*path, error);
+    if (error || size > kMaxMtlBytes) {
+      warnings_.push_back(path_name + ": material file is too large (over " +
+                          std::to_string(kMaxMtlBytes >> 20) + " MiB)" + fallback);
+      return;
+    }
+    std::ifstream file(*path, std::ios::binary);
+    std::stringstream stream;
+    if (!(file && stream << file.rdbuf())) {
+      warnings_.push_back(path_name + ": cannot read the material file" + fallback);
+      return;
+    }
+    const std::set<std::string> with_kd = materialsWithKd(stream);
+    stream.clear();
+    stream.seekg(0);
+    std::string mtl_warnings, mtl_errors;
+    const size_t first = materials->size();
+    tinyobj::LoadMtl(material_map, materials, &stream, &mtl_warnings, &mtl_errors);
+    for (size_t i = first; i < materials->size(); ++i)
+      has_kd_.push_back(with_kd.contains((*materials)[i].name));
+    forwardLibraryWarnings(path_name, mtl_warnings + mtl_errors, warnings_);
+  }
+
+  fs::path folder_;
+  std::string obj_name_;
+  const std::vector<std::string>& libraries_;
+  std::vector<std::string>& warnings_;
+  std::vector<char> has_kd_;
+  bool done_ = false;
+};
+
+// Turns MTL materials into tessera materials, loading each texture once.
+class MaterialBuilder {
+ public:
+  MaterialBuilder(fs::path folder, std::string obj_name, std::vector<std::string>& warnings)
+      : folder_(std::move(folder)), obj_name_(std::move(obj_name)), warnings_(warnings) {}
+
+  Material build(const tinyobj::material_t& source, bool has_kd) {
+    Material material;
+    auto channel = [](float value, float fallback) {
+      return std::isfinite(value) ? std::clamp(value, 0.0f, 1.0f) : fallback;
+    };
+    // Kd is taken as linear, like a glTF base colour factor: MTL does not say, and it is the
+    // value a renderer multiplies by. `d` (or 1 - `Tr`, tinyobjloader's reading) is alpha.
+    float3 kd{channel(source.diffuse[0], 0.8f), channel(source.diffuse[1], 0.8f),
+              channel(source.diffuse[2], 0.8f)};
+    float alpha = channel(source.dissolve, 1.0f);
+    if (!source.diffuse_texname.empty()) {
+      if (!has_kd) kd = float3{1, 1, 1};
+      const tinyobj::texture_option_t& options = source.diffuse_texopt;
+      const bool srgb = !equalsIgnoreCase(options.colorspace, "linear");
+      material.albedo = texture(source.diffuse_texname, srgb, source.name);
+      material.sampler.wrap = options.clamp ? TextureWrap::kClamp : TextureWrap::kRepeat;
+      bool moved = false;
+      for (int i = 0; i < 3; ++i)
+        moved |= options.origin_offset[i] != 0.0f || options.scale[i] != 1.0f;
+      if (moved)
+        warnings_.push_back(obj_name_ + ": material '" + source.name +
+                            "': texture offset and scale (-o, -s) are not supported; ignored");
+    }
+    material.base_color = float4{kd, alpha};
+    return material;
+  }
+
+ private:
+  std::shared_ptr<const Texture> texture(const std::string& reference, bool srgb,
+                                         const std::string& material_name) {
+    const std::string dropped = "; material '" + material_name + "' is drawn without it";
+    Expected<fs::path> path = resolveReferencedFile(folder_, reference);
+    if (!path) {
+      warnings_.push_back(obj_name_ + ": texture '" + reference +
+                          "' refused: " + path.error().message + dropped);
+      return nullptr;
+    }
+    auto key = std::make_pair(path->string(), srgb);
+    if (auto cached = cache_.find(key); cached != cache_.end()) return cached->second;
+    std::shared_ptr<const Texture>& slot = cache_[key];
+    std::error_code error;
+    if (!fs::exists(*path, error)) {
+      warnings_.push_back(path->string() + ": texture not found" + dropped);
+      return nullptr;
+    }
+    Expected<Texture> loaded = loadTexture(*path, srgb);
+    if (!loaded) {
+      warnings_.push_back(loaded.error().message + dropped);
+      return nullptr;
+    }
+    if (loaded->texels.size() > kMaxTotalTexels - total_texels_) {
+      warnings_.push_back(path->string() + ": skipped: the model's textures exceed " +
+                          std::to_string(kMaxTotalTexels) + " texels in all" + dropped);
+      return nullptr;
+    }
+    total_texels_ += loaded->texels.size();
+    slot = std::make_shared<const Texture>(std::move(loaded).value());
+    return slot;
+  }
+
+  fs::path folder_;
+  std::string obj_name_;
+  std::vector<std::string>& warnings_;
+  std::map<std::pair<std::string, bool>, std::shared_ptr<const Texture>> cache_;
+  size_t total_texels_ = 0;
+};
+
+// ---- Polygons to triangles ----
+
+// Splits polygons into triangles of corner numbers in the order the triangle-id contract fixes:
+// a convex polygon is a fan from its first corner, a concave one is ear-clipped. Both decisions
+// are made in the polygon's best-fit plane (Newell's normal), so a slightly warped polygon is
+// treated as it looks. The ear clipper is Eberly's ("Triangulation by Ear Clipping"): only
+// reflex corners can lie inside an ear, and clipping an ear changes only its two neighbours.
+class PolygonSplitter {
+ public:
+  // Appends n - 2 triangles (corner numbers, the polygon's winding) to `triangles`. False when
+  // the file's ear-clipping budget has run out.
+  bool split(std::span<const float3> corners, std::vector<uint32_t>& triangles) {
+    const int n = static_cast<int>(corners.size());
+    auto fan = [&] {
+      for (int i = 1; i + 1 < n; ++i) append(triangles, 0, i, i + 1);
+    };
+    if (n <= 3) {
+      fan();
+      return true;
+    }
+    // Newell's normal, around the first corner for precision.
+    const float3 origin = corners[0];
+    double normal[3] = {0, 0, 0};
+    for (int i = 0; i < n; ++i) {
+      float3 a = corners[i] - origin, b = corners[(i + 1) % n] - origin;
+      normal[0] += (double(a.y) - b.y) * (double(a.z) + b.z);
+      normal[1] += (double(a.z) - b.z) * (double(a.x) + b.x);
+      normal[2] += (double(a.x) - b.x) * (double(a.y) + b.y);
+    }
+    if (!std::isfinite(normal[0] + normal[1] + normal[2]) ||
+        (normal[0] == 0 && normal[1] == 0 && normal[2] == 0)) {
+      // No plane (non-finite or degenerate corners): nothing to clip against.
+      fan();
+      return true;
+    }
+    // Drop the normal's dominant axis; keep the other two in the order that makes the polygon
+    // counter-clockwise (x, y for +z; y, z for +x; z, x for +y).
+    int k = 0;
+    for (int axis = 1; axis < 3; ++axis)
+      if (std::abs(normal[axis]) > std::abs(normal[k])) k = axis;
+    int u = (k + 1) % 3, v = (k + 2) % 3;
+    if (normal[k] < 0) std::swap(u, v);
+    x_.resize(n);
+    y_.resize(n);
+    for (int i = 0; i < n; ++i) {
+      x_[i] = double(corners[i][u]) - origin[u];
+      y_[i] = double(corners[i][v]) - origin[v];
+    }
+    if (isConvex(n)) {
+      fan();
+      return true;
+    }
+    return clipEars(n, triangles);
+  }
+
+ private:
+  static void append(std::vector<uint32_t>& triangles, int a, int b, int c) {
+    triangles.push_back(static_cast<uint32_t>(a));
+    triangles.push_back(static_cast<uint32_t>(b));
+    triangles.push_back(static_cast<uint32_t>(c));
+  }
+
+  // Twice the signed area of (a, b, c): positive for a left turn.
+  double orient(int a, int b, int c) const {
+    return (x_[b] - x_[a]) * (y_[c] - y_[a]) - (y_[b] - y_[a]) * (x_[c] - x_[a]);
+  }
+
+  // Every turn to the left (collinear within a hair counts) and one full turn in all: a star
+  // polygon turns left everywhere but twice around.
+  bool isConvex(int n) const {
+    constexpr double kCollinear = 1e-6;  // sine of the largest right turn still called straight
+    double turning = 0;
+    for (int i = 0; i < n; ++i) {
+      int a = (i + n - 1) % n, c = (i + 1) % n;
+      double e1x = x_[i] - x_[a], e1y = y_[i] - y_[a];
+      double e2x = x_[c] - x_[i], e2y = y_[c] - y_[i];
+      double cross = e1x * e2y - e1y * e2x;
+      double dot = e1x * e2x + e1y * e2y;
+      if (cross < -kCollinear * std::hypot(e1x, e1y) * std::hypot(e2x, e2y)) return false;
+      turning += std::atan2(cross, dot);
+    }
+    return std::abs(turning - 2 * std::numbers::pi) < std::numbers::pi;
+  }
+
+  bool isEar(int v) {
+    if (!convex_[v]) return false;
+    const int a = prev_[v], c = next_[v];
+    for (int j : reflex_) {
+      if (j == a || j == v || j == c) continue;
+      if (++work_ > kEarClipBudget) return false;
+      // A corner repeated at the same place (a hole joined by a bridge) does not block.
+      auto same = [&](int p) { return x_[j] == x_[p] && y_[j] == y_[p]; };
+      if (same(a) || same(v) || same(c)) continue;
+      if (orient(a, v, j) >= 0 && orient(v, c, j) >= 0 && orient(c, a, j) >= 0) return false;
+    }
+    return true;
+  }
+
+  bool clipEars(int n, std::vector<uint32_t>& triangles) {
+    prev_.resize(n);
+    next_.resize(n);
+    convex_.resize(n);
+    ear_.resize(n);
+    for (int i = 0; i < n; ++i) {
+      prev_[i] = (i + n - 1) % n;
+      next_[i] = (i + 1) % n;
+    }
+    reflex_.clear();
+    for (int i = 0; i < n; ++i) {
+      convex_[i] = orient(prev_[i], i, next_[i]) > 0;
+      if (!convex_[i]) reflex_.push_back(i);
+    }
+    for (int i = 0; i < n; ++i) ear_[i] = isEar(i);
+    int remaining = n, cursor = 0;
+    while (remaining > 3) {
+      if (work_ > kEarClipBudget) return false;
+      int clip = -1;
+      for (int k = 0, v = cursor; k < remaining; ++k, v = next_[v])
+        if (ear_[v]) {
+          clip = v;
+          break;
+        }
+      if (clip < 0) {
+        // Self-intersecting or degenerate: no true ear. Clipping a convex corner (or any) still
+        // ends in n - 2 triangles.
+        clip = cursor;
+        for (int k = 0, v = cursor; k < remaining; ++k, v = next_[v])
+          if (convex_[v]) {
+            clip = v;
+            break;
+          }
+      }
+      const int a = prev_[clip], b = next_[clip];
+      append(triangles, a, clip, b);
+      next_[a] = b;
+      prev_[b] = a;
+      --remaining;
+      convex_[a] = orient(prev_[a], a, b) > 0;
+      convex_[b] = orient(a, b, next_[b]) > 0;
+      std::erase_if(reflex_, [&](int j) { return j == clip || convex_[j]; });
+      // Only a degenerate polygon turns a convex neighbour reflex.
+      for (int v : {a, b})
+        if (!convex_[v] && std::find(reflex_.begin(), reflex_.end(), v) == reflex_.end())
+          reflex_.push_back(v);
+      ear_[a] = isEar(a);
+      ear_[b] = isEar(b);
+      cursor = b;
+    }
+    append(triangles, prev_[cursor], cursor, next_[cursor]);
+    return work_ <= kEarClipBudget;
+  }
+
+  std::vector<double> x_, y_;
+  std::vector<int> prev_, next_;
+  std::vector<char> convex_, ear_;
+  std::vector<int> reflex_;  // reflex corners still in the polygon: the only ones an ear can hold
+  uint64_t work_ = 0;
+};
+
+// ---- Assembly ----
+
+// One mesh vertex per distinct (position, uv, normal) triple; -1 for an attribute not used.
+struct CornerKey {
+  int position, uv, normal;
+  bool operator==(const CornerKey&) const = default;
+};
+
+struct CornerKeyHash {
+  size_t operator()(const CornerKey& key) const noexcept {
+    uint64_t h = static_cast<uint32_t>(key.position) * 0x9E3779B97F4A7C15ull;
+    h = (h ^ (h >> 31) ^ static_cast<uint32_t>(key.uv)) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 27) ^ static_cast<uint32_t>(key.normal)) * 0x94D049BB133111EBull;
+    return static_cast<size_t>(h ^ (h >> 31));
+  }
+};
+
+// Where a face is, for messages: its line when the line index agrees with tinyobjloader about
+// how many faces there are, else its number.
+class FaceLocator {
+ public:
+  FaceLocator(std::string file, const std::vector<uint32_t>* lines)
+      : file_(std::move(file)), lines_(lines) {}
+  std::string operator()(size_t face) const {
+    if (lines_) return file_ + ":" + std::to_string((*lines_)[face]);
+    return file_ + ": face " + std::to_string(face + 1);
+  }
+
+ private:
+  std::string file_;
+  const std::vector<uint32_t>* lines_;
+};
+
+// tinyobjloader's own failures (a zero or unreadable index) end in "... line N.)".
+Error libraryError(const std::string& file, const std::string& message) {
+  std::string text = trimmed(message);
+  size_t at = text.rfind("line ");
+  std::string line;
+  if (at != std::string::npos)
+    for (size_t i = at + 5; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]));
+         ++i)
+      line += text[i];
+  std::string where = line.empty() ? file + ": " : file + ":" + line + ": ";
+  if (text.find("`f'") != std::string::npos)
+    return makeError(where +
+                     "cannot read the face: an index is 0, not a number, or followed by "
+                     "other text");
+  return makeError(where + text);
+}
+
+std::string pastEnd(const char* what, int index, size_t count, const char* counted) {
+  return std::string(what) + " index " + std::to_string(int64_t{index} + 1) + " is past the end (" +
+         std::to_string(count) + " " + counted + ")";
+}
+
+Expected<Model> loadObjChecked(const fs::path& path) {
+  const std::string name = path.string();
+  std::error_code error;
+  fs::file_status status = fs::status(path, error);
+  if (error || !fs::exists(status)) return makeError(name + ": no such file");
+  if (!fs::is_regular_file(status)) return makeError(name + ": not a regular file");
+  const uintmax_t size = fs::file_size(path, error);
+  if (error) return makeError(name + ": cannot read the file size: " + error.message());
+  if (size > kMaxObjBytes)
+    return makeError(name + ": the file is " + std::to_string(size) +
+                     " bytes; OBJ files over 2 GiB are refused");
+  if (size == 0) return makeError(name + ": the file is empty: no triangles");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return makeError(name + ": cannot open the file");
+
+  const ObjLineIndex lines = scanObjLines(in);
+  if (in.bad()) return makeError(name + ": read error");
+  in.clear();
+  in.seekg(0);
+
+  Model model;
+  fs::path folder = path.parent_path();
+  if (folder.empty()) folder = ".";
+  FolderMaterialReader reader(folder, name, lines.material_libraries, model.warnings);
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> library_materials;
+  std::string library_warnings, library_errors;
+  // triangulate = false: polygons are split below, in the contract's order.
+  // default_vcols_fallback = false: colours stay empty unless every `v` line has them.
+  const bool parsed =
+      tinyobj::LoadObj(&attrib, &shapes, &library_materials, &library_warnings, &library_errors,
+                       &in, &reader, /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  if (!parsed) return libraryError(name, library_errors);
+  forwardLibraryWarnings(name, library_warnings, model.warnings);
+  if (lines.short_faces > 0)
+    model.warnings.push_back(name + ": " + std::to_string(lines.short_faces) +
+                             " faces with fewer than 3 corners skipped");
+
+  // ---- Validate what tinyobjloader returned ----
+  const size_t position_count = attrib.vertices.size() / 3;
+  const size_t uv_count = attrib.texcoords.size() / 2;
+  const size_t normal_count = attrib.normals.size() / 3;
+  size_t face_count = 0, corner_count = 0;
+  for (const tinyobj::shape_t& shape : shapes) {
+    const tinyobj::mesh_t& mesh = shape.mesh;
+    size_t corners = 0;
+    for (unsigned char n : mesh.num_face_vertices) corners += n;
+    // A face of 256+ corners wraps tinyobjloader's unsigned char count, so the counts no longer
+    // add up to the corner list.
+    if (corners != mesh.indices.size()) {
+      if (lines.first_long_face_line > 0)
+        return makeError(name + ":" + std::to_string(lines.first_long_face_line) + ": a face of " +
+                         std::to_string(lines.first_long_face_corners) + " corners; at most " +
+                         std::to_string(kMaxFaceCorners) + " are supported");
+      return makeError(name + ": a face has more than " + std::to_string(kMaxFaceCorners) +
+                       " corners, which is not supported");
+    }
+    if (mesh.material_ids.size() != mesh.num_face_vertices.size())
+      return makeError(name + ": tinyobjloader returned inconsistent face data");
+    face_count += mesh.num_face_vertices.size();
+    corner_count += corners;
+  }
+  if (face_count == 0) return makeError(name + ": no triangles (the file has no faces)");
+  const FaceLocator locate(name,
+                           lines.face_lines.size() == face_count ? &lines.face_lines : nullptr);
+
+  auto vec3At = [](const std::vector<float>& values, size_t i) {
+    return float3{values[3 * i], values[3 * i + 1], values[3 * i + 2]};
+  };
+  bool any_uv = false, all_normals = true, normals_usable = true;
+  size_t face = 0;
+  for (const tinyobj::shape_t& shape : shapes) {
+    size_t corner = 0;
+    for (unsigned char n : shape.mesh.num_face_vertices) {
+      for (size_t c = 0; c < n; ++c, ++corner) {
+        const tinyobj::index_t& index = shape.mesh.indices[corner];
+        // Relative indices resolve against the count so far; one that reaches back too far
+        // comes out negative.
+        if (index.vertex_index < 0)
+          return makeError(locate(face) +
+                           ": a relative face index reaches before the first "
+                           "position");
+        if (static_cast<size_t>(index.vertex_index) >= position_count)
+          return makeError(locate(face) + ": " +
+                           pastEnd("face", index.vertex_index, position_count, "positions"));
+        if (index.texcoord_index < -1)
+          return makeError(locate(face) +
+                           ": a relative texture coordinate index reaches before "
+                           "the first one");
+        if (index.texcoord_index >= 0 && static_cast<size_t>(index.texcoord_index) >= uv_count)
+          return makeError(
+              locate(face) + ": " +
+              pastEnd("texture coordinate", index.texcoord_index, uv_count, "texture coordinates"));
+        if (index.normal_index < -1)
+          return makeError(locate(face) +
+                           ": a relative normal index reaches before the first "
+                           "normal");
+        if (index.normal_index >= 0 && static_cast<size_t>(index.normal_index) >= normal_count)
+          return makeError(locate(face) + ": " +
+                           pastEnd("normal", index.normal_index, normal_count, "normals"));
+        any_uv |= index.texcoord_index >= 0;
+        if (index.normal_index < 0) {
+          all_normals = false;
+        } else {
+          float3 normal = vec3At(attrib.normals, static_cast<size_t>(index.normal_index));
+          normals_usable &= isFinite(normal) && length(normal) > 0.0f;
+        }
+      }
+      ++face;
+    }
+  }
+  if (corner_count > std::numeric_limits<uint32_t>::max())
+    return makeError(name + ": too many face corners (" + std::to_string(corner_count) + ")");
+  // The simplest honest rule: unless every corner has a usable normal from the file, generate
+  // smooth, area-weighted normals for the whole mesh (mixing given and generated normals would
+  // shade the seam between them).
+  const bool use_file_normals = all_normals && normals_usable;
+  if (all_normals && !normals_usable)
+    model.warnings.push_back(name +
+                             ": some normals are zero or not finite; smooth normals were "
+                             "generated for the whole mesh");
+  else if (!all_normals && normal_count > 0)
+    model.warnings.push_back(name +
+                             ": some faces have no normals; smooth normals were generated "
+                             "for the whole mesh");
+  const bool has_colors = !attrib.colors.empty() && attrib.colors.size() == attrib.vertices.size();
+
+  // ---- Build the indexed mesh ----
+  Mesh& mesh = model.mesh;
+  std::vector<uint32_t> vertex_position;  // mesh vertex -> OBJ position
+  std::unordered_map<CornerKey, uint32_t, CornerKeyHash> vertex_of;
+  vertex_of.reserve(std::min<size_t>(corner_count, position_count * 2 + 16));
+  // Model material per tinyobjloader material; slot 0 is "no material". Materials are added in
+  // the order triangles first use them, so unused ones (and their textures) cost nothing.
+  std::vector<int32_t> model_material(library_materials.size() + 1, -1);
+  MaterialBuilder materials(folder, name, model.warnings);
+  PolygonSplitter splitter;
+  std::vector<float3> polygon;
+  std::vector<uint32_t> polygon_vertices, local_triangles;
+
+  face = 0;
+  for (const tinyobj::shape_t& shape : shapes) {
+    size_t corner = 0;
+    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face) {
+      const size_t n = shape.mesh.num_face_vertices[f];
+      polygon.clear();
+      polygon_vertices.clear();
+      for (size_t c = 0; c < n; ++c, ++corner) {
+        const tinyobj::index_t& index = shape.mesh.indices[corner];
+        CornerKey key{index.vertex_index, index.texcoord_index,
+                      use_file_normals ? index.normal_index : -1};
+        auto [slot, added] = vertex_of.try_emplace(key, static_cast<uint32_t>(vertex_of.size()));
+        const size_t position = static_cast<size_t>(index.vertex_index);
+        if (added) {
+          vertex_position.push_back(static_cast<uint32_t>(position));
+          mesh.positions.push_back(vec3At(attrib.vertices, position));
+          if (any_uv) {
+            mesh.uvs.push_back(
+                key.uv >= 0 ? float2{attrib.texcoords[2 * key.uv], attrib.texcoords[2 * key.uv + 1]}
+                            : float2{0, 0});
+          }
+          if (use_file_normals)
+            mesh.normals.push_back(
+                normalize(vec3At(attrib.normals, static_cast<size_t>(key.normal))));
+          if (has_colors) {
+            // Vertex colours are linear (the architecture's convention); alpha is opaque.
+            float3 rgb = vec3At(attrib.colors, position);
+            for (int i = 0; i < 3; ++i)
+              if (!std::isfinite(rgb[i])) rgb[i] = 1.0f;
+            mesh.colors.push_back(float4{rgb, 1.0f});
+          }
+        }
+        polygon.push_back(mesh.positions[slot->second]);
+        polygon_vertices.push_back(slot->second);
+      }
+
+      const int library_id = shape.mesh.material_ids[f];
+      const size_t material_slot =
+          library_id >= 0 && static_cast<size_t>(library_id) < library_materials.size()
+              ? static_cast<size_t>(library_id) + 1
+              : 0;
+      if (model_material[material_slot] < 0) {
+        if (model.materials.size() == kMaxMaterials)
+          return makeError(locate(face) + ": more than " + std::to_string(kMaxMaterials) +
+                           " materials in use");
+        model_material[material_slot] = static_cast<int32_t>(model.materials.size());
+        model.materials.push_back(material_slot == 0
+                                      ? Material{}
+                                      : materials.build(library_materials[material_slot - 1],
+                                                        reader.hasKd(material_slot - 1)));
+      }
+      const auto material = static_cast<uint16_t>(model_material[material_slot]);
+
+      local_triangles.clear();
+      if (!splitter.split(polygon, local_triangles))
+        return makeError(locate(face) +
+                         ": the file's concave polygons are too complex to "
+                         "triangulate in reasonable time");
+      for (size_t t = 0; t < local_triangles.size(); t += 3) {
+        bool finite = true;
+        for (size_t i = 0; i < 3; ++i) {
+          uint32_t vertex = polygon_vertices[local_triangles[t + i]];
+          mesh.indices.push_back(vertex);
+          finite &= isFinite(mesh.positions[vertex]);
+        }
+        mesh.triangle_materials.push_back(material);
+        if (!finite) ++model.nonfinite_triangles;
+      }
+    }
+  }
+
+  if (!use_file_normals) {
+    // Per OBJ position, so a seam in the texture coordinates does not show as a crease.
+    Mesh by_position;
+    by_position.positions.resize(position_count);
+    for (size_t v = 0; v < vertex_position.size(); ++v)
+      by_position.positions[vertex_position[v]] = mesh.positions[v];
+    by_position.indices.reserve(mesh.indices.size());
+    for (uint32_t vertex : mesh.indices) by_position.indices.push_back(vertex_position[vertex]);
+    generateSmoothNormals(by_position);
+    mesh.normals.resize(mesh.positions.size());
+    for (size_t v = 0; v < vertex_position.size(); ++v)
+      mesh.normals[v] = by_position.normals[vertex_position[v]];
+  }
+
+  if (model.nonfinite_triangles > 0)
+    model.warnings.push_back(name + ": " + std::to_string(model.nonfinite_triangles) +
+                             " triangles have a NaN or infinite vertex position (kept so triangle "
+                             "ids stay in load order; they are not drawn)");
+  return model;
+}
+
+}  // namespace
+
+Expected<Model> loadObj(const std::filesystem::path& path) {
+  try {
+    return loadObjChecked(path);
+  } catch (const std::bad_alloc&) {
+    return makeError(path.string() + ": out of memory while loading");
+  } catch (const std::length_error&) {
+    return makeError(path.string() + ": out of memory while loading");
+  }
+}
+
+}  // namespace tessera::io

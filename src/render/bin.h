@@ -55,6 +55,9 @@ namespace tessera::render {
 struct TriangleChunk {
   size_t first_triangle = 0;  // scene triangle index range [first, first + count)
   size_t triangle_count = 0;
+  // records [0, size) are this frame's; the vectors only grow, so a frame after warm-up neither
+  // allocates nor initializes what it then overwrites.
+  size_t size = 0;
   std::vector<RasterTriangle> raster;
   std::vector<ShadeTriangle> shade;
   ChunkBins bins;

@@ -45,7 +45,8 @@ struct VertexJob {
 }  // namespace
 
 struct CpuRenderer::State {
-  explicit State(int workers) : pool(workers) {
+  State(int workers, RasterIsa isa)
+      : pool(workers), raster_isa(isa), raster_triangle(rasterTriangleFunction(isa)) {
     for (int i = 0; i < pool.size(); ++i) {
       tiles.push_back(std::make_unique<TileVisibility>());
       shaded.push_back(std::make_unique<ShadedTile>());
@@ -53,6 +54,8 @@ struct CpuRenderer::State {
   }
 
   WorkerPool pool;
+  RasterIsa raster_isa;
+  RasterTriangleFn raster_triangle;
   std::vector<ObjectTransforms> objects;
   std::vector<VertexJob> vertex_jobs;
   VertexBuffer vertices;
@@ -67,16 +70,33 @@ struct CpuRenderer::State {
                   TriangleChunk& chunk) const;
 };
 
-CpuRenderer::CpuRenderer(int workers) : state_(std::make_unique<State>(workers)) {}
+namespace {
+
+RasterIsa chooseIsa(SimdLevel level) {
+  const RasterIsa best = detectRasterIsa();
+  switch (level) {
+    case SimdLevel::kAuto: return best;
+    case SimdLevel::kScalar: return RasterIsa::kScalar;
+    case SimdLevel::kSse2: return best >= RasterIsa::kSse2 ? RasterIsa::kSse2 : best;
+    case SimdLevel::kAvx2: return best >= RasterIsa::kAvx2 ? RasterIsa::kAvx2 : best;
+    case SimdLevel::kAvx512: return best;
+  }
+  return best;
+}
+
+}  // namespace
+
+CpuRenderer::CpuRenderer(int workers, SimdLevel simd)
+    : state_(std::make_unique<State>(workers, chooseIsa(simd))) {}
 CpuRenderer::~CpuRenderer() = default;
 
 int CpuRenderer::workerCount() const { return state_->pool.size(); }
+const char* CpuRenderer::simdName() const { return rasterIsaName(state_->raster_isa); }
 const PipelineStats& CpuRenderer::lastStats() const { return state_->stats; }
 
 void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
                                     const GuardBand& guard, TriangleChunk& chunk) const {
-  chunk.raster.clear();
-  chunk.shade.clear();
+  chunk.size = 0;
   chunk.bins.reset(grid.tileCount());
   chunk.culled = 0;
   chunk.clipped = 0;
@@ -94,13 +114,16 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
   auto emit = [&](const SetupContext& ctx, const ScreenVertex sv[3], auto&& attributes,
                   auto&& face_normal, uint32_t id, uint16_t material) {
     if (!setupRaster(ctx, sv, raster, orientation)) return false;
-    const uint32_t local = static_cast<uint32_t>(chunk.raster.size());
+    const uint32_t local = static_cast<uint32_t>(chunk.size++);
     TESSERA_CHECK(local < kMaxTrianglesPerChunk) << "chunk holds too many triangles";
+    if (local == chunk.raster.size()) {
+      chunk.raster.emplace_back();
+      chunk.shade.emplace_back();
+    }
     VertexAttributes a[3];
     attributes(a);
-    chunk.raster.push_back(raster);
-    chunk.shade.emplace_back();
-    setupShade(ctx, sv, a, orientation, raster, face_normal(), id, material, chunk.shade.back());
+    chunk.raster[local] = raster;
+    setupShade(ctx, sv, a, orientation, raster, face_normal(), id, material, chunk.shade[local]);
     chunk.bins.add(grid, raster, local);
     return true;
   };
@@ -270,7 +293,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       const uint32_t* end = chunk.bins.end(tile);
       for (const uint32_t* it = chunk.bins.begin(tile); it != end; ++it) {
         if (it + 1 != end) __builtin_prefetch(&chunk.raster[it[1]]);
-        rasterTriangle(chunk.raster[*it], makeKey(static_cast<uint32_t>(c), *it), visibility);
+        s.raster_triangle(chunk.raster[*it], makeKey(static_cast<uint32_t>(c), *it), visibility);
       }
     }
     ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
@@ -295,7 +318,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   for (size_t c = 0; c < s.chunk_count; ++c) {
     s.stats.triangles_culled += s.chunks[c].culled;
     s.stats.triangles_clipped += s.chunks[c].clipped;
-    s.stats.triangles_setup += s.chunks[c].raster.size();
+    s.stats.triangles_setup += s.chunks[c].size;
   }
 }
 

@@ -27,8 +27,10 @@ constexpr uint32_t keyLocal(uint32_t key) { return key & ((1u << kLocalKeyBits) 
 struct TileVisibility {
   int x0 = 0, y0 = 0;          // the tile's first pixel
   int width = 0, height = 0;   // <= kTileSize at the right and bottom borders
-  alignas(64) float depth[kTileSize * kTileSize];
-  alignas(64) uint32_t key[kTileSize * kTileSize];
+  // Row y of the tile starts at y * kTileSize; the padding lets the kernel touch eight pixels
+  // past the end of the last row.
+  alignas(64) float depth[kTileSize * kTileSize + 8];
+  alignas(64) uint32_t key[kTileSize * kTileSize + 8];
 
   void clear(int tile_x0, int tile_y0, int tile_width, int tile_height) {
     x0 = tile_x0, y0 = tile_y0, width = tile_width, height = tile_height;
@@ -39,7 +41,23 @@ struct TileVisibility {
   }
 };
 
-// Depth-tests every covered pixel of `triangle` inside the tile and records `key` where it wins.
-void rasterTriangle(const RasterTriangle& triangle, uint32_t key, TileVisibility& tile);
+// The instruction sets the raster kernel is compiled for. The image is the same with each.
+enum class RasterIsa { kScalar, kSse2, kAvx2, kAvx512 };
+
+// The best one this CPU runs.
+RasterIsa detectRasterIsa();
+const char* rasterIsaName(RasterIsa isa);
+
+using RasterTriangleFn = void (*)(const RasterTriangle& triangle, uint32_t key,
+                                  TileVisibility& tile);
+// Depth-tests every covered pixel of a triangle inside the tile and records its key where it
+// wins; compiled for `isa`.
+RasterTriangleFn rasterTriangleFunction(RasterIsa isa);
+
+// One definition per instruction set (raster_<isa>.cpp).
+void rasterTriangleScalar(const RasterTriangle&, uint32_t, TileVisibility&);
+void rasterTriangleSse2(const RasterTriangle&, uint32_t, TileVisibility&);
+void rasterTriangleAvx2(const RasterTriangle&, uint32_t, TileVisibility&);
+void rasterTriangleAvx512(const RasterTriangle&, uint32_t, TileVisibility&);
 
 }  // namespace tessera::render

@@ -54,12 +54,18 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangl
     return false;
 
   // Bounding box over pixel centres.
-  pixelRange(std::min({v[0].x, v[1].x, v[2].x}), std::max({v[0].x, v[1].x, v[2].x}), ctx.width,
-             raster.min_x, raster.max_x);
+  const int32_t min_fx = std::min({v[0].x, v[1].x, v[2].x}), max_fx = std::max({v[0].x, v[1].x, v[2].x});
+  const int32_t min_fy = std::min({v[0].y, v[1].y, v[2].y}), max_fy = std::max({v[0].y, v[1].y, v[2].y});
+  pixelRange(min_fx, max_fx, ctx.width, raster.min_x, raster.max_x);
   if (raster.min_x > raster.max_x) return false;
-  pixelRange(std::min({v[0].y, v[1].y, v[2].y}), std::max({v[0].y, v[1].y, v[2].y}), ctx.height,
-             raster.min_y, raster.max_y);
+  pixelRange(min_fy, max_fy, ctx.height, raster.min_y, raster.max_y);
   if (raster.min_y > raster.max_y) return false;
+  // An edge value at a point of the box is |a| dx + |b| dy at most, with |a| <= box height and
+  // |b| <= box width (sub-pixels); the kernel also evaluates up to 7 pixels past the right end.
+  // Below 2^30 the 32-bit path cannot overflow.
+  const int64_t box_w = static_cast<int64_t>(max_fx) - min_fx;
+  const int64_t box_h = static_cast<int64_t>(max_fy) - min_fy;
+  raster.small = box_h * (2 * box_w + 8 * kSubpixelOne) + box_w < (int64_t{1} << 30);
 
   // The rasterizer takes positive areas only: front faces are reordered 0, 2, 1.
   o.order[0] = 0, o.order[1] = 1, o.order[2] = 2;
@@ -109,26 +115,27 @@ void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAt
   shade.sdx = (q1 - q0) * o.l1dx + (q2 - q0) * o.l2dx;
   shade.sdy = (q1 - q0) * o.l1dy + (q2 - q0) * o.l2dy;
 
+  const Material& m = ctx.object->materials[material < ctx.object->materials.size() ? material : 0];
+  const float3 base = m.base_color.xyz();
   // Back faces that are drawn are lit from the viewer's side (two-sided lighting).
   const float flip = o.back_facing ? -1.0f : 1.0f;
   const float3 flat_normal = normalize(face_normal) * flip;
   const float3 flat_irradiance =
-      ctx.shading == Shading::kFlat ? irradiance(*ctx.scene, flat_normal) : float3{};
+      ctx.shading == Shading::kFlat ? irradiance(*ctx.scene, flat_normal) : float3(1.0f);
   for (int k = 0; k < 3; ++k) {
     const VertexAttributes& va = a[o.order[k]];
     float3 n = ctx.shading == Shading::kFlat ? flat_normal : normalize(va.normal) * flip;
     if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) n = flat_normal;
     shade.normal[k] = n;
     shade.uv[k] = va.uv;
-    shade.color[k] = va.color;
-    shade.irradiance[k] =
-        ctx.shading == Shading::kGouraud ? irradiance(*ctx.scene, n) : flat_irradiance;
+    const float3 albedo = ctx.has_color ? base * va.color.xyz() : base;
+    shade.color[k] = albedo * (ctx.shading == Shading::kGouraud ? irradiance(*ctx.scene, n)
+                                                                 : flat_irradiance);
   }
-  shade.material = &ctx.object->materials[material < ctx.object->materials.size() ? material : 0];
+  shade.material = &m;
   shade.triangle_id = triangle_id;
   shade.shading = ctx.shading;
-  shade.has_uv = ctx.has_uv && shade.material->albedo != nullptr;
-  shade.has_color = ctx.has_color;
+  shade.has_uv = ctx.has_uv && m.albedo != nullptr;
 }
 
 }  // namespace tessera::render

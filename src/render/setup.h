@@ -43,6 +43,7 @@ struct RasterTriangle {
   int32_t a[3];
   int32_t b[3];
   int32_t min_x, min_y, max_x, max_y;  // inclusive pixel bounds, clipped to the viewport
+  bool small;  // every edge value over the bounding box (plus 8 pixels right) fits in int32
   // Window z at pixel centre (x + 0.5, y + 0.5) = z0 + dzdx * (x + 0.5 - x0) + dzdy * (y + 0.5 - y0)
   float x0, y0, z0, dzdx, dzdy;
 };
@@ -52,15 +53,15 @@ struct ShadeTriangle {
   //   s = inv_w0 + sdx*d.x + sdy*d.y;  b1 = (p1dx*d.x + p1dy*d.y) / s;  b2 = (...) / s;  b0 = 1-b1-b2
   float x0, y0, inv_w0;
   float p1dx, p1dy, p2dx, p2dy, sdx, sdy;
-  float3 normal[3];      // world shading normals, facing the viewer for drawn back faces
-  float3 irradiance[3];  // lighting at the vertices (flat: the face's, three times; Gouraud)
+  // Per-vertex colour, interpolated: base colour x vertex colour, already lit for flat (the
+  // face's irradiance) and Gouraud (each vertex's); Phong multiplies by the per-pixel lighting.
+  float3 color[3];
+  float3 normal[3];  // world shading normals, facing the viewer for drawn back faces
   float2 uv[3];
-  float4 color[3];
   const Material* material;
   uint32_t triangle_id;  // index in the scene's triangle list
   Shading shading;
-  bool has_uv;     // sample the albedo texture (the mesh has UVs and the material a texture)
-  bool has_color;  // multiply by the interpolated vertex colours
+  bool has_uv;  // sample the albedo texture (the mesh has UVs and the material a texture)
 };
 
 struct SetupContext {

@@ -12,27 +12,19 @@ float3 shadePixel(const ShadeTriangle& t, const Scene& scene, float x, float y, 
   const float b2 = (t.p2dx * dx + t.p2dy * dy) * inv_s;
   const float b0 = 1.0f - b1 - b2;
 
-  const Material& material = *t.material;
-  float3 albedo = material.base_color.xyz();
-  if (t.has_color) albedo = albedo * (t.color[0] * b0 + t.color[1] * b1 + t.color[2] * b2).xyz();
+  float3 color = t.color[0] * b0 + t.color[1] * b1 + t.color[2] * b2;
   if (t.has_uv) {
     const float2 uv = t.uv[0] * b0 + t.uv[1] * b1 + t.uv[2] * b2;
-    albedo = albedo * material.albedo->sample(uv, material.sampler).xyz();
+    color = color * t.material->albedo->sample(uv, t.material->sampler).xyz();
   }
-
-  float3 n = t.normal[0];
-  if (t.shading == Shading::kPhong || (normal && t.shading != Shading::kFlat))
-    n = normalize(t.normal[0] * b0 + t.normal[1] * b1 + t.normal[2] * b2);
-  if (normal) *normal = n;
-
-  switch (t.shading) {
-    case Shading::kFlat: return albedo * t.irradiance[0];  // lit once, in setup
-    case Shading::kGouraud:
-      return albedo * (t.irradiance[0] * b0 + t.irradiance[1] * b1 + t.irradiance[2] * b2);
-    case Shading::kPhong: return albedo * irradiance(scene, n);
-    case Shading::kUnlit: break;
+  if (t.shading == Shading::kPhong || (normal && t.shading != Shading::kFlat)) {
+    const float3 n = normalize(t.normal[0] * b0 + t.normal[1] * b1 + t.normal[2] * b2);
+    if (t.shading == Shading::kPhong) color = color * irradiance(scene, n);
+    if (normal) *normal = n;
+  } else if (normal) {
+    *normal = t.normal[0];
   }
-  return albedo;
+  return color;
 }
 
 void shadeTile(const TileVisibility& tile, int tile_index, const std::vector<TriangleChunk>& chunks,

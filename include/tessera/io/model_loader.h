@@ -13,11 +13,11 @@
 namespace tessera::io {
 
 struct Model {
-  Mesh mesh;                         // triangles in the contract's load order
-  std::vector<Material> materials;   // at least one; Mesh::triangle_materials indexes these
-  std::vector<std::string> warnings; // things skipped or replaced (missing MTL, NaN vertices...)
-  size_t nonfinite_triangles = 0;    // triangles with a NaN or infinite vertex (kept in the list
-                                     // so ids stay in load order; the renderer drops them)
+  Mesh mesh;                          // triangles in the contract's load order
+  std::vector<Material> materials;    // at least one; Mesh::triangle_materials indexes these
+  std::vector<std::string> warnings;  // things skipped or replaced (missing MTL, NaN vertices...)
+  size_t nonfinite_triangles = 0;     // triangles with a NaN or infinite vertex (kept in the list
+                                      // so ids stay in load order; the renderer drops them)
 };
 
 // By extension (case-insensitive): .obj.
@@ -25,7 +25,9 @@ Expected<Model> loadModel(const std::filesystem::path& path);
 
 // Wavefront OBJ with its MTL files (tinyobjloader). Faces in file order; convex polygons are
 // fan-split from their first vertex, concave ones ear-clipped. Missing normals are generated
-// (smooth, area-weighted).
+// (smooth, area-weighted). Materials are listed in the order triangles first use them; faces
+// without one get a default Material (0.8 grey). MTL files and textures are read only from
+// beneath the OBJ's folder; anything else is skipped with a warning.
 Expected<Model> loadObj(const std::filesystem::path& path);
 
 }  // namespace tessera::io

@@ -17,10 +17,14 @@ struct PipelineStats {
   size_t triangles_setup = 0;    // setup records (after clipping)
 };
 
+// The instruction set of the raster kernel. Every choice gives the same image; kAuto takes the
+// best the CPU runs. A choice the CPU cannot run falls back to kAuto's.
+enum class SimdLevel { kAuto, kScalar, kSse2, kAvx2, kAvx512 };
+
 class CpuRenderer final : public Backend {
  public:
   // workers: 0 = one per hardware thread, 1 = run on the calling thread only.
-  explicit CpuRenderer(int workers = 0);
+  explicit CpuRenderer(int workers = 0, SimdLevel simd = SimdLevel::kAuto);
   ~CpuRenderer() override;
   CpuRenderer(const CpuRenderer&) = delete;
   CpuRenderer& operator=(const CpuRenderer&) = delete;
@@ -29,6 +33,7 @@ class CpuRenderer final : public Backend {
   void render(const Scene& scene, const RenderOptions& options, Frame& frame) override;
 
   int workerCount() const;
+  const char* simdName() const;  // the raster kernel in use: scalar, sse2, avx2 or avx512
   const PipelineStats& lastStats() const;
 
  private:

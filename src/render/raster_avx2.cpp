@@ -1,0 +1,10 @@
+// The raster kernel compiled for avx2 (see CMakeLists.txt for this file's flags).
+#include "render/raster_kernel.h"
+
+namespace tessera::render {
+
+void rasterTriangleAvx2(const RasterTriangle& triangle, uint32_t key, TileVisibility& tile) {
+  rasterTriangleKernel(triangle, key, tile);
+}
+
+}  // namespace tessera::render

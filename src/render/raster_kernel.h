@@ -1,0 +1,139 @@
+// The tile raster kernel, written once against eight-lane types (raster_lanes.h) and compiled
+// once per instruction set (raster_<isa>.cpp). Every variant runs the same arithmetic in the same
+// order, so they produce the same bits.
+//
+// Coverage comes in two forms:
+//   - small triangles (most of a real mesh), whose edge values provably fit in 32 bits over their
+//     bounding box, step 32-bit edge values eight pixels at a time;
+//   - other triangles go through 8x8 blocks: each block is classified by its four corner pixel
+//     centres in 64-bit arithmetic as outside (skipped), inside (depth test only), or partial
+//     (64-bit edge values per pixel).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+#include "render/raster.h"
+#include "render/raster_lanes.h"
+
+namespace tessera::render {
+namespace {  // one private copy per translation unit, each compiled for its instruction set
+
+constexpr int kLanes = 8;
+constexpr int kBlock = 8;
+
+// Depth-tests eight pixels starting at x: covered lanes nearer than the stored depth take z and
+// the key; the others write back what they read (the tile rows are padded, so the eight slots
+// always exist). z is the plane at the pixel centre, computed exactly as everywhere else.
+TESSERA_LANES_INLINE void depthTestRow8(const RasterTriangle& t, uint32_t key, float z_row, int x,
+                                        I32x8 covered, float* depth, uint32_t* keys) {
+  const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
+  const F32x8 z = splat(z_row) + splat(t.dzdx) * (centre - splat(t.x0));
+  const F32x8 stored = load<F32x8>(depth + x);
+  const I32x8 pass = covered & lessThan(z, stored);
+  store(depth + x, select(pass, z, stored));
+  store(keys + x, select(pass, splat(static_cast<int32_t>(key)), load<I32x8>(keys + x)));
+}
+
+TESSERA_LANES_INLINE float rowDepth(const RasterTriangle& t, int y) {
+  return t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - t.y0);
+}
+
+// Row pointers such that depth[x] is pixel x of row y (x and y in window coordinates).
+TESSERA_LANES_INLINE float* depthRow(TileVisibility& tile, int y) {
+  return tile.depth + (y - tile.y0) * kTileSize - tile.x0;
+}
+TESSERA_LANES_INLINE uint32_t* keyRow(TileVisibility& tile, int y) {
+  return tile.key + (y - tile.y0) * kTileSize - tile.x0;
+}
+
+TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
+                                      int x_begin, int x_end, int y_begin, int y_end) {
+  const int64_t px = static_cast<int64_t>(x_begin) * kSubpixelOne + kSubpixelHalf;
+  const int64_t py = static_cast<int64_t>(y_begin) * kSubpixelOne + kSubpixelHalf;
+  int32_t row[3], step_y[3];
+  I32x8 step_x[3];
+  for (int k = 0; k < 3; ++k) {
+    // Fits: the triangle is small (RasterTriangle::small).
+    row[k] = static_cast<int32_t>(t.a[k] * px + t.b[k] * py + t.c[k]);
+    step_x[k] = splat(t.a[k] * kSubpixelOne);
+    step_y[k] = t.b[k] * kSubpixelOne;
+  }
+  const I32x8 lane = iota();
+  const I32x8 last = splat(x_end);
+  for (int y = y_begin; y <= y_end; ++y) {
+    const float z_row = rowDepth(t, y);
+    float* depth = depthRow(tile, y);
+    uint32_t* keys = keyRow(tile, y);
+    for (int x = x_begin; x <= x_end; x += kLanes) {
+      const I32x8 offset = splat(x - x_begin) + lane;
+      const I32x8 e0 = splat(row[0]) + step_x[0] * offset;
+      const I32x8 e1 = splat(row[1]) + step_x[1] * offset;
+      const I32x8 e2 = splat(row[2]) + step_x[2] * offset;
+      const I32x8 covered = nonNegative(e0 | e1 | e2) & lessOrEqual(splat(x) + lane, last);
+      if (any(covered)) depthTestRow8(t, key, z_row, x, covered, depth, keys);
+    }
+    for (int k = 0; k < 3; ++k) row[k] += step_y[k];
+  }
+}
+
+TESSERA_LANES_INLINE int64_t edgeAt(const RasterTriangle& t, int k, int x, int y) {
+  return t.a[k] * (static_cast<int64_t>(x) * kSubpixelOne + kSubpixelHalf) +
+         t.b[k] * (static_cast<int64_t>(y) * kSubpixelOne + kSubpixelHalf) + t.c[k];
+}
+
+TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
+                                       int x_begin, int x_end, int y_begin, int y_end) {
+  // Blocks are aligned to the tile so a block row never leaves the tile's rows.
+  const int bx_first = tile.x0 + ((x_begin - tile.x0) & ~(kBlock - 1));
+  const int by_first = tile.y0 + ((y_begin - tile.y0) & ~(kBlock - 1));
+  const I32x8 lane = iota();
+  const I64x8 lane64 = widen(lane);
+  for (int by = by_first; by <= y_end; by += kBlock) {
+    const int y0 = std::max(by, y_begin), y1 = std::min(by + kBlock - 1, y_end);
+    for (int bx = bx_first; bx <= x_end; bx += kBlock) {
+      const int x0 = std::max(bx, x_begin), x1 = std::min(bx + kBlock - 1, x_end);
+      // Classify the block by the edge values at its corner pixel centres: an edge is linear,
+      // so its extremes over the block are at the corners.
+      bool outside = false, inside = true;
+      for (int k = 0; k < 3; ++k) {
+        const int64_t e00 = edgeAt(t, k, x0, y0), e10 = edgeAt(t, k, x1, y0);
+        const int64_t e01 = edgeAt(t, k, x0, y1), e11 = edgeAt(t, k, x1, y1);
+        const int64_t lo = std::min(std::min(e00, e10), std::min(e01, e11));
+        const int64_t hi = std::max(std::max(e00, e10), std::max(e01, e11));
+        outside |= hi < 0;
+        inside &= lo >= 0;
+      }
+      if (outside) continue;
+      const I32x8 columns = splat(bx) + lane;
+      const I32x8 in_range = lessOrEqual(splat(x0), columns) & lessOrEqual(columns, splat(x1));
+      for (int y = y0; y <= y1; ++y) {
+        I32x8 covered = in_range;
+        if (!inside) {
+          I64x8 e[3];
+          for (int k = 0; k < 3; ++k)
+            e[k] = splat(edgeAt(t, k, bx, y)) +
+                   lane64 * splat(static_cast<int64_t>(t.a[k]) * kSubpixelOne);
+          covered = covered & nonNegative(e[0] | e[1] | e[2]);
+        }
+        depthTestRow8(t, key, rowDepth(t, y), bx, covered, depthRow(tile, y), keyRow(tile, y));
+      }
+    }
+  }
+}
+
+TESSERA_LANES_INLINE void rasterTriangleKernel(const RasterTriangle& t, uint32_t key,
+                                               TileVisibility& tile) {
+  const int x_begin = std::max(t.min_x, tile.x0);
+  const int x_end = std::min(t.max_x, tile.x0 + tile.width - 1);
+  const int y_begin = std::max(t.min_y, tile.y0);
+  const int y_end = std::min(t.max_y, tile.y0 + tile.height - 1);
+  if (x_begin > x_end || y_begin > y_end) return;
+  if (t.small)
+    rasterSmall(t, key, tile, x_begin, x_end, y_begin, y_end);
+  else
+    rasterBlocks(t, key, tile, x_begin, x_end, y_begin, y_end);
+}
+
+}  // namespace
+}  // namespace tessera::render

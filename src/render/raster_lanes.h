@@ -1,0 +1,139 @@
+// Eight-lane integer and float types for the raster kernel. In the vector translation units they
+// are GCC/Clang vector extensions (one AVX2 register, two SSE2 ones, or half an AVX-512 one); in
+// the scalar one they are plain arrays whose operators loop over the lanes. The kernel is written
+// once against the operations below, so every variant computes the same values.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
+#define TESSERA_LANES_INLINE inline __attribute__((always_inline))
+
+namespace tessera::render {
+namespace {
+
+#if defined(TESSERA_RASTER_SCALAR)
+
+template <typename T>
+struct Lanes {
+  T v[8];
+};
+using I32x8 = Lanes<int32_t>;
+using I64x8 = Lanes<int64_t>;
+using F32x8 = Lanes<float>;
+
+#define TESSERA_LANES_BINARY(op)                                         \
+  template <typename T>                                                  \
+  TESSERA_LANES_INLINE Lanes<T> operator op(Lanes<T> a, Lanes<T> b) {    \
+    Lanes<T> r;                                                          \
+    for (int l = 0; l < 8; ++l) r.v[l] = static_cast<T>(a.v[l] op b.v[l]); \
+    return r;                                                            \
+  }
+TESSERA_LANES_BINARY(+)
+TESSERA_LANES_BINARY(-)
+TESSERA_LANES_BINARY(*)
+TESSERA_LANES_BINARY(&)
+TESSERA_LANES_BINARY(|)
+#undef TESSERA_LANES_BINARY
+
+template <typename T>
+TESSERA_LANES_INLINE Lanes<T> splat(T x) {
+  Lanes<T> r;
+  for (int l = 0; l < 8; ++l) r.v[l] = x;
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 iota() { return {{0, 1, 2, 3, 4, 5, 6, 7}}; }
+// Masks: all ones where true.
+TESSERA_LANES_INLINE I32x8 lessThan(F32x8 a, F32x8 b) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] < b.v[l] ? -1 : 0;
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 nonNegative(I32x8 a) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] >= 0 ? -1 : 0;
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 nonNegative(I64x8 a) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] >= 0 ? -1 : 0;
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 lessOrEqual(I32x8 a, I32x8 b) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] <= b.v[l] ? -1 : 0;
+  return r;
+}
+TESSERA_LANES_INLINE F32x8 toFloat(I32x8 a) {
+  F32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = static_cast<float>(a.v[l]);
+  return r;
+}
+TESSERA_LANES_INLINE I64x8 widen(I32x8 a) {
+  I64x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l];
+  return r;
+}
+template <typename T>
+TESSERA_LANES_INLINE Lanes<T> select(I32x8 mask, Lanes<T> a, Lanes<T> b) {
+  Lanes<T> r;
+  for (int l = 0; l < 8; ++l) r.v[l] = mask.v[l] ? a.v[l] : b.v[l];
+  return r;
+}
+TESSERA_LANES_INLINE bool any(I32x8 mask) {
+  int32_t r = 0;
+  for (int l = 0; l < 8; ++l) r |= mask.v[l];
+  return r != 0;
+}
+
+#else  // vector extensions
+
+typedef int32_t I32x8 __attribute__((vector_size(32)));
+typedef int64_t I64x8 __attribute__((vector_size(64)));
+typedef float F32x8 __attribute__((vector_size(32)));
+
+template <typename T>
+TESSERA_LANES_INLINE auto splat(T x) {
+  if constexpr (std::is_same_v<T, int64_t>) {
+    return I64x8{} + x;
+  } else if constexpr (std::is_same_v<T, float>) {
+    return F32x8{} + x;
+  } else {
+    static_assert(std::is_same_v<T, int32_t>);
+    return I32x8{} + x;
+  }
+}
+TESSERA_LANES_INLINE I32x8 iota() { return I32x8{0, 1, 2, 3, 4, 5, 6, 7}; }
+TESSERA_LANES_INLINE I32x8 lessThan(F32x8 a, F32x8 b) { return a < b; }
+TESSERA_LANES_INLINE I32x8 nonNegative(I32x8 a) { return a >= 0; }
+TESSERA_LANES_INLINE I32x8 nonNegative(I64x8 a) {
+  return __builtin_convertvector(a >= 0, I32x8);
+}
+TESSERA_LANES_INLINE I32x8 lessOrEqual(I32x8 a, I32x8 b) { return a <= b; }
+TESSERA_LANES_INLINE F32x8 toFloat(I32x8 a) { return __builtin_convertvector(a, F32x8); }
+TESSERA_LANES_INLINE I64x8 widen(I32x8 a) { return __builtin_convertvector(a, I64x8); }
+TESSERA_LANES_INLINE I32x8 select(I32x8 mask, I32x8 a, I32x8 b) { return mask ? a : b; }
+TESSERA_LANES_INLINE F32x8 select(I32x8 mask, F32x8 a, F32x8 b) { return mask ? a : b; }
+TESSERA_LANES_INLINE bool any(I32x8 mask) {
+  I32x8 folded = mask;
+  int32_t r = 0;
+  for (int l = 0; l < 8; ++l) r |= folded[l];
+  return r != 0;
+}
+
+#endif
+
+template <typename V>
+TESSERA_LANES_INLINE V load(const void* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+template <typename V>
+TESSERA_LANES_INLINE void store(void* p, V v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
+}  // namespace
+}  // namespace tessera::render
