@@ -24,9 +24,10 @@ namespace {
 enum AttributeLocation : GLuint { kPosition = 0, kNormal = 1, kUv = 2, kColor = 3 };
 
 // The lighting of tessera's shading stage (src/render/setup.cpp and shade.cpp) in GLSL 1.20:
-// Lambert from directional lights plus ambient, on the world normal; flat and Gouraud light the
-// vertices (flat ones carry the face normal), smooth (Phong) lights each fragment; back faces
-// that are drawn are lit from the viewer's side; the result is encoded to sRGB once, at the end.
+// Lambert from directional lights plus ambient, on the world normal. Flat and Gouraud light the
+// vertices (flat ones carry the face normal) and interpolate albedo times light; smooth (Phong)
+// interpolates albedo and normal and lights each fragment; the texture multiplies per fragment;
+// back faces that are drawn are lit from the viewer's side; sRGB encoding comes once, last.
 constexpr const char* kVertexShader = R"(
 attribute vec3 a_position;
 attribute vec3 a_normal;
@@ -35,15 +36,15 @@ attribute vec4 a_color;
 uniform mat4 u_model_view_projection;
 uniform mat3 u_normal_matrix;
 uniform float u_normal_sign;
+uniform vec3 u_base_color;
 uniform vec3 u_ambient;
 #if LIGHT_COUNT > 0
 uniform vec3 u_light_direction[LIGHT_COUNT];
 uniform vec3 u_light_color[LIGHT_COUNT];
 #endif
 varying vec2 v_uv;
-varying vec3 v_color;
-varying vec3 v_irradiance;
-varying vec3 v_irradiance_back;
+varying vec3 v_front;  // albedo, times the lighting when it is per vertex
+varying vec3 v_back;   // the same for a back face (two-sided lighting)
 varying vec3 v_normal;
 
 vec3 irradiance(vec3 n) {
@@ -59,17 +60,21 @@ void main() {
 #ifdef HAS_UV
   v_uv = a_uv;
 #endif
+  vec3 albedo = u_base_color;
 #ifdef HAS_COLOR
-  v_color = a_color.rgb;
+  albedo *= a_color.rgb;
 #endif
 #if defined(LIT_PER_VERTEX) || defined(LIT_PER_PIXEL)
   vec3 n = normalize(u_normal_matrix * a_normal) * u_normal_sign;
 #endif
 #ifdef LIT_PER_VERTEX
-  v_irradiance = irradiance(n);
+  v_front = albedo * irradiance(n);
 #ifdef TWO_SIDED
-  v_irradiance_back = irradiance(-n);
+  v_back = albedo * irradiance(-n);
 #endif
+#else
+  v_front = albedo;
+  v_back = albedo;
 #endif
 #ifdef LIT_PER_PIXEL
   v_normal = n;
@@ -78,7 +83,6 @@ void main() {
 )";
 
 constexpr const char* kFragmentShader = R"(
-uniform vec3 u_base_color;
 uniform sampler2D u_albedo;
 uniform vec3 u_ambient;
 #if LIGHT_COUNT > 0
@@ -86,9 +90,8 @@ uniform vec3 u_light_direction[LIGHT_COUNT];
 uniform vec3 u_light_color[LIGHT_COUNT];
 #endif
 varying vec2 v_uv;
-varying vec3 v_color;
-varying vec3 v_irradiance;
-varying vec3 v_irradiance_back;
+varying vec3 v_front;
+varying vec3 v_back;
 varying vec3 v_normal;
 
 vec3 irradiance(vec3 n) {
@@ -106,29 +109,22 @@ vec3 encodeSrgb(vec3 c) {
 }
 
 void main() {
-  vec3 albedo = u_base_color;
-#ifdef HAS_COLOR
-  albedo *= v_color;
+#ifdef TWO_SIDED
+  vec3 color = gl_FrontFacing ? v_front : v_back;
+#else
+  vec3 color = v_front;
 #endif
 #ifdef HAS_UV
-  albedo *= texture2D(u_albedo, v_uv).rgb;
-#endif
-  vec3 light = vec3(1.0);
-#ifdef LIT_PER_VERTEX
-#ifdef TWO_SIDED
-  light = gl_FrontFacing ? v_irradiance : v_irradiance_back;
-#else
-  light = v_irradiance;
-#endif
+  color *= texture2D(u_albedo, v_uv).rgb;
 #endif
 #ifdef LIT_PER_PIXEL
   vec3 n = normalize(v_normal);
 #ifdef TWO_SIDED
   if (!gl_FrontFacing) n = -n;
 #endif
-  light = irradiance(n);
+  color *= irradiance(n);
 #endif
-  gl_FragColor = vec4(encodeSrgb(albedo * light), 1.0);
+  gl_FragColor = vec4(encodeSrgb(color), 1.0);
 }
 )";
 
