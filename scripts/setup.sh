@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libtinyobjloader-dev libstb-dev libtinygltf-dev nlohmann-json3-dev
   libspng-dev libpng-dev libgif-dev libimagequant-dev
+  libosmesa6-dev glmark2-data
 )
 
 missing=()
