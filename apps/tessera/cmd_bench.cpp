@@ -329,6 +329,7 @@ int runBench(const std::vector<std::string>& args) {
                   << "\", \"width\": " << resolution.width << ", \"height\": " << resolution.height
                   << ", \"triangles\": " << triangles << ", \"frames\": " << s.frames
                   << ", \"warmup_frames\": " << s.warmup << ", \"shading\": \"" << s.shading
+                  << "\", \"back_faces\": \"" << (cull == CullMode::kBack ? "culled" : "drawn")
                   << "\", \"backend\": " << jsonString(renderer.name())
                   << ", \"workers\": " << workers
                   << ", \"median_ms\": " << fixed(tessera.median_ms, 4)
