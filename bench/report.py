@@ -109,12 +109,12 @@ def main():
 
     first = matrix[0]
     load_note = (
-        f"The 1-minute load average was {machine['load_before']:.2f} before the run and "
-        f"{machine['load_after']:.2f} after it"
+        f"The 1-minute load average was {machine['load_before']:.2f} when the run started "
+        f"({machine['load_after']:.2f} at its end, which counts the benchmark's own threads)"
     )
-    if max(machine["load_before"], machine["load_after"]) >= 0.5:
-        load_note += (" (other jobs were running on this 2-core machine, so the numbers are "
-                      "noisier and slower than on an idle one)")
+    if machine["load_before"] >= 0.5:
+        load_note += (": other jobs were running on this 2-core machine, so the numbers are "
+                      "noisier and slower than on an idle one")
     load_note += "."
     commit = machine["commit"] + (" plus uncommitted changes" if machine.get("dirty") else "")
 
