@@ -123,6 +123,21 @@ std::string fixed(double value, int decimals) {
   return text;
 }
 
+// A built-in scene by name, or else a model file; an error names the argument.
+Expected<bench::BenchScene> openScene(const std::string& arg, Shading shading) {
+  if (bench::isBuiltinScene(arg)) return bench::makeBuiltinScene(arg, shading);
+  std::error_code error;
+  if (!std::filesystem::exists(arg, error)) {
+    std::string known;
+    for (const std::string& n : bench::builtinSceneNames())
+      known += (known.empty() ? "" : ", ") + n;
+    return makeError("'" + arg + "' is neither a built-in scene (" + known + ") nor a model file");
+  }
+  Expected<bench::BenchScene> scene = bench::loadModelScene(arg, shading);
+  if (scene) scene->name = arg;  // the argument as given names the scene in the output
+  return scene;
+}
+
 // Places the camera and lights for one image size: the scene's own view, or a camera that frames
 // the model as `tessera render` does (or the one the camera flags give) with the view's lights.
 Expected<void> placeView(bench::BenchScene& b, const CameraSettings& camera_settings,
@@ -226,22 +241,7 @@ int runBench(const std::vector<std::string>& args) {
   // Every scene is built or loaded before anything is timed, so a bad argument fails at once.
   std::vector<bench::BenchScene> scenes;
   for (const std::string& arg : scene_args) {
-    Expected<bench::BenchScene> scene = makeError("");
-    if (bench::isBuiltinScene(arg)) {
-      scene = bench::makeBuiltinScene(arg, shading);
-    } else {
-      std::error_code error;
-      if (!std::filesystem::exists(arg, error)) {
-        std::string known;
-        for (const std::string& n : bench::builtinSceneNames())
-          known += (known.empty() ? "" : ", ") + n;
-        printError("bench",
-                   "'" + arg + "' is neither a built-in scene (" + known + ") nor a model file");
-        return kExitFailure;
-      }
-      scene = bench::loadModelScene(arg, shading);
-      if (scene) scene->name = arg;
-    }
+    Expected<bench::BenchScene> scene = openScene(arg, shading);
     if (!scene) {
       printError("bench", scene.error().message);
       return kExitFailure;
@@ -254,7 +254,7 @@ int runBench(const std::vector<std::string>& args) {
 
   std::unique_ptr<bench::LlvmpipeReference> reference;
   if (s.versus == "llvmpipe") {
-    // Before the renderer starts its threads: llvmpipe's own start on the same cores.
+    // create() sets LP_NUM_THREADS to the worker count before llvmpipe starts its threads.
     Expected<std::unique_ptr<bench::LlvmpipeReference>> created =
         bench::LlvmpipeReference::create(workers);
     if (!created) {
