@@ -1,18 +1,23 @@
 // Micro-benchmarks of the CPU pipeline: whole frames of the built-in bench scenes (the scenes of
 // `tessera bench`, framed the same way), and the hot stages one at a time through the private
-// stage headers (vertex, setup, bin, raster, shade). Run: build/bench/tessera_microbench
+// stage headers (vertex, setup, bin, and the raster and shade kernels per instruction set). Run:
+// build/bench/tessera_microbench
 // (--benchmark_filter=Frame/bunny, for example).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <map>
 #include <memory>
 
 #include <tessera/render/cpu_renderer.h>
+#include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
 
 #include "bench/scenes.h"
+#include "model_scene.h"
 #include "render/bin.h"
 #include "render/clip.h"
+#include "render/kernels.h"
 #include "render/raster.h"
 #include "render/setup.h"
 #include "render/shade.h"
@@ -126,59 +131,77 @@ BENCHMARK_CAPTURE(frameBenchmark, textured, std::string("textured"))->Apply(fram
 
 // ---- stages, single-threaded, on the bunny at 1920x1080 (the dense sphere without it) ----
 
-// The vertices of one scene transformed and projected once, for the stages after the vertex one.
+// The bunny transformed, set up and binned once, for the stages after each of those.
 struct StageInput {
+  static constexpr int kWidth = 1920, kHeight = 1080;
   bench::BenchScene scene;
   render::ObjectTransforms transforms;
   render::ViewportTransform viewport;
   render::VertexBuffer vertices;
   render::SetupContext context;
-  std::vector<render::RasterTriangle> raster;  // the triangles setup keeps, in order
+  render::TileGrid grid;
   std::vector<render::TriangleOrientation> orientation;
-  std::vector<size_t> triangle;  // their mesh triangle index
+  std::vector<size_t> triangle;               // the mesh triangle of each record
+  std::vector<render::TriangleChunk> chunks;  // one chunk: every triangle setup keeps, binned
 };
 
 const StageInput* stageInput() {
   static std::unique_ptr<StageInput> input = [] {
-    constexpr int kWidth = 1920, kHeight = 1080;
-    Expected<bench::BenchScene> b = benchScene("bunny", kWidth, kHeight);
-    if (!b) b = benchScene("dense", kWidth, kHeight);
+    const int width = StageInput::kWidth, height = StageInput::kHeight;
+    Expected<bench::BenchScene> b = benchScene("bunny", width, height);
+    if (!b) b = benchScene("dense", width, height);
     auto in = std::make_unique<StageInput>();
     in->scene = std::move(*b);
     bench::poseForFrame(in->scene, 3);
     const Scene& scene = in->scene.scene;
     const Object& object = scene.objects[0];
     const float4x4 view_projection =
-        scene.camera.projection(static_cast<float>(kWidth) / kHeight) * scene.camera.view();
+        scene.camera.projection(static_cast<float>(width) / height) * scene.camera.view();
     in->transforms = render::makeObjectTransforms(object, view_projection);
-    in->viewport = {static_cast<float>(kWidth), static_cast<float>(kHeight),
-                    render::makeGuardBand(kWidth, kHeight)};
+    in->viewport = {static_cast<float>(width), static_cast<float>(height),
+                    render::makeGuardBand(width, height)};
     const Mesh& mesh = *object.mesh;
     in->vertices.resize(mesh.vertexCount());
     render::transformVertices(mesh, in->transforms, in->viewport, 0, mesh.vertexCount(),
                               in->vertices);
-    in->context.width = kWidth;
-    in->context.height = kHeight;
+    in->context.width = width;
+    in->context.height = height;
     in->context.cull = object.cull;
     in->context.shading = object.shading;
     in->context.scene = &in->scene.scene;
     in->context.object = &in->scene.scene.objects[0];
+    in->grid = render::TileGrid::forViewport(width, height);
+    render::TriangleChunk& chunk = in->chunks.emplace_back();
+    chunk.triangle_count = mesh.triangleCount();
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       render::ScreenVertex v[3];
+      render::VertexAttributes a[3];
+      float3 p[3];
       bool inside = true;
       for (int k = 0; k < 3; ++k) {
         const uint32_t i = mesh.indices[t * 3 + k];
         inside = inside && !(in->vertices.outcode[i] & (render::kCutPlanes | render::kNonFinite));
         v[k] = in->vertices.screen[i];
+        a[k] = {in->vertices.normal[i], {}, {1, 1, 1, 1}, true};
+        p[k] = mesh.positions[i];
       }
-      if (!inside) continue;  // the clipper's work: not measured here
+      if (!inside) continue;  // the clipper's work: not part of these benchmarks
       render::RasterTriangle r;
       render::TriangleOrientation o;
       if (!render::setupRaster(in->context, v, r, o)) continue;
-      in->raster.push_back(r);
+      render::ShadeTriangle shade;
+      const float3 face = in->transforms.normal_matrix * cross(p[1] - p[0], p[2] - p[0]);
+      render::setupShade(in->context, v, a, o, r, face, static_cast<uint32_t>(t), 0, shade);
+      chunk.raster.push_back(r);
+      chunk.shade.push_back(shade);
       in->orientation.push_back(o);
       in->triangle.push_back(t);
     }
+    chunk.size = chunk.raster.size();
+    chunk.bins.reset(in->grid.tileCount());
+    for (size_t i = 0; i < chunk.size; ++i)
+      chunk.bins.add(in->grid, chunk.raster[i], static_cast<uint32_t>(i));
+    chunk.bins.finish();
     return in;
   }();
   return input.get();
@@ -220,9 +243,10 @@ BENCHMARK(BM_SetupRaster)->Unit(benchmark::kMicrosecond);
 void BM_SetupShade(benchmark::State& state) {
   const StageInput& in = *stageInput();
   const Mesh& mesh = *in.scene.scene.objects[0].mesh;
-  std::vector<render::ShadeTriangle> out(in.raster.size());
+  const render::TriangleChunk& chunk = in.chunks[0];
+  std::vector<render::ShadeTriangle> out(chunk.size);
   for (auto _ : state) {
-    for (size_t i = 0; i < in.raster.size(); ++i) {
+    for (size_t i = 0; i < chunk.size; ++i) {
       const size_t t = in.triangle[i];
       render::ScreenVertex v[3];
       render::VertexAttributes a[3];
@@ -230,106 +254,100 @@ void BM_SetupShade(benchmark::State& state) {
       for (int k = 0; k < 3; ++k) {
         const uint32_t vi = mesh.indices[t * 3 + k];
         v[k] = in.vertices.screen[vi];
-        a[k] = {in.vertices.normal(vi), {}, {1, 1, 1, 1}};
+        a[k] = {in.vertices.normal[vi], {}, {1, 1, 1, 1}, true};
         p[k] = mesh.positions[vi];
       }
       const float3 face = in.transforms.normal_matrix * cross(p[1] - p[0], p[2] - p[0]);
-      render::setupShade(in.context, v, a, in.orientation[i], in.raster[i], face,
+      render::setupShade(in.context, v, a, in.orientation[i], chunk.raster[i], face,
                          static_cast<uint32_t>(t), 0, out[i]);
     }
     benchmark::DoNotOptimize(out.data());
   }
-  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(in.raster.size()));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(chunk.size));
 }
 BENCHMARK(BM_SetupShade)->Unit(benchmark::kMicrosecond);
 
 void BM_BinTriangles(benchmark::State& state) {
   const StageInput& in = *stageInput();
-  const render::TileGrid grid = render::TileGrid::forViewport(in.context.width, in.context.height);
+  const render::TriangleChunk& chunk = in.chunks[0];
   render::ChunkBins bins;
   for (auto _ : state) {
-    bins.reset(grid.tileCount());
-    for (size_t i = 0; i < in.raster.size(); ++i)
-      bins.add(grid, in.raster[i], static_cast<uint32_t>(i));
+    bins.reset(in.grid.tileCount());
+    for (size_t i = 0; i < chunk.size; ++i)
+      bins.add(in.grid, chunk.raster[i], static_cast<uint32_t>(i));
     bins.finish();
     benchmark::DoNotOptimize(bins.count(0));
   }
-  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(in.raster.size()));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(chunk.size));
 }
 BENCHMARK(BM_BinTriangles)->Unit(benchmark::kMicrosecond);
 
-// A triangle of about `size` pixels on a side inside a 64x64 tile at the origin.
-render::RasterTriangle tileTriangle(float x, float y, float size, float z) {
-  render::SetupContext ctx;
-  ctx.width = render::kTileSize;
-  ctx.height = render::kTileSize;
-  ctx.cull = CullMode::kNone;
-  auto snap = [](float p) { return static_cast<int32_t>(p * render::kSubpixelOne); };
-  const render::ScreenVertex v[3] = {{snap(x), snap(y), z, 1.0f},
-                                     {snap(x + size), snap(y + size * 0.3f), z, 1.0f},
-                                     {snap(x + size * 0.4f), snap(y + size), z, 1.0f}};
-  render::RasterTriangle r;
-  render::TriangleOrientation o;
-  render::setupRaster(ctx, v, r, o);
-  return r;
+bool skipUnsupported(benchmark::State& state, render::Isa isa) {
+  if (static_cast<int>(isa) <= static_cast<int>(render::detectIsa())) return false;
+  state.SkipWithError("this CPU does not run that instruction set");
+  return true;
 }
 
-// args: instruction set (RasterIsa), triangle size in pixels. Triangles spread over one tile,
-// each in front of the last (every pixel passes the depth test).
-void BM_RasterTriangle(benchmark::State& state) {
-  const auto isa = static_cast<render::RasterIsa>(state.range(0));
-  if (static_cast<int>(isa) > static_cast<int>(render::detectRasterIsa())) {
-    state.SkipWithError("this CPU does not run that instruction set");
-    return;
-  }
-  const float size = static_cast<float>(state.range(1));
-  std::vector<render::RasterTriangle> triangles;
-  for (int i = 0; i < 256; ++i) {
-    const float x = static_cast<float>((i * 37) % 61), y = static_cast<float>((i * 23) % 59);
-    triangles.push_back(tileTriangle(std::min(x, 63.0f - size), std::min(y, 63.0f - size), size,
-                                     1.0f - static_cast<float>(i) / 512.0f));
-  }
-  const render::RasterTriangleFn raster = render::rasterTriangleFunction(isa);
+void isaArgs(benchmark::internal::Benchmark* b) {
+  for (render::Isa isa :
+       {render::Isa::kScalar, render::Isa::kSse2, render::Isa::kAvx2, render::Isa::kAvx512})
+    b->Arg(static_cast<int>(isa));
+  b->Unit(benchmark::kMicrosecond);
+}
+
+// Rasterizes every tile of the frame into its visibility buffer (depth + triangle key), with the
+// kernel compiled for one instruction set (the argument).
+void rasterTile(const StageInput& in, const render::TileKernels& kernels, int tile_index,
+                render::TileVisibility& tile) {
+  const int tx = tile_index % in.grid.columns, ty = tile_index / in.grid.columns;
+  const int x0 = tx * render::kTileSize, y0 = ty * render::kTileSize;
+  tile.clear(x0, y0, std::min(render::kTileSize, in.grid.width - x0),
+             std::min(render::kTileSize, in.grid.height - y0));
+  const render::TriangleChunk& chunk = in.chunks[0];
+  for (const uint32_t* it = chunk.bins.begin(tile_index); it != chunk.bins.end(tile_index); ++it)
+    kernels.raster_triangle(chunk.raster[*it], render::makeKey(0, *it), tile);
+}
+
+void BM_TileRaster(benchmark::State& state) {
+  const auto isa = static_cast<render::Isa>(state.range(0));
+  if (skipUnsupported(state, isa)) return;
+  const StageInput& in = *stageInput();
+  const render::TileKernels kernels = render::tileKernels(isa);
   auto tile = std::make_unique<render::TileVisibility>();
   for (auto _ : state) {
-    tile->clear(0, 0, render::kTileSize, render::kTileSize);
-    for (size_t i = 0; i < triangles.size(); ++i)
-      raster(triangles[i], static_cast<uint32_t>(i), *tile);
+    for (int t = 0; t < in.grid.tileCount(); ++t) rasterTile(in, kernels, t, *tile);
     benchmark::DoNotOptimize(tile->key);
   }
-  state.SetLabel(render::rasterIsaName(isa));
-  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(triangles.size()));
+  state.SetLabel(render::isaName(isa));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(in.chunks[0].size));
 }
-BENCHMARK(BM_RasterTriangle)
-    ->ArgsProduct(
-        {{static_cast<int>(render::RasterIsa::kScalar), static_cast<int>(render::RasterIsa::kSse2),
-          static_cast<int>(render::RasterIsa::kAvx2), static_cast<int>(render::RasterIsa::kAvx512)},
-         {3, 12, 60}})
-    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TileRaster)->Apply(isaArgs);
 
-// One pixel shaded from its setup record; args: shading (0 Gouraud, 1 Phong).
-void BM_ShadePixel(benchmark::State& state) {
+// Shades every tile from its visibility buffer (rasterized beforehand): each visible pixel once.
+void BM_TileShade(benchmark::State& state) {
+  const auto isa = static_cast<render::Isa>(state.range(0));
+  if (skipUnsupported(state, isa)) return;
   const StageInput& in = *stageInput();
-  render::SetupContext ctx = in.context;
-  ctx.shading = state.range(0) ? Shading::kPhong : Shading::kGouraud;
-  const render::ScreenVertex v[3] = {
-      {0, 0, 0.5f, 1.0f}, {64 * 256, 0, 0.5f, 0.9f}, {0, 64 * 256, 0.5f, 0.8f}};
-  render::RasterTriangle r;
-  render::TriangleOrientation o;
-  render::setupRaster(ctx, v, r, o);
-  const render::VertexAttributes a[3] = {
-      {{0, 0, 1}, {}, {1, 1, 1, 1}}, {{0, 1, 0}, {}, {1, 1, 1, 1}}, {{1, 0, 0}, {}, {1, 1, 1, 1}}};
-  render::ShadeTriangle t;
-  render::setupShade(ctx, v, a, o, r, {0, 0, 1}, 0, 0, t);
-  float x = 0.5f;
-  for (auto _ : state) {
-    float3 c = render::shadePixel(t, in.scene.scene, x, 10.5f, nullptr);
-    benchmark::DoNotOptimize(c);
-    x = x < 40.0f ? x + 1.0f : 0.5f;
+  const render::TileKernels kernels = render::tileKernels(isa);
+  std::vector<std::unique_ptr<render::TileVisibility>> tiles;
+  for (int t = 0; t < in.grid.tileCount(); ++t) {
+    tiles.push_back(std::make_unique<render::TileVisibility>());
+    rasterTile(in, kernels, t, *tiles.back());
   }
-  state.SetLabel(state.range(0) ? "phong" : "gouraud");
-  state.SetItemsProcessed(state.iterations());
+  const Scene& scene = in.scene.scene;
+  const uint32_t background = packSrgba8(scene.background);
+  auto shaded = std::make_unique<render::ShadedTile>();
+  for (auto _ : state) {
+    for (int t = 0; t < in.grid.tileCount(); ++t)
+      kernels.shade_tile(*tiles[t], t, in.chunks, in.chunks.size(), scene, false, background,
+                         *shaded);
+    benchmark::DoNotOptimize(shaded->rgba);
+  }
+  state.SetLabel(render::isaName(isa));
+  state.counters["pixels/s"] =
+      benchmark::Counter(static_cast<double>(in.grid.width) * in.grid.height,
+                         benchmark::Counter::kIsIterationInvariantRate);
 }
-BENCHMARK(BM_ShadePixel)->Arg(0)->Arg(1);
+BENCHMARK(BM_TileShade)->Apply(isaArgs);
 
 }  // namespace

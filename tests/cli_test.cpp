@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -11,7 +12,10 @@
 #include <set>
 #include <sstream>
 
+#include <tessera/io/image_writer.h>
+
 #include "decode.h"
+#include "reference.h"
 
 namespace fs = std::filesystem;
 using tessera::test::DecodedGif;
@@ -102,7 +106,8 @@ TEST_F(Cli, CubeWithNoFlagsWritesTheDefaultGif) {
     int cube = 0;
     for (uint32_t c : frame) {
       int dr = std::abs(static_cast<int>(c >> 16) - static_cast<int>(background >> 16));
-      int dg = std::abs(static_cast<int>((c >> 8) & 255) - static_cast<int>((background >> 8) & 255));
+      int dg =
+          std::abs(static_cast<int>((c >> 8) & 255) - static_cast<int>((background >> 8) & 255));
       int db = std::abs(static_cast<int>(c & 255) - static_cast<int>(background & 255));
       cube += dr + dg + db > 24;
     }
@@ -130,9 +135,8 @@ TEST_F(Cli, CubeFlagsSetSizeFramesAndOutput) {
 
 TEST_F(Cli, CubeFramesAreIdenticalForAnyWorkerCount) {
   for (int workers : {1, 2, 7}) {
-    std::string args = "cube -w 96 -h 80 -fps 4 -dur 1s -axes -workers " +
-                       std::to_string(workers) + " -out w" + std::to_string(workers) +
-                       "_{frame}.png";
+    std::string args = "cube -w 96 -h 80 -fps 4 -dur 1s -axes -workers " + std::to_string(workers) +
+                       " -out w" + std::to_string(workers) + "_{frame}.png";
     RunResult r = run(args);
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
@@ -198,8 +202,9 @@ TEST_F(Cli, MissingOrBrokenModelNamesTheFileAndExitsOne) {
 
 TEST_F(Cli, RenderIdAovEncodesTriangleIndexPlusOne) {
   writeQuadObj("quad.obj");
-  RunResult r = run("render quad.obj --resolution 40,30 --aov id -o id.png "
-                    "--camera-position 0,0,3 --camera-focal-point 0,0,0");
+  RunResult r =
+      run("render quad.obj --resolution 40,30 --aov id -o id.png "
+          "--camera-position 0,0,3 --camera-focal-point 0,0,0");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   DecodedPng png;
   ASSERT_TRUE(tessera::test::decodePng((dir_ / "id.png").string(), png));
@@ -230,7 +235,8 @@ TEST_F(Cli, RenderDepthAndNormalAovs) {
   EXPECT_LT(depth.at(20, 15, 0), 65535);
   EXPECT_GT(depth.at(20, 15, 0), 0);
 
-  r = run("render quad.obj --resolution 40,30 --aov normal -o normal.png "
+  r =
+      run("render quad.obj --resolution 40,30 --aov normal -o normal.png "
           "--camera-position 0,0,3 --camera-focal-point 0,0,0");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   DecodedPng normal;
@@ -253,7 +259,8 @@ TEST_F(Cli, RenderColourUsesTheBackgroundAndFramesTheModel) {
   // Framed: the model is in the middle and covers a good part of the image.
   int covered = 0;
   for (int y = 0; y < png.height; ++y)
-    for (int x = 0; x < png.width; ++x) covered += !(png.at(x, y, 0) == 255 && png.at(x, y, 1) == 0);
+    for (int x = 0; x < png.width; ++x)
+      covered += !(png.at(x, y, 0) == 255 && png.at(x, y, 1) == 0);
   EXPECT_GT(covered, 50 * 40 / 6);
   EXPECT_LT(covered, 50 * 40);
   EXPECT_FALSE(png.at(25, 20, 0) == 255 && png.at(25, 20, 1) == 0);
@@ -273,10 +280,122 @@ TEST_F(Cli, RenderTurntableWritesAPngSequence) {
 
 TEST_F(Cli, CameraLookingAlongItsUpVectorStillRenders) {
   writeQuadObj("quad.obj");
-  RunResult r = run("render quad.obj --resolution 20,20 --camera-position 0,0,5 "
-                    "--camera-focal-point 0,0,0 --camera-view-up 0,0,1 -o up.png");
+  RunResult r =
+      run("render quad.obj --resolution 20,20 --camera-position 0,0,5 "
+          "--camera-focal-point 0,0,0 --camera-view-up 0,0,1 -o up.png");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir_ / "up.png"));
   r = run("render quad.obj --camera-position 1,1,1 --camera-focal-point 1,1,1");
   EXPECT_EQ(r.exit_code, 2);
+}
+
+TEST_F(Cli, InfoPrintsCountsWithoutRendering) {
+  writeQuadObj("quad.obj");
+  RunResult r = run("info quad.obj");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("triangles:  2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("vertices:   4"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("max 1,1,0"), std::string::npos) << r.out;
+  r = run("render quad.obj --info -o nothing.png");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("triangles:  2"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir_ / "nothing.png"));
+  EXPECT_EQ(run("info").exit_code, 2);
+  EXPECT_EQ(run("info missing.obj").exit_code, 1);
+}
+
+// A quad with UVs, textured through --texture, seen straight on and unlit: each quarter of the
+// quad shows one colour of the texture, as it is (the texture replaces the albedo).
+TEST_F(Cli, TextureFlagSuppliesTheAlbedo) {
+  writeFile("quad.obj",
+            "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+            "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+            "f 1/1 2/2 3/3 4/4\n");
+  // 4x4 texels in 2x2 quadrants; row 0 is the top of the image: red, green / blue, white.
+  const uint32_t quadrant[4] = {0xff0000ffu, 0xff00ff00u, 0xffff0000u, 0xffffffffu};
+  uint32_t texels[16];
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) texels[y * 4 + x] = quadrant[(y / 2) * 2 + x / 2];
+  ASSERT_TRUE(tessera::io::writePngRgba8((dir_ / "tex.png").string(), 4, 4, texels).ok());
+  RunResult r =
+      run("render quad.obj --texture tex.png --shading unlit --resolution 40,40 "
+          "--camera-position 0,0,2.2 --camera-focal-point 0,0,0 "
+          "--camera-view-angle 60 -o out.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  DecodedPng png;
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "out.png").string(), png));
+  auto rgb = [&](int x, int y) {
+    return std::array<int, 3>{png.at(x, y, 0), png.at(x, y, 1), png.at(x, y, 2)};
+  };
+  // The centre of each quadrant blends only texels of one colour.
+  EXPECT_EQ(rgb(12, 12), (std::array<int, 3>{255, 0, 0}));
+  EXPECT_EQ(rgb(27, 12), (std::array<int, 3>{0, 255, 0}));
+  EXPECT_EQ(rgb(12, 27), (std::array<int, 3>{0, 0, 255}));
+  EXPECT_EQ(rgb(27, 27), (std::array<int, 3>{255, 255, 255}));
+  r = run("render quad.obj --texture missing.png -o out2.png");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("missing.png"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir_ / "out2.png"));
+}
+
+TEST_F(Cli, TurntableToMp4) {
+  if (std::system("command -v ffprobe > /dev/null") != 0)
+    GTEST_SKIP() << "ffmpeg is not installed (scripts/setup.sh installs it)";
+  writeQuadObj("quad.obj");
+  RunResult r = run("render quad.obj --resolution 32,24 --turntable 6 --fps 12 -o turn.mp4");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string probe_command =
+      "ffprobe -v error -count_frames -show_entries stream=nb_read_frames -of csv=p=0 '" +
+      (dir_ / "turn.mp4").string() + "' > '" + (dir_ / "probe.txt").string() + "'";
+  ASSERT_EQ(std::system(probe_command.c_str()), 0);
+  EXPECT_EQ(slurp(dir_ / "probe.txt"), "6\n");
+}
+
+// A small scene with several materials and a concave polygon, compared with its reference image.
+TEST_F(Cli, MaterialsModelMatchesItsReferenceImage) {
+  writeFile("scene.mtl",
+            "newmtl red\nKd 0.8 0.1 0.1\n"
+            "newmtl blue\nKd 0.1 0.2 0.8\n");
+  writeFile("scene.obj",
+            "mtllib scene.mtl\n"
+            "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\n"                   // floor
+            "v -0.5 0 0\nv 0.5 0 0\nv 0.5 1 0\nv 0 0.4 0\nv -0.5 1 0\n"  // concave wall
+            "usemtl blue\nf 1 4 3 2\n"
+            "usemtl red\nf 5 6 7 8 9\n");
+  RunResult r = run("render scene.obj --resolution 96,64 --shading flat -o scene.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Same machine arithmetic everywhere: allow rounding of a code here and there only.
+  tessera::test::expectMatchesReference((dir_ / "scene.png").string(), "obj_materials", {2, 4});
+}
+
+// Framing fits near and far to the model: two planes 1% of the model's size apart resolve
+// cleanly at any scale (no z-fighting), and the picture does not depend on the scale.
+TEST_F(Cli, FramingKeepsDepthPreciseForTinyAndHugeModels) {
+  std::string reference_ids;
+  for (double scale : {1e-4, 1.0, 1e5}) {
+    std::ostringstream obj;
+    auto v = [&](double x, double y, double z) {
+      obj << "v " << x * scale << " " << y * scale << " " << z * scale << "\n";
+    };
+    v(-1, -1, 0.01), v(1, -1, 0.01), v(1, 1, 0.01), v(-1, 1, 0.01);  // front plane
+    v(-1, -1, 0), v(1, -1, 0), v(1, 1, 0), v(-1, 1, 0);              // back plane
+    obj << "f 1 2 3 4\nf 5 6 7 8\n";
+    writeFile("planes.obj", obj.str());
+    RunResult r = run("render planes.obj --resolution 48,32 --aov id -o ids.png");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    DecodedPng png;
+    ASSERT_TRUE(tessera::test::decodePng((dir_ / "ids.png").string(), png));
+    int front = 0, back = 0;
+    for (int y = 0; y < png.height; ++y)
+      for (int x = 0; x < png.width; ++x) {
+        const int id = png.at(x, y, 0);
+        front += id == 1 || id == 2;
+        back += id == 3 || id == 4;
+      }
+    EXPECT_GT(front, 48 * 32 / 8) << "scale " << scale;
+    EXPECT_EQ(back, 0) << "scale " << scale;
+    const std::string ids = slurp(dir_ / "ids.png");
+    if (reference_ids.empty()) reference_ids = ids;
+    EXPECT_EQ(ids, reference_ids) << "scale " << scale;
+  }
 }

@@ -14,10 +14,12 @@ namespace tessera::test {
 
 struct DecodedPng {
   int width = 0, height = 0;
-  int channels = 0;           // 1 (grey), 3 (RGB) or 4 (RGBA)
-  int bit_depth = 0;          // 8 or 16
+  int channels = 0;               // 1 (grey), 3 (RGB) or 4 (RGBA)
+  int bit_depth = 0;              // 8 or 16
   std::vector<uint16_t> samples;  // width * height * channels, row 0 first
-  uint16_t at(int x, int y, int c) const { return samples[(static_cast<size_t>(y) * width + x) * channels + c]; }
+  uint16_t at(int x, int y, int c) const {
+    return samples[(static_cast<size_t>(y) * width + x) * channels + c];
+  }
 };
 
 inline bool decodePng(const std::string& path, DecodedPng& out) {
@@ -40,8 +42,9 @@ inline bool decodePng(const std::string& path, DecodedPng& out) {
   out.samples.resize(static_cast<size_t>(out.width) * out.height * out.channels);
   for (int y = 0; y < out.height; ++y) {
     for (int i = 0; i < out.width * out.channels; ++i) {
-      uint16_t v = out.bit_depth == 16 ? static_cast<uint16_t>((rows[y][2 * i] << 8) | rows[y][2 * i + 1])
-                                       : rows[y][i];
+      uint16_t v = out.bit_depth == 16
+                       ? static_cast<uint16_t>((rows[y][2 * i] << 8) | rows[y][2 * i + 1])
+                       : rows[y][i];
       out.samples[static_cast<size_t>(y) * out.width * out.channels + i] = v;
     }
   }
@@ -80,14 +83,16 @@ inline bool decodeGif(const std::string& path, DecodedGif& out) {
           std::memcmp(b.Bytes, "NETSCAPE2.0", 11) == 0)
         out.loops = true;
     }
-    const ColorMapObject* map = image.ImageDesc.ColorMap ? image.ImageDesc.ColorMap : gif->SColorMap;
+    const ColorMapObject* map =
+        image.ImageDesc.ColorMap ? image.ImageDesc.ColorMap : gif->SColorMap;
     if (!map) return false;
     for (int y = 0; y < image.ImageDesc.Height; ++y)
       for (int x = 0; x < image.ImageDesc.Width; ++x) {
         int index = image.RasterBits[y * image.ImageDesc.Width + x];
         if (gcb.TransparentColor == index) continue;
         const GifColorType c = map->Colors[index];
-        canvas[static_cast<size_t>(y + image.ImageDesc.Top) * out.width + x + image.ImageDesc.Left] =
+        canvas[static_cast<size_t>(y + image.ImageDesc.Top) * out.width + x +
+               image.ImageDesc.Left] =
             (static_cast<uint32_t>(c.Red) << 16) | (c.Green << 8) | c.Blue;
       }
     out.frames_rgb.push_back(canvas);

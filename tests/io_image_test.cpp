@@ -4,6 +4,7 @@
 #include <png.h>
 #include <stdlib.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -941,3 +942,79 @@ TEST(IoFrameSink, OutOfRangeSettingsAreErrors) {
 
 }  // namespace
 }  // namespace tessera::io
+
+namespace {
+
+// Runs a shell command and returns what it printed on stdout.
+std::string captureOutput(const std::string& command) {
+  std::string out;
+  if (FILE* pipe = ::popen(command.c_str(), "r")) {
+    char buffer[256];
+    while (size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+    ::pclose(pipe);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(IoMp4Sink, FfmpegWritesTheFramesAndTheFileAppearsOnFinish) {
+  if (captureOutput("command -v ffmpeg ffprobe").empty())
+    GTEST_SKIP() << "ffmpeg/ffprobe are not installed (scripts/setup.sh installs them)";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("tessera_mp4_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path path = dir / "clip.mp4";
+  tessera::io::AnimationSettings settings{33, 24, 10, true};  // odd width: padded to even
+  auto sink = tessera::io::openFrameSink(path.string(), settings);
+  ASSERT_TRUE(sink.ok()) << sink.error().message;
+  std::vector<uint32_t> pixels(33 * 24);
+  for (int frame = 0; frame < 7; ++frame) {
+    std::fill(pixels.begin(), pixels.end(), 0xff000000u | (frame * 30u));
+    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  }
+  EXPECT_FALSE(std::filesystem::exists(path));
+  auto finished = (*sink)->finish();
+  ASSERT_TRUE(finished.ok()) << finished.error().message;
+  ASSERT_TRUE(std::filesystem::exists(path));
+  const std::string probe = captureOutput(
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=width,height,nb_read_frames,codec_name -of csv=p=0 '" +
+      path.string() + "'");
+  EXPECT_EQ(probe, "h264,34,24,7\n");
+  // Nothing but the MP4 is left in the folder.
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) files += entry.exists();
+  EXPECT_EQ(files, 1);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(IoMp4Sink, MissingFfmpegIsAClearErrorAndLeavesNothing) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("tessera_noffmpeg_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string saved = std::getenv("PATH") ? std::getenv("PATH") : "";
+  ::setenv("PATH", dir.c_str(), 1);  // a folder with no ffmpeg in it
+  auto sink = tessera::io::openFrameSink((dir / "x.mp4").string(), {16, 16, 30, true});
+  ::setenv("PATH", saved.c_str(), 1);
+  ASSERT_FALSE(sink.ok());
+  EXPECT_NE(sink.error().message.find("ffmpeg"), std::string::npos) << sink.error().message;
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(IoMp4Sink, AbandonedSinkLeavesNoFile) {
+  if (captureOutput("command -v ffmpeg").empty())
+    GTEST_SKIP() << "ffmpeg is not installed (scripts/setup.sh installs it)";
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("tessera_mp4_abandon_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  {
+    auto sink = tessera::io::openFrameSink((dir / "x.mp4").string(), {16, 16, 30, true});
+    ASSERT_TRUE(sink.ok());
+    std::vector<uint32_t> pixels(16 * 16, 0xff808080u);
+    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+  std::filesystem::remove_all(dir);
+}

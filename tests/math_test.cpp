@@ -31,8 +31,8 @@ TEST(Math, MatrixProductComposesRightToLeft) {
 }
 
 TEST(Math, InverseUndoesAGeneralTransform) {
-  float4x4 m = translation({1, -2, 3}) * toMatrix4(fromEuler({0.3f, -1.1f, 2.0f})) *
-               scaling({2, 0.5f, 3});
+  float4x4 m =
+      translation({1, -2, 3}) * toMatrix4(fromEuler({0.3f, -1.1f, 2.0f})) * scaling({2, 0.5f, 3});
   float4x4 identity = m * inverse(m);
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) EXPECT_NEAR(identity(r, c), r == c ? 1.0f : 0.0f, 1e-5f);

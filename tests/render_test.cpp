@@ -2,10 +2,13 @@
 // pixel by pixel.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
-#include <limits>
+#include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <map>
+#include <new>
 #include <random>
 #include <set>
 
@@ -14,6 +17,30 @@
 #include <tessera/scene/primitives.h>
 
 using namespace tessera;
+
+// Counts heap allocations while a test asks for it (for the no-allocation-per-frame test).
+static std::atomic<bool> g_count_allocations{false};
+static std::atomic<size_t> g_allocations{0};
+
+// A place for a debugger's breakpoint: every counted allocation passes here.
+__attribute__((noinline)) void countedAllocation() {
+  g_allocations.fetch_add(1);
+}
+
+void* operator new(size_t size) {
+  if (g_count_allocations.load(std::memory_order_relaxed)) countedAllocation();
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, size_t) noexcept {
+  std::free(p);
+}
+#pragma GCC diagnostic pop
 
 namespace {
 
@@ -96,14 +123,13 @@ TEST(Raster, SharedEdgeGridCoversEachPixelOnce) {
   std::vector<int> coverage(kW * kH, 0);
   for (size_t t = 0; t < triangles.size(); t += 3) {
     Scene scene = clipSpaceScene();
-    scene.objects.push_back(unlitObject(
-        windowTriangle(triangles[t], triangles[t + 1], triangles[t + 2], kW, kH)));
+    scene.objects.push_back(
+        unlitObject(windowTriangle(triangles[t], triangles[t + 1], triangles[t + 2], kW, kH)));
     Frame f = renderScene(scene, kW, kH);
     for (int i = 0; i < kW * kH; ++i) coverage[i] += f.triangle_id[i] != kNoTriangle;
   }
   for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x)
-      EXPECT_EQ(coverage[y * kW + x], 1) << "pixel " << x << "," << y;
+    for (int x = 0; x < kW; ++x) EXPECT_EQ(coverage[y * kW + x], 1) << "pixel " << x << "," << y;
 }
 
 TEST(Raster, TopLeftRuleOnEdgesThroughPixelCentres) {
@@ -112,8 +138,8 @@ TEST(Raster, TopLeftRuleOnEdgesThroughPixelCentres) {
   // their centres, the bottom and right ones do not.
   Scene scene = clipSpaceScene();
   Mesh quad;
-  for (float3 p : {float3{2.5f, 2.5f, 0}, float3{6.5f, 2.5f, 0}, float3{6.5f, 6.5f, 0},
-                   float3{2.5f, 6.5f, 0}})
+  for (float3 p :
+       {float3{2.5f, 2.5f, 0}, float3{6.5f, 2.5f, 0}, float3{6.5f, 6.5f, 0}, float3{2.5f, 6.5f, 0}})
     quad.positions.push_back(windowToNdc(p.x, p.y, p.z, kW, kH));
   quad.indices = {0, 2, 1, 0, 3, 2};
   scene.objects.push_back(unlitObject(quad));
@@ -242,6 +268,48 @@ TEST(Raster, InterpenetratingTrianglesResolveByDepth) {
   }
 }
 
+TEST(Raster, HiZRejectsOnlyWhatIsHidden) {
+  // A screen-covering wall at z = 0 drawn first (it sets the blocks' depth bounds), then small
+  // and large triangles behind it (all hidden) and in front of it (all visible), interleaved.
+  constexpr int kW = 128, kH = 96;
+  Scene scene = clipSpaceScene();
+  Mesh m;
+  auto quad = [&](float x0, float y0, float x1, float y1, float z) {
+    const uint32_t base = static_cast<uint32_t>(m.positions.size());
+    m.positions.insert(m.positions.end(), {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}});
+    m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  };
+  quad(-1, -1, 1, 1, 0.0f);  // ids 1, 2
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> pos(-0.95f, 0.8f);
+  std::vector<std::pair<float, float>> in_front;
+  for (int i = 0; i < 60; ++i) {
+    const float x = pos(rng), y = pos(rng);
+    const float size = i % 10 == 0 ? 0.6f : 0.08f;  // some large, most small
+    const bool front = i % 3 == 0;
+    quad(x, y, x + size, y + size, front ? -0.2f - 0.001f * i : 0.3f);
+    if (front) in_front.emplace_back(x, y);
+  }
+  scene.objects.push_back(unlitObject(m, CullMode::kBack));
+  Frame f = renderScene(scene, kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const uint32_t id = f.idAt(x, y);
+      ASSERT_NE(id, kNoTriangle);
+      // Triangle index id - 1 belongs to quad (id - 1) / 2; quad 0 is the wall, quad q >= 1 is
+      // random quad q - 1, in front when (q - 1) % 3 == 0.
+      const int q = static_cast<int>(id - 1) / 2;
+      EXPECT_TRUE(q == 0 || (q - 1) % 3 == 0) << "hidden quad " << q << " at " << x << "," << y;
+    }
+  // Every quad in front owns the pixel at its lower-left corner's inside.
+  for (auto [qx, qy] : in_front) {
+    const int px = static_cast<int>((qx + 1.0f) * 0.5f * kW) + 1;
+    const int py = static_cast<int>((1.0f - (qy + 0.02f)) * 0.5f * kH) - 1;
+    const int q = static_cast<int>(f.idAt(px, py) - 1) / 2;
+    EXPECT_NE(q, 0) << "a quad in front is missing at " << px << "," << py;
+  }
+}
+
 TEST(Raster, BackfaceCullModes) {
   constexpr int kW = 16, kH = 8;
   Mesh m;
@@ -267,12 +335,12 @@ TEST(Raster, NonFiniteDegenerateAndOutOfRangeTrianglesAreDropped) {
   Mesh m;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {nan, 0, 0}, {0.5f, 0.5f, 0}, {kInf, 0, 0}};
-  m.indices = {0, 1, 3,    // NaN vertex
-               0, 1, 5,    // infinite vertex
-               0, 2, 4,    // collinear? no: a real triangle, kept below
-               0, 0, 1,    // degenerate
-               0, 1, 99,   // index past the end
-               0, 1, 2};   // valid
+  m.indices = {0, 1, 3,   // NaN vertex
+               0, 1, 5,   // infinite vertex
+               0, 2, 4,   // collinear? no: a real triangle, kept below
+               0, 0, 1,   // degenerate
+               0, 1, 99,  // index past the end
+               0, 1, 2};  // valid
   scene.objects.push_back(unlitObject(m));
   PipelineStats stats;
   Frame f = renderScene(scene, 16, 16, 1, &stats);
@@ -304,7 +372,8 @@ TEST(Shading, PerspectiveCorrectUvOnARecedingCheckerboard) {
   auto texture = std::make_shared<Texture>();
   texture->width = texture->height = kChecks;
   for (int y = 0; y < kChecks; ++y)
-    for (int x = 0; x < kChecks; ++x) texture->texels.push_back((x + y) % 2 ? 0xffffffffu : 0xff000000u);
+    for (int x = 0; x < kChecks; ++x)
+      texture->texels.push_back((x + y) % 2 ? 0xffffffffu : 0xff000000u);
 
   Scene scene;
   scene.camera.position = {0, 1, 0};
@@ -315,8 +384,8 @@ TEST(Shading, PerspectiveCorrectUvOnARecedingCheckerboard) {
   // Floor y = 0 from z = -0.5 to z = -30.5, x in [-15, 15]; u along x, v along -z.
   const float z_near = -0.5f, z_far = -30.5f, half_x = 15.0f;
   Mesh floor;
-  floor.positions = {{-half_x, 0, z_near}, {half_x, 0, z_near}, {half_x, 0, z_far},
-                     {-half_x, 0, z_far}};
+  floor.positions = {
+      {-half_x, 0, z_near}, {half_x, 0, z_near}, {half_x, 0, z_far}, {-half_x, 0, z_far}};
   floor.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   floor.indices = {0, 1, 2, 0, 2, 3};
   Object o = unlitObject(floor, CullMode::kBack);
@@ -332,7 +401,8 @@ TEST(Shading, PerspectiveCorrectUvOnARecedingCheckerboard) {
     for (int x = 0; x < kW; ++x) {
       // Unproject the pixel centre to a world ray and intersect it with the floor.
       float ndc_x = 2.0f * (x + 0.5f) / kW - 1.0f, ndc_y = 1.0f - 2.0f * (y + 0.5f) / kH;
-      float4 a = inverse_vp * float4{ndc_x, ndc_y, -1, 1}, b = inverse_vp * float4{ndc_x, ndc_y, 1, 1};
+      float4 a = inverse_vp * float4{ndc_x, ndc_y, -1, 1},
+             b = inverse_vp * float4{ndc_x, ndc_y, 1, 1};
       float3 p0 = a.xyz() * (1 / a.w), p1 = b.xyz() * (1 / b.w);
       if (!(p1.y < p0.y)) continue;
       float3 hit = p0 + (p1 - p0) * (p0.y / (p0.y - p1.y));
@@ -351,6 +421,54 @@ TEST(Shading, PerspectiveCorrectUvOnARecedingCheckerboard) {
   }
   EXPECT_GT(checked, kW * kH / 4);
   EXPECT_EQ(wrong, 0) << "of " << checked;
+}
+
+TEST(Shading, TrilinearFilteringAveragesAFineCheckerInTheDistance) {
+  // A fine checker on a floor running to the horizon: far away, many texels fall in one pixel.
+  // Without mip levels the samples alias to black and white; with them they blend to grey.
+  constexpr int kW = 120, kH = 80;
+  auto texture = std::make_shared<Texture>();
+  texture->width = texture->height = 256;
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 256; ++x)
+      texture->texels.push_back((x + y) % 2 ? 0xffffffffu : 0xff000000u);
+  auto render = [&](bool mipmapped) {
+    auto t = std::make_shared<Texture>(*texture);
+    if (mipmapped) generateMipmaps(*t);
+    Scene scene;
+    scene.camera.position = {0, 0.5f, 0};
+    scene.camera.target = {0, 0.3f, -4};
+    scene.camera.near_z = 0.1f;
+    scene.camera.far_z = 200;
+    Mesh floor;
+    floor.positions = {{-50, 0, -1}, {50, 0, -1}, {50, 0, -150}, {-50, 0, -150}};
+    floor.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    floor.indices = {0, 1, 2, 0, 2, 3};
+    Object o = unlitObject(floor, CullMode::kBack);
+    o.materials[0].albedo = t;
+    o.materials[0].sampler = {TextureFilter::kTrilinear, TextureWrap::kRepeat};
+    scene.objects.push_back(o);
+    return renderScene(scene, kW, kH);
+  };
+  // Pixels in the distant band that are far from the checker's mean (linear 0.5 = sRGB 188).
+  auto extremes = [&](const Frame& f) {
+    int top = 0;  // the first row with floor in it: the far edge, near the horizon
+    while (top < kH && f.idAt(kW / 2, top) == kNoTriangle) ++top;
+    int count = 0, covered = 0;
+    for (int y = top; y < top + 4 && y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (f.idAt(x, y) == kNoTriangle) continue;
+        ++covered;
+        const uint32_t r = f.colorAt(x, y) & 0xff;
+        count += std::abs(static_cast<int>(r) - 188) > 30;
+      }
+    EXPECT_GT(covered, kW * 3);
+    return count;
+  };
+  const int aliased = extremes(render(false));
+  const int filtered = extremes(render(true));
+  EXPECT_GT(aliased, kW);
+  EXPECT_LT(filtered, kW / 10);
 }
 
 TEST(Shading, LambertWithAmbientInLinearLight) {
@@ -543,12 +661,46 @@ TEST(Renderer, ImageIsBitIdenticalForEverySimdLevel) {
   };
   Frame scalar = render(SimdLevel::kScalar);
   EXPECT_GT(coveredCount(scalar), 301 * 203 / 3);
-  for (SimdLevel level : {SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512, SimdLevel::kAuto}) {
+  for (SimdLevel level :
+       {SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512, SimdLevel::kAuto}) {
     Frame other = render(level);
     EXPECT_EQ(scalar.triangle_id, other.triangle_id) << static_cast<int>(level);
     EXPECT_EQ(scalar.color, other.color) << static_cast<int>(level);
     EXPECT_EQ(0, std::memcmp(scalar.depth.data(), other.depth.data(), scalar.depth.size() * 4));
   }
+}
+
+TEST(Renderer, AllocatesNothingPerFrameAfterWarmUp) {
+  Scene scene;
+  scene.camera.position = {0, 0.5f, 2.5f};
+  scene.camera.near_z = 1.8f;  // some triangles cross the near plane
+  scene.lights.push_back({normalize(float3{-1, -2, -1}), float3(0.9f)});
+  scene.show_world_axes = true;
+  Object sphere;
+  sphere.mesh = std::make_shared<Mesh>(makeUvSphere(64, 32));
+  sphere.shading = Shading::kPhong;
+  sphere.show_axes = true;
+  scene.objects.push_back(sphere);
+  CpuRenderer renderer(3);
+  RenderOptions options;
+  options.width = 320;
+  options.height = 200;
+  options.normals = true;
+  Frame frame;
+  // Warm up on the same frames: buffers grow to the largest frame seen, then stay.
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      g_allocations = 0;
+      g_count_allocations = true;
+    }
+    for (int i = 0; i < 3; ++i) {
+      scene.objects[0].transform.rotation = quat::fromAxisAngle({0, 1, 0}, 0.1f * i);
+      renderer.render(scene, options, frame);
+    }
+  }
+  g_count_allocations = false;
+  EXPECT_GT(renderer.lastStats().triangles_clipped, 0u);
+  EXPECT_EQ(g_allocations.load(), 0u);
 }
 
 TEST(Renderer, ReusesItsBuffersAcrossFramesAndSizes) {

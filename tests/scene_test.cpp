@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
 #include <tessera/scene/scene.h>
@@ -128,8 +130,7 @@ TEST(Camera, FrameBoundsSeesTheWholeModelWithNearAndFarAroundIt) {
   Camera c = frameBounds(b, {1, 1, 1}, {0, 1, 0}, 50.0f, 2.0f);
   float4x4 vp = c.projection(2.0f) * c.view();
   for (int i = 0; i < 8; ++i) {
-    float3 corner{i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y,
-                  i & 4 ? b.max.z : b.min.z};
+    float3 corner{i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z};
     float4 clip = vp * float4{corner, 1};
     float3 ndc = clip.xyz() * (1.0f / clip.w);
     EXPECT_LE(std::fabs(ndc.x), 1.0f);
@@ -138,4 +139,30 @@ TEST(Camera, FrameBoundsSeesTheWholeModelWithNearAndFarAroundIt) {
     EXPECT_LT(ndc.z, 1.0f);
   }
   EXPECT_GT(c.near_z, 0.0f);
+}
+
+TEST(Texture, MipChainAveragesInLinearLight) {
+  Texture t;
+  t.width = 4;
+  t.height = 2;
+  for (int i = 0; i < 8; ++i) t.texels.push_back((i + i / 4) % 2 ? 0xffffffffu : 0xff000000u);
+  generateMipmaps(t);
+  ASSERT_EQ(t.levelCount(), 3);
+  EXPECT_EQ(t.mips[0].width, 2);
+  EXPECT_EQ(t.mips[0].height, 1);
+  EXPECT_EQ(t.mips[1].width, 1);
+  EXPECT_EQ(t.mips[1].height, 1);
+  // Half black, half white averages to linear 0.5: sRGB code 188, not 128.
+  EXPECT_EQ(t.mips[1].texels[0] & 0xff, 188u);
+  EXPECT_EQ(t.mips[1].texels[0] >> 24, 255u);
+  Sampler trilinear{TextureFilter::kTrilinear, TextureWrap::kRepeat};
+  // Level of detail 0 is the bilinear sample of level 0; past the last level, its average.
+  EXPECT_EQ(t.sampleLod({0.3f, 0.6f}, 0.0f, trilinear), t.sample({0.3f, 0.6f}, trilinear));
+  EXPECT_NEAR(t.sampleLod({0.3f, 0.6f}, 9.0f, trilinear).x, 0.5f, 0.003f);
+  // Halfway between two levels blends them.
+  float4 a = t.sampleLod({0.1f, 0.2f}, 1.0f, trilinear);
+  float4 b = t.sampleLod({0.1f, 0.2f}, 2.0f, trilinear);
+  float4 mid = t.sampleLod({0.1f, 0.2f}, 1.5f, trilinear);
+  EXPECT_NEAR(mid.x, 0.5f * (a.x + b.x), 1e-6f);
+  EXPECT_TRUE(std::isfinite(t.sampleLod({0.1f, 0.2f}, std::nanf(""), trilinear).x));
 }

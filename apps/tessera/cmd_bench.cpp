@@ -16,6 +16,7 @@
 #include "bench/scenes.h"
 #include "commands.h"
 #include "flags.h"
+#include "model_scene.h"
 #include "view_setup.h"
 
 namespace tessera::cli {
@@ -91,13 +92,6 @@ std::string parseResolutions(const std::string& text, std::vector<Resolution>& o
   if (parsed.empty()) return "expected W,H or WxH, got '" + text + "'";
   out.insert(out.end(), parsed.begin(), parsed.end());
   return "";
-}
-
-Shading shadingFromName(const std::string& name) {
-  if (name == "flat") return Shading::kFlat;
-  if (name == "unlit") return Shading::kUnlit;
-  if (name == "smooth") return Shading::kPhong;
-  return Shading::kGouraud;
 }
 
 std::string jsonString(const std::string& text) {

@@ -57,9 +57,10 @@ Scene makeCubeScene(const CubeSettings& settings) {
 
 int runCube(const std::vector<std::string>& args) {
   CubeSettings s;
-  FlagSet flags("tessera cube [-w 480] [-h 480] [-fps 30] [-dur 4s] [-fov 50] [-out cube.gif] "
-                "[-workers 0] [-axes]",
-                /*single_dash=*/true);
+  FlagSet flags(
+      "tessera cube [-w 480] [-h 480] [-fps 30] [-dur 4s] [-fov 50] [-out cube.gif] "
+      "[-workers 0] [-axes]",
+      /*single_dash=*/true);
   flags.addInt("w|width", &s.width, "image width in pixels (default 480)", 1, 16384);
   flags.addInt("h|height", &s.height, "image height in pixels (default 480)", 1, 16384);
   flags.addInt("fps", &s.fps, "frames per second (default 30)", 1, 100);
@@ -121,6 +122,10 @@ int runCube(const std::vector<std::string>& args) {
     scene.objects[0].transform.rotation =
         quat::fromAxisAngle({0, 1, 0}, angle) * quat::fromAxisAngle({1, 0, 0}, 0.35f);
     renderer.render(scene, options, frame);
+    if (Expected<void> rendered = renderer.lastResult(); !rendered) {
+      printError("cube", rendered.error().message);
+      return kExitFailure;
+    }
     if (Expected<void> added = (*sink)->addFrame(frame.color.data()); !added) {
       printError("cube", added.error().message);
       return kExitFailure;

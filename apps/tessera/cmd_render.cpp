@@ -7,6 +7,7 @@
 #include <memory>
 
 #include <tessera/io/frame_sink.h>
+#include <tessera/io/image_loader.h>
 #include <tessera/io/image_writer.h>
 #include <tessera/io/model_loader.h>
 #include <tessera/render/cpu_renderer.h>
@@ -15,6 +16,7 @@
 #include "backends.h"
 #include "commands.h"
 #include "flags.h"
+#include "model_scene.h"
 #include "view_setup.h"
 
 namespace tessera::cli {
@@ -35,9 +37,11 @@ struct RenderSettings {
   int workers = 0;
   int device = -1;
   bool axes = false;
+  bool info = false;
+  std::string texture;
 };
 
-enum class OutputKind { kPng, kGif, kSequence };
+enum class OutputKind { kPng, kVideo, kSequence };  // kVideo: .gif or .mp4
 
 bool endsWithIgnoringCase(const std::string& text, const std::string& suffix) {
   if (text.size() < suffix.size()) return false;
@@ -59,7 +63,7 @@ int runRender(const std::vector<std::string>& args) {
   RenderSettings s;
   FlagSet flags("tessera render MODEL [-o OUTPUT] [flags]");
   flags.addString("o|output", &s.output,
-                  "output: .png; .gif or a {frame} PNG template for a turntable "
+                  "output: .png; .gif, .mp4 or a {frame} PNG template for a turntable "
                   "(default MODEL's name with .png, in the current folder)");
   flags.addCustom("resolution", "W,H", "image size in pixels (default 1000,600)",
                   [&](const std::string& v) -> std::string {
@@ -96,6 +100,9 @@ int runRender(const std::vector<std::string>& args) {
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
   flags.addSwitch("axes", &s.axes, "draw the world axes");
+  flags.addString("texture", &s.texture,
+                  "an albedo texture (PNG, JPEG, BMP, TGA) for every material");
+  flags.addSwitch("info", &s.info, "print the model's counts, bounds and warnings; do not render");
 
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {
@@ -118,16 +125,17 @@ int runRender(const std::vector<std::string>& args) {
     if (!endsWithIgnoringCase(s.output, ".png"))
       return usageError("a {frame} output must end in .png");
     kind = OutputKind::kSequence;
-  } else if (endsWithIgnoringCase(s.output, ".gif")) {
-    kind = OutputKind::kGif;
+  } else if (endsWithIgnoringCase(s.output, ".gif") || endsWithIgnoringCase(s.output, ".mp4")) {
+    kind = OutputKind::kVideo;
   } else if (endsWithIgnoringCase(s.output, ".png")) {
     kind = OutputKind::kPng;
   } else {
-    return usageError("output '" + s.output + "' must end in .png or .gif, or be a {frame} .png template");
+    return usageError("output '" + s.output +
+                      "' must end in .png, .gif or .mp4, or be a {frame} .png template");
   }
   if (kind == OutputKind::kPng && s.turntable > 1)
-    return usageError("--turntable writes several frames: use a .gif or a {frame} .png output");
-  if (kind == OutputKind::kGif && s.aov != "color")
+    return usageError("--turntable writes several frames: use a .gif, .mp4 or {frame} .png output");
+  if (kind == OutputKind::kVideo && s.aov != "color")
     return usageError("--aov " + s.aov + " needs PNG output (a .png or a {frame} template)");
 
   // Load.
@@ -136,8 +144,24 @@ int runRender(const std::vector<std::string>& args) {
     printError("render", model.error().message);
     return kExitFailure;
   }
+  if (s.info) {
+    printModelInfo(model_path.string(), *model, std::cout);
+    return kExitOk;
+  }
   for (const std::string& warning : model->warnings)
     std::cerr << "tessera render: warning: " << warning << "\n";
+  ModelSceneSettings scene_settings;
+  if (!s.texture.empty()) {
+    Expected<Texture> texture = io::loadTexture(s.texture);
+    if (!texture) {
+      printError("render", texture.error().message);
+      return kExitFailure;
+    }
+    if (model->mesh.uvs.empty())
+      std::cerr << "tessera render: warning: " << model_path.string()
+                << " has no texture coordinates: --texture has no effect\n";
+    scene_settings.albedo = std::make_shared<const Texture>(std::move(*texture));
+  }
   const Bounds bounds = model->mesh.bounds();
   if (bounds.empty()) {
     printError("render", model_path.string() + ": the model has no finite vertices");
@@ -145,19 +169,15 @@ int runRender(const std::vector<std::string>& args) {
   }
 
   // Scene.
-  Scene scene;
-  Object object;
-  object.mesh = std::make_shared<Mesh>(std::move(model->mesh));
-  object.materials = model->materials;
-  if (object.materials.empty()) object.materials.push_back(Material{});
-  object.shading = s.shading == "flat"      ? Shading::kFlat
-                   : s.shading == "gouraud" ? Shading::kGouraud
-                   : s.shading == "unlit"   ? Shading::kUnlit
-                                            : Shading::kPhong;
-  object.cull = s.backface == "hidden" ? CullMode::kBack : CullMode::kNone;
-  scene.objects.push_back(object);
-  scene.background = {srgbToLinear(s.background.x), srgbToLinear(s.background.y),
-                      srgbToLinear(s.background.z), 1.0f};
+  scene_settings.shading = shadingFromName(s.shading);
+  scene_settings.cull = s.backface == "hidden" ? CullMode::kBack : CullMode::kNone;
+  scene_settings.background_srgb = s.background;
+  Expected<Scene> made = makeModelScene(std::move(*model), model_path, scene_settings);
+  if (!made) {
+    printError("render", made.error().message);
+    return kExitFailure;
+  }
+  Scene scene = std::move(*made);
 
   const float3 up = s.camera.upAxis();
   const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
@@ -187,9 +207,9 @@ int runRender(const std::vector<std::string>& args) {
   Frame frame;
   const int frame_count = std::max(s.turntable, 1);
   std::unique_ptr<io::FrameSink> sink;
-  if (kind == OutputKind::kGif) {
+  if (kind == OutputKind::kVideo) {
     Expected<std::unique_ptr<io::FrameSink>> opened =
-        io::openGifSink(s.output, {s.width, s.height, s.fps, true});
+        io::openFrameSink(s.output, {s.width, s.height, s.fps, true});
     if (!opened) {
       printError("render", opened.error().message);
       return kExitFailure;
@@ -200,18 +220,21 @@ int runRender(const std::vector<std::string>& args) {
   Progress progress("render: frame", frame_count);
   for (int i = 0; i < frame_count; ++i) {
     // The turntable turns the model about the up axis through its centre.
-    const quat turn =
-        quat::fromAxisAngle(up, 2.0f * kPi * static_cast<float>(i) / static_cast<float>(frame_count));
+    const quat turn = quat::fromAxisAngle(
+        up, 2.0f * kPi * static_cast<float>(i) / static_cast<float>(frame_count));
     scene.objects[0].transform.rotation = turn;
     scene.objects[0].transform.translation = center - rotate(turn, center);
     renderer.render(scene, options, frame);
+    if (Expected<void> rendered = renderer.lastResult(); !rendered) {
+      printError("render", rendered.error().message);
+      return kExitFailure;
+    }
     Expected<void> written;
     if (sink) {
       written = sink->addFrame(frame.color.data());
     } else {
-      std::filesystem::path path =
-          kind == OutputKind::kSequence ? io::formatFramePath(s.output, i)
-                                        : std::filesystem::path(s.output);
+      std::filesystem::path path = kind == OutputKind::kSequence ? io::formatFramePath(s.output, i)
+                                                                 : std::filesystem::path(s.output);
       written = writeStill(path, frame, s.aov);
     }
     if (!written) {

@@ -2,8 +2,13 @@
 #pragma once
 
 #include <cstdio>
+#include <ostream>
 #include <string>
 #include <vector>
+
+namespace tessera::io {
+struct Model;
+}
 
 namespace tessera::cli {
 
@@ -14,6 +19,12 @@ constexpr int kExitUsage = 2;    // the command line was wrong
 int runCube(const std::vector<std::string>& args);
 int runRender(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
+int runInfo(const std::vector<std::string>& args);
+int runView(const std::vector<std::string>& args);
+
+// Counts, bounds and warnings of a loaded model.
+void printModelInfo(const std::string& path, const io::Model& model, std::ostream& out);
+int runDevices(const std::vector<std::string>& args);
 
 // Prints "tessera <command>: error: <message>" to stderr.
 void printError(const std::string& command, const std::string& message);

@@ -197,8 +197,10 @@ std::string FlagSet::usage() const {
       line += (f.names[i].size() == 1 || single_dash_ ? "-" : "--") + f.names[i];
     }
     if (!f.value_name.empty()) line += " " + f.value_name;
-    if (line.size() < 34) line.resize(34, ' ');
-    else line += "  ";
+    if (line.size() < 34)
+      line.resize(34, ' ');
+    else
+      line += "  ";
     out << line << f.help << "\n";
   }
   out << "  --help                          show this message\n";

@@ -37,8 +37,11 @@ constexpr const char* kUsage =
     "\n"
     "commands:\n"
     "  cube            render the rotating-cube demo to an animated GIF (no input needed)\n"
-    "  render MODEL    render an OBJ model to PNG (colour or an AOV), GIF or a PNG sequence\n"
+    "  render MODEL    render a model to PNG (colour or an AOV), GIF, MP4 or a PNG sequence\n"
     "  bench [SCENE]   time built-in scenes or models, beside Mesa's llvmpipe with --vs llvmpipe\n"
+    "  info MODEL      print a model's counts, bounds and warnings without rendering it\n"
+    "  view [MODEL]    look at a model (or the cube) in a window: orbit, zoom, pan, screenshots\n"
+    "  devices         list the Vulkan devices and the backends each can run\n"
     "\n"
     "Run 'tessera <command> --help' for the flags of a command.\n";
 
@@ -56,6 +59,9 @@ int main(int argc, char** argv) {
   if (command == "cube") return runCube(args);
   if (command == "render") return runRender(args);
   if (command == "bench") return runBench(args);
+  if (command == "info") return runInfo(args);
+  if (command == "view") return runView(args);
+  if (command == "devices") return runDevices(args);
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << kUsage;
     return kExitOk;

@@ -1,6 +1,6 @@
-// How a model is looked at: the camera flags shared by `render` and `bench`, the framing camera
-// and the view-fixed lights. Everything here but addCameraFlags depends on the core alone, so the
-// micro-benchmarks build it too.
+// The camera flags shared by `render` and `bench`, and the camera they describe: the default
+// three-quarter view of model_scene.h, or the camera given exactly. Everything here but
+// addCameraFlags depends on the core alone, so the micro-benchmarks build it too.
 #pragma once
 
 #include <string>
@@ -34,16 +34,9 @@ inline void addCameraFlags(FlagSet& flags, CameraSettings& c) {
   flags.addChoice("up", &c.up, {"+Y", "+Z"}, "the model's up axis (default +Y)");
 }
 
-// The camera for a model with these bounds: a three-quarter view from the front, right and above
-// that fits the whole model, or the camera the flags describe (near and far fitted to the
+// The camera for a model with these bounds: the three-quarter view from the front, right and
+// above that fits the whole model, or the camera the flags describe (near and far fitted to the
 // bounds). An error for a camera that cannot look anywhere (a usage error).
 Expected<Camera> makeCamera(const CameraSettings& settings, const Bounds& bounds, float aspect);
-
-// Near and far that bracket the bounds as seen from the camera.
-void fitNearFar(Camera& camera, const Bounds& bounds);
-
-// A key light from above-left of the camera and a fill from the right, fixed to the view; replaces
-// the scene's lights and ambient term.
-void addViewLights(Scene& scene);
 
 }  // namespace tessera::cli

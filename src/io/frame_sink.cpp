@@ -153,9 +153,10 @@ Expected<std::unique_ptr<FrameSink>> openFrameSink(const std::string& path,
                      "': a {frame} template makes a PNG sequence and must end in .png");
   }
   if (extension == ".gif") return openGifSink(path, settings);
+  if (extension == ".mp4") return openMp4Sink(path, settings);
   if (extension == ".png") return openSinglePngSink(path, settings);
   return makeError("cannot write '" + path +
-                   "': the output must be a .gif file, a .png file (one frame) or a PNG "
+                   "': the output must be a .gif or .mp4 file, a .png file (one frame) or a PNG "
                    "sequence template such as out_{frame}.png");
 }
 

@@ -83,6 +83,8 @@ Expected<Texture> toTexture(StbiPixels pixels, int width, int height, bool srgb,
   for (size_t i = 0; i < count; ++i, p += 4)
     texture.texels[i] = static_cast<uint32_t>(p[0]) | static_cast<uint32_t>(p[1]) << 8 |
                         static_cast<uint32_t>(p[2]) << 16 | static_cast<uint32_t>(p[3]) << 24;
+  // Every loaded texture gets its mip chain, for trilinear filtering (a third more memory).
+  generateMipmaps(texture);
   return texture;
 }
 

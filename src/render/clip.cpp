@@ -32,12 +32,18 @@ namespace {
 // Signed distance to a plane; inside when >= 0.
 float planeDistance(uint32_t plane, float4 p, const GuardBand& guard) {
   switch (plane) {
-    case kClipNear: return p.z + p.w;
-    case kClipFar: return p.w - p.z;
-    case kGuardLeft: return p.x + guard.x_factor * p.w;
-    case kGuardRight: return guard.x_factor * p.w - p.x;
-    case kGuardBottom: return p.y + guard.y_factor * p.w;
-    default: return guard.y_factor * p.w - p.y;  // kGuardTop
+    case kClipNear:
+      return p.z + p.w;
+    case kClipFar:
+      return p.w - p.z;
+    case kGuardLeft:
+      return p.x + guard.x_factor * p.w;
+    case kGuardRight:
+      return guard.x_factor * p.w - p.x;
+    case kGuardBottom:
+      return p.y + guard.y_factor * p.w;
+    default:
+      return guard.y_factor * p.w - p.y;  // kGuardTop
   }
 }
 
@@ -72,8 +78,8 @@ int clipTriangle(const ClipVertex in[3], uint32_t planes, const GuardBand& guard
       if (a_in) dst[out_count++] = a;
       if (a_in != b_in) {
         // Always from the inside vertex towards the outside one (see the header).
-        dst[out_count++] = a_in ? interpolate(a, b, da / (da - db))
-                                : interpolate(b, a, db / (db - da));
+        dst[out_count++] =
+            a_in ? interpolate(a, b, da / (da - db)) : interpolate(b, a, db / (db - da));
       }
     }
     count = out_count;

@@ -31,10 +31,10 @@ enum ClipPlaneBit : uint32_t {
   kGuardTop = 1u << 9,
   kNonFinite = 1u << 10,  // a NaN or infinite coordinate: the triangle is dropped
 };
-constexpr uint32_t kRejectPlanes = kClipNear | kClipFar | kClipLeft | kClipRight | kClipBottom |
-                                   kClipTop;
-constexpr uint32_t kCutPlanes = kClipNear | kClipFar | kGuardLeft | kGuardRight | kGuardBottom |
-                                kGuardTop;
+constexpr uint32_t kRejectPlanes =
+    kClipNear | kClipFar | kClipLeft | kClipRight | kClipBottom | kClipTop;
+constexpr uint32_t kCutPlanes =
+    kClipNear | kClipFar | kGuardLeft | kGuardRight | kGuardBottom | kGuardTop;
 
 // The guard band as clip-space factors: a vertex is inside when |x| <= x_factor * w and
 // |y| <= y_factor * w.

@@ -11,6 +11,8 @@
 #include <tessera/render/cpu_renderer.h>
 
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <memory>
 
 #include <tessera/base/check.h>
@@ -19,6 +21,7 @@
 #include "render/bin.h"
 #include "render/clip.h"
 #include "render/fixed_point.h"
+#include "render/kernels.h"
 #include "render/lines.h"
 #include "render/raster.h"
 #include "render/resolve.h"
@@ -45,8 +48,7 @@ struct VertexJob {
 }  // namespace
 
 struct CpuRenderer::State {
-  State(int workers, RasterIsa isa)
-      : pool(workers), raster_isa(isa), raster_triangle(rasterTriangleFunction(isa)) {
+  State(int workers, Isa isa) : pool(workers), isa(isa), kernels(tileKernels(isa)) {
     for (int i = 0; i < pool.size(); ++i) {
       tiles.push_back(std::make_unique<TileVisibility>());
       shaded.push_back(std::make_unique<ShadedTile>());
@@ -54,8 +56,8 @@ struct CpuRenderer::State {
   }
 
   WorkerPool pool;
-  RasterIsa raster_isa;
-  RasterTriangleFn raster_triangle;
+  Isa isa;
+  TileKernels kernels;
   std::vector<ObjectTransforms> objects;
   std::vector<VertexJob> vertex_jobs;
   VertexBuffer vertices;
@@ -67,19 +69,24 @@ struct CpuRenderer::State {
   PipelineStats stats;
 
   void setupChunk(const Scene& scene, const TileGrid& grid, const GuardBand& guard,
-                  TriangleChunk& chunk) const;
+                  bool want_normals, TriangleChunk& chunk) const;
 };
 
 namespace {
 
-RasterIsa chooseIsa(SimdLevel level) {
-  const RasterIsa best = detectRasterIsa();
+Isa chooseIsa(SimdLevel level) {
+  const Isa best = detectIsa();
   switch (level) {
-    case SimdLevel::kAuto: return best;
-    case SimdLevel::kScalar: return RasterIsa::kScalar;
-    case SimdLevel::kSse2: return best >= RasterIsa::kSse2 ? RasterIsa::kSse2 : best;
-    case SimdLevel::kAvx2: return best >= RasterIsa::kAvx2 ? RasterIsa::kAvx2 : best;
-    case SimdLevel::kAvx512: return best;
+    case SimdLevel::kAuto:
+      return best;
+    case SimdLevel::kScalar:
+      return Isa::kScalar;
+    case SimdLevel::kSse2:
+      return best >= Isa::kSse2 ? Isa::kSse2 : best;
+    case SimdLevel::kAvx2:
+      return best >= Isa::kAvx2 ? Isa::kAvx2 : best;
+    case SimdLevel::kAvx512:
+      return best;
   }
   return best;
 }
@@ -90,12 +97,19 @@ CpuRenderer::CpuRenderer(int workers, SimdLevel simd)
     : state_(std::make_unique<State>(workers, chooseIsa(simd))) {}
 CpuRenderer::~CpuRenderer() = default;
 
-int CpuRenderer::workerCount() const { return state_->pool.size(); }
-const char* CpuRenderer::simdName() const { return rasterIsaName(state_->raster_isa); }
-const PipelineStats& CpuRenderer::lastStats() const { return state_->stats; }
+int CpuRenderer::workerCount() const {
+  return state_->pool.size();
+}
+const char* CpuRenderer::simdName() const {
+  return isaName(state_->isa);
+}
+const PipelineStats& CpuRenderer::lastStats() const {
+  return state_->stats;
+}
 
 void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
-                                    const GuardBand& guard, TriangleChunk& chunk) const {
+                                    const GuardBand& guard, bool want_normals,
+                                    TriangleChunk& chunk) const {
   chunk.size = 0;
   chunk.bins.reset(grid.tileCount());
   chunk.culled = 0;
@@ -120,10 +134,10 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
       chunk.raster.emplace_back();
       chunk.shade.emplace_back();
     }
-    VertexAttributes a[3];
-    attributes(a);
+    const std::array<VertexAttributes, 3> a = attributes();
     chunk.raster[local] = raster;
-    setupShade(ctx, sv, a, orientation, raster, face_normal(), id, material, chunk.shade[local]);
+    setupShade(ctx, sv, a.data(), orientation, raster, face_normal(), id, material,
+               chunk.shade[local]);
     chunk.bins.add(grid, raster, local);
     return true;
   };
@@ -149,6 +163,10 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
     ctx.object = &object;
     ctx.has_uv = has_uv;
     ctx.has_color = has_color;
+    ctx.want_normals = want_normals;
+    // Flat shading lights the face; so do vertices of a mesh without normals.
+    const bool needs_face_normal =
+        object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;
 
     for (; t < std::min(end, object_end); ++t) {
       const size_t local = t - xf.triangle_base;
@@ -170,21 +188,23 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
       const uint16_t material = has_materials ? mesh.triangle_materials[local] : uint16_t{0};
       const uint32_t id = static_cast<uint32_t>(t);
       auto face_normal = [&] {
+        if (!needs_face_normal) return float3{};
         const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
                      p2 = mesh.positions[idx[2]];
         return xf.normal_matrix * cross(p1 - p0, p2 - p0) * xf.winding_sign;
       };
       auto mesh_attributes = [&](int k) {
-        return VertexAttributes{vertices.normal(g[k]), has_uv ? mesh.uvs[idx[k]] : float2{},
-                                has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1}};
+        return VertexAttributes{vertices.normal[g[k]], has_uv ? mesh.uvs[idx[k]] : float2{},
+                                has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1}, true};
       };
 
       const uint32_t cut = (c0 | c1 | c2) & kCutPlanes;
       if (!cut) {
         const ScreenVertex sv[3] = {vertices.screen[g[0]], vertices.screen[g[1]],
                                     vertices.screen[g[2]]};
-        auto attributes = [&](VertexAttributes a[3]) {
-          for (int k = 0; k < 3; ++k) a[k] = mesh_attributes(k);
+        auto attributes = [&] {
+          return std::array<VertexAttributes, 3>{mesh_attributes(0), mesh_attributes(1),
+                                                 mesh_attributes(2)};
         };
         if (!emit(ctx, sv, attributes, face_normal, id, material)) ++chunk.culled;
         continue;
@@ -203,8 +223,11 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         const ClipVertex* fan[3] = {&polygon[0], &polygon[k], &polygon[k + 1]};
         ScreenVertex sv[3];
         for (int i = 0; i < 3; ++i) sv[i] = projectToScreen(fan[i]->position, width, height);
-        auto attributes = [&](VertexAttributes a[3]) {
-          for (int i = 0; i < 3; ++i) a[i] = {fan[i]->normal, fan[i]->uv, fan[i]->color};
+        auto attributes = [&] {
+          return std::array<VertexAttributes, 3>{
+              VertexAttributes{fan[0]->normal, fan[0]->uv, fan[0]->color, false},
+              VertexAttributes{fan[1]->normal, fan[1]->uv, fan[1]->color, false},
+              VertexAttributes{fan[2]->normal, fan[2]->uv, fan[2]->color, false}};
         };
         any = emit(ctx, sv, attributes, face_normal, id, material) || any;
       }
@@ -217,12 +240,12 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
 void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
   TESSERA_CHECK(options.width > 0 && options.height > 0 && options.width <= kMaxViewport &&
                 options.height <= kMaxViewport)
-      << "viewport " << options.width << "x" << options.height << " is outside 1.."
-      << kMaxViewport;
+      << "viewport " << options.width << "x" << options.height << " is outside 1.." << kMaxViewport;
   State& s = *state_;
-  const bool draws_lines = options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
-                                             std::any_of(scene.objects.begin(), scene.objects.end(),
-                                                         [](const Object& o) { return o.show_axes; }));
+  const bool draws_lines =
+      options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
+                        std::any_of(scene.objects.begin(), scene.objects.end(),
+                                    [](const Object& o) { return o.show_axes; }));
   frame.resize(options.width, options.height, options.depth || draws_lines, options.ids,
                options.normals);
 
@@ -242,11 +265,17 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     if (!object.mesh) continue;
     const size_t count = object.mesh->vertexCount();
     for (size_t first = 0; first < count; first += kVerticesPerJob)
-      s.vertex_jobs.push_back({static_cast<uint32_t>(i), first,
-                               std::min(kVerticesPerJob, count - first)});
+      s.vertex_jobs.push_back(
+          {static_cast<uint32_t>(i), first, std::min(kVerticesPerJob, count - first)});
     vertex_total += count;
     triangle_total += object.mesh->triangleCount();
   }
+
+  using Clock = std::chrono::steady_clock;
+  auto elapsed_ms = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+  };
+  const Clock::time_point t_start = Clock::now();
 
   // Vertex stage.
   const TileGrid grid = TileGrid::forViewport(options.width, options.height);
@@ -260,6 +289,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
                       job.count, s.vertices);
   });
 
+  const Clock::time_point t_vertex = Clock::now();
+
   // Assembly, culling, clipping, setup and binning, per chunk.
   const size_t chunk_size =
       std::max(kMinTrianglesPerChunk, (triangle_total + kMaxChunks - 1) / kMaxChunks);
@@ -269,8 +300,11 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     s.chunks[c].first_triangle = c * chunk_size;
     s.chunks[c].triangle_count = std::min(chunk_size, triangle_total - c * chunk_size);
   }
-  s.pool.parallelFor(s.chunk_count,
-                     [&](size_t c, int) { s.setupChunk(scene, grid, guard, s.chunks[c]); });
+  s.pool.parallelFor(s.chunk_count, [&](size_t c, int) {
+    s.setupChunk(scene, grid, guard, options.normals, s.chunks[c]);
+  });
+
+  const Clock::time_point t_setup = Clock::now();
 
   // Raster, shade and resolve, per tile.
   const uint32_t background = packSrgba8(scene.background);
@@ -293,13 +327,17 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       const uint32_t* end = chunk.bins.end(tile);
       for (const uint32_t* it = chunk.bins.begin(tile); it != end; ++it) {
         if (it + 1 != end) __builtin_prefetch(&chunk.raster[it[1]]);
-        s.raster_triangle(chunk.raster[*it], makeKey(static_cast<uint32_t>(c), *it), visibility);
+        s.kernels.raster_triangle(chunk.raster[*it], makeKey(static_cast<uint32_t>(c), *it),
+                                  visibility);
       }
     }
     ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
-    shadeTile(visibility, tile, s.chunks, s.chunk_count, scene, options.normals, shaded);
-    resolveTile(visibility, shaded, background, frame);
+    s.kernels.shade_tile(visibility, tile, s.chunks, s.chunk_count, scene, options.normals,
+                         background, shaded);
+    resolveTile(visibility, shaded, frame);
   });
+
+  const Clock::time_point t_tiles = Clock::now();
 
   // Lines.
   if (draws_lines) {
@@ -312,8 +350,14 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     drawLines(s.lines, view_projection, frame);
   }
 
+  const Clock::time_point t_lines = Clock::now();
+
   // Statistics.
   s.stats = {};
+  s.stats.vertex_ms = elapsed_ms(t_start, t_vertex);
+  s.stats.setup_ms = elapsed_ms(t_vertex, t_setup);
+  s.stats.tiles_ms = elapsed_ms(t_setup, t_tiles);
+  s.stats.lines_ms = elapsed_ms(t_tiles, t_lines);
   s.stats.triangles_in = triangle_total;
   for (size_t c = 0; c < s.chunk_count; ++c) {
     s.stats.triangles_culled += s.chunks[c].culled;

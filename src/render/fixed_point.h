@@ -14,10 +14,10 @@
 namespace tessera::render {
 
 constexpr int kSubpixelBits = 8;
-constexpr int32_t kSubpixelOne = 1 << kSubpixelBits;       // one pixel in fixed point
-constexpr int32_t kSubpixelHalf = kSubpixelOne / 2;        // pixel centres are at +0.5
-constexpr int kMaxViewport = 16384;                        // largest width or height
-constexpr float kGuardBandPixels = 16384.0f;               // beyond the viewport on each side
+constexpr int32_t kSubpixelOne = 1 << kSubpixelBits;  // one pixel in fixed point
+constexpr int32_t kSubpixelHalf = kSubpixelOne / 2;   // pixel centres are at +0.5
+constexpr int kMaxViewport = 16384;                   // largest width or height
+constexpr float kGuardBandPixels = 16384.0f;          // beyond the viewport on each side
 
 // Tiles of the binning rasterizer: one worker owns a tile at a time.
 constexpr int kTileSizeLog2 = 6;

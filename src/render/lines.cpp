@@ -32,8 +32,10 @@ bool clipSegment(float4& a, float4& b) {
   distances(b, db);
   for (int i = 0; i < 6; ++i) {
     if (da[i] < 0 && db[i] < 0) return false;
-    if (da[i] < 0) t0 = std::max(t0, da[i] / (da[i] - db[i]));
-    else if (db[i] < 0) t1 = std::min(t1, da[i] / (da[i] - db[i]));
+    if (da[i] < 0)
+      t0 = std::max(t0, da[i] / (da[i] - db[i]));
+    else if (db[i] < 0)
+      t1 = std::min(t1, da[i] / (da[i] - db[i]));
   }
   if (t0 > t1) return false;
   const float4 a0 = a;

@@ -21,16 +21,25 @@ constexpr uint32_t kEmptyKey = 0xffffffffu;
 constexpr uint32_t makeKey(uint32_t chunk, uint32_t local) {
   return (chunk << kLocalKeyBits) | local;
 }
-constexpr uint32_t keyChunk(uint32_t key) { return key >> kLocalKeyBits; }
-constexpr uint32_t keyLocal(uint32_t key) { return key & ((1u << kLocalKeyBits) - 1); }
+constexpr uint32_t keyChunk(uint32_t key) {
+  return key >> kLocalKeyBits;
+}
+constexpr uint32_t keyLocal(uint32_t key) {
+  return key & ((1u << kLocalKeyBits) - 1);
+}
 
 struct TileVisibility {
-  int x0 = 0, y0 = 0;          // the tile's first pixel
-  int width = 0, height = 0;   // <= kTileSize at the right and bottom borders
+  int x0 = 0, y0 = 0;         // the tile's first pixel
+  int width = 0, height = 0;  // <= kTileSize at the right and bottom borders
   // Row y of the tile starts at y * kTileSize; the padding lets the kernel touch eight pixels
   // past the end of the last row.
   alignas(64) float depth[kTileSize * kTileSize + 8];
   alignas(64) uint32_t key[kTileSize * kTileSize + 8];
+  // Hi-Z: an upper bound of the stored depths of each 8x8 block (row-major, 8 blocks a row).
+  // A triangle whose nearest depth is not below a block's bound cannot win a pixel there.
+  static constexpr int kHiZBlock = 8;
+  static constexpr int kHiZBlocksPerRow = kTileSize / kHiZBlock;
+  float block_max_depth[kHiZBlocksPerRow * kHiZBlocksPerRow];
 
   void clear(int tile_x0, int tile_y0, int tile_width, int tile_height) {
     x0 = tile_x0, y0 = tile_y0, width = tile_width, height = tile_height;
@@ -38,26 +47,13 @@ struct TileVisibility {
       depth[i] = std::numeric_limits<float>::infinity();
       key[i] = kEmptyKey;
     }
+    for (float& z : block_max_depth) z = std::numeric_limits<float>::infinity();
   }
 };
 
-// The instruction sets the raster kernel is compiled for. The image is the same with each.
-enum class RasterIsa { kScalar, kSse2, kAvx2, kAvx512 };
-
-// The best one this CPU runs.
-RasterIsa detectRasterIsa();
-const char* rasterIsaName(RasterIsa isa);
-
+// Depth-tests every covered pixel of a triangle inside the tile and records its key where it
+// wins (raster_kernel.h; one variant per instruction set, see kernels.h).
 using RasterTriangleFn = void (*)(const RasterTriangle& triangle, uint32_t key,
                                   TileVisibility& tile);
-// Depth-tests every covered pixel of a triangle inside the tile and records its key where it
-// wins; compiled for `isa`.
-RasterTriangleFn rasterTriangleFunction(RasterIsa isa);
-
-// One definition per instruction set (raster_<isa>.cpp).
-void rasterTriangleScalar(const RasterTriangle&, uint32_t, TileVisibility&);
-void rasterTriangleSse2(const RasterTriangle&, uint32_t, TileVisibility&);
-void rasterTriangleAvx2(const RasterTriangle&, uint32_t, TileVisibility&);
-void rasterTriangleAvx512(const RasterTriangle&, uint32_t, TileVisibility&);
 
 }  // namespace tessera::render

@@ -1,4 +1,4 @@
-// The tile raster kernel, written once against eight-lane types (raster_lanes.h) and compiled
+// The tile raster kernel, written once against eight-lane types (simd_lanes.h) and compiled
 // once per instruction set (raster_<isa>.cpp). Every variant runs the same arithmetic in the same
 // order, so they produce the same bits.
 //
@@ -14,7 +14,7 @@
 #include <cstdint>
 
 #include "render/raster.h"
-#include "render/raster_lanes.h"
+#include "render/simd_lanes.h"
 
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
@@ -87,8 +87,8 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
   // Blocks are aligned to the tile so a block row never leaves the tile's rows.
   const int bx_first = tile.x0 + ((x_begin - tile.x0) & ~(kBlock - 1));
   const int by_first = tile.y0 + ((y_begin - tile.y0) & ~(kBlock - 1));
-  const I32x8 lane = iota();
-  const I64x8 lane64 = widen(lane);
+  const I32x8 lanes = iota();
+  const I64x8 lanes64 = widen(lanes);
   for (int by = by_first; by <= y_end; by += kBlock) {
     const int y0 = std::max(by, y_begin), y1 = std::min(by + kBlock - 1, y_end);
     for (int bx = bx_first; bx <= x_end; bx += kBlock) {
@@ -105,7 +105,11 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
         inside &= lo >= 0;
       }
       if (outside) continue;
-      const I32x8 columns = splat(bx) + lane;
+      float& block_max =
+          tile.block_max_depth[((by - tile.y0) / kBlock) * TileVisibility::kHiZBlocksPerRow +
+                               (bx - tile.x0) / kBlock];
+      if (t.z_min >= block_max) continue;  // Hi-Z: every stored depth here is nearer
+      const I32x8 columns = splat(bx) + lanes;
       const I32x8 in_range = lessOrEqual(splat(x0), columns) & lessOrEqual(columns, splat(x1));
       for (int y = y0; y <= y1; ++y) {
         I32x8 covered = in_range;
@@ -113,26 +117,48 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
           I64x8 e[3];
           for (int k = 0; k < 3; ++k)
             e[k] = splat(edgeAt(t, k, bx, y)) +
-                   lane64 * splat(static_cast<int64_t>(t.a[k]) * kSubpixelOne);
+                   lanes64 * splat(static_cast<int64_t>(t.a[k]) * kSubpixelOne);
           covered = covered & nonNegative(e[0] | e[1] | e[2]);
         }
         depthTestRow8(t, key, rowDepth(t, y), bx, covered, depthRow(tile, y), keyRow(tile, y));
+      }
+      // A block now wholly written by this triangle gets a tighter bound.
+      if (inside && x0 == bx && x1 == bx + kBlock - 1 && y0 == by && y1 == by + kBlock - 1) {
+        F32x8 highest = load<F32x8>(depthRow(tile, by) + bx);
+        for (int y = by + 1; y < by + kBlock; ++y)
+          highest = maximum(highest, load<F32x8>(depthRow(tile, y) + bx));
+        float bound = lane(highest, 0);
+        for (int l = 1; l < kLanes; ++l) bound = std::max(bound, lane(highest, l));
+        block_max = bound;
       }
     }
   }
 }
 
-TESSERA_LANES_INLINE void rasterTriangleKernel(const RasterTriangle& t, uint32_t key,
-                                               TileVisibility& tile) {
+// Hi-Z for a small triangle: rejected when its nearest depth is not below the bound of any block
+// its box touches.
+TESSERA_LANES_INLINE bool hiddenByHiZ(const RasterTriangle& t, const TileVisibility& tile,
+                                      int x_begin, int x_end, int y_begin, int y_end) {
+  const int bx0 = (x_begin - tile.x0) / kBlock, bx1 = (x_end - tile.x0) / kBlock;
+  const int by0 = (y_begin - tile.y0) / kBlock, by1 = (y_end - tile.y0) / kBlock;
+  for (int by = by0; by <= by1; ++by)
+    for (int bx = bx0; bx <= bx1; ++bx)
+      if (t.z_min < tile.block_max_depth[by * TileVisibility::kHiZBlocksPerRow + bx]) return false;
+  return true;
+}
+
+void rasterTriangleKernel(const RasterTriangle& t, uint32_t key, TileVisibility& tile) {
   const int x_begin = std::max(t.min_x, tile.x0);
   const int x_end = std::min(t.max_x, tile.x0 + tile.width - 1);
   const int y_begin = std::max(t.min_y, tile.y0);
   const int y_end = std::min(t.max_y, tile.y0 + tile.height - 1);
   if (x_begin > x_end || y_begin > y_end) return;
-  if (t.small)
-    rasterSmall(t, key, tile, x_begin, x_end, y_begin, y_end);
-  else
+  if (t.small) {
+    if (!hiddenByHiZ(t, tile, x_begin, x_end, y_begin, y_end))
+      rasterSmall(t, key, tile, x_begin, x_end, y_begin, y_end);
+  } else {
     rasterBlocks(t, key, tile, x_begin, x_end, y_begin, y_end);
+  }
 }
 
 }  // namespace

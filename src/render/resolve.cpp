@@ -8,24 +8,13 @@
 
 namespace tessera::render {
 
-void resolveTile(const TileVisibility& tile, const ShadedTile& shaded, uint32_t background,
-                 Frame& frame) {
+void resolveTile(const TileVisibility& tile, const ShadedTile& shaded, Frame& frame) {
   const bool depth = !frame.depth.empty(), ids = !frame.triangle_id.empty(),
              normals = !frame.normal.empty();
   for (int ty = 0; ty < tile.height; ++ty) {
     const size_t row = static_cast<size_t>(tile.y0 + ty) * frame.width + tile.x0;
     const int t0 = ty * kTileSize;
-    uint32_t* color = &frame.color[row];
-    for (int tx = 0; tx < tile.width; ++tx) {
-      if (tile.key[t0 + tx] == kEmptyKey) {
-        color[tx] = background;
-        continue;
-      }
-      const float3 c = shaded.color[t0 + tx];
-      color[tx] = static_cast<uint32_t>(encodeSrgb8(c.x)) |
-                  (static_cast<uint32_t>(encodeSrgb8(c.y)) << 8) |
-                  (static_cast<uint32_t>(encodeSrgb8(c.z)) << 16) | 0xff000000u;
-    }
+    std::memcpy(&frame.color[row], &shaded.rgba[t0], sizeof(uint32_t) * tile.width);
     if (depth) std::memcpy(&frame.depth[row], &tile.depth[t0], sizeof(float) * tile.width);
     if (ids) {
       for (int tx = 0; tx < tile.width; ++tx)
@@ -34,7 +23,10 @@ void resolveTile(const TileVisibility& tile, const ShadedTile& shaded, uint32_t 
     }
     if (normals) {
       for (int tx = 0; tx < tile.width; ++tx)
-        frame.normal[row + tx] = tile.key[t0 + tx] == kEmptyKey ? float3{} : shaded.normal[t0 + tx];
+        frame.normal[row + tx] = tile.key[t0 + tx] == kEmptyKey
+                                     ? float3{}
+                                     : float3{shaded.normal_x[t0 + tx], shaded.normal_y[t0 + tx],
+                                              shaded.normal_z[t0 + tx]};
     }
   }
 }

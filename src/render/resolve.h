@@ -1,5 +1,5 @@
-// Resolve: encode a shaded tile to sRGB and write it, with the AOVs (triangle id, depth,
-// normal), into the frame.
+// Resolve: write a shaded tile (colour already sRGB-encoded by the shading kernel) and the AOVs
+// (triangle id, depth, normal) into the frame.
 #pragma once
 
 #include <vector>
@@ -13,8 +13,7 @@
 
 namespace tessera::render {
 
-void resolveTile(const TileVisibility& tile, const ShadedTile& shaded, uint32_t background,
-                 Frame& frame);
+void resolveTile(const TileVisibility& tile, const ShadedTile& shaded, Frame& frame);
 
 // A tile no triangle touches: background colour, no id, depth +inf (and zero normals).
 void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background, Frame& frame);

@@ -17,8 +17,7 @@ namespace {
 
 // Edge from a to b, evaluated at p: (b - a) x (p - a) with y pointing down. Positive inside for
 // triangles whose signed area is positive (clockwise as seen on screen).
-void makeEdge(int32_t ax, int32_t ay, int32_t bx, int32_t by, int32_t& a, int32_t& b,
-              int64_t& c) {
+void makeEdge(int32_t ax, int32_t ay, int32_t bx, int32_t by, int32_t& a, int32_t& b, int64_t& c) {
   a = ay - by;
   b = bx - ax;
   c = static_cast<int64_t>(by - ay) * ax - static_cast<int64_t>(bx - ax) * ay;
@@ -54,8 +53,10 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangl
     return false;
 
   // Bounding box over pixel centres.
-  const int32_t min_fx = std::min({v[0].x, v[1].x, v[2].x}), max_fx = std::max({v[0].x, v[1].x, v[2].x});
-  const int32_t min_fy = std::min({v[0].y, v[1].y, v[2].y}), max_fy = std::max({v[0].y, v[1].y, v[2].y});
+  const int32_t min_fx = std::min({v[0].x, v[1].x, v[2].x}),
+                max_fx = std::max({v[0].x, v[1].x, v[2].x});
+  const int32_t min_fy = std::min({v[0].y, v[1].y, v[2].y}),
+                max_fy = std::max({v[0].y, v[1].y, v[2].y});
   pixelRange(min_fx, max_fx, ctx.width, raster.min_x, raster.max_x);
   if (raster.min_x > raster.max_x) return false;
   pixelRange(min_fy, max_fy, ctx.height, raster.min_y, raster.max_y);
@@ -98,6 +99,7 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangl
   const float dz1 = v1.z - v0.z, dz2 = v2.z - v0.z;
   raster.dzdx = dz1 * o.l1dx + dz2 * o.l2dx;
   raster.dzdy = dz1 * o.l1dy + dz2 * o.l2dy;
+  raster.z_min = std::min({v0.z, v1.z, v2.z});
   return true;
 }
 
@@ -119,18 +121,26 @@ void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAt
   const float3 base = m.base_color.xyz();
   // Back faces that are drawn are lit from the viewer's side (two-sided lighting).
   const float flip = o.back_facing ? -1.0f : 1.0f;
-  const float3 flat_normal = normalize(face_normal) * flip;
+  // A zero face normal (not computed: the vertex normals serve) falls back to +Z.
+  float3 flat_normal = normalize(face_normal) * flip;
+  if (flat_normal.x == 0.0f && flat_normal.y == 0.0f && flat_normal.z == 0.0f)
+    flat_normal = float3{0, 0, flip};
   const float3 flat_irradiance =
       ctx.shading == Shading::kFlat ? irradiance(*ctx.scene, flat_normal) : float3(1.0f);
+  const bool keep_normals = ctx.shading == Shading::kPhong || ctx.want_normals;
   for (int k = 0; k < 3; ++k) {
     const VertexAttributes& va = a[o.order[k]];
-    float3 n = ctx.shading == Shading::kFlat ? flat_normal : normalize(va.normal) * flip;
-    if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) n = flat_normal;
-    shade.normal[k] = n;
-    shade.uv[k] = va.uv;
+    float3 n = flat_normal;
+    if (ctx.shading != Shading::kFlat) {
+      // The vertex stage's normals are unit already; clipped vertices' are interpolated.
+      n = (va.unit_normal ? va.normal : normalize(va.normal)) * flip;
+      if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) n = flat_normal;
+    }
+    if (keep_normals) shade.normal[k] = n;
+    if (ctx.has_uv) shade.uv[k] = va.uv;
     const float3 albedo = ctx.has_color ? base * va.color.xyz() : base;
-    shade.color[k] = albedo * (ctx.shading == Shading::kGouraud ? irradiance(*ctx.scene, n)
-                                                                 : flat_irradiance);
+    shade.color[k] =
+        albedo * (ctx.shading == Shading::kGouraud ? irradiance(*ctx.scene, n) : flat_irradiance);
   }
   shade.material = &m;
   shade.triangle_id = triangle_id;

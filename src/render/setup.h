@@ -44,13 +44,21 @@ struct RasterTriangle {
   int32_t b[3];
   int32_t min_x, min_y, max_x, max_y;  // inclusive pixel bounds, clipped to the viewport
   bool small;  // every edge value over the bounding box (plus 8 pixels right) fits in int32
-  // Window z at pixel centre (x + 0.5, y + 0.5) = z0 + dzdx * (x + 0.5 - x0) + dzdy * (y + 0.5 - y0)
+  // Window z at pixel centre (x + 0.5, y + 0.5) = z0 + dzdx * (x + 0.5 - x0) + dzdy * (y + 0.5 -
+  // y0)
   float x0, y0, z0, dzdx, dzdy;
+  float z_min;  // the nearest depth of the triangle (at a vertex), for Hi-Z
 };
 
 struct ShadeTriangle {
+  // Laid out so that untextured flat and Gouraud pixels read only the first two cache lines.
+  const Material* material;
+  uint32_t triangle_id;  // index in the scene's triangle list
+  Shading shading;
+  bool has_uv;  // sample the albedo texture (the mesh has UVs and the material a texture)
   // Perspective-correct barycentrics at window point p, with d = p - (x0, y0):
-  //   s = inv_w0 + sdx*d.x + sdy*d.y;  b1 = (p1dx*d.x + p1dy*d.y) / s;  b2 = (...) / s;  b0 = 1-b1-b2
+  //   s = inv_w0 + sdx*d.x + sdy*d.y;  b1 = (p1dx*d.x + p1dy*d.y) / s;  b2 = (...) / s;  b0 =
+  //   1-b1-b2
   float x0, y0, inv_w0;
   float p1dx, p1dy, p2dx, p2dy, sdx, sdy;
   // Per-vertex colour, interpolated: base colour x vertex colour, already lit for flat (the
@@ -58,10 +66,6 @@ struct ShadeTriangle {
   float3 color[3];
   float3 normal[3];  // world shading normals, facing the viewer for drawn back faces
   float2 uv[3];
-  const Material* material;
-  uint32_t triangle_id;  // index in the scene's triangle list
-  Shading shading;
-  bool has_uv;  // sample the albedo texture (the mesh has UVs and the material a texture)
 };
 
 struct SetupContext {
@@ -72,12 +76,13 @@ struct SetupContext {
   const Object* object = nullptr;
   bool has_uv = false;
   bool has_color = false;
+  bool want_normals = false;  // the normal AOV is asked for
 };
 
 // What setupRaster learnt that setupShade needs.
 struct TriangleOrientation {
-  int order[3];      // rasterizer vertex k is input vertex order[k] (positive area)
-  bool back_facing;  // drawn with its back to the viewer
+  int order[3];                  // rasterizer vertex k is input vertex order[k] (positive area)
+  bool back_facing;              // drawn with its back to the viewer
   float l1dx, l1dy, l2dx, l2dy;  // screen gradients of barycentrics 1 and 2
 };
 
@@ -87,17 +92,17 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangl
                  TriangleOrientation& orientation);
 
 struct VertexAttributes {
-  float3 normal;  // world, not necessarily unit; zero when the mesh has none
+  float3 normal;  // world; zero when the mesh has none
   float2 uv;
   float4 color;
+  bool unit_normal;  // `normal` is unit length or zero already (not interpolated by clipping)
 };
 
-// `face_normal` is the world-space geometric normal (used for flat shading and where vertex
-// normals are missing). Attributes are given in input order.
+// `face_normal` is the world-space geometric normal (flat shading, and vertices without a normal);
+// zero when the caller knows it is not needed. Attributes are given in input order.
 void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAttributes a[3],
                 const TriangleOrientation& orientation, const RasterTriangle& raster,
-                float3 face_normal, uint32_t triangle_id, uint16_t material,
-                ShadeTriangle& shade);
+                float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade);
 
 // Lambert irradiance: ambient plus every directional light, for unit normal n.
 float3 irradiance(const Scene& scene, float3 n);

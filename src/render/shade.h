@@ -1,5 +1,9 @@
 // Shading: once per visible pixel of a tile, from the triangle that owns it in the visibility
 // buffer, into a tile of linear colours (and world normals when asked).
+//
+// shadeTile walks the tile's triangles in bin order (so the setup records are read in the order
+// they were written, not at random) and shades the pixels each one owns, eight at a time. Like
+// the raster kernel it is written once (shade_kernel.h) and compiled per instruction set.
 #pragma once
 
 #include <vector>
@@ -13,20 +17,36 @@
 
 namespace tessera::render {
 
+// Structure of arrays, laid out like TileVisibility (row y at y * kTileSize, padded).
 struct ShadedTile {
-  alignas(64) float3 color[kTileSize * kTileSize];        // linear RGB; unset where no triangle
-  alignas(64) uint32_t triangle_id[kTileSize * kTileSize];  // scene triangle index + 1
-  alignas(64) float3 normal[kTileSize * kTileSize];       // filled only when asked
+  static constexpr int kSize = kTileSize * kTileSize + 8;
+  alignas(64) float red[kSize];  // linear RGB; unset where no triangle
+  alignas(64) float green[kSize];
+  alignas(64) float blue[kSize];
+  alignas(64) uint32_t rgba[kSize];         // the final colour: sRGB-encoded, or the background
+  alignas(64) uint32_t triangle_id[kSize];  // scene triangle index + 1
+  alignas(64) float normal_x[kSize];        // world shading normal; filled only when asked
+  alignas(64) float normal_y[kSize];
+  alignas(64) float normal_z[kSize];
 };
 
-// Shades window point (x, y) (a pixel centre) of triangle `t`; writes the shading normal to
-// *normal when it is not null.
-float3 shadePixel(const ShadeTriangle& t, const Scene& scene, float x, float y, float3* normal);
+struct Barycentrics {
+  float b0, b1, b2;
+};
 
-// Shades every pixel of the tile that has a triangle. Walks the tile's triangles in bin order
-// (so the setup records are read in the order they were written, not at random) and shades the
-// pixels each one owns.
-void shadeTile(const TileVisibility& tile, int tile_index, const std::vector<TriangleChunk>& chunks,
-               size_t chunk_count, const Scene& scene, bool want_normals, ShadedTile& out);
+// Perspective-correct barycentrics at window point (x, y) from the 1/w-weighted planes.
+Barycentrics barycentricsAt(const ShadeTriangle& t, float x, float y);
+
+// The albedo texture of `t` at window point (x, y), with barycentrics b there. Trilinear
+// filtering takes its level of detail from the UVs at the next pixel centres right and down.
+float3 sampleAlbedo(const ShadeTriangle& t, const Barycentrics& b, float x, float y);
+
+using ShadeTileFn = void (*)(const TileVisibility& tile, int tile_index,
+                             const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                             const Scene& scene, bool want_normals, uint32_t background,
+                             ShadedTile& out);
+
+// shade_kernel.h; one variant per instruction set (kernels.h). Shades every pixel of the tile that
+// has a triangle, then encodes the tile to sRGB (the background where no triangle is).
 
 }  // namespace tessera::render

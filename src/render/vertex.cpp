@@ -16,9 +16,8 @@ ObjectTransforms makeObjectTransforms(const Object& object, const float4x4& view
 }
 
 void VertexBuffer::resize(size_t count) {
-  for (std::vector<float>* v :
-       {&clip_x, &clip_y, &clip_z, &clip_w, &normal_x, &normal_y, &normal_z})
-    v->resize(count);
+  for (std::vector<float>* v : {&clip_x, &clip_y, &clip_z, &clip_w}) v->resize(count);
+  normal.resize(count);
   outcode.resize(count);
   screen.resize(count);
 }
@@ -39,8 +38,8 @@ void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms,
   }
   for (size_t o = base + first; o < base + first + count; ++o) {
     const float4 c = out.clip(o);
-    const bool finite = std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) &&
-                        std::isfinite(c.w);
+    const bool finite =
+        std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && std::isfinite(c.w);
     const uint32_t code = finite ? outcode(c, viewport.guard) : kNonFinite;
     out.outcode[o] = static_cast<uint16_t>(code);
     if (!(code & kCutPlanes)) out.screen[o] = projectToScreen(c, viewport.width, viewport.height);
@@ -48,7 +47,7 @@ void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms,
   if (mesh.normals.size() != mesh.positions.size()) {
     for (size_t i = first; i < first + count; ++i) {
       const size_t o = base + i;
-      out.normal_x[o] = out.normal_y[o] = out.normal_z[o] = 0.0f;
+      out.normal[o] = float3{};
     }
     return;
   }
@@ -56,9 +55,7 @@ void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms,
   for (size_t i = first; i < first + count; ++i) {
     float3 w = normalize(n * mesh.normals[i]);
     const size_t o = base + i;
-    out.normal_x[o] = w.x;
-    out.normal_y[o] = w.y;
-    out.normal_z[o] = w.z;
+    out.normal[o] = w;
   }
 }
 

@@ -1,5 +1,6 @@
 #include <tessera/scene/texture.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <tessera/scene/color.h>
@@ -8,46 +9,124 @@ namespace tessera {
 
 namespace {
 
+struct LevelView {
+  int width, height;
+  const uint32_t* texels;
+};
+
 int wrapCoord(int i, int size, TextureWrap wrap) {
   if (wrap == TextureWrap::kClamp) return i < 0 ? 0 : (i >= size ? size - 1 : i);
   int m = i % size;
   return m < 0 ? m + size : m;
 }
 
-float4 texelLinear(const Texture& t, int x, int y) {
-  uint32_t c = t.texels[static_cast<size_t>(y) * t.width + x];
+float4 decodeTexel(uint32_t c, bool srgb) {
   float a = static_cast<float>(c >> 24) / 255.0f;
-  if (t.srgb)
+  if (srgb)
     return {decodeSrgb8(c & 0xff), decodeSrgb8((c >> 8) & 0xff), decodeSrgb8((c >> 16) & 0xff), a};
   return {static_cast<float>(c & 0xff) / 255.0f, static_cast<float>((c >> 8) & 0xff) / 255.0f,
           static_cast<float>((c >> 16) & 0xff) / 255.0f, a};
 }
 
 // Keeps float-to-int conversions defined for huge or non-finite coordinates.
-float sanitize(float v) { return std::isfinite(v) ? std::fmod(v, 65536.0f) : 0.0f; }
+float sanitize(float v) {
+  return std::isfinite(v) ? std::fmod(v, 65536.0f) : 0.0f;
+}
+
+float4 sampleLevel(const LevelView& level, bool srgb, float2 uv, TextureFilter filter,
+                   TextureWrap wrap) {
+  // Texel space: x right, y down from the top row (v = 1 is the top edge).
+  const float fx = sanitize(uv.x) * level.width;
+  const float fy = (1.0f - sanitize(uv.y)) * level.height;
+  auto texel = [&](int x, int y) {
+    return decodeTexel(level.texels[static_cast<size_t>(y) * level.width + x], srgb);
+  };
+  if (filter == TextureFilter::kNearest) {
+    return texel(wrapCoord(static_cast<int>(std::floor(fx)), level.width, wrap),
+                 wrapCoord(static_cast<int>(std::floor(fy)), level.height, wrap));
+  }
+  // Bilinear between the four nearest texel centres, in linear space.
+  const float sx = fx - 0.5f, sy = fy - 0.5f;
+  const float x0f = std::floor(sx), y0f = std::floor(sy);
+  const float tx = sx - x0f, ty = sy - y0f;
+  const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
+  const int xa = wrapCoord(x0, level.width, wrap), xb = wrapCoord(x0 + 1, level.width, wrap);
+  const int ya = wrapCoord(y0, level.height, wrap), yb = wrapCoord(y0 + 1, level.height, wrap);
+  const float4 top = lerp(texel(xa, ya), texel(xb, ya), tx);
+  const float4 bottom = lerp(texel(xa, yb), texel(xb, yb), tx);
+  return lerp(top, bottom, ty);
+}
+
+LevelView levelView(const Texture& t, int level) {
+  if (level <= 0) return {t.width, t.height, t.texels.data()};
+  const TextureLevel& m = t.mips[static_cast<size_t>(level - 1)];
+  return {m.width, m.height, m.texels.data()};
+}
 
 }  // namespace
 
 float4 Texture::sample(float2 uv, const Sampler& sampler) const {
   if (width <= 0 || height <= 0) return {1, 1, 1, 1};
-  // Texel space: x right, y down from the top row (v = 1 is the top edge).
-  float fx = sanitize(uv.x) * width;
-  float fy = (1.0f - sanitize(uv.y)) * height;
-  if (sampler.filter == TextureFilter::kNearest) {
-    int x = wrapCoord(static_cast<int>(std::floor(fx)), width, sampler.wrap);
-    int y = wrapCoord(static_cast<int>(std::floor(fy)), height, sampler.wrap);
-    return texelLinear(*this, x, y);
+  const TextureFilter filter = sampler.filter == TextureFilter::kNearest ? TextureFilter::kNearest
+                                                                         : TextureFilter::kBilinear;
+  return sampleLevel(levelView(*this, 0), srgb, uv, filter, sampler.wrap);
+}
+
+float4 Texture::sampleLod(float2 uv, float lod, const Sampler& sampler) const {
+  if (width <= 0 || height <= 0) return {1, 1, 1, 1};
+  const int last = levelCount() - 1;
+  if (!(lod > 0.0f)) lod = 0.0f;  // also catches NaN
+  if (lod > static_cast<float>(last)) lod = static_cast<float>(last);
+  if (sampler.filter != TextureFilter::kTrilinear) {
+    const int level = static_cast<int>(lod + 0.5f);
+    return sampleLevel(levelView(*this, level), srgb, uv, sampler.filter, sampler.wrap);
   }
-  // Bilinear between the four nearest texel centres, in linear space.
-  float sx = fx - 0.5f, sy = fy - 0.5f;
-  float x0f = std::floor(sx), y0f = std::floor(sy);
-  float tx = sx - x0f, ty = sy - y0f;
-  int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
-  int xa = wrapCoord(x0, width, sampler.wrap), xb = wrapCoord(x0 + 1, width, sampler.wrap);
-  int ya = wrapCoord(y0, height, sampler.wrap), yb = wrapCoord(y0 + 1, height, sampler.wrap);
-  float4 top = lerp(texelLinear(*this, xa, ya), texelLinear(*this, xb, ya), tx);
-  float4 bottom = lerp(texelLinear(*this, xa, yb), texelLinear(*this, xb, yb), tx);
-  return lerp(top, bottom, ty);
+  const int lower = static_cast<int>(lod);
+  const float blend = lod - static_cast<float>(lower);
+  const float4 a =
+      sampleLevel(levelView(*this, lower), srgb, uv, TextureFilter::kBilinear, sampler.wrap);
+  if (blend == 0.0f || lower >= last) return a;
+  const float4 b =
+      sampleLevel(levelView(*this, lower + 1), srgb, uv, TextureFilter::kBilinear, sampler.wrap);
+  return lerp(a, b, blend);
+}
+
+void generateMipmaps(Texture& texture) {
+  texture.mips.clear();
+  LevelView above{texture.width, texture.height, texture.texels.data()};
+  while (above.width > 1 || above.height > 1) {
+    TextureLevel level;
+    level.width = std::max(1, above.width / 2);
+    level.height = std::max(1, above.height / 2);
+    level.texels.resize(static_cast<size_t>(level.width) * level.height);
+    for (int y = 0; y < level.height; ++y) {
+      for (int x = 0; x < level.width; ++x) {
+        float4 sum{};
+        int count = 0;
+        for (int dy = 0; dy < 2; ++dy)
+          for (int dx = 0; dx < 2; ++dx) {
+            const int sx = 2 * x + dx, sy = 2 * y + dy;
+            if (sx >= above.width || sy >= above.height) continue;
+            sum = sum + decodeTexel(above.texels[static_cast<size_t>(sy) * above.width + sx],
+                                    texture.srgb);
+            ++count;
+          }
+        const float4 mean = sum * (1.0f / static_cast<float>(count));
+        auto unorm = [](float v) {
+          return static_cast<uint32_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+        };
+        const uint32_t rgb = texture.srgb
+                                 ? (static_cast<uint32_t>(encodeSrgb8(mean.x)) |
+                                    (static_cast<uint32_t>(encodeSrgb8(mean.y)) << 8) |
+                                    (static_cast<uint32_t>(encodeSrgb8(mean.z)) << 16))
+                                 : (unorm(mean.x) | (unorm(mean.y) << 8) | (unorm(mean.z) << 16));
+        level.texels[static_cast<size_t>(y) * level.width + x] = rgb | (unorm(mean.w) << 24);
+      }
+    }
+    texture.mips.push_back(std::move(level));
+    const TextureLevel& made = texture.mips.back();
+    above = {made.width, made.height, made.texels.data()};
+  }
 }
 
 }  // namespace tessera

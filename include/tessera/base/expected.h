@@ -68,6 +68,8 @@ class [[nodiscard]] Expected<void> {
   bool failed_ = false;
 };
 
-inline Error makeError(std::string message) { return Error{std::move(message)}; }
+inline Error makeError(std::string message) {
+  return Error{std::move(message)};
+}
 
 }  // namespace tessera

@@ -41,10 +41,16 @@ Expected<std::unique_ptr<FrameSink>> openGifSink(const std::filesystem::path& pa
 // renamed into place together by finish().
 Expected<std::unique_ptr<FrameSink>> openPngSequenceSink(const std::string& path_template,
                                                          const AnimationSettings& settings);
-// Picks by the path: a "{frame}" template ending in .png -> PNG sequence, ".gif" -> GIF, ".png"
-// -> a single PNG (a second frame is an error). Extensions are case-insensitive. Anything else
-// is an error naming the supported forms. Every opener validates the settings (1..16384 pixels
-// a side, 1..1000 fps) and checks that the output folder can be written.
+// An MP4 (H.264) made by the `ffmpeg` program, found on PATH, with the frames piped to it; an
+// error naming the missing program when there is none. Ignores SIGPIPE for the process, so that
+// an ffmpeg that dies shows up as a write error.
+Expected<std::unique_ptr<FrameSink>> openMp4Sink(const std::filesystem::path& path,
+                                                 const AnimationSettings& settings);
+// Picks by the path: a "{frame}" template ending in .png -> PNG sequence, ".gif" -> GIF, ".mp4"
+// -> MP4 through ffmpeg, ".png" -> a single PNG (a second frame is an error). Extensions are
+// case-insensitive. Anything else is an error naming the supported forms. Every opener validates
+// the settings (1..16384 pixels a side, 1..1000 fps) and checks that the output folder can be
+// written.
 Expected<std::unique_ptr<FrameSink>> openFrameSink(const std::string& path,
                                                    const AnimationSettings& settings);
 

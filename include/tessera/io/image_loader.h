@@ -8,7 +8,8 @@
 
 namespace tessera::io {
 
-// Decodes an image file to RGBA8 texels. `srgb` marks the texels as sRGB-encoded colour.
+// Decodes an image file to RGBA8 texels with its mip chain (generateMipmaps). `srgb` marks the
+// texels as sRGB-encoded colour.
 // Refuses images over 16384 pixels on a side.
 Expected<Texture> loadTexture(const std::filesystem::path& path, bool srgb = true);
 

@@ -20,10 +20,9 @@ struct quat {
 
 // Hamilton product: (a * b) rotates by b first, then by a.
 constexpr quat operator*(quat a, quat b) {
-  return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
-          a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+  return {
+      a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+      a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w, a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
 }
 
 inline quat normalize(quat q) {
@@ -57,6 +56,8 @@ constexpr float4x4 toMatrix4(quat q) {
   return m;
 }
 
-constexpr float3 rotate(quat q, float3 v) { return toMatrix3(q) * v; }
+constexpr float3 rotate(quat q, float3 v) {
+  return toMatrix3(q) * v;
+}
 
 }  // namespace tessera

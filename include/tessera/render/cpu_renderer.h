@@ -15,6 +15,11 @@ struct PipelineStats {
   size_t triangles_culled = 0;   // back/front-face culled, degenerate, non-finite or off-screen
   size_t triangles_clipped = 0;  // triangles that crossed near/far or left the guard band
   size_t triangles_setup = 0;    // setup records (after clipping)
+  // Wall-clock milliseconds of each stage of the last frame (all workers together).
+  double vertex_ms = 0;  // vertex stage
+  double setup_ms = 0;   // assembly, cull, clip, setup and binning
+  double tiles_ms = 0;   // raster, shade and resolve
+  double lines_ms = 0;   // the line pass
 };
 
 // The instruction set of the raster kernel. Every choice gives the same image; kAuto takes the

@@ -13,7 +13,7 @@ constexpr uint32_t kNoTriangle = 0;
 struct Frame {
   int width = 0;
   int height = 0;
-  std::vector<uint32_t> color;        // RGBA8 sRGB, R in the low byte, row 0 at the top
+  std::vector<uint32_t> color;  // RGBA8 sRGB, R in the low byte, row 0 at the top
   // The AOVs: each is empty unless RenderOptions asked for it.
   std::vector<float> depth;           // window z in [0, 1]; +inf where nothing was drawn
   std::vector<uint32_t> triangle_id;  // scene triangle index + 1; kNoTriangle where none

@@ -24,10 +24,10 @@ struct Bounds {
 
 struct Mesh {
   std::vector<float3> positions;
-  std::vector<float3> normals;     // empty: generate them (generateSmoothNormals) or draw flat
-  std::vector<float2> uvs;         // empty: no texture coordinates
-  std::vector<float4> colors;      // linear RGBA; empty: white
-  std::vector<uint32_t> indices;   // three per triangle
+  std::vector<float3> normals;    // empty: generate them (generateSmoothNormals) or draw flat
+  std::vector<float2> uvs;        // empty: no texture coordinates
+  std::vector<float4> colors;     // linear RGBA; empty: white
+  std::vector<uint32_t> indices;  // three per triangle
   std::vector<uint16_t> triangle_materials;  // one per triangle, index into Object::materials;
                                              // empty: material 0 everywhere
 

@@ -14,7 +14,7 @@ namespace tessera {
 
 struct Material {
   float4 base_color{0.8f, 0.8f, 0.8f, 1.0f};  // linear RGBA
-  std::shared_ptr<const Texture> albedo;       // optional; multiplies base_color
+  std::shared_ptr<const Texture> albedo;      // optional; multiplies base_color
   Sampler sampler;
 };
 
@@ -33,7 +33,9 @@ struct Transform {
   float3 scale{1, 1, 1};
 
   // T * R * S
-  float4x4 matrix() const { return tessera::translation(translation) * toMatrix4(rotation) * scaling(scale); }
+  float4x4 matrix() const {
+    return tessera::translation(translation) * toMatrix4(rotation) * scaling(scale);
+  }
 };
 
 struct Object {

@@ -1,0 +1,165 @@
+// tessera view [MODEL]: the interactive viewer (an SDL2 window). Built only with TESSERA_VIEWER;
+// otherwise the command says so.
+#include <chrono>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <thread>
+
+#include <tessera/io/image_loader.h>
+#include <tessera/io/model_loader.h>
+#include <tessera/scene/color.h>
+#include <tessera/scene/primitives.h>
+
+#include "backends.h"
+#include "commands.h"
+#include "flags.h"
+#include "model_scene.h"
+
+#ifdef TESSERA_HAS_VIEWER
+#include <tessera/viewer/viewer.h>
+#endif
+
+namespace tessera::cli {
+
+namespace {
+
+struct ViewSettings {
+  int width = 800;
+  int height = 600;
+  int fps = 60;
+  float fov = 50.0f;
+  bool stats = false;
+  bool axes = false;
+  bool fullscreen = false;
+  int workers = 0;
+  std::string texture;
+  std::string backend = "cpu";
+  int device = -1;
+};
+
+// The built-in model: the demo's orange cube, flat-shaded.
+io::Model cubeModel() {
+  io::Model model;
+  model.mesh = makeCube();
+  Material material;
+  material.base_color = {srgbToLinear(0.95f), srgbToLinear(0.55f), srgbToLinear(0.15f), 1.0f};
+  model.materials.push_back(material);
+  return model;
+}
+
+}  // namespace
+
+int runView(const std::vector<std::string>& args) {
+  ViewSettings s;
+  FlagSet flags(
+      "tessera view [MODEL] [-w 800] [-h 600] [-fps 60] [-fov 50] [-stats] [-axes] "
+      "[-fullscreen] [-workers 0] [-texture PATH] [-backend cpu]",
+      /*single_dash=*/true);
+  flags.addInt("w|width", &s.width, "window width (default 800)", 1, 16384);
+  flags.addInt("h|height", &s.height, "window height (default 600)", 1, 16384);
+  flags.addInt("fps", &s.fps, "most frames a second while anything moves (default 60)", 1, 1000);
+  flags.addFloat("fov", &s.fov, "vertical field of view in degrees (default 50)", 1, 170);
+  flags.addSwitch("stats", &s.stats, "show the stats overlay at start (F1 toggles it)");
+  flags.addSwitch("axes", &s.axes, "show the world axes at start (F2 toggles them)");
+  flags.addSwitch("fullscreen", &s.fullscreen, "fill the screen");
+  flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
+  flags.addString("texture", &s.texture, "an image used as the albedo of every material");
+  flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
+  flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
+
+  Expected<std::vector<std::string>> positional = flags.parse(args);
+  if (flags.helpRequested()) {
+    std::cout << flags.usage()
+              << "\nMouse: left drag orbits, wheel zooms, middle or shift + left drag pans.\n"
+                 "Keys: 1 front, 3 right, 7 top, 9 isometric, Enter resets the camera,\n"
+                 "F1 stats, F2 world axes, F3 object axes, F12 screenshot, Escape quits.\n"
+                 "Drop a model file on the window to load it.\n";
+    return kExitOk;
+  }
+  auto usageError = [&](const std::string& message) {
+    printError("view", message);
+    std::cerr << flags.usage();
+    return kExitUsage;
+  };
+  if (!positional) return usageError(positional.error().message);
+  if (positional->size() > 1) return usageError("more than one model given");
+#ifndef TESSERA_HAS_VIEWER
+  printError("view",
+             "this tessera was built without the viewer (it needs SDL2 and SDL2_ttf: install "
+             "libsdl2-dev and libsdl2-ttf-dev, then configure with -DTESSERA_VIEWER=ON)");
+  return kExitFailure;
+#else
+  std::optional<std::filesystem::path> model_path;
+  if (!positional->empty()) {
+    model_path = positional->front();
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(*model_path, ec)) {
+      printError("view", model_path->string() + ": no such file");
+      return kExitFailure;
+    }
+  }
+
+  ModelSceneSettings scene_settings;
+  if (!s.texture.empty()) {
+    Expected<Texture> texture = io::loadTexture(s.texture);
+    if (!texture) {
+      printError("view", texture.error().message);
+      return kExitFailure;
+    }
+    scene_settings.albedo = std::make_shared<const Texture>(std::move(*texture));
+  }
+
+  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
+  if (!backend) {
+    printError("view", backend.error().message);
+    return kExitFailure;
+  }
+
+  viewer::ViewerHooks hooks;
+  // For tests only: while the file named by TESSERA_VIEW_TEST_HOLD_LOADS exists (at most a
+  // minute), loads wait, so that a test can see the window during a load that takes long.
+  std::string hold_file;
+  if (const char* hold = std::getenv("TESSERA_VIEW_TEST_HOLD_LOADS")) hold_file = hold;
+  // Runs on the loading thread: it owns its copy of the settings.
+  hooks.load_file = [scene_settings,
+                     hold_file](const std::filesystem::path& path) -> Expected<Scene> {
+    if (!hold_file.empty()) {
+      const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+      std::error_code ec;
+      while (std::filesystem::exists(hold_file, ec) && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    Expected<io::Model> model = io::loadModel(path);
+    if (!model) return model.error();
+    for (const std::string& warning : model->warnings)
+      std::cerr << "tessera view: warning: " << warning << "\n";
+    return makeModelScene(std::move(*model), path, scene_settings);
+  };
+  hooks.default_scene = [scene_settings] {
+    ModelSceneSettings cube_settings = scene_settings;
+    cube_settings.shading = Shading::kFlat;
+    cube_settings.cull = CullMode::kBack;
+    return makeModelScene(cubeModel(), "cube", cube_settings).value();
+  };
+  hooks.place_lights = addViewLights;
+
+  viewer::ViewerOptions options;
+  options.width = s.width;
+  options.height = s.height;
+  options.fps = s.fps;
+  options.fov_y_degrees = s.fov;
+  options.stats = s.stats;
+  options.world_axes = s.axes;
+  options.fullscreen = s.fullscreen;
+  options.view_direction = threeQuarterDirection({0, 1, 0});
+  if (Expected<void> ran = viewer::runViewer(options, **backend, hooks, model_path); !ran) {
+    printError("view", ran.error().message);
+    return kExitFailure;
+  }
+  return kExitOk;
+#endif
+}
+
+}  // namespace tessera::cli

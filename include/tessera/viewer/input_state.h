@@ -1,0 +1,69 @@
+// The viewer's input mapping: window-system-neutral events in, viewer actions out. The SDL
+// layer translates its events into InputEvent; everything here is plain data and unit-tested.
+#pragma once
+
+#include <optional>
+
+#include <tessera/viewer/orbit_camera.h>
+
+namespace tessera::viewer {
+
+enum class MouseButton { kLeft, kMiddle, kRight };
+
+// The keys the viewer reacts to; every other key is kOther.
+enum class Key { kOne, kThree, kSeven, kNine, kEnter, kEscape, kF1, kF2, kF3, kF12, kOther };
+
+struct InputEvent {
+  enum class Type { kButtonDown, kButtonUp, kMotion, kWheel, kKeyDown, kFocusLost };
+  Type type = Type::kMotion;
+  MouseButton button = MouseButton::kLeft;  // kButtonDown, kButtonUp
+  float x = 0, y = 0;                       // pointer position in window coordinates (points)
+  float wheel = 0;                          // kWheel: steps, positive away from the user
+  Key key = Key::kOther;                    // kKeyDown
+  bool shift = false;                       // shift held (kButtonDown picks pan with it)
+};
+
+struct Action {
+  enum class Type {
+    kOrbit,    // dx, dy: fractions of the viewport height
+    kPan,      // dx, dy: fractions of the viewport height
+    kZoom,     // steps
+    kSetView,  // view
+    kResetCamera,
+    kToggleStats,
+    kToggleWorldAxes,
+    kToggleObjectAxes,
+    kScreenshot,
+    kQuit,
+  };
+  Type type = Type::kOrbit;
+  float dx = 0, dy = 0;
+  float steps = 0;
+  ViewPreset view = ViewPreset::kFront;
+};
+
+// The keyboard map, as f3d users know it.
+std::optional<Action> keyAction(Key key);
+
+// Which drag a button press starts and where the pointer was; turns pointer motion into orbit
+// and pan actions. The kind of drag is chosen at the press (left: orbit, shift + left or middle:
+// pan) and holds until that button is released.
+class InputState {
+ public:
+  // `viewport_height`: the window's height in the same units as the event coordinates.
+  std::optional<Action> handle(const InputEvent& event, float viewport_height);
+
+  bool dragging() const { return drag_ != Drag::kNone; }
+
+ private:
+  enum class Drag { kNone, kOrbit, kPan };
+  Drag drag_ = Drag::kNone;
+  MouseButton drag_button_ = MouseButton::kLeft;
+  float last_x_ = 0, last_y_ = 0;
+};
+
+// Applies a camera action (orbit, pan, zoom, view, reset) to `camera`; returns false for the
+// other actions, which the caller handles.
+bool applyCameraAction(const Action& action, OrbitCamera& camera);
+
+}  // namespace tessera::viewer

@@ -1,0 +1,48 @@
+// The interactive viewer: an SDL2 window that renders a scene with any Backend, an orbit camera,
+// a stats overlay (SDL2_ttf, DejaVu) and models loaded in the background. This header shows no
+// SDL type; only tessera_viewer links SDL.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include <tessera/base/expected.h>
+#include <tessera/render/backend.h>
+#include <tessera/scene/scene.h>
+
+namespace tessera::viewer {
+
+struct ViewerOptions {
+  int width = 800;  // window size in points (the framebuffer follows its size in pixels)
+  int height = 600;
+  int fps = 60;                 // the most frames a second drawn while anything moves
+  float fov_y_degrees = 50.0f;  // vertical field of view
+  bool stats = false;           // the stats overlay (F1) at start
+  bool world_axes = false;      // the world axes (F2) at start
+  bool fullscreen = false;
+  float3 view_direction{0.6f, 0.45f, 1.0f};  // from the model towards the camera at start/reset
+};
+
+struct ViewerHooks {
+  // Makes the scene of a model file (given at start or dropped on the window). Runs on a
+  // background thread: it must not touch anything the caller keeps.
+  std::function<Expected<Scene>(const std::filesystem::path&)> load_file;
+  // The scene shown without a model, or when the model given at start fails to load.
+  std::function<Scene()> default_scene;
+  // Places the lights for the scene's current camera (called whenever the camera moves).
+  std::function<void(Scene&)> place_lights;
+};
+
+// Opens the window and runs until Escape or the close button. `model`: loaded in the background
+// at start; without one the default scene is shown. Fails (without opening anything, or after
+// closing what it opened) when there is no display, no usable SDL video driver or no font.
+Expected<void> runViewer(const ViewerOptions& options, Backend& backend, const ViewerHooks& hooks,
+                         const std::optional<std::filesystem::path>& model);
+
+// The overlay font: $TESSERA_FONT if set, else the first DejaVu Sans Mono or DejaVu Sans found in
+// the usual font folders.
+Expected<std::filesystem::path> findOverlayFont();
+
+}  // namespace tessera::viewer

@@ -1,0 +1,10 @@
+// The tile kernels compiled for sse2 (CMakeLists.txt gives this file its flags).
+#include "render/kernels.h"
+#include "render/raster_kernel.h"
+#include "render/shade_kernel.h"
+
+namespace tessera::render {
+
+const TileKernels kTileKernelsSse2 = {rasterTriangleKernel, shadeTileKernel};
+
+}  // namespace tessera::render

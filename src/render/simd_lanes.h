@@ -1,0 +1,253 @@
+// Eight-lane integer and float types for the raster and shading kernels. In the vector translation
+// units they are GCC/Clang vector extensions (one AVX2 register, two SSE2 ones, or half an AVX-512
+// one); in the scalar one they are plain arrays whose operators loop over the lanes. The kernel is
+// written once against the operations below, so every variant computes the same values.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
+#define TESSERA_LANES_INLINE inline __attribute__((always_inline))
+
+namespace tessera::render {
+namespace {
+
+#if defined(TESSERA_SIMD_SCALAR)
+
+template <typename T>
+struct Lanes {
+  T v[8];
+};
+using I32x8 = Lanes<int32_t>;
+using I64x8 = Lanes<int64_t>;
+using F32x8 = Lanes<float>;
+
+#define TESSERA_LANES_BINARY(op)                                           \
+  template <typename T>                                                    \
+  TESSERA_LANES_INLINE Lanes<T> operator op(Lanes<T> a, Lanes<T> b) {      \
+    Lanes<T> r;                                                            \
+    for (int l = 0; l < 8; ++l) r.v[l] = static_cast<T>(a.v[l] op b.v[l]); \
+    return r;                                                              \
+  }
+TESSERA_LANES_BINARY(+)
+TESSERA_LANES_BINARY(-)
+TESSERA_LANES_BINARY(*)
+TESSERA_LANES_BINARY(/)
+TESSERA_LANES_BINARY(&)
+TESSERA_LANES_BINARY(|)
+#undef TESSERA_LANES_BINARY
+
+TESSERA_LANES_INLINE Lanes<int32_t> operator~(Lanes<int32_t> a) {
+  for (int l = 0; l < 8; ++l) a.v[l] = ~a.v[l];
+  return a;
+}
+
+template <typename T>
+TESSERA_LANES_INLINE Lanes<T> splat(T x) {
+  Lanes<T> r;
+  for (int l = 0; l < 8; ++l) r.v[l] = x;
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 iota() {
+  return {{0, 1, 2, 3, 4, 5, 6, 7}};
+}
+// Masks: all ones where true.
+TESSERA_LANES_INLINE I32x8 lessThan(F32x8 a, F32x8 b) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] < b.v[l] ? -1 : 0;
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 nonNegative(I32x8 a) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] >= 0 ? -1 : 0;
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 nonNegative(I64x8 a) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] >= 0 ? -1 : 0;
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 lessOrEqual(I32x8 a, I32x8 b) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] <= b.v[l] ? -1 : 0;
+  return r;
+}
+TESSERA_LANES_INLINE F32x8 toFloat(I32x8 a) {
+  F32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = static_cast<float>(a.v[l]);
+  return r;
+}
+TESSERA_LANES_INLINE I64x8 widen(I32x8 a) {
+  I64x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l];
+  return r;
+}
+template <typename T>
+TESSERA_LANES_INLINE Lanes<T> select(I32x8 mask, Lanes<T> a, Lanes<T> b) {
+  Lanes<T> r;
+  for (int l = 0; l < 8; ++l) r.v[l] = mask.v[l] ? a.v[l] : b.v[l];
+  return r;
+}
+TESSERA_LANES_INLINE bool any(I32x8 mask) {
+  int32_t r = 0;
+  for (int l = 0; l < 8; ++l) r |= mask.v[l];
+  return r != 0;
+}
+TESSERA_LANES_INLINE I32x8 equal(I32x8 a, I32x8 b) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] == b.v[l] ? -1 : 0;
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 positive(F32x8 a) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] > 0.0f ? -1 : 0;
+  return r;
+}
+TESSERA_LANES_INLINE F32x8 squareRoot(F32x8 a) {
+  F32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = std::sqrt(a.v[l]);
+  return r;
+}
+TESSERA_LANES_INLINE F32x8 maximum(F32x8 a, F32x8 b) {
+  for (int l = 0; l < 8; ++l) a.v[l] = a.v[l] < b.v[l] ? b.v[l] : a.v[l];
+  return a;
+}
+TESSERA_LANES_INLINE I32x8 bitsOf(F32x8 a) {
+  I32x8 r;
+  std::memcpy(&r, &a, sizeof r);
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 shiftRight(I32x8 a, int n) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] >> n;
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 shiftLeft(I32x8 a, int n) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = static_cast<int32_t>(static_cast<uint32_t>(a.v[l]) << n);
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 truncate(F32x8 a) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = static_cast<int32_t>(a.v[l]);
+  return r;
+}
+TESSERA_LANES_INLINE F32x8 gather(const float* table, I32x8 index) {
+  F32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = table[index.v[l]];
+  return r;
+}
+TESSERA_LANES_INLINE float lane(F32x8 a, int l) {
+  return a.v[l];
+}
+TESSERA_LANES_INLINE int32_t lane(I32x8 a, int l) {
+  return a.v[l];
+}
+TESSERA_LANES_INLINE void setLane(F32x8& a, int l, float x) {
+  a.v[l] = x;
+}
+
+#else  // vector extensions
+
+typedef int32_t I32x8 __attribute__((vector_size(32)));
+typedef int64_t I64x8 __attribute__((vector_size(64)));
+typedef float F32x8 __attribute__((vector_size(32)));
+typedef uint32_t U32x8 __attribute__((vector_size(32)));
+
+template <typename T>
+TESSERA_LANES_INLINE auto splat(T x) {
+  if constexpr (std::is_same_v<T, int64_t>) {
+    return I64x8{} + x;
+  } else if constexpr (std::is_same_v<T, float>) {
+    return F32x8{} + x;
+  } else {
+    static_assert(std::is_same_v<T, int32_t>);
+    return I32x8{} + x;
+  }
+}
+TESSERA_LANES_INLINE I32x8 iota() {
+  return I32x8{0, 1, 2, 3, 4, 5, 6, 7};
+}
+TESSERA_LANES_INLINE I32x8 lessThan(F32x8 a, F32x8 b) {
+  return a < b;
+}
+TESSERA_LANES_INLINE I32x8 nonNegative(I32x8 a) {
+  return a >= 0;
+}
+TESSERA_LANES_INLINE I32x8 nonNegative(I64x8 a) {
+  return __builtin_convertvector(a >= 0, I32x8);
+}
+TESSERA_LANES_INLINE I32x8 lessOrEqual(I32x8 a, I32x8 b) {
+  return a <= b;
+}
+TESSERA_LANES_INLINE F32x8 toFloat(I32x8 a) {
+  return __builtin_convertvector(a, F32x8);
+}
+TESSERA_LANES_INLINE I64x8 widen(I32x8 a) {
+  return __builtin_convertvector(a, I64x8);
+}
+TESSERA_LANES_INLINE I32x8 select(I32x8 mask, I32x8 a, I32x8 b) {
+  return mask ? a : b;
+}
+TESSERA_LANES_INLINE F32x8 select(I32x8 mask, F32x8 a, F32x8 b) {
+  return mask ? a : b;
+}
+TESSERA_LANES_INLINE bool any(I32x8 mask) {
+  int32_t r = 0;
+  for (int l = 0; l < 8; ++l) r |= mask[l];
+  return r != 0;
+}
+TESSERA_LANES_INLINE I32x8 equal(I32x8 a, I32x8 b) {
+  return a == b;
+}
+TESSERA_LANES_INLINE I32x8 positive(F32x8 a) {
+  return a > 0.0f;
+}
+TESSERA_LANES_INLINE F32x8 squareRoot(F32x8 a) {
+  F32x8 r;
+  for (int l = 0; l < 8; ++l) r[l] = __builtin_sqrtf(a[l]);  // becomes one vector sqrt
+  return r;
+}
+TESSERA_LANES_INLINE F32x8 maximum(F32x8 a, F32x8 b) { return a < b ? b : a; }
+TESSERA_LANES_INLINE I32x8 bitsOf(F32x8 a) { return reinterpret_cast<I32x8>(a); }
+TESSERA_LANES_INLINE I32x8 shiftRight(I32x8 a, int n) {
+  return a >> n;
+}
+TESSERA_LANES_INLINE I32x8 shiftLeft(I32x8 a, int n) {
+  return reinterpret_cast<I32x8>(reinterpret_cast<U32x8>(a) << n);
+}
+TESSERA_LANES_INLINE I32x8 truncate(F32x8 a) {
+  return __builtin_convertvector(a, I32x8);
+}
+TESSERA_LANES_INLINE F32x8 gather(const float* table, I32x8 index) {
+  F32x8 r;
+  for (int l = 0; l < 8; ++l) r[l] = table[index[l]];
+  return r;
+}
+TESSERA_LANES_INLINE float lane(F32x8 a, int l) {
+  return a[l];
+}
+TESSERA_LANES_INLINE int32_t lane(I32x8 a, int l) {
+  return a[l];
+}
+TESSERA_LANES_INLINE void setLane(F32x8& a, int l, float x) {
+  a[l] = x;
+}
+
+#endif
+
+template <typename V>
+TESSERA_LANES_INLINE V load(const void* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+template <typename V>
+TESSERA_LANES_INLINE void store(void* p, V v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
+}  // namespace
+}  // namespace tessera::render

@@ -1,0 +1,522 @@
+// The "vulkan" backend: a tiled rasterizer in compute shaders. One command buffer per frame:
+//
+//   clear -> transform -> setup -> bin args -> bin count -> scan -> bin fill -> fine raster
+//   -> shade/resolve -> (host) lines
+//
+// Every pass reads what the previous ones wrote, so a global memory barrier separates each pair;
+// each says what it orders. When setup asks for more clip records, or binning for more entries,
+// than the buffers hold, the frame is recorded again with larger buffers (a second round): no
+// triangle is ever dropped.
+#include <tessera/vulkan/vulkan_backend.h>
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+#include <tessera/base/check.h>
+
+#include "render/fixed_point.h"
+#include "shaders/Bin.spv.h"
+#include "shaders/BinArgs.spv.h"
+#include "shaders/Clear.spv.h"
+#include "shaders/RasterAtomic64.spv.h"
+#include "shaders/RasterDepth32.spv.h"
+#include "shaders/RasterId32.spv.h"
+#include "shaders/Scan.spv.h"
+#include "shaders/SetupFp32.spv.h"
+#include "shaders/SetupFp64.spv.h"
+#include "shaders/Shade.spv.h"
+#include "shaders/TransformFp32.spv.h"
+#include "shaders/TransformFp64.spv.h"
+#include "vulkan/context.h"
+#include "vulkan/gpu_types.h"
+#include "vulkan/scene_upload.h"
+
+namespace tessera::vulkan {
+
+namespace {
+
+constexpr uint32_t kTimestampCount = 7;  // before clear, then after each of the six passes
+constexpr int kMaxRounds = 4;
+
+}  // namespace
+
+struct ComputeBackend::State {
+  std::unique_ptr<Context> context;
+  VulkanOptions vulkan_options;
+  bool atomic64 = false;
+  bool fp64 = false;
+
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
+  VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
+  VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
+  VkPipeline clear = VK_NULL_HANDLE, transform = VK_NULL_HANDLE, setup = VK_NULL_HANDLE,
+             bin_args = VK_NULL_HANDLE, bin = VK_NULL_HANDLE, scan = VK_NULL_HANDLE,
+             raster = VK_NULL_HANDLE, raster_id = VK_NULL_HANDLE, shade = VK_NULL_HANDLE;
+  VkQueryPool timestamps = VK_NULL_HANDLE;
+
+  PackedScene packed;
+  SceneBuffers scene_buffers;
+  Buffer transformed, raster_records, shade_records, extra_base, counters, visible_list, tiles,
+      bin_entries, segments, visibility, output;
+  uint32_t bin_capacity = 0;
+  uint32_t extra_capacity = 0;
+
+  ComputeStats stats;
+  TileOccupancy occupancy;
+  Expected<void> last_result;
+
+  ~State();
+  Expected<void> createPipelines();
+  Expected<VkPipeline> createPipeline(std::span<const uint32_t> spirv);
+  Expected<void> ensureWorkingBuffers(const RenderOptions& options);
+  void writeDescriptors();
+  Expected<void> recordAndRun(const RenderOptions& options);
+  Expected<void> renderFrame(const Scene& scene, const RenderOptions& options, Frame& frame);
+  void readTimings();
+};
+
+ComputeBackend::State::~State() {
+  if (!context) return;
+  Context& c = *context;
+  // Teardown waits at least 5 s (still bounded) for a frame a short timeout abandoned; past that
+  // the Context leaks everything rather than hang.
+  c.fence_timeout_ms = std::max<uint32_t>(c.fence_timeout_ms, 5000);
+  if (!c.waitForPending()) return;
+  VkDevice device = c.device;
+  for (VkPipeline p : {clear, transform, setup, bin_args, bin, scan, raster, raster_id, shade})
+    if (p) c.vk.vkDestroyPipeline(device, p, nullptr);
+  if (pipeline_layout) c.vk.vkDestroyPipelineLayout(device, pipeline_layout, nullptr);
+  if (descriptor_pool) c.vk.vkDestroyDescriptorPool(device, descriptor_pool, nullptr);
+  if (set_layout) c.vk.vkDestroyDescriptorSetLayout(device, set_layout, nullptr);
+  if (timestamps) c.vk.vkDestroyQueryPool(device, timestamps, nullptr);
+  destroySceneBuffers(c, scene_buffers);
+  for (Buffer* b : {&transformed, &raster_records, &shade_records, &extra_base, &counters,
+                    &visible_list, &tiles, &bin_entries, &segments, &visibility, &output})
+    c.destroyBuffer(*b);
+}
+
+Expected<VkPipeline> ComputeBackend::State::createPipeline(std::span<const uint32_t> spirv) {
+  Context& c = *context;
+  Expected<VkShaderModule> module = c.createShaderModule(spirv);
+  if (!module) return module.error();
+  VkComputePipelineCreateInfo create{};
+  create.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+  create.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  create.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  create.stage.module = *module;
+  create.stage.pName = "main";
+  create.layout = pipeline_layout;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  const VkResult created =
+      c.vk.vkCreateComputePipelines(c.device, VK_NULL_HANDLE, 1, &create, nullptr, &pipeline);
+  c.vk.vkDestroyShaderModule(c.device, *module, nullptr);
+  TESSERA_VK_CHECK(created);
+  return pipeline;
+}
+
+Expected<void> ComputeBackend::State::createPipelines() {
+  Context& c = *context;
+  std::vector<VkDescriptorSetLayoutBinding> bindings(kComputeBindingCount);
+  for (uint32_t i = 0; i < kComputeBindingCount; ++i) {
+    bindings[i].binding = i;
+    bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[i].descriptorCount = 1;
+    bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+  }
+  VkDescriptorSetLayoutCreateInfo layout_info{};
+  layout_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+  layout_info.bindingCount = kComputeBindingCount;
+  layout_info.pBindings = bindings.data();
+  TESSERA_VK_CHECK(c.vk.vkCreateDescriptorSetLayout(c.device, &layout_info, nullptr, &set_layout));
+
+  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(GpuPassConstants)};
+  VkPipelineLayoutCreateInfo pipeline_layout_info{};
+  pipeline_layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+  pipeline_layout_info.setLayoutCount = 1;
+  pipeline_layout_info.pSetLayouts = &set_layout;
+  pipeline_layout_info.pushConstantRangeCount = 1;
+  pipeline_layout_info.pPushConstantRanges = &push;
+  TESSERA_VK_CHECK(
+      c.vk.vkCreatePipelineLayout(c.device, &pipeline_layout_info, nullptr, &pipeline_layout));
+
+  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kComputeBindingCount};
+  VkDescriptorPoolCreateInfo pool_info{};
+  pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+  pool_info.maxSets = 1;
+  pool_info.poolSizeCount = 1;
+  pool_info.pPoolSizes = &pool_size;
+  TESSERA_VK_CHECK(c.vk.vkCreateDescriptorPool(c.device, &pool_info, nullptr, &descriptor_pool));
+  VkDescriptorSetAllocateInfo allocate{};
+  allocate.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+  allocate.descriptorPool = descriptor_pool;
+  allocate.descriptorSetCount = 1;
+  allocate.pSetLayouts = &set_layout;
+  TESSERA_VK_CHECK(c.vk.vkAllocateDescriptorSets(c.device, &allocate, &descriptor_set));
+
+  struct Entry {
+    VkPipeline* pipeline;
+    std::span<const uint32_t> spirv;
+  };
+  std::vector<Entry> entries = {
+      {&clear, spirv::kClear},
+      {&transform, fp64 ? std::span<const uint32_t>(spirv::kTransformFp64)
+                        : std::span<const uint32_t>(spirv::kTransformFp32)},
+      {&setup, fp64 ? std::span<const uint32_t>(spirv::kSetupFp64)
+                    : std::span<const uint32_t>(spirv::kSetupFp32)},
+      {&bin_args, spirv::kBinArgs},
+      {&bin, spirv::kBin},
+      {&scan, spirv::kScan},
+      {&shade, spirv::kShade},
+  };
+  if (atomic64) {
+    entries.push_back({&raster, spirv::kRasterAtomic64});
+  } else {
+    entries.push_back({&raster, spirv::kRasterDepth32});
+    entries.push_back({&raster_id, spirv::kRasterId32});
+  }
+  for (const Entry& e : entries) {
+    Expected<VkPipeline> pipeline = createPipeline(e.spirv);
+    if (!pipeline) return pipeline.error();
+    *e.pipeline = *pipeline;
+  }
+
+  if (c.caps.timestamp_valid_bits > 0) {
+    VkQueryPoolCreateInfo query_info{};
+    query_info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+    query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    query_info.queryCount = kTimestampCount;
+    TESSERA_VK_CHECK(c.vk.vkCreateQueryPool(c.device, &query_info, nullptr, &timestamps));
+  }
+  return {};
+}
+
+Expected<void> ComputeBackend::State::ensureWorkingBuffers(const RenderOptions& options) {
+  Context& c = *context;
+  constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  const size_t pixels = static_cast<size_t>(options.width) * options.height;
+  const size_t tiles_count =
+      static_cast<size_t>(packed.frame.tile_columns) * static_cast<size_t>(packed.frame.tile_rows);
+  const size_t records = packed.triangle_count + extra_capacity;
+  const size_t segment_capacity = tiles_count + bin_capacity / kEntriesPerSegment + 1;
+  if (records > 0xffffffffull || segment_capacity > 0xffffffffull)
+    return makeError("the scene is too large for the vulkan backend's 32-bit record indices");
+  packed.frame.extra_capacity = extra_capacity;
+  packed.frame.bin_capacity = bin_capacity;
+  packed.frame.segment_capacity = static_cast<uint32_t>(segment_capacity);
+
+  struct Need {
+    Buffer* buffer;
+    size_t bytes;
+    VkBufferUsageFlags usage;
+    MemoryKind kind;
+    const char* what;
+  };
+  const Need needs[] = {
+      {&transformed, packed.vertex_count * sizeof(GpuTransformedVertex), kStorage,
+       MemoryKind::kDevice, "transformed vertex"},
+      {&raster_records, records * sizeof(GpuRasterRecord), kStorage, MemoryKind::kDevice,
+       "raster record"},
+      {&shade_records, records * sizeof(GpuShadeRecord), kStorage, MemoryKind::kDevice,
+       "shade record"},
+      {&extra_base, packed.triangle_count * sizeof(uint32_t), kStorage, MemoryKind::kDevice,
+       "clip record index"},
+      {&counters, sizeof(GpuCounters), kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+       MemoryKind::kHost, "counter"},
+      {&visible_list, records * sizeof(uint32_t), kStorage, MemoryKind::kDevice, "visible list"},
+      {&tiles, tiles_count * sizeof(GpuTileBin), kStorage, MemoryKind::kHost, "tile bin"},
+      {&bin_entries, static_cast<size_t>(bin_capacity) * sizeof(uint32_t), kStorage,
+       MemoryKind::kDevice, "bin entry"},
+      {&segments, segment_capacity * 4 * sizeof(uint32_t), kStorage, MemoryKind::kDevice,
+       "raster segment"},
+      {&visibility, pixels * sizeof(uint64_t), kStorage, MemoryKind::kDevice, "visibility"},
+      {&output, pixels * (options.normals ? 6 : 3) * sizeof(uint32_t), kStorage, MemoryKind::kHost,
+       "output image"},
+  };
+  for (const Need& need : needs)
+    if (Expected<void> r =
+            c.ensureBuffer(*need.buffer, need.bytes, need.usage, need.kind, need.what);
+        !r)
+      return r;
+  return {};
+}
+
+void ComputeBackend::State::writeDescriptors() {
+  Context& c = *context;
+  std::vector<VkDescriptorBufferInfo> infos;
+  appendSceneDescriptors(scene_buffers, infos);
+  for (const Buffer* b : {&transformed, &raster_records, &shade_records, &extra_base, &counters,
+                          &visible_list, &tiles, &bin_entries, &segments, &visibility, &output})
+    infos.push_back(VkDescriptorBufferInfo{b->buffer, 0, VK_WHOLE_SIZE});
+  TESSERA_CHECK(infos.size() == kComputeBindingCount);
+  std::vector<VkWriteDescriptorSet> writes(infos.size());
+  for (size_t i = 0; i < infos.size(); ++i) {
+    writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    writes[i].dstSet = descriptor_set;
+    writes[i].dstBinding = static_cast<uint32_t>(i);
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &infos[i];
+  }
+  c.vk.vkUpdateDescriptorSets(c.device, static_cast<uint32_t>(writes.size()), writes.data(), 0,
+                              nullptr);
+}
+
+Expected<void> ComputeBackend::State::recordAndRun(const RenderOptions& options) {
+  Context& c = *context;
+  const VulkanFunctions& vk = c.vk;
+  // The frame constants carry this round's capacities.
+  std::memcpy(scene_buffers.frame.mapped, &packed.frame, sizeof(GpuFrameConstants));
+  writeDescriptors();
+
+  Expected<VkCommandBuffer> begun = c.beginCommands();
+  if (!begun) return begun.error();
+  VkCommandBuffer cmd = *begun;
+  auto timestamp = [&](uint32_t index) {
+    if (timestamps)
+      vk.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, index);
+  };
+  auto dispatch = [&](VkPipeline pipeline, uint64_t groups, uint32_t mode = 0) {
+    vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    const GpuPassConstants constants{mode, 0, 0, 0};
+    vk.vkCmdPushConstants(cmd, pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
+                          &constants);
+    const DispatchGrid grid = dispatchGrid(groups);
+    if (grid.x) vk.vkCmdDispatch(cmd, grid.x, grid.y, 1);
+  };
+  auto dispatchIndirect = [&](VkPipeline pipeline, VkDeviceSize offset, uint32_t mode = 0) {
+    vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    const GpuPassConstants constants{mode, 0, 0, 0};
+    vk.vkCmdPushConstants(cmd, pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
+                          &constants);
+    vk.vkCmdDispatchIndirect(cmd, counters.buffer, offset);
+  };
+  // Shader writes of one pass made visible to the shader reads and writes of the next.
+  auto computeToCompute = [&] {
+    memoryBarrier(vk, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  };
+  // Shader writes of dispatch sizes made visible to the indirect dispatch that reads them (and
+  // to the shaders that read the counters).
+  auto computeToIndirect = [&] {
+    memoryBarrier(vk, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT |
+                      VK_ACCESS_SHADER_WRITE_BIT);
+  };
+
+  if (timestamps) vk.vkCmdResetQueryPool(cmd, timestamps, 0, kTimestampCount);
+  vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_layout, 0, 1,
+                             &descriptor_set, 0, nullptr);
+  const uint64_t pixels = static_cast<uint64_t>(options.width) * options.height;
+  timestamp(0);
+
+  // 1. Clear.
+  dispatch(clear, (pixels + 255) / 256);
+  // Orders the cleared visibility buffer, tile bins and counters before setup's counter
+  // atomics, binning and the fine raster's commits.
+  computeToCompute();
+  timestamp(1);
+
+  // 2. Transform.
+  dispatch(transform, (packed.vertex_count + 255) / 256);
+  // Orders the clip-space vertices before setup reads them.
+  computeToCompute();
+  timestamp(2);
+
+  // 3. Setup and cull.
+  dispatch(setup, (packed.triangle_count + 63) / 64);
+  // Orders setup's records, visible list and counters before the bin-args pass reads the count.
+  computeToCompute();
+  dispatch(bin_args, 1);
+  // Orders the bin passes' dispatch size before the indirect dispatch reads it.
+  computeToIndirect();
+  timestamp(3);
+
+  // 4. Bin: count, scan, fill.
+  dispatchIndirect(bin, kBinDispatchOffset, 0);
+  // Orders the per-tile counts before the scan reads them.
+  computeToCompute();
+  dispatch(scan, 1);
+  // Orders the tile offsets, the segments and the raster's dispatch size before the fill reads
+  // the offsets and the raster's indirect dispatch reads its size.
+  computeToIndirect();
+  dispatchIndirect(bin, kBinDispatchOffset, 1);
+  // Orders the filled bins before the fine raster reads them.
+  computeToCompute();
+  timestamp(4);
+
+  // 5. Fine raster.
+  dispatchIndirect(raster, kRasterDispatchOffset);
+  if (raster_id) {
+    // Orders the committed depths (pass 1 of the 32-bit path) before pass 2 compares with them.
+    computeToCompute();
+    dispatchIndirect(raster_id, kRasterDispatchOffset);
+  }
+  // Orders the visibility buffer's commits before the shade pass reads it.
+  computeToCompute();
+  timestamp(5);
+
+  // 6. Shade and resolve.
+  vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shade);
+  vk.vkCmdDispatch(cmd, (static_cast<uint32_t>(options.width) + 7) / 8,
+                   (static_cast<uint32_t>(options.height) + 7) / 8, 1);
+  // Orders the output image, the counters and the tile counts before the host reads them
+  // (after the fence).
+  memoryBarrier(vk, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+  timestamp(6);
+
+  return c.submitAndWait();
+}
+
+void ComputeBackend::State::readTimings() {
+  PassTimings& t = stats.timings;
+  t = PassTimings{};
+  if (!timestamps) return;
+  Context& c = *context;
+  uint64_t ticks[kTimestampCount] = {};
+  const VkResult got = c.vk.vkGetQueryPoolResults(
+      c.device, timestamps, 0, kTimestampCount, sizeof(ticks), ticks, sizeof(uint64_t),
+      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+  if (got != VK_SUCCESS) return;  // timings are diagnostics: a frame never fails over them
+  const uint32_t bits = c.caps.timestamp_valid_bits;
+  const uint64_t mask = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
+  const double ms_per_tick = c.caps.properties.limits.timestampPeriod * 1e-6;
+  auto span = [&](int a, int b) {
+    return static_cast<double>((ticks[b] - ticks[a]) & mask) * ms_per_tick;
+  };
+  t.clear = span(0, 1);
+  t.transform = span(1, 2);
+  t.setup = span(2, 3);
+  t.bin = span(3, 4);
+  t.raster = span(4, 5);
+  t.shade = span(5, 6);
+  t.total = span(0, 6);
+  t.valid = true;
+}
+
+Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const RenderOptions& options,
+                                                  Frame& frame) {
+  // Nothing the GPU may still read (an earlier frame abandoned after a timeout) is touched
+  // before that frame has finished: buffers, descriptors and mapped inputs alike.
+  if (Expected<void> r = context->waitForPending(); !r)
+    return makeError("an earlier frame is still running: " + r.error().message);
+  if (Expected<void> r = packScene(scene, options, IndexPolicy::kAsGiven, packed); !r) return r;
+  if (Expected<void> r = uploadScene(*context, packed, scene_buffers); !r) return r;
+
+  // First-frame capacities: every visible triangle in a few tiles, a few clipped triangles.
+  if (bin_capacity == 0)
+    bin_capacity = vulkan_options.initial_bin_capacity
+                       ? vulkan_options.initial_bin_capacity
+                       : static_cast<uint32_t>(std::min<size_t>(
+                             std::max<size_t>(65536, packed.triangle_count * 4), 1u << 28));
+  if (extra_capacity == 0) extra_capacity = 1024;
+
+  stats = ComputeStats{};
+  const GpuCounters* counted = nullptr;
+  for (int round = 0;; ++round) {
+    if (Expected<void> r = ensureWorkingBuffers(options); !r) return r;
+    if (Expected<void> r = recordAndRun(options); !r) return r;
+    counted = static_cast<const GpuCounters*>(counters.mapped);
+    const bool extra_overflow = counted->extra > extra_capacity;
+    const bool bin_overflow = counted->bin_entries > bin_capacity;
+    if (!extra_overflow && !bin_overflow) break;
+    ++stats.bin_overflows;
+    if (round + 1 >= kMaxRounds)
+      return makeError("the vulkan backend's bins kept overflowing after " +
+                       std::to_string(kMaxRounds) + " rounds");
+    // Grow to what was asked for, with headroom for the next frames.
+    auto grown = [](uint64_t asked) {
+      return static_cast<uint32_t>(std::min<uint64_t>(asked + asked / 4 + 64, 0xffffffffull));
+    };
+    if (extra_overflow) extra_capacity = grown(counted->extra);
+    if (bin_overflow) bin_capacity = grown(counted->bin_entries);
+  }
+
+  // Results.
+  const size_t n = frame.pixelCount();
+  const uint32_t* words = static_cast<const uint32_t*>(output.mapped);
+  copyResults(words, words + n, words + 2 * n,
+              options.normals ? reinterpret_cast<const float*>(words + 3 * n) : nullptr, 3, frame);
+  drawSceneLines(scene, options, packed, frame);
+
+  stats.triangles_in = packed.triangle_count;
+  stats.triangles_culled = counted->culled;
+  stats.triangles_clipped = counted->clipped;
+  stats.triangles_setup = counted->visible;
+  stats.triangles_binned = counted->binned_records;
+  stats.bin_entries = counted->bin_entries;
+  stats.bin_capacity = bin_capacity;
+  stats.tiles = static_cast<size_t>(packed.frame.tile_columns) * packed.frame.tile_rows;
+  stats.tiles_occupied = counted->occupied_tiles;
+  stats.max_tile_entries = counted->max_tile_entries;
+  stats.raster_workgroups = counted->segments;
+  stats.int64_atomics = atomic64;
+  stats.fp64_setup = fp64;
+  readTimings();
+
+  occupancy.columns = packed.frame.tile_columns;
+  occupancy.rows = packed.frame.tile_rows;
+  occupancy.tile_size = kGpuTileSize;
+  occupancy.entries.resize(stats.tiles);
+  const GpuTileBin* bins = static_cast<const GpuTileBin*>(tiles.mapped);
+  for (size_t i = 0; i < stats.tiles; ++i) occupancy.entries[i] = bins[i].count;
+  return {};
+}
+
+// ---- the public class ----
+
+Expected<std::unique_ptr<ComputeBackend>> ComputeBackend::create(const VulkanOptions& options) {
+  Expected<std::unique_ptr<Context>> context = Context::create(options, BackendKind::kCompute);
+  if (!context) return context.error();
+  auto state = std::make_unique<State>();
+  state->context = std::move(*context);
+  state->vulkan_options = options;
+  state->atomic64 = state->context->caps.int64_atomics && !options.force_32bit_atomics;
+  state->fp64 = state->context->caps.shader_float64 && !options.force_fp32_setup;
+  if (Expected<void> r = state->createPipelines(); !r) return r.error();
+  return std::unique_ptr<ComputeBackend>(new ComputeBackend(std::move(state)));
+}
+
+ComputeBackend::ComputeBackend(std::unique_ptr<State> state) : state_(std::move(state)) {}
+ComputeBackend::~ComputeBackend() = default;
+
+void ComputeBackend::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
+  TESSERA_CHECK(options.width > 0 && options.height > 0 && options.width <= render::kMaxViewport &&
+                options.height <= render::kMaxViewport)
+      << "viewport " << options.width << "x" << options.height << " is outside 1.."
+      << render::kMaxViewport;
+  resizeFrame(scene, options, frame);
+  state_->last_result = state_->renderFrame(scene, options, frame);
+  if (!state_->last_result) clearFrame(frame);
+}
+
+Expected<void> ComputeBackend::lastResult() const {
+  return state_->last_result;
+}
+const ComputeStats& ComputeBackend::lastStats() const {
+  return state_->stats;
+}
+const TileOccupancy& ComputeBackend::lastTileOccupancy() const {
+  return state_->occupancy;
+}
+const DeviceInfo& ComputeBackend::device() const {
+  return state_->context->info;
+}
+std::vector<std::string> ComputeBackend::validationErrors() const {
+  return state_->context->validationErrors();
+}
+void ComputeBackend::setFenceTimeout(uint32_t milliseconds) {
+  state_->context->fence_timeout_ms = milliseconds;
+}
+
+Expected<std::unique_ptr<Backend>> makeComputeBackend(const VulkanOptions& options) {
+  Expected<std::unique_ptr<ComputeBackend>> backend = ComputeBackend::create(options);
+  if (!backend) return backend.error();
+  return std::unique_ptr<Backend>(std::move(*backend));
+}
+
+}  // namespace tessera::vulkan

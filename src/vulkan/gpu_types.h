@@ -1,0 +1,168 @@
+// The structures the host shares with the shaders, laid out as GLSL's std430 lays them out. Each
+// mirrors a struct of shaders/common.glsl or shaders/records.glsl; the static_asserts hold the
+// two in step.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace tessera::vulkan {
+
+// Descriptor bindings of set 0. Both backends use the scene inputs (0..7) at the same numbers.
+enum Binding : uint32_t {
+  kBindingFrame = 0,              // GpuFrameConstants, then the lights
+  kBindingObjects = 1,            // GpuObject[]
+  kBindingMaterials = 2,          // GpuMaterial[]
+  kBindingVertices = 3,           // GpuVertex[] (object space, every object one after another)
+  kBindingIndices = 4,            // uint[], three per triangle, object-local vertex numbers
+  kBindingTriangleMaterials = 5,  // uint[], one per triangle
+  kBindingTexels = 6,             // uint[] RGBA8 texels of every texture
+  kBindingColorTables = 7,        // sRGB decode (256 floats) and encode (65536 bytes)
+  kSceneBindingCount = 8,
+  // Compute backend only.
+  kBindingTransformed = 8,  // GpuTransformedVertex[]
+  kBindingRasterRecords = 9,
+  kBindingShadeRecords = 10,
+  kBindingExtraBase = 11,  // uint per triangle: first extra record of a clipped triangle
+  kBindingCounters = 12,
+  kBindingVisibleList = 13,  // uint record slots that survived setup
+  kBindingTiles = 14,        // GpuTileBin per tile
+  kBindingBinEntries = 15,   // uint record slots, grouped by tile
+  kBindingSegments = 16,     // uvec4 (tile, first entry, end entry, 0): fine-raster work items
+  kBindingVisibility = 17,   // uint64 per pixel: ordered depth << 32 | triangle key
+  kBindingOutput = 18,       // colour, depth, id, normal words
+  kComputeBindingCount = 19,
+};
+
+// GpuFrameConstants::flags
+constexpr uint32_t kFrameNormals = 1u;  // write the normal AOV
+
+// GpuObject::flags
+constexpr uint32_t kObjectHasUv = 1u;
+constexpr uint32_t kObjectHasColor = 2u;
+constexpr uint32_t kObjectHasNormals = 4u;
+constexpr uint32_t kObjectHasTriangleMaterials = 8u;
+
+// GpuMaterial::texture_flags
+constexpr uint32_t kTexturePresent = 1u;
+constexpr uint32_t kTextureSrgb = 2u;
+constexpr uint32_t kTextureNearest = 4u;
+constexpr uint32_t kTextureClamp = 8u;
+constexpr uint32_t kTextureTrilinear = 16u;  // and the texture has mip levels
+
+// A texture in the texel buffer: a header (level count, then offset, width and height of each
+// level, offsets in words from the start of the buffer), then the levels' texels.
+
+// Tiles and the fine raster.
+constexpr int kGpuTileSizeLog2 = 4;
+constexpr int kGpuTileSize = 1 << kGpuTileSizeLog2;  // 16x16 pixels: one workgroup, one lane each
+// A tile's list is cut into work items of at most this many entries; the items of one tile run
+// in parallel and commit with atomic min.
+constexpr uint32_t kEntriesPerSegment = 512;
+// Triangle keys: scene triangle index << 3 | fan piece (a clipped triangle gives at most 7).
+constexpr int kFanPieceBits = 3;
+constexpr uint64_t kMaxGpuTriangles = (1ull << (32 - kFanPieceBits)) - 1;
+
+struct GpuFrameConstants {
+  int32_t width, height, tile_columns, tile_rows;
+  float guard_x, guard_y;
+  uint32_t triangle_count, vertex_count;
+  uint32_t object_count, light_count, extra_capacity, bin_capacity;
+  uint32_t background, flags, segment_capacity, pad0;
+  float ambient[4];
+};
+static_assert(sizeof(GpuFrameConstants) == 80);
+
+struct GpuLight {
+  float direction[4];
+  float color[4];
+};
+static_assert(sizeof(GpuLight) == 32);
+
+struct GpuObject {
+  float model_view_projection[16];     // column-major, OpenGL clip space (compute backend)
+  float model_view_projection_zo[16];  // zero-to-one clip space (raster backend)
+  float normal_matrix[3][4];           // columns
+  uint32_t vertex_base, vertex_count, triangle_base, triangle_count;
+  uint32_t material_base, material_count, flags, pad0;
+  float winding_sign;
+  uint32_t cull, shading, pad1;
+};
+static_assert(sizeof(GpuObject) == 224);
+
+struct GpuMaterial {
+  float base_color[4];
+  uint32_t texel_offset;  // the texture's header
+  int32_t texture_width, texture_height;
+  uint32_t texture_flags;
+};
+static_assert(sizeof(GpuMaterial) == 32);
+
+struct GpuVertex {
+  float position[3];
+  float normal[3];
+  float uv[2];
+  float color[4];
+};
+static_assert(sizeof(GpuVertex) == 48);
+
+// The transform pass's output per vertex (the CPU's VertexBuffer entry).
+struct GpuTransformedVertex {
+  float clip[4];
+  float normal[3];
+  uint32_t outcode;
+  int32_t screen[2];  // snapped window position in 1/256 pixel
+  float z, inv_w;
+};
+static_assert(sizeof(GpuTransformedVertex) == 48);
+
+// Setup's output for coverage and depth (the CPU's RasterTriangle).
+struct GpuRasterRecord {
+  int64_t c[3];
+  int32_t a[3], b[3];
+  int32_t min_x, min_y, max_x, max_y;
+  float x0, y0, z0, dzdx, dzdy;
+  uint32_t key;
+};
+static_assert(sizeof(GpuRasterRecord) == 88);
+
+// Setup's output for shading (the CPU's ShadeTriangle).
+struct GpuShadeRecord {
+  float normal[3][4];  // xyz
+  float color[3][4];   // xyz: base x vertex colour, lit for flat and Gouraud
+  float uv[3][2];
+  float inv_w0, p1dx, p1dy, p2dx, p2dy, sdx, sdy;
+  uint32_t triangle_id;
+  uint32_t material;  // index into the material buffer
+  uint32_t shading;   // Shading | kShadeHasUv
+};
+constexpr uint32_t kShadeHasUv = 1u << 8;
+static_assert(sizeof(GpuShadeRecord) == 160);
+
+struct GpuCounters {
+  uint32_t visible;  // records in the visible list
+  uint32_t extra;    // extra records the clipped triangles asked for
+  uint32_t culled, clipped;
+  uint32_t bin_entries;  // asked for; more than the capacity means overflow
+  uint32_t segments;
+  uint32_t max_tile_entries, occupied_tiles;
+  uint32_t binned_records;
+  uint32_t pad[3];
+  uint32_t bin_dispatch[4];     // VkDispatchIndirectCommand + pad
+  uint32_t raster_dispatch[4];  // VkDispatchIndirectCommand + pad
+};
+static_assert(sizeof(GpuCounters) == 80);
+constexpr size_t kBinDispatchOffset = offsetof(GpuCounters, bin_dispatch);
+constexpr size_t kRasterDispatchOffset = offsetof(GpuCounters, raster_dispatch);
+
+struct GpuTileBin {
+  uint32_t count, offset, cursor, segment_offset;
+};
+static_assert(sizeof(GpuTileBin) == 16);
+
+// Push constants of every compute pass.
+struct GpuPassConstants {
+  uint32_t mode, count, pad0, pad1;
+};
+
+}  // namespace tessera::vulkan

@@ -1,0 +1,343 @@
+#include "vulkan/scene_upload.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <tessera/base/check.h>
+#include <tessera/scene/color.h>
+
+#include "render/clip.h"
+#include "render/fixed_point.h"
+#include "render/lines.h"
+#include "render/vertex.h"
+
+namespace tessera::vulkan {
+
+namespace {
+
+void storeMatrix(const float4x4& m, float out[16]) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) out[c * 4 + r] = m.col[c][r];
+}
+
+// The zero-to-one projection for the raster backend: perspectiveZeroToOne for the usual camera;
+// a custom projection keeps its x, y and w and has z remapped from [-w, w] to [0, w].
+float4x4 zeroToOneProjection(const Camera& camera, float aspect) {
+  if (!camera.projection_override)
+    return perspectiveZeroToOne(radians(camera.fov_y_degrees), aspect, camera.near_z, camera.far_z);
+  float4x4 remap;
+  remap(2, 2) = 0.5f;
+  remap(2, 3) = 0.5f;
+  return remap * *camera.projection_override;
+}
+
+bool isFinite3(float3 p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+bool levelIsWhole(int width, int height, const std::vector<uint32_t>& texels) {
+  return width > 0 && height > 0 && texels.size() >= static_cast<size_t>(width) * height;
+}
+
+// Appends the texture (header, then every level) once per frame; returns its header's offset.
+uint32_t textureOffset(const Texture& texture, PackedScene& out) {
+  auto found = out.texture_offsets.find(&texture);
+  if (found != out.texture_offsets.end()) return found->second;
+  // Mip levels are used only when every one of them is whole.
+  bool mips_whole = true;
+  for (const TextureLevel& level : texture.mips)
+    mips_whole = mips_whole && levelIsWhole(level.width, level.height, level.texels);
+  const size_t levels = 1 + (mips_whole ? texture.mips.size() : 0);
+  const uint32_t header = static_cast<uint32_t>(out.texels.size());
+  out.texels.push_back(static_cast<uint32_t>(levels));
+  out.texels.resize(out.texels.size() + 3 * levels);
+  for (size_t i = 0; i < levels; ++i) {
+    const int w = i == 0 ? texture.width : texture.mips[i - 1].width;
+    const int h = i == 0 ? texture.height : texture.mips[i - 1].height;
+    const std::vector<uint32_t>& texels = i == 0 ? texture.texels : texture.mips[i - 1].texels;
+    out.texels[header + 1 + 3 * i] = static_cast<uint32_t>(out.texels.size());
+    out.texels[header + 2 + 3 * i] = static_cast<uint32_t>(w);
+    out.texels[header + 3 + 3 * i] = static_cast<uint32_t>(h);
+    out.texels.insert(out.texels.end(), texels.begin(),
+                      texels.begin() + static_cast<ptrdiff_t>(static_cast<size_t>(w) * h));
+  }
+  out.texture_offsets.emplace(&texture, header);
+  return header;
+}
+
+}  // namespace
+
+Expected<void> packScene(const Scene& scene, const RenderOptions& options, IndexPolicy policy,
+                         PackedScene& out) {
+  const size_t triangle_total = scene.triangleCount();
+  if (triangle_total > kMaxGpuTriangles)
+    return makeError("the scene has " + std::to_string(triangle_total) +
+                     " triangles; the Vulkan backends take at most " +
+                     std::to_string(kMaxGpuTriangles) + " (29-bit triangle keys)");
+
+  const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
+  out.view_projection = scene.camera.projection(aspect) * scene.camera.view();
+  const float4x4 view_projection_zo =
+      zeroToOneProjection(scene.camera, aspect) * scene.camera.view();
+
+  out.objects.clear();
+  out.models.clear();
+  out.materials.clear();
+  out.vertices.clear();
+  out.indices.clear();
+  out.triangle_materials.clear();
+  out.texels.clear();
+  out.texture_offsets.clear();
+  out.lights.clear();
+
+  size_t vertex_base = 0, triangle_base = 0;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const Object& object = scene.objects[i];
+    TESSERA_CHECK(!object.materials.empty()) << "object " << i << " has no material";
+    const render::ObjectTransforms xf = render::makeObjectTransforms(object, out.view_projection);
+    GpuObject gpu{};
+    storeMatrix(xf.model_view_projection, gpu.model_view_projection);
+    storeMatrix(view_projection_zo * xf.model, gpu.model_view_projection_zo);
+    for (int c = 0; c < 3; ++c) {
+      gpu.normal_matrix[c][0] = xf.normal_matrix.col[c].x;
+      gpu.normal_matrix[c][1] = xf.normal_matrix.col[c].y;
+      gpu.normal_matrix[c][2] = xf.normal_matrix.col[c].z;
+    }
+    gpu.winding_sign = xf.winding_sign;
+    gpu.vertex_base = static_cast<uint32_t>(vertex_base);
+    gpu.triangle_base = static_cast<uint32_t>(triangle_base);
+    gpu.material_base = static_cast<uint32_t>(out.materials.size());
+    gpu.material_count = static_cast<uint32_t>(object.materials.size());
+    gpu.cull = static_cast<uint32_t>(object.cull);
+    gpu.shading = static_cast<uint32_t>(object.shading);
+    out.models.push_back(xf.model);
+
+    for (const Material& material : object.materials) {
+      GpuMaterial m{};
+      for (int c = 0; c < 4; ++c) m.base_color[c] = material.base_color[c];
+      const Texture* texture = material.albedo.get();
+      if (texture) {
+        m.texture_flags = kTexturePresent;
+        if (levelIsWhole(texture->width, texture->height, texture->texels)) {
+          m.texel_offset = textureOffset(*texture, out);
+          m.texture_width = texture->width;
+          m.texture_height = texture->height;
+        }
+        if (texture->srgb) m.texture_flags |= kTextureSrgb;
+        if (material.sampler.filter == TextureFilter::kNearest) m.texture_flags |= kTextureNearest;
+        if (material.sampler.filter == TextureFilter::kTrilinear && !texture->mips.empty())
+          m.texture_flags |= kTextureTrilinear;
+        if (material.sampler.wrap == TextureWrap::kClamp) m.texture_flags |= kTextureClamp;
+      }
+      out.materials.push_back(m);
+    }
+
+    if (object.mesh) {
+      const Mesh& mesh = *object.mesh;
+      const size_t count = mesh.vertexCount(), triangles = mesh.triangleCount();
+      const bool has_normals = mesh.normals.size() == count;
+      const bool has_uv = mesh.uvs.size() == count;
+      const bool has_color = mesh.colors.size() == count;
+      const bool has_materials = mesh.triangle_materials.size() == triangles;
+      gpu.vertex_count = static_cast<uint32_t>(count);
+      gpu.triangle_count = static_cast<uint32_t>(triangles);
+      gpu.flags = (has_uv ? kObjectHasUv : 0u) | (has_color ? kObjectHasColor : 0u) |
+                  (has_normals ? kObjectHasNormals : 0u) |
+                  (has_materials ? kObjectHasTriangleMaterials : 0u);
+      for (size_t v = 0; v < count; ++v) {
+        GpuVertex gv{};
+        gv.position[0] = mesh.positions[v].x;
+        gv.position[1] = mesh.positions[v].y;
+        gv.position[2] = mesh.positions[v].z;
+        if (has_normals) {
+          gv.normal[0] = mesh.normals[v].x;
+          gv.normal[1] = mesh.normals[v].y;
+          gv.normal[2] = mesh.normals[v].z;
+        }
+        if (has_uv) {
+          gv.uv[0] = mesh.uvs[v].x;
+          gv.uv[1] = mesh.uvs[v].y;
+        }
+        const float4 color = has_color ? mesh.colors[v] : float4{1, 1, 1, 1};
+        for (int c = 0; c < 4; ++c) gv.color[c] = color[c];
+        out.vertices.push_back(gv);
+      }
+      if (policy == IndexPolicy::kAsGiven) {
+        out.indices.insert(out.indices.end(), mesh.indices.begin(),
+                           mesh.indices.begin() + static_cast<ptrdiff_t>(triangles * 3));
+      } else {
+        // A vertex that is safe to repeat three times: a zero-area triangle draws nothing.
+        uint32_t safe = 0;
+        while (safe < count && !isFinite3(mesh.positions[safe])) ++safe;
+        for (size_t t = 0; t < triangles; ++t) {
+          const uint32_t* idx = &mesh.indices[t * 3];
+          bool drawn = idx[0] < count && idx[1] < count && idx[2] < count;
+          for (int k = 0; drawn && k < 3; ++k) drawn = isFinite3(mesh.positions[idx[k]]);
+          if (drawn) {
+            out.indices.insert(out.indices.end(), idx, idx + 3);
+          } else {
+            out.indices.insert(out.indices.end(), {safe, safe, safe});
+          }
+        }
+      }
+      for (size_t t = 0; t < triangles; ++t)
+        out.triangle_materials.push_back(has_materials ? mesh.triangle_materials[t] : 0u);
+      vertex_base += count;
+      triangle_base += triangles;
+      if (vertex_base > 0xffffffffull)
+        return makeError("the scene has more than 2^32 vertices; the Vulkan backends take fewer");
+    }
+    out.objects.push_back(gpu);
+  }
+  out.triangle_count = triangle_base;
+  out.vertex_count = vertex_base;
+
+  for (const DirectionalLight& light : scene.lights)
+    out.lights.push_back(GpuLight{{light.direction.x, light.direction.y, light.direction.z, 0},
+                                  {light.color.x, light.color.y, light.color.z, 0}});
+
+  GpuFrameConstants& f = out.frame;
+  f = GpuFrameConstants{};
+  f.width = options.width;
+  f.height = options.height;
+  f.tile_columns = (options.width + kGpuTileSize - 1) / kGpuTileSize;
+  f.tile_rows = (options.height + kGpuTileSize - 1) / kGpuTileSize;
+  const render::GuardBand guard = render::makeGuardBand(options.width, options.height);
+  f.guard_x = guard.x_factor;
+  f.guard_y = guard.y_factor;
+  f.triangle_count = static_cast<uint32_t>(out.triangle_count);
+  f.vertex_count = static_cast<uint32_t>(out.vertex_count);
+  f.object_count = static_cast<uint32_t>(out.objects.size());
+  f.light_count = static_cast<uint32_t>(out.lights.size());
+  f.background = packSrgba8(scene.background);
+  f.flags = options.normals ? kFrameNormals : 0u;
+  f.ambient[0] = scene.ambient.x;
+  f.ambient[1] = scene.ambient.y;
+  f.ambient[2] = scene.ambient.z;
+  return {};
+}
+
+namespace {
+
+template <typename T>
+Expected<void> uploadArray(Context& context, Buffer& buffer, const T* data, size_t count,
+                           VkBufferUsageFlags usage, const char* what) {
+  const size_t bytes = count * sizeof(T);
+  if (Expected<void> r = context.ensureBuffer(buffer, bytes, usage, MemoryKind::kHost, what); !r)
+    return r;
+  if (bytes) std::memcpy(buffer.mapped, data, bytes);
+  return {};
+}
+
+}  // namespace
+
+Expected<void> uploadScene(Context& context, const PackedScene& packed, SceneBuffers& buffers) {
+  constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  // The frame constants, then the lights (the shaders' FrameBuffer block).
+  const size_t frame_bytes = sizeof(GpuFrameConstants) + packed.lights.size() * sizeof(GpuLight);
+  if (Expected<void> r = context.ensureBuffer(buffers.frame, frame_bytes, kStorage,
+                                              MemoryKind::kHost, "frame constants");
+      !r)
+    return r;
+  std::memcpy(buffers.frame.mapped, &packed.frame, sizeof(GpuFrameConstants));
+  if (!packed.lights.empty())
+    std::memcpy(static_cast<char*>(buffers.frame.mapped) + sizeof(GpuFrameConstants),
+                packed.lights.data(), packed.lights.size() * sizeof(GpuLight));
+
+  Expected<void> r = uploadArray(context, buffers.objects, packed.objects.data(),
+                                 packed.objects.size(), kStorage, "object");
+  if (r)
+    r = uploadArray(context, buffers.materials, packed.materials.data(), packed.materials.size(),
+                    kStorage, "material");
+  if (r)
+    r = uploadArray(context, buffers.vertices, packed.vertices.data(), packed.vertices.size(),
+                    kStorage | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertex");
+  if (r)
+    r = uploadArray(context, buffers.indices, packed.indices.data(), packed.indices.size(),
+                    kStorage | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "index");
+  if (r)
+    r = uploadArray(context, buffers.triangle_materials, packed.triangle_materials.data(),
+                    packed.triangle_materials.size(), kStorage, "triangle material");
+  if (r)
+    r = uploadArray(context, buffers.texels, packed.texels.data(), packed.texels.size(), kStorage,
+                    "texture");
+  if (!r) return r;
+  if (!buffers.color_tables_written) {
+    const std::vector<uint32_t> tables = makeColorTables();
+    if (Expected<void> t = uploadArray(context, buffers.color_tables, tables.data(), tables.size(),
+                                       kStorage, "colour table");
+        !t)
+      return t;
+    buffers.color_tables_written = true;
+  }
+  return {};
+}
+
+void destroySceneBuffers(Context& context, SceneBuffers& buffers) {
+  for (Buffer* b :
+       {&buffers.frame, &buffers.objects, &buffers.materials, &buffers.vertices, &buffers.indices,
+        &buffers.triangle_materials, &buffers.texels, &buffers.color_tables})
+    context.destroyBuffer(*b);
+  buffers.color_tables_written = false;
+}
+
+void appendSceneDescriptors(const SceneBuffers& buffers,
+                            std::vector<VkDescriptorBufferInfo>& infos) {
+  for (const Buffer* b :
+       {&buffers.frame, &buffers.objects, &buffers.materials, &buffers.vertices, &buffers.indices,
+        &buffers.triangle_materials, &buffers.texels, &buffers.color_tables})
+    infos.push_back(VkDescriptorBufferInfo{b->buffer, 0, VK_WHOLE_SIZE});
+}
+
+namespace {
+
+bool drawsLines(const Scene& scene, const RenderOptions& options) {
+  return options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
+                           std::any_of(scene.objects.begin(), scene.objects.end(),
+                                       [](const Object& o) { return o.show_axes; }));
+}
+
+}  // namespace
+
+void resizeFrame(const Scene& scene, const RenderOptions& options, Frame& frame) {
+  frame.resize(options.width, options.height, options.depth || drawsLines(scene, options),
+               options.ids, options.normals);
+}
+
+void copyResults(const uint32_t* color, const uint32_t* depth, const uint32_t* ids,
+                 const float* normals, int normal_stride, Frame& frame) {
+  const size_t n = frame.pixelCount();
+  std::memcpy(frame.color.data(), color, n * sizeof(uint32_t));
+  if (!frame.depth.empty()) std::memcpy(frame.depth.data(), depth, n * sizeof(float));
+  if (!frame.triangle_id.empty()) std::memcpy(frame.triangle_id.data(), ids, n * sizeof(uint32_t));
+  if (!frame.normal.empty() && normals)
+    for (size_t p = 0; p < n; ++p) {
+      const float* v = normals + p * static_cast<size_t>(normal_stride);
+      frame.normal[p] = float3{v[0], v[1], v[2]};
+    }
+}
+
+void clearFrame(Frame& frame) {
+  std::fill(frame.color.begin(), frame.color.end(), 0u);
+  std::fill(frame.depth.begin(), frame.depth.end(), std::numeric_limits<float>::infinity());
+  std::fill(frame.triangle_id.begin(), frame.triangle_id.end(), kNoTriangle);
+  std::fill(frame.normal.begin(), frame.normal.end(), float3{});
+}
+
+void drawSceneLines(const Scene& scene, const RenderOptions& options, const PackedScene& packed,
+                    Frame& frame) {
+  if (!drawsLines(scene, options)) return;
+  LineList lines;
+  lines.points.assign(scene.lines.points.begin(), scene.lines.points.end());
+  lines.colors.assign(scene.lines.colors.begin(), scene.lines.colors.end());
+  if (scene.show_world_axes)
+    render::appendAxes(lines, float4x4::identity(), scene.world_axes_length);
+  for (size_t i = 0; i < scene.objects.size(); ++i)
+    if (scene.objects[i].show_axes)
+      render::appendAxes(lines, packed.models[i], scene.objects[i].axes_length);
+  render::drawLines(lines, packed.view_projection, frame);
+}
+
+}  // namespace tessera::vulkan

@@ -1,0 +1,49 @@
+#version 460
+// Pass 4, binning, run twice with the scan between: mode 0 counts the entries of every tile,
+// mode 1 fills them at the offsets the scan computed. One invocation per visible record; a
+// record enters each 16x16 tile of its bounding box unless one of its edges is negative at every
+// pixel centre of the tile (an exact test: no covered pixel is ever lost). Entries past the
+// buffer's capacity are not written; the count tells the host, which grows the buffer and
+// renders the frame again.
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#include "common.glsl"
+#include "records.glsl"
+
+layout(local_size_x = 64) in;
+
+// Largest value of edge k over the pixel centres of [x0, x1] x [y0, y1].
+int64_t edgeMaximum(RasterRecord r, int k, int x0, int x1, int y0, int y1) {
+  const int x = r.a[k] >= 0 ? x1 : x0;
+  const int y = r.b[k] >= 0 ? y1 : y0;
+  return int64_t(r.a[k]) * (int64_t(x) * kSubpixelOne + kSubpixelHalf) +
+         int64_t(r.b[k]) * (int64_t(y) * kSubpixelOne + kSubpixelHalf) + r.c[k];
+}
+
+void main() {
+  const uint i = flatWorkgroupIndex() * 64u + gl_LocalInvocationIndex;
+  if (i >= counters.visible) return;
+  const uint slot = visible_list[i];
+  const RasterRecord r = raster_records[slot];
+  const int tx0 = r.min_x >> kTileSizeLog2, tx1 = r.max_x >> kTileSizeLog2;
+  const int ty0 = r.min_y >> kTileSizeLog2, ty1 = r.max_y >> kTileSizeLog2;
+  bool binned = false;
+  for (int ty = ty0; ty <= ty1; ++ty) {
+    const int y0 = max(r.min_y, ty * kTileSize), y1 = min(r.max_y, ty * kTileSize + kTileSize - 1);
+    for (int tx = tx0; tx <= tx1; ++tx) {
+      const int x0 = max(r.min_x, tx * kTileSize);
+      const int x1 = min(r.max_x, tx * kTileSize + kTileSize - 1);
+      if (edgeMaximum(r, 0, x0, x1, y0, y1) < 0l || edgeMaximum(r, 1, x0, x1, y0, y1) < 0l ||
+          edgeMaximum(r, 2, x0, x1, y0, y1) < 0l)
+        continue;
+      binned = true;
+      const uint tile = uint(ty * frame.tile_columns + tx);
+      if (pass.mode == 0u) {
+        atomicAdd(tiles[tile].count, 1u);
+      } else {
+        const uint entry = tiles[tile].offset + atomicAdd(tiles[tile].cursor, 1u);
+        if (entry < frame.bin_capacity) bin_entries[entry] = slot;
+      }
+    }
+  }
+  if (pass.mode == 0u && binned) atomicAdd(counters.binned_records, 1u);
+}

@@ -1,0 +1,105 @@
+// Declarations shared by every shader: the scene inputs (bindings 0..7), laid out as
+// src/vulkan/gpu_types.h lays them out (std430). No 64-bit types here: the raster backend's
+// shaders include this file too and must run without shaderInt64.
+
+const uint kFrameNormals = 1u;
+const uint kObjectHasUv = 1u;
+const uint kObjectHasColor = 2u;
+const uint kObjectHasNormals = 4u;
+const uint kObjectHasTriangleMaterials = 8u;
+const uint kTexturePresent = 1u;
+const uint kTextureSrgb = 2u;
+const uint kTextureNearest = 4u;
+const uint kTextureClamp = 8u;
+const uint kTextureTrilinear = 16u;
+const uint kShadeHasUv = 256u;
+
+// tessera::Shading and tessera::CullMode.
+const uint kShadingFlat = 0u;
+const uint kShadingGouraud = 1u;
+const uint kShadingPhong = 2u;
+const uint kShadingUnlit = 3u;
+const uint kCullBack = 0u;
+const uint kCullFront = 1u;
+const uint kCullNone = 2u;
+
+struct FrameConstants {
+  int width, height, tile_columns, tile_rows;
+  float guard_x, guard_y;
+  uint triangle_count, vertex_count;
+  uint object_count, light_count, extra_capacity, bin_capacity;
+  uint background, flags, segment_capacity, pad0;
+  vec4 ambient;
+};
+
+struct Light {
+  vec4 direction;  // travelling from the light into the scene
+  vec4 color;
+};
+
+struct GpuObject {
+  mat4 model_view_projection;
+  mat4 model_view_projection_zo;
+  vec4 normal_matrix[3];
+  uint vertex_base, vertex_count, triangle_base, triangle_count;
+  uint material_base, material_count, flags, pad0;
+  float winding_sign;
+  uint cull, shading, pad1;
+};
+
+struct GpuMaterial {
+  vec4 base_color;
+  uint texel_offset;  // the texture's header: level count, then offset, width, height per level
+  int texture_width, texture_height;
+  uint texture_flags;
+};
+
+struct GpuVertex {
+  float position[3];
+  float normal[3];
+  float uv[2];
+  float color[4];
+};
+
+layout(std430, set = 0, binding = 0) readonly buffer FrameBuffer {
+  FrameConstants frame;
+  Light lights[];
+};
+layout(std430, set = 0, binding = 1) readonly buffer ObjectBuffer { GpuObject objects[]; };
+layout(std430, set = 0, binding = 2) readonly buffer MaterialBuffer { GpuMaterial materials[]; };
+layout(std430, set = 0, binding = 3) readonly buffer VertexBuffer { GpuVertex vertices[]; };
+layout(std430, set = 0, binding = 4) readonly buffer IndexBuffer { uint indices[]; };
+layout(std430, set = 0, binding = 5) readonly buffer TriangleMaterialBuffer {
+  uint triangle_materials[];
+};
+layout(std430, set = 0, binding = 6) readonly buffer TexelBuffer { uint texels[]; };
+layout(std430, set = 0, binding = 7) readonly buffer ColorTableBuffer {
+  // Float bits: [0, 256) the decode table; then the encode table's 385 bucket offsets, its 385
+  // slopes, and the factor of its linear segment (tessera::SrgbEncodeTable).
+  uint color_tables[];
+};
+
+vec3 vertexPosition(uint v) {
+  return vec3(vertices[v].position[0], vertices[v].position[1], vertices[v].position[2]);
+}
+vec3 vertexNormal(uint v) {
+  return vec3(vertices[v].normal[0], vertices[v].normal[1], vertices[v].normal[2]);
+}
+vec2 vertexUv(uint v) { return vec2(vertices[v].uv[0], vertices[v].uv[1]); }
+vec4 vertexColor(uint v) {
+  return vec4(vertices[v].color[0], vertices[v].color[1], vertices[v].color[2],
+              vertices[v].color[3]);
+}
+
+// The CPU's normalize(): a * (1 / length), zero for a zero vector.
+vec3 normalizeAsCpu(vec3 a) {
+  precise float len = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+  precise vec3 result = len > 0.0 ? a * (1.0 / len) : vec3(0.0);
+  return result;
+}
+
+// M * v for a 3x3 matrix given as columns, summed in the CPU's order.
+vec3 multiply3x3(vec4 columns[3], vec3 v) {
+  precise vec3 result = columns[0].xyz * v.x + columns[1].xyz * v.y + columns[2].xyz * v.z;
+  return result;
+}

@@ -1,0 +1,67 @@
+#version 460
+// vulkan-raster, fragment stage: the CPU's materials and lights (shading.glsl) on the
+// hardware-interpolated attributes; writes the packed sRGB colour, the triangle id
+// (gl_PrimitiveID + the object's first triangle + 1) and the world normal.
+#include "common.glsl"
+#include "shading.glsl"
+
+layout(push_constant) uniform Draw { uint object; } draw;
+
+layout(location = 0) in vec3 in_normal;
+layout(location = 1) in vec2 in_uv;
+layout(location = 2) in vec3 in_color_front;
+layout(location = 3) in vec3 in_color_back;
+
+layout(location = 0) out uint out_color;
+layout(location = 1) out uint out_id;
+layout(location = 2) out vec4 out_normal;
+
+void main() {
+  // Derivatives first, in uniform control flow.
+  const vec2 uv_dx = dFdx(in_uv), uv_dy = dFdy(in_uv);
+  const GpuObject object = objects[draw.object];
+  const uint t = object.triangle_base + uint(gl_PrimitiveID);
+  const float flip = gl_FrontFacing ? 1.0 : -1.0;
+
+  // The face normal from the object-space positions, as the CPU's setup computes it.
+  const uint i0 = indices[3u * t], i1 = indices[3u * t + 1u], i2 = indices[3u * t + 2u];
+  const vec3 p0 = vertexPosition(object.vertex_base + i0);
+  const vec3 p1 = vertexPosition(object.vertex_base + i1);
+  const vec3 p2 = vertexPosition(object.vertex_base + i2);
+  precise vec3 e1 = p1 - p0;
+  precise vec3 e2 = p2 - p0;
+  precise vec3 edge_cross = vec3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
+                                 e1.x * e2.y - e1.y * e2.x);
+  const vec3 face_normal =
+      normalizeAsCpu(multiply3x3(object.normal_matrix, edge_cross) * object.winding_sign) * flip;
+
+  // Without vertex normals the CPU lights every pixel with the face normal.
+  uint shading = object.shading;
+  if (shading != kShadingUnlit && (object.flags & kObjectHasNormals) == 0u) shading = kShadingFlat;
+
+  const uint m = (object.flags & kObjectHasTriangleMaterials) != 0u ? triangle_materials[t] : 0u;
+  const GpuMaterial material = objectMaterial(object, m);
+  vec3 color = material.base_color.xyz * (gl_FrontFacing ? in_color_front : in_color_back);
+  if ((material.texture_flags & kTexturePresent) != 0u && (object.flags & kObjectHasUv) != 0u) {
+    if ((material.texture_flags & kTextureTrilinear) != 0u) {
+      // The level of detail from the UV footprint of the pixel, as the CPU's sampleAlbedo.
+      const vec2 size = vec2(float(material.texture_width), float(material.texture_height));
+      const vec2 dx = uv_dx * size, dy = uv_dy * size;
+      const float rho2 = max(dot(dx, dx), dot(dy, dy));
+      color *= sampleTextureTrilinear(material, in_uv, rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0).xyz;
+    } else {
+      color *= sampleTexture(material, in_uv).xyz;
+    }
+  }
+
+  vec3 normal = face_normal;
+  if (shading != kShadingFlat) {
+    normal = normalizeAsCpu(in_normal) * flip;
+    if (dot(normal, normal) == 0.0) normal = face_normal;
+  }
+  if (shading == kShadingFlat || shading == kShadingPhong) color *= irradiance(normal);
+
+  out_color = packColor(color);
+  out_id = t + 1u;
+  out_normal = vec4(normal, 0.0);
+}

@@ -1,0 +1,150 @@
+// Materials, lights, texture sampling and the sRGB encode, with the arithmetic of the CPU's
+// src/render/shade.cpp, src/render/setup.cpp (irradiance), src/scene/texture.cpp and
+// src/scene/color.cpp, in the same order of operations (precise: no fused multiply-adds), so the
+// two backends' colours differ only where a GPU's division or square root rounds differently.
+// Needs common.glsl.
+
+// Lambert irradiance: ambient plus every directional light, for unit normal n.
+vec3 irradiance(vec3 n) {
+  precise vec3 e = frame.ambient.xyz;
+  for (uint i = 0u; i < frame.light_count; ++i) {
+    const vec3 d = lights[i].direction.xyz;
+    precise float cos_theta = -(n.x * d.x + n.y * d.y + n.z * d.z);
+    if (cos_theta > 0.0) e = e + lights[i].color.xyz * cos_theta;
+  }
+  return e;
+}
+
+// The material buffer index of triangle-material index m of an object (the CPU falls back to
+// material 0).
+uint objectMaterialIndex(GpuObject object, uint m) {
+  return object.material_base + (m < object.material_count ? m : 0u);
+}
+GpuMaterial objectMaterial(GpuObject object, uint m) {
+  return materials[objectMaterialIndex(object, m)];
+}
+
+// ---- textures (src/scene/texture.cpp) ----
+
+// One mip level in the texel buffer (see the texture header in gpu_types.h).
+struct TextureLevel {
+  uint offset;
+  int width, height;
+};
+
+int textureLevelCount(GpuMaterial m) { return int(texels[m.texel_offset]); }
+TextureLevel textureLevel(GpuMaterial m, int level) {
+  const uint h = m.texel_offset + 1u + 3u * uint(level);
+  return TextureLevel(texels[h], int(texels[h + 1u]), int(texels[h + 2u]));
+}
+
+int wrapCoord(int i, int size, bool clamp_to_edge) {
+  if (clamp_to_edge) return i < 0 ? 0 : (i >= size ? size - 1 : i);
+  if (i >= 0) return i % size;
+  const int m = (-i) % size;  // GLSL leaves % of negative operands undefined
+  return m == 0 ? 0 : size - m;
+}
+
+float decodeSrgb8(uint code) { return uintBitsToFloat(color_tables[code]); }
+
+vec4 texelLinear(TextureLevel level, bool srgb, int x, int y) {
+  const uint c = texels[level.offset + uint(y) * uint(level.width) + uint(x)];
+  const float a = float(c >> 24) / 255.0;
+  if (srgb)
+    return vec4(decodeSrgb8(c & 255u), decodeSrgb8((c >> 8) & 255u), decodeSrgb8((c >> 16) & 255u),
+                a);
+  return vec4(float(c & 255u) / 255.0, float((c >> 8) & 255u) / 255.0,
+              float((c >> 16) & 255u) / 255.0, a);
+}
+
+// std::fmod(v, 65536) for finite v (exact: 65536 is a power of two), 0 otherwise.
+float sanitizeCoordinate(float v) {
+  if (isinf(v) || isnan(v)) return 0.0;
+  if (abs(v) < 65536.0) return v;
+  precise float wrapped = v - 65536.0 * trunc(v / 65536.0);
+  return wrapped;
+}
+
+vec4 lerp4(vec4 a, vec4 b, float t) {
+  precise vec4 r = a + (b - a) * t;
+  return r;
+}
+
+// sampleLevel: nearest or bilinear in one level.
+vec4 sampleLevel(TextureLevel level, bool srgb, vec2 uv, bool nearest, bool clamp_to_edge) {
+  // Texel space: x right, y down from the top row (v = 1 is the top edge).
+  precise float fx = sanitizeCoordinate(uv.x) * float(level.width);
+  precise float fy = (1.0 - sanitizeCoordinate(uv.y)) * float(level.height);
+  if (nearest) {
+    const int x = wrapCoord(int(floor(fx)), level.width, clamp_to_edge);
+    const int y = wrapCoord(int(floor(fy)), level.height, clamp_to_edge);
+    return texelLinear(level, srgb, x, y);
+  }
+  // Bilinear between the four nearest texel centres, in linear space.
+  precise float sx = fx - 0.5, sy = fy - 0.5;
+  const float x0f = floor(sx), y0f = floor(sy);
+  precise float tx = sx - x0f, ty = sy - y0f;
+  const int x0 = int(x0f), y0 = int(y0f);
+  const int xa = wrapCoord(x0, level.width, clamp_to_edge);
+  const int xb = wrapCoord(x0 + 1, level.width, clamp_to_edge);
+  const int ya = wrapCoord(y0, level.height, clamp_to_edge);
+  const int yb = wrapCoord(y0 + 1, level.height, clamp_to_edge);
+  const vec4 top = lerp4(texelLinear(level, srgb, xa, ya), texelLinear(level, srgb, xb, ya), tx);
+  const vec4 bottom =
+      lerp4(texelLinear(level, srgb, xa, yb), texelLinear(level, srgb, xb, yb), tx);
+  return lerp4(top, bottom, ty);
+}
+
+// Texture::sample: level 0, nearest or bilinear.
+vec4 sampleTexture(GpuMaterial m, vec2 uv) {
+  if (m.texture_width <= 0 || m.texture_height <= 0) return vec4(1.0);
+  return sampleLevel(textureLevel(m, 0), (m.texture_flags & kTextureSrgb) != 0u, uv,
+                     (m.texture_flags & kTextureNearest) != 0u,
+                     (m.texture_flags & kTextureClamp) != 0u);
+}
+
+// Texture::sampleLod for a trilinear sampler: bilinear in the two levels around lod, blended.
+vec4 sampleTextureTrilinear(GpuMaterial m, vec2 uv, float lod) {
+  if (m.texture_width <= 0 || m.texture_height <= 0) return vec4(1.0);
+  const bool srgb = (m.texture_flags & kTextureSrgb) != 0u;
+  const bool clamp_to_edge = (m.texture_flags & kTextureClamp) != 0u;
+  const int last = textureLevelCount(m) - 1;
+  if (!(lod > 0.0)) lod = 0.0;  // also catches NaN
+  if (lod > float(last)) lod = float(last);
+  const int lower = int(lod);
+  precise float blend = lod - float(lower);
+  const vec4 a = sampleLevel(textureLevel(m, lower), srgb, uv, false, clamp_to_edge);
+  if (blend == 0.0 || lower >= last) return a;
+  const vec4 b = sampleLevel(textureLevel(m, lower + 1), srgb, uv, false, clamp_to_edge);
+  return lerp4(a, b, blend);
+}
+
+// ---- output (src/scene/color.cpp) ----
+
+// tessera::encodeSrgb8: linear [0, 1] (clamped; NaN to 0) to the 8-bit sRGB code through the
+// CPU's bucket table: 1/32-octave buckets above 2^-12 (a straight line in the low 18 mantissa
+// bits within each), the linear segment below.
+const uint kEncodeFirstBits = 0x39800000u;  // the float 2^-12
+const uint kEncodeShift = 18u;
+const uint kEncodeBuckets = 385u;
+uint encodeSrgb8(float linear) {
+  const float c = linear > 0.0 ? (linear < 1.0 ? linear : 1.0) : 0.0;
+  precise float code;
+  if (c < uintBitsToFloat(kEncodeFirstBits)) {
+    code = c * uintBitsToFloat(color_tables[256u + 2u * kEncodeBuckets]);
+  } else {
+    const uint bits = floatBitsToUint(c);
+    const uint bucket = (bits - kEncodeFirstBits) >> kEncodeShift;
+    const float t = float(bits & ((1u << kEncodeShift) - 1u));
+    code = uintBitsToFloat(color_tables[256u + bucket]) +
+           uintBitsToFloat(color_tables[256u + kEncodeBuckets + bucket]) * t;
+  }
+  precise float rounded = code + 0.5;
+  return uint(int(rounded));
+}
+
+// packSrgba8(float4{rgb, 1}): R in the low byte, alpha 255.
+uint packColor(vec3 linear) {
+  return encodeSrgb8(linear.r) | (encodeSrgb8(linear.g) << 8) | (encodeSrgb8(linear.b) << 16) |
+         (255u << 24);
+}

@@ -1,0 +1,613 @@
+// The real `tessera view` window under Xvfb, driven by real X input (xdotool sends XTEST
+// pointer and key events); every picture checked is a screenshot the viewer saved on F12 from the
+// renderer's own pixels. Also the failures that need no display: no display, a bad SDL driver,
+// a missing model.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <tessera/io/image_writer.h>
+
+#include "decode.h"
+#include "x11_client.h"
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using tessera::test::DecodedPng;
+
+namespace {
+
+// Generous: a loaded 2-core CI machine may be slow to start an X server or a process.
+constexpr auto kTimeout = std::chrono::seconds(60);
+
+std::optional<fs::path> findProgram(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "/usr/bin:/bin");
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    const fs::path candidate = fs::path(dir) / name;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  return std::nullopt;
+}
+
+// A child process with its own environment, stdout on a pipe (or a file), stderr in a file.
+class Process {
+ public:
+  Process() = default;
+  Process(const Process&) = delete;
+  Process& operator=(const Process&) = delete;
+  ~Process() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+    if (out_fd_ >= 0) ::close(out_fd_);
+  }
+
+  // Runs `argv` in `dir` with `env` changes (an empty value unsets). Extra: an fd of the child
+  // to connect to a pipe whose read end is returned by extraFd() (for Xvfb's -displayfd).
+  bool start(const std::vector<std::string>& argv, const fs::path& dir,
+             const std::map<std::string, std::string>& env, const fs::path& stderr_path,
+             int extra_child_fd = -1) {
+    int out[2], extra[2] = {-1, -1};
+    if (::pipe(out) != 0) return false;
+    if (extra_child_fd >= 0 && ::pipe(extra) != 0) return false;
+    pid_ = ::fork();
+    if (pid_ < 0) return false;
+    if (pid_ == 0) {
+      ::dup2(out[1], STDOUT_FILENO);
+      int err = ::open(stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (err >= 0) ::dup2(err, STDERR_FILENO);
+      int in = ::open("/dev/null", O_RDONLY);
+      if (in >= 0) ::dup2(in, STDIN_FILENO);
+      if (extra_child_fd >= 0) ::dup2(extra[1], extra_child_fd);
+      if (::chdir(dir.c_str()) != 0) ::_exit(126);
+      for (const auto& [name, value] : env) {
+        if (value.empty())
+          ::unsetenv(name.c_str());
+        else
+          ::setenv(name.c_str(), value.c_str(), 1);
+      }
+      std::vector<char*> args;
+      for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+      args.push_back(nullptr);
+      ::execvp(args[0], args.data());
+      ::_exit(127);
+    }
+    ::close(out[1]);
+    out_fd_ = out[0];
+    if (extra_child_fd >= 0) {
+      ::close(extra[1]);
+      extra_fd_ = extra[0];
+    }
+    return true;
+  }
+
+  // Reads lines from `fd` until one starts with `prefix`; returns it, or nullopt once `timeout`
+  // has passed or at end of file.
+  static std::optional<std::string> readLine(int fd, std::string& buffer,
+                                             std::vector<std::string>& seen,
+                                             const std::string& prefix,
+                                             Clock::duration timeout = kTimeout) {
+    const Clock::time_point deadline = Clock::now() + timeout;
+    while (true) {
+      size_t newline;
+      while ((newline = buffer.find('\n')) != std::string::npos) {
+        std::string line = buffer.substr(0, newline);
+        buffer.erase(0, newline + 1);
+        seen.push_back(line);
+        if (line.rfind(prefix, 0) == 0) return line;
+      }
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+      pollfd p{fd, POLLIN, 0};
+      if (::poll(&p, 1, static_cast<int>(std::max<long long>(left, 0))) <= 0) {
+        if (left <= 0) return std::nullopt;
+        continue;
+      }
+      char chunk[4096];
+      ssize_t n = ::read(fd, chunk, sizeof chunk);
+      if (n <= 0) return std::nullopt;
+      buffer.append(chunk, static_cast<size_t>(n));
+    }
+  }
+
+  std::optional<std::string> waitForLine(const std::string& prefix) {
+    return readLine(out_fd_, buffer_, lines_, prefix);
+  }
+  // Only what the process has printed so far.
+  std::optional<std::string> waitForLineNow(const std::string& prefix) {
+    return readLine(out_fd_, buffer_, lines_, prefix, Clock::duration::zero());
+  }
+  int extraFd() const { return extra_fd_; }
+
+  // The exit status, or -1 if it did not exit before the deadline (or died of a signal).
+  int waitExit() {
+    const Clock::time_point deadline = Clock::now() + kTimeout;
+    while (Clock::now() < deadline) {
+      int status = 0;
+      pid_t r = ::waitpid(pid_, &status, WNOHANG);
+      if (r == pid_) {
+        pid_ = -1;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+      }
+      // Drain stdout so the child never blocks on a full pipe.
+      pollfd p{out_fd_, POLLIN, 0};
+      if (::poll(&p, 1, 50) > 0) {
+        char chunk[4096];
+        ssize_t n = ::read(out_fd_, chunk, sizeof chunk);
+        if (n > 0) buffer_.append(chunk, static_cast<size_t>(n));
+      }
+    }
+    return -1;
+  }
+
+  std::string output() const {
+    std::string all;
+    for (const std::string& l : lines_) all += l + "\n";
+    return all + buffer_;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  int out_fd_ = -1;
+  int extra_fd_ = -1;
+  std::string buffer_;
+  std::vector<std::string> lines_;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Rgb {
+  int r = 0, g = 0, b = 0;
+};
+
+Rgb pixel(const DecodedPng& png, int x, int y) {
+  return {png.at(x, y, 0), png.at(x, y, 1), png.at(x, y, 2)};
+}
+
+bool near(Rgb a, Rgb b, int tolerance) {
+  return std::abs(a.r - b.r) <= tolerance && std::abs(a.g - b.g) <= tolerance &&
+         std::abs(a.b - b.b) <= tolerance;
+}
+
+// Pixels of the rectangle [x0, x1) x [y0, y1) that differ between two same-sized pictures.
+int countDifferent(const DecodedPng& a, const DecodedPng& b, int x0, int y0, int x1, int y1) {
+  int count = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x)
+      if (!near(pixel(a, x, y), pixel(b, x, y), 0)) ++count;
+  return count;
+}
+
+// The share of the picture that is not background, and the centre of that part.
+struct Coverage {
+  double share = 0;
+  double centre_x = 0, centre_y = 0;
+};
+
+Coverage coverage(const DecodedPng& png, Rgb background) {
+  Coverage c;
+  long long count = 0;
+  for (int y = 0; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x)
+      if (!near(pixel(png, x, y), background, 8)) {
+        ++count;
+        c.centre_x += x;
+        c.centre_y += y;
+      }
+  if (count == 0) return c;
+  c.share = static_cast<double>(count) / (static_cast<double>(png.width) * png.height);
+  c.centre_x /= static_cast<double>(count);
+  c.centre_y /= static_cast<double>(count);
+  return c;
+}
+
+class ViewerWindow : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("tessera_view_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    viewer_.reset();
+    xserver_.reset();
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+
+  // Starts Xvfb on a free display (it picks one and reports it through -displayfd).
+  // Returns false and sets `why` when the tools are missing.
+  bool startX(std::string& why) {
+    std::optional<fs::path> xvfb = findProgram("Xvfb");
+    std::optional<fs::path> xdotool = findProgram("xdotool");
+    if (!xvfb || !xdotool) {
+      why = std::string("skipped: ") + (!xvfb ? "Xvfb" : "xdotool") +
+            " is not installed (scripts/setup.sh installs xvfb and xdotool)";
+      return false;
+    }
+    xserver_ = std::make_unique<Process>();
+    constexpr int kDisplayFd = 9;
+    if (!xserver_->start({xvfb->string(), "-displayfd", std::to_string(kDisplayFd), "-screen", "0",
+                          "1024x768x24", "-nolisten", "tcp"},
+                         dir_, {}, dir_ / "xvfb.log", kDisplayFd)) {
+      why = "cannot start Xvfb";
+      return false;
+    }
+    std::string buffer;
+    std::vector<std::string> seen;
+    std::optional<std::string> number = Process::readLine(xserver_->extraFd(), buffer, seen, "");
+    if (!number || number->empty()) {
+      why = "Xvfb reported no display: " + slurp(dir_ / "xvfb.log");
+      return false;
+    }
+    display_ = ":" + *number;
+    return true;
+  }
+
+  std::map<std::string, std::string> viewerEnv() const {
+    return {{"DISPLAY", display_}, {"SDL_VIDEODRIVER", "x11"}, {"WAYLAND_DISPLAY", ""}};
+  }
+
+  void startViewer(const std::vector<std::string>& args) {
+    std::vector<std::string> argv{TESSERA_EXE, "view"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    viewer_ = std::make_unique<Process>();
+    ASSERT_TRUE(viewer_->start(argv, dir_, viewerEnv(), dir_ / "viewer.err"));
+  }
+
+  // Runs xdotool with `args`; returns its standard output.
+  std::string xdotool(const std::vector<std::string>& args) {
+    std::vector<std::string> argv{"xdotool"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    Process tool;
+    EXPECT_TRUE(tool.start(argv, dir_, {{"DISPLAY", display_}}, dir_ / "xdotool.err"));
+    std::string out;
+    while (std::optional<std::string> line = tool.waitForLine("")) out += *line + "\n";
+    EXPECT_EQ(tool.waitExit(), 0) << "xdotool " << argv[1] << ": " << slurp(dir_ / "xdotool.err");
+    return out;
+  }
+
+  // The viewer's window id, once it is mapped.
+  std::string findWindow() {
+    const Clock::time_point deadline = Clock::now() + kTimeout;
+    while (Clock::now() < deadline) {
+      std::vector<std::string> argv{"xdotool", "search", "--onlyvisible", "--name",
+                                    "^tessera view"};
+      Process tool;
+      if (!tool.start(argv, dir_, {{"DISPLAY", display_}}, dir_ / "xdotool.err")) break;
+      std::optional<std::string> line = tool.waitForLine("");
+      tool.waitExit();
+      if (line && !line->empty()) return *line;
+      ::usleep(100 * 1000);
+    }
+    return "";
+  }
+
+  // Presses F12 and decodes the screenshot the viewer reports.
+  DecodedPng screenshot() {
+    xdotool({"key", "F12"});
+    DecodedPng png;
+    std::optional<std::string> line = viewer_->waitForLine("saved ");
+    EXPECT_TRUE(line.has_value()) << "no screenshot reported; output:\n"
+                                  << viewer_->output() << slurp(dir_ / "viewer.err");
+    if (!line) return png;
+    const std::string path = line->substr(6);
+    EXPECT_EQ(fs::path(path).parent_path(), dir_) << "not in the working folder: " << path;
+    EXPECT_TRUE(tessera::test::decodePng(path, png)) << path;
+    return png;
+  }
+
+  fs::path dir_;
+  std::string display_;
+  std::unique_ptr<Process> xserver_;
+  std::unique_ptr<Process> viewer_;
+};
+
+TEST_F(ViewerWindow, ShowsTheCubeReactsToInputResizesAndQuitsOnEscape) {
+  std::string why;
+  if (!startX(why)) GTEST_SKIP() << why;
+  startViewer({"-w", "320", "-h", "240", "-workers", "2"});
+  ASSERT_TRUE(viewer_->waitForLine("tessera view: showing cube"))
+      << viewer_->output() << slurp(dir_ / "viewer.err");
+  const std::string window = findWindow();
+  ASSERT_FALSE(window.empty()) << "no visible 'tessera view' window";
+  // Keys go to the window under the pointer (there is no window manager to give focus).
+  xdotool({"mousemove", "--window", window, "160", "120"});
+
+  // It opens and shows the model: the cube covers a sensible share of the picture.
+  const DecodedPng first = screenshot();
+  ASSERT_EQ(first.width, 320);
+  ASSERT_EQ(first.height, 240);
+  const Rgb background = pixel(first, 2, 2);
+  EXPECT_TRUE(near(background, {51, 51, 51}, 2)) << background.r << "," << background.g;
+  const Coverage framed = coverage(first, background);
+  EXPECT_GT(framed.share, 0.15);
+  EXPECT_LT(framed.share, 0.85);
+  // The cube is orange: more red than blue at the centre.
+  const Rgb centre = pixel(first, 160, 120);
+  EXPECT_GT(centre.r, centre.b + 60);
+
+  // A left drag orbits: the picture changes.
+  xdotool({"mousemove", "--window", window, "120", "120", "mousedown", "1", "mousemove", "--window",
+           window, "150", "130", "mousemove", "--window", window, "200", "150", "mouseup", "1"});
+  const DecodedPng dragged = screenshot();
+  ASSERT_EQ(dragged.width, 320);
+  EXPECT_GT(countDifferent(first, dragged, 0, 0, 320, 240), 320 * 240 / 20);
+
+  // Enter puts the camera back where it started: the very same picture.
+  xdotool({"key", "Return"});
+  const DecodedPng reset = screenshot();
+  ASSERT_EQ(reset.width, 320);
+  EXPECT_EQ(countDifferent(first, reset, 0, 0, 320, 240), 0);
+
+  // F1 shows the stats overlay in the top-left corner and leaves the rest alone...
+  xdotool({"key", "F1"});
+  const DecodedPng stats = screenshot();
+  ASSERT_EQ(stats.width, 320);
+  EXPECT_GT(countDifferent(reset, stats, 0, 0, 120, 40), 120 * 40 / 4);
+  EXPECT_EQ(countDifferent(reset, stats, 0, 120, 320, 240), 0);
+  // ...and F1 again hides it.
+  xdotool({"key", "F1"});
+  const DecodedPng hidden = screenshot();
+  ASSERT_EQ(hidden.width, 320);
+  EXPECT_EQ(countDifferent(reset, hidden, 0, 0, 320, 240), 0);
+
+  // Two wheel steps towards the screen zoom in: the cube covers more.
+  xdotool({"click", "4"});
+  xdotool({"click", "4"});
+  const DecodedPng zoomed = screenshot();
+  ASSERT_EQ(zoomed.width, 320);
+  const Coverage closer = coverage(zoomed, background);
+  EXPECT_GT(closer.share, framed.share * 1.15);
+
+  // A middle drag pans: the cube follows the pointer, 40 points right and 20 down.
+  xdotool({"mousemove", "--window", window, "100", "100", "mousedown", "2", "mousemove", "--window",
+           window, "120", "110", "mousemove", "--window", window, "140", "120", "mouseup", "2"});
+  const DecodedPng panned = screenshot();
+  ASSERT_EQ(panned.width, 320);
+  const Coverage moved = coverage(panned, background);
+  EXPECT_NEAR(moved.centre_x - closer.centre_x, 40.0, 8.0);
+  EXPECT_NEAR(moved.centre_y - closer.centre_y, 20.0, 8.0);
+
+  // The framebuffer follows the window's size.
+  xdotool({"windowsize", window, "400", "300"});
+  const DecodedPng resized = screenshot();
+  EXPECT_EQ(resized.width, 400);
+  EXPECT_EQ(resized.height, 300);
+
+  // Screenshots take the next free number in the working folder.
+  EXPECT_TRUE(fs::exists(dir_ / "screenshot-0001.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "screenshot-0008.png"));
+
+  xdotool({"key", "Escape"});
+  EXPECT_EQ(viewer_->waitExit(), 0) << viewer_->output() << slurp(dir_ / "viewer.err");
+}
+
+TEST_F(ViewerWindow, LoadsAModelInTheBackgroundAndKeysChangeTheView) {
+  std::string why;
+  if (!startX(why)) GTEST_SKIP() << why;
+  // A tetrahedron (4 triangles) away from the origin, so that the world axes show beside it.
+  std::ofstream(dir_ / "tetra.obj")
+      << "v 0.5 0.5 0.5\nv 1.5 0.5 0.5\nv 0.5 1.5 0.5\nv 0.5 0.5 1.5\n"
+         "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  startViewer({"tetra.obj", "-w", "200", "-h", "200", "-workers", "1"});
+  ASSERT_TRUE(viewer_->waitForLine("tessera view: showing tetra.obj (4 triangles"))
+      << viewer_->output() << slurp(dir_ / "viewer.err");
+  const std::string window = findWindow();
+  ASSERT_FALSE(window.empty());
+  xdotool({"mousemove", "--window", window, "100", "100"});
+  const DecodedPng start = screenshot();
+  xdotool({"key", "7"});  // the top view
+  const DecodedPng top = screenshot();
+  ASSERT_EQ(start.width, 200);
+  ASSERT_EQ(top.width, 200);
+  EXPECT_GT(countDifferent(start, top, 0, 0, 200, 200), 200 * 200 / 50);
+  xdotool({"key", "F2"});  // the world axes add coloured lines
+  const DecodedPng axes = screenshot();
+  ASSERT_EQ(axes.width, 200);
+  EXPECT_GT(countDifferent(top, axes, 0, 0, 200, 200), 20);
+  xdotool({"key", "Escape"});
+  EXPECT_EQ(viewer_->waitExit(), 0);
+}
+
+TEST_F(ViewerWindow, TheWindowStaysLiveWhileAModelLoads) {
+  std::string why;
+  if (!startX(why)) GTEST_SKIP() << why;
+  std::ofstream(dir_ / "tetra.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                       "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  // The load waits on this file (a test hook of `tessera view`), as a large model would.
+  const fs::path hold = dir_ / "hold";
+  std::ofstream(hold) << "";
+  std::vector<std::string> argv{TESSERA_EXE, "view", "tetra.obj", "-w", "320", "-h", "240"};
+  std::map<std::string, std::string> env = viewerEnv();
+  env["TESSERA_VIEW_TEST_HOLD_LOADS"] = hold.string();
+  viewer_ = std::make_unique<Process>();
+  ASSERT_TRUE(viewer_->start(argv, dir_, env, dir_ / "viewer.err"));
+  const std::string window = findWindow();
+  ASSERT_FALSE(window.empty());
+  xdotool({"mousemove", "--window", window, "160", "120"});
+  // The window answers keys during the load: F1 brings up the stats, F12 saves what is shown.
+  xdotool({"key", "F1"});
+  const DecodedPng loading = screenshot();
+  ASSERT_EQ(loading.width, 320);
+  // "loading tetra.obj... (0.1 s)" in white at the bottom left; the stats in the top left.
+  auto whiteIn = [&](const DecodedPng& png, int x0, int y0, int x1, int y1) {
+    int count = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x)
+        if (near(pixel(png, x, y), {255, 255, 255}, 40)) ++count;
+    return count;
+  };
+  EXPECT_GT(whiteIn(loading, 0, 200, 320, 240), 30);
+  EXPECT_GT(whiteIn(loading, 0, 0, 200, 40), 30);
+  EXPECT_FALSE(viewer_->waitForLineNow("tessera view: showing"));
+  fs::remove(hold);
+  ASSERT_TRUE(viewer_->waitForLine("tessera view: showing tetra.obj (4 triangles"))
+      << viewer_->output() << slurp(dir_ / "viewer.err");
+  // The close button (what a window manager sends for it) quits with status 0 too.
+  EXPECT_EQ(tessera::test::requestClose(display_, std::stoul(window)), "");
+  EXPECT_EQ(viewer_->waitExit(), 0);
+}
+
+TEST_F(ViewerWindow, AModelThatFailsToLoadShowsTheCubeAndTheError) {
+  std::string why;
+  if (!startX(why)) GTEST_SKIP() << why;
+  std::ofstream(dir_ / "broken.obj") << "v 0 0 0\nf 1 2 9\n";
+  startViewer({"broken.obj", "-w", "320", "-h", "240", "-workers", "1"});
+  ASSERT_TRUE(viewer_->waitForLine("tessera view: showing cube"))
+      << viewer_->output() << slurp(dir_ / "viewer.err");
+  EXPECT_NE(slurp(dir_ / "viewer.err").find("broken.obj"), std::string::npos);
+  const std::string window = findWindow();
+  ASSERT_FALSE(window.empty());
+  xdotool({"mousemove", "--window", window, "160", "120"});
+  const DecodedPng shown = screenshot();
+  ASSERT_EQ(shown.height, 240);
+  // The message sits at the bottom left in a reddish colour.
+  int reddish = 0;
+  for (int y = 160; y < 240; ++y)
+    for (int x = 0; x < 320; ++x) {
+      const Rgb p = pixel(shown, x, y);
+      if (p.r > 150 && p.r > p.g + 60 && p.r > p.b + 60) ++reddish;
+    }
+  EXPECT_GT(reddish, 30);
+  xdotool({"key", "Escape"});
+  EXPECT_EQ(viewer_->waitExit(), 0);
+}
+
+TEST_F(ViewerWindow, DroppingAFileLoadsItAndABadFileKeepsTheModelAndShowsTheError) {
+  std::string why;
+  if (!startX(why)) GTEST_SKIP() << why;
+  std::ofstream(dir_ / "tetra.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                       "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  std::ofstream(dir_ / "broken.obj") << "v 0 0 0\nf 1 2 9\n";
+  startViewer({"-w", "240", "-h", "180", "-workers", "1"});
+  ASSERT_TRUE(viewer_->waitForLine("tessera view: showing cube"));
+  const std::string window = findWindow();
+  ASSERT_FALSE(window.empty());
+  xdotool({"mousemove", "--window", window, "120", "90"});
+  const DecodedPng cube = screenshot();
+
+  // A real XDND drop, as from a file manager: the model loads and replaces the cube.
+  EXPECT_EQ(tessera::test::dropFileOnWindow(display_, std::stoul(window),
+                                            (dir_ / "tetra.obj").string(), 120, 90, 60),
+            "");
+  ASSERT_TRUE(viewer_->waitForLine("tessera view: showing tetra.obj (4 triangles"))
+      << viewer_->output() << slurp(dir_ / "viewer.err");
+  const DecodedPng tetra = screenshot();
+  ASSERT_EQ(tetra.width, 240);
+  ASSERT_EQ(cube.width, 240);
+  EXPECT_GT(countDifferent(cube, tetra, 0, 0, 240, 180), 240 * 180 / 20);
+
+  // A file that fails to load: the error is reported and the tetrahedron stays.
+  EXPECT_EQ(tessera::test::dropFileOnWindow(display_, std::stoul(window),
+                                            (dir_ / "broken.obj").string(), 120, 90, 60),
+            "");
+  const Clock::time_point deadline = Clock::now() + kTimeout;
+  while (slurp(dir_ / "viewer.err").find("broken.obj") == std::string::npos &&
+         Clock::now() < deadline)
+    ::usleep(20 * 1000);
+  ASSERT_NE(slurp(dir_ / "viewer.err").find("broken.obj"), std::string::npos);
+  const DecodedPng after = screenshot();
+  ASSERT_EQ(after.width, 240);
+  // The model is untouched above the message box, and the message is drawn below.
+  EXPECT_EQ(countDifferent(tetra, after, 0, 0, 240, 60), 0);
+  EXPECT_GT(countDifferent(tetra, after, 0, 120, 240, 180), 100);
+  xdotool({"key", "Escape"});
+  EXPECT_EQ(viewer_->waitExit(), 0);
+}
+
+TEST_F(ViewerWindow, FullscreenFillsTheScreenAndTextureIsTheAlbedo) {
+  std::string why;
+  if (!startX(why)) GTEST_SKIP() << why;
+  // A 2x2 pure blue texture: the orange cube turns blue.
+  const uint32_t blue[4] = {0xffff0000u, 0xffff0000u, 0xffff0000u, 0xffff0000u};
+  ASSERT_TRUE(tessera::io::writePngRgba8(dir_ / "blue.png", 2, 2, blue));
+  startViewer({"-fullscreen", "-texture", "blue.png", "-workers", "1"});
+  ASSERT_TRUE(viewer_->waitForLine("tessera view: showing cube"))
+      << viewer_->output() << slurp(dir_ / "viewer.err");
+  const std::string window = findWindow();
+  ASSERT_FALSE(window.empty());
+  xdotool({"mousemove", "--window", window, "512", "384"});
+  const DecodedPng shot = screenshot();
+  EXPECT_EQ(shot.width, 1024);  // the Xvfb screen
+  EXPECT_EQ(shot.height, 768);
+  if (shot.width == 1024) {
+    const Rgb centre = pixel(shot, 512, 384);
+    EXPECT_GT(centre.b, centre.r + 40) << centre.r << "," << centre.g << "," << centre.b;
+  }
+  xdotool({"key", "Escape"});
+  EXPECT_EQ(viewer_->waitExit(), 0);
+}
+
+// Runs `tessera view` without X and returns its exit status and stderr.
+std::pair<int, std::string> runWithoutWindow(const std::vector<std::string>& args,
+                                             const std::map<std::string, std::string>& env) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("tessera_view_nox_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::vector<std::string> argv{TESSERA_EXE, "view"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  Process p;
+  EXPECT_TRUE(p.start(argv, dir, env, dir / "err.txt"));
+  const int status = p.waitExit();
+  std::string err = slurp(dir / "err.txt");
+  fs::remove_all(dir);
+  return {status, err};
+}
+
+TEST(ViewerErrors, NoDisplayIsAClearErrorWithStatus1) {
+  auto [status, err] =
+      runWithoutWindow({}, {{"DISPLAY", ""}, {"WAYLAND_DISPLAY", ""}, {"SDL_VIDEODRIVER", ""}});
+  EXPECT_EQ(status, 1);
+  EXPECT_NE(err.find("tessera view: error: cannot open a window"), std::string::npos) << err;
+}
+
+TEST(ViewerErrors, AnUnknownVideoDriverIsAClearErrorWithStatus1) {
+  auto [status, err] = runWithoutWindow({}, {{"SDL_VIDEODRIVER", "no-such-driver"}});
+  EXPECT_EQ(status, 1);
+  EXPECT_NE(err.find("no-such-driver"), std::string::npos) << err;
+}
+
+TEST(ViewerErrors, AMissingModelIsAClearErrorWithStatus1) {
+  auto [status, err] = runWithoutWindow({"no-such-model.obj"}, {});
+  EXPECT_EQ(status, 1);
+  EXPECT_NE(err.find("no-such-model.obj: no such file"), std::string::npos) << err;
+}
+
+TEST(ViewerErrors, AnUnreadableTextureIsAClearErrorWithStatus1) {
+  auto [status, err] = runWithoutWindow({"-texture", "no-such-texture.png"}, {});
+  EXPECT_EQ(status, 1);
+  EXPECT_NE(err.find("no-such-texture.png"), std::string::npos) << err;
+}
+
+TEST(ViewerErrors, BadFlagsAreAUsageErrorWithStatus2) {
+  auto [status, err] = runWithoutWindow({"-fps", "0"}, {});
+  EXPECT_EQ(status, 2);
+  EXPECT_NE(err.find("usage"), std::string::npos) << err;
+}
+
+}  // namespace

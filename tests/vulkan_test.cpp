@@ -1,0 +1,882 @@
+// Tests of the Vulkan backends against the CPU renderer, on Mesa's lavapipe in CI (any Vulkan
+// device works). A test skips only when the machine has no Vulkan device at all, and says so.
+//
+// With TESSERA_VULKAN_VALIDATION=1 every backend runs under VK_LAYER_KHRONOS_validation and every
+// test fails on any validation error; Vulkan.ValidationLayersReportNoErrors turns it on by itself.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include <tessera/render/cpu_renderer.h>
+#include <tessera/scene/color.h>
+#include <tessera/scene/primitives.h>
+#include <tessera/vulkan/vulkan_backend.h>
+
+using namespace tessera;
+using tessera::vulkan::ComputeBackend;
+using tessera::vulkan::RasterBackend;
+using tessera::vulkan::VulkanOptions;
+
+namespace {
+
+constexpr int kWidth = 256;
+constexpr int kHeight = 192;
+
+// Skips the test when there is no Vulkan device at all; otherwise does nothing (a device that
+// exists but cannot run a backend is a failure, not a skip).
+#define TESSERA_SKIP_WITHOUT_VULKAN()                                                          \
+  do {                                                                                         \
+    const std::string tessera_no_device = noVulkanDeviceReason();                              \
+    if (!tessera_no_device.empty()) GTEST_SKIP() << "no Vulkan device: " << tessera_no_device; \
+  } while (false)
+
+std::string noVulkanDeviceReason() {
+  static const std::string reason = [] {
+    Expected<std::vector<vulkan::DeviceInfo>> devices = vulkan::listDevices();
+    if (!devices) return devices.error().message;
+    if (devices->empty()) return std::string("the loader lists no device");
+    return std::string();
+  }();
+  return reason;
+}
+
+// Deletes a backend after failing the test on any validation error it recorded (none are
+// recorded unless validation is on), so every test that makes one is checked.
+struct ValidationCheck {
+  template <typename B>
+  void operator()(B* backend) const {
+    const std::vector<std::string> errors = backend->validationErrors();
+    EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: "
+                                << (errors.empty() ? "" : errors.front());
+    delete backend;
+  }
+};
+using ComputePtr = std::unique_ptr<ComputeBackend, ValidationCheck>;
+using RasterPtr = std::unique_ptr<RasterBackend, ValidationCheck>;
+
+ComputePtr makeCompute(VulkanOptions options = {}) {
+  Expected<std::unique_ptr<ComputeBackend>> backend = ComputeBackend::create(options);
+  EXPECT_TRUE(backend.ok()) << (backend ? "" : backend.error().message);
+  return ComputePtr(backend ? backend->release() : nullptr);
+}
+
+RasterPtr makeRaster(VulkanOptions options = {}) {
+  Expected<std::unique_ptr<RasterBackend>> backend = RasterBackend::create(options);
+  EXPECT_TRUE(backend.ok()) << (backend ? "" : backend.error().message);
+  return RasterPtr(backend ? backend->release() : nullptr);
+}
+
+RenderOptions options(int width = kWidth, int height = kHeight, bool normals = false) {
+  RenderOptions o;
+  o.width = width;
+  o.height = height;
+  o.normals = normals;
+  return o;
+}
+
+Frame renderCpu(const Scene& scene, const RenderOptions& o, PipelineStats* stats = nullptr) {
+  CpuRenderer cpu(1);
+  Frame frame;
+  cpu.render(scene, o, frame);
+  if (stats) *stats = cpu.lastStats();
+  return frame;
+}
+
+template <typename B>
+Frame renderWith(B& backend, const Scene& scene, const RenderOptions& o) {
+  Frame frame;
+  backend.render(scene, o, frame);
+  Expected<void> result = backend.lastResult();
+  EXPECT_TRUE(result.ok()) << (result ? "" : result.error().message);
+  const std::vector<std::string> errors = backend.validationErrors();
+  EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, the first: "
+                              << (errors.empty() ? "" : errors.front());
+  return frame;
+}
+
+struct Parity {
+  size_t pixels = 0;
+  size_t covered = 0;      // pixels where either frame has a triangle
+  size_t same_id = 0;      // of those, pixels with the same id
+  size_t close_color = 0;  // pixels whose channels are all within 2/255
+  int max_channel_diff = 0;
+  double idRatio() const { return covered ? static_cast<double>(same_id) / covered : 1.0; }
+  double colorRatio() const { return pixels ? static_cast<double>(close_color) / pixels : 1.0; }
+};
+
+Parity compare(const Frame& a, const Frame& b) {
+  Parity p;
+  EXPECT_EQ(a.width, b.width);
+  EXPECT_EQ(a.height, b.height);
+  p.pixels = a.pixelCount();
+  for (size_t i = 0; i < p.pixels; ++i) {
+    if (a.triangle_id[i] != kNoTriangle || b.triangle_id[i] != kNoTriangle) {
+      ++p.covered;
+      p.same_id += a.triangle_id[i] == b.triangle_id[i];
+    }
+    int worst = 0;
+    for (int c = 0; c < 32; c += 8) {
+      const int da = static_cast<int>((a.color[i] >> c) & 255u);
+      const int db = static_cast<int>((b.color[i] >> c) & 255u);
+      worst = std::max(worst, std::abs(da - db));
+    }
+    p.max_channel_diff = std::max(p.max_channel_diff, worst);
+    p.close_color += worst <= 2;
+  }
+  return p;
+}
+
+void report(const char* what, const Parity& p) {
+  std::printf(
+      "[ parity   ] %s: %zu covered pixels, ids %.4f%% equal, colours within 2/255 on "
+      "%.4f%%, max channel difference %d\n",
+      what, p.covered, 100.0 * p.idRatio(), 100.0 * p.colorRatio(), p.max_channel_diff);
+}
+
+// The held-to numbers of the issue.
+void expectComputeParity(const char* what, const Parity& p) {
+  report(what, p);
+  EXPECT_GT(p.covered, 0u) << what << ": nothing drawn";
+  EXPECT_GE(p.idRatio(), 0.9999) << what;
+  EXPECT_GE(p.colorRatio(), 0.999) << what;
+}
+
+void expectRasterParity(const char* what, const Parity& p) {
+  report(what, p);
+  EXPECT_GT(p.covered, 0u) << what << ": nothing drawn";
+  EXPECT_GE(p.idRatio(), 0.999) << what;
+}
+
+// ---- scenes ----
+
+void addLights(Scene& scene) {
+  scene.lights.push_back({normalize(float3{-0.6f, -1.0f, -0.8f}), float3(0.85f)});
+  scene.lights.push_back({normalize(float3{0.8f, 0.3f, -0.4f}), float3(0.2f)});
+  scene.ambient = float3(0.12f);
+  scene.background = {srgbToLinear(0.12f), srgbToLinear(0.13f), srgbToLinear(0.16f), 1.0f};
+}
+
+Scene cubeScene(float angle = 0.7f) {
+  Scene scene;
+  Object cube;
+  cube.mesh = std::make_shared<Mesh>(makeCube());
+  cube.shading = Shading::kFlat;
+  cube.materials[0].base_color = {srgbToLinear(0.95f), srgbToLinear(0.55f), srgbToLinear(0.15f),
+                                  1.0f};
+  cube.transform.rotation =
+      quat::fromAxisAngle({0, 1, 0}, angle) * quat::fromAxisAngle({1, 0, 0}, 0.35f);
+  scene.objects.push_back(cube);
+  addLights(scene);
+  scene.camera.position = {0.0f, 1.1f, 2.4f};
+  scene.camera.near_z = 0.1f;
+  scene.camera.far_z = 20.0f;
+  return scene;
+}
+
+Scene sphereScene(int segments, int rings, Shading shading) {
+  Scene scene;
+  Object sphere;
+  sphere.mesh = std::make_shared<Mesh>(makeUvSphere(segments, rings));
+  sphere.shading = shading;
+  sphere.materials[0].base_color = {0.2f, 0.5f, 0.9f, 1.0f};
+  sphere.transform.rotation = quat::fromAxisAngle(normalize(float3{1, 1, 0}), 0.4f);
+  scene.objects.push_back(sphere);
+  addLights(scene);
+  scene.camera.position = {0.3f, 0.4f, 3.0f};
+  return scene;
+}
+
+// A dense sphere with a cube pushed into it: the two meshes interpenetrate, so the depth test
+// decides along the intersection curve.
+Scene denseScene() {
+  Scene scene = sphereScene(200, 100, Shading::kGouraud);
+  Object cube;
+  cube.mesh = std::make_shared<Mesh>(makeCube());
+  cube.shading = Shading::kPhong;
+  cube.materials[0].base_color = {0.9f, 0.8f, 0.2f, 1.0f};
+  cube.transform.translation = {0.55f, 0.35f, 0.4f};
+  cube.transform.rotation = quat::fromAxisAngle(normalize(float3{0, 1, 1}), 0.5f);
+  cube.transform.scale = float3(0.9f);
+  scene.objects.push_back(cube);
+  return scene;
+}
+
+// A grid of quads in the plane y = 0, x and z in [-half, half], with UVs over [0, uv_scale].
+Mesh makeGrid(int cells, float half, float uv_scale) {
+  Mesh mesh;
+  for (int j = 0; j <= cells; ++j) {
+    for (int i = 0; i <= cells; ++i) {
+      const float u = static_cast<float>(i) / cells, v = static_cast<float>(j) / cells;
+      mesh.positions.push_back({-half + 2 * half * u, 0.0f, half - 2 * half * v});
+      mesh.normals.push_back({0, 1, 0});
+      mesh.uvs.push_back({u * uv_scale, v * uv_scale});
+    }
+  }
+  const uint32_t stride = static_cast<uint32_t>(cells + 1);
+  for (int j = 0; j < cells; ++j) {
+    for (int i = 0; i < cells; ++i) {
+      const uint32_t a = j * stride + i, b = a + 1, c = a + stride, d = c + 1;
+      mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});  // counter-clockwise from +y
+    }
+  }
+  return mesh;
+}
+
+// A floor that runs from behind the camera to far in front of it, and a wall of large
+// triangles whose corners are behind the camera: both are cut by the near plane.
+Scene nearPlaneScene() {
+  Scene scene;
+  Object floor;
+  floor.mesh = std::make_shared<Mesh>(makeGrid(12, 30.0f, 1.0f));
+  floor.shading = Shading::kPhong;
+  floor.cull = CullMode::kNone;
+  floor.materials[0].base_color = {0.7f, 0.7f, 0.7f, 1.0f};
+  floor.transform.translation = {0.0f, -0.6f, 0.0f};
+  scene.objects.push_back(floor);
+  Object wall;
+  Mesh wall_mesh;
+  wall_mesh.positions = {{-3, -1, 1.5f}, {3, -0.5f, -8}, {0.5f, 3, -2}, {-2, 2, 2}, {2, 2.5f, -6}};
+  wall_mesh.colors = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 0, 1}, {0, 1, 1, 1}};
+  wall_mesh.indices = {0, 1, 2, 3, 2, 4};
+  wall.mesh = std::make_shared<Mesh>(wall_mesh);
+  wall.shading = Shading::kUnlit;
+  wall.cull = CullMode::kNone;
+  wall.materials[0].base_color = {1, 1, 1, 1};
+  scene.objects.push_back(wall);
+  addLights(scene);
+  scene.camera.position = {0.0f, 0.0f, 0.0f};
+  scene.camera.target = {0.2f, -0.1f, -1.0f};
+  scene.camera.near_z = 0.1f;
+  scene.camera.far_z = 60.0f;
+  return scene;
+}
+
+// A scene whose camera maps object coordinates straight to clip space.
+Scene clipSpaceScene() {
+  Scene scene;
+  scene.camera.view_override = float4x4::identity();
+  scene.camera.projection_override = float4x4::identity();
+  scene.ambient = float3(1.0f);
+  return scene;
+}
+
+float3 windowToNdc(float x, float y, float z, int width, int height) {
+  return {2.0f * x / width - 1.0f, 1.0f - 2.0f * y / height, z};
+}
+
+// `count` random triangles, each inside a `size`-pixel box placed in [x0, x0 + span) x
+// [y0, y0 + span) (window pixels), at random depths, both windings.
+Scene randomTriangles(int count, float size, float x0, float y0, float span, uint32_t seed) {
+  Scene scene = clipSpaceScene();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> where(0.0f, span), offset(0.0f, size), depth(-0.9f, 0.9f),
+      shade(0.2f, 1.0f);
+  Mesh mesh;
+  for (int t = 0; t < count; ++t) {
+    const float cx = x0 + where(rng), cy = y0 + where(rng), z = depth(rng);
+    for (int k = 0; k < 3; ++k) {
+      mesh.positions.push_back(
+          windowToNdc(cx + offset(rng), cy + offset(rng), z + 0.01f * k, kWidth, kHeight));
+      mesh.colors.push_back({shade(rng), shade(rng), shade(rng), 1.0f});
+      mesh.indices.push_back(static_cast<uint32_t>(mesh.indices.size()));
+    }
+  }
+  Object object;
+  object.mesh = std::make_shared<Mesh>(std::move(mesh));
+  object.shading = Shading::kUnlit;
+  object.cull = CullMode::kNone;
+  object.materials[0].base_color = {1, 1, 1, 1};
+  scene.objects.push_back(object);
+  return scene;
+}
+
+std::shared_ptr<Texture> checkerTexture(int size, bool srgb) {
+  auto texture = std::make_shared<Texture>();
+  texture->width = size;
+  texture->height = size;
+  texture->srgb = srgb;
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const bool dark = ((x / 4) + (y / 4)) % 2 == 0;
+      const uint32_t r = dark ? 40u : 230u, g = static_cast<uint32_t>(x * 255 / size),
+                     b = static_cast<uint32_t>(y * 255 / size);
+      texture->texels.push_back(r | (g << 8) | (b << 16) | (255u << 24));
+    }
+  }
+  return texture;
+}
+
+// A checkered floor seen at a grazing angle (bilinear, repeat, sRGB texels), a tilted quad
+// (nearest, clamp, linear texels) with UVs beyond [0, 1], and a far wall with mip levels
+// (trilinear).
+Scene texturedScene() {
+  Scene scene;
+  Object floor;
+  floor.mesh = std::make_shared<Mesh>(makeGrid(4, 4.0f, 3.0f));
+  floor.shading = Shading::kFlat;
+  floor.materials[0].base_color = {1, 1, 1, 1};
+  floor.materials[0].albedo = checkerTexture(64, true);
+  floor.materials[0].sampler.filter = TextureFilter::kBilinear;
+  floor.transform.translation = {0, -0.8f, -2.0f};
+  scene.objects.push_back(floor);
+  Object card;
+  card.mesh = std::make_shared<Mesh>(makeGrid(1, 0.6f, 1.6f));
+  card.shading = Shading::kUnlit;
+  card.cull = CullMode::kNone;
+  card.materials[0].base_color = {1, 0.9f, 0.8f, 1};
+  card.materials[0].albedo = checkerTexture(16, false);
+  // A third texture with mip levels, sampled trilinearly (the default sampler).
+  Object far_wall;
+  far_wall.mesh = std::make_shared<Mesh>(makeGrid(2, 6.0f, 12.0f));
+  far_wall.shading = Shading::kGouraud;
+  std::shared_ptr<Texture> mipmapped = checkerTexture(128, true);
+  generateMipmaps(*mipmapped);
+  far_wall.materials[0].albedo = mipmapped;
+  far_wall.transform.translation = {0.0f, 0.0f, -9.0f};
+  far_wall.transform.rotation = quat::fromAxisAngle({1, 0, 0}, 1.3f);
+  scene.objects.push_back(far_wall);
+  card.materials[0].sampler = {TextureFilter::kNearest, TextureWrap::kClamp};
+  card.transform.translation = {0.4f, 0.1f, -1.5f};
+  card.transform.rotation = quat::fromAxisAngle({1, 0, 0}, 1.2f);
+  scene.objects.push_back(card);
+  addLights(scene);
+  scene.camera.position = {0.0f, 0.3f, 1.5f};
+  scene.camera.target = {0.0f, -0.5f, -2.0f};
+  return scene;
+}
+
+void expectComputeMatchesCpu(const char* what, const Scene& scene, VulkanOptions vk = {},
+                             ComputeBackend* reuse = nullptr, bool normals = false) {
+  const RenderOptions o = options(kWidth, kHeight, normals);
+  PipelineStats cpu_stats;
+  const Frame cpu = renderCpu(scene, o, &cpu_stats);
+  ComputePtr owned;
+  if (!reuse) {
+    owned = makeCompute(vk);
+    ASSERT_TRUE(owned);
+    reuse = owned.get();
+  }
+  const Frame gpu = renderWith(*reuse, scene, o);
+  expectComputeParity(what, compare(gpu, cpu));
+  // The counters agree with the CPU's too: same culling, same clipping, same records.
+  const vulkan::ComputeStats& stats = reuse->lastStats();
+  EXPECT_EQ(stats.triangles_in, cpu_stats.triangles_in) << what;
+  EXPECT_EQ(stats.triangles_culled, cpu_stats.triangles_culled) << what;
+  EXPECT_EQ(stats.triangles_clipped, cpu_stats.triangles_clipped) << what;
+  EXPECT_EQ(stats.triangles_setup, cpu_stats.triangles_setup) << what;
+}
+
+void expectRasterMatchesCpu(const char* what, const Scene& scene, RasterBackend& raster) {
+  const RenderOptions o = options();
+  const Frame cpu = renderCpu(scene, o);
+  const Frame gpu = renderWith(raster, scene, o);
+  expectRasterParity(what, compare(gpu, cpu));
+}
+
+}  // namespace
+
+// ---- the compute backend against the CPU ----
+
+TEST(VulkanCompute, MatchesCpuOnCube) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  expectComputeMatchesCpu("cube", cubeScene());
+}
+
+TEST(VulkanCompute, MatchesCpuOnSpheres) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  expectComputeMatchesCpu("sphere, flat", sphereScene(24, 12, Shading::kFlat), {}, gpu.get());
+  expectComputeMatchesCpu("sphere, Gouraud", sphereScene(32, 16, Shading::kGouraud), {}, gpu.get());
+  expectComputeMatchesCpu("sphere, Phong", sphereScene(48, 24, Shading::kPhong), {}, gpu.get());
+}
+
+TEST(VulkanCompute, MatchesCpuOnDenseMesh) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  expectComputeMatchesCpu("dense sphere (200x100) and cube", denseScene());
+}
+
+TEST(VulkanCompute, MatchesCpuOnTrianglesCrossingTheNearPlane) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  expectComputeMatchesCpu("near plane", nearPlaneScene());
+}
+
+TEST(VulkanCompute, MatchesCpuOnSubPixelTriangles) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  expectComputeMatchesCpu("sub-pixel triangles",
+                          randomTriangles(20000, 0.9f, 0.0f, 0.0f, 190.0f, 7));
+}
+
+TEST(VulkanCompute, MatchesCpuOnTexturedPlane) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  expectComputeMatchesCpu("textured plane", texturedScene());
+}
+
+TEST(VulkanCompute, NormalAovMatchesCpu) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  const Scene scene = sphereScene(32, 16, Shading::kPhong);
+  const RenderOptions o = options(kWidth, kHeight, /*normals=*/true);
+  const Frame cpu = renderCpu(scene, o);
+  ComputePtr gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  const Frame frame = renderWith(*gpu, scene, o);
+  ASSERT_EQ(frame.normal.size(), cpu.normal.size());
+  size_t close = 0, drawn = 0;
+  for (size_t i = 0; i < frame.pixelCount(); ++i) {
+    if (cpu.triangle_id[i] == kNoTriangle) continue;
+    ++drawn;
+    close += length(frame.normal[i] - cpu.normal[i]) < 1e-5f;
+    EXPECT_EQ(frame.depth[i], cpu.depth[i]) << "pixel " << i;
+  }
+  EXPECT_GT(drawn, 1000u);
+  EXPECT_EQ(close, drawn);
+}
+
+TEST(VulkanCompute, EdgeCasesMatchCpu) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr gpu = makeCompute();
+  RasterPtr raster = makeRaster();
+  ASSERT_TRUE(gpu && raster);
+  // An empty scene, an object without a mesh between two with, odd and tiny viewports, no
+  // AOVs at all.
+  Scene empty;
+  empty.background = {0.3f, 0.1f, 0.2f, 1.0f};
+  Scene gaps = cubeScene();
+  gaps.objects.insert(gaps.objects.begin(), Object{});
+  gaps.objects.push_back(Object{});
+  gaps.objects.push_back(cubeScene(1.9f).objects[0]);
+  gaps.objects.back().transform.translation = {0.4f, -0.3f, -0.5f};
+  struct Case {
+    const Scene* scene;
+    int width, height;
+  };
+  for (const Case& c : {Case{&empty, 40, 30}, Case{&gaps, 1, 1}, Case{&gaps, 17, 9},
+                        Case{&gaps, 300, 7}, Case{&gaps, 131, 97}}) {
+    for (bool aovs : {true, false}) {
+      RenderOptions o = options(c.width, c.height);
+      o.depth = o.ids = aovs;
+      const Frame cpu = renderCpu(*c.scene, o);
+      Frame frame;
+      gpu->render(*c.scene, o, frame);
+      ASSERT_TRUE(gpu->lastResult().ok()) << gpu->lastResult().error().message;
+      EXPECT_EQ(frame.color, cpu.color) << c.width << "x" << c.height;
+      EXPECT_EQ(frame.triangle_id, cpu.triangle_id) << c.width << "x" << c.height;
+      EXPECT_EQ(frame.depth, cpu.depth) << c.width << "x" << c.height;
+      raster->render(*c.scene, o, frame);
+      ASSERT_TRUE(raster->lastResult().ok()) << raster->lastResult().error().message;
+      EXPECT_EQ(frame.triangle_id.size(), cpu.triangle_id.size());
+      EXPECT_EQ(frame.depth.size(), cpu.depth.size());
+    }
+  }
+}
+
+// ---- the fallbacks: still the CPU's image ----
+
+TEST(VulkanCompute, ThirtyTwoBitCommitMatchesCpu) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.force_32bit_atomics = true;
+  ComputePtr gpu = makeCompute(vk);
+  ASSERT_TRUE(gpu);
+  expectComputeMatchesCpu("32-bit commit, dense", denseScene(), vk, gpu.get());
+  EXPECT_FALSE(gpu->lastStats().int64_atomics);
+  expectComputeMatchesCpu("32-bit commit, one tile", randomTriangles(3000, 12.0f, 80, 80, 4, 3), vk,
+                          gpu.get());
+}
+
+TEST(VulkanCompute, DeviceWithoutInt64AtomicsTakesThe32BitPath) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.pretend_missing_features = {"shaderBufferInt64Atomics"};
+  ComputePtr gpu = makeCompute(vk);
+  ASSERT_TRUE(gpu);
+  EXPECT_FALSE(gpu->device().int64_atomics);
+  EXPECT_NE(gpu->device().compute_note.find("32-bit"), std::string::npos)
+      << gpu->device().compute_note;
+  expectComputeMatchesCpu("no int64 atomics, cube", cubeScene(), vk, gpu.get());
+  EXPECT_FALSE(gpu->lastStats().int64_atomics);
+}
+
+TEST(VulkanCompute, FloatSetupKeepsCoverageExact) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.force_fp32_setup = true;
+  ComputePtr gpu = makeCompute(vk);
+  ASSERT_TRUE(gpu);
+  expectComputeMatchesCpu("float setup, dense", denseScene(), vk, gpu.get());
+  EXPECT_FALSE(gpu->lastStats().fp64_setup);
+}
+
+// ---- binning ----
+
+TEST(VulkanCompute, ManyTrianglesInOneTileStillMatch) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  // 5000 triangles over one 16x16 tile (and its neighbours): the tile's list is split into
+  // several raster workgroups that commit into the same pixels.
+  const Scene scene = randomTriangles(5000, 14.0f, 66.0f, 66.0f, 6.0f, 11);
+  ComputePtr gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  expectComputeMatchesCpu("5000 triangles in one tile", scene, {}, gpu.get());
+  const vulkan::ComputeStats& stats = gpu->lastStats();
+  EXPECT_GE(stats.max_tile_entries, 4000u);
+  EXPECT_GT(stats.raster_workgroups, stats.tiles_occupied);
+}
+
+TEST(VulkanCompute, BinOverflowRendersAgainWithLargerBins) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.initial_bin_capacity = 64;  // far too few: the first round overflows
+  ComputePtr gpu = makeCompute(vk);
+  ASSERT_TRUE(gpu);
+  expectComputeMatchesCpu("overflowing bins", denseScene(), vk, gpu.get());
+  const vulkan::ComputeStats& stats = gpu->lastStats();
+  EXPECT_GE(stats.bin_overflows, 1u);
+  EXPECT_GE(stats.bin_capacity, stats.bin_entries);
+  // The grown buffer is kept: the next frame fits at once.
+  expectComputeMatchesCpu("overflowing bins, next frame", denseScene(), vk, gpu.get());
+  EXPECT_EQ(gpu->lastStats().bin_overflows, 0u);
+}
+
+TEST(VulkanCompute, ManyClippedTrianglesGrowTheClipRecords) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  // 3000 triangles with one corner behind the camera: the near plane cuts each into a quad, two
+  // records, which is more extra records than the first frame's allowance.
+  Scene scene;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> where(-1.5f, 1.5f), width(0.05f, 0.4f);
+  Mesh mesh;
+  for (uint32_t t = 0; t < 3000; ++t) {
+    const float x = where(rng), y = where(rng), w = width(rng);
+    mesh.positions.insert(mesh.positions.end(),
+                          {{x, y, 1.0f}, {x - w, y, -4.0f + x}, {x + w, y + w, -4.0f - y}});
+    mesh.indices.insert(mesh.indices.end(), {3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  Object object;
+  object.mesh = std::make_shared<Mesh>(mesh);
+  object.cull = CullMode::kNone;
+  scene.objects.push_back(object);
+  addLights(scene);
+  scene.camera.position = {0, 0, 0};
+  scene.camera.target = {0, 0, -1};
+  ComputePtr gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  expectComputeMatchesCpu("3000 triangles through the near plane", scene, {}, gpu.get());
+  EXPECT_GT(gpu->lastStats().triangles_clipped, 2000u);
+  EXPECT_GE(gpu->lastStats().bin_overflows, 1u);
+}
+
+TEST(VulkanCompute, StatsAndTimingsAreFilled) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  const Scene scene = denseScene();
+  renderWith(*gpu, scene, options());
+  const vulkan::ComputeStats& s = gpu->lastStats();
+  EXPECT_EQ(s.triangles_in, scene.triangleCount());
+  EXPECT_GT(s.triangles_culled, s.triangles_in / 3);  // the back half of the sphere, at least
+  EXPECT_GT(s.triangles_binned, 0u);
+  EXPECT_LE(s.triangles_binned, s.triangles_setup);
+  EXPECT_GE(s.bin_entries, s.triangles_binned);
+  EXPECT_EQ(s.tiles, static_cast<size_t>((kWidth / 16) * (kHeight / 16)));
+  EXPECT_GT(s.tiles_occupied, 0u);
+  EXPECT_LE(s.tiles_occupied, s.tiles);
+  if (s.timings.valid) {
+    EXPECT_GT(s.timings.total, 0.0);
+    EXPECT_GE(s.timings.total + 1e-9, s.timings.setup + s.timings.raster + s.timings.shade);
+  }
+  std::printf(
+      "[ stats    ] %zu in, %zu culled, %zu clipped, %zu set up, %zu binned, %zu entries "
+      "in %zu/%zu tiles (max %zu), %zu raster workgroups\n",
+      s.triangles_in, s.triangles_culled, s.triangles_clipped, s.triangles_setup,
+      s.triangles_binned, s.bin_entries, s.tiles_occupied, s.tiles, s.max_tile_entries,
+      s.raster_workgroups);
+  std::printf(
+      "[ timings  ] clear %.3f, transform %.3f, setup %.3f, bin %.3f, raster %.3f, "
+      "shade %.3f, total %.3f ms (valid %d)\n",
+      s.timings.clear, s.timings.transform, s.timings.setup, s.timings.bin, s.timings.raster,
+      s.timings.shade, s.timings.total, s.timings.valid);
+}
+
+TEST(VulkanCompute, HeatmapShowsTileOccupancy) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  // Triangles only in the left half: the right half's tiles are empty and stay black.
+  const Scene scene = randomTriangles(2000, 6.0f, 8.0f, 8.0f, 100.0f, 5);
+  renderWith(*gpu, scene, options());
+  const vulkan::TileOccupancy& occupancy = gpu->lastTileOccupancy();
+  ASSERT_EQ(occupancy.entries.size(), static_cast<size_t>(occupancy.columns * occupancy.rows));
+  const std::vector<uint32_t> image = vulkan::makeOccupancyHeatmap(occupancy, kWidth, kHeight);
+  ASSERT_EQ(image.size(), static_cast<size_t>(kWidth * kHeight));
+  size_t lit = 0;
+  for (uint32_t pixel : image) lit += (pixel & 0xffffffu) != 0;
+  EXPECT_GT(lit, 1000u);
+  EXPECT_EQ(image[static_cast<size_t>(kHeight - 2) * kWidth + kWidth - 2] & 0xffffffu, 0u);
+  EXPECT_NE(image[static_cast<size_t>(60) * kWidth + 60] & 0xffffffu, 0u);
+}
+
+// ---- the raster backend against the CPU ----
+
+TEST(VulkanRaster, MatchesCpuIds) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  RasterPtr raster = makeRaster();
+  ASSERT_TRUE(raster);
+  expectRasterMatchesCpu("raster: cube", cubeScene(), *raster);
+  expectRasterMatchesCpu("raster: sphere", sphereScene(48, 24, Shading::kPhong), *raster);
+  expectRasterMatchesCpu("raster: dense", denseScene(), *raster);
+  expectRasterMatchesCpu("raster: near plane", nearPlaneScene(), *raster);
+  expectRasterMatchesCpu("raster: textured", texturedScene(), *raster);
+  expectRasterMatchesCpu("raster: sub-pixel", randomTriangles(20000, 0.9f, 0, 0, 190, 7), *raster);
+  EXPECT_EQ(raster->lastStats().draws, 1u);
+}
+
+TEST(VulkanRaster, DropsTheTrianglesTheCpuDrops) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  // An index past the end and a non-finite vertex: the CPU draws neither triangle.
+  Scene scene = clipSpaceScene();
+  Mesh mesh;
+  mesh.positions = {{-0.8f, -0.8f, 0}, {0.8f, -0.8f, 0}, {0, 0.8f, 0}, {0, 0, 0}, {NAN, 0, 0}};
+  mesh.indices = {0, 1, 2, 0, 1, 9, 0, 4, 2};
+  Object object;
+  object.mesh = std::make_shared<Mesh>(mesh);
+  object.shading = Shading::kUnlit;
+  object.cull = CullMode::kNone;
+  scene.objects.push_back(object);
+  RasterPtr raster = makeRaster();
+  ASSERT_TRUE(raster);
+  expectRasterMatchesCpu("raster: dropped triangles", scene, *raster);
+  expectComputeMatchesCpu("compute: dropped triangles", scene);
+}
+
+// ---- errors: clear messages, never a hang ----
+
+TEST(VulkanErrors, FenceTimeoutIsAnErrorAndTheBackendRecovers) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  const Scene scene = denseScene();
+  Frame frame;
+  // A zero timeout: the wait returns before the GPU can have finished.
+  gpu->setFenceTimeout(0);
+  bool timed_out = false;
+  for (int attempt = 0; attempt < 5 && !timed_out; ++attempt) {
+    gpu->render(scene, options(1024, 768), frame);
+    if (Expected<void> r = gpu->lastResult(); !r) {
+      EXPECT_NE(r.error().message.find("did not finish"), std::string::npos) << r.error().message;
+      timed_out = true;
+    }
+  }
+  EXPECT_TRUE(timed_out);
+  EXPECT_EQ(std::count(frame.triangle_id.begin(), frame.triangle_id.end(), kNoTriangle),
+            static_cast<long>(frame.pixelCount()))
+      << "a failed frame is left empty";
+  // With a real timeout the same backend renders again (after the abandoned frame finishes).
+  gpu->setFenceTimeout(20000);
+  expectComputeMatchesCpu("after a timeout", scene, {}, gpu.get());
+}
+
+TEST(VulkanErrors, MissingLoaderIsAnError) {
+  ASSERT_EQ(setenv("TESSERA_VULKAN_LOADER", "/nonexistent/libvulkan.so.1", 1), 0);
+  Expected<std::unique_ptr<ComputeBackend>> gpu = ComputeBackend::create();
+  Expected<std::vector<vulkan::DeviceInfo>> devices = vulkan::listDevices();
+  unsetenv("TESSERA_VULKAN_LOADER");
+  ASSERT_FALSE(gpu.ok());
+  EXPECT_NE(gpu.error().message.find("Vulkan loader"), std::string::npos) << gpu.error().message;
+  ASSERT_FALSE(devices.ok());
+  EXPECT_NE(devices.error().message.find("/nonexistent/libvulkan.so.1"), std::string::npos);
+}
+
+TEST(VulkanErrors, NoDriverIsAnError) {
+  TESSERA_SKIP_WITHOUT_VULKAN();  // needs a loader
+  // A loader that finds no driver at all.
+  ASSERT_EQ(setenv("VK_ICD_FILENAMES", "/nonexistent/icd.json", 1), 0);
+  ASSERT_EQ(setenv("VK_DRIVER_FILES", "/nonexistent/icd.json", 1), 0);
+  Expected<std::unique_ptr<ComputeBackend>> gpu = ComputeBackend::create();
+  unsetenv("VK_ICD_FILENAMES");
+  unsetenv("VK_DRIVER_FILES");
+  ASSERT_FALSE(gpu.ok());
+  EXPECT_NE(gpu.error().message.find("no Vulkan"), std::string::npos) << gpu.error().message;
+}
+
+TEST(VulkanErrors, DeviceIndexOutOfRangeIsAnError) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.device = 63;
+  Expected<std::unique_ptr<RasterBackend>> raster = RasterBackend::create(vk);
+  ASSERT_FALSE(raster.ok());
+  EXPECT_NE(raster.error().message.find("device 63 does not exist"), std::string::npos)
+      << raster.error().message;
+}
+
+TEST(VulkanErrors, MissingFeatureIsNamed) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.pretend_missing_features = {"shaderInt64"};
+  Expected<std::unique_ptr<ComputeBackend>> gpu = ComputeBackend::create(vk);
+  ASSERT_FALSE(gpu.ok());
+  EXPECT_NE(gpu.error().message.find("shaderInt64"), std::string::npos) << gpu.error().message;
+  vk.pretend_missing_features = {"geometryShader"};
+  Expected<std::unique_ptr<RasterBackend>> raster = RasterBackend::create(vk);
+  ASSERT_FALSE(raster.ok());
+  EXPECT_NE(raster.error().message.find("geometryShader"), std::string::npos)
+      << raster.error().message;
+}
+
+TEST(VulkanErrors, SceneTooLargeForTheDeviceIsAnError) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.pretend_max_buffer_bytes = 300 * 1024;  // the visibility buffer alone needs 384 KiB
+  ComputePtr gpu = makeCompute(vk);
+  ASSERT_TRUE(gpu);
+  Frame frame;
+  gpu->render(cubeScene(), options(), frame);
+  Expected<void> result = gpu->lastResult();
+  ASSERT_FALSE(result.ok());
+  EXPECT_NE(result.error().message.find("maxStorageBufferRange"), std::string::npos)
+      << result.error().message;
+  // A smaller image fits, and renders.
+  gpu->render(cubeScene(), options(64, 48), frame);
+  EXPECT_TRUE(gpu->lastResult().ok());
+}
+
+// ---- the device list ----
+
+TEST(VulkanDevices, ListsUsableDevices) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  Expected<std::vector<vulkan::DeviceInfo>> devices = vulkan::listDevices();
+  ASSERT_TRUE(devices.ok());
+  ASSERT_FALSE(devices->empty());
+  for (const vulkan::DeviceInfo& d : *devices) {
+    EXPECT_FALSE(d.name.empty());
+    EXPECT_FALSE(d.compute_note.empty());
+    std::printf("[ device   ] %d: %s (%s, Vulkan %s): vulkan %s (%s); vulkan-raster %s (%s)\n",
+                d.index, d.name.c_str(), d.type.c_str(), d.api_version.c_str(),
+                d.compute_usable ? "yes" : "no", d.compute_note.c_str(),
+                d.raster_usable ? "yes" : "no", d.raster_note.c_str());
+  }
+}
+
+// ---- validation ----
+
+TEST(Vulkan, ValidationLayersReportNoErrors) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.validation = true;
+  ComputePtr gpu = makeCompute(vk);
+  ASSERT_TRUE(gpu);
+  expectComputeMatchesCpu("validated: near plane", nearPlaneScene(), vk, gpu.get());
+  expectComputeMatchesCpu("validated: textured", texturedScene(), vk, gpu.get(), true);
+  vk.force_32bit_atomics = true;
+  vk.initial_bin_capacity = 16;
+  ComputePtr fallback = makeCompute(vk);
+  ASSERT_TRUE(fallback);
+  expectComputeMatchesCpu("validated: 32-bit, overflow", cubeScene(), vk, fallback.get());
+  RasterPtr raster = makeRaster(vk);
+  ASSERT_TRUE(raster);
+  expectRasterMatchesCpu("validated: raster", texturedScene(), *raster);
+  // renderWith() fails the test on any validation error; check once more after teardown-free
+  // idle.
+  EXPECT_TRUE(gpu->validationErrors().empty());
+  EXPECT_TRUE(fallback->validationErrors().empty());
+  EXPECT_TRUE(raster->validationErrors().empty());
+}
+
+// ---- the CLI ----
+#ifdef TESSERA_EXE
+
+namespace {
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Runs tessera with `args` (shell-quoted) and `environment` (NAME=value ... or empty) in a
+// fresh folder, which `folder` receives.
+CliResult runCli(const std::string& environment, const std::string& args,
+                 std::filesystem::path* folder = nullptr) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() / ("tessera_vulkan_cli_" + std::to_string(::getpid()) + "_" +
+                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string command = "cd '" + dir.string() + "' && " + environment +
+                              " '" TESSERA_EXE "' " + args + " > '" + out.string() + "' 2> '" +
+                              err.string() + "' < /dev/null";
+  const int status = std::system(command.c_str());
+  CliResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  fs::remove(out);
+  fs::remove(err);
+  if (folder) *folder = dir;
+  return r;
+}
+
+}  // namespace
+
+TEST(VulkanCli, DevicesListsEachDeviceAndBackend) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  const CliResult r = runCli("", "devices");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("0: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("vulkan:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("vulkan-raster:"), std::string::npos) << r.out;
+}
+
+TEST(VulkanCli, CubeRendersWithBothVulkanBackends) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  for (const char* backend : {"vulkan", "vulkan-raster"}) {
+    std::filesystem::path dir;
+    const CliResult r = runCli(
+        "", std::string("cube -w 64 -h 48 -fps 4 -dur 0.5s -out c.gif --backend ") + backend, &dir);
+    EXPECT_EQ(r.exit_code, 0) << backend << ": " << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "c.gif")) << backend;
+    std::filesystem::remove_all(dir);
+  }
+}
+
+TEST(VulkanCli, MissingLoaderFailsWithAMessageAndNoOutput) {
+  std::filesystem::path dir;
+  const CliResult r = runCli("TESSERA_VULKAN_LOADER=/nonexistent/libvulkan.so.1",
+                             "cube -w 64 -h 48 -dur 0.25s -out c.gif --backend vulkan", &dir);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("cannot open the Vulkan loader"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.gif"));
+  std::filesystem::remove_all(dir);
+  const CliResult devices = runCli("TESSERA_VULKAN_LOADER=/nonexistent/libvulkan.so.1", "devices");
+  EXPECT_EQ(devices.exit_code, 1);
+  EXPECT_NE(devices.err.find("Vulkan loader"), std::string::npos) << devices.err;
+}
+
+TEST(VulkanCli, DeviceOutOfRangeFails) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  const CliResult r = runCli("",
+                             "cube -w 64 -h 48 -dur 0.25s -out c.gif --backend vulkan-raster "
+                             "--device 40");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("device 40 does not exist"), std::string::npos) << r.err;
+}
+
+#endif  // TESSERA_EXE
