@@ -224,6 +224,12 @@ struct LlvmpipeReference::State {
   std::vector<GpuObject> objects;
   size_t light_count = 0;  // the shaders of the current scene are compiled for this many lights
 
+  // Several references may live in one process: GL calls go to the current context.
+  void makeCurrent() {
+    if (OSMesaGetCurrentContext() != context)
+      OSMesaMakeCurrent(context, color.data(), GL_UNSIGNED_BYTE, width, height);
+  }
+
   void releaseScene() {
     for (GpuObject& o : objects) {
       glDeleteBuffers(1, &o.vertex_buffer);
@@ -475,6 +481,7 @@ LlvmpipeReference::LlvmpipeReference() : state_(std::make_unique<State>()) {}
 LlvmpipeReference::~LlvmpipeReference() {
   if (state_->context) {
     if (!state_->color.empty()) {
+      state_->makeCurrent();
       state_->releaseScene();
       for (auto& [key, program] : state_->programs) glDeleteProgram(program.id);
     }
@@ -541,6 +548,7 @@ Expected<void> LlvmpipeReference::setResolution(int width, int height) {
 
 Expected<void> LlvmpipeReference::setScene(const Scene& scene) {
   State& s = *state_;
+  s.makeCurrent();
   if (scene.lights.size() > static_cast<size_t>(kMaxLights))
     return makeError("the OpenGL reference takes at most " + std::to_string(kMaxLights) +
                      " lights; the scene has " + std::to_string(scene.lights.size()));
@@ -569,6 +577,7 @@ void LlvmpipeReference::render(const Scene& scene) {
   State& s = *state_;
   TESSERA_CHECK(scene.objects.size() == s.objects.size())
       << "render() needs the scene given to setScene()";
+  s.makeCurrent();
   TESSERA_CHECK(scene.lights.size() == s.light_count)
       << "the shaders were compiled for " << s.light_count << " lights";
   const float4 bg = scene.background;
@@ -589,7 +598,8 @@ void LlvmpipeReference::render(const Scene& scene) {
 }
 
 void LlvmpipeReference::readColor(std::vector<uint32_t>& rgba) const {
-  const State& s = *state_;
+  State& s = *state_;
+  s.makeCurrent();
   std::vector<uint32_t> bottom_up(static_cast<size_t>(s.width) * s.height);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, s.width, s.height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());

@@ -396,6 +396,30 @@ TEST_F(Reference, ShadingModelsMatchTessera) {
   }
 }
 
+TEST_F(Reference, TwoReferencesKeepTheirOwnFrames) {
+  Expected<std::unique_ptr<bench::LlvmpipeReference>> other = bench::LlvmpipeReference::create(1);
+  ASSERT_TRUE(other.ok()) << other.error().message;
+  Expected<bench::BenchScene> cube = scene("cube", Shading::kFlat);
+  Expected<bench::BenchScene> fill = scene("fill", Shading::kUnlit);
+  ASSERT_TRUE(cube.ok() && fill.ok());
+  lookAtCube(cube->scene);
+  ASSERT_TRUE(reference_->setScene(cube->scene).ok());
+  ASSERT_TRUE(reference_->setResolution(32, 24).ok());
+  ASSERT_TRUE((*other)->setScene(fill->scene).ok());
+  ASSERT_TRUE((*other)->setResolution(16, 16).ok());
+  reference_->render(cube->scene);
+  (*other)->render(fill->scene);
+  std::vector<uint32_t> cube_pixels, fill_pixels;
+  reference_->readColor(cube_pixels);
+  (*other)->readColor(fill_pixels);
+  ASSERT_EQ(cube_pixels.size(), 32u * 24u);
+  ASSERT_EQ(fill_pixels.size(), 16u * 16u);
+  const uint32_t background = packSrgba8(cube->scene.background);
+  EXPECT_EQ(cube_pixels[0], background);             // a corner of the cube's frame is background
+  EXPECT_NE(cube_pixels[12 * 32 + 16], background);  // its centre is the cube
+  for (uint32_t p : fill_pixels) EXPECT_NE(p, packSrgba8(fill->scene.background));
+}
+
 TEST_F(Reference, ReadBackRowsRunTopDown) {
   // A red layer over the upper half of the view only: the top rows of the read-back are red.
   Scene s;
