@@ -1,8 +1,28 @@
-// Micro-benchmarks of the CPU pipeline on procedural scenes. Run: build/bench/tessera_microbench
+// Micro-benchmarks of the CPU pipeline: whole frames of the built-in bench scenes (the scenes of
+// `tessera bench`, framed the same way), and the hot stages one at a time through the private
+// stage headers (vertex, setup, bin, and the raster and shade kernels per instruction set). Run:
+// build/bench/tessera_microbench
+// (--benchmark_filter=Frame/bunny, for example).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <map>
+#include <memory>
+
 #include <tessera/render/cpu_renderer.h>
+#include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
+
+#include "bench/scenes.h"
+#include "model_scene.h"
+#include "render/bin.h"
+#include "render/clip.h"
+#include "render/kernels.h"
+#include "render/raster.h"
+#include "render/setup.h"
+#include "render/shade.h"
+#include "render/vertex.h"
+#include "view_setup.h"
 
 using namespace tessera;
 
@@ -42,5 +62,292 @@ BENCHMARK(BM_SphereFrame1080p)
     ->Args({372, 1})
     ->Args({372, 2})
     ->Unit(benchmark::kMillisecond);
+
+// A built-in scene placed for width x height as `tessera bench` places it (default camera flags,
+// Gouraud shading, back faces culled). Built once per name: the dense sphere takes a while.
+Expected<bench::BenchScene> benchScene(const std::string& name, int width, int height) {
+  static std::map<std::string, Expected<bench::BenchScene>> cache;
+  auto it = cache.find(name);
+  if (it == cache.end())
+    it = cache.emplace(name, bench::makeBuiltinScene(name, Shading::kGouraud)).first;
+  if (!it->second) return it->second.error();
+  bench::BenchScene b = *it->second;
+  if (!b.fixed_view) {
+    Expected<Camera> camera = cli::makeCamera(
+        cli::CameraSettings{}, b.bounds, static_cast<float>(width) / static_cast<float>(height));
+    if (!camera) return camera.error();
+    b.scene.camera = *camera;
+    cli::addViewLights(b.scene);
+  }
+  return b;
+}
+
+RenderOptions colorOnly(int width, int height) {
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.depth = false;
+  options.ids = false;
+  options.normals = false;
+  options.lines = false;
+  return options;
+}
+
+// Whole frames of one bench scene; args: width, height, workers. The model turns a little every
+// frame, as in `tessera bench`.
+void frameBenchmark(benchmark::State& state, const std::string& name) {
+  const int width = static_cast<int>(state.range(0)), height = static_cast<int>(state.range(1));
+  Expected<bench::BenchScene> b = benchScene(name, width, height);
+  if (!b) {
+    state.SkipWithError(b.error().message.c_str());
+    return;
+  }
+  CpuRenderer renderer(static_cast<int>(state.range(2)));
+  const RenderOptions options = colorOnly(width, height);
+  Frame frame;
+  renderer.render(b->scene, options, frame);  // allocate the buffers outside the timed loop
+  int index = 0;
+  for (auto _ : state) {
+    bench::poseForFrame(*b, index++);
+    renderer.render(b->scene, options, frame);
+    benchmark::DoNotOptimize(frame.color.data());
+  }
+  state.counters["triangles"] = static_cast<double>(b->scene.triangleCount());
+  state.counters["pixels/s"] = benchmark::Counter(static_cast<double>(width) * height,
+                                                  benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void frameArgs(benchmark::internal::Benchmark* b) {
+  b->Args({640, 480, 0})->Args({1920, 1080, 0})->Unit(benchmark::kMillisecond)->UseRealTime();
+}
+BENCHMARK_CAPTURE(frameBenchmark, cube, std::string("cube"))->Apply(frameArgs);
+BENCHMARK_CAPTURE(frameBenchmark, bunny, std::string("bunny"))
+    ->Apply(frameArgs)
+    ->Args({1920, 1080, 1})
+    ->Args({1920, 1080, 2});
+BENCHMARK_CAPTURE(frameBenchmark, dense, std::string("dense"))->Apply(frameArgs);
+BENCHMARK_CAPTURE(frameBenchmark, fill, std::string("fill"))->Apply(frameArgs);
+BENCHMARK_CAPTURE(frameBenchmark, textured, std::string("textured"))->Apply(frameArgs);
+
+// ---- stages, single-threaded, on the bunny at 1920x1080 (the dense sphere without it) ----
+
+// The bunny transformed, set up and binned once, for the stages after each of those.
+struct StageInput {
+  static constexpr int kWidth = 1920, kHeight = 1080;
+  bench::BenchScene scene;
+  render::ObjectTransforms transforms;
+  render::ViewportTransform viewport;
+  render::VertexBuffer vertices;
+  render::SetupContext context;
+  render::TileGrid grid;
+  std::vector<render::TriangleOrientation> orientation;
+  std::vector<size_t> triangle;               // the mesh triangle of each record
+  std::vector<render::TriangleChunk> chunks;  // one chunk: every triangle setup keeps, binned
+};
+
+const StageInput* stageInput() {
+  static std::unique_ptr<StageInput> input = [] {
+    const int width = StageInput::kWidth, height = StageInput::kHeight;
+    Expected<bench::BenchScene> b = benchScene("bunny", width, height);
+    if (!b) b = benchScene("dense", width, height);
+    auto in = std::make_unique<StageInput>();
+    in->scene = std::move(*b);
+    bench::poseForFrame(in->scene, 3);
+    const Scene& scene = in->scene.scene;
+    const Object& object = scene.objects[0];
+    const float4x4 view_projection =
+        scene.camera.projection(static_cast<float>(width) / height) * scene.camera.view();
+    in->transforms = render::makeObjectTransforms(object, view_projection);
+    in->viewport = {static_cast<float>(width), static_cast<float>(height),
+                    render::makeGuardBand(width, height)};
+    const Mesh& mesh = *object.mesh;
+    in->vertices.resize(mesh.vertexCount());
+    render::transformVertices(mesh, in->transforms, in->viewport, 0, mesh.vertexCount(),
+                              in->vertices);
+    in->context.width = width;
+    in->context.height = height;
+    in->context.cull = object.cull;
+    in->context.shading = object.shading;
+    in->context.scene = &in->scene.scene;
+    in->context.object = &in->scene.scene.objects[0];
+    in->grid = render::TileGrid::forViewport(width, height);
+    render::TriangleChunk& chunk = in->chunks.emplace_back();
+    chunk.triangle_count = mesh.triangleCount();
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      render::ScreenVertex v[3];
+      render::VertexAttributes a[3];
+      float3 p[3];
+      bool inside = true;
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t i = mesh.indices[t * 3 + k];
+        inside = inside && !(in->vertices.outcode[i] & (render::kCutPlanes | render::kNonFinite));
+        v[k] = in->vertices.screen[i];
+        a[k] = {in->vertices.normal[i], {}, {1, 1, 1, 1}, true};
+        p[k] = mesh.positions[i];
+      }
+      if (!inside) continue;  // the clipper's work: not part of these benchmarks
+      render::RasterTriangle r;
+      render::TriangleOrientation o;
+      if (!render::setupRaster(in->context, v, r, o)) continue;
+      render::ShadeTriangle shade;
+      const float3 face = in->transforms.normal_matrix * cross(p[1] - p[0], p[2] - p[0]);
+      render::setupShade(in->context, v, a, o, r, face, static_cast<uint32_t>(t), 0, shade);
+      chunk.raster.push_back(r);
+      chunk.shade.push_back(shade);
+      in->orientation.push_back(o);
+      in->triangle.push_back(t);
+    }
+    chunk.size = chunk.raster.size();
+    chunk.bins.reset(in->grid.tileCount());
+    for (size_t i = 0; i < chunk.size; ++i)
+      chunk.bins.add(in->grid, chunk.raster[i], static_cast<uint32_t>(i));
+    chunk.bins.finish();
+    return in;
+  }();
+  return input.get();
+}
+
+void BM_TransformVertices(benchmark::State& state) {
+  const StageInput& in = *stageInput();
+  const Mesh& mesh = *in.scene.scene.objects[0].mesh;
+  render::VertexBuffer out;
+  out.resize(mesh.vertexCount());
+  for (auto _ : state) {
+    render::transformVertices(mesh, in.transforms, in.viewport, 0, mesh.vertexCount(), out);
+    benchmark::DoNotOptimize(out.screen.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(mesh.vertexCount()));
+}
+BENCHMARK(BM_TransformVertices)->Unit(benchmark::kMicrosecond);
+
+// Setup of every triangle with its vertices inside the guard band (culled ones included).
+void BM_SetupRaster(benchmark::State& state) {
+  const StageInput& in = *stageInput();
+  const Mesh& mesh = *in.scene.scene.objects[0].mesh;
+  std::vector<render::RasterTriangle> out(mesh.triangleCount());
+  for (auto _ : state) {
+    size_t kept = 0;
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      render::ScreenVertex v[3];
+      for (int k = 0; k < 3; ++k) v[k] = in.vertices.screen[mesh.indices[t * 3 + k]];
+      render::TriangleOrientation o;
+      kept += render::setupRaster(in.context, v, out[kept], o);
+    }
+    benchmark::DoNotOptimize(kept);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(mesh.triangleCount()));
+}
+BENCHMARK(BM_SetupRaster)->Unit(benchmark::kMicrosecond);
+
+// The shading half of setup, for the triangles setupRaster kept.
+void BM_SetupShade(benchmark::State& state) {
+  const StageInput& in = *stageInput();
+  const Mesh& mesh = *in.scene.scene.objects[0].mesh;
+  const render::TriangleChunk& chunk = in.chunks[0];
+  std::vector<render::ShadeTriangle> out(chunk.size);
+  for (auto _ : state) {
+    for (size_t i = 0; i < chunk.size; ++i) {
+      const size_t t = in.triangle[i];
+      render::ScreenVertex v[3];
+      render::VertexAttributes a[3];
+      float3 p[3];
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t vi = mesh.indices[t * 3 + k];
+        v[k] = in.vertices.screen[vi];
+        a[k] = {in.vertices.normal[vi], {}, {1, 1, 1, 1}, true};
+        p[k] = mesh.positions[vi];
+      }
+      const float3 face = in.transforms.normal_matrix * cross(p[1] - p[0], p[2] - p[0]);
+      render::setupShade(in.context, v, a, in.orientation[i], chunk.raster[i], face,
+                         static_cast<uint32_t>(t), 0, out[i]);
+    }
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(chunk.size));
+}
+BENCHMARK(BM_SetupShade)->Unit(benchmark::kMicrosecond);
+
+void BM_BinTriangles(benchmark::State& state) {
+  const StageInput& in = *stageInput();
+  const render::TriangleChunk& chunk = in.chunks[0];
+  render::ChunkBins bins;
+  for (auto _ : state) {
+    bins.reset(in.grid.tileCount());
+    for (size_t i = 0; i < chunk.size; ++i)
+      bins.add(in.grid, chunk.raster[i], static_cast<uint32_t>(i));
+    bins.finish();
+    benchmark::DoNotOptimize(bins.count(0));
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(chunk.size));
+}
+BENCHMARK(BM_BinTriangles)->Unit(benchmark::kMicrosecond);
+
+bool skipUnsupported(benchmark::State& state, render::Isa isa) {
+  if (static_cast<int>(isa) <= static_cast<int>(render::detectIsa())) return false;
+  state.SkipWithError("this CPU does not run that instruction set");
+  return true;
+}
+
+void isaArgs(benchmark::internal::Benchmark* b) {
+  for (render::Isa isa :
+       {render::Isa::kScalar, render::Isa::kSse2, render::Isa::kAvx2, render::Isa::kAvx512})
+    b->Arg(static_cast<int>(isa));
+  b->Unit(benchmark::kMicrosecond);
+}
+
+// Rasterizes every tile of the frame into its visibility buffer (depth + triangle key), with the
+// kernel compiled for one instruction set (the argument).
+void rasterTile(const StageInput& in, const render::TileKernels& kernels, int tile_index,
+                render::TileVisibility& tile) {
+  const int tx = tile_index % in.grid.columns, ty = tile_index / in.grid.columns;
+  const int x0 = tx * render::kTileSize, y0 = ty * render::kTileSize;
+  tile.clear(x0, y0, std::min(render::kTileSize, in.grid.width - x0),
+             std::min(render::kTileSize, in.grid.height - y0));
+  const render::TriangleChunk& chunk = in.chunks[0];
+  for (const uint32_t* it = chunk.bins.begin(tile_index); it != chunk.bins.end(tile_index); ++it)
+    kernels.raster_triangle(chunk.raster[*it], render::makeKey(0, *it), tile);
+}
+
+void BM_TileRaster(benchmark::State& state) {
+  const auto isa = static_cast<render::Isa>(state.range(0));
+  if (skipUnsupported(state, isa)) return;
+  const StageInput& in = *stageInput();
+  const render::TileKernels kernels = render::tileKernels(isa);
+  auto tile = std::make_unique<render::TileVisibility>();
+  for (auto _ : state) {
+    for (int t = 0; t < in.grid.tileCount(); ++t) rasterTile(in, kernels, t, *tile);
+    benchmark::DoNotOptimize(tile->key);
+  }
+  state.SetLabel(render::isaName(isa));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(in.chunks[0].size));
+}
+BENCHMARK(BM_TileRaster)->Apply(isaArgs);
+
+// Shades every tile from its visibility buffer (rasterized beforehand): each visible pixel once.
+void BM_TileShade(benchmark::State& state) {
+  const auto isa = static_cast<render::Isa>(state.range(0));
+  if (skipUnsupported(state, isa)) return;
+  const StageInput& in = *stageInput();
+  const render::TileKernels kernels = render::tileKernels(isa);
+  std::vector<std::unique_ptr<render::TileVisibility>> tiles;
+  for (int t = 0; t < in.grid.tileCount(); ++t) {
+    tiles.push_back(std::make_unique<render::TileVisibility>());
+    rasterTile(in, kernels, t, *tiles.back());
+  }
+  const Scene& scene = in.scene.scene;
+  const uint32_t background = packSrgba8(scene.background);
+  auto shaded = std::make_unique<render::ShadedTile>();
+  for (auto _ : state) {
+    for (int t = 0; t < in.grid.tileCount(); ++t)
+      kernels.shade_tile(*tiles[t], t, in.chunks, in.chunks.size(), scene, false, background,
+                         *shaded);
+    benchmark::DoNotOptimize(shaded->rgba);
+  }
+  state.SetLabel(render::isaName(isa));
+  state.counters["pixels/s"] =
+      benchmark::Counter(static_cast<double>(in.grid.width) * in.grid.height,
+                         benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_TileShade)->Apply(isaArgs);
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "flags.h"
 #include "model_scene.h"
+#include "view_setup.h"
 
 namespace tessera::cli {
 
@@ -26,10 +27,7 @@ struct RenderSettings {
   std::string output;
   int width = 1000, height = 600;
   float3 background{0.2f, 0.2f, 0.2f};
-  float3 camera_position, camera_focal_point, camera_view_up{0, 1, 0};
-  bool has_position = false, has_focal_point = false, has_view_up = false;
-  float view_angle = 30.0f;
-  std::string up = "+Y";
+  CameraSettings camera;
   std::string shading = "smooth";
   std::string backface;  // empty: the model says (glTF doubleSided), else visible
   std::string aov = "color";
@@ -89,14 +87,7 @@ int runRender(const std::vector<std::string>& args) {
                     s.background = *c;
                     return "";
                   });
-  flags.addFloat3("camera-position", &s.camera_position, &s.has_position,
-                  "camera position (model units)");
-  flags.addFloat3("camera-focal-point", &s.camera_focal_point, &s.has_focal_point,
-                  "point the camera looks at");
-  flags.addFloat3("camera-view-up", &s.camera_view_up, &s.has_view_up, "camera up direction");
-  flags.addFloat("camera-view-angle", &s.view_angle, "vertical field of view in degrees (30)", 1.0f,
-                 170.0f);
-  flags.addChoice("up", &s.up, {"+Y", "+Z"}, "the model's up axis (default +Y)");
+  addCameraFlags(flags, s.camera);
   flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit"},
                   "flat, smooth (per-pixel), gouraud (per-vertex) or unlit (default smooth)");
   flags.addChoice("backface-type", &s.backface, {"visible", "hidden"},
@@ -191,20 +182,11 @@ int runRender(const std::vector<std::string>& args) {
   }
   Scene scene = std::move(*made);
 
-  const float3 up = s.up == "+Z" ? float3{0, 0, 1} : float3{0, 1, 0};
+  const float3 up = s.camera.upAxis();
   const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
-  // A three-quarter view from the front, right and above.
-  Camera camera = frameBounds(bounds, threeQuarterDirection(up), up, s.view_angle, aspect);
-  if (s.has_position || s.has_focal_point || s.has_view_up) {
-    if (s.has_position) camera.position = s.camera_position;
-    if (s.has_focal_point) camera.target = s.camera_focal_point;
-    camera.up = s.has_view_up ? s.camera_view_up : up;
-    if (length(camera.target - camera.position) == 0.0f)
-      return usageError("the camera position and focal point are the same point");
-    if (length(camera.up) == 0.0f) return usageError("--camera-view-up must not be zero");
-    fitNearFar(camera, bounds);
-  }
-  scene.camera = camera;
+  Expected<Camera> camera = makeCamera(s.camera, bounds, aspect);
+  if (!camera) return usageError(camera.error().message);
+  scene.camera = *camera;
   addViewLights(scene);
   if (s.axes) {
     scene.show_world_axes = true;

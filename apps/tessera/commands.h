@@ -18,6 +18,7 @@ constexpr int kExitUsage = 2;    // the command line was wrong
 
 int runCube(const std::vector<std::string>& args);
 int runRender(const std::vector<std::string>& args);
+int runBench(const std::vector<std::string>& args);
 int runInfo(const std::vector<std::string>& args);
 int runView(const std::vector<std::string>& args);
 

@@ -1,4 +1,4 @@
-// tessera: a software 3D rendering pipeline. Subcommands: cube, render.
+// tessera: a software 3D rendering pipeline. Subcommands: cube, render, bench.
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -38,6 +38,7 @@ constexpr const char* kUsage =
     "commands:\n"
     "  cube            render the rotating-cube demo to an animated GIF (no input needed)\n"
     "  render MODEL    render a model to PNG (colour or an AOV), GIF, MP4 or a PNG sequence\n"
+    "  bench [SCENE]   time built-in scenes or models, beside Mesa's llvmpipe with --vs llvmpipe\n"
     "  info MODEL      print a model's counts, bounds and warnings without rendering it\n"
     "  view [MODEL]    look at a model (or the cube) in a window: orbit, zoom, pan, screenshots\n"
     "  devices         list the Vulkan devices and the backends each can run\n"
@@ -57,6 +58,7 @@ int main(int argc, char** argv) {
   args.erase(args.begin());
   if (command == "cube") return runCube(args);
   if (command == "render") return runRender(args);
+  if (command == "bench") return runBench(args);
   if (command == "info") return runInfo(args);
   if (command == "view") return runView(args);
   if (command == "devices") return runDevices(args);

@@ -1,0 +1,360 @@
+// tessera bench [SCENE|MODEL...]: the median frame time of built-in scenes or model files at one
+// or more resolutions, optionally beside Mesa's llvmpipe drawing the same frames through OpenGL.
+// The timed loop covers rendering only: scenes are built and loaded, shaders compiled and buffers
+// uploaded before it, and nothing is encoded or written.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <thread>
+
+#include "backends.h"
+#include "bench/llvmpipe_reference.h"
+#include "bench/scenes.h"
+#include "commands.h"
+#include "flags.h"
+#include "model_scene.h"
+#include "view_setup.h"
+
+namespace tessera::cli {
+
+namespace {
+
+struct Resolution {
+  int width = 0, height = 0;
+};
+
+const std::vector<Resolution> kStandardResolutions = {{640, 480}, {1920, 1080}, {3840, 2160}};
+
+struct BenchSettings {
+  std::vector<Resolution> resolutions;
+  int frames = 20;
+  int warmup = 2;
+  std::string shading = "gouraud";
+  std::string backface = "hidden";
+  CameraSettings camera;
+  int workers = 0;
+  std::string backend = "cpu";
+  int device = -1;
+  bool json = false;
+  bool all = false;
+  std::string versus;  // "" or "llvmpipe"
+};
+
+struct Timing {
+  double median_ms = 0, mean_ms = 0, min_ms = 0, max_ms = 0;
+};
+
+Timing summarize(std::vector<double> ms) {
+  Timing t;
+  std::sort(ms.begin(), ms.end());
+  const size_t n = ms.size();
+  t.median_ms = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
+  for (double v : ms) t.mean_ms += v / static_cast<double>(n);
+  t.min_ms = ms.front();
+  t.max_ms = ms.back();
+  return t;
+}
+
+// "W,H" or "WxH" items; several in one value separated by ';' or spaces, or by ',' between WxH
+// items ("640x480,1920x1080"); "640,480,1920,1080" pairs the numbers up.
+std::string parseResolutions(const std::string& text, std::vector<Resolution>& out) {
+  std::string items = text;
+  std::replace(items.begin(), items.end(), ';', ' ');
+  std::istringstream in(items);
+  std::string item;
+  std::vector<Resolution> parsed;
+  while (in >> item) {
+    std::vector<std::string> numbers;
+    std::string part;
+    std::istringstream parts(item);
+    while (std::getline(parts, part, ',')) {
+      if (size_t x = part.find('x'); x != std::string::npos) {
+        numbers.push_back(part.substr(0, x));
+        numbers.push_back(part.substr(x + 1));
+      } else {
+        numbers.push_back(part);
+      }
+    }
+    if (numbers.empty() || numbers.size() % 2 != 0)
+      return "expected W,H or WxH (several separated by ';'), got '" + text + "'";
+    for (size_t i = 0; i < numbers.size(); i += 2) {
+      long long w, h;
+      if (!parseIntStrict(numbers[i], w) || !parseIntStrict(numbers[i + 1], h))
+        return "expected W,H or WxH (several separated by ';'), got '" + text + "'";
+      if (w < 1 || h < 1 || w > 16384 || h > 16384) return "each side must be between 1 and 16384";
+      parsed.push_back({static_cast<int>(w), static_cast<int>(h)});
+    }
+  }
+  if (parsed.empty()) return "expected W,H or WxH, got '" + text + "'";
+  out.insert(out.end(), parsed.begin(), parsed.end());
+  return "";
+}
+
+std::string jsonString(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+// A built-in scene by name, or else a model file; an error names the argument.
+Expected<bench::BenchScene> openScene(const std::string& arg, Shading shading) {
+  if (bench::isBuiltinScene(arg)) return bench::makeBuiltinScene(arg, shading);
+  std::error_code error;
+  if (!std::filesystem::exists(arg, error)) {
+    std::string known;
+    for (const std::string& n : bench::builtinSceneNames())
+      known += (known.empty() ? "" : ", ") + n;
+    return makeError("'" + arg + "' is neither a built-in scene (" + known + ") nor a model file");
+  }
+  Expected<bench::BenchScene> scene = bench::loadModelScene(arg, shading);
+  if (scene) scene->name = arg;  // the argument as given names the scene in the output
+  return scene;
+}
+
+// Places the camera and lights for one image size: the scene's own view, or a camera that frames
+// the model as `tessera render` does (or the one the camera flags give) with the view's lights.
+Expected<void> placeView(bench::BenchScene& b, const CameraSettings& camera_settings,
+                         Resolution resolution) {
+  if (b.fixed_view && !camera_settings.explicitCamera()) return {};
+  const float aspect = static_cast<float>(resolution.width) / static_cast<float>(resolution.height);
+  Expected<Camera> camera = makeCamera(camera_settings, b.bounds, aspect);
+  if (!camera) return camera.error();
+  b.scene.camera = *camera;
+  addViewLights(b.scene);
+  if (!b.fixed_view) b.spin_axis = camera_settings.upAxis();
+  return {};
+}
+
+// Renders `warmup` untimed frames, then `frames` timed ones, posing the scene before each; the
+// clock runs around draw() alone.
+template <typename Draw>
+std::vector<double> timeFrames(bench::BenchScene& b, int warmup, int frames, Draw&& draw) {
+  for (int i = 0; i < warmup; ++i) {
+    bench::poseForFrame(b, 0);
+    draw();
+  }
+  std::vector<double> ms;
+  ms.reserve(static_cast<size_t>(frames));
+  for (int i = 0; i < frames; ++i) {
+    bench::poseForFrame(b, i);
+    const auto start = std::chrono::steady_clock::now();
+    draw();
+    const auto stop = std::chrono::steady_clock::now();
+    ms.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
+  }
+  return ms;
+}
+
+}  // namespace
+
+int runBench(const std::vector<std::string>& args) {
+  BenchSettings s;
+  bool resolution_given = false;
+  FlagSet flags(
+      "tessera bench [SCENE|MODEL...] [flags]\n\n"
+      "Times frames of the built-in scenes (cube, bunny, dense, fill, textured) or of model files\n"
+      "and prints the median frame time, one line per scene and resolution. With no scene and no\n"
+      "--resolution it runs every built-in scene at 640x480, 1920x1080 and 3840x2160. With --vs\n"
+      "llvmpipe the same frames are drawn by Mesa's llvmpipe (OpenGL through OSMesa) on as many\n"
+      "threads, and ratio = llvmpipe median / tessera median (above 1: tessera is faster).");
+  flags.addCustom("resolution", "W,H",
+                  "image size; repeatable, or a list such as 640x480,1920x1080 "
+                  "(default 640x480, 1920x1080 and 3840x2160)",
+                  [&](const std::string& v) {
+                    resolution_given = true;
+                    return parseResolutions(v, s.resolutions);
+                  });
+  flags.addInt("frames", &s.frames, "timed frames per scene and resolution (default 20)", 1,
+               100000);
+  flags.addInt("warmup", &s.warmup, "untimed frames before them (default 2)", 0, 1000);
+  flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit"},
+                  "flat, smooth (per-pixel), gouraud (per-vertex) or unlit (default gouraud)");
+  flags.addChoice("backface-type", &s.backface, {"visible", "hidden"},
+                  "draw or cull back faces (default hidden)");
+  addCameraFlags(flags, s.camera);
+  flags.addInt("workers", &s.workers,
+               "render threads, and llvmpipe's LP_NUM_THREADS; 0 = all cores (default 0)", 0, 1024);
+  flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
+  flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
+  flags.addChoice("vs", &s.versus, {"llvmpipe"},
+                  "time the same frames on Mesa's llvmpipe too (needs a build with OSMesa)");
+  flags.addSwitch("json", &s.json,
+                  "print one JSON object per line: scene, resolution, width, height, triangles, "
+                  "frames, median_ms... and llvmpipe_median_ms, ratio with --vs");
+  flags.addSwitch("all", &s.all, "every built-in scene at every standard resolution (the default)");
+
+  Expected<std::vector<std::string>> positional = flags.parse(args);
+  if (flags.helpRequested()) {
+    std::cout << flags.usage();
+    return kExitOk;
+  }
+  auto usageError = [&](const std::string& message) {
+    printError("bench", message);
+    std::cerr << flags.usage();
+    return kExitUsage;
+  };
+  if (!positional) return usageError(positional.error().message);
+  if (s.all && (!positional->empty() || resolution_given))
+    return usageError("--all runs the full matrix: give no scene and no --resolution with it");
+  if (s.camera.explicitCamera()) {
+    // The camera flags fail alike for every model: check them before any work.
+    const Bounds unit{{-1, -1, -1}, {1, 1, 1}};
+    if (Expected<Camera> camera = makeCamera(s.camera, unit, 1.0f); !camera)
+      return usageError(camera.error().message);
+  }
+  std::vector<std::string> scene_args = *positional;
+  if (scene_args.empty()) scene_args = bench::builtinSceneNames();
+  if (s.resolutions.empty()) s.resolutions = kStandardResolutions;
+  const Shading shading = shadingFromName(s.shading);
+  const CullMode cull = s.backface == "visible" ? CullMode::kNone : CullMode::kBack;
+  const int workers = s.workers > 0
+                          ? s.workers
+                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+
+  // Every scene is built or loaded before anything is timed, so a bad argument fails at once.
+  std::vector<bench::BenchScene> scenes;
+  for (const std::string& arg : scene_args) {
+    Expected<bench::BenchScene> scene = openScene(arg, shading);
+    if (!scene) {
+      printError("bench", scene.error().message);
+      return kExitFailure;
+    }
+    for (const std::string& warning : scene->warnings)
+      std::cerr << "tessera bench: warning: " << warning << "\n";
+    for (Object& object : scene->scene.objects) object.cull = cull;
+    scenes.push_back(std::move(*scene));
+  }
+
+  std::unique_ptr<bench::LlvmpipeReference> reference;
+  if (s.versus == "llvmpipe") {
+    // create() sets LP_NUM_THREADS to the worker count before llvmpipe starts its threads.
+    Expected<std::unique_ptr<bench::LlvmpipeReference>> created =
+        bench::LlvmpipeReference::create(workers);
+    if (!created) {
+      printError("bench", created.error().message);
+      return kExitFailure;
+    }
+    reference = std::move(*created);
+    if (!reference->isLlvmpipe())
+      std::cerr << "tessera bench: warning: OSMesa renders with '" << reference->renderer()
+                << "', not llvmpipe\n";
+  }
+  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
+  if (!backend) {
+    printError("bench", backend.error().message);
+    return kExitFailure;
+  }
+  Backend& renderer = **backend;
+
+  if (!s.json) {
+    std::cout << "# tessera bench: backend " << renderer.name() << ", " << workers
+              << (workers == 1 ? " worker" : " workers") << ", " << s.shading << " shading, "
+              << (cull == CullMode::kBack ? "back faces culled" : "back faces drawn") << ", "
+              << s.warmup << " warm-up + " << s.frames << " timed frames, median\n";
+    if (reference)
+      std::cout << "# reference: " << reference->renderer() << ", " << reference->version()
+                << ", LP_NUM_THREADS=" << reference->threads() << "\n";
+    std::cout << std::flush;
+  }
+
+  RenderOptions options;
+  options.depth = false;
+  options.ids = false;
+  options.normals = false;
+  options.lines = false;
+  Frame frame;
+  for (bench::BenchScene& b : scenes) {
+    bool reference_loaded = false;
+    for (const Resolution& resolution : s.resolutions) {
+      if (Expected<void> placed = placeView(b, s.camera, resolution); !placed) {
+        printError("bench", placed.error().message);
+        return kExitFailure;
+      }
+      options.width = resolution.width;
+      options.height = resolution.height;
+      const Timing tessera = summarize(
+          timeFrames(b, s.warmup, s.frames, [&] { renderer.render(b.scene, options, frame); }));
+
+      Timing llvmpipe;
+      if (reference) {
+        if (!reference_loaded) {
+          if (Expected<void> loaded = reference->setScene(b.scene); !loaded) {
+            printError("bench", loaded.error().message);
+            return kExitFailure;
+          }
+          reference_loaded = true;
+        }
+        if (Expected<void> sized = reference->setResolution(resolution.width, resolution.height);
+            !sized) {
+          printError("bench", sized.error().message);
+          return kExitFailure;
+        }
+        llvmpipe =
+            summarize(timeFrames(b, s.warmup, s.frames, [&] { reference->render(b.scene); }));
+      }
+
+      const std::string size =
+          std::to_string(resolution.width) + "x" + std::to_string(resolution.height);
+      const size_t triangles = b.scene.triangleCount();
+      const double ratio = llvmpipe.median_ms / tessera.median_ms;
+      if (s.json) {
+        std::cout << "{\"scene\": " << jsonString(b.name) << ", \"resolution\": \"" << size
+                  << "\", \"width\": " << resolution.width << ", \"height\": " << resolution.height
+                  << ", \"triangles\": " << triangles << ", \"frames\": " << s.frames
+                  << ", \"warmup_frames\": " << s.warmup << ", \"shading\": \"" << s.shading
+                  << "\", \"back_faces\": \"" << (cull == CullMode::kBack ? "culled" : "drawn")
+                  << "\", \"backend\": " << jsonString(renderer.name())
+                  << ", \"workers\": " << workers
+                  << ", \"median_ms\": " << fixed(tessera.median_ms, 4)
+                  << ", \"mean_ms\": " << fixed(tessera.mean_ms, 4)
+                  << ", \"min_ms\": " << fixed(tessera.min_ms, 4)
+                  << ", \"max_ms\": " << fixed(tessera.max_ms, 4);
+        if (reference)
+          std::cout << ", \"llvmpipe_median_ms\": " << fixed(llvmpipe.median_ms, 4)
+                    << ", \"llvmpipe_mean_ms\": " << fixed(llvmpipe.mean_ms, 4)
+                    << ", \"llvmpipe_min_ms\": " << fixed(llvmpipe.min_ms, 4)
+                    << ", \"llvmpipe_max_ms\": " << fixed(llvmpipe.max_ms, 4)
+                    << ", \"ratio\": " << fixed(ratio, 4)
+                    << ", \"reference\": " << jsonString(reference->renderer())
+                    << ", \"reference_version\": " << jsonString(reference->version());
+        std::cout << "}\n";
+      } else {
+        char line[512];
+        std::snprintf(line, sizeof line, "%-10s %10s %9zu triangles %5d frames  tessera %9.3f ms",
+                      b.name.c_str(), size.c_str(), triangles, s.frames, tessera.median_ms);
+        std::cout << line;
+        if (reference) {
+          std::snprintf(line, sizeof line, "  llvmpipe %9.3f ms  ratio %6.2f", llvmpipe.median_ms,
+                        ratio);
+          std::cout << line;
+        }
+        std::cout << "\n";
+      }
+      std::cout << std::flush;
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace tessera::cli

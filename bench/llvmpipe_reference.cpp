@@ -1,0 +1,660 @@
+#include "llvmpipe_reference.h"
+
+#if TESSERA_HAVE_OSMESA
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <thread>
+#include <tuple>
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <GL/osmesa.h>
+
+#include <tessera/scene/color.h>
+
+namespace tessera::bench {
+
+namespace {
+
+// Fixed attribute locations, bound before linking.
+enum AttributeLocation : GLuint { kPosition = 0, kNormal = 1, kUv = 2, kColor = 3 };
+
+// The lighting of tessera's shading stage (src/render/setup.cpp and shade.cpp) in GLSL 1.20:
+// Lambert from directional lights plus ambient, on the world normal. Flat and Gouraud light the
+// vertices (flat ones carry the face normal) and interpolate albedo times light; smooth (Phong)
+// interpolates albedo and normal and lights each fragment; the texture multiplies per fragment;
+// back faces that are drawn are lit from the viewer's side; sRGB encoding comes once, last.
+constexpr const char* kVertexShader = R"(
+attribute vec3 a_position;
+attribute vec3 a_normal;
+attribute vec2 a_uv;
+attribute vec4 a_color;
+uniform mat4 u_model_view_projection;
+uniform mat3 u_normal_matrix;
+uniform float u_normal_sign;
+uniform vec3 u_base_color;
+uniform vec3 u_ambient;
+#if LIGHT_COUNT > 0
+uniform vec3 u_light_direction[LIGHT_COUNT];
+uniform vec3 u_light_color[LIGHT_COUNT];
+#endif
+varying vec2 v_uv;
+varying vec3 v_front;  // albedo, times the lighting when it is per vertex
+varying vec3 v_back;   // the same for a back face (two-sided lighting)
+varying vec3 v_normal;
+
+vec3 irradiance(vec3 n) {
+  vec3 e = u_ambient;
+#if LIGHT_COUNT > 0
+  for (int i = 0; i < LIGHT_COUNT; ++i) e += u_light_color[i] * max(-dot(n, u_light_direction[i]), 0.0);
+#endif
+  return e;
+}
+
+void main() {
+  gl_Position = u_model_view_projection * vec4(a_position, 1.0);
+#ifdef HAS_UV
+  v_uv = a_uv;
+#endif
+  vec3 albedo = u_base_color;
+#ifdef HAS_COLOR
+  albedo *= a_color.rgb;
+#endif
+#if defined(LIT_PER_VERTEX) || defined(LIT_PER_PIXEL)
+  vec3 n = normalize(u_normal_matrix * a_normal) * u_normal_sign;
+#endif
+#ifdef LIT_PER_VERTEX
+  v_front = albedo * irradiance(n);
+#ifdef TWO_SIDED
+  v_back = albedo * irradiance(-n);
+#endif
+#else
+  v_front = albedo;
+  v_back = albedo;
+#endif
+#ifdef LIT_PER_PIXEL
+  v_normal = n;
+#endif
+}
+)";
+
+constexpr const char* kFragmentShader = R"(
+uniform sampler2D u_albedo;
+uniform vec3 u_ambient;
+#if LIGHT_COUNT > 0
+uniform vec3 u_light_direction[LIGHT_COUNT];
+uniform vec3 u_light_color[LIGHT_COUNT];
+#endif
+varying vec2 v_uv;
+varying vec3 v_front;
+varying vec3 v_back;
+varying vec3 v_normal;
+
+vec3 irradiance(vec3 n) {
+  vec3 e = u_ambient;
+#if LIGHT_COUNT > 0
+  for (int i = 0; i < LIGHT_COUNT; ++i) e += u_light_color[i] * max(-dot(n, u_light_direction[i]), 0.0);
+#endif
+  return e;
+}
+
+// IEC 61966-2-1.
+vec3 encodeSrgb(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
+}
+
+void main() {
+#ifdef TWO_SIDED
+  vec3 color = gl_FrontFacing ? v_front : v_back;
+#else
+  vec3 color = v_front;
+#endif
+#ifdef HAS_UV
+  color *= texture2D(u_albedo, v_uv).rgb;
+#endif
+#ifdef LIT_PER_PIXEL
+  vec3 n = normalize(v_normal);
+#ifdef TWO_SIDED
+  if (!gl_FrontFacing) n = -n;
+#endif
+  color *= irradiance(n);
+#endif
+  gl_FragColor = vec4(encodeSrgb(color), 1.0);
+}
+)";
+
+struct ProgramKey {
+  Shading shading;
+  bool has_uv, has_color, two_sided;
+  int light_count;
+  auto tie() const { return std::tie(shading, has_uv, has_color, two_sided, light_count); }
+  bool operator<(const ProgramKey& o) const { return tie() < o.tie(); }
+};
+
+struct Program {
+  GLuint id = 0;
+  GLint model_view_projection, normal_matrix, normal_sign, ambient, light_direction, light_color,
+      base_color, albedo;
+};
+
+// Consecutive triangles with one material: a range of indices (indexed objects) or of vertices.
+struct DrawRange {
+  GLint first = 0;
+  GLsizei count = 0;
+  uint16_t material = 0;
+  const Program* program = nullptr;  // set once the shaders are compiled
+  GLuint texture = 0;                // the material's albedo texture when it is sampled
+};
+
+struct GpuObject {
+  GLuint vertex_buffer = 0, index_buffer = 0;
+  bool indexed = false;  // false: a triangle soup carrying face normals (flat shading)
+  bool has_uv = false, has_color = false;
+  GLintptr normal_offset = 0, uv_offset = 0, color_offset = 0;
+  std::vector<DrawRange> ranges;
+  std::vector<GLuint> textures;  // per material; 0 where it has no albedo texture
+};
+
+const char* glErrorName(GLenum error) {
+  switch (error) {
+    case GL_INVALID_ENUM:
+      return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE:
+      return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION:
+      return "GL_INVALID_OPERATION";
+    case GL_OUT_OF_MEMORY:
+      return "GL_OUT_OF_MEMORY";
+    default:
+      return "a GL error";
+  }
+}
+
+Expected<void> checkGl(const char* what) {
+  GLenum error = glGetError();
+  if (error == GL_NO_ERROR) return {};
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  return makeError(std::string("OpenGL reference: ") + what + " failed with " + glErrorName(error));
+}
+
+Expected<GLuint> compileShader(GLenum type, const std::string& source) {
+  GLuint shader = glCreateShader(type);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    glDeleteShader(shader);
+    return makeError(std::string("OpenGL reference: shader compile failed: ") + log);
+  }
+  return shader;
+}
+
+void toGl(const float4x4& m, float out[16]) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) out[c * 4 + r] = m(r, c);  // column-major, as GL
+}
+
+void toGl(const float3x3& m, float out[9]) {
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) out[c * 3 + r] = m(r, c);
+}
+
+// The process-wide LP_NUM_THREADS llvmpipe was started with (-1: not yet).
+int g_llvmpipe_threads = -1;
+
+}  // namespace
+
+struct LlvmpipeReference::State {
+  OSMesaContext context = nullptr;
+  std::vector<uint8_t> color;  // the OSMesa colour buffer, RGBA8, rows bottom-up
+  int width = 0, height = 0;
+  std::string renderer, version;
+  int threads = 0;
+  std::map<ProgramKey, Program> programs;
+  std::vector<GpuObject> objects;
+  size_t light_count = 0;  // the shaders of the current scene are compiled for this many lights
+
+  // Several references may live in one process: GL calls go to the current context.
+  void makeCurrent() {
+    if (OSMesaGetCurrentContext() != context)
+      OSMesaMakeCurrent(context, color.data(), GL_UNSIGNED_BYTE, width, height);
+  }
+
+  void releaseScene() {
+    for (GpuObject& o : objects) {
+      glDeleteBuffers(1, &o.vertex_buffer);
+      if (o.index_buffer) glDeleteBuffers(1, &o.index_buffer);
+      for (GLuint t : o.textures)
+        if (t) glDeleteTextures(1, &t);
+    }
+    objects.clear();
+  }
+
+  Expected<Program*> program(const ProgramKey& key) {
+    auto found = programs.find(key);
+    if (found != programs.end()) return &found->second;
+    std::string defines =
+        "#version 120\n#define LIGHT_COUNT " + std::to_string(key.light_count) + "\n";
+    if (key.shading == Shading::kFlat || key.shading == Shading::kGouraud)
+      defines += "#define LIT_PER_VERTEX\n";
+    if (key.shading == Shading::kPhong) defines += "#define LIT_PER_PIXEL\n";
+    if (key.has_uv) defines += "#define HAS_UV\n";
+    if (key.has_color) defines += "#define HAS_COLOR\n";
+    if (key.two_sided) defines += "#define TWO_SIDED\n";
+    Expected<GLuint> vs = compileShader(GL_VERTEX_SHADER, defines + kVertexShader);
+    if (!vs) return vs.error();
+    Expected<GLuint> fs = compileShader(GL_FRAGMENT_SHADER, defines + kFragmentShader);
+    if (!fs) {
+      glDeleteShader(*vs);
+      return fs.error();
+    }
+    Program p;
+    p.id = glCreateProgram();
+    glAttachShader(p.id, *vs);
+    glAttachShader(p.id, *fs);
+    glBindAttribLocation(p.id, kPosition, "a_position");
+    glBindAttribLocation(p.id, kNormal, "a_normal");
+    glBindAttribLocation(p.id, kUv, "a_uv");
+    glBindAttribLocation(p.id, kColor, "a_color");
+    glLinkProgram(p.id);
+    glDeleteShader(*vs);
+    glDeleteShader(*fs);
+    GLint ok = 0;
+    glGetProgramiv(p.id, GL_LINK_STATUS, &ok);
+    if (!ok) {
+      char log[2048] = {};
+      glGetProgramInfoLog(p.id, sizeof log, nullptr, log);
+      glDeleteProgram(p.id);
+      return makeError(std::string("OpenGL reference: shader link failed: ") + log);
+    }
+    p.model_view_projection = glGetUniformLocation(p.id, "u_model_view_projection");
+    p.normal_matrix = glGetUniformLocation(p.id, "u_normal_matrix");
+    p.normal_sign = glGetUniformLocation(p.id, "u_normal_sign");
+    p.ambient = glGetUniformLocation(p.id, "u_ambient");
+    p.light_direction = glGetUniformLocation(p.id, "u_light_direction");
+    p.light_color = glGetUniformLocation(p.id, "u_light_color");
+    p.base_color = glGetUniformLocation(p.id, "u_base_color");
+    p.albedo = glGetUniformLocation(p.id, "u_albedo");
+    return &programs.emplace(key, p).first->second;
+  }
+
+  Expected<void> upload(const Object& object) {
+    GpuObject g;
+    const Mesh& mesh = *object.mesh;
+    const size_t triangles = mesh.triangleCount();
+    // Flat shading lights the face normal; a mesh without normals is drawn flat by tessera too.
+    g.indexed = object.shading != Shading::kFlat && !mesh.normals.empty();
+    g.has_uv = !mesh.uvs.empty();
+    g.has_color = !mesh.colors.empty();
+
+    std::vector<float3> positions, normals;
+    std::vector<float2> uvs;
+    std::vector<float4> colors;
+    std::vector<uint32_t> indices;
+    auto materialOf = [&](size_t t) -> uint16_t {
+      return t < mesh.triangle_materials.size() ? mesh.triangle_materials[t] : 0;
+    };
+    auto addToRange = [&](size_t t, GLsizei elements) {
+      const uint16_t material = materialOf(t);
+      if (g.ranges.empty() || g.ranges.back().material != material) {
+        const GLint first = g.ranges.empty() ? 0 : g.ranges.back().first + g.ranges.back().count;
+        g.ranges.push_back({first, 0, material});
+      }
+      g.ranges.back().count += elements;
+    };
+    if (g.indexed) {
+      positions = mesh.positions;
+      normals = mesh.normals;
+      uvs = mesh.uvs;
+      colors = mesh.colors;
+      indices.reserve(mesh.indices.size());
+    } else {
+      positions.reserve(triangles * 3);
+      normals.reserve(triangles * 3);
+      if (g.has_uv) uvs.reserve(triangles * 3);
+      if (g.has_color) colors.reserve(triangles * 3);
+    }
+    for (size_t t = 0; t < triangles; ++t) {
+      const uint32_t* v = &mesh.indices[t * 3];
+      const float3 p0 = mesh.positions[v[0]], p1 = mesh.positions[v[1]], p2 = mesh.positions[v[2]];
+      // tessera drops triangles with a non-finite vertex.
+      if (!isFinite(p0) || !isFinite(p1) || !isFinite(p2)) continue;
+      if (g.indexed) {
+        indices.insert(indices.end(), v, v + 3);
+      } else {
+        const float3 face = cross(p1 - p0, p2 - p0);  // object space; the shader transforms it
+        for (int k = 0; k < 3; ++k) {
+          positions.push_back(mesh.positions[v[k]]);
+          normals.push_back(face);
+          if (g.has_uv) uvs.push_back(mesh.uvs[v[k]]);
+          if (g.has_color) colors.push_back(mesh.colors[v[k]]);
+        }
+      }
+      addToRange(t, 3);
+    }
+
+    // One buffer: the positions, then the normals, UVs and colours, each tightly packed.
+    static_assert(sizeof(float3) == 12 && sizeof(float2) == 8 && sizeof(float4) == 16);
+    const GLsizeiptr position_bytes = static_cast<GLsizeiptr>(positions.size() * sizeof(float3));
+    const GLsizeiptr normal_bytes = static_cast<GLsizeiptr>(normals.size() * sizeof(float3));
+    const GLsizeiptr uv_bytes = static_cast<GLsizeiptr>(uvs.size() * sizeof(float2));
+    const GLsizeiptr color_bytes = static_cast<GLsizeiptr>(colors.size() * sizeof(float4));
+    g.normal_offset = position_bytes;
+    g.uv_offset = g.normal_offset + normal_bytes;
+    g.color_offset = g.uv_offset + uv_bytes;
+    glGenBuffers(1, &g.vertex_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, g.vertex_buffer);
+    glBufferData(GL_ARRAY_BUFFER, g.color_offset + color_bytes, nullptr, GL_STATIC_DRAW);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, position_bytes, positions.data());
+    glBufferSubData(GL_ARRAY_BUFFER, g.normal_offset, normal_bytes, normals.data());
+    if (uv_bytes) glBufferSubData(GL_ARRAY_BUFFER, g.uv_offset, uv_bytes, uvs.data());
+    if (color_bytes) glBufferSubData(GL_ARRAY_BUFFER, g.color_offset, color_bytes, colors.data());
+    if (g.indexed) {
+      glGenBuffers(1, &g.index_buffer);
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.index_buffer);
+      glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                   static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)), indices.data(),
+                   GL_STATIC_DRAW);
+    }
+
+    // Albedo textures: sRGB texels decode to linear before filtering, as tessera samples them;
+    // bilinear without mipmaps. GL's row 0 is t = 0, tessera's is v = 1: rows go in reversed.
+    for (const Material& material : object.materials) {
+      GLuint texture = 0;
+      if (material.albedo && material.albedo->width > 0 && material.albedo->height > 0) {
+        const Texture& t = *material.albedo;
+        std::vector<uint32_t> rows(t.texels.size());
+        for (int y = 0; y < t.height; ++y)
+          std::copy_n(&t.texels[static_cast<size_t>(t.height - 1 - y) * t.width], t.width,
+                      &rows[static_cast<size_t>(y) * t.width]);
+        glGenTextures(1, &texture);
+        glBindTexture(GL_TEXTURE_2D, texture);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTexImage2D(GL_TEXTURE_2D, 0, t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, t.width, t.height, 0,
+                     GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+        const GLint filter =
+            material.sampler.filter == TextureFilter::kNearest ? GL_NEAREST : GL_LINEAR;
+        const GLint wrap =
+            material.sampler.wrap == TextureWrap::kClamp ? GL_CLAMP_TO_EDGE : GL_REPEAT;
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
+      }
+      g.textures.push_back(texture);
+    }
+    objects.push_back(std::move(g));
+    return checkGl("uploading a mesh");
+  }
+
+  void draw(const Scene& scene, const Object& object, const GpuObject& g, const float4x4& view,
+            const float4x4& projection) {
+    if (object.cull == CullMode::kNone) {
+      glDisable(GL_CULL_FACE);
+    } else {
+      glEnable(GL_CULL_FACE);
+      glCullFace(object.cull == CullMode::kBack ? GL_BACK : GL_FRONT);
+    }
+    const float4x4 model = object.transform.matrix();
+    float model_view_projection[16], normal_matrix[9];
+    toGl(projection * view * model, model_view_projection);
+    toGl(normalMatrix(model), normal_matrix);
+    // Face normals come from object-space winding: a mirrored object flips them (as tessera).
+    const float normal_sign = !g.indexed && determinant(upper3x3(model)) < 0.0f ? -1.0f : 1.0f;
+    const int light_count = static_cast<int>(scene.lights.size());
+    float light_direction[3 * kMaxLights], light_color[3 * kMaxLights];
+    for (int i = 0; i < light_count; ++i)
+      for (int k = 0; k < 3; ++k) {
+        light_direction[3 * i + k] = scene.lights[i].direction[k];
+        light_color[3 * i + k] = scene.lights[i].color[k];
+      }
+
+    glBindBuffer(GL_ARRAY_BUFFER, g.vertex_buffer);
+    glEnableVertexAttribArray(kPosition);
+    glVertexAttribPointer(kPosition, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glEnableVertexAttribArray(kNormal);
+    glVertexAttribPointer(kNormal, 3, GL_FLOAT, GL_FALSE, 0,
+                          reinterpret_cast<const void*>(g.normal_offset));
+    if (g.has_uv) {
+      glEnableVertexAttribArray(kUv);
+      glVertexAttribPointer(kUv, 2, GL_FLOAT, GL_FALSE, 0,
+                            reinterpret_cast<const void*>(g.uv_offset));
+    } else {
+      glDisableVertexAttribArray(kUv);
+    }
+    if (g.has_color) {
+      glEnableVertexAttribArray(kColor);
+      glVertexAttribPointer(kColor, 4, GL_FLOAT, GL_FALSE, 0,
+                            reinterpret_cast<const void*>(g.color_offset));
+    } else {
+      glDisableVertexAttribArray(kColor);
+    }
+    if (g.indexed) glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.index_buffer);
+
+    for (const DrawRange& range : g.ranges) {
+      const Material& material =
+          object.materials[range.material < object.materials.size() ? range.material : 0];
+      const Program& p = *range.program;
+      glUseProgram(p.id);
+      glUniformMatrix4fv(p.model_view_projection, 1, GL_FALSE, model_view_projection);
+      glUniformMatrix3fv(p.normal_matrix, 1, GL_FALSE, normal_matrix);
+      glUniform1f(p.normal_sign, normal_sign);
+      glUniform3f(p.ambient, scene.ambient.x, scene.ambient.y, scene.ambient.z);
+      if (light_count > 0) {
+        glUniform3fv(p.light_direction, light_count, light_direction);
+        glUniform3fv(p.light_color, light_count, light_color);
+      }
+      glUniform3f(p.base_color, material.base_color.x, material.base_color.y,
+                  material.base_color.z);
+      if (range.texture) {
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, range.texture);
+        glUniform1i(p.albedo, 0);
+      }
+      if (g.indexed) {
+        glDrawElements(
+            GL_TRIANGLES, range.count, GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(static_cast<uintptr_t>(range.first) * sizeof(uint32_t)));
+      } else {
+        glDrawArrays(GL_TRIANGLES, range.first, range.count);
+      }
+    }
+  }
+};
+
+bool llvmpipeReferenceBuilt() {
+  return true;
+}
+
+LlvmpipeReference::LlvmpipeReference() : state_(std::make_unique<State>()) {}
+
+LlvmpipeReference::~LlvmpipeReference() {
+  if (state_->context) {
+    if (!state_->color.empty()) {
+      state_->makeCurrent();
+      state_->releaseScene();
+      for (auto& [key, program] : state_->programs) glDeleteProgram(program.id);
+    }
+    OSMesaDestroyContext(state_->context);
+  }
+}
+
+Expected<std::unique_ptr<LlvmpipeReference>> LlvmpipeReference::create(int workers) {
+  const int threads =
+      workers > 0 ? workers : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  if (g_llvmpipe_threads < 0) {
+    // llvmpipe reads this once, when the first context creates its screen.
+    setenv("LP_NUM_THREADS", std::to_string(threads).c_str(), 1);
+    g_llvmpipe_threads = threads;
+  } else if (g_llvmpipe_threads != threads) {
+    return makeError("llvmpipe already runs " + std::to_string(g_llvmpipe_threads) +
+                     " threads in this process; it cannot change to " + std::to_string(threads));
+  }
+  std::unique_ptr<LlvmpipeReference> reference(new LlvmpipeReference());
+  State& s = *reference->state_;
+  s.threads = threads;
+  s.context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
+  if (!s.context) return makeError("OSMesaCreateContextExt failed: no OSMesa context");
+  if (Expected<void> sized = reference->setResolution(16, 16); !sized) return sized.error();
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const char* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+  s.renderer = renderer ? renderer : "unknown";
+  s.version = version ? version : "unknown";
+  return reference;
+}
+
+const std::string& LlvmpipeReference::renderer() const {
+  return state_->renderer;
+}
+const std::string& LlvmpipeReference::version() const {
+  return state_->version;
+}
+bool LlvmpipeReference::isLlvmpipe() const {
+  return state_->renderer.find("llvmpipe") != std::string::npos;
+}
+int LlvmpipeReference::threads() const {
+  return state_->threads;
+}
+
+Expected<void> LlvmpipeReference::setResolution(int width, int height) {
+  State& s = *state_;
+  GLint max_width = 0, max_height = 0;
+  if (!s.color.empty()) {
+    OSMesaGetIntegerv(OSMESA_MAX_WIDTH, &max_width);
+    OSMesaGetIntegerv(OSMESA_MAX_HEIGHT, &max_height);
+    if (width > max_width || height > max_height)
+      return makeError("OSMesa draws at most " + std::to_string(max_width) + "x" +
+                       std::to_string(max_height) + " pixels");
+  }
+  s.color.assign(static_cast<size_t>(width) * height * 4, 0);
+  if (!OSMesaMakeCurrent(s.context, s.color.data(), GL_UNSIGNED_BYTE, width, height))
+    return makeError("OSMesaMakeCurrent failed at " + std::to_string(width) + "x" +
+                     std::to_string(height));
+  s.width = width;
+  s.height = height;
+  glViewport(0, 0, width, height);
+  return checkGl("resizing");
+}
+
+Expected<void> LlvmpipeReference::setScene(const Scene& scene) {
+  State& s = *state_;
+  s.makeCurrent();
+  if (scene.lights.size() > static_cast<size_t>(kMaxLights))
+    return makeError("the OpenGL reference takes at most " + std::to_string(kMaxLights) +
+                     " lights; the scene has " + std::to_string(scene.lights.size()));
+  s.releaseScene();
+  s.light_count = scene.lights.size();
+  const int light_count = static_cast<int>(scene.lights.size());
+  for (const Object& object : scene.objects) {
+    TESSERA_CHECK(object.mesh) << "an object without a mesh";
+    if (Expected<void> uploaded = s.upload(object); !uploaded) return uploaded;
+    GpuObject& g = s.objects.back();
+    // Compile every program the object needs now, not in the timed loop.
+    for (DrawRange& range : g.ranges) {
+      const size_t m = range.material < object.materials.size() ? range.material : 0;
+      range.texture = g.has_uv ? g.textures[m] : 0;
+      const ProgramKey key{object.shading, range.texture != 0, g.has_color,
+                           object.cull != CullMode::kBack, light_count};
+      Expected<Program*> program = s.program(key);
+      if (!program) return program.error();
+      range.program = *program;
+    }
+  }
+  return checkGl("uploading the scene");
+}
+
+void LlvmpipeReference::render(const Scene& scene) {
+  State& s = *state_;
+  TESSERA_CHECK(scene.objects.size() == s.objects.size())
+      << "render() needs the scene given to setScene()";
+  s.makeCurrent();
+  TESSERA_CHECK(scene.lights.size() == s.light_count)
+      << "the shaders were compiled for " << s.light_count << " lights";
+  const float4 bg = scene.background;
+  glClearColor(static_cast<float>(encodeSrgb8(bg.x)) / 255.0f,
+               static_cast<float>(encodeSrgb8(bg.y)) / 255.0f,
+               static_cast<float>(encodeSrgb8(bg.z)) / 255.0f, 1.0f);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glFrontFace(GL_CCW);  // counter-clockwise in NDC is front-facing, as in tessera
+  const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
+  const float4x4 view = scene.camera.view();
+  const float4x4 projection = scene.camera.projection(aspect);
+  for (size_t i = 0; i < scene.objects.size(); ++i)
+    s.draw(scene, scene.objects[i], s.objects[i], view, projection);
+  glFinish();
+}
+
+void LlvmpipeReference::readColor(std::vector<uint32_t>& rgba) const {
+  State& s = *state_;
+  s.makeCurrent();
+  std::vector<uint32_t> bottom_up(static_cast<size_t>(s.width) * s.height);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, s.width, s.height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+  rgba.resize(bottom_up.size());
+  // GL's row 0 is the bottom one; tessera's the top one.
+  for (int y = 0; y < s.height; ++y)
+    std::copy_n(&bottom_up[static_cast<size_t>(s.height - 1 - y) * s.width], s.width,
+                &rgba[static_cast<size_t>(y) * s.width]);
+}
+
+}  // namespace tessera::bench
+
+#else  // !TESSERA_HAVE_OSMESA
+
+namespace tessera::bench {
+
+struct LlvmpipeReference::State {};
+
+bool llvmpipeReferenceBuilt() {
+  return false;
+}
+
+LlvmpipeReference::LlvmpipeReference() = default;
+LlvmpipeReference::~LlvmpipeReference() = default;
+
+Expected<std::unique_ptr<LlvmpipeReference>> LlvmpipeReference::create(int) {
+  return makeError(
+      "this tessera was built without OSMesa, so it has no llvmpipe reference: install Debian's "
+      "libosmesa6-dev and reconfigure (CMake option TESSERA_OSMESA)");
+}
+
+const std::string& LlvmpipeReference::renderer() const {
+  static const std::string kNone = "none";
+  return kNone;
+}
+const std::string& LlvmpipeReference::version() const {
+  return renderer();
+}
+bool LlvmpipeReference::isLlvmpipe() const {
+  return false;
+}
+int LlvmpipeReference::threads() const {
+  return 0;
+}
+Expected<void> LlvmpipeReference::setScene(const Scene&) {
+  return makeError("no OSMesa");
+}
+Expected<void> LlvmpipeReference::setResolution(int, int) {
+  return makeError("no OSMesa");
+}
+void LlvmpipeReference::render(const Scene&) {}
+void LlvmpipeReference::readColor(std::vector<uint32_t>& rgba) const {
+  rgba.clear();
+}
+
+}  // namespace tessera::bench
+
+#endif

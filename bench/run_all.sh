@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# Regenerates docs/perf.md from a fresh measurement: builds tessera (Release), runs every built-in
+# scene at every standard resolution beside llvmpipe, the bunny at 1080p with 1 and 2 workers and
+# with other shading and culling, and UV spheres of 1k to 1M triangles at 1080p; then writes the
+# raw results (docs/perf/*.jsonl), the plots (docs/perf/*.png) and docs/perf.md itself.
+#
+#   bench/run_all.sh                  # FRAMES=30 timed frames per scene and resolution
+#   FRAMES=50 MAX_LOAD=0.5 bench/run_all.sh
+#
+# MAX_LOAD: wait (up to WAIT_SECONDS, default 900) until the 1-minute load average is below it
+# before measuring; the doc records the load before and after either way. Needs OSMesa
+# (libosmesa6-dev), the bunny (glmark2-data) and matplotlib (python3-matplotlib).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build=${BUILD_DIR:-build}
+frames=${FRAMES:-30}
+out=docs/perf
+python=/usr/bin/python3
+[ -x "$python" ] || python=python3
+"$python" -c "import matplotlib" 2>/dev/null ||
+  { echo "run_all: the plots need matplotlib: apt-get install python3-matplotlib" >&2; exit 1; }
+
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DTESSERA_OSMESA=ON >/dev/null
+cmake --build "$build" -j"${JOBS:-2}" --target tessera
+exe="$build/apps/tessera/tessera"
+mkdir -p "$out"
+
+load() { cut -d' ' -f1 /proc/loadavg; }
+if [ -n "${MAX_LOAD:-}" ]; then
+  waited=0
+  while awk -v l="$(load)" -v m="$MAX_LOAD" 'BEGIN { exit !(l >= m) }'; do
+    [ "$waited" -ge "${WAIT_SECONDS:-900}" ] && { echo "run_all: load still $(load)" >&2; break; }
+    sleep 15
+    waited=$((waited + 15))
+  done
+fi
+load_before=$(load)
+
+bench() { "$exe" bench --json --vs llvmpipe --frames "$frames" "$@"; }
+echo "run_all: every scene at every resolution ($frames frames each)" >&2
+bench > "$out/matrix.jsonl"
+echo "run_all: worker scaling and variants of the bunny at 1920x1080" >&2
+{
+  bench --workers 1 --resolution 1920,1080 bunny
+  bench --workers 2 --resolution 1920,1080 bunny
+} > "$out/scaling.jsonl"
+{
+  bench --resolution 1920,1080 --shading smooth bunny
+  bench --resolution 1920,1080 --backface-type visible bunny
+  bench --resolution 1920,1080 --shading flat bunny
+} > "$out/variants.jsonl"
+echo "run_all: UV spheres of 1k to 1M triangles at 1920x1080" >&2
+spheres=$(mktemp -d)
+trap 'rm -rf "$spheres"' EXIT
+for k in 16 32 64 128 256 512; do
+  "$python" bench/sphere_obj.py "$k" "$spheres/sphere_$((4 * k * k)).obj"
+  bench --resolution 1920,1080 "$spheres/sphere_$((4 * k * k)).obj"
+done > "$out/spheres.jsonl"
+load_after=$(load)
+
+compiler=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$build/CMakeCache.txt")
+"$python" - "$out/machine.json" <<EOF
+import json, platform, subprocess, sys
+cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "unknown")
+flags = next((l.split(":", 1)[1].split() for l in open("/proc/cpuinfo") if l.startswith("flags")), [])
+simd = [f for f in ("sse2", "avx2", "avx512f") if f in flags]
+json.dump({
+    "cpu": cpu, "cores": int(subprocess.check_output(["nproc"]).strip()), "simd": simd,
+    "compiler": subprocess.check_output(["$compiler", "--version"], text=True).splitlines()[0],
+    "kernel": platform.release(),
+    "commit": subprocess.check_output(["git", "rev-parse", "--short", "HEAD"], text=True).strip(),
+    "dirty": bool(subprocess.check_output(["git", "status", "--porcelain", "--untracked-files=no", "--", ".", ":!docs"], text=True).strip()),
+    "date": subprocess.check_output(["date", "-u", "+%Y-%m-%d %H:%M UTC"], text=True).strip(),
+    "frames": $frames, "load_before": float("$load_before"), "load_after": float("$load_after"),
+}, open(sys.argv[1], "w"), indent=2)
+EOF
+"$python" bench/report.py "$out" docs/perf.md
+echo "run_all: wrote docs/perf.md and $out/" >&2

@@ -1,0 +1,163 @@
+#include "scenes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <system_error>
+
+#include <tessera/io/model_loader.h>
+#include <tessera/scene/color.h>
+#include <tessera/scene/primitives.h>
+
+namespace tessera::bench {
+
+namespace {
+
+// UV sphere sizes: makeUvSphere gives 2 * segments * (rings - 1) triangles (no pole slivers).
+constexpr int kDenseSegments = 1000, kDenseRings = 501;
+constexpr int kTexturedSegments = 128, kTexturedRings = 64;
+static_assert(2 * kDenseSegments * (kDenseRings - 1) == kDenseTriangles);
+static_assert(2 * kTexturedSegments * (kTexturedRings - 1) == kTexturedTriangles);
+
+float4 srgbColor(float r, float g, float b) {
+  return {srgbToLinear(r), srgbToLinear(g), srgbToLinear(b), 1.0f};
+}
+
+BenchScene singleObjectScene(std::string name, Mesh mesh, Material material, Shading shading) {
+  BenchScene b;
+  b.name = std::move(name);
+  Object object;
+  object.mesh = std::make_shared<Mesh>(std::move(mesh));
+  object.materials = {std::move(material)};
+  object.shading = shading;
+  object.cull = CullMode::kBack;
+  b.scene.objects.push_back(std::move(object));
+  b.scene.background = srgbColor(0.2f, 0.2f, 0.2f);
+  b.bounds = b.scene.bounds();
+  b.pivot = b.bounds.center();
+  return b;
+}
+
+// Ten square layers facing a camera at the origin that looks down -Z, listed farthest first, so
+// every layer passes the depth test wherever it is drawn: each pixel is covered ten times. The
+// squares reach 2.5 times the half-height of the view at their depth: they cover any view up to
+// an aspect of 2.2 at any angle of the spin about the view axis.
+BenchScene makeFillScene(Shading shading) {
+  BenchScene b;
+  b.name = "fill";
+  b.fixed_view = true;
+  Camera& camera = b.scene.camera;
+  camera.position = {0, 0, 0};
+  camera.target = {0, 0, -1};
+  camera.up = {0, 1, 0};
+  camera.fov_y_degrees = 50.0f;
+  camera.near_z = 1.0f;
+  camera.far_z = 20.0f;
+  const float half_tan = std::tan(radians(camera.fov_y_degrees) * 0.5f);
+  for (size_t layer = 0; layer < kFillLayers; ++layer) {
+    const float depth = 2.0f + static_cast<float>(kFillLayers - 1 - layer);
+    const float h = depth * half_tan * 2.5f;
+    Mesh quad;
+    quad.positions = {{-h, -h, -depth}, {h, -h, -depth}, {h, h, -depth}, {-h, h, -depth}};
+    quad.normals.assign(4, float3{0, 0, 1});
+    quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    quad.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise seen from the camera
+    Object object;
+    object.mesh = std::make_shared<Mesh>(std::move(quad));
+    // A hue per layer, so a picture shows which layer won.
+    const float t = static_cast<float>(layer) / static_cast<float>(kFillLayers - 1);
+    object.materials[0].base_color = srgbColor(0.3f + 0.6f * t, 0.8f - 0.5f * t, 0.9f - 0.6f * t);
+    object.shading = shading;
+    object.cull = CullMode::kBack;
+    b.scene.objects.push_back(std::move(object));
+  }
+  b.scene.lights.push_back({normalize(float3{0.3f, -0.4f, -1.0f}), float3(0.8f)});
+  b.scene.ambient = float3(0.18f);
+  b.scene.background = srgbColor(0.2f, 0.2f, 0.2f);
+  b.bounds = b.scene.bounds();
+  b.spin_axis = {0, 0, 1};  // about the view axis: the layers keep covering the screen
+  b.pivot = {0, 0, 0};
+  return b;
+}
+
+Expected<BenchScene> makeBunnyScene(Shading shading) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(kBunnyPath, error))
+    return makeError(std::string("the bunny scene needs ") + kBunnyPath + " from Debian's " +
+                     kBunnyPackage + " package (apt-get install " + kBunnyPackage + ")");
+  Expected<BenchScene> scene = loadModelScene(kBunnyPath, shading);
+  if (!scene) return scene;
+  scene->name = "bunny";
+  return scene;
+}
+
+}  // namespace
+
+Texture makeCheckerTexture(int size, int cells) {
+  Texture texture;
+  texture.width = texture.height = size;
+  texture.srgb = true;
+  texture.texels.resize(static_cast<size_t>(size) * size);
+  const uint32_t light = 0xffe8e0d8u, dark = 0xff503828u;  // ABGR: R in the low byte
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const bool odd = ((x * cells / size) + (y * cells / size)) % 2 != 0;
+      texture.texels[static_cast<size_t>(y) * size + x] = odd ? dark : light;
+    }
+  return texture;
+}
+
+std::vector<std::string> builtinSceneNames() {
+  return {"cube", "bunny", "dense", "fill", "textured"};
+}
+
+bool isBuiltinScene(const std::string& name) {
+  const std::vector<std::string> names = builtinSceneNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+Expected<BenchScene> makeBuiltinScene(const std::string& name, Shading shading) {
+  if (name == "cube") {
+    Material material;
+    material.base_color = srgbColor(0.95f, 0.55f, 0.15f);
+    return singleObjectScene(name, makeCube(), material, shading);
+  }
+  if (name == "bunny") return makeBunnyScene(shading);
+  if (name == "dense")
+    return singleObjectScene(name, makeUvSphere(kDenseSegments, kDenseRings), Material{}, shading);
+  if (name == "fill") return makeFillScene(shading);
+  if (name == "textured") {
+    Material material;
+    material.base_color = {1, 1, 1, 1};
+    material.albedo = std::make_shared<Texture>(makeCheckerTexture(512, 16));
+    material.sampler = {TextureFilter::kBilinear, TextureWrap::kRepeat};
+    return singleObjectScene(name, makeUvSphere(kTexturedSegments, kTexturedRings), material,
+                             shading);
+  }
+  std::string known;
+  for (const std::string& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
+  return makeError("unknown scene '" + name + "' (built-in scenes: " + known + ")");
+}
+
+Expected<BenchScene> loadModelScene(const std::filesystem::path& path, Shading shading) {
+  Expected<io::Model> model = io::loadModel(path);
+  if (!model) return model.error();
+  if (model->mesh.bounds().empty())
+    return makeError(path.string() + ": the model has no finite vertices");
+  BenchScene b =
+      singleObjectScene(path.stem().string(), std::move(model->mesh), Material{}, shading);
+  if (!model->materials.empty()) b.scene.objects[0].materials = model->materials;
+  b.warnings = model->warnings;
+  return b;
+}
+
+void poseForFrame(BenchScene& bench_scene, int frame) {
+  const quat turn =
+      quat::fromAxisAngle(bench_scene.spin_axis, radians(kTurnDegreesPerFrame * frame));
+  for (Object& object : bench_scene.scene.objects) {
+    object.transform.rotation = turn;
+    object.transform.translation = bench_scene.pivot - rotate(turn, bench_scene.pivot);
+  }
+}
+
+}  // namespace tessera::bench

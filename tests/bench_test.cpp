@@ -1,0 +1,446 @@
+// Tests of the benchmark: the built-in scenes, `tessera bench` run as a real process, and the
+// llvmpipe reference drawing the same pixels as tessera. Nothing here times anything.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include <tessera/render/cpu_renderer.h>
+#include <tessera/scene/color.h>
+
+#include "bench/llvmpipe_reference.h"
+#include "bench/scenes.h"
+
+namespace fs = std::filesystem;
+using namespace tessera;
+
+namespace {
+
+Expected<bench::BenchScene> scene(const std::string& name, Shading shading = Shading::kGouraud) {
+  return bench::makeBuiltinScene(name, shading);
+}
+
+// The cube demo's view: the caller of a scene places camera and lights.
+void lookAtCube(Scene& s) {
+  s.camera.position = {0.0f, 1.1f, 2.4f};
+  s.camera.target = {0, 0, 0};
+  s.camera.fov_y_degrees = 50.0f;
+  s.camera.near_z = 0.1f;
+  s.camera.far_z = 20.0f;
+  s.lights = {{normalize(float3{-0.6f, -1.0f, -0.8f}), float3(0.85f)},
+              {normalize(float3{0.8f, 0.3f, -0.4f}), float3(0.2f)}};
+  s.ambient = float3(0.12f);
+}
+
+RenderOptions colorAndIds(int width, int height) {
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.depth = false;
+  options.ids = true;
+  options.lines = false;
+  return options;
+}
+
+}  // namespace
+
+TEST(BenchScenes, BuiltinScenesHaveTheAdvertisedTriangleCounts) {
+  const std::pair<const char*, size_t> expected[] = {{"cube", bench::kCubeTriangles},
+                                                     {"dense", bench::kDenseTriangles},
+                                                     {"fill", bench::kFillTriangles},
+                                                     {"textured", bench::kTexturedTriangles}};
+  for (const auto& [name, triangles] : expected) {
+    Expected<bench::BenchScene> s = scene(name);
+    ASSERT_TRUE(s.ok()) << name << ": " << s.error().message;
+    EXPECT_EQ(s->name, name);
+    EXPECT_EQ(s->scene.triangleCount(), triangles) << name;
+  }
+  EXPECT_EQ(bench::kCubeTriangles, 12u);
+  EXPECT_EQ(bench::kDenseTriangles, 1'000'000u);
+  EXPECT_EQ(bench::kFillTriangles, 20u);
+}
+
+TEST(BenchScenes, BunnyIsTheStanfordBunny) {
+  if (!fs::exists(bench::kBunnyPath)) GTEST_SKIP() << bench::kBunnyPath << " is not installed";
+  Expected<bench::BenchScene> s = scene("bunny");
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  EXPECT_EQ(s->scene.triangleCount(), 69'666u);
+  EXPECT_EQ(bench::kBunnyTriangles, 69'666u);
+}
+
+TEST(BenchScenes, EveryBuiltinNameMakesAScene) {
+  for (const std::string& name : bench::builtinSceneNames()) {
+    EXPECT_TRUE(bench::isBuiltinScene(name));
+    if (name == "bunny" && !fs::exists(bench::kBunnyPath)) continue;
+    EXPECT_TRUE(scene(name).ok()) << name;
+  }
+  EXPECT_EQ(bench::builtinSceneNames().size(), 5u);
+}
+
+TEST(BenchScenes, UnknownSceneIsAnErrorNamingIt) {
+  Expected<bench::BenchScene> s = scene("teapot");
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().message.find("teapot"), std::string::npos);
+  EXPECT_FALSE(bench::isBuiltinScene("teapot"));
+}
+
+TEST(BenchScenes, TexturedSceneSamplesAChecker) {
+  Expected<bench::BenchScene> s = scene("textured");
+  ASSERT_TRUE(s.ok());
+  const Object& object = s->scene.objects.at(0);
+  ASSERT_TRUE(object.materials.at(0).albedo);
+  EXPECT_FALSE(object.mesh->uvs.empty());
+  const Texture& t = *object.materials[0].albedo;
+  EXPECT_NE(t.texels.front(), t.texels[t.width / 16]);  // the next cell has the other colour
+}
+
+// Ten layers, each of which alone covers every pixel at any angle of the spin: overdraw 10.
+TEST(BenchScenes, FillLayersEachCoverTheWholeScreen) {
+  Expected<bench::BenchScene> s = scene("fill");
+  ASSERT_TRUE(s.ok());
+  ASSERT_TRUE(s->fixed_view);
+  ASSERT_EQ(s->scene.objects.size(), bench::kFillLayers);
+  CpuRenderer renderer(1);
+  Frame frame;
+  for (int pose : {0, 7, 22}) {  // 0, 14 and 44 degrees about the view axis
+    bench::poseForFrame(*s, pose);
+    for (size_t layer = 0; layer < bench::kFillLayers; ++layer) {
+      Scene one = s->scene;
+      one.objects = {s->scene.objects[layer]};
+      for (auto [w, h] : {std::pair{32, 24}, std::pair{48, 27}}) {
+        renderer.render(one, colorAndIds(w, h), frame);
+        size_t covered = 0;
+        for (uint32_t id : frame.triangle_id) covered += id != kNoTriangle;
+        EXPECT_EQ(covered, frame.pixelCount()) << "layer " << layer << " pose " << pose;
+      }
+    }
+    // Together, the nearest layer (the last drawn) wins everywhere.
+    renderer.render(s->scene, colorAndIds(32, 24), frame);
+    for (uint32_t id : frame.triangle_id) EXPECT_GT(id, bench::kFillTriangles - 2);
+  }
+}
+
+TEST(BenchScenes, PoseTurnsAboutThePivot) {
+  Expected<bench::BenchScene> s = scene("cube");
+  ASSERT_TRUE(s.ok());
+  s->pivot = {0.5f, 0.0f, 0.0f};
+  bench::poseForFrame(*s, 45);  // 90 degrees about +Y
+  const float4x4 m = s->scene.objects[0].transform.matrix();
+  const float3 pivot = (m * float4{0.5f, 0.0f, 0.0f, 1.0f}).xyz();
+  EXPECT_NEAR(pivot.x, 0.5f, 1e-5f);
+  EXPECT_NEAR(pivot.z, 0.0f, 1e-5f);
+  const float3 x_axis = (m * float4{1, 0, 0, 0}).xyz();
+  EXPECT_NEAR(x_axis.z, -1.0f, 1e-5f);  // +X turns to -Z
+  bench::poseForFrame(*s, 0);
+  EXPECT_NEAR(s->scene.objects[0].transform.rotation.w, 1.0f, 1e-6f);
+}
+
+// ---- tessera bench, the executable ----
+
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+class BenchCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("tessera_bench_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  RunResult run(const std::string& args) {
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    std::string command = "cd '" + dir_.string() + "' && '" TESSERA_EXE "' bench " + args + " > '" +
+                          out.string() + "' 2> '" + err.string() + "' < /dev/null";
+    int status = std::system(command.c_str());
+    RunResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    return r;
+  }
+
+  static std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  static std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+      if (!line.empty()) out.push_back(line);
+    return out;
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(BenchCli, JsonHasTheAdvertisedFields) {
+  RunResult r = run("--json --frames 2 --resolution 64,48 cube");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> objects = lines(r.out);
+  ASSERT_EQ(objects.size(), 1u) << r.out;
+  nlohmann::json j = nlohmann::json::parse(objects[0], nullptr, /*allow_exceptions=*/false);
+  ASSERT_FALSE(j.is_discarded()) << objects[0];
+  ASSERT_TRUE(j.is_object());
+  EXPECT_EQ(j.value("scene", ""), "cube");
+  EXPECT_EQ(j.value("resolution", ""), "64x48");
+  EXPECT_EQ(j.value("width", 0), 64);
+  EXPECT_EQ(j.value("height", 0), 48);
+  EXPECT_EQ(j.value("triangles", 0), 12);
+  EXPECT_EQ(j.value("frames", 0), 2);
+  ASSERT_TRUE(j.contains("median_ms") && j["median_ms"].is_number());
+  EXPECT_GE(j["median_ms"].get<double>(), 0.0);
+  EXPECT_FALSE(j.contains("llvmpipe_median_ms"));  // not asked for
+}
+
+TEST_F(BenchCli, JsonLinesForEverySceneAndResolution) {
+  RunResult r =
+      run("--json --frames 1 --warmup 0 --resolution 32x24,40x30 --resolution 16,16 "
+          "cube fill");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> objects = lines(r.out);
+  ASSERT_EQ(objects.size(), 6u) << r.out;
+  const char* expected[6][2] = {{"cube", "32x24"}, {"cube", "40x30"}, {"cube", "16x16"},
+                                {"fill", "32x24"}, {"fill", "40x30"}, {"fill", "16x16"}};
+  for (size_t i = 0; i < objects.size(); ++i) {
+    nlohmann::json j = nlohmann::json::parse(objects[i], nullptr, false);
+    ASSERT_TRUE(j.is_object()) << objects[i];
+    EXPECT_EQ(j.value("scene", ""), expected[i][0]);
+    EXPECT_EQ(j.value("resolution", ""), expected[i][1]);
+    EXPECT_EQ(j.value("frames", 0), 1);
+  }
+}
+
+TEST_F(BenchCli, TextModePrintsOneLinePerScene) {
+  RunResult r = run("--frames 1 --warmup 0 --resolution 32,24 cube fill --shading flat");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> scene_lines;
+  for (const std::string& line : lines(r.out))
+    if (line[0] != '#') scene_lines.push_back(line);
+  ASSERT_EQ(scene_lines.size(), 2u) << r.out;
+  EXPECT_EQ(scene_lines[0].rfind("cube", 0), 0u);
+  EXPECT_NE(scene_lines[0].find("32x24"), std::string::npos);
+  EXPECT_NE(scene_lines[0].find(" 12 triangles"), std::string::npos);
+  EXPECT_EQ(scene_lines[1].rfind("fill", 0), 0u);
+  EXPECT_NE(r.out.find("flat shading"), std::string::npos);
+}
+
+TEST_F(BenchCli, AModelFileIsAScene) {
+  std::ofstream(dir_ / "quad.obj") << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
+  RunResult r = run("--json --frames 1 --warmup 0 --resolution 32,24 quad.obj");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+  ASSERT_TRUE(j.is_object()) << r.out;
+  EXPECT_EQ(j.value("scene", ""), "quad.obj");
+  EXPECT_EQ(j.value("triangles", 0), 2);
+}
+
+TEST_F(BenchCli, BadFlagsExitTwoWithUsage) {
+  for (const char* args :
+       {"--frames 0 cube", "--frames x cube", "--resolution 64 cube", "--resolution 64,48,32 cube",
+        "--resolution 0,48 cube", "--bogus cube", "--shading shiny cube", "--vs swiftshader cube",
+        "--all cube", "--all --resolution 64,48",
+        "--camera-position 0,0,0 "
+        "--camera-focal-point 0,0,0 cube"}) {
+    RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.err.find("usage: tessera bench"), std::string::npos) << args << "\n" << r.err;
+    EXPECT_TRUE(r.out.empty()) << args;
+  }
+}
+
+TEST_F(BenchCli, HelpExitsZero) {
+  RunResult r = run("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("--vs"), std::string::npos);
+  EXPECT_NE(r.out.find("--resolution"), std::string::npos);
+}
+
+TEST_F(BenchCli, UnknownSceneExitsOneNamingIt) {
+  RunResult r = run("--frames 1 cube teapot");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("'teapot'"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << "nothing is timed before every scene is known";
+}
+
+TEST_F(BenchCli, BrokenModelFileExitsOneNamingIt) {
+  std::ofstream(dir_ / "broken.obj") << "v 0 0 0\nf 1 2 7\n";
+  RunResult r = run("--frames 1 broken.obj");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("broken.obj"), std::string::npos) << r.err;
+}
+
+TEST_F(BenchCli, VersusLlvmpipeAddsTheReference) {
+  RunResult r = run("--json --frames 2 --resolution 64,48 --workers 1 --vs llvmpipe cube");
+  if (!bench::llvmpipeReferenceBuilt()) {
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("OSMesa"), std::string::npos) << r.err;
+    return;
+  }
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+  ASSERT_TRUE(j.is_object()) << r.out;
+  ASSERT_TRUE(j.contains("llvmpipe_median_ms") && j["llvmpipe_median_ms"].is_number());
+  ASSERT_TRUE(j.contains("ratio") && j["ratio"].is_number());
+  EXPECT_NE(j.value("reference", "").find("llvmpipe"), std::string::npos);
+  EXPECT_EQ(j.value("workers", 0), 1);
+}
+
+// ---- the llvmpipe reference draws what tessera draws ----
+
+namespace {
+
+struct Comparison {
+  double coverage_agreement = 0;  // share of pixels both cover or both leave empty
+  double close_colors = 0;        // share of the pixels both cover within 2/255 per channel
+  size_t tessera_covered = 0;
+};
+
+// Renders `s` with tessera and the reference at w x h and compares them pixel by pixel.
+Comparison compareWithReference(bench::LlvmpipeReference& reference, const Scene& s, int w, int h) {
+  CpuRenderer renderer(1);
+  Frame frame;
+  renderer.render(s, colorAndIds(w, h), frame);
+  EXPECT_TRUE(reference.setScene(s).ok());
+  EXPECT_TRUE(reference.setResolution(w, h).ok());
+  reference.render(s);
+  std::vector<uint32_t> gl;
+  reference.readColor(gl);
+  EXPECT_EQ(gl.size(), frame.pixelCount());
+  const uint32_t background = packSrgba8(s.background) & 0xffffffu;
+  Comparison c;
+  size_t agree = 0, both = 0, close = 0;
+  for (size_t i = 0; i < gl.size() && i < frame.pixelCount(); ++i) {
+    const bool by_tessera = frame.triangle_id[i] != kNoTriangle;
+    const bool by_gl = (gl[i] & 0xffffffu) != background;
+    agree += by_tessera == by_gl;
+    c.tessera_covered += by_tessera;
+    if (!by_tessera || !by_gl) continue;
+    ++both;
+    int worst = 0;
+    for (int k = 0; k < 3; ++k)
+      worst = std::max(worst, std::abs(static_cast<int>((frame.color[i] >> (8 * k)) & 255) -
+                                       static_cast<int>((gl[i] >> (8 * k)) & 255)));
+    close += worst <= 2;
+  }
+  c.coverage_agreement = static_cast<double>(agree) / static_cast<double>(gl.size());
+  c.close_colors = both ? static_cast<double>(close) / static_cast<double>(both) : 0.0;
+  return c;
+}
+
+class Reference : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!bench::llvmpipeReferenceBuilt()) GTEST_SKIP() << "built without OSMesa";
+    Expected<std::unique_ptr<bench::LlvmpipeReference>> created =
+        bench::LlvmpipeReference::create(1);
+    ASSERT_TRUE(created.ok()) << created.error().message;
+    reference_ = std::move(*created);
+  }
+  std::unique_ptr<bench::LlvmpipeReference> reference_;
+};
+
+}  // namespace
+
+TEST_F(Reference, RendersWithLlvmpipe) {
+  EXPECT_TRUE(reference_->isLlvmpipe()) << reference_->renderer();
+  EXPECT_NE(reference_->version().find("Mesa"), std::string::npos) << reference_->version();
+  EXPECT_EQ(reference_->threads(), 1);
+}
+
+TEST_F(Reference, CubeCoversTheSamePixelsAsTessera) {
+  Expected<bench::BenchScene> s = scene("cube", Shading::kFlat);
+  ASSERT_TRUE(s.ok());
+  lookAtCube(s->scene);
+  bench::poseForFrame(*s, 10);
+  const Comparison c = compareWithReference(*reference_, s->scene, 160, 120);
+  EXPECT_GT(c.tessera_covered, 160u * 120u / 10);  // the cube is in view
+  EXPECT_GE(c.coverage_agreement, 0.98);
+  EXPECT_GE(c.close_colors, 0.98);
+}
+
+TEST_F(Reference, ShadingModelsMatchTessera) {
+  for (Shading shading : {Shading::kFlat, Shading::kGouraud, Shading::kPhong, Shading::kUnlit}) {
+    for (CullMode cull : {CullMode::kBack, CullMode::kNone}) {
+      Expected<bench::BenchScene> s = scene("textured", shading);
+      ASSERT_TRUE(s.ok());
+      lookAtCube(s->scene);
+      s->scene.objects[0].cull = cull;
+      s->scene.objects[0].transform.scale = float3(0.8f);
+      bench::poseForFrame(*s, 5);
+      const Comparison c = compareWithReference(*reference_, s->scene, 96, 72);
+      EXPECT_GE(c.coverage_agreement, 0.98) << static_cast<int>(shading);
+      EXPECT_GE(c.close_colors, 0.98) << static_cast<int>(shading);
+    }
+  }
+}
+
+TEST_F(Reference, TwoReferencesKeepTheirOwnFrames) {
+  Expected<std::unique_ptr<bench::LlvmpipeReference>> other = bench::LlvmpipeReference::create(1);
+  ASSERT_TRUE(other.ok()) << other.error().message;
+  Expected<bench::BenchScene> cube = scene("cube", Shading::kFlat);
+  Expected<bench::BenchScene> fill = scene("fill", Shading::kUnlit);
+  ASSERT_TRUE(cube.ok() && fill.ok());
+  lookAtCube(cube->scene);
+  ASSERT_TRUE(reference_->setScene(cube->scene).ok());
+  ASSERT_TRUE(reference_->setResolution(32, 24).ok());
+  ASSERT_TRUE((*other)->setScene(fill->scene).ok());
+  ASSERT_TRUE((*other)->setResolution(16, 16).ok());
+  reference_->render(cube->scene);
+  (*other)->render(fill->scene);
+  std::vector<uint32_t> cube_pixels, fill_pixels;
+  reference_->readColor(cube_pixels);
+  (*other)->readColor(fill_pixels);
+  ASSERT_EQ(cube_pixels.size(), 32u * 24u);
+  ASSERT_EQ(fill_pixels.size(), 16u * 16u);
+  const uint32_t background = packSrgba8(cube->scene.background);
+  EXPECT_EQ(cube_pixels[0], background);             // a corner of the cube's frame is background
+  EXPECT_NE(cube_pixels[12 * 32 + 16], background);  // its centre is the cube
+  for (uint32_t p : fill_pixels) EXPECT_NE(p, packSrgba8(fill->scene.background));
+}
+
+TEST_F(Reference, ReadBackRowsRunTopDown) {
+  // A red layer over the upper half of the view only: the top rows of the read-back are red.
+  Scene s;
+  s.camera.position = {0, 0, 3};
+  s.camera.near_z = 1;
+  s.camera.far_z = 10;
+  Mesh upper;
+  upper.positions = {{-5, 0.1f, 0}, {5, 0.1f, 0}, {5, 5, 0}, {-5, 5, 0}};
+  upper.normals.assign(4, float3{0, 0, 1});
+  upper.indices = {0, 1, 2, 0, 2, 3};
+  Object o;
+  o.mesh = std::make_shared<Mesh>(upper);
+  o.shading = Shading::kUnlit;
+  o.materials[0].base_color = {1, 0, 0, 1};
+  s.objects.push_back(o);
+  ASSERT_TRUE(reference_->setScene(s).ok());
+  ASSERT_TRUE(reference_->setResolution(8, 8).ok());
+  reference_->render(s);
+  std::vector<uint32_t> rgba;
+  reference_->readColor(rgba);
+  ASSERT_EQ(rgba.size(), 64u);
+  EXPECT_EQ(rgba[0] & 0xffffffu, 0x0000ffu);   // top-left: red
+  EXPECT_EQ(rgba[63] & 0xffffffu, 0x000000u);  // bottom-right: the black background
+}
