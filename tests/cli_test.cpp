@@ -409,9 +409,9 @@ TEST_F(Cli, DataModelsMatchTheirReferenceImages) {
     const char* reference;
   };
   const Case cases[] = {
-      {"box_corner.obj", "--shading flat", "box_corner_obj"},      // MTL, map_Kd, two materials
-      {"scene.gltf", "", "scene_gltf"},                            // hierarchy, texture, strip
-      {"pyramid.stl", "--up +Z --shading flat", "pyramid_stl"},    // binary with a 'solid' header
+      {"box_corner.obj", "--shading flat", "box_corner_obj"},    // MTL, map_Kd, two materials
+      {"scene.gltf", "", "scene_gltf"},                          // hierarchy, texture, strip
+      {"pyramid.stl", "--up +Z --shading flat", "pyramid_stl"},  // binary with a 'solid' header
   };
   for (const Case& c : cases) {
     const std::string out = (dir_ / (std::string(c.reference) + ".png")).string();

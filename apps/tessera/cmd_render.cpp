@@ -171,8 +171,8 @@ int runRender(const std::vector<std::string>& args) {
   // Scene.
   scene_settings.shading = shadingFromName(s.shading);
   // Without the flag a glTF model's materials decide (doubleSided); other formats draw back faces.
-  const bool cull_back = s.backface.empty() ? model->cull_back_faces.value_or(false)
-                                            : s.backface == "hidden";
+  const bool cull_back =
+      s.backface.empty() ? model->cull_back_faces.value_or(false) : s.backface == "hidden";
   scene_settings.cull = cull_back ? CullMode::kBack : CullMode::kNone;
   scene_settings.background_srgb = s.background;
   Expected<Scene> made = makeModelScene(std::move(*model), model_path, scene_settings);
