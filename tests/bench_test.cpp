@@ -2,9 +2,6 @@
 // llvmpipe reference drawing the same pixels as tessera. Nothing here times anything.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -18,6 +15,8 @@
 
 #include "bench/llvmpipe_reference.h"
 #include "bench/scenes.h"
+#include "run_process.h"
+#include "temp_folder.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
@@ -147,39 +146,16 @@ TEST(BenchScenes, PoseTurnsAboutThePivot) {
 
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
+using test::RunResult;
 
 class BenchCli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("tessera_bench_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::makeTestFolder("tessera_bench"); }
   void TearDown() override { fs::remove_all(dir_); }
 
+  // Runs `tessera bench` with `args` (a shell-quoted string) in the test's folder.
   RunResult run(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    std::string command = "cd '" + dir_.string() + "' && '" TESSERA_EXE "' bench " + args + " > '" +
-                          out.string() + "' 2> '" + err.string() + "' < /dev/null";
-    int status = std::system(command.c_str());
-    RunResult r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
-  }
-
-  static std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
+    return test::runInFolder(dir_, TESSERA_EXE, "bench " + args);
   }
 
   static std::vector<std::string> lines(const std::string& text) {

@@ -1,9 +1,6 @@
 // End-to-end tests of the tessera executable: real processes, real files, decoded back.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -16,53 +13,29 @@
 
 #include "decode.h"
 #include "reference.h"
+#include "run_process.h"
+#include "temp_folder.h"
 
 namespace fs = std::filesystem;
 using tessera::test::DecodedGif;
 using tessera::test::DecodedPng;
+using tessera::test::RunResult;
+using tessera::test::slurp;
 
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
 class Cli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("tessera_cli_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = tessera::test::makeTestFolder("tessera_cli"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   // Runs tessera with `args` (a shell-quoted string) in the test's folder.
   RunResult run(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    std::string command = "cd '" + dir_.string() + "' && '" TESSERA_EXE "' " + args + " > '" +
-                          out.string() + "' 2> '" + err.string() + "' < /dev/null";
-    int status = std::system(command.c_str());
-    RunResult r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
-
-  static std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
+    return tessera::test::runInFolder(dir_, TESSERA_EXE, args);
   }
 
   void writeFile(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
+    tessera::test::writeFile(dir_ / name, text);
   }
 
   // A unit quad facing +Z split into two triangles, and a tetrahedron behind it.

@@ -8,7 +8,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -25,6 +24,8 @@
 #pragma GCC diagnostic ignored "-Wpedantic"
 #include <stb/stb_image_write.h>
 #pragma GCC diagnostic pop
+
+#include "temp_folder.h"
 
 namespace tessera::io {
 namespace {
@@ -155,19 +156,14 @@ class GltfBuilder {
 class GltfFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    root_ = fs::temp_directory_path() /
-            ("tessera_io_gltf_" + test + "_" + std::to_string(std::random_device{}()));
-    fs::remove_all(root_);
+    root_ = test::makeTestFolder("tessera_io_gltf");
     fs::create_directories(root_ / "model");
   }
   void TearDown() override { fs::remove_all(root_); }
 
   fs::path at(const std::string& relative) const { return root_ / "model" / relative; }
   fs::path write(const fs::path& path, const std::string& bytes) const {
-    fs::create_directories(path.parent_path());
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
+    return test::writeFile(path, bytes);
   }
   fs::path write(const fs::path& path, const std::vector<uint8_t>& bytes) const {
     return write(path, std::string(bytes.begin(), bytes.end()));

@@ -25,6 +25,8 @@
 #include <stb/stb_image_write.h>
 #pragma GCC diagnostic pop
 
+#include "temp_folder.h"
+
 namespace tessera::io {
 namespace {
 
@@ -33,10 +35,7 @@ namespace fs = std::filesystem;
 class ObjFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    root_ = fs::temp_directory_path() /
-            ("tessera_io_obj_" + test + "_" + std::to_string(std::random_device{}()));
-    fs::remove_all(root_);
+    root_ = test::makeTestFolder("tessera_io_obj");
     fs::create_directories(root_ / "model");
   }
   void TearDown() override { fs::remove_all(root_); }
@@ -44,10 +43,8 @@ class ObjFiles : public ::testing::Test {
   // A path beneath the model's folder.
   fs::path at(const std::string& relative) const { return root_ / "model" / relative; }
 
-  fs::path write(const fs::path& path, const std::string& text) const {
-    fs::create_directories(path.parent_path());
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
+  fs::path write(const fs::path& path, const std::string& bytes) const {
+    return test::writeFile(path, bytes);
   }
   fs::path writeModel(const std::string& text, const std::string& name = "model.obj") const {
     return write(at(name), text);

@@ -8,11 +8,12 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <random>
 #include <string>
 #include <vector>
 
 #include <tessera/io/model_loader.h>
+
+#include "temp_folder.h"
 
 namespace tessera::io {
 namespace {
@@ -23,18 +24,11 @@ using Facet = std::array<float3, 3>;
 
 class StlFiles : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    root_ = fs::temp_directory_path() /
-            ("tessera_io_stl_" + test + "_" + std::to_string(std::random_device{}()));
-    fs::remove_all(root_);
-    fs::create_directories(root_);
-  }
+  void SetUp() override { root_ = test::makeTestFolder("tessera_io_stl"); }
   void TearDown() override { fs::remove_all(root_); }
 
   fs::path write(const std::string& name, const std::string& bytes) const {
-    std::ofstream(root_ / name, std::ios::binary) << bytes;
-    return root_ / name;
+    return test::writeFile(root_ / name, bytes);
   }
 
   fs::path root_;
