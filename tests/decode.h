@@ -5,21 +5,30 @@
 #include <gif_lib.h>
 #include <png.h>
 
+#include <array>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace tessera::test {
 
+// The file's own layout, no libpng transforms: what the writer chose is what a test sees.
 struct DecodedPng {
   int width = 0, height = 0;
   int channels = 0;               // 1 (grey), 3 (RGB) or 4 (RGBA)
   int bit_depth = 0;              // 8 or 16
+  int color_type = -1;            // as stored: PNG_COLOR_TYPE_GRAY, _RGB, _RGB_ALPHA, ...
   std::vector<uint16_t> samples;  // width * height * channels, row 0 first
   uint16_t at(int x, int y, int c) const {
     return samples[(static_cast<size_t>(y) * width + x) * channels + c];
   }
+  std::array<int, 3> rgb(int x, int y) const { return {at(x, y, 0), at(x, y, 1), at(x, y, 2)}; }
+  std::array<int, 4> rgba(int x, int y) const {
+    return {at(x, y, 0), at(x, y, 1), at(x, y, 2), at(x, y, 3)};
+  }
+  int gray16(int x, int y) const { return at(x, y, 0); }
 };
 
 inline bool decodePng(const std::string& path, DecodedPng& out) {
@@ -38,6 +47,7 @@ inline bool decodePng(const std::string& path, DecodedPng& out) {
   out.height = static_cast<int>(png_get_image_height(png, info));
   out.channels = png_get_channels(png, info);
   out.bit_depth = png_get_bit_depth(png, info);
+  out.color_type = png_get_color_type(png, info);
   png_bytepp rows = png_get_rows(png, info);
   out.samples.resize(static_cast<size_t>(out.width) * out.height * out.channels);
   for (int y = 0; y < out.height; ++y) {
@@ -51,6 +61,12 @@ inline bool decodePng(const std::string& path, DecodedPng& out) {
   png_destroy_read_struct(&png, &info, nullptr);
   std::fclose(file);
   return true;
+}
+
+inline std::optional<DecodedPng> decodePng(const std::string& path) {
+  DecodedPng decoded;
+  if (!decodePng(path, decoded)) return std::nullopt;
+  return decoded;
 }
 
 struct DecodedGif {

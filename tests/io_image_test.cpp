@@ -30,6 +30,8 @@
 #include <tessera/io/image_writer.h>
 #include <tessera/render/frame.h>
 
+#include "decode.h"
+
 namespace tessera::io {
 namespace {
 
@@ -108,67 +110,10 @@ std::vector<uint32_t> noiseFrame(int width, int height) {
   return pixels;
 }
 
-// ---- PNG decoding with libpng, keeping the file's own layout ----
+// ---- PNG decoding with libpng, keeping the file's own layout (decode.h) ----
 
-struct DecodedPng {
-  int width = 0;
-  int height = 0;
-  int bit_depth = 0;
-  int color_type = -1;
-  size_t row_bytes = 0;
-  std::vector<uint8_t> bytes;  // the rows as stored: 16-bit samples big-endian
-
-  const uint8_t* at(int x, int y, int bytes_per_pixel) const {
-    return bytes.data() + static_cast<size_t>(y) * row_bytes +
-           static_cast<size_t>(x) * bytes_per_pixel;
-  }
-  std::array<int, 3> rgb(int x, int y) const {
-    const uint8_t* p = at(x, y, 3);
-    return {p[0], p[1], p[2]};
-  }
-  std::array<int, 4> rgba(int x, int y) const {
-    const uint8_t* p = at(x, y, 4);
-    return {p[0], p[1], p[2], p[3]};
-  }
-  int gray16(int x, int y) const {
-    const uint8_t* p = at(x, y, 2);
-    return (p[0] << 8) | p[1];
-  }
-};
-
-// Only plain C state lives across setjmp; the decoded rows go to the caller's object.
-bool decodePngInto(const char* path, DecodedPng* out) {
-  std::FILE* file = std::fopen(path, "rb");
-  if (file == nullptr) return false;
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png_create_info_struct(png);
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_read_struct(&png, &info, nullptr);
-    std::fclose(file);
-    return false;
-  }
-  png_init_io(png, file);
-  png_read_info(png, info);
-  out->width = static_cast<int>(png_get_image_width(png, info));
-  out->height = static_cast<int>(png_get_image_height(png, info));
-  out->bit_depth = png_get_bit_depth(png, info);
-  out->color_type = png_get_color_type(png, info);
-  out->row_bytes = png_get_rowbytes(png, info);
-  out->bytes.resize(out->row_bytes * static_cast<size_t>(out->height));
-  for (int y = 0; y < out->height; ++y) {
-    png_read_row(png, out->bytes.data() + static_cast<size_t>(y) * out->row_bytes, nullptr);
-  }
-  png_read_end(png, nullptr);
-  png_destroy_read_struct(&png, &info, nullptr);
-  std::fclose(file);
-  return true;
-}
-
-std::optional<DecodedPng> decodePng(const fs::path& path) {
-  DecodedPng decoded;
-  if (!decodePngInto(path.c_str(), &decoded)) return std::nullopt;
-  return decoded;
-}
+using test::DecodedPng;
+using test::decodePng;
 
 // ---- GIF decoding with giflib's reader ----
 
