@@ -485,13 +485,8 @@ RasterBackend::RasterBackend(std::unique_ptr<State> state) : state_(std::move(st
 RasterBackend::~RasterBackend() = default;
 
 void RasterBackend::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
-  TESSERA_CHECK(options.width > 0 && options.height > 0 && options.width <= render::kMaxViewport &&
-                options.height <= render::kMaxViewport)
-      << "viewport " << options.width << "x" << options.height << " is outside 1.."
-      << render::kMaxViewport;
-  resizeFrame(scene, options, frame);
-  state_->last_result = state_->renderFrame(scene, options, frame);
-  if (!state_->last_result) clearFrame(frame);
+  state_->last_result = renderIntoFrame(scene, options, frame,
+                                        [&] { return state_->renderFrame(scene, options, frame); });
 }
 
 Expected<void> RasterBackend::lastResult() const {

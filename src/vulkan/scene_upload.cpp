@@ -326,6 +326,18 @@ void clearFrame(Frame& frame) {
   std::fill(frame.normal.begin(), frame.normal.end(), float3{});
 }
 
+Expected<void> renderIntoFrame(const Scene& scene, const RenderOptions& options, Frame& frame,
+                               const std::function<Expected<void>()>& draw) {
+  TESSERA_CHECK(options.width > 0 && options.height > 0 && options.width <= render::kMaxViewport &&
+                options.height <= render::kMaxViewport)
+      << "viewport " << options.width << "x" << options.height << " is outside 1.."
+      << render::kMaxViewport;
+  resizeFrame(scene, options, frame);
+  Expected<void> result = draw();
+  if (!result) clearFrame(frame);
+  return result;
+}
+
 void drawSceneLines(const Scene& scene, const RenderOptions& options, const PackedScene& packed,
                     Frame& frame) {
   if (!drawsLines(scene, options)) return;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <unordered_map>
 #include <vector>
 
@@ -66,6 +67,10 @@ void copyResults(const uint32_t* color, const uint32_t* depth, const uint32_t* i
                  const float* normals, int normal_stride, Frame& frame);
 // Clears a frame whose render failed: empty, never half drawn.
 void clearFrame(Frame& frame);
+// A backend's render(): checks the viewport (outside 1..kMaxViewport is a caller's bug), sizes
+// the frame, then draws with `draw`; a failed draw leaves a cleared frame. Returns what `draw` did.
+Expected<void> renderIntoFrame(const Scene& scene, const RenderOptions& options, Frame& frame,
+                               const std::function<Expected<void>()>& draw);
 
 // The CPU's line pass on the finished frame (scene lines, world and object axes).
 void drawSceneLines(const Scene& scene, const RenderOptions& options, const PackedScene& packed,
