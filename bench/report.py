@@ -144,6 +144,9 @@ def main():
     w("| | |")
     w("|---|---|")
     w(f"| CPU | {machine['cpu']} ({', '.join(machine['simd'])}) |")
+    best = ("AVX-512" if "avx512f" in machine["simd"] else
+            "AVX2 (this CPU has no AVX-512)" if "avx2" in machine["simd"] else "SSE2")
+    w(f"| tessera's tile kernels | {best}, chosen at run time |")
     w(f"| cores | {machine['cores']} |")
     w(f"| compiler | {machine['compiler']} (CMake Release: -O3) |")
     w(f"| OpenGL reference | {first.get('reference', '?')}, {first.get('reference_version', '?')} |")
@@ -166,6 +169,13 @@ def main():
         w(f"| {r['scene']} | {SCENE_WHAT.get(r['scene'], 'model file')} | {r['triangles']:,} | "
           f"{r['resolution']} | {ms(r['median_ms'])} | {ms(r['llvmpipe_median_ms'])} | "
           f"{r['ratio']:.2f} |")
+    slower = [r for r in matrix if r["ratio"] < 1.0]
+    w("")
+    if slower:
+        w("tessera is slower than llvmpipe on: " + ", ".join(
+            f"{r['scene']} at {r['resolution']} ({r['ratio']:.2f})" for r in slower) + ".")
+    else:
+        w("tessera is faster than llvmpipe on every scene at every resolution.")
     w("")
     w(f"![frame time against triangle count]({rel}/frame_time_vs_triangles.png)")
     w("")
