@@ -12,6 +12,7 @@ packages=(
   ffmpeg glmark2-data libosmesa6-dev
   libsdl2-dev libsdl2-ttf-dev fonts-dejavu-core xvfb xauth xdotool
   libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers
+  clang libclang-rt-14-dev
 )
 
 missing=()

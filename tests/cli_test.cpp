@@ -399,3 +399,26 @@ TEST_F(Cli, FramingKeepsDepthPreciseForTinyAndHugeModels) {
     EXPECT_EQ(ids, reference_ids) << "scale " << scale;
   }
 }
+
+// The models in tests/data (tests/data/make_models.py), each rendered by the CLI on its defaults
+// and compared with its reference image: at most a code of rounding here and there.
+TEST_F(Cli, DataModelsMatchTheirReferenceImages) {
+  struct Case {
+    const char* model;
+    const char* flags;
+    const char* reference;
+  };
+  const Case cases[] = {
+      {"box_corner.obj", "--shading flat", "box_corner_obj"},    // MTL, map_Kd, two materials
+      {"scene.gltf", "", "scene_gltf"},                          // hierarchy, texture, strip
+      {"pyramid.stl", "--up +Z --shading flat", "pyramid_stl"},  // binary with a 'solid' header
+  };
+  for (const Case& c : cases) {
+    const std::string out = (dir_ / (std::string(c.reference) + ".png")).string();
+    RunResult r = run(std::string("render '") + TESSERA_TEST_DATA_DIR + "/" + c.model +
+                      "' --resolution 120,90 " + c.flags + " -o '" + out + "'");
+    ASSERT_EQ(r.exit_code, 0) << c.model << ": " << r.err;
+    EXPECT_TRUE(r.err.empty()) << c.model << " warned: " << r.err;
+    tessera::test::expectMatchesReference(out, c.reference, {2, 6});
+  }
+}

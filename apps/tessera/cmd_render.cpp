@@ -29,7 +29,7 @@ struct RenderSettings {
   float3 background{0.2f, 0.2f, 0.2f};
   CameraSettings camera;
   std::string shading = "smooth";
-  std::string backface = "visible";
+  std::string backface;  // empty: the model says (glTF doubleSided), else visible
   std::string aov = "color";
   std::string backend = "cpu";
   int turntable = 0;
@@ -91,7 +91,7 @@ int runRender(const std::vector<std::string>& args) {
   flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit"},
                   "flat, smooth (per-pixel), gouraud (per-vertex) or unlit (default smooth)");
   flags.addChoice("backface-type", &s.backface, {"visible", "hidden"},
-                  "draw or cull back faces (default visible)");
+                  "draw or cull back faces (default: glTF materials say, else visible)");
   flags.addChoice("aov", &s.aov, {"color", "id", "depth", "normal"},
                   "what to write: colour, triangle id, window depth or world normal");
   flags.addInt("turntable", &s.turntable, "frames of one full turn about the up axis", 1, 100000);
@@ -170,7 +170,10 @@ int runRender(const std::vector<std::string>& args) {
 
   // Scene.
   scene_settings.shading = shadingFromName(s.shading);
-  scene_settings.cull = s.backface == "hidden" ? CullMode::kBack : CullMode::kNone;
+  // Without the flag a glTF model's materials decide (doubleSided); other formats draw back faces.
+  const bool cull_back =
+      s.backface.empty() ? model->cull_back_faces.value_or(false) : s.backface == "hidden";
+  scene_settings.cull = cull_back ? CullMode::kBack : CullMode::kNone;
   scene_settings.background_srgb = s.background;
   Expected<Scene> made = makeModelScene(std::move(*model), model_path, scene_settings);
   if (!made) {

@@ -26,6 +26,8 @@
 
 #include <tessera/io/image_loader.h>
 
+#include "model_paths.h"
+
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-parameter"
 #pragma GCC diagnostic ignored "-Wpedantic"
@@ -60,21 +62,6 @@ bool isBlank(char c) {
   return c == ' ' || c == '\t';
 }
 
-std::string trimmed(std::string_view text) {
-  const char* kSpace = " \t\r\n";
-  size_t begin = text.find_first_not_of(kSpace);
-  if (begin == std::string_view::npos) return {};
-  size_t end = text.find_last_not_of(kSpace);
-  return std::string(text.substr(begin, end - begin + 1));
-}
-
-bool equalsIgnoreCase(std::string_view a, std::string_view b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-           return std::tolower(static_cast<unsigned char>(x)) ==
-                  std::tolower(static_cast<unsigned char>(y));
-         });
-}
-
 // Passes tinyobjloader's warnings on, except those this loader reports better itself.
 void forwardLibraryWarnings(const std::string& file, const std::string& text,
                             std::vector<std::string>& warnings) {
@@ -103,62 +90,6 @@ void forwardLibraryWarnings(const std::string& file, const std::string& text,
   }
   if (skipped > 0)
     warnings.push_back(file + ": " + std::to_string(skipped) + " more warnings like these");
-}
-
-// ---- Files the model refers to ----
-
-// Resolves a file named inside the model (an MTL library, a texture) to a path beneath `folder`,
-// or says why it is refused: URIs, absolute paths and `..` that climbs out of the folder (after
-// normalizing), and symbolic links that lead outside. '\' is taken as a separator, since Windows
-// exporters write `.\tex\a.png`.
-Expected<fs::path> resolveReferencedFile(const fs::path& folder, std::string_view reference) {
-  std::string name = trimmed(reference);
-  if (name.empty()) return makeError("the file name is empty");
-  // A scheme (http:, file:, data:) or a drive letter (C:) ahead of any separator.
-  size_t scheme_end = 0;
-  while (scheme_end < name.size()) {
-    unsigned char c = static_cast<unsigned char>(name[scheme_end]);
-    if (!std::isalnum(c) && c != '+' && c != '-' && c != '.') break;
-    ++scheme_end;
-  }
-  if (scheme_end > 0 && scheme_end < name.size() && name[scheme_end] == ':' &&
-      std::isalpha(static_cast<unsigned char>(name[0]))) {
-    if (scheme_end == 1) return makeError("it is an absolute path");
-    return makeError("it is a URI; only files beneath the model's folder are read");
-  }
-  std::replace(name.begin(), name.end(), '\\', '/');
-  if (name.front() == '/') return makeError("it is an absolute path");
-
-  std::vector<std::string> parts;
-  size_t begin = 0;
-  while (begin <= name.size()) {
-    size_t end = std::min(name.find('/', begin), name.size());
-    std::string part = name.substr(begin, end - begin);
-    begin = end + 1;
-    if (part.empty() || part == ".") continue;
-    if (part == "..") {
-      if (parts.empty()) return makeError("it leads out of the model's folder");
-      parts.pop_back();
-      continue;
-    }
-    parts.push_back(std::move(part));
-  }
-  if (parts.empty()) return makeError("it names the model's folder, not a file");
-  fs::path full = folder;
-  for (const std::string& part : parts) full /= part;
-
-  // The lexical check cannot see a symbolic link beneath the folder that points outside it.
-  std::error_code error;
-  if (fs::exists(full, error)) {
-    std::error_code folder_error;
-    fs::path real = fs::canonical(full, error);
-    fs::path real_folder = fs::canonical(folder, folder_error);
-    if (error || folder_error) return makeError("its location cannot be resolved");
-    fs::path inside = real.lexically_relative(real_folder);
-    if (inside.empty() || *inside.begin() == "..")
-      return makeError("it leads out of the model's folder through a symbolic link");
-  }
-  return full;
 }
 
 // ---- Line scans ----
@@ -653,16 +584,8 @@ std::string pastEnd(const char* what, int index, size_t count, const char* count
 
 Expected<Model> loadObjChecked(const fs::path& path) {
   const std::string name = path.string();
-  std::error_code error;
-  fs::file_status status = fs::status(path, error);
-  if (error || !fs::exists(status)) return makeError(name + ": no such file");
-  if (!fs::is_regular_file(status)) return makeError(name + ": not a regular file");
-  const uintmax_t size = fs::file_size(path, error);
-  if (error) return makeError(name + ": cannot read the file size: " + error.message());
-  if (size > kMaxObjBytes)
-    return makeError(name + ": the file is " + std::to_string(size) +
-                     " bytes; OBJ files over 2 GiB are refused");
-  if (size == 0) return makeError(name + ": the file is empty: no triangles");
+  if (Expected<uintmax_t> size = checkModelFile(path, kMaxObjBytes, "OBJ"); !size)
+    return size.error();
   std::ifstream in(path, std::ios::binary);
   if (!in) return makeError(name + ": cannot open the file");
 

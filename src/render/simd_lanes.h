@@ -210,8 +210,12 @@ TESSERA_LANES_INLINE F32x8 squareRoot(F32x8 a) {
   for (int l = 0; l < 8; ++l) r[l] = __builtin_sqrtf(a[l]);  // becomes one vector sqrt
   return r;
 }
-TESSERA_LANES_INLINE F32x8 maximum(F32x8 a, F32x8 b) { return a < b ? b : a; }
-TESSERA_LANES_INLINE I32x8 bitsOf(F32x8 a) { return reinterpret_cast<I32x8>(a); }
+TESSERA_LANES_INLINE F32x8 maximum(F32x8 a, F32x8 b) {
+  return a < b ? b : a;
+}
+TESSERA_LANES_INLINE I32x8 bitsOf(F32x8 a) {
+  return reinterpret_cast<I32x8>(a);
+}
 TESSERA_LANES_INLINE I32x8 shiftRight(I32x8 a, int n) {
   return a >> n;
 }

@@ -20,26 +20,40 @@ int wrapCoord(int i, int size, TextureWrap wrap) {
   return m < 0 ? m + size : m;
 }
 
-float4 decodeTexel(uint32_t c, bool srgb) {
+// Texels i and i + 1 along an axis, wrapped; the common case (both inside) takes no division.
+void wrapPair(int i, int size, TextureWrap wrap, int& first, int& second) {
+  if (i >= 0 && i + 1 < size) {
+    first = i;
+    second = i + 1;
+    return;
+  }
+  first = wrapCoord(i, size, wrap);
+  second = wrapCoord(i + 1, size, wrap);
+}
+
+inline __attribute__((always_inline)) float4 decodeTexel(uint32_t c, bool srgb,
+                                                         const float* decode) {
   float a = static_cast<float>(c >> 24) / 255.0f;
-  if (srgb)
-    return {decodeSrgb8(c & 0xff), decodeSrgb8((c >> 8) & 0xff), decodeSrgb8((c >> 16) & 0xff), a};
+  if (srgb) return {decode[c & 0xff], decode[(c >> 8) & 0xff], decode[(c >> 16) & 0xff], a};
   return {static_cast<float>(c & 0xff) / 255.0f, static_cast<float>((c >> 8) & 0xff) / 255.0f,
           static_cast<float>((c >> 16) & 0xff) / 255.0f, a};
 }
 
-// Keeps float-to-int conversions defined for huge or non-finite coordinates.
+// Keeps float-to-int conversions defined for huge or non-finite coordinates (fmod only where
+// it changes something: below 65536 it is the identity).
 float sanitize(float v) {
+  if (std::fabs(v) < 65536.0f) return v;
   return std::isfinite(v) ? std::fmod(v, 65536.0f) : 0.0f;
 }
 
 float4 sampleLevel(const LevelView& level, bool srgb, float2 uv, TextureFilter filter,
                    TextureWrap wrap) {
+  const float* decode = srgbDecodeTable();
   // Texel space: x right, y down from the top row (v = 1 is the top edge).
   const float fx = sanitize(uv.x) * level.width;
   const float fy = (1.0f - sanitize(uv.y)) * level.height;
   auto texel = [&](int x, int y) {
-    return decodeTexel(level.texels[static_cast<size_t>(y) * level.width + x], srgb);
+    return decodeTexel(level.texels[static_cast<size_t>(y) * level.width + x], srgb, decode);
   };
   if (filter == TextureFilter::kNearest) {
     return texel(wrapCoord(static_cast<int>(std::floor(fx)), level.width, wrap),
@@ -50,8 +64,9 @@ float4 sampleLevel(const LevelView& level, bool srgb, float2 uv, TextureFilter f
   const float x0f = std::floor(sx), y0f = std::floor(sy);
   const float tx = sx - x0f, ty = sy - y0f;
   const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
-  const int xa = wrapCoord(x0, level.width, wrap), xb = wrapCoord(x0 + 1, level.width, wrap);
-  const int ya = wrapCoord(y0, level.height, wrap), yb = wrapCoord(y0 + 1, level.height, wrap);
+  int xa, xb, ya, yb;
+  wrapPair(x0, level.width, wrap, xa, xb);
+  wrapPair(y0, level.height, wrap, ya, yb);
   const float4 top = lerp(texel(xa, ya), texel(xb, ya), tx);
   const float4 bottom = lerp(texel(xa, yb), texel(xb, yb), tx);
   return lerp(top, bottom, ty);
@@ -108,7 +123,7 @@ void generateMipmaps(Texture& texture) {
             const int sx = 2 * x + dx, sy = 2 * y + dy;
             if (sx >= above.width || sy >= above.height) continue;
             sum = sum + decodeTexel(above.texels[static_cast<size_t>(sy) * above.width + sx],
-                                    texture.srgb);
+                                    texture.srgb, srgbDecodeTable());
             ++count;
           }
         const float4 mean = sum * (1.0f / static_cast<float>(count));

@@ -3,7 +3,10 @@
 // allocation.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -18,9 +21,17 @@ struct Model {
   std::vector<std::string> warnings;  // things skipped or replaced (missing MTL, NaN vertices...)
   size_t nonfinite_triangles = 0;     // triangles with a NaN or infinite vertex (kept in the list
                                       // so ids stay in load order; the renderer drops them)
+  // Whether the file asks for back faces to be culled, for formats that say (glTF materials'
+  // `doubleSided`); empty for OBJ and STL, which leave it to the user. The renderer culls per
+  // Object, materials say it per triangle, so this is the one setting that drops nothing meant
+  // to be seen: true when no material in use is double-sided, false when any is (a warning says
+  // when they are mixed). A caller (`tessera render` without --backface-type) uses
+  // CullMode::kBack when it is true, CullMode::kNone when it is false, and its own default when
+  // it is empty. Material::double_sided keeps the per-material answer.
+  std::optional<bool> cull_back_faces;
 };
 
-// By extension (case-insensitive): .obj.
+// By extension (case-insensitive): .obj, .gltf, .glb, .stl.
 Expected<Model> loadModel(const std::filesystem::path& path);
 
 // Wavefront OBJ with its MTL files (tinyobjloader). Faces in file order; convex polygons are
@@ -29,5 +40,33 @@ Expected<Model> loadModel(const std::filesystem::path& path);
 // without one get a default Material (0.8 grey). MTL files and textures are read only from
 // beneath the OBJ's folder; anything else is skipped with a warning.
 Expected<Model> loadObj(const std::filesystem::path& path);
+
+// glTF 2.0, as JSON (.gltf) or binary (.glb; chosen by the file's magic, not its name), through
+// tinygltf. The default scene (else scene 0, else every root node) is flattened into one mesh:
+// nodes depth-first from each root in order, a node's mesh before its children, primitives in
+// order, triangles in index order. Positions and normals are in world space (each node's global
+// matrix; normals by its inverse transpose); a node whose matrix mirrors (determinant < 0) has
+// its triangles' winding reversed so front faces stay front. TRIANGLES, TRIANGLE_STRIP and
+// TRIANGLE_FAN are drawn; points and lines are skipped with a warning. Materials (first-use
+// order) take baseColorFactor, the baseColorTexture (sRGB) with its sampler, and doubleSided;
+// texture coordinates have v flipped to tessera's convention (v = 0 at the bottom). COLOR_0 is a
+// linear vertex colour. Missing normals are generated (smooth, area-weighted). Sparse accessors
+// are supported. Buffers and images come from `data:` URIs, the GLB binary chunk, or files
+// beneath the model's folder; nothing else is opened.
+Expected<Model> loadGltf(const std::filesystem::path& path);
+
+// The same from bytes in memory. `name` is used in messages; external buffers and images are
+// looked up beneath `folder`, or refused when `folder` is empty.
+Expected<Model> loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name,
+                                   const std::filesystem::path& folder = {});
+
+// STL, binary or ASCII. Binary when the size is exactly 84 + 50 * the facet count in the header
+// (so a binary file whose header starts with "solid" is still binary), ASCII when the text
+// starts with "solid". Triangles are the facets in file order; identical positions are welded
+// and smooth normals generated (the facet normals are ignored). One default material.
+Expected<Model> loadStl(const std::filesystem::path& path);
+
+// The same from bytes in memory; `name` is used in messages.
+Expected<Model> loadStlFromMemory(std::span<const uint8_t> bytes, const std::string& name);
 
 }  // namespace tessera::io

@@ -16,6 +16,9 @@ struct Material {
   float4 base_color{0.8f, 0.8f, 0.8f, 1.0f};  // linear RGBA
   std::shared_ptr<const Texture> albedo;      // optional; multiplies base_color
   Sampler sampler;
+  // Both faces are meant to be seen (glTF `doubleSided`). The renderer culls per Object
+  // (Object::cull); a caller chooses that from its materials (io::Model::cull_back_faces).
+  bool double_sided = false;
 };
 
 enum class Shading : uint8_t {
