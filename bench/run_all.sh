@@ -2,7 +2,8 @@
 # Regenerates docs/perf.md from a fresh measurement: builds tessera (Release), runs every built-in
 # scene at every standard resolution beside llvmpipe, the bunny at 1080p with 1 and 2 workers and
 # with other shading and culling, and UV spheres of 1k to 1M triangles at 1080p; then writes the
-# raw results (docs/perf/*.jsonl), the plots (docs/perf/*.png) and docs/perf.md itself.
+# raw results (docs/perf/*.jsonl), the plots (docs/perf/*.png) and the rendering section of
+# docs/perf.md (between bench/report.py's markers; the rest of the page is left alone).
 #
 #   bench/run_all.sh                  # FRAMES=30 timed frames per scene and resolution
 #   FRAMES=50 MAX_LOAD=0.5 bench/run_all.sh
@@ -76,4 +77,4 @@ json.dump({
 }, open(sys.argv[1], "w"), indent=2)
 EOF
 "$python" bench/report.py "$out" docs/perf.md
-echo "run_all: wrote docs/perf.md and $out/" >&2
+echo "run_all: updated docs/perf.md and $out/" >&2
