@@ -474,6 +474,10 @@ void Viewer::drawFrame() {
     const Clock::time_point start = Clock::now();
     backend_.render(scene_, render_options_, frame_);
     render_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    // A backend that could not draw the frame (a Vulkan device lost, a fence timeout) says why
+    // in the window rather than showing an empty frame silently.
+    if (Expected<void> rendered = backend_.lastResult(); !rendered)
+      error_ = rendered.error().message;
     if (texture_) SDL_UpdateTexture(texture_.get(), nullptr, frame_.color.data(), pixel_w * 4);
   }
 
