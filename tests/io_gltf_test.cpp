@@ -14,17 +14,7 @@
 #include <tessera/io/model_loader.h>
 #include <tessera/scene/color.h>
 
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STB_IMAGE_WRITE_STATIC
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#include <stb/stb_image_write.h>
-#pragma GCC diagnostic pop
-
+#include "stb_image_write.h"
 #include "temp_folder.h"
 
 namespace tessera::io {

@@ -34,8 +34,7 @@ Scene makeCubeScene(const CubeSettings& settings) {
   Object cube;
   cube.mesh = std::make_shared<Mesh>(makeCube());
   cube.shading = Shading::kFlat;
-  cube.materials[0].base_color = {srgbToLinear(0.95f), srgbToLinear(0.55f), srgbToLinear(0.15f),
-                                  1.0f};
+  cube.materials[0].base_color = demoCubeColor();
   cube.show_axes = settings.axes;
   cube.axes_length = 0.8f;
   scene.objects.push_back(cube);
@@ -54,6 +53,10 @@ Scene makeCubeScene(const CubeSettings& settings) {
 }
 
 }  // namespace
+
+float4 demoCubeColor() {
+  return {srgbToLinear(0.95f), srgbToLinear(0.55f), srgbToLinear(0.15f), 1.0f};
+}
 
 int runCube(const std::vector<std::string>& args) {
   CubeSettings s;

@@ -44,7 +44,7 @@ io::Model cubeModel() {
   io::Model model;
   model.mesh = makeCube();
   Material material;
-  material.base_color = {srgbToLinear(0.95f), srgbToLinear(0.55f), srgbToLinear(0.15f), 1.0f};
+  material.base_color = demoCubeColor();
   model.materials.push_back(material);
   return model;
 }

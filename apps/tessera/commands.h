@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <tessera/math/vec.h>
+
 namespace tessera::io {
 struct Model;
 }
@@ -21,6 +23,10 @@ int runRender(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);
 int runInfo(const std::vector<std::string>& args);
 int runView(const std::vector<std::string>& args);
+
+// The demo cube's colour (sRGB 0.95, 0.55, 0.15), linear: `tessera cube` and the viewer's
+// built-in model.
+float4 demoCubeColor();
 
 // Counts, bounds and warnings of a loaded model.
 void printModelInfo(const std::string& path, const io::Model& model, std::ostream& out);
