@@ -9,6 +9,10 @@
 #include <cstring>
 #include <type_traits>
 
+#if defined(__SSE2__) && !defined(TESSERA_SIMD_SCALAR)
+#include <immintrin.h>
+#endif
+
 #define TESSERA_LANES_INLINE inline __attribute__((always_inline))
 
 namespace tessera::render {
@@ -194,10 +198,20 @@ TESSERA_LANES_INLINE I32x8 select(I32x8 mask, I32x8 a, I32x8 b) {
 TESSERA_LANES_INLINE F32x8 select(I32x8 mask, F32x8 a, F32x8 b) {
   return mask ? a : b;
 }
+// One test instruction where the target has it (a lane loop compiles to eight extracts).
 TESSERA_LANES_INLINE bool any(I32x8 mask) {
+#if defined(__AVX__)
+  const __m256i m = reinterpret_cast<__m256i>(mask);
+  return !_mm256_testz_si256(m, m);
+#elif defined(__SSE2__)
+  __m128i half[2];
+  std::memcpy(half, &mask, sizeof half);
+  return _mm_movemask_epi8(_mm_or_si128(half[0], half[1])) != 0;
+#else
   int32_t r = 0;
   for (int l = 0; l < 8; ++l) r |= mask[l];
   return r != 0;
+#endif
 }
 TESSERA_LANES_INLINE I32x8 equal(I32x8 a, I32x8 b) {
   return a == b;
