@@ -165,7 +165,8 @@ TESSERA_LANES_INLINE auto splat(T x) {
   if constexpr (std::is_same_v<T, int64_t>) {
     return I64x8{} + x;
   } else if constexpr (std::is_same_v<T, float>) {
-    return F32x8{} + x;
+    // A broadcast, not 0 + x: that costs an add and turns -0 into +0 (the scalar lanes keep -0).
+    return F32x8{x, x, x, x, x, x, x, x};
   } else {
     static_assert(std::is_same_v<T, int32_t>);
     return I32x8{} + x;
