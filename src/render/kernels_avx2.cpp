@@ -5,6 +5,6 @@
 
 namespace tessera::render {
 
-const TileKernels kTileKernelsAvx2 = {rasterTriangleKernel, shadeTileKernel};
+const TileKernels kTileKernelsAvx2 = {rasterTileKernel, shadeTileKernel};
 
 }  // namespace tessera::render

@@ -5,6 +5,6 @@
 
 namespace tessera::render {
 
-const TileKernels kTileKernelsAvx512 = {rasterTriangleKernel, shadeTileKernel};
+const TileKernels kTileKernelsAvx512 = {rasterTileKernel, shadeTileKernel};
 
 }  // namespace tessera::render

@@ -6,6 +6,6 @@
 
 namespace tessera::render {
 
-const TileKernels kTileKernelsScalar = {rasterTriangleKernel, shadeTileKernel};
+const TileKernels kTileKernelsScalar = {rasterTileKernel, shadeTileKernel};
 
 }  // namespace tessera::render

@@ -5,6 +5,6 @@
 
 namespace tessera::render {
 
-const TileKernels kTileKernelsSse2 = {rasterTriangleKernel, shadeTileKernel};
+const TileKernels kTileKernelsSse2 = {rasterTileKernel, shadeTileKernel};
 
 }  // namespace tessera::render

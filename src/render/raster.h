@@ -51,9 +51,4 @@ struct TileVisibility {
   }
 };
 
-// Depth-tests every covered pixel of a triangle inside the tile and records its key where it
-// wins (raster_kernel.h; one variant per instruction set, see kernels.h).
-using RasterTriangleFn = void (*)(const RasterTriangle& triangle, uint32_t key,
-                                  TileVisibility& tile);
-
 }  // namespace tessera::render

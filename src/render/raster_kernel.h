@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "render/bin.h"
 #include "render/raster.h"
 #include "render/simd_lanes.h"
 
@@ -24,8 +25,9 @@ constexpr int kBlock = 8;
 
 // Depth-tests eight pixels starting at x: covered lanes nearer than the stored depth take z and
 // the key; the others write back what they read (the tile rows are padded, so the eight slots
-// always exist). z is the plane at the pixel centre, computed exactly as everywhere else.
-TESSERA_LANES_INLINE void depthTestRow8(const RasterTriangle& t, uint32_t key, float z_row, int x,
+// always exist). z is the plane at the pixel centre, computed exactly as everywhere else. Returns
+// the lanes that passed.
+TESSERA_LANES_INLINE I32x8 depthTestRow8(const RasterTriangle& t, uint32_t key, float z_row, int x,
                                         I32x8 covered, float* depth, uint32_t* keys) {
   const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
   const F32x8 z = splat(z_row) + splat(t.dzdx) * (centre - splat(t.x0));
@@ -33,6 +35,7 @@ TESSERA_LANES_INLINE void depthTestRow8(const RasterTriangle& t, uint32_t key, f
   const I32x8 pass = covered & lessThan(z, stored);
   store(depth + x, select(pass, z, stored));
   store(keys + x, select(pass, splat(static_cast<int32_t>(key)), load<I32x8>(keys + x)));
+  return pass;
 }
 
 TESSERA_LANES_INLINE float rowDepth(const RasterTriangle& t, int y) {
@@ -47,7 +50,8 @@ TESSERA_LANES_INLINE uint32_t* keyRow(TileVisibility& tile, int y) {
   return tile.key + (y - tile.y0) * kTileSize - tile.x0;
 }
 
-TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
+// Each raster path returns whether the triangle won any pixel.
+TESSERA_LANES_INLINE bool rasterSmall(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
                                       int x_begin, int x_end, int y_begin, int y_end) {
   const int64_t px = static_cast<int64_t>(x_begin) * kSubpixelOne + kSubpixelHalf;
   const int64_t py = static_cast<int64_t>(y_begin) * kSubpixelOne + kSubpixelHalf;
@@ -61,6 +65,7 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
   }
   const I32x8 lane = iota();
   const I32x8 last = splat(x_end);
+  I32x8 won = splat(int32_t{0});
   for (int y = y_begin; y <= y_end; ++y) {
     const float z_row = rowDepth(t, y);
     float* depth = depthRow(tile, y);
@@ -71,10 +76,11 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
       const I32x8 e1 = splat(row[1]) + step_x[1] * offset;
       const I32x8 e2 = splat(row[2]) + step_x[2] * offset;
       const I32x8 covered = nonNegative(e0 | e1 | e2) & lessOrEqual(splat(x) + lane, last);
-      if (any(covered)) depthTestRow8(t, key, z_row, x, covered, depth, keys);
+      if (any(covered)) won = won | depthTestRow8(t, key, z_row, x, covered, depth, keys);
     }
     for (int k = 0; k < 3; ++k) row[k] += step_y[k];
   }
+  return any(won);
 }
 
 TESSERA_LANES_INLINE int64_t edgeAt(const RasterTriangle& t, int k, int x, int y) {
@@ -82,13 +88,14 @@ TESSERA_LANES_INLINE int64_t edgeAt(const RasterTriangle& t, int k, int x, int y
          t.b[k] * (static_cast<int64_t>(y) * kSubpixelOne + kSubpixelHalf) + t.c[k];
 }
 
-TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
+TESSERA_LANES_INLINE bool rasterBlocks(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
                                        int x_begin, int x_end, int y_begin, int y_end) {
   // Blocks are aligned to the tile so a block row never leaves the tile's rows.
   const int bx_first = tile.x0 + ((x_begin - tile.x0) & ~(kBlock - 1));
   const int by_first = tile.y0 + ((y_begin - tile.y0) & ~(kBlock - 1));
   const I32x8 lanes = iota();
   const I64x8 lanes64 = widen(lanes);
+  I32x8 won = splat(int32_t{0});
   for (int by = by_first; by <= y_end; by += kBlock) {
     const int y0 = std::max(by, y_begin), y1 = std::min(by + kBlock - 1, y_end);
     for (int bx = bx_first; bx <= x_end; bx += kBlock) {
@@ -120,7 +127,8 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
                    lanes64 * splat(static_cast<int64_t>(t.a[k]) * kSubpixelOne);
           covered = covered & nonNegative(e[0] | e[1] | e[2]);
         }
-        depthTestRow8(t, key, rowDepth(t, y), bx, covered, depthRow(tile, y), keyRow(tile, y));
+        won = won | depthTestRow8(t, key, rowDepth(t, y), bx, covered, depthRow(tile, y),
+                                  keyRow(tile, y));
       }
       // A block now wholly written by this triangle gets a tighter bound.
       if (inside && x0 == bx && x1 == bx + kBlock - 1 && y0 == by && y1 == by + kBlock - 1) {
@@ -133,6 +141,7 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
       }
     }
   }
+  return any(won);
 }
 
 // Hi-Z for a small triangle: rejected when its nearest depth is not below the bound of any block
@@ -147,18 +156,34 @@ TESSERA_LANES_INLINE bool hiddenByHiZ(const RasterTriangle& t, const TileVisibil
   return true;
 }
 
-void rasterTriangleKernel(const RasterTriangle& t, uint32_t key, TileVisibility& tile) {
+TESSERA_LANES_INLINE bool rasterTriangle(const RasterTriangle& t, uint32_t key,
+                                         TileVisibility& tile) {
   const int x_begin = std::max(t.min_x, tile.x0);
   const int x_end = std::min(t.max_x, tile.x0 + tile.width - 1);
   const int y_begin = std::max(t.min_y, tile.y0);
   const int y_end = std::min(t.max_y, tile.y0 + tile.height - 1);
-  if (x_begin > x_end || y_begin > y_end) return;
+  if (x_begin > x_end || y_begin > y_end) return false;
   if (t.small) {
-    if (!hiddenByHiZ(t, tile, x_begin, x_end, y_begin, y_end))
-      rasterSmall(t, key, tile, x_begin, x_end, y_begin, y_end);
-  } else {
-    rasterBlocks(t, key, tile, x_begin, x_end, y_begin, y_end);
+    return !hiddenByHiZ(t, tile, x_begin, x_end, y_begin, y_end) &&
+           rasterSmall(t, key, tile, x_begin, x_end, y_begin, y_end);
   }
+  return rasterBlocks(t, key, tile, x_begin, x_end, y_begin, y_end);
+}
+
+size_t rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                        int tile_index, TileVisibility& tile, uint32_t* drawn) {
+  size_t count = 0;
+  for (size_t c = 0; c < chunk_count; ++c) {
+    const TriangleChunk& chunk = chunks[c];
+    const uint32_t* end = chunk.bins.end(tile_index);
+    for (const uint32_t* it = chunk.bins.begin(tile_index); it != end; ++it) {
+      if (it + 1 != end) __builtin_prefetch(&chunk.raster[it[1]]);
+      const uint32_t key = makeKey(static_cast<uint32_t>(c), *it);
+      // A triangle that wins no pixel now cannot own one at the end: shading skips it.
+      if (rasterTriangle(chunk.raster[*it], key, tile)) drawn[count++] = key;
+    }
+  }
+  return count;
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 // Shading: once per visible pixel of a tile, from the triangle that owns it in the visibility
 // buffer, into a tile of linear colours (and world normals when asked).
 //
-// shadeTile walks the tile's triangles in bin order (so the setup records are read in the order
-// they were written, not at random) and shades the pixels each one owns, eight at a time. Like
+// shadeTile walks the triangles that won pixels when the tile was rasterized, in bin order (so the
+// setup records are read in the order they were written, not at random), and shades the pixels
+// each one still owns, eight at a time. Like
 // the raster kernel it is written once (shade_kernel.h) and compiled per instruction set.
 #pragma once
 
@@ -41,10 +42,11 @@ Barycentrics barycentricsAt(const ShadeTriangle& t, float x, float y);
 // filtering takes its level of detail from the UVs at the next pixel centres right and down.
 float3 sampleAlbedo(const ShadeTriangle& t, const Barycentrics& b, float x, float y);
 
-using ShadeTileFn = void (*)(const TileVisibility& tile, int tile_index,
-                             const std::vector<TriangleChunk>& chunks, size_t chunk_count,
-                             const Scene& scene, bool want_normals, uint32_t background,
-                             ShadedTile& out);
+// `drawn` lists the keys of the triangles that may own pixels of the tile (the raster kernel's
+// output), in raster order.
+using ShadeTileFn = void (*)(const TileVisibility& tile, const uint32_t* drawn, size_t drawn_count,
+                             const std::vector<TriangleChunk>& chunks, const Scene& scene,
+                             bool want_normals, uint32_t background, ShadedTile& out);
 
 // shade_kernel.h; one variant per instruction set (kernels.h). Shades every pixel of the tile that
 // has a triangle, then encodes the tile to sRGB (the background where no triangle is).

@@ -139,31 +139,30 @@ TESSERA_LANES_INLINE void encodeTile(const TileVisibility& tile, uint32_t backgr
   }
 }
 
-void shadeTileKernel(const TileVisibility& tile, int tile_index,
-                     const std::vector<TriangleChunk>& chunks, size_t chunk_count,
-                     const Scene& scene, bool want_normals, uint32_t background, ShadedTile& out) {
+void shadeTileKernel(const TileVisibility& tile, const uint32_t* drawn, size_t drawn_count,
+                     const std::vector<TriangleChunk>& chunks, const Scene& scene,
+                     bool want_normals, uint32_t background, ShadedTile& out) {
   const int tile_x1 = tile.x0 + tile.width - 1, tile_y1 = tile.y0 + tile.height - 1;
-  for (size_t c = 0; c < chunk_count; ++c) {
-    const TriangleChunk& chunk = chunks[c];
-    const uint32_t* end = chunk.bins.end(tile_index);
-    for (const uint32_t* it = chunk.bins.begin(tile_index); it != end; ++it) {
-      // The records are large and far apart: ask for the next one while this one is shaded.
-      if (it + 1 != end) __builtin_prefetch(&chunk.shade[it[1]]);
-      const RasterTriangle& r = chunk.raster[*it];
-      const I32x8 key = splat(static_cast<int32_t>(makeKey(static_cast<uint32_t>(c), *it)));
-      const int x0 = std::max(r.min_x, tile.x0), x1 = std::min(r.max_x, tile_x1);
-      const int y0 = std::max(r.min_y, tile.y0), y1 = std::min(r.max_y, tile_y1);
-      const I32x8 last = splat(x1);
-      const ShadeTriangle* triangle = nullptr;
-      for (int y = y0; y <= y1; ++y) {
-        const int row = (y - tile.y0) * kTileSize - tile.x0;
-        for (int x = x0; x <= x1; x += 8) {
-          const I32x8 mask =
-              equal(load<I32x8>(tile.key + row + x), key) & lessOrEqual(splat(x) + iota(), last);
-          if (!any(mask)) continue;
-          if (!triangle) triangle = &chunk.shade[*it];
-          shadeRow8(*triangle, scene, want_normals, x, y, mask, row + x, out);
-        }
+  for (size_t i = 0; i < drawn_count; ++i) {
+    const uint32_t k = drawn[i];
+    const TriangleChunk& chunk = chunks[keyChunk(k)];
+    // The records are large and far apart: ask for the next one while this one is shaded.
+    if (i + 1 < drawn_count)
+      __builtin_prefetch(&chunks[keyChunk(drawn[i + 1])].shade[keyLocal(drawn[i + 1])]);
+    const RasterTriangle& r = chunk.raster[keyLocal(k)];
+    const I32x8 key = splat(static_cast<int32_t>(k));
+    const int x0 = std::max(r.min_x, tile.x0), x1 = std::min(r.max_x, tile_x1);
+    const int y0 = std::max(r.min_y, tile.y0), y1 = std::min(r.max_y, tile_y1);
+    const I32x8 last = splat(x1);
+    const ShadeTriangle* triangle = nullptr;
+    for (int y = y0; y <= y1; ++y) {
+      const int row = (y - tile.y0) * kTileSize - tile.x0;
+      for (int x = x0; x <= x1; x += 8) {
+        const I32x8 mask =
+            equal(load<I32x8>(tile.key + row + x), key) & lessOrEqual(splat(x) + iota(), last);
+        if (!any(mask)) continue;
+        if (!triangle) triangle = &chunk.shade[keyLocal(k)];
+        shadeRow8(*triangle, scene, want_normals, x, y, mask, row + x, out);
       }
     }
   }
