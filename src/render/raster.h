@@ -28,13 +28,16 @@ constexpr uint32_t keyLocal(uint32_t key) {
   return key & ((1u << kLocalKeyBits) - 1);
 }
 
+// Room past the last pixel of a tile's arrays: one row, and eight pixels past its end.
+constexpr int kTilePadding = kTileSize + 8;
+
 struct TileVisibility {
   int x0 = 0, y0 = 0;         // the tile's first pixel
   int width = 0, height = 0;  // <= kTileSize at the right and bottom borders
-  // Row y of the tile starts at y * kTileSize; the padding lets the kernel touch eight pixels
-  // past the end of the last row.
-  alignas(64) float depth[kTileSize * kTileSize + 8];
-  alignas(64) uint32_t key[kTileSize * kTileSize + 8];
+  // Row y of the tile starts at y * kTileSize; the padding (kTilePadding) lets the kernels touch
+  // eight pixels past the end of a row and the row after the last.
+  alignas(64) float depth[kTileSize * kTileSize + kTilePadding];
+  alignas(64) uint32_t key[kTileSize * kTileSize + kTilePadding];
   // Hi-Z: an upper bound of the stored depths of each 8x8 block (row-major, 8 blocks a row).
   // A triangle whose nearest depth is not below a block's bound cannot win a pixel there.
   static constexpr int kHiZBlock = 8;

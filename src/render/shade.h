@@ -20,7 +20,7 @@ namespace tessera::render {
 
 // Structure of arrays, laid out like TileVisibility (row y at y * kTileSize, padded).
 struct ShadedTile {
-  static constexpr int kSize = kTileSize * kTileSize + 8;
+  static constexpr int kSize = kTileSize * kTileSize + kTilePadding;
   alignas(64) float red[kSize];  // linear RGB; unset where no triangle
   alignas(64) float green[kSize];
   alignas(64) float blue[kSize];

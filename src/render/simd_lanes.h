@@ -267,6 +267,19 @@ template <typename V>
 TESSERA_LANES_INLINE void store(void* p, V v) {
   std::memcpy(p, &v, sizeof v);
 }
+// Two rows of four lanes: lanes 0-3 at row0, lanes 4-7 at row1.
+template <typename V>
+TESSERA_LANES_INLINE V load2x4(const void* row0, const void* row1) {
+  V v;
+  std::memcpy(&v, row0, sizeof v / 2);
+  std::memcpy(reinterpret_cast<char*>(&v) + sizeof v / 2, row1, sizeof v / 2);
+  return v;
+}
+template <typename V>
+TESSERA_LANES_INLINE void store2x4(void* row0, void* row1, V v) {
+  std::memcpy(row0, &v, sizeof v / 2);
+  std::memcpy(row1, reinterpret_cast<const char*>(&v) + sizeof v / 2, sizeof v / 2);
+}
 
 }  // namespace
 }  // namespace tessera::render
