@@ -297,15 +297,13 @@ void isaArgs(benchmark::internal::Benchmark* b) {
 
 // Rasterizes every tile of the frame into its visibility buffer (depth + triangle key), with the
 // kernel compiled for one instruction set (the argument).
-// Returns how many triangles won pixels; their keys are in `drawn`.
-size_t rasterTile(const StageInput& in, const render::TileKernels& kernels, int tile_index,
-                  render::TileVisibility& tile, std::vector<uint32_t>& drawn) {
+void rasterTile(const StageInput& in, const render::TileKernels& kernels, int tile_index,
+                render::TileVisibility& tile) {
   const int tx = tile_index % in.grid.columns, ty = tile_index / in.grid.columns;
   const int x0 = tx * render::kTileSize, y0 = ty * render::kTileSize;
   tile.clear(x0, y0, std::min(render::kTileSize, in.grid.width - x0),
              std::min(render::kTileSize, in.grid.height - y0));
-  drawn.resize(std::max(drawn.size(), in.chunks[0].bins.count(tile_index)));
-  return kernels.raster_tile(in.chunks, in.chunks.size(), tile_index, tile, drawn.data());
+  kernels.raster_tile(in.chunks, in.chunks.size(), tile_index, tile);
 }
 
 void BM_TileRaster(benchmark::State& state) {
@@ -314,9 +312,8 @@ void BM_TileRaster(benchmark::State& state) {
   const StageInput& in = *stageInput();
   const render::TileKernels kernels = render::tileKernels(isa);
   auto tile = std::make_unique<render::TileVisibility>();
-  std::vector<uint32_t> drawn;
   for (auto _ : state) {
-    for (int t = 0; t < in.grid.tileCount(); ++t) rasterTile(in, kernels, t, *tile, drawn);
+    for (int t = 0; t < in.grid.tileCount(); ++t) rasterTile(in, kernels, t, *tile);
     benchmark::DoNotOptimize(tile->key);
   }
   state.SetLabel(render::isaName(isa));
@@ -331,19 +328,16 @@ void BM_TileShade(benchmark::State& state) {
   const StageInput& in = *stageInput();
   const render::TileKernels kernels = render::tileKernels(isa);
   std::vector<std::unique_ptr<render::TileVisibility>> tiles;
-  std::vector<std::vector<uint32_t>> drawn(static_cast<size_t>(in.grid.tileCount()));
-  std::vector<size_t> drawn_count;
   for (int t = 0; t < in.grid.tileCount(); ++t) {
     tiles.push_back(std::make_unique<render::TileVisibility>());
-    drawn_count.push_back(rasterTile(in, kernels, t, *tiles.back(), drawn[t]));
+    rasterTile(in, kernels, t, *tiles.back());
   }
   const Scene& scene = in.scene.scene;
   const uint32_t background = packSrgba8(scene.background);
   auto shaded = std::make_unique<render::ShadedTile>();
   for (auto _ : state) {
     for (int t = 0; t < in.grid.tileCount(); ++t)
-      kernels.shade_tile(*tiles[t], drawn[t].data(), drawn_count[t], in.chunks, scene, false,
-                         background, *shaded);
+      kernels.shade_tile(*tiles[t], in.chunks, scene, false, background, *shaded);
     benchmark::DoNotOptimize(shaded->rgba);
   }
   state.SetLabel(render::isaName(isa));

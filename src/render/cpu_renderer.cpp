@@ -53,7 +53,6 @@ struct CpuRenderer::State {
       tiles.push_back(std::make_unique<TileVisibility>());
       shaded.push_back(std::make_unique<ShadedTile>());
     }
-    drawn.resize(static_cast<size_t>(pool.size()));
   }
 
   WorkerPool pool;
@@ -66,7 +65,6 @@ struct CpuRenderer::State {
   size_t chunk_count = 0;
   std::vector<std::unique_ptr<TileVisibility>> tiles;  // one per worker
   std::vector<std::unique_ptr<ShadedTile>> shaded;     // one per worker
-  std::vector<std::vector<uint32_t>> drawn;            // one per worker: a tile's drawn triangles
   LineList lines;
   PipelineStats stats;
 
@@ -308,12 +306,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
 
   const Clock::time_point t_setup = Clock::now();
 
-  // Raster, shade and resolve, per tile. A tile holds each set-up triangle at most once, so the
-  // drawn lists need room for every record (sized here: workers take tiles in any order).
-  size_t records = 0;
-  for (size_t c = 0; c < s.chunk_count; ++c) records += s.chunks[c].size;
-  for (std::vector<uint32_t>& drawn : s.drawn)
-    if (drawn.size() < records) drawn.resize(records);
+  // Raster, shade and resolve, per tile.
   const uint32_t background = packSrgba8(scene.background);
   s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile_index, int worker) {
     const int tile = static_cast<int>(tile_index);
@@ -329,12 +322,9 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     }
     TileVisibility& visibility = *s.tiles[static_cast<size_t>(worker)];
     visibility.clear(x0, y0, width, height);
-    std::vector<uint32_t>& drawn = s.drawn[static_cast<size_t>(worker)];
-    const size_t drawn_count =
-        s.kernels.raster_tile(s.chunks, s.chunk_count, tile, visibility, drawn.data());
+    s.kernels.raster_tile(s.chunks, s.chunk_count, tile, visibility);
     ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
-    s.kernels.shade_tile(visibility, drawn.data(), drawn_count, s.chunks, scene, options.normals,
-                         background, shaded);
+    s.kernels.shade_tile(visibility, s.chunks, scene, options.normals, background, shaded);
     resolveTile(visibility, shaded, frame);
   });
 

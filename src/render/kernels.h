@@ -15,10 +15,9 @@ Isa detectIsa();
 const char* isaName(Isa isa);
 
 // Rasterizes the triangles binned to `tile_index`, chunk by chunk in submission order, into the
-// tile's visibility buffer (raster_kernel.h). Writes to `drawn` the keys of the triangles that won
-// at least one pixel, in that order, and returns how many (at most the tile's binned count).
-using RasterTileFn = size_t (*)(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
-                                int tile_index, TileVisibility& tile, uint32_t* drawn);
+// tile's visibility buffer (raster_kernel.h).
+using RasterTileFn = void (*)(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                              int tile_index, TileVisibility& tile);
 
 struct TileKernels {
   RasterTileFn raster_tile;

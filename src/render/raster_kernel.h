@@ -25,9 +25,8 @@ constexpr int kBlock = 8;
 
 // Depth-tests eight pixels starting at x: covered lanes nearer than the stored depth take z and
 // the key; the others write back what they read (the tile rows are padded, so the eight slots
-// always exist). z is the plane at the pixel centre, computed exactly as everywhere else. Returns
-// the lanes that passed.
-TESSERA_LANES_INLINE I32x8 depthTestRow8(const RasterTriangle& t, uint32_t key, float z_row, int x,
+// always exist). z is the plane at the pixel centre, computed exactly as everywhere else.
+TESSERA_LANES_INLINE void depthTestRow8(const RasterTriangle& t, uint32_t key, float z_row, int x,
                                         I32x8 covered, float* depth, uint32_t* keys) {
   const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
   const F32x8 z = splat(z_row) + splat(t.dzdx) * (centre - splat(t.x0));
@@ -35,7 +34,6 @@ TESSERA_LANES_INLINE I32x8 depthTestRow8(const RasterTriangle& t, uint32_t key, 
   const I32x8 pass = covered & lessThan(z, stored);
   store(depth + x, select(pass, z, stored));
   store(keys + x, select(pass, splat(static_cast<int32_t>(key)), load<I32x8>(keys + x)));
-  return pass;
 }
 
 TESSERA_LANES_INLINE float rowDepth(const RasterTriangle& t, int y) {
@@ -50,8 +48,7 @@ TESSERA_LANES_INLINE uint32_t* keyRow(TileVisibility& tile, int y) {
   return tile.key + (y - tile.y0) * kTileSize - tile.x0;
 }
 
-// Each raster path returns whether the triangle won any pixel.
-TESSERA_LANES_INLINE bool rasterSmall(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
+TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
                                       int x_begin, int x_end, int y_begin, int y_end) {
   const int64_t px = static_cast<int64_t>(x_begin) * kSubpixelOne + kSubpixelHalf;
   const int64_t py = static_cast<int64_t>(y_begin) * kSubpixelOne + kSubpixelHalf;
@@ -65,7 +62,6 @@ TESSERA_LANES_INLINE bool rasterSmall(const RasterTriangle& t, uint32_t key, Til
   }
   const I32x8 lane = iota();
   const I32x8 last = splat(x_end);
-  I32x8 won = splat(int32_t{0});
   for (int y = y_begin; y <= y_end; ++y) {
     const float z_row = rowDepth(t, y);
     float* depth = depthRow(tile, y);
@@ -76,17 +72,16 @@ TESSERA_LANES_INLINE bool rasterSmall(const RasterTriangle& t, uint32_t key, Til
       const I32x8 e1 = splat(row[1]) + step_x[1] * offset;
       const I32x8 e2 = splat(row[2]) + step_x[2] * offset;
       const I32x8 covered = nonNegative(e0 | e1 | e2) & lessOrEqual(splat(x) + lane, last);
-      if (any(covered)) won = won | depthTestRow8(t, key, z_row, x, covered, depth, keys);
+      if (any(covered)) depthTestRow8(t, key, z_row, x, covered, depth, keys);
     }
     for (int k = 0; k < 3; ++k) row[k] += step_y[k];
   }
-  return any(won);
 }
 
 // Triangles at most four pixels wide (most of a dense mesh): two rows per step, lanes 0-3 on row
 // y and lanes 4-7 on row y + 1, so a step does the work of two rows of rasterSmall. The same
 // values per pixel as rasterSmall (edge values, z), hence the same bits.
-TESSERA_LANES_INLINE bool rasterNarrow(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
+TESSERA_LANES_INLINE void rasterNarrow(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
                                        int x_begin, int x_end, int y_begin, int y_end) {
   const int64_t px = static_cast<int64_t>(x_begin) * kSubpixelOne + kSubpixelHalf;
   const int64_t py = static_cast<int64_t>(y_begin) * kSubpixelOne + kSubpixelHalf;
@@ -103,7 +98,6 @@ TESSERA_LANES_INLINE bool rasterNarrow(const RasterTriangle& t, uint32_t key, Ti
   const I32x8 in_columns = lessOrEqual(column, splat(x_end - x_begin));
   const F32x8 centre_dx = toFloat(splat(x_begin) + column) + splat(0.5f) - splat(t.x0);
   const F32x8 dz = splat(t.dzdx) * centre_dx;
-  I32x8 won = splat(int32_t{0});
   for (int y = y_begin; y <= y_end; y += 2) {
     // Stepped at the top so no value beyond row y_end + 1 is formed (see rasterNarrow's caller).
     if (y != y_begin)
@@ -122,9 +116,7 @@ TESSERA_LANES_INLINE bool rasterNarrow(const RasterTriangle& t, uint32_t key, Ti
     store2x4(keys, keys + kTileSize,
              select(pass, splat(static_cast<int32_t>(key)),
                     load2x4<I32x8>(keys, keys + kTileSize)));
-    won = won | pass;
   }
-  return any(won);
 }
 
 TESSERA_LANES_INLINE int64_t edgeAt(const RasterTriangle& t, int k, int x, int y) {
@@ -132,14 +124,13 @@ TESSERA_LANES_INLINE int64_t edgeAt(const RasterTriangle& t, int k, int x, int y
          t.b[k] * (static_cast<int64_t>(y) * kSubpixelOne + kSubpixelHalf) + t.c[k];
 }
 
-TESSERA_LANES_INLINE bool rasterBlocks(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
+TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
                                        int x_begin, int x_end, int y_begin, int y_end) {
   // Blocks are aligned to the tile so a block row never leaves the tile's rows.
   const int bx_first = tile.x0 + ((x_begin - tile.x0) & ~(kBlock - 1));
   const int by_first = tile.y0 + ((y_begin - tile.y0) & ~(kBlock - 1));
   const I32x8 lanes = iota();
   const I64x8 lanes64 = widen(lanes);
-  I32x8 won = splat(int32_t{0});
   for (int by = by_first; by <= y_end; by += kBlock) {
     const int y0 = std::max(by, y_begin), y1 = std::min(by + kBlock - 1, y_end);
     for (int bx = bx_first; bx <= x_end; bx += kBlock) {
@@ -171,7 +162,7 @@ TESSERA_LANES_INLINE bool rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
                    lanes64 * splat(static_cast<int64_t>(t.a[k]) * kSubpixelOne);
           covered = covered & nonNegative(e[0] | e[1] | e[2]);
         }
-        won = won | depthTestRow8(t, key, rowDepth(t, y), bx, covered, depthRow(tile, y),
+        depthTestRow8(t, key, rowDepth(t, y), bx, covered, depthRow(tile, y),
                                   keyRow(tile, y));
       }
       // A block now wholly written by this triangle gets a tighter bound.
@@ -185,7 +176,6 @@ TESSERA_LANES_INLINE bool rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
       }
     }
   }
-  return any(won);
 }
 
 // Hi-Z for a small triangle: rejected when its nearest depth is not below the bound of any block
@@ -200,38 +190,46 @@ TESSERA_LANES_INLINE bool hiddenByHiZ(const RasterTriangle& t, const TileVisibil
   return true;
 }
 
-TESSERA_LANES_INLINE bool rasterTriangle(const RasterTriangle& t, uint32_t key,
+TESSERA_LANES_INLINE void rasterTriangle(const RasterTriangle& t, uint32_t key,
                                          TileVisibility& tile) {
   const int x_begin = std::max(t.min_x, tile.x0);
   const int x_end = std::min(t.max_x, tile.x0 + tile.width - 1);
   const int y_begin = std::max(t.min_y, tile.y0);
   const int y_end = std::min(t.max_y, tile.y0 + tile.height - 1);
-  if (x_begin > x_end || y_begin > y_end) return false;
+  if (x_begin > x_end || y_begin > y_end) return;
   if (t.small) {
-    if (hiddenByHiZ(t, tile, x_begin, x_end, y_begin, y_end)) return false;
+    if (hiddenByHiZ(t, tile, x_begin, x_end, y_begin, y_end)) return;
     // Two rows or more: the box is then at least a pixel tall, so |b| * 2 pixels < 2^30 (from
     // RasterTriangle::small) and the row after y_end that rasterNarrow forms still fits in int32.
     if (x_end - x_begin < 4 && y_end > y_begin)
-      return rasterNarrow(t, key, tile, x_begin, x_end, y_begin, y_end);
-    return rasterSmall(t, key, tile, x_begin, x_end, y_begin, y_end);
+      rasterNarrow(t, key, tile, x_begin, x_end, y_begin, y_end);
+    else
+      rasterSmall(t, key, tile, x_begin, x_end, y_begin, y_end);
+  } else {
+    rasterBlocks(t, key, tile, x_begin, x_end, y_begin, y_end);
   }
-  return rasterBlocks(t, key, tile, x_begin, x_end, y_begin, y_end);
 }
 
-size_t rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
-                        int tile_index, TileVisibility& tile, uint32_t* drawn) {
-  size_t count = 0;
+void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
+                      TileVisibility& tile) {
   for (size_t c = 0; c < chunk_count; ++c) {
     const TriangleChunk& chunk = chunks[c];
     const uint32_t* end = chunk.bins.end(tile_index);
     for (const uint32_t* it = chunk.bins.begin(tile_index); it != end; ++it) {
-      if (it + 1 != end) __builtin_prefetch(&chunk.raster[it[1]]);
-      const uint32_t key = makeKey(static_cast<uint32_t>(c), *it);
-      // A triangle that wins no pixel now cannot own one at the end: shading skips it.
-      if (rasterTriangle(chunk.raster[*it], key, tile)) drawn[count++] = key;
+      if (it + 1 != end) {
+        // The next record, and its shading record for the shading pass that follows this walk
+        // (the first two cache lines: all that untextured flat and Gouraud pixels read). Records
+        // are written by setup long before and scattered: without this, both passes wait on them.
+        const char* raster = reinterpret_cast<const char*>(&chunk.raster[it[1]]);
+        const char* shade = reinterpret_cast<const char*>(&chunk.shade[it[1]]);
+        __builtin_prefetch(raster);
+        __builtin_prefetch(raster + 64);
+        __builtin_prefetch(shade);
+        __builtin_prefetch(shade + 64);
+      }
+      rasterTriangle(chunk.raster[*it], makeKey(static_cast<uint32_t>(c), *it), tile);
     }
   }
-  return count;
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // The shading kernel, written once against eight-lane types (simd_lanes.h) and compiled per
-// instruction set (shade_<isa>.cpp). Each lane does exactly the float operations, in exactly the
+// instruction set (kernels_<isa>.cpp). Each lane does exactly the float operations, in exactly the
 // order, that shading one pixel takes, so every variant gives the same bits. Texture samples are
 // taken lane by lane through the one sampleAlbedo.
 #pragma once
@@ -66,16 +66,11 @@ TESSERA_LANES_INLINE I32x8 encodeSrgb8x8(F32x8 linear, const SrgbEncodeTable& ta
   return truncate(code + splat(0.5f));
 }
 
-template <typename V>
-TESSERA_LANES_INLINE void storeMasked(void* p, I32x8 mask, V value) {
-  store(p, select(mask, value, load<V>(p)));
-}
-
-// Shades the pixels of row y, columns x..x+7, that `mask` marks as owned by triangle t.
-TESSERA_LANES_INLINE void shadeRow8(const ShadeTriangle& t, const Scene& scene, bool want_normals,
-                                    int x, int y, I32x8 mask, int index, ShadedTile& out) {
-  const F32x8 px = toFloat(splat(x) + iota()) + splat(0.5f);
-  const float py = static_cast<float>(y) + 0.5f;
+// Shades the lanes of `mask` (pixel centres px, py) from triangle t, into `color` and, when
+// asked, `normal`; the other lanes keep what they hold.
+TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const Scene& scene, bool want_normals,
+                                     F32x8 px, float py, I32x8 mask, Vec3x8& color,
+                                     Vec3x8& normal) {
   // Barycentrics exactly as barycentricsAt.
   const F32x8 dx = px - splat(t.x0);
   const float dy = py - t.y0;
@@ -84,89 +79,77 @@ TESSERA_LANES_INLINE void shadeRow8(const ShadeTriangle& t, const Scene& scene, 
   const F32x8 b2 = (splat(t.p2dx) * dx + splat(t.p2dy * dy)) * inv_s;
   const F32x8 b0 = splat(1.0f) - b1 - b2;
 
-  Vec3x8 color = interpolate(t.color, b0, b1, b2);
+  Vec3x8 c = interpolate(t.color, b0, b1, b2);
   if (t.has_uv) {
     for (int l = 0; l < 8; ++l) {
       if (!lane(mask, l)) continue;
       const float3 a = sampleAlbedo(t, {lane(b0, l), lane(b1, l), lane(b2, l)}, lane(px, l), py);
-      setLane(color.x, l, lane(color.x, l) * a.x);
-      setLane(color.y, l, lane(color.y, l) * a.y);
-      setLane(color.z, l, lane(color.z, l) * a.z);
+      setLane(c.x, l, lane(c.x, l) * a.x);
+      setLane(c.y, l, lane(c.y, l) * a.y);
+      setLane(c.z, l, lane(c.z, l) * a.z);
     }
   }
   if (t.shading == Shading::kPhong || (want_normals && t.shading != Shading::kFlat)) {
     const Vec3x8 n = normalize8(interpolate(t.normal, b0, b1, b2));
     if (t.shading == Shading::kPhong) {
       const Vec3x8 e = irradiance8(scene, n);
-      color = {color.x * e.x, color.y * e.y, color.z * e.z};
+      c = {c.x * e.x, c.y * e.y, c.z * e.z};
     }
-    if (want_normals) {
-      storeMasked(out.normal_x + index, mask, n.x);
-      storeMasked(out.normal_y + index, mask, n.y);
-      storeMasked(out.normal_z + index, mask, n.z);
-    }
+    if (want_normals)
+      normal = {select(mask, n.x, normal.x), select(mask, n.y, normal.y),
+                select(mask, n.z, normal.z)};
   } else if (want_normals) {
-    storeMasked(out.normal_x + index, mask, splat(t.normal[0].x));
-    storeMasked(out.normal_y + index, mask, splat(t.normal[0].y));
-    storeMasked(out.normal_z + index, mask, splat(t.normal[0].z));
+    normal = {select(mask, splat(t.normal[0].x), normal.x),
+              select(mask, splat(t.normal[0].y), normal.y),
+              select(mask, splat(t.normal[0].z), normal.z)};
   }
-  storeMasked(out.red + index, mask, color.x);
-  storeMasked(out.green + index, mask, color.y);
-  storeMasked(out.blue + index, mask, color.z);
-  storeMasked(out.triangle_id + index, mask, splat(static_cast<int32_t>(t.triangle_id + 1)));
+  color = {select(mask, c.x, color.x), select(mask, c.y, color.y), select(mask, c.z, color.z)};
 }
 
-// Encodes the shaded pixels of the tile to sRGB, eight at a time; the background elsewhere.
-TESSERA_LANES_INLINE void encodeTile(const TileVisibility& tile, uint32_t background,
-                                     ShadedTile& out) {
+// Shades the tile in pixel order, eight pixels of a row at a time: each triangle owning some of
+// the eight is evaluated once for all of them and the results are merged in registers, then
+// encoded to sRGB and stored whole (no read-modify-write of partly written pixels).
+void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk>& chunks,
+                     const Scene& scene, bool want_normals, uint32_t background, ShadedTile& out) {
   const SrgbEncodeTable& table = srgbEncodeTable();
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const I32x8 fill = splat(static_cast<int32_t>(background));
   const I32x8 opaque = splat(static_cast<int32_t>(0xff000000u));
+  const F32x8 zero = splat(0.0f);
   for (int ty = 0; ty < tile.height; ++ty) {
+    const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
     for (int tx = 0; tx < tile.width; tx += 8) {
       const int i = ty * kTileSize + tx;
-      const I32x8 drawn = ~equal(load<I32x8>(tile.key + i), empty);
-      if (!any(drawn)) {
+      const I32x8 keys = load<I32x8>(tile.key + i);
+      const I32x8 covered = ~equal(keys, empty);
+      if (!any(covered)) {
         store(out.rgba + i, fill);
         continue;
       }
-      const I32x8 rgba = encodeSrgb8x8(load<F32x8>(out.red + i), table) |
-                         shiftLeft(encodeSrgb8x8(load<F32x8>(out.green + i), table), 8) |
-                         shiftLeft(encodeSrgb8x8(load<F32x8>(out.blue + i), table), 16) | opaque;
-      store(out.rgba + i, select(drawn, rgba, fill));
-    }
-  }
-}
-
-void shadeTileKernel(const TileVisibility& tile, const uint32_t* drawn, size_t drawn_count,
-                     const std::vector<TriangleChunk>& chunks, const Scene& scene,
-                     bool want_normals, uint32_t background, ShadedTile& out) {
-  const int tile_x1 = tile.x0 + tile.width - 1, tile_y1 = tile.y0 + tile.height - 1;
-  for (size_t i = 0; i < drawn_count; ++i) {
-    const uint32_t k = drawn[i];
-    const TriangleChunk& chunk = chunks[keyChunk(k)];
-    // The records are large and far apart: ask for the next one while this one is shaded.
-    if (i + 1 < drawn_count)
-      __builtin_prefetch(&chunks[keyChunk(drawn[i + 1])].shade[keyLocal(drawn[i + 1])]);
-    const RasterTriangle& r = chunk.raster[keyLocal(k)];
-    const I32x8 key = splat(static_cast<int32_t>(k));
-    const int x0 = std::max(r.min_x, tile.x0), x1 = std::min(r.max_x, tile_x1);
-    const int y0 = std::max(r.min_y, tile.y0), y1 = std::min(r.max_y, tile_y1);
-    const I32x8 last = splat(x1);
-    const ShadeTriangle* triangle = nullptr;
-    for (int y = y0; y <= y1; ++y) {
-      const int row = (y - tile.y0) * kTileSize - tile.x0;
-      for (int x = x0; x <= x1; x += 8) {
-        const I32x8 mask =
-            equal(load<I32x8>(tile.key + row + x), key) & lessOrEqual(splat(x) + iota(), last);
-        if (!any(mask)) continue;
-        if (!triangle) triangle = &chunk.shade[keyLocal(k)];
-        shadeRow8(*triangle, scene, want_normals, x, y, mask, row + x, out);
+      const F32x8 px = toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f);
+      Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
+      I32x8 ids = splat(int32_t{0});
+      I32x8 todo = covered;
+      do {
+        const uint32_t key = static_cast<uint32_t>(lane(keys, firstLane(todo)));
+        const I32x8 mask = equal(keys, splat(static_cast<int32_t>(key)));
+        const ShadeTriangle& t = chunks[keyChunk(key)].shade[keyLocal(key)];
+        shadeLanes(t, scene, want_normals, px, py, mask, color, normal);
+        ids = select(mask, splat(static_cast<int32_t>(t.triangle_id + 1)), ids);
+        todo = todo & ~mask;
+      } while (any(todo));
+      const I32x8 rgba = encodeSrgb8x8(color.x, table) |
+                         shiftLeft(encodeSrgb8x8(color.y, table), 8) |
+                         shiftLeft(encodeSrgb8x8(color.z, table), 16) | opaque;
+      store(out.rgba + i, select(covered, rgba, fill));
+      store(out.triangle_id + i, ids);
+      if (want_normals) {
+        store(out.normal_x + i, normal.x);
+        store(out.normal_y + i, normal.y);
+        store(out.normal_z + i, normal.z);
       }
     }
   }
-  encodeTile(tile, background, out);
 }
 
 }  // namespace

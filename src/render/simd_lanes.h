@@ -99,6 +99,12 @@ TESSERA_LANES_INLINE bool any(I32x8 mask) {
   for (int l = 0; l < 8; ++l) r |= mask.v[l];
   return r != 0;
 }
+// The first lane of a mask that is not all zero.
+TESSERA_LANES_INLINE int firstLane(I32x8 mask) {
+  int l = 0;
+  while (!mask.v[l]) ++l;
+  return l;
+}
 TESSERA_LANES_INLINE I32x8 equal(I32x8 a, I32x8 b) {
   I32x8 r;
   for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] == b.v[l] ? -1 : 0;
@@ -212,6 +218,21 @@ TESSERA_LANES_INLINE bool any(I32x8 mask) {
   int32_t r = 0;
   for (int l = 0; l < 8; ++l) r |= mask[l];
   return r != 0;
+#endif
+}
+// The first lane of a mask that is not all zero.
+TESSERA_LANES_INLINE int firstLane(I32x8 mask) {
+#if defined(__AVX__)
+  return __builtin_ctz(static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(mask))));
+#elif defined(__SSE2__)
+  __m128 half[2];
+  std::memcpy(half, &mask, sizeof half);
+  return __builtin_ctz(
+      static_cast<unsigned>(_mm_movemask_ps(half[0]) | (_mm_movemask_ps(half[1]) << 4)));
+#else
+  int l = 0;
+  while (!mask[l]) ++l;
+  return l;
 #endif
 }
 TESSERA_LANES_INLINE I32x8 equal(I32x8 a, I32x8 b) {
