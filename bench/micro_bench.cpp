@@ -337,7 +337,8 @@ void BM_TileShade(benchmark::State& state) {
   auto shaded = std::make_unique<render::ShadedTile>();
   for (auto _ : state) {
     for (int t = 0; t < in.grid.tileCount(); ++t)
-      kernels.shade_tile(*tiles[t], in.chunks, scene, false, background, *shaded);
+      kernels.shade_tile(*tiles[t], in.chunks, in.chunks.size(), scene, false,
+                         render::plainShading(scene, false), background, *shaded);
     benchmark::DoNotOptimize(shaded->rgba);
   }
   state.SetLabel(render::isaName(isa));

@@ -670,6 +670,48 @@ TEST(Renderer, ImageIsBitIdenticalForEverySimdLevel) {
   }
 }
 
+TEST(Renderer, PlainShadingIsTheSameForEverySimdLevelAndWithTheNormalAov) {
+  // No texture and no Phong: eight pixels owned by several triangles are shaded lane by lane from
+  // their own records. Asking for normals takes the per-triangle path instead; both, at every
+  // instruction set, must give the same bits. Small triangles of three shading modes, some with
+  // vertex colours, interpenetrating so that many eight-pixel runs have several owners.
+  Scene scene;
+  scene.camera.position = {0, 0.5f, 3};
+  scene.lights.push_back({normalize(float3{-1, -2, -1}), float3(0.9f)});
+  const Shading modes[] = {Shading::kGouraud, Shading::kFlat, Shading::kUnlit};
+  for (int i = 0; i < 3; ++i) {
+    Object o;
+    Mesh mesh = makeUvSphere(80 + 10 * i, 40);
+    for (size_t v = 0; i == 0 && v < mesh.positions.size(); ++v)
+      mesh.colors.push_back({0.5f + 0.5f * std::sin(static_cast<float>(v)), 0.7f, 0.3f, 1});
+    o.mesh = std::make_shared<Mesh>(mesh);
+    o.shading = modes[i];
+    o.transform.translation = {0.45f * static_cast<float>(i - 1), 0.1f * static_cast<float>(i), 0};
+    o.materials[0].base_color = {0.3f + 0.3f * static_cast<float>(i), 0.8f, 0.5f, 1};
+    scene.objects.push_back(o);
+  }
+  RenderOptions options;
+  options.width = 257;
+  options.height = 163;
+  auto render = [&](SimdLevel level, bool normals) {
+    CpuRenderer renderer(2, level);
+    Frame frame;
+    options.normals = normals;
+    renderer.render(scene, options, frame);
+    return frame;
+  };
+  const Frame reference = render(SimdLevel::kScalar, true);
+  EXPECT_GT(coveredCount(reference), 257 * 163 / 4);
+  for (SimdLevel level : {SimdLevel::kScalar, SimdLevel::kSse2, SimdLevel::kAvx2,
+                          SimdLevel::kAvx512, SimdLevel::kAuto}) {
+    for (bool normals : {false, true}) {
+      const Frame other = render(level, normals);
+      EXPECT_EQ(reference.color, other.color) << static_cast<int>(level) << " " << normals;
+      EXPECT_EQ(reference.triangle_id, other.triangle_id) << static_cast<int>(level);
+    }
+  }
+}
+
 TEST(Renderer, AllocatesNothingPerFrameAfterWarmUp) {
   Scene scene;
   scene.camera.position = {0, 0.5f, 2.5f};

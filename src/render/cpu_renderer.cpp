@@ -307,6 +307,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const Clock::time_point t_setup = Clock::now();
 
   // Raster, shade and resolve, per tile.
+  const bool plain = plainShading(scene, options.normals);
   const uint32_t background = packSrgba8(scene.background);
   s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile_index, int worker) {
     const int tile = static_cast<int>(tile_index);
@@ -324,7 +325,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     visibility.clear(x0, y0, width, height);
     s.kernels.raster_tile(s.chunks, s.chunk_count, tile, visibility);
     ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
-    s.kernels.shade_tile(visibility, s.chunks, scene, options.normals, background, shaded);
+    s.kernels.shade_tile(visibility, s.chunks, s.chunk_count, scene, options.normals, plain,
+                         background, shaded);
     resolveTile(visibility, shaded, frame);
   });
 

@@ -36,4 +36,14 @@ float3 sampleAlbedo(const ShadeTriangle& t, const Barycentrics& b, float x, floa
   return texture.sampleLod(uv, lod, sampler).xyz();
 }
 
+bool plainShading(const Scene& scene, bool want_normals) {
+  if (want_normals) return false;
+  return std::none_of(scene.objects.begin(), scene.objects.end(), [](const Object& o) {
+    const bool textured = o.mesh && !o.mesh->uvs.empty() &&
+                          std::any_of(o.materials.begin(), o.materials.end(),
+                                      [](const Material& m) { return m.albedo != nullptr; });
+    return o.shading == Shading::kPhong || textured;
+  });
+}
+
 }  // namespace tessera::render

@@ -38,9 +38,14 @@ Barycentrics barycentricsAt(const ShadeTriangle& t, float x, float y);
 // filtering takes its level of detail from the UVs at the next pixel centres right and down.
 float3 sampleAlbedo(const ShadeTriangle& t, const Barycentrics& b, float x, float y);
 
+// True when every pixel's colour is its triangle's interpolated vertex colours: no object is
+// textured or Phong-shaded and the normal AOV is not asked for.
+bool plainShading(const Scene& scene, bool want_normals);
+
+// `plain`: plainShading(scene, want_normals).
 using ShadeTileFn = void (*)(const TileVisibility& tile, const std::vector<TriangleChunk>& chunks,
-                             const Scene& scene, bool want_normals, uint32_t background,
-                             ShadedTile& out);
+                             size_t chunk_count, const Scene& scene, bool want_normals, bool plain,
+                             uint32_t background, ShadedTile& out);
 
 // shade_kernel.h; one variant per instruction set (kernels.h). Shades every pixel of the tile that
 // has a triangle and encodes it to sRGB; the background where no triangle is.

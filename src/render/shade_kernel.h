@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 
 #include <tessera/scene/color.h>
 
@@ -106,11 +107,51 @@ TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const Scene& scene,
   color = {select(mask, c.x, color.x), select(mask, c.y, color.y), select(mask, c.z, color.z)};
 }
 
-// Shades the tile in pixel order, eight pixels of a row at a time: each triangle owning some of
-// the eight is evaluated once for all of them and the results are merged in registers, then
-// encoded to sRGB and stored whole (no read-modify-write of partly written pixels).
+// The float fields from x0 to color[2], in order: what an untextured flat, Gouraud or unlit pixel
+// reads. shadeMixed loads them from eight records at once.
+constexpr int kPlainFields = 18;
+static_assert(offsetof(ShadeTriangle, color) == offsetof(ShadeTriangle, x0) + 9 * sizeof(float) &&
+                  sizeof(ShadeTriangle::color) == 9 * sizeof(float) &&
+                  offsetof(ShadeTriangle, sdy) == offsetof(ShadeTriangle, x0) + 8 * sizeof(float),
+              "shadeMixed reads x0..sdy and color[3] as 18 consecutive floats");
+static_assert(sizeof(ShadeTriangle) >= offsetof(ShadeTriangle, x0) + 24 * sizeof(float),
+              "shadeMixed reads 24 floats from x0");
+
+// Eight pixels owned by several triangles, all untextured and not Phong-shaded (colour = the
+// interpolated vertex colours): lane l is shaded from its own triangle's record, whose fields
+// are loaded eight records at a time and transposed into lanes. The same operations per lane as
+// shadeLanes, so the same bits; one evaluation instead of one per triangle.
+TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F32x8 px, float py,
+                                       I32x8& ids) {
+  F32x8 f[24];
+  for (int block = 0; block < 3; ++block) {
+    for (int l = 0; l < 8; ++l) f[block * 8 + l] = load<F32x8>(&records[l]->x0 + block * 8);
+    transpose8x8(f + block * 8);
+  }
+  for (int l = 0; l < 8; ++l)
+    ids = select(equal(iota(), splat(l)), splat(static_cast<int32_t>(records[l]->triangle_id + 1)),
+                 ids);
+  // f: x0, y0, inv_w0, p1dx, p1dy, p2dx, p2dy, sdx, sdy, then color[0..2].xyz.
+  const F32x8 dx = px - f[0];
+  const F32x8 dy = splat(py) - f[1];
+  const F32x8 inv_s = splat(1.0f) / (f[2] + f[7] * dx + f[8] * dy);
+  const F32x8 b1 = (f[3] * dx + f[4] * dy) * inv_s;
+  const F32x8 b2 = (f[5] * dx + f[6] * dy) * inv_s;
+  const F32x8 b0 = splat(1.0f) - b1 - b2;
+  return {f[9] * b0 + f[12] * b1 + f[15] * b2, f[10] * b0 + f[13] * b1 + f[16] * b2,
+          f[11] * b0 + f[14] * b1 + f[17] * b2};
+}
+
+// Shades the tile in pixel order, eight pixels of a row at a time, then encodes them to sRGB and
+// stores them whole (no read-modify-write of partly written pixels). Eight pixels of one triangle
+// take one evaluation; those of several are shaded lane by lane from their own records when every
+// triangle is plain (`plain`: untextured, not Phong, no normal AOV), else each triangle is
+// evaluated once for the eight and the results merged in registers.
 void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk>& chunks,
-                     const Scene& scene, bool want_normals, uint32_t background, ShadedTile& out) {
+                     size_t chunk_count, const Scene& scene, bool want_normals, bool plain,
+                     uint32_t background, ShadedTile& out) {
+  const ShadeTriangle* records[kMaxChunks];
+  for (size_t c = 0; c < chunk_count; ++c) records[c] = chunks[c].shade.data();
   const SrgbEncodeTable& table = srgbEncodeTable();
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const I32x8 fill = splat(static_cast<int32_t>(background));
@@ -129,15 +170,26 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
       const F32x8 px = toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f);
       Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
       I32x8 ids = splat(int32_t{0});
-      I32x8 todo = covered;
-      do {
-        const uint32_t key = static_cast<uint32_t>(lane(keys, firstLane(todo)));
-        const I32x8 mask = equal(keys, splat(static_cast<int32_t>(key)));
-        const ShadeTriangle& t = chunks[keyChunk(key)].shade[keyLocal(key)];
-        shadeLanes(t, scene, want_normals, px, py, mask, color, normal);
-        ids = select(mask, splat(static_cast<int32_t>(t.triangle_id + 1)), ids);
-        todo = todo & ~mask;
-      } while (any(todo));
+      const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
+      if (plain && any(covered & ~equal(keys, splat(static_cast<int32_t>(first))))) {
+        const ShadeTriangle* lanes[8];
+        for (int l = 0; l < 8; ++l) {
+          // Uncovered lanes borrow a covered lane's record; their result is not stored.
+          const uint32_t key = lane(covered, l) ? static_cast<uint32_t>(lane(keys, l)) : first;
+          lanes[l] = records[keyChunk(key)] + keyLocal(key);
+        }
+        color = shadeMixed(lanes, px, py, ids);
+      } else {
+        I32x8 todo = covered;
+        do {
+          const uint32_t key = static_cast<uint32_t>(lane(keys, firstLane(todo)));
+          const I32x8 mask = equal(keys, splat(static_cast<int32_t>(key)));
+          const ShadeTriangle& t = records[keyChunk(key)][keyLocal(key)];
+          shadeLanes(t, scene, want_normals, px, py, mask, color, normal);
+          ids = select(mask, splat(static_cast<int32_t>(t.triangle_id + 1)), ids);
+          todo = todo & ~mask;
+        } while (any(todo));
+      }
       const I32x8 rgba = encodeSrgb8x8(color.x, table) |
                          shiftLeft(encodeSrgb8x8(color.y, table), 8) |
                          shiftLeft(encodeSrgb8x8(color.z, table), 16) | opaque;

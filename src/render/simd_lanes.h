@@ -99,6 +99,13 @@ TESSERA_LANES_INLINE bool any(I32x8 mask) {
   for (int l = 0; l < 8; ++l) r |= mask.v[l];
   return r != 0;
 }
+// Row l of the 8x8 matrix r becomes column l.
+TESSERA_LANES_INLINE void transpose8x8(F32x8 r[8]) {
+  F32x8 t[8];
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) t[i].v[j] = r[j].v[i];
+  for (int i = 0; i < 8; ++i) r[i] = t[i];
+}
 // The first lane of a mask that is not all zero.
 TESSERA_LANES_INLINE int firstLane(I32x8 mask) {
   int l = 0;
@@ -219,6 +226,28 @@ TESSERA_LANES_INLINE bool any(I32x8 mask) {
   for (int l = 0; l < 8; ++l) r |= mask[l];
   return r != 0;
 #endif
+}
+// Row l of the 8x8 matrix r becomes column l: interleave pairs, then quads, then halves (the
+// shuffles map to unpack, shufps and vperm2f128).
+TESSERA_LANES_INLINE void transpose8x8(F32x8 r[8]) {
+  const I32x8 lo{0, 8, 1, 9, 4, 12, 5, 13}, hi{2, 10, 3, 11, 6, 14, 7, 15};
+  const I32x8 lo2{0, 1, 8, 9, 4, 5, 12, 13}, hi2{2, 3, 10, 11, 6, 7, 14, 15};
+  const I32x8 lo4{0, 1, 2, 3, 8, 9, 10, 11}, hi4{4, 5, 6, 7, 12, 13, 14, 15};
+  F32x8 t[8], u[8];
+  for (int i = 0; i < 8; i += 2) {
+    t[i] = __builtin_shuffle(r[i], r[i + 1], lo);
+    t[i + 1] = __builtin_shuffle(r[i], r[i + 1], hi);
+  }
+  for (int i = 0; i < 8; i += 4) {
+    u[i] = __builtin_shuffle(t[i], t[i + 2], lo2);
+    u[i + 1] = __builtin_shuffle(t[i], t[i + 2], hi2);
+    u[i + 2] = __builtin_shuffle(t[i + 1], t[i + 3], lo2);
+    u[i + 3] = __builtin_shuffle(t[i + 1], t[i + 3], hi2);
+  }
+  for (int i = 0; i < 4; ++i) {
+    r[i] = __builtin_shuffle(u[i], u[i + 4], lo4);
+    r[i + 4] = __builtin_shuffle(u[i], u[i + 4], hi4);
+  }
 }
 // The first lane of a mask that is not all zero.
 TESSERA_LANES_INLINE int firstLane(I32x8 mask) {
