@@ -320,10 +320,19 @@ TESSERA_LANES_INLINE void store(void* p, V v) {
 // Two rows of four lanes: lanes 0-3 at row0, lanes 4-7 at row1.
 template <typename V>
 TESSERA_LANES_INLINE V load2x4(const void* row0, const void* row1) {
+#if defined(__AVX__) && !defined(TESSERA_SIMD_SCALAR)
+  // Straight into the two halves of a register (through memory, the 32-byte reload of two
+  // 16-byte stores misses store forwarding and stalls).
+  const __m256 halves = _mm256_insertf128_ps(
+      _mm256_castps128_ps256(_mm_loadu_ps(static_cast<const float*>(row0))),
+      _mm_loadu_ps(static_cast<const float*>(row1)), 1);
+  return reinterpret_cast<V>(halves);
+#else
   V v;
   std::memcpy(&v, row0, sizeof v / 2);
   std::memcpy(reinterpret_cast<char*>(&v) + sizeof v / 2, row1, sizeof v / 2);
   return v;
+#endif
 }
 template <typename V>
 TESSERA_LANES_INLINE void store2x4(void* row0, void* row1, V v) {
