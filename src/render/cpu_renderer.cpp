@@ -327,7 +327,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
     s.kernels.shade_tile(visibility, s.chunks, s.chunk_count, scene, options.normals, plain,
                          background, shaded);
-    resolveTile(visibility, shaded, frame);
+    resolveTile(visibility, shaded, s.chunks, frame);
   });
 
   const Clock::time_point t_tiles = Clock::now();

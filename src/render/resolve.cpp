@@ -8,7 +8,8 @@
 
 namespace tessera::render {
 
-void resolveTile(const TileVisibility& tile, const ShadedTile& shaded, Frame& frame) {
+void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
+                 const std::vector<TriangleChunk>& chunks, Frame& frame) {
   const bool depth = !frame.depth.empty(), ids = !frame.triangle_id.empty(),
              normals = !frame.normal.empty();
   for (int ty = 0; ty < tile.height; ++ty) {
@@ -17,9 +18,12 @@ void resolveTile(const TileVisibility& tile, const ShadedTile& shaded, Frame& fr
     std::memcpy(&frame.color[row], &shaded.rgba[t0], sizeof(uint32_t) * tile.width);
     if (depth) std::memcpy(&frame.depth[row], &tile.depth[t0], sizeof(float) * tile.width);
     if (ids) {
-      for (int tx = 0; tx < tile.width; ++tx)
+      for (int tx = 0; tx < tile.width; ++tx) {
+        const uint32_t key = tile.key[t0 + tx];
         frame.triangle_id[row + tx] =
-            tile.key[t0 + tx] == kEmptyKey ? kNoTriangle : shaded.triangle_id[t0 + tx];
+            key == kEmptyKey ? kNoTriangle
+                             : chunks[keyChunk(key)].shade[keyLocal(key)].triangle_id + 1;
+      }
     }
     if (normals) {
       for (int tx = 0; tx < tile.width; ++tx)

@@ -13,7 +13,9 @@
 
 namespace tessera::render {
 
-void resolveTile(const TileVisibility& tile, const ShadedTile& shaded, Frame& frame);
+// The triangle ids come from the keys through the chunks' records.
+void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
+                 const std::vector<TriangleChunk>& chunks, Frame& frame);
 
 // A tile no triangle touches: background colour, no id, depth +inf (and zero normals).
 void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background, Frame& frame);

@@ -1,5 +1,5 @@
 // Shading: once per visible pixel of a tile, from the triangle that owns it in the visibility
-// buffer, into the tile's final colours (and triangle ids and world normals).
+// buffer, into the tile's final colours (and world normals when asked).
 //
 // The shading kernel walks the tile in pixel order, eight pixels of a row at a time, and evaluates
 // each triangle owning some of them once for the eight; colours are encoded to sRGB right there.
@@ -21,7 +21,6 @@ namespace tessera::render {
 struct ShadedTile {
   static constexpr int kSize = kTileSize * kTileSize + kTilePadding;
   alignas(64) uint32_t rgba[kSize];         // the final colour: sRGB-encoded, or the background
-  alignas(64) uint32_t triangle_id[kSize];  // scene triangle index + 1; unset where no triangle
   alignas(64) float normal_x[kSize];        // world shading normal; filled only when asked
   alignas(64) float normal_y[kSize];
   alignas(64) float normal_z[kSize];

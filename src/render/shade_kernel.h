@@ -121,16 +121,13 @@ static_assert(sizeof(ShadeTriangle) >= offsetof(ShadeTriangle, x0) + 24 * sizeof
 // interpolated vertex colours): lane l is shaded from its own triangle's record, whose fields
 // are loaded eight records at a time and transposed into lanes. The same operations per lane as
 // shadeLanes, so the same bits; one evaluation instead of one per triangle.
-TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F32x8 px, float py,
-                                       I32x8& ids) {
+TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F32x8 px,
+                                       float py) {
   F32x8 f[24];
   for (int block = 0; block < 3; ++block) {
     for (int l = 0; l < 8; ++l) f[block * 8 + l] = load<F32x8>(&records[l]->x0 + block * 8);
     transpose8x8(f + block * 8);
   }
-  for (int l = 0; l < 8; ++l)
-    ids = select(equal(iota(), splat(l)), splat(static_cast<int32_t>(records[l]->triangle_id + 1)),
-                 ids);
   // f: x0, y0, inv_w0, p1dx, p1dy, p2dx, p2dy, sdx, sdy, then color[0..2].xyz.
   const F32x8 dx = px - f[0];
   const F32x8 dy = splat(py) - f[1];
@@ -169,7 +166,6 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
       }
       const F32x8 px = toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f);
       Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
-      I32x8 ids = splat(int32_t{0});
       const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
       if (plain && any(covered & ~equal(keys, splat(static_cast<int32_t>(first))))) {
         const ShadeTriangle* lanes[8];
@@ -178,7 +174,7 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
           const uint32_t key = lane(covered, l) ? static_cast<uint32_t>(lane(keys, l)) : first;
           lanes[l] = records[keyChunk(key)] + keyLocal(key);
         }
-        color = shadeMixed(lanes, px, py, ids);
+        color = shadeMixed(lanes, px, py);
       } else {
         I32x8 todo = covered;
         do {
@@ -186,7 +182,6 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
           const I32x8 mask = equal(keys, splat(static_cast<int32_t>(key)));
           const ShadeTriangle& t = records[keyChunk(key)][keyLocal(key)];
           shadeLanes(t, scene, want_normals, px, py, mask, color, normal);
-          ids = select(mask, splat(static_cast<int32_t>(t.triangle_id + 1)), ids);
           todo = todo & ~mask;
         } while (any(todo));
       }
@@ -194,7 +189,6 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
                          shiftLeft(encodeSrgb8x8(color.y, table), 8) |
                          shiftLeft(encodeSrgb8x8(color.z, table), 16) | opaque;
       store(out.rgba + i, select(covered, rgba, fill));
-      store(out.triangle_id + i, ids);
       if (want_normals) {
         store(out.normal_x + i, normal.x);
         store(out.normal_y + i, normal.y);
