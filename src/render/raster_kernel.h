@@ -210,18 +210,21 @@ TESSERA_LANES_INLINE void rasterTriangle(const RasterTriangle& t, uint32_t key,
   }
 }
 
+constexpr int kPrefetchAhead = 3;
+
 void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
                       TileVisibility& tile) {
   for (size_t c = 0; c < chunk_count; ++c) {
     const TriangleChunk& chunk = chunks[c];
     const uint32_t* end = chunk.bins.end(tile_index);
     for (const uint32_t* it = chunk.bins.begin(tile_index); it != end; ++it) {
-      if (it + 1 != end) {
-        // The next record, and its shading record for the shading pass that follows this walk
-        // (the first two cache lines: all that untextured flat and Gouraud pixels read). Records
-        // are written by setup long before and scattered: without this, both passes wait on them.
-        const char* raster = reinterpret_cast<const char*>(&chunk.raster[it[1]]);
-        const char* shade = reinterpret_cast<const char*>(&chunk.shade[it[1]]);
+      if (end - it > kPrefetchAhead) {
+        // A record a few triangles ahead, and its shading record for the shading pass that
+        // follows this walk (the first two cache lines: all that untextured flat and Gouraud
+        // pixels read). Records are written by setup long before and scattered: without this,
+        // both passes wait on them.
+        const char* raster = reinterpret_cast<const char*>(&chunk.raster[it[kPrefetchAhead]]);
+        const char* shade = reinterpret_cast<const char*>(&chunk.shade[it[kPrefetchAhead]]);
         __builtin_prefetch(raster);
         __builtin_prefetch(raster + 64);
         __builtin_prefetch(shade);
