@@ -73,6 +73,12 @@ struct CpuRenderer::State {
 
 namespace {
 
+// Gouraud objects with vertex normals are lit per vertex in the vertex stage (VertexBuffer::lit).
+bool litPerVertex(const Object& object) {
+  return object.shading == Shading::kGouraud && object.mesh &&
+         object.mesh->normals.size() == object.mesh->vertexCount();
+}
+
 Isa chooseIsa(SimdLevel level) {
   const Isa best = detectIsa();
   switch (level) {
@@ -161,6 +167,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;
     const MeshVertices mesh_vertices{
         vertices.screen.data() + xf.vertex_base, vertices.normal.data() + xf.vertex_base,
+        litPerVertex(object) ? vertices.lit.data() + xf.vertex_base : nullptr,
         has_uv ? mesh.uvs.data() : nullptr, has_color ? mesh.colors.data() : nullptr};
     const uint16_t* outcodes = vertices.outcode.data() + xf.vertex_base;
 
@@ -293,8 +300,11 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   s.vertices.resize(vertex_total);
   s.pool.parallelFor(s.vertex_jobs.size(), [&](size_t j, int) {
     const VertexJob& job = s.vertex_jobs[j];
-    transformVertices(*scene.objects[job.object].mesh, s.objects[job.object], viewport, job.first,
-                      job.count, s.vertices);
+    const Object& object = scene.objects[job.object];
+    transformVertices(*object.mesh, s.objects[job.object], viewport, job.first, job.count,
+                      s.vertices);
+    if (litPerVertex(object))
+      lightVertices(scene, s.objects[job.object].vertex_base + job.first, job.count, s.vertices);
   });
 
   const Clock::time_point t_vertex = Clock::now();

@@ -4,15 +4,6 @@
 
 namespace tessera::render {
 
-float3 irradiance(const Scene& scene, float3 n) {
-  float3 e = scene.ambient;
-  for (const DirectionalLight& light : scene.lights) {
-    float cos_theta = -dot(n, light.direction);
-    if (cos_theta > 0.0f) e += light.color * cos_theta;
-  }
-  return e;
-}
-
 namespace {
 
 // Edge from a to b, evaluated at p: (b - a) x (p - a) with y pointing down. Positive inside for
@@ -106,6 +97,7 @@ struct MeshCorners {
   float3 unitNormal(int k) const { return vertices.normal[index[k]]; }  // unit or zero already
   float2 uv(int k) const { return vertices.uv[index[k]]; }
   float3 color(int k) const { return vertices.color[index[k]].xyz(); }
+  const float3* lit(int k) const { return vertices.lit ? &vertices.lit[index[k]] : nullptr; }
 };
 
 // A clipped triangle's corners: the clipper's output.
@@ -118,14 +110,16 @@ struct ClippedCorners {
   float3 unitNormal(int k) const { return a[k].unit_normal ? a[k].normal : normalize(a[k].normal); }
   float2 uv(int k) const { return a[k].uv; }
   float3 color(int k) const { return a[k].color.xyz(); }
+  const float3* lit(int) const { return nullptr; }
 };
 
 bool isZero(float3 n) {
   return n.x == 0.0f && n.y == 0.0f && n.z == 0.0f;
 }
 
+// Always inlined into its two callers: a call between them costs as much as a corner's work.
 template <typename Corners>
-void setupShadeFrom(const SetupContext& ctx, const Corners& corners, const TriangleOrientation& o,
+inline __attribute__((always_inline)) void setupShadeFrom(const SetupContext& ctx, const Corners& corners, const TriangleOrientation& o,
                     const RasterTriangle& raster, float3 face_normal, uint32_t triangle_id,
                     uint16_t material, ShadeTriangle& shade) {
   const float q0 = corners.screen(o.order[0]).inv_w, q1 = corners.screen(o.order[1]).inv_w,
@@ -170,9 +164,17 @@ void setupShadeFrom(const SetupContext& ctx, const Corners& corners, const Trian
     case Shading::kGouraud:
       for (int k = 0; k < 3; ++k) {
         const int i = o.order[k];
-        const float3 n = vertexNormal(i);
-        if (ctx.want_normals) shade.normal[k] = n;
-        shade.color[k] = albedo(i) * irradiance(*ctx.scene, n);
+        // Facing the viewer, the shading normal is the vertex normal itself (flip = +1), so the
+        // vertex stage's irradiance is its irradiance; NaN there marks a zero normal.
+        const float3* lit = o.back_facing ? nullptr : corners.lit(i);
+        if (lit && !std::isnan(lit->x)) {
+          if (ctx.want_normals) shade.normal[k] = vertexNormal(i);
+          shade.color[k] = albedo(i) * *lit;
+        } else {
+          const float3 n = vertexNormal(i);
+          if (ctx.want_normals) shade.normal[k] = n;
+          shade.color[k] = albedo(i) * irradiance(*ctx.scene, n);
+        }
       }
       break;
     case Shading::kPhong:

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <span>
 
 #include <tessera/math/vec.h>
 #include <tessera/scene/scene.h>
@@ -129,8 +130,9 @@ struct VertexAttributes {
 struct MeshVertices {
   const ScreenVertex* screen;  // the vertex stage's (VertexBuffer), from the object's first vertex
   const float3* normal;        // world, unit or zero (VertexBuffer)
-  const float2* uv;            // read only when ctx.has_uv
-  const float4* color;         // read only when ctx.has_color
+  const float3* lit;    // VertexBuffer::lit for objects lit in the vertex stage, otherwise null
+  const float2* uv;     // read only when ctx.has_uv
+  const float4* color;  // read only when ctx.has_color
 };
 
 // `face_normal` is the world-space geometric normal (flat shading, and vertices without a normal);
@@ -143,7 +145,19 @@ void setupShade(const SetupContext& ctx, const MeshVertices& vertices, const uin
                 const TriangleOrientation& orientation, const RasterTriangle& raster,
                 float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade);
 
-// Lambert irradiance: ambient plus every directional light, for unit normal n.
-float3 irradiance(const Scene& scene, float3 n);
+// Lambert irradiance: ambient plus every directional light, for unit normal n. Inline, with a form
+// taking the scene's fields, so that the vertex stage's loop (lightVertices) keeps them in
+// registers.
+inline float3 irradiance(float3 ambient, std::span<const DirectionalLight> lights, float3 n) {
+  float3 e = ambient;
+  for (const DirectionalLight& light : lights) {
+    float cos_theta = -dot(n, light.direction);
+    if (cos_theta > 0.0f) e += light.color * cos_theta;
+  }
+  return e;
+}
+inline float3 irradiance(const Scene& scene, float3 n) {
+  return irradiance(scene.ambient, scene.lights, n);
+}
 
 }  // namespace tessera::render
