@@ -186,9 +186,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         continue;
       }
       // Read only for the triangles that survive the cull.
-      auto material = [&] {
-        return has_materials ? mesh.triangle_materials[local] : uint16_t{0};
-      };
+      auto material = [&] { return has_materials ? mesh.triangle_materials[local] : uint16_t{0}; };
       auto face_normal = [&] {
         if (!needs_face_normal) return float3{};
         const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],

@@ -119,9 +119,12 @@ bool isZero(float3 n) {
 
 // Always inlined into its two callers: a call between them costs as much as a corner's work.
 template <typename Corners>
-inline __attribute__((always_inline)) void setupShadeFrom(const SetupContext& ctx, const Corners& corners, const TriangleOrientation& o,
-                    const RasterTriangle& raster, float3 face_normal, uint32_t triangle_id,
-                    uint16_t material, ShadeTriangle& shade) {
+inline __attribute__((always_inline)) void setupShadeFrom(const SetupContext& ctx,
+                                                          const Corners& corners,
+                                                          const TriangleOrientation& o,
+                                                          const RasterTriangle& raster,
+                                                          float3 face_normal, uint32_t triangle_id,
+                                                          uint16_t material, ShadeTriangle& shade) {
   const float q0 = corners.screen(o.order[0]).inv_w, q1 = corners.screen(o.order[1]).inv_w,
               q2 = corners.screen(o.order[2]).inv_w;
   shade.x0 = raster.x0;
