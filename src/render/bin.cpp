@@ -10,9 +10,8 @@ void ChunkBins::reset(int tile_count) {
   offsets_.assign(static_cast<size_t>(tile_count) + 1, 0);
 }
 
-void ChunkBins::add(const TileGrid& grid, const RasterTriangle& t, uint32_t local_index) {
-  const int tx0 = t.min_x >> kTileSizeLog2, tx1 = t.max_x >> kTileSizeLog2;
-  const int ty0 = t.min_y >> kTileSizeLog2, ty1 = t.max_y >> kTileSizeLog2;
+void ChunkBins::addToTiles(const TileGrid& grid, int tx0, int ty0, int tx1, int ty1,
+                           uint32_t local_index) {
   for (int ty = ty0; ty <= ty1; ++ty) {
     for (int tx = tx0; tx <= tx1; ++tx) {
       const uint32_t tile = static_cast<uint32_t>(ty * grid.columns + tx);

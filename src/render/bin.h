@@ -26,8 +26,19 @@ class ChunkBins {
  public:
   // Empties the bins for a grid of `tile_count` tiles (keeps the memory).
   void reset(int tile_count);
-  // Adds triangle `local_index` to every tile its bounding box overlaps.
-  void add(const TileGrid& grid, const RasterTriangle& triangle, uint32_t local_index);
+  // Adds triangle `local_index` to every tile its bounding box overlaps. Inline for the common
+  // case of a dense mesh: a box inside one tile.
+  void add(const TileGrid& grid, const RasterTriangle& triangle, uint32_t local_index) {
+    const int tx0 = triangle.min_x >> kTileSizeLog2, tx1 = triangle.max_x >> kTileSizeLog2;
+    const int ty0 = triangle.min_y >> kTileSizeLog2, ty1 = triangle.max_y >> kTileSizeLog2;
+    if (tx0 == tx1 && ty0 == ty1) {
+      const uint32_t tile = static_cast<uint32_t>(ty0 * grid.columns + tx0);
+      entries_.push_back({tile, local_index});
+      ++counts_[tile];
+      return;
+    }
+    addToTiles(grid, tx0, ty0, tx1, ty1, local_index);
+  }
   // Groups the entries by tile, keeping their order within each tile. Call once after the adds.
   void finish();
 
@@ -41,6 +52,8 @@ class ChunkBins {
     uint32_t tile;
     uint32_t triangle;
   };
+  // Adds the triangle to tiles [tx0, tx1] x [ty0, ty1].
+  void addToTiles(const TileGrid& grid, int tx0, int ty0, int tx1, int ty1, uint32_t local_index);
   std::vector<Entry> entries_;
   std::vector<uint32_t> counts_;
   std::vector<uint32_t> offsets_;  // tile_count + 1

@@ -11,7 +11,6 @@
 #include <tessera/render/cpu_renderer.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <memory>
 
@@ -74,6 +73,12 @@ struct CpuRenderer::State {
 
 namespace {
 
+// Gouraud objects with vertex normals are lit per vertex in the vertex stage (VertexBuffer::lit).
+bool litPerVertex(const Object& object) {
+  return object.shading == Shading::kGouraud && object.mesh &&
+         object.mesh->normals.size() == object.mesh->vertexCount();
+}
+
 Isa chooseIsa(SimdLevel level) {
   const Isa best = detectIsa();
   switch (level) {
@@ -122,24 +127,17 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
                        [](size_t t, const ObjectTransforms& o) { return t < o.triangle_base; }) -
       objects.begin() - 1;
 
-  RasterTriangle raster;
   TriangleOrientation orientation;
-  // Appends a visible triangle's records and bins it; the attributes are fetched only then.
-  auto emit = [&](const SetupContext& ctx, const ScreenVertex sv[3], auto&& attributes,
-                  auto&& face_normal, uint32_t id, uint16_t material) {
-    if (!setupRaster(ctx, sv, raster, orientation)) return false;
-    const uint32_t local = static_cast<uint32_t>(chunk.size++);
+  // The record slot of the next visible triangle: setup writes in place, and the slot counts
+  // (chunk.size) only once the triangle survives.
+  auto nextRecord = [&] {
+    const uint32_t local = static_cast<uint32_t>(chunk.size);
     TESSERA_CHECK(local < kMaxTrianglesPerChunk) << "chunk holds too many triangles";
     if (local == chunk.raster.size()) {
       chunk.raster.emplace_back();
       chunk.shade.emplace_back();
     }
-    const std::array<VertexAttributes, 3> a = attributes();
-    chunk.raster[local] = raster;
-    setupShade(ctx, sv, a.data(), orientation, raster, face_normal(), id, material,
-               chunk.shade[local]);
-    chunk.bins.add(grid, raster, local);
-    return true;
+    return local;
   };
 
   const float width = static_cast<float>(grid.width), height = static_cast<float>(grid.height);
@@ -167,6 +165,11 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
     // Flat shading lights the face; so do vertices of a mesh without normals.
     const bool needs_face_normal =
         object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;
+    const MeshVertices mesh_vertices{
+        vertices.screen.data() + xf.vertex_base, vertices.normal.data() + xf.vertex_base,
+        litPerVertex(object) ? vertices.lit.data() + xf.vertex_base : nullptr,
+        has_uv ? mesh.uvs.data() : nullptr, has_color ? mesh.colors.data() : nullptr};
+    const uint16_t* outcodes = vertices.outcode.data() + xf.vertex_base;
 
     for (; t < std::min(end, object_end); ++t) {
       const size_t local = t - xf.triangle_base;
@@ -176,45 +179,51 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         ++chunk.culled;
         continue;
       }
-      const size_t g[3] = {xf.vertex_base + idx[0], xf.vertex_base + idx[1],
-                           xf.vertex_base + idx[2]};
-      const uint32_t c0 = vertices.outcode[g[0]], c1 = vertices.outcode[g[1]],
-                     c2 = vertices.outcode[g[2]];
+      const uint32_t c0 = outcodes[idx[0]], c1 = outcodes[idx[1]], c2 = outcodes[idx[2]];
       // Non-finite vertices drop their triangle; so does one wholly outside a frustum plane.
       if (((c0 | c1 | c2) & kNonFinite) || (c0 & c1 & c2 & kRejectPlanes)) {
         ++chunk.culled;
         continue;
       }
-      const uint16_t material = has_materials ? mesh.triangle_materials[local] : uint16_t{0};
-      const uint32_t id = static_cast<uint32_t>(t);
+      // Read only for the triangles that survive the cull.
+      auto material = [&] { return has_materials ? mesh.triangle_materials[local] : uint16_t{0}; };
       auto face_normal = [&] {
         if (!needs_face_normal) return float3{};
         const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
                      p2 = mesh.positions[idx[2]];
         return xf.normal_matrix * cross(p1 - p0, p2 - p0) * xf.winding_sign;
       };
-      auto mesh_attributes = [&](int k) {
-        return VertexAttributes{vertices.normal[g[k]], has_uv ? mesh.uvs[idx[k]] : float2{},
-                                has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1}, true};
-      };
+      const uint32_t id = static_cast<uint32_t>(t);
 
       const uint32_t cut = (c0 | c1 | c2) & kCutPlanes;
       if (!cut) {
-        const ScreenVertex sv[3] = {vertices.screen[g[0]], vertices.screen[g[1]],
-                                    vertices.screen[g[2]]};
-        auto attributes = [&] {
-          return std::array<VertexAttributes, 3>{mesh_attributes(0), mesh_attributes(1),
-                                                 mesh_attributes(2)};
-        };
-        if (!emit(ctx, sv, attributes, face_normal, id, material)) ++chunk.culled;
+        const ScreenVertex& v0 = mesh_vertices.screen[idx[0]];
+        const ScreenVertex& v1 = mesh_vertices.screen[idx[1]];
+        const ScreenVertex& v2 = mesh_vertices.screen[idx[2]];
+        const int64_t area = signedArea(v0, v1, v2);
+        if (cullsArea(ctx, area)) {
+          ++chunk.culled;
+          continue;
+        }
+        const uint32_t record = nextRecord();
+        RasterTriangle& raster = chunk.raster[record];
+        if (!setupRaster(ctx, v0, v1, v2, area, raster, orientation)) {
+          ++chunk.culled;
+          continue;
+        }
+        ++chunk.size;
+        setupShade(ctx, mesh_vertices, idx, orientation, raster, face_normal(), id, material(),
+                   chunk.shade[record]);
+        chunk.bins.add(grid, raster, record);
         continue;
       }
       // Crosses the near or far plane or leaves the guard band: clip, then fan.
       ++chunk.clipped;
       ClipVertex in[3];
       for (int k = 0; k < 3; ++k) {
-        const VertexAttributes a = mesh_attributes(k);
-        in[k] = {vertices.clip(g[k]), a.normal, a.uv, a.color};
+        in[k] = {vertices.clip(xf.vertex_base + idx[k]), vertices.normal[xf.vertex_base + idx[k]],
+                 has_uv ? mesh.uvs[idx[k]] : float2{},
+                 has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1}};
       }
       ClipVertex polygon[kMaxClippedVertices];
       const int n = clipTriangle(in, cut, guard, polygon);
@@ -223,13 +232,17 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         const ClipVertex* fan[3] = {&polygon[0], &polygon[k], &polygon[k + 1]};
         ScreenVertex sv[3];
         for (int i = 0; i < 3; ++i) sv[i] = projectToScreen(fan[i]->position, width, height);
-        auto attributes = [&] {
-          return std::array<VertexAttributes, 3>{
-              VertexAttributes{fan[0]->normal, fan[0]->uv, fan[0]->color, false},
-              VertexAttributes{fan[1]->normal, fan[1]->uv, fan[1]->color, false},
-              VertexAttributes{fan[2]->normal, fan[2]->uv, fan[2]->color, false}};
-        };
-        any = emit(ctx, sv, attributes, face_normal, id, material) || any;
+        const uint32_t record = nextRecord();
+        RasterTriangle& raster = chunk.raster[record];
+        if (!setupRaster(ctx, sv, raster, orientation)) continue;
+        ++chunk.size;
+        const VertexAttributes a[3] = {{fan[0]->normal, fan[0]->uv, fan[0]->color, false},
+                                       {fan[1]->normal, fan[1]->uv, fan[1]->color, false},
+                                       {fan[2]->normal, fan[2]->uv, fan[2]->color, false}};
+        setupShade(ctx, sv, a, orientation, raster, face_normal(), id, material(),
+                   chunk.shade[record]);
+        chunk.bins.add(grid, raster, record);
+        any = true;
       }
       if (!any) ++chunk.culled;
     }
@@ -285,8 +298,11 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   s.vertices.resize(vertex_total);
   s.pool.parallelFor(s.vertex_jobs.size(), [&](size_t j, int) {
     const VertexJob& job = s.vertex_jobs[j];
-    transformVertices(*scene.objects[job.object].mesh, s.objects[job.object], viewport, job.first,
-                      job.count, s.vertices);
+    const Object& object = scene.objects[job.object];
+    transformVertices(*object.mesh, s.objects[job.object], viewport, job.first, job.count,
+                      s.vertices);
+    if (litPerVertex(object))
+      lightVertices(scene, s.objects[job.object].vertex_base + job.first, job.count, s.vertices);
   });
 
   const Clock::time_point t_vertex = Clock::now();

@@ -4,15 +4,6 @@
 
 namespace tessera::render {
 
-float3 irradiance(const Scene& scene, float3 n) {
-  float3 e = scene.ambient;
-  for (const DirectionalLight& light : scene.lights) {
-    float cos_theta = -dot(n, light.direction);
-    if (cos_theta > 0.0f) e += light.color * cos_theta;
-  }
-  return e;
-}
-
 namespace {
 
 // Edge from a to b, evaluated at p: (b - a) x (p - a) with y pointing down. Positive inside for
@@ -40,23 +31,15 @@ void pixelRange(int32_t lo, int32_t hi, int size, int32_t& first, int32_t& last)
 
 }  // namespace
 
-bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangle& raster,
+bool setupRaster(const SetupContext& ctx, const ScreenVertex& sv0, const ScreenVertex& sv1,
+                 const ScreenVertex& sv2, int64_t area, RasterTriangle& raster,
                  TriangleOrientation& o) {
-  // Signed area on the snapped grid, y down. Counter-clockwise in NDC (front-facing) stays
-  // counter-clockwise on screen, which with y pointing down gives a negative area.
-  int64_t area = static_cast<int64_t>(v[1].x - v[0].x) * (v[2].y - v[0].y) -
-                 static_cast<int64_t>(v[1].y - v[0].y) * (v[2].x - v[0].x);
-  if (area == 0) return false;
   o.back_facing = area > 0;
-  if ((o.back_facing && ctx.cull == CullMode::kBack) ||
-      (!o.back_facing && ctx.cull == CullMode::kFront))
-    return false;
+  const ScreenVertex* const v[3] = {&sv0, &sv1, &sv2};
 
   // Bounding box over pixel centres.
-  const int32_t min_fx = std::min({v[0].x, v[1].x, v[2].x}),
-                max_fx = std::max({v[0].x, v[1].x, v[2].x});
-  const int32_t min_fy = std::min({v[0].y, v[1].y, v[2].y}),
-                max_fy = std::max({v[0].y, v[1].y, v[2].y});
+  const int32_t min_fx = std::min({sv0.x, sv1.x, sv2.x}), max_fx = std::max({sv0.x, sv1.x, sv2.x});
+  const int32_t min_fy = std::min({sv0.y, sv1.y, sv2.y}), max_fy = std::max({sv0.y, sv1.y, sv2.y});
   pixelRange(min_fx, max_fx, ctx.width, raster.min_x, raster.max_x);
   if (raster.min_x > raster.max_x) return false;
   pixelRange(min_fy, max_fy, ctx.height, raster.min_y, raster.max_y);
@@ -74,9 +57,9 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangl
     o.order[1] = 2, o.order[2] = 1;
     area = -area;
   }
-  const ScreenVertex& v0 = v[o.order[0]];
-  const ScreenVertex& v1 = v[o.order[1]];
-  const ScreenVertex& v2 = v[o.order[2]];
+  const ScreenVertex& v0 = *v[o.order[0]];
+  const ScreenVertex& v1 = *v[o.order[1]];
+  const ScreenVertex& v2 = *v[o.order[2]];
 
   // Edge k is opposite vertex k: edge 0 = v1->v2, edge 1 = v2->v0, edge 2 = v0->v1.
   makeEdge(v1.x, v1.y, v2.x, v2.y, raster.a[0], raster.b[0], raster.c[0]);
@@ -103,10 +86,47 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangl
   return true;
 }
 
-void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAttributes a[3],
-                const TriangleOrientation& o, const RasterTriangle& raster, float3 face_normal,
-                uint32_t triangle_id, uint16_t material, ShadeTriangle& shade) {
-  const float q0 = v[o.order[0]].inv_w, q1 = v[o.order[1]].inv_w, q2 = v[o.order[2]].inv_w;
+namespace {
+
+// An unclipped triangle's corners, read from the object's vertices.
+struct MeshCorners {
+  const MeshVertices& vertices;
+  const uint32_t* index;
+
+  const ScreenVertex& screen(int k) const { return vertices.screen[index[k]]; }
+  float3 unitNormal(int k) const { return vertices.normal[index[k]]; }  // unit or zero already
+  float2 uv(int k) const { return vertices.uv[index[k]]; }
+  float3 color(int k) const { return vertices.color[index[k]].xyz(); }
+  const float3* lit(int k) const { return vertices.lit ? &vertices.lit[index[k]] : nullptr; }
+};
+
+// A clipped triangle's corners: the clipper's output.
+struct ClippedCorners {
+  const ScreenVertex* v;
+  const VertexAttributes* a;
+
+  const ScreenVertex& screen(int k) const { return v[k]; }
+  // Interpolated by the clipper: no longer unit.
+  float3 unitNormal(int k) const { return a[k].unit_normal ? a[k].normal : normalize(a[k].normal); }
+  float2 uv(int k) const { return a[k].uv; }
+  float3 color(int k) const { return a[k].color.xyz(); }
+  const float3* lit(int) const { return nullptr; }
+};
+
+bool isZero(float3 n) {
+  return n.x == 0.0f && n.y == 0.0f && n.z == 0.0f;
+}
+
+// Always inlined into its two callers: a call between them costs as much as a corner's work.
+template <typename Corners>
+inline __attribute__((always_inline)) void setupShadeFrom(const SetupContext& ctx,
+                                                          const Corners& corners,
+                                                          const TriangleOrientation& o,
+                                                          const RasterTriangle& raster,
+                                                          float3 face_normal, uint32_t triangle_id,
+                                                          uint16_t material, ShadeTriangle& shade) {
+  const float q0 = corners.screen(o.order[0]).inv_w, q1 = corners.screen(o.order[1]).inv_w,
+              q2 = corners.screen(o.order[2]).inv_w;
   shade.x0 = raster.x0;
   shade.y0 = raster.y0;
   shade.inv_w0 = q0;
@@ -122,30 +142,75 @@ void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAt
   // Back faces that are drawn are lit from the viewer's side (two-sided lighting).
   const float flip = o.back_facing ? -1.0f : 1.0f;
   // A zero face normal (not computed: the vertex normals serve) falls back to +Z.
-  float3 flat_normal = normalize(face_normal) * flip;
-  if (flat_normal.x == 0.0f && flat_normal.y == 0.0f && flat_normal.z == 0.0f)
-    flat_normal = float3{0, 0, flip};
-  const float3 flat_irradiance =
-      ctx.shading == Shading::kFlat ? irradiance(*ctx.scene, flat_normal) : float3(1.0f);
-  const bool keep_normals = ctx.shading == Shading::kPhong || ctx.want_normals;
-  for (int k = 0; k < 3; ++k) {
-    const VertexAttributes& va = a[o.order[k]];
-    float3 n = flat_normal;
-    if (ctx.shading != Shading::kFlat) {
-      // The vertex stage's normals are unit already; clipped vertices' are interpolated.
-      n = (va.unit_normal ? va.normal : normalize(va.normal)) * flip;
-      if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) n = flat_normal;
+  auto flatNormal = [&] {
+    const float3 n = normalize(face_normal) * flip;
+    return isZero(n) ? float3{0, 0, flip} : n;
+  };
+  const auto albedo = [&](int i) { return ctx.has_color ? base * corners.color(i) : base; };
+  // The vertex's shading normal, facing the viewer; the face's where the vertex has none.
+  const auto vertexNormal = [&](int i) {
+    const float3 n = corners.unitNormal(i) * flip;
+    return isZero(n) ? flatNormal() : n;
+  };
+  // Only what the shading mode reads is written (shade_kernel.h): normals for Phong and the
+  // normal AOV, UVs for textured meshes.
+  switch (ctx.shading) {
+    case Shading::kFlat: {
+      const float3 n = flatNormal();
+      const float3 e = irradiance(*ctx.scene, n);
+      for (int k = 0; k < 3; ++k) {
+        if (ctx.want_normals) shade.normal[k] = n;
+        shade.color[k] = albedo(o.order[k]) * e;
+      }
+      break;
     }
-    if (keep_normals) shade.normal[k] = n;
-    if (ctx.has_uv) shade.uv[k] = va.uv;
-    const float3 albedo = ctx.has_color ? base * va.color.xyz() : base;
-    shade.color[k] =
-        albedo * (ctx.shading == Shading::kGouraud ? irradiance(*ctx.scene, n) : flat_irradiance);
+    case Shading::kGouraud:
+      for (int k = 0; k < 3; ++k) {
+        const int i = o.order[k];
+        // Facing the viewer, the shading normal is the vertex normal itself (flip = +1), so the
+        // vertex stage's irradiance is its irradiance; NaN there marks a zero normal.
+        const float3* lit = o.back_facing ? nullptr : corners.lit(i);
+        if (lit && !std::isnan(lit->x)) {
+          if (ctx.want_normals) shade.normal[k] = vertexNormal(i);
+          shade.color[k] = albedo(i) * *lit;
+        } else {
+          const float3 n = vertexNormal(i);
+          if (ctx.want_normals) shade.normal[k] = n;
+          shade.color[k] = albedo(i) * irradiance(*ctx.scene, n);
+        }
+      }
+      break;
+    case Shading::kPhong:
+    case Shading::kUnlit:
+      // The albedo, lit per pixel (Phong) or not at all.
+      for (int k = 0; k < 3; ++k) {
+        const int i = o.order[k];
+        if (ctx.shading == Shading::kPhong || ctx.want_normals) shade.normal[k] = vertexNormal(i);
+        shade.color[k] = albedo(i);
+      }
+      break;
   }
+  if (ctx.has_uv)
+    for (int k = 0; k < 3; ++k) shade.uv[k] = corners.uv(o.order[k]);
   shade.material = &m;
   shade.triangle_id = triangle_id;
   shade.shading = ctx.shading;
   shade.has_uv = ctx.has_uv && m.albedo != nullptr;
+}
+
+}  // namespace
+
+void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAttributes a[3],
+                const TriangleOrientation& o, const RasterTriangle& raster, float3 face_normal,
+                uint32_t triangle_id, uint16_t material, ShadeTriangle& shade) {
+  setupShadeFrom(ctx, ClippedCorners{v, a}, o, raster, face_normal, triangle_id, material, shade);
+}
+
+void setupShade(const SetupContext& ctx, const MeshVertices& vertices, const uint32_t index[3],
+                const TriangleOrientation& o, const RasterTriangle& raster, float3 face_normal,
+                uint32_t triangle_id, uint16_t material, ShadeTriangle& shade) {
+  setupShadeFrom(ctx, MeshCorners{vertices, index}, o, raster, face_normal, triangle_id, material,
+                 shade);
 }
 
 }  // namespace tessera::render

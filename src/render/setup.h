@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <span>
 
 #include <tessera/math/vec.h>
 #include <tessera/scene/scene.h>
@@ -86,11 +87,37 @@ struct TriangleOrientation {
   float l1dx, l1dy, l2dx, l2dy;  // screen gradients of barycentrics 1 and 2
 };
 
-// False when the triangle is culled: degenerate, facing away (per ctx.cull) or covering no pixel
+// Twice the signed area on the snapped grid, y down. Counter-clockwise in NDC (front-facing) stays
+// counter-clockwise on screen, which with y pointing down gives a negative area. Exact: the
+// coordinates are below 2^24, so the products stay below 2^49.
+inline int64_t signedArea(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2) {
+  return static_cast<int64_t>(v1.x - v0.x) * (v2.y - v0.y) -
+         static_cast<int64_t>(v1.y - v0.y) * (v2.x - v0.x);
+}
+
+// True when a triangle of this signed area is dropped: degenerate, or facing away per ctx.cull.
+// Inline: about half the triangles of a closed mesh stop here, before any other setup work.
+inline bool cullsArea(const SetupContext& ctx, int64_t area) {
+  const bool back_facing = area > 0;
+  return area == 0 || (back_facing && ctx.cull == CullMode::kBack) ||
+         (!back_facing && ctx.cull == CullMode::kFront);
+}
+
+// The rest of setupRaster for a triangle that cullsArea kept: false when it covers no pixel
 // centre's bounding box inside the viewport.
-bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangle& raster,
+bool setupRaster(const SetupContext& ctx, const ScreenVertex& v0, const ScreenVertex& v1,
+                 const ScreenVertex& v2, int64_t area, RasterTriangle& raster,
                  TriangleOrientation& orientation);
 
+// False when the triangle is culled: degenerate, facing away (per ctx.cull) or covering no pixel
+// centre's bounding box inside the viewport.
+inline bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangle& raster,
+                        TriangleOrientation& orientation) {
+  const int64_t area = signedArea(v[0], v[1], v[2]);
+  return !cullsArea(ctx, area) && setupRaster(ctx, v[0], v[1], v[2], area, raster, orientation);
+}
+
+// One vertex's attributes, as the clipper outputs them.
 struct VertexAttributes {
   float3 normal;  // world; zero when the mesh has none
   float2 uv;
@@ -98,13 +125,39 @@ struct VertexAttributes {
   bool unit_normal;  // `normal` is unit length or zero already (not interpolated by clipping)
 };
 
+// An object's vertices, indexed by mesh vertex: an unclipped triangle's corners are read from
+// here, and only for what its shading mode uses.
+struct MeshVertices {
+  const ScreenVertex* screen;  // the vertex stage's (VertexBuffer), from the object's first vertex
+  const float3* normal;        // world, unit or zero (VertexBuffer)
+  const float3* lit;    // VertexBuffer::lit for objects lit in the vertex stage, otherwise null
+  const float2* uv;     // read only when ctx.has_uv
+  const float4* color;  // read only when ctx.has_color
+};
+
 // `face_normal` is the world-space geometric normal (flat shading, and vertices without a normal);
-// zero when the caller knows it is not needed. Attributes are given in input order.
+// zero when the caller knows it is not needed. Vertices are given in input order.
 void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAttributes a[3],
                 const TriangleOrientation& orientation, const RasterTriangle& raster,
                 float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade);
+// The same for an unclipped triangle: its vertices are mesh vertices index[0..2].
+void setupShade(const SetupContext& ctx, const MeshVertices& vertices, const uint32_t index[3],
+                const TriangleOrientation& orientation, const RasterTriangle& raster,
+                float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade);
 
-// Lambert irradiance: ambient plus every directional light, for unit normal n.
-float3 irradiance(const Scene& scene, float3 n);
+// Lambert irradiance: ambient plus every directional light, for unit normal n. Inline, with a form
+// taking the scene's fields, so that the vertex stage's loop (lightVertices) keeps them in
+// registers.
+inline float3 irradiance(float3 ambient, std::span<const DirectionalLight> lights, float3 n) {
+  float3 e = ambient;
+  for (const DirectionalLight& light : lights) {
+    float cos_theta = -dot(n, light.direction);
+    if (cos_theta > 0.0f) e += light.color * cos_theta;
+  }
+  return e;
+}
+inline float3 irradiance(const Scene& scene, float3 n) {
+  return irradiance(scene.ambient, scene.lights, n);
+}
 
 }  // namespace tessera::render

@@ -1,6 +1,7 @@
 #include "render/vertex.h"
 
 #include <cmath>
+#include <limits>
 
 namespace tessera::render {
 
@@ -18,6 +19,7 @@ ObjectTransforms makeObjectTransforms(const Object& object, const float4x4& view
 void VertexBuffer::resize(size_t count) {
   for (std::vector<float>* v : {&clip_x, &clip_y, &clip_z, &clip_w}) v->resize(count);
   normal.resize(count);
+  lit.resize(count);
   outcode.resize(count);
   screen.resize(count);
 }
@@ -56,6 +58,21 @@ void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms,
     float3 w = normalize(n * mesh.normals[i]);
     const size_t o = base + i;
     out.normal[o] = w;
+  }
+}
+
+void lightVertices(const Scene& scene, size_t first, size_t count, VertexBuffer& out) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  // Copied out of the scene: the stores to out.lit could alias it and force a reload per vertex.
+  const float3 ambient = scene.ambient;
+  const std::span<const DirectionalLight> lights = scene.lights;
+  const float3* normal = out.normal.data();
+  float3* lit = out.lit.data();
+  for (size_t o = first; o < first + count; ++o) {
+    const float3 n = normal[o];
+    // The same test and the same irradiance as setupShade, so the same bits.
+    const bool zero = n.x == 0.0f && n.y == 0.0f && n.z == 0.0f;
+    lit[o] = zero ? float3{nan, nan, nan} : irradiance(ambient, lights, n);
   }
 }
 

@@ -31,6 +31,11 @@ struct VertexBuffer {
   // World space, unit (zero if the mesh has none). One array of float3: setup fetches normals by
   // index, and one cache line beats three.
   std::vector<float3> normal;
+  // Gouraud objects with normals only: irradiance(scene, normal), so that setup lights each vertex
+  // once instead of once per triangle corner (about six). NaN where the normal is zero: setup
+  // then lights that corner itself (with the face normal), as for vertices it cannot take from
+  // here (clipped ones, drawn back faces).
+  std::vector<float3> lit;
   std::vector<uint16_t> outcode;     // clip planes the vertex is outside of (clip.h)
   std::vector<ScreenVertex> screen;  // valid only where outcode has no kCutPlanes bit
 
@@ -49,5 +54,8 @@ struct ViewportTransform {
 void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms,
                        const ViewportTransform& viewport, size_t first, size_t count,
                        VertexBuffer& out);
+
+// Fills out.lit for buffer vertices [first, first + count), whose normals are in out.normal.
+void lightVertices(const Scene& scene, size_t first, size_t count, VertexBuffer& out);
 
 }  // namespace tessera::render
