@@ -52,18 +52,22 @@ TESSERA_LANES_INLINE Vec3x8 irradiance8(const Scene& scene, const Vec3x8& n) {
 }
 
 // Eight encodeSrgb8s (tessera/scene/color.h), the same operations lane by lane.
-TESSERA_LANES_INLINE I32x8 encodeSrgb8x8(F32x8 linear, const SrgbEncodeTable& table) {
+TESSERA_LANES_INLINE I32x8 encodeSrgb8x8(F32x8 linear) {
   const F32x8 zero = splat(0.0f), one = splat(1.0f);
   const F32x8 c = select(positive(linear), select(lessThan(linear, one), linear, one), zero);
-  const I32x8 small = lessThan(c, splat(0x1p-12f));
   const I32x8 bits = bitsOf(c);
-  const I32x8 bucket =
-      select(small, splat(int32_t{0}),
-             shiftRight(bits - splat(static_cast<int32_t>(SrgbEncodeTable::kFirstBits)),
-                        SrgbEncodeTable::kShift));
-  const F32x8 t = toFloat(bits & splat(static_cast<int32_t>((1u << SrgbEncodeTable::kShift) - 1)));
-  const F32x8 code = select(small, c * splat(12.92f * 255.0f),
-                            gather(table.offset, bucket) + gather(table.slope, bucket) * t);
+  // Lanes on the linear segment compute the curve too (from c's exponent, which may be below
+  // -9 there: the index is clamped to the table) and take the line.
+  const I32x8 e9 = shiftRight(bits, 23) - splat(int32_t{127 - 9});
+  const I32x8 index = select(lessThan(splat(int32_t{0}), e9), e9, splat(int32_t{0}));
+  const F32x8 x = fromBits((bits & splat(int32_t{0x7fffff})) | splat(int32_t{0x3f800000})) - one;
+  const float* k = SrgbEncode::kPoly;
+  const F32x8 p =
+      (((splat(k[4]) * x + splat(k[3])) * x + splat(k[2])) * x + splat(k[1])) * x + splat(k[0]);
+  F32x8 curve = lookup16(SrgbEncode::kScale, index) * p - splat(SrgbEncode::kOffset);
+  curve = select(lessThan(curve, splat(255.0f)), curve, splat(255.0f));
+  const F32x8 code = select(lessThan(splat(SrgbEncode::kLinearEnd), c), curve,
+                            c * splat(SrgbEncode::kLinearFactor));
   return truncate(code + splat(0.5f));
 }
 
@@ -149,7 +153,6 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
                      uint32_t background, ShadedTile& out) {
   const ShadeTriangle* records[kMaxChunks];
   for (size_t c = 0; c < chunk_count; ++c) records[c] = chunks[c].shade.data();
-  const SrgbEncodeTable& table = srgbEncodeTable();
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const I32x8 fill = splat(static_cast<int32_t>(background));
   const I32x8 opaque = splat(static_cast<int32_t>(0xff000000u));
@@ -185,9 +188,8 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
           todo = todo & ~mask;
         } while (any(todo));
       }
-      const I32x8 rgba = encodeSrgb8x8(color.x, table) |
-                         shiftLeft(encodeSrgb8x8(color.y, table), 8) |
-                         shiftLeft(encodeSrgb8x8(color.z, table), 16) | opaque;
+      const I32x8 rgba = encodeSrgb8x8(color.x) | shiftLeft(encodeSrgb8x8(color.y), 8) |
+                         shiftLeft(encodeSrgb8x8(color.z), 16) | opaque;
       store(out.rgba + i, select(covered, rgba, fill));
       if (want_normals) {
         store(out.normal_x + i, normal.x);

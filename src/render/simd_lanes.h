@@ -156,6 +156,20 @@ TESSERA_LANES_INLINE F32x8 gather(const float* table, I32x8 index) {
   for (int l = 0; l < 8; ++l) r.v[l] = table[index.v[l]];
   return r;
 }
+TESSERA_LANES_INLINE I32x8 lessThan(I32x8 a, I32x8 b) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] < b.v[l] ? -1 : 0;
+  return r;
+}
+TESSERA_LANES_INLINE F32x8 fromBits(I32x8 a) {
+  F32x8 r;
+  std::memcpy(&r, &a, sizeof r);
+  return r;
+}
+// table[index[l]] for indices in [0, 16).
+TESSERA_LANES_INLINE F32x8 lookup16(const float* table, I32x8 index) {
+  return gather(table, index);
+}
 TESSERA_LANES_INLINE float lane(F32x8 a, int l) {
   return a.v[l];
 }
@@ -294,6 +308,25 @@ TESSERA_LANES_INLINE F32x8 gather(const float* table, I32x8 index) {
   F32x8 r;
   for (int l = 0; l < 8; ++l) r[l] = table[index[l]];
   return r;
+}
+TESSERA_LANES_INLINE I32x8 lessThan(I32x8 a, I32x8 b) {
+  return a < b;
+}
+TESSERA_LANES_INLINE F32x8 fromBits(I32x8 a) {
+  return reinterpret_cast<F32x8>(a);
+}
+// table[index[l]] for indices in [0, 16): two in-register permutes where the target has them.
+TESSERA_LANES_INLINE F32x8 lookup16(const float* table, I32x8 index) {
+#if defined(__AVX2__)
+  const __m256i i = reinterpret_cast<__m256i>(index);
+  const __m256 low = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table), i);
+  const __m256 high = _mm256_permutevar8x32_ps(_mm256_loadu_ps(table + 8), i);
+  // Lanes with index >= 8 take the high half (the permutes use the index's low three bits).
+  const __m256 upper = _mm256_castsi256_ps(_mm256_slli_epi32(i, 28));
+  return reinterpret_cast<F32x8>(_mm256_blendv_ps(low, high, upper));
+#else
+  return gather(table, index);
+#endif
 }
 TESSERA_LANES_INLINE float lane(F32x8 a, int l) {
   return a[l];

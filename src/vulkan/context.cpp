@@ -554,12 +554,12 @@ void memoryBarrier(const VulkanFunctions& vk, VkCommandBuffer commands,
 }
 
 std::vector<uint32_t> makeColorTables() {
-  static_assert(SrgbEncodeTable::kBuckets == 385, "kColorTableWords assumes 385 buckets");
   std::vector<float> values(srgbDecodeTable(), srgbDecodeTable() + 256);
-  const SrgbEncodeTable& encode = srgbEncodeTable();
-  values.insert(values.end(), encode.offset, encode.offset + SrgbEncodeTable::kBuckets);
-  values.insert(values.end(), encode.slope, encode.slope + SrgbEncodeTable::kBuckets);
-  values.push_back(12.92f * 255.0f);
+  values.insert(values.end(), SrgbEncode::kScale, SrgbEncode::kScale + 10);
+  values.insert(values.end(), SrgbEncode::kPoly, SrgbEncode::kPoly + 5);
+  values.push_back(SrgbEncode::kLinearEnd);
+  values.push_back(SrgbEncode::kLinearFactor);
+  values.push_back(SrgbEncode::kOffset);
   std::vector<uint32_t> words(values.size());
   std::memcpy(words.data(), values.data(), values.size() * sizeof(float));
   return words;

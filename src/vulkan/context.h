@@ -121,10 +121,10 @@ void memoryBarrier(const VulkanFunctions& vk, VkCommandBuffer commands,
                    VkPipelineStageFlags src_stage, VkAccessFlags src_access,
                    VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
 
-// The CPU's sRGB tables (tessera/scene/color.h) as float words: the decode table (256), the
-// encode table's bucket offsets and slopes (SrgbEncodeTable::kBuckets each), then the factor of
-// the linear segment (12.92 * 255, as the CPU rounds it).
+// The CPU's sRGB constants (tessera/scene/color.h) as float words: the decode table (256), then the
+// encode's (SrgbEncode): scale (10), polynomial (5), end of the linear segment, its factor, the
+// offset.
 std::vector<uint32_t> makeColorTables();
-constexpr size_t kColorTableWords = 256 + 2 * 385 + 1;
+constexpr size_t kColorTableWords = 256 + 10 + 5 + 3;
 
 }  // namespace tessera::vulkan

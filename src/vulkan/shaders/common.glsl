@@ -74,8 +74,8 @@ layout(std430, set = 0, binding = 5) readonly buffer TriangleMaterialBuffer {
 };
 layout(std430, set = 0, binding = 6) readonly buffer TexelBuffer { uint texels[]; };
 layout(std430, set = 0, binding = 7) readonly buffer ColorTableBuffer {
-  // Float bits: [0, 256) the decode table; then the encode table's 385 bucket offsets, its 385
-  // slopes, and the factor of its linear segment (tessera::SrgbEncodeTable).
+  // Float bits: [0, 256) the decode table; then the encode's constants (tessera::SrgbEncode; see
+  // encodeSrgb8 in shading.glsl).
   uint color_tables[];
 };
 

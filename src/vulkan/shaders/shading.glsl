@@ -121,23 +121,29 @@ vec4 sampleTextureTrilinear(GpuMaterial m, vec2 uv, float lod) {
 
 // ---- output (src/scene/color.cpp) ----
 
-// tessera::encodeSrgb8: linear [0, 1] (clamped; NaN to 0) to the 8-bit sRGB code through the
-// CPU's bucket table: 1/32-octave buckets above 2^-12 (a straight line in the low 18 mantissa
-// bits within each), the linear segment below.
-const uint kEncodeFirstBits = 0x39800000u;  // the float 2^-12
-const uint kEncodeShift = 18u;
-const uint kEncodeBuckets = 385u;
+// tessera::encodeSrgb8 (tessera/scene/color.h, SrgbEncode): linear [0, 1] (clamped; NaN to 0) to
+// the 8-bit sRGB code. Above the linear segment, c = m * 2^e: scale[e + 9] * poly(m - 1) - offset.
+// The constants come from the CPU (makeColorTables), after the decode table: scale[10], poly[5],
+// the end of the linear segment, its factor, the offset.
+const uint kEncodeScale = 256u;
+const uint kEncodePoly = kEncodeScale + 10u;
+const uint kEncodeLinearEnd = kEncodePoly + 5u;
+float encodeConstant(uint i) { return uintBitsToFloat(color_tables[i]); }
 uint encodeSrgb8(float linear) {
   const float c = linear > 0.0 ? (linear < 1.0 ? linear : 1.0) : 0.0;
   precise float code;
-  if (c < uintBitsToFloat(kEncodeFirstBits)) {
-    code = c * uintBitsToFloat(color_tables[256u + 2u * kEncodeBuckets]);
+  if (c <= encodeConstant(kEncodeLinearEnd)) {
+    code = c * encodeConstant(kEncodeLinearEnd + 1u);
   } else {
     const uint bits = floatBitsToUint(c);
-    const uint bucket = (bits - kEncodeFirstBits) >> kEncodeShift;
-    const float t = float(bits & ((1u << kEncodeShift) - 1u));
-    code = uintBitsToFloat(color_tables[256u + bucket]) +
-           uintBitsToFloat(color_tables[256u + kEncodeBuckets + bucket]) * t;
+    const int e = int(bits >> 23) - 127;
+    precise float x = uintBitsToFloat((bits & 0x7fffffu) | 0x3f800000u) - 1.0;
+    precise float p = encodeConstant(kEncodePoly + 4u) * x + encodeConstant(kEncodePoly + 3u);
+    p = p * x + encodeConstant(kEncodePoly + 2u);
+    p = p * x + encodeConstant(kEncodePoly + 1u);
+    p = p * x + encodeConstant(kEncodePoly);
+    code = encodeConstant(kEncodeScale + uint(e + 9)) * p - encodeConstant(kEncodeLinearEnd + 2u);
+    code = code < 255.0 ? code : 255.0;
   }
   precise float rounded = code + 0.5;
   return uint(int(rounded));
