@@ -78,7 +78,7 @@ TESSERA_LANES_INLINE I32x8 planeBit(I32x8 outside, uint32_t bit) {
 
 // NaN and infinities have an all-ones exponent; the finite floats are those whose magnitude bits
 // are at most FLT_MAX's.
-TESSERA_LANES_INLINE I32x8 finite(F32x8 a) {
+TESSERA_LANES_INLINE I32x8 finiteMask(F32x8 a) {
   return maskLessOrEqual(bitsOf(a) & splat(0x7fffffff), splat(0x7f7fffff));
 }
 
@@ -108,7 +108,7 @@ TESSERA_LANES_INLINE void transformVertexBlock(const float3* positions, const fl
       planeBit(maskLess(y, neg_w), kClipBottom) | planeBit(maskLess(w, y), kClipTop) |
       planeBit(maskLess(x, negate(gx)), kGuardLeft) | planeBit(maskLess(gx, x), kGuardRight) |
       planeBit(maskLess(y, negate(gy)), kGuardBottom) | planeBit(maskLess(gy, y), kGuardTop);
-  const I32x8 all_finite = finite(x) & finite(y) & finite(z) & finite(w);
+  const I32x8 all_finite = finiteMask(x) & finiteMask(y) & finiteMask(z) & finiteMask(w);
   storeU16(out.outcode, blend(all_finite, code, splat(static_cast<int32_t>(kNonFinite))));
 
   // Screen position (projectToScreen), for every lane: a cut vertex's is never read, and its NaN
