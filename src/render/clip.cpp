@@ -11,22 +11,6 @@ GuardBand makeGuardBand(int width, int height) {
           1.0f + 2.0f * kGuardBandPixels / static_cast<float>(height)};
 }
 
-uint32_t outcode(float4 p, const GuardBand& guard) {
-  uint32_t code = 0;
-  if (p.z < -p.w) code |= kClipNear;
-  if (p.z > p.w) code |= kClipFar;
-  if (p.x < -p.w) code |= kClipLeft;
-  if (p.x > p.w) code |= kClipRight;
-  if (p.y < -p.w) code |= kClipBottom;
-  if (p.y > p.w) code |= kClipTop;
-  const float gx = guard.x_factor * p.w, gy = guard.y_factor * p.w;
-  if (p.x < -gx) code |= kGuardLeft;
-  if (p.x > gx) code |= kGuardRight;
-  if (p.y < -gy) code |= kGuardBottom;
-  if (p.y > gy) code |= kGuardTop;
-  return code;
-}
-
 namespace {
 
 // Signed distance to a plane; inside when >= 0.

@@ -44,7 +44,8 @@ struct GuardBand {
 };
 GuardBand makeGuardBand(int width, int height);
 
-uint32_t outcode(float4 p, const GuardBand& guard);
+// A vertex's outcode (the planes it is outside of) is computed in the vertex stage, eight at a
+// time: see vertex_kernel.h.
 
 // The most vertices a triangle cut by the six cut planes can have.
 constexpr int kMaxClippedVertices = 3 + 6;

@@ -296,13 +296,13 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const ViewportTransform viewport{static_cast<float>(options.width),
                                    static_cast<float>(options.height), guard};
   s.vertices.resize(vertex_total);
+  const VertexLighting lighting{scene.ambient, scene.lights};
   s.pool.parallelFor(s.vertex_jobs.size(), [&](size_t j, int) {
     const VertexJob& job = s.vertex_jobs[j];
     const Object& object = scene.objects[job.object];
-    transformVertices(*object.mesh, s.objects[job.object], viewport, job.first, job.count,
-                      s.vertices);
-    if (litPerVertex(object))
-      lightVertices(scene, s.objects[job.object].vertex_base + job.first, job.count, s.vertices);
+    s.kernels.transform_vertices(*object.mesh, s.objects[job.object], viewport,
+                                 litPerVertex(object) ? &lighting : nullptr, job.first, job.count,
+                                 s.vertices);
   });
 
   const Clock::time_point t_vertex = Clock::now();

@@ -1,10 +1,12 @@
-// The per-instruction-set kernels of the tile stage (raster and shading), and the run-time choice
-// between them. Each kernel is written once (raster_kernel.h, shade_kernel.h) and compiled once
-// per instruction set (kernels_<isa>.cpp); every variant produces the same bits.
+// The per-instruction-set kernels of the tile stage (raster and shading) and of the vertex stage,
+// and the run-time choice between them. Each kernel is written once (raster_kernel.h,
+// shade_kernel.h, vertex_kernel.h) and compiled once per instruction set (kernels_<isa>.cpp);
+// every variant produces the same bits.
 #pragma once
 
 #include "render/raster.h"
 #include "render/shade.h"
+#include "render/vertex.h"
 
 namespace tessera::render {
 
@@ -22,6 +24,7 @@ using RasterTileFn = void (*)(const std::vector<TriangleChunk>& chunks, size_t c
 struct TileKernels {
   RasterTileFn raster_tile;
   ShadeTileFn shade_tile;
+  TransformVerticesFn transform_vertices;  // the vertex stage's, not a tile's (vertex_kernel.h)
 };
 
 TileKernels tileKernels(Isa isa);

@@ -1,10 +1,11 @@
-// The tile kernels compiled for avx512 (CMakeLists.txt gives this file its flags).
+// The tile and vertex kernels compiled for avx512 (CMakeLists.txt gives this file its flags).
 #include "render/kernels.h"
 #include "render/raster_kernel.h"
 #include "render/shade_kernel.h"
+#include "render/vertex_kernel.h"
 
 namespace tessera::render {
 
-const TileKernels kTileKernelsAvx512 = {rasterTileKernel, shadeTileKernel};
+const TileKernels kTileKernelsAvx512 = {rasterTileKernel, shadeTileKernel, transformVerticesKernel};
 
 }  // namespace tessera::render

@@ -1,11 +1,12 @@
-// The tile kernels compiled for scalar (CMakeLists.txt gives this file its flags).
+// The tile and vertex kernels compiled for scalar (CMakeLists.txt gives this file its flags).
 #define TESSERA_SIMD_SCALAR 1  // the lanes are plain arrays
 #include "render/kernels.h"
 #include "render/raster_kernel.h"
 #include "render/shade_kernel.h"
+#include "render/vertex_kernel.h"
 
 namespace tessera::render {
 
-const TileKernels kTileKernelsScalar = {rasterTileKernel, shadeTileKernel};
+const TileKernels kTileKernelsScalar = {rasterTileKernel, shadeTileKernel, transformVerticesKernel};
 
 }  // namespace tessera::render

@@ -179,6 +179,59 @@ TESSERA_LANES_INLINE int32_t lane(I32x8 a, int l) {
 TESSERA_LANES_INLINE void setLane(F32x8& a, int l, float x) {
   a.v[l] = x;
 }
+TESSERA_LANES_INLINE F32x8 fromBits(I32x8 a) {
+  F32x8 r;
+  std::memcpy(&r, &a, sizeof r);
+  return r;
+}
+TESSERA_LANES_INLINE F32x8 negate(F32x8 a) {
+  for (int l = 0; l < 8; ++l) a.v[l] = -a.v[l];
+  return a;
+}
+TESSERA_LANES_INLINE I32x8 equal(F32x8 a, F32x8 b) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] == b.v[l] ? -1 : 0;
+  return r;
+}
+// Exactly static_cast<int32_t>(std::lrint(a)) per lane: round half to even in the default
+// rounding mode, and the low 32 bits of lrint's long where the value does not fit.
+TESSERA_LANES_INLINE I32x8 roundToInt(F32x8 a) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = static_cast<int32_t>(std::lrint(a.v[l]));
+  return r;
+}
+// Within each half (lanes 0-3 and 4-7), row l of the 4x4 matrix r becomes column l.
+TESSERA_LANES_INLINE void transpose4x4Halves(F32x8 r[4]) {
+  F32x8 t[4];
+  for (int h = 0; h < 8; h += 4)
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) t[i].v[h + j] = r[j].v[h + i];
+  for (int i = 0; i < 4; ++i) r[i] = t[i];
+}
+// The low 16 bits of each lane, to eight consecutive uint16_t.
+TESSERA_LANES_INLINE void storeU16(uint16_t* p, I32x8 a) {
+  for (int l = 0; l < 8; ++l) p[l] = static_cast<uint16_t>(a.v[l]);
+}
+// See the vector variants below.
+TESSERA_LANES_INLINE I32x8 maskLess(F32x8 a, F32x8 b) {
+  return lessThan(a, b);
+}
+TESSERA_LANES_INLINE I32x8 maskLessOrEqual(I32x8 a, I32x8 b) {
+  return lessOrEqual(a, b);
+}
+TESSERA_LANES_INLINE I32x8 maskPositive(F32x8 a) {
+  return positive(a);
+}
+TESSERA_LANES_INLINE I32x8 maskEqual(F32x8 a, F32x8 b) {
+  return equal(a, b);
+}
+TESSERA_LANES_INLINE I32x8 maskEqual(I32x8 a, I32x8 b) {
+  return equal(a, b);
+}
+template <typename T>
+TESSERA_LANES_INLINE Lanes<T> blend(I32x8 mask, Lanes<T> a, Lanes<T> b) {
+  return select(mask, a, b);
+}
 
 #else  // vector extensions
 
@@ -337,6 +390,128 @@ TESSERA_LANES_INLINE int32_t lane(I32x8 a, int l) {
 TESSERA_LANES_INLINE void setLane(F32x8& a, int l, float x) {
   a[l] = x;
 }
+TESSERA_LANES_INLINE F32x8 fromBits(I32x8 a) {
+  return reinterpret_cast<F32x8>(a);
+}
+TESSERA_LANES_INLINE F32x8 negate(F32x8 a) {
+  return -a;  // flips the sign bit, like scalar unary minus
+}
+TESSERA_LANES_INLINE I32x8 equal(F32x8 a, F32x8 b) {
+  return a == b;
+}
+// lessThan, lessOrEqual, positive, equal and select again, as masks the same in every variant,
+// but fast on SSE2 as well: without AVX, GCC 12 compiles those eight-lane compares and
+// conditionals one lane at a time (a scalar compare, setcc, and a branch per lane for select);
+// split into two four-lane halves they are one instruction each. (The older kernels still use the
+// originals.)
+#if defined(__AVX__)
+TESSERA_LANES_INLINE I32x8 maskLess(F32x8 a, F32x8 b) {
+  return a < b;
+}
+TESSERA_LANES_INLINE I32x8 maskLessOrEqual(I32x8 a, I32x8 b) {
+  return a <= b;
+}
+TESSERA_LANES_INLINE I32x8 maskEqual(F32x8 a, F32x8 b) {
+  return a == b;
+}
+TESSERA_LANES_INLINE I32x8 maskEqual(I32x8 a, I32x8 b) {
+  return a == b;
+}
+template <typename V>
+TESSERA_LANES_INLINE V blend(I32x8 mask, V a, V b) {
+  return mask ? a : b;
+}
+#else
+// Applies op to the four-lane halves of a and b.
+template <typename R, typename V, typename Op>
+TESSERA_LANES_INLINE R byHalves(V a, V b, Op op) {
+  typedef std::remove_reference_t<decltype(a[0])> T;
+  typedef T V4 __attribute__((vector_size(16)));
+  V4 ah[2], bh[2];
+  std::memcpy(ah, &a, sizeof ah);
+  std::memcpy(bh, &b, sizeof bh);
+  const decltype(op(ah[0], bh[0])) rh[2] = {op(ah[0], bh[0]), op(ah[1], bh[1])};
+  R r;
+  std::memcpy(&r, rh, sizeof r);
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 maskLess(F32x8 a, F32x8 b) {
+  return byHalves<I32x8>(a, b, [](auto x, auto y) { return x < y; });
+}
+TESSERA_LANES_INLINE I32x8 maskLessOrEqual(I32x8 a, I32x8 b) {
+  return byHalves<I32x8>(a, b, [](auto x, auto y) { return x <= y; });
+}
+TESSERA_LANES_INLINE I32x8 maskEqual(F32x8 a, F32x8 b) {
+  return byHalves<I32x8>(a, b, [](auto x, auto y) { return x == y; });
+}
+TESSERA_LANES_INLINE I32x8 maskEqual(I32x8 a, I32x8 b) {
+  return byHalves<I32x8>(a, b, [](auto x, auto y) { return x == y; });
+}
+template <typename V>
+TESSERA_LANES_INLINE V blend(I32x8 mask, V a, V b) {
+  // On bits, so that the halves of mask, a and b have one type.
+  const I32x8 ai = reinterpret_cast<I32x8>(a), bi = reinterpret_cast<I32x8>(b);
+  return reinterpret_cast<V>((mask & ai) | (~mask & bi));
+}
+#endif
+TESSERA_LANES_INLINE I32x8 maskPositive(F32x8 a) {
+  return maskLess(F32x8{}, a);
+}
+// Exactly static_cast<int32_t>(std::lrint(a)) per lane: round half to even in the default
+// rounding mode, and the low 32 bits of lrint's long where the value does not fit.
+TESSERA_LANES_INLINE I32x8 roundToInt(F32x8 a) {
+  I32x8 r;
+#if defined(__AVX__)
+  r = reinterpret_cast<I32x8>(_mm256_cvtps_epi32(reinterpret_cast<__m256>(a)));
+#elif defined(__SSE2__)
+  __m128 half[2];
+  std::memcpy(half, &a, sizeof half);
+  const __m128i rounded[2] = {_mm_cvtps_epi32(half[0]), _mm_cvtps_epi32(half[1])};
+  std::memcpy(&r, rounded, sizeof r);
+#else
+  for (int l = 0; l < 8; ++l) r[l] = static_cast<int32_t>(std::lrint(a[l]));
+#endif
+  // cvtps2dq answers INT32_MIN for NaN and for anything outside int32, where lrint's long cast to
+  // int32 keeps its low bits (0 for NaN). Rare (cut vertices, degenerate w): redo those lanes.
+  const I32x8 maybe_out_of_range = maskEqual(r, splat(INT32_MIN));
+  if (any(maybe_out_of_range)) {
+    for (int l = 0; l < 8; ++l)
+      if (r[l] == INT32_MIN) r[l] = static_cast<int32_t>(std::lrint(a[l]));
+  }
+  return r;
+}
+// Within each half (lanes 0-3 and 4-7), row l of the 4x4 matrix r becomes column l: the first
+// two steps of transpose8x8 (unpack and shufps, no lane crossing).
+TESSERA_LANES_INLINE void transpose4x4Halves(F32x8 r[4]) {
+#if defined(__SSE2__) && !defined(__AVX__)
+  // GCC lowers the eight-lane shuffles below to single-float moves without AVX: transpose each
+  // half as a register of four.
+  __m128 h[2][4];
+  for (int i = 0; i < 4; ++i) std::memcpy(h[0] + i, reinterpret_cast<const char*>(&r[i]), 16);
+  for (int i = 0; i < 4; ++i) std::memcpy(h[1] + i, reinterpret_cast<const char*>(&r[i]) + 16, 16);
+  for (int k = 0; k < 2; ++k) _MM_TRANSPOSE4_PS(h[k][0], h[k][1], h[k][2], h[k][3]);
+  for (int i = 0; i < 4; ++i) {
+    std::memcpy(reinterpret_cast<char*>(&r[i]), h[0] + i, 16);
+    std::memcpy(reinterpret_cast<char*>(&r[i]) + 16, h[1] + i, 16);
+  }
+#else
+  const I32x8 lo{0, 8, 1, 9, 4, 12, 5, 13}, hi{2, 10, 3, 11, 6, 14, 7, 15};
+  const I32x8 lo2{0, 1, 8, 9, 4, 5, 12, 13}, hi2{2, 3, 10, 11, 6, 7, 14, 15};
+  const F32x8 t0 = __builtin_shuffle(r[0], r[1], lo), t1 = __builtin_shuffle(r[0], r[1], hi);
+  const F32x8 t2 = __builtin_shuffle(r[2], r[3], lo), t3 = __builtin_shuffle(r[2], r[3], hi);
+  r[0] = __builtin_shuffle(t0, t2, lo2);
+  r[1] = __builtin_shuffle(t0, t2, hi2);
+  r[2] = __builtin_shuffle(t1, t3, lo2);
+  r[3] = __builtin_shuffle(t1, t3, hi2);
+#endif
+}
+// The low 16 bits of each lane, to eight consecutive uint16_t.
+TESSERA_LANES_INLINE void storeU16(uint16_t* p, I32x8 a) {
+  typedef uint16_t U16x8 __attribute__((vector_size(16)));
+  const U16x8 narrow = __builtin_convertvector(a, U16x8);
+  std::memcpy(p, &narrow, sizeof narrow);
+}
+
 
 #endif
 

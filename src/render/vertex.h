@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include <tessera/math/math.h>
@@ -48,14 +49,25 @@ struct ViewportTransform {
   GuardBand guard;
 };
 
+// The scene's lights, for objects lit in the vertex stage (VertexBuffer::lit).
+struct VertexLighting {
+  float3 ambient;
+  std::span<const DirectionalLight> lights;
+};
+
 // Transforms mesh vertices [first, first + count) into the buffer at transforms.vertex_base:
 // clip position, outcode, and (inside the guard band and the depth range) the snapped screen
-// position; world normals.
+// position; world normals; with lighting, out.lit. The exact operations are specified in
+// vertex_kernel.h; each instruction set has its variant (kernels.h).
+using TransformVerticesFn = void (*)(const Mesh& mesh, const ObjectTransforms& transforms,
+                                     const ViewportTransform& viewport,
+                                     const VertexLighting* lighting, size_t first, size_t count,
+                                     VertexBuffer& out);
+
+// The same with the best variant this CPU runs and no lighting (for benchmarks and tools; the
+// renderer calls the variant it chose).
 void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms,
                        const ViewportTransform& viewport, size_t first, size_t count,
                        VertexBuffer& out);
-
-// Fills out.lit for buffer vertices [first, first + count), whose normals are in out.normal.
-void lightVertices(const Scene& scene, size_t first, size_t count, VertexBuffer& out);
 
 }  // namespace tessera::render
