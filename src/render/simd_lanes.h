@@ -161,11 +161,6 @@ TESSERA_LANES_INLINE I32x8 lessThan(I32x8 a, I32x8 b) {
   for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] < b.v[l] ? -1 : 0;
   return r;
 }
-TESSERA_LANES_INLINE F32x8 fromBits(I32x8 a) {
-  F32x8 r;
-  std::memcpy(&r, &a, sizeof r);
-  return r;
-}
 // table[index[l]] for indices in [0, 16).
 TESSERA_LANES_INLINE F32x8 lookup16(const float* table, I32x8 index) {
   return gather(table, index);
@@ -364,9 +359,6 @@ TESSERA_LANES_INLINE F32x8 gather(const float* table, I32x8 index) {
 }
 TESSERA_LANES_INLINE I32x8 lessThan(I32x8 a, I32x8 b) {
   return a < b;
-}
-TESSERA_LANES_INLINE F32x8 fromBits(I32x8 a) {
-  return reinterpret_cast<F32x8>(a);
 }
 // table[index[l]] for indices in [0, 16): two in-register permutes where the target has them.
 TESSERA_LANES_INLINE F32x8 lookup16(const float* table, I32x8 index) {
