@@ -145,9 +145,8 @@ void setupShade(const SetupContext& ctx, const MeshVertices& vertices, const uin
                 const TriangleOrientation& orientation, const RasterTriangle& raster,
                 float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade);
 
-// Lambert irradiance: ambient plus every directional light, for unit normal n. Inline, with a form
-// taking the scene's fields, so that the vertex stage's loop (lightVertices) keeps them in
-// registers.
+// Lambert irradiance: ambient plus every directional light, for unit normal n. The vertex kernel
+// (vertex_kernel.h) lights Gouraud vertices with the same operations, eight at a time.
 inline float3 irradiance(float3 ambient, std::span<const DirectionalLight> lights, float3 n) {
   float3 e = ambient;
   for (const DirectionalLight& light : lights) {

@@ -1,7 +1,7 @@
 #version 460
 // Pass 2, transform: every vertex of every object to clip space (P * V * M, OpenGL clip space),
 // its outcode and, inside the guard band and the depth range, 1/w and its snapped window
-// position; its normal to world space. As the CPU's src/render/vertex.cpp: the same sums in the
+// position; its normal to world space. As the CPU's src/render/vertex_kernel.h: the same sums in the
 // same order, so positions are bit-identical, and a vertex shared by many triangles is projected
 // once.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
