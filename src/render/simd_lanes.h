@@ -165,6 +165,19 @@ TESSERA_LANES_INLINE I32x8 lessThan(I32x8 a, I32x8 b) {
 TESSERA_LANES_INLINE F32x8 lookup16(const float* table, I32x8 index) {
   return gather(table, index);
 }
+TESSERA_LANES_INLINE I32x8 gatherWords(const uint32_t* table, I32x8 index) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = static_cast<int32_t>(table[index.v[l]]);
+  return r;
+}
+TESSERA_LANES_INLINE F32x8 floorLanes(F32x8 a) {
+  for (int l = 0; l < 8; ++l) a.v[l] = std::floor(a.v[l]);
+  return a;
+}
+TESSERA_LANES_INLINE I32x8 operator-(I32x8 a) {
+  for (int l = 0; l < 8; ++l) a.v[l] = -a.v[l];
+  return a;
+}
 TESSERA_LANES_INLINE float lane(F32x8 a, int l) {
   return a.v[l];
 }
@@ -359,6 +372,15 @@ TESSERA_LANES_INLINE F32x8 gather(const float* table, I32x8 index) {
 }
 TESSERA_LANES_INLINE I32x8 lessThan(I32x8 a, I32x8 b) {
   return a < b;
+}
+TESSERA_LANES_INLINE I32x8 gatherWords(const uint32_t* table, I32x8 index) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r[l] = static_cast<int32_t>(table[index[l]]);
+  return r;
+}
+TESSERA_LANES_INLINE F32x8 floorLanes(F32x8 a) {
+  for (int l = 0; l < 8; ++l) a[l] = __builtin_floorf(a[l]);  // one vroundps where there is one
+  return a;
 }
 // table[index[l]] for indices in [0, 16): two in-register permutes where the target has them.
 TESSERA_LANES_INLINE F32x8 lookup16(const float* table, I32x8 index) {
