@@ -1,10 +1,13 @@
 // The tile kernels compiled for avx512 (CMakeLists.txt gives this file its flags).
 #include "render/kernels.h"
 #include "render/raster_kernel.h"
+#include "render/setup_kernel.h"
 #include "render/shade_kernel.h"
 
 namespace tessera::render {
 
 const TileKernels kTileKernelsAvx512 = {rasterTileKernel, shadeTileKernel};
+
+const SetupKernels kSetupKernelsAvx512 = {setupBatchKernel};
 
 }  // namespace tessera::render
