@@ -29,8 +29,12 @@ class ChunkBins {
   // Adds triangle `local_index` to every tile its bounding box overlaps. Inline for the common
   // case of a dense mesh: a box inside one tile.
   void add(const TileGrid& grid, const RasterTriangle& triangle, uint32_t local_index) {
-    const int tx0 = triangle.min_x >> kTileSizeLog2, tx1 = triangle.max_x >> kTileSizeLog2;
-    const int ty0 = triangle.min_y >> kTileSizeLog2, ty1 = triangle.max_y >> kTileSizeLog2;
+    add(grid, PixelBox{triangle.min_x, triangle.min_y, triangle.max_x, triangle.max_y},
+        local_index);
+  }
+  void add(const TileGrid& grid, const PixelBox& box, uint32_t local_index) {
+    const int tx0 = box.min_x >> kTileSizeLog2, tx1 = box.max_x >> kTileSizeLog2;
+    const int ty0 = box.min_y >> kTileSizeLog2, ty1 = box.max_y >> kTileSizeLog2;
     if (tx0 == tx1 && ty0 == ty1) {
       const uint32_t tile = static_cast<uint32_t>(ty0 * grid.columns + tx0);
       entries_.push_back({tile, local_index});

@@ -141,6 +141,17 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
     return local;
   };
 
+  // Unclipped triangles wait here for the rest of their setup (setup_kernel.h). The kernel
+  // depends on nothing per object, so one flush per full batch and one at the end of the chunk.
+  SetupBatch batch;
+  const SetupBatchFn setup_batch = setupKernels(isa).setup_batch;
+  auto flush = [&] {
+    if (batch.count == 0) return;
+    batch.padLanes();
+    setup_batch(batch, grid.width, grid.height, chunk.raster.data(), chunk.shade.data());
+    batch.count = 0;
+  };
+
   const float width = static_cast<float>(grid.width), height = static_cast<float>(grid.height);
   for (size_t t = begin; t < end; ++object_index) {
     const Object& object = scene.objects[object_index];
@@ -217,16 +228,20 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
           ++chunk.culled;
           continue;
         }
-        const uint32_t record = nextRecord();
-        RasterTriangle& raster = chunk.raster[record];
-        if (!setupRaster(ctx, v0, v1, v2, area, raster, orientation)) {
+        const PixelBox box = pixelBox(ctx, v0, v1, v2);
+        if (box.empty()) {
           ++chunk.culled;
           continue;
         }
+        // Binned now, in submission order; the edges and planes come eight at a time (flush).
+        const uint32_t record = nextRecord();
         ++chunk.size;
-        setupShade(ctx, mesh_vertices, idx, orientation, raster, face_normal(), id, material(),
-                   chunk.shade[record]);
-        chunk.bins.add(grid, raster, record);
+        chunk.bins.add(grid, box, record);
+        orient(area, orientation);
+        setupShadeCorners(ctx, mesh_vertices, idx, orientation, face_normal(), id, material(),
+                          chunk.shade[record]);
+        batch.push(v0, v1, v2, area, record);
+        if (batch.full()) flush();
         continue;
       }
       // Crosses the near or far plane or leaves the guard band: clip, then fan.
@@ -259,6 +274,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
       if (!any) ++chunk.culled;
     }
   }
+  flush();
   chunk.bins.finish();
 }
 

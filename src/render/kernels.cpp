@@ -48,4 +48,23 @@ TileKernels tileKernels(Isa isa) {
   return kTileKernelsScalar;
 }
 
+SetupKernels setupKernels(Isa isa) {
+  switch (isa) {
+    case Isa::kScalar:
+      return kSetupKernelsScalar;
+#if defined(__x86_64__) || defined(__i386__)
+    case Isa::kSse2:
+      return kSetupKernelsSse2;
+    case Isa::kAvx2:
+      return kSetupKernelsAvx2;
+    case Isa::kAvx512:
+      return kSetupKernelsAvx512;
+#else
+    default:
+      return kSetupKernelsScalar;
+#endif
+  }
+  return kSetupKernelsScalar;
+}
+
 }  // namespace tessera::render

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "render/raster.h"
+#include "render/setup.h"
 #include "render/shade.h"
 #include "render/vertex.h"
 
@@ -28,6 +29,18 @@ struct TileKernels {
 };
 
 TileKernels tileKernels(Isa isa);
+
+// Sets up the queued triangles of a batch into their chunk's records (setup_kernel.h).
+using SetupBatchFn = void (*)(const SetupBatch& batch, int width, int height,
+                              RasterTriangle* raster, ShadeTriangle* shade);
+struct SetupKernels {
+  SetupBatchFn setup_batch;
+};
+SetupKernels setupKernels(Isa isa);
+extern const SetupKernels kSetupKernelsScalar;
+extern const SetupKernels kSetupKernelsSse2;
+extern const SetupKernels kSetupKernelsAvx2;
+extern const SetupKernels kSetupKernelsAvx512;
 
 // One table per instruction set, defined in kernels_<isa>.cpp.
 extern const TileKernels kTileKernelsScalar;

@@ -1,11 +1,14 @@
 // The tile and vertex kernels compiled for avx2 (CMakeLists.txt gives this file its flags).
 #include "render/kernels.h"
 #include "render/raster_kernel.h"
+#include "render/setup_kernel.h"
 #include "render/shade_kernel.h"
 #include "render/vertex_kernel.h"
 
 namespace tessera::render {
 
 const TileKernels kTileKernelsAvx2 = {rasterTileKernel, shadeTileKernel, transformVerticesKernel};
+
+const SetupKernels kSetupKernelsAvx2 = {setupBatchKernel};
 
 }  // namespace tessera::render

@@ -2,11 +2,14 @@
 #define TESSERA_SIMD_SCALAR 1  // the lanes are plain arrays
 #include "render/kernels.h"
 #include "render/raster_kernel.h"
+#include "render/setup_kernel.h"
 #include "render/shade_kernel.h"
 #include "render/vertex_kernel.h"
 
 namespace tessera::render {
 
 const TileKernels kTileKernelsScalar = {rasterTileKernel, shadeTileKernel, transformVerticesKernel};
+
+const SetupKernels kSetupKernelsScalar = {setupBatchKernel};
 
 }  // namespace tessera::render

@@ -19,44 +19,29 @@ void makeEdge(int32_t ax, int32_t ay, int32_t bx, int32_t by, int32_t& a, int32_
   if (!top_left) c -= 1;
 }
 
-// First and last pixel whose centre lies in [lo, hi] (fixed point), clamped to [0, size - 1].
-void pixelRange(int32_t lo, int32_t hi, int size, int32_t& first, int32_t& last) {
-  // The centre of pixel i is i*256 + 128: first = ceil((lo - 128) / 256),
-  // last = floor((hi - 128) / 256). Arithmetic shifts floor for negative values too.
-  first = -((kSubpixelHalf - lo) >> kSubpixelBits);
-  last = (hi - kSubpixelHalf) >> kSubpixelBits;
-  first = std::max(first, 0);
-  last = std::min(last, size - 1);
-}
-
 }  // namespace
 
 bool setupRaster(const SetupContext& ctx, const ScreenVertex& sv0, const ScreenVertex& sv1,
                  const ScreenVertex& sv2, int64_t area, RasterTriangle& raster,
                  TriangleOrientation& o) {
-  o.back_facing = area > 0;
   const ScreenVertex* const v[3] = {&sv0, &sv1, &sv2};
 
   // Bounding box over pixel centres.
-  const int32_t min_fx = std::min({sv0.x, sv1.x, sv2.x}), max_fx = std::max({sv0.x, sv1.x, sv2.x});
-  const int32_t min_fy = std::min({sv0.y, sv1.y, sv2.y}), max_fy = std::max({sv0.y, sv1.y, sv2.y});
-  pixelRange(min_fx, max_fx, ctx.width, raster.min_x, raster.max_x);
-  if (raster.min_x > raster.max_x) return false;
-  pixelRange(min_fy, max_fy, ctx.height, raster.min_y, raster.max_y);
-  if (raster.min_y > raster.max_y) return false;
+  const PixelBox box = pixelBox(ctx, sv0, sv1, sv2);
+  if (box.empty()) return false;
+  raster.min_x = box.min_x, raster.min_y = box.min_y;
+  raster.max_x = box.max_x, raster.max_y = box.max_y;
   // An edge value at a point of the box is |a| dx + |b| dy at most, with |a| <= box height and
   // |b| <= box width (sub-pixels); the kernel also evaluates up to 7 pixels past the right end.
   // Below 2^30 the 32-bit path cannot overflow.
-  const int64_t box_w = static_cast<int64_t>(max_fx) - min_fx;
-  const int64_t box_h = static_cast<int64_t>(max_fy) - min_fy;
+  const int64_t box_w =
+      static_cast<int64_t>(std::max({sv0.x, sv1.x, sv2.x})) - std::min({sv0.x, sv1.x, sv2.x});
+  const int64_t box_h =
+      static_cast<int64_t>(std::max({sv0.y, sv1.y, sv2.y})) - std::min({sv0.y, sv1.y, sv2.y});
   raster.small = box_h * (2 * box_w + 8 * kSubpixelOne) + box_w < (int64_t{1} << 30);
 
-  // The rasterizer takes positive areas only: front faces are reordered 0, 2, 1.
-  o.order[0] = 0, o.order[1] = 1, o.order[2] = 2;
-  if (area < 0) {
-    o.order[1] = 2, o.order[2] = 1;
-    area = -area;
-  }
+  orient(area, o);
+  area = area < 0 ? -area : area;
   const ScreenVertex& v0 = *v[o.order[0]];
   const ScreenVertex& v1 = *v[o.order[1]];
   const ScreenVertex& v2 = *v[o.order[2]];
@@ -117,14 +102,12 @@ bool isZero(float3 n) {
   return n.x == 0.0f && n.y == 0.0f && n.z == 0.0f;
 }
 
-// Always inlined into its two callers: a call between them costs as much as a corner's work.
+// The perspective-correct barycentric planes (x0 .. sdy); setupBatch does the same eight at a time.
 template <typename Corners>
-inline __attribute__((always_inline)) void setupShadeFrom(const SetupContext& ctx,
-                                                          const Corners& corners,
-                                                          const TriangleOrientation& o,
-                                                          const RasterTriangle& raster,
-                                                          float3 face_normal, uint32_t triangle_id,
-                                                          uint16_t material, ShadeTriangle& shade) {
+inline __attribute__((always_inline)) void setupShadePlanes(const Corners& corners,
+                                                            const TriangleOrientation& o,
+                                                            const RasterTriangle& raster,
+                                                            ShadeTriangle& shade) {
   const float q0 = corners.screen(o.order[0]).inv_w, q1 = corners.screen(o.order[1]).inv_w,
               q2 = corners.screen(o.order[2]).inv_w;
   shade.x0 = raster.x0;
@@ -136,7 +119,14 @@ inline __attribute__((always_inline)) void setupShadeFrom(const SetupContext& ct
   shade.p2dy = q2 * o.l2dy;
   shade.sdx = (q1 - q0) * o.l1dx + (q2 - q0) * o.l2dx;
   shade.sdy = (q1 - q0) * o.l1dy + (q2 - q0) * o.l2dy;
+}
 
+// Everything else: material, id, and the corners' colours, normals and UVs. Always inlined into
+// its callers: a call costs as much as a corner's work.
+template <typename Corners>
+inline __attribute__((always_inline)) void setupShadeCornersFrom(
+    const SetupContext& ctx, const Corners& corners, const TriangleOrientation& o,
+    float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade) {
   const Material& m = ctx.object->materials[material < ctx.object->materials.size() ? material : 0];
   const float3 base = m.base_color.xyz();
   // Back faces that are drawn are lit from the viewer's side (two-sided lighting).
@@ -203,14 +193,24 @@ inline __attribute__((always_inline)) void setupShadeFrom(const SetupContext& ct
 void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAttributes a[3],
                 const TriangleOrientation& o, const RasterTriangle& raster, float3 face_normal,
                 uint32_t triangle_id, uint16_t material, ShadeTriangle& shade) {
-  setupShadeFrom(ctx, ClippedCorners{v, a}, o, raster, face_normal, triangle_id, material, shade);
+  const ClippedCorners corners{v, a};
+  setupShadePlanes(corners, o, raster, shade);
+  setupShadeCornersFrom(ctx, corners, o, face_normal, triangle_id, material, shade);
 }
 
 void setupShade(const SetupContext& ctx, const MeshVertices& vertices, const uint32_t index[3],
                 const TriangleOrientation& o, const RasterTriangle& raster, float3 face_normal,
                 uint32_t triangle_id, uint16_t material, ShadeTriangle& shade) {
-  setupShadeFrom(ctx, MeshCorners{vertices, index}, o, raster, face_normal, triangle_id, material,
-                 shade);
+  const MeshCorners corners{vertices, index};
+  setupShadePlanes(corners, o, raster, shade);
+  setupShadeCornersFrom(ctx, corners, o, face_normal, triangle_id, material, shade);
+}
+
+void setupShadeCorners(const SetupContext& ctx, const MeshVertices& vertices,
+                       const uint32_t index[3], const TriangleOrientation& o, float3 face_normal,
+                       uint32_t triangle_id, uint16_t material, ShadeTriangle& shade) {
+  setupShadeCornersFrom(ctx, MeshCorners{vertices, index}, o, face_normal, triangle_id, material,
+                        shade);
 }
 
 }  // namespace tessera::render

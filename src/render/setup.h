@@ -6,6 +6,7 @@
 //                vertex attributes (ShadeTriangle: what shading a visible pixel needs).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -103,6 +104,42 @@ inline bool cullsArea(const SetupContext& ctx, int64_t area) {
          (!back_facing && ctx.cull == CullMode::kFront);
 }
 
+// The pixels whose centres lie in a triangle's bounding box, clipped to the viewport: inclusive
+// bounds, empty when min > max.
+struct PixelBox {
+  int32_t min_x, min_y, max_x, max_y;
+  bool empty() const { return min_x > max_x || min_y > max_y; }
+};
+
+// First and last pixel whose centre lies in [lo, hi] (fixed point), clamped to [0, size - 1].
+inline void pixelRange(int32_t lo, int32_t hi, int size, int32_t& first, int32_t& last) {
+  // The centre of pixel i is i*256 + 128: first = ceil((lo - 128) / 256),
+  // last = floor((hi - 128) / 256). Arithmetic shifts floor for negative values too.
+  first = -((kSubpixelHalf - lo) >> kSubpixelBits);
+  last = (hi - kSubpixelHalf) >> kSubpixelBits;
+  first = std::max(first, 0);
+  last = std::min(last, size - 1);
+}
+
+inline PixelBox pixelBox(const SetupContext& ctx, const ScreenVertex& v0, const ScreenVertex& v1,
+                         const ScreenVertex& v2) {
+  PixelBox box;
+  pixelRange(std::min({v0.x, v1.x, v2.x}), std::max({v0.x, v1.x, v2.x}), ctx.width, box.min_x,
+             box.max_x);
+  pixelRange(std::min({v0.y, v1.y, v2.y}), std::max({v0.y, v1.y, v2.y}), ctx.height, box.min_y,
+             box.max_y);
+  return box;
+}
+
+// The vertex order and facing of a triangle of this (non-zero) signed area; leaves the gradients.
+inline void orient(int64_t area, TriangleOrientation& o) {
+  o.back_facing = area > 0;
+  // The rasterizer takes positive areas only: front faces are reordered 0, 2, 1.
+  o.order[0] = 0;
+  o.order[1] = area < 0 ? 2 : 1;
+  o.order[2] = area < 0 ? 1 : 2;
+}
+
 // The rest of setupRaster for a triangle that cullsArea kept: false when it covers no pixel
 // centre's bounding box inside the viewport.
 bool setupRaster(const SetupContext& ctx, const ScreenVertex& v0, const ScreenVertex& v1,
@@ -144,6 +181,41 @@ void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAt
 void setupShade(const SetupContext& ctx, const MeshVertices& vertices, const uint32_t index[3],
                 const TriangleOrientation& orientation, const RasterTriangle& raster,
                 float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade);
+
+// The per-corner half of setupShade for an unclipped triangle (material, id, colours, normals,
+// UVs: everything but the barycentric planes x0 .. sdy, which setupBatch computes eight triangles
+// at a time). Reads only o.order and o.back_facing.
+void setupShadeCorners(const SetupContext& ctx, const MeshVertices& vertices,
+                       const uint32_t index[3], const TriangleOrientation& o, float3 face_normal,
+                       uint32_t triangle_id, uint16_t material, ShadeTriangle& shade);
+
+// Unclipped triangles that cullsArea and pixelBox kept, queued for the rest of their setup eight
+// at a time (setup_kernel.h): the same values, bit for bit, as setupRaster and setupShade's
+// planes. Each input is 64 bytes, so that a lane's fields are two rows of eight 32-bit values.
+struct SetupBatch {
+  static constexpr int kLanes = 8;
+  struct Input {
+    ScreenVertex v[3];  // input order
+    double area;        // |signed area| (exact: below 2^49)
+    int32_t reorder;    // all ones when the signed area is negative: rasterize 0, 2, 1
+    uint32_t record;    // where the results go: the chunk's raster and shade records
+  };
+  Input input[kLanes];
+  int count = 0;
+
+  void push(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, int64_t area,
+            uint32_t record) {
+    input[count++] = {
+        {v0, v1, v2}, static_cast<double>(area < 0 ? -area : area), area < 0 ? -1 : 0, record};
+  }
+  bool full() const { return count == kLanes; }
+  // Fills the lanes past `count` with copies of the first, so that every lane computes finite
+  // values (they are not stored).
+  void padLanes() {
+    for (int l = count; l < kLanes; ++l) input[l] = input[0];
+  }
+};
+static_assert(sizeof(SetupBatch::Input) == 64);
 
 // Lambert irradiance: ambient plus every directional light, for unit normal n. The vertex kernel
 // (vertex_kernel.h) lights Gouraud vertices with the same operations, eight at a time.

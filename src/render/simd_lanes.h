@@ -241,6 +241,62 @@ TESSERA_LANES_INLINE Lanes<T> blend(I32x8 mask, Lanes<T> a, Lanes<T> b) {
   return select(mask, a, b);
 }
 
+// Added for the setup kernel (setup_kernel.h).
+using F64x8 = Lanes<double>;
+TESSERA_LANES_INLINE F64x8 toDouble(I32x8 a) {
+  F64x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l];
+  return r;
+}
+// Rounded to nearest, as static_cast<float>(double).
+TESSERA_LANES_INLINE F32x8 toFloat(F64x8 a) {
+  F32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = static_cast<float>(a.v[l]);
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 lessThan(F64x8 a, F64x8 b) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] < b.v[l] ? -1 : 0;
+  return r;
+}
+// For lanes holding integers below 2^51 in magnitude: their exact int64 values.
+TESSERA_LANES_INLINE I64x8 exactInt64(F64x8 a) {
+  I64x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = static_cast<int64_t>(a.v[l]);
+  return r;
+}
+// The low and the high 32 bits of each lane (the halves of its little-endian bytes).
+TESSERA_LANES_INLINE I32x8 low32(I64x8 a) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = static_cast<int32_t>(static_cast<uint64_t>(a.v[l]));
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 high32(I64x8 a) {
+  I32x8 r;
+  for (int l = 0; l < 8; ++l) r.v[l] = static_cast<int32_t>(a.v[l] >> 32);
+  return r;
+}
+TESSERA_LANES_INLINE I32x8 minimum(I32x8 a, I32x8 b) {
+  for (int l = 0; l < 8; ++l) a.v[l] = b.v[l] < a.v[l] ? b.v[l] : a.v[l];
+  return a;
+}
+TESSERA_LANES_INLINE I32x8 maximum(I32x8 a, I32x8 b) {
+  for (int l = 0; l < 8; ++l) a.v[l] = a.v[l] < b.v[l] ? b.v[l] : a.v[l];
+  return a;
+}
+TESSERA_LANES_INLINE F32x8 floatsOf(I32x8 a) {
+  F32x8 r;
+  std::memcpy(&r, &a, sizeof r);
+  return r;
+}
+// Lane l from the double at `first` + l * stride bytes.
+TESSERA_LANES_INLINE F64x8 loadStrided(const double* first, size_t stride) {
+  F64x8 r;
+  for (int l = 0; l < 8; ++l)
+    std::memcpy(&r.v[l], reinterpret_cast<const char*>(first) + l * stride, sizeof(double));
+  return r;
+}
+
 #else  // vector extensions
 
 typedef int32_t I32x8 __attribute__((vector_size(32)));
@@ -526,6 +582,51 @@ TESSERA_LANES_INLINE void storeU16(uint16_t* p, I32x8 a) {
   std::memcpy(p, &narrow, sizeof narrow);
 }
 
+
+// Added for the setup kernel (setup_kernel.h).
+typedef double F64x8 __attribute__((vector_size(64)));
+TESSERA_LANES_INLINE F64x8 splat(double x) {
+  return F64x8{x, x, x, x, x, x, x, x};
+}
+TESSERA_LANES_INLINE F64x8 toDouble(I32x8 a) {
+  return __builtin_convertvector(a, F64x8);
+}
+// Rounded to nearest, as static_cast<float>(double).
+TESSERA_LANES_INLINE F32x8 toFloat(F64x8 a) {
+  return __builtin_convertvector(a, F32x8);
+}
+TESSERA_LANES_INLINE I32x8 lessThan(F64x8 a, F64x8 b) {
+  return __builtin_convertvector(a < b, I32x8);
+}
+// For lanes holding integers below 2^51 in magnitude: their exact int64 values. Adding 1.5 * 2^52
+// puts the integer in the low mantissa bits (without AVX-512DQ there is no vector conversion).
+TESSERA_LANES_INLINE I64x8 exactInt64(F64x8 a) {
+  const F64x8 magic = splat(0x1.8p52);
+  return reinterpret_cast<I64x8>(a + magic) - reinterpret_cast<I64x8>(magic);
+}
+// The low and the high 32 bits of each lane.
+TESSERA_LANES_INLINE I32x8 low32(I64x8 a) {
+  return __builtin_convertvector(a, I32x8);
+}
+TESSERA_LANES_INLINE I32x8 high32(I64x8 a) {
+  return __builtin_convertvector(a >> 32, I32x8);
+}
+TESSERA_LANES_INLINE I32x8 minimum(I32x8 a, I32x8 b) {
+  return b < a ? b : a;
+}
+TESSERA_LANES_INLINE I32x8 maximum(I32x8 a, I32x8 b) {
+  return a < b ? b : a;
+}
+TESSERA_LANES_INLINE F32x8 floatsOf(I32x8 a) {
+  return reinterpret_cast<F32x8>(a);
+}
+// Lane l from the double at `first` + l * stride bytes.
+TESSERA_LANES_INLINE F64x8 loadStrided(const double* first, size_t stride) {
+  F64x8 r;
+  for (int l = 0; l < 8; ++l)
+    r[l] = *reinterpret_cast<const double*>(reinterpret_cast<const char*>(first) + l * stride);
+  return r;
+}
 
 #endif
 

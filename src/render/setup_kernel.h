@@ -1,0 +1,149 @@
+// The batched half of triangle setup, written once against eight-lane types (simd_lanes.h) and
+// compiled per instruction set (kernels_<isa>.cpp): eight queued triangles (SetupBatch) at a time
+// get what setupRaster computes and setupShade's barycentric planes. Each lane runs exactly the
+// integer and IEEE operations of those functions, in the same order (the core builds with
+// -ffp-contract=off), so the records hold the same bytes.
+#pragma once
+
+#include <cstddef>
+
+#include "render/setup.h"
+#include "render/simd_lanes.h"
+
+namespace tessera::render {
+namespace {  // one private copy per translation unit, each compiled for its instruction set
+
+// The records are written as rows of eight 32-bit values; these are the rows.
+static_assert(offsetof(RasterTriangle, c) == 0 && offsetof(RasterTriangle, a) == 24 &&
+                  offsetof(RasterTriangle, b) == 36 && offsetof(RasterTriangle, min_x) == 48 &&
+                  offsetof(RasterTriangle, min_y) == 52 && offsetof(RasterTriangle, max_x) == 56 &&
+                  offsetof(RasterTriangle, max_y) == 60 && offsetof(RasterTriangle, small) == 64 &&
+                  offsetof(RasterTriangle, x0) == 68 && offsetof(RasterTriangle, y0) == 72 &&
+                  offsetof(RasterTriangle, z0) == 76 && offsetof(RasterTriangle, dzdx) == 80 &&
+                  offsetof(RasterTriangle, dzdy) == 84 && offsetof(RasterTriangle, z_min) == 88 &&
+                  sizeof(RasterTriangle) == 96,
+              "setupBatchKernel writes RasterTriangle as three rows of eight 32-bit values");
+static_assert(offsetof(ShadeTriangle, p1dx) == offsetof(ShadeTriangle, x0) + 3 * sizeof(float) &&
+                  offsetof(ShadeTriangle, sdx) == offsetof(ShadeTriangle, x0) + 7 * sizeof(float) &&
+                  offsetof(ShadeTriangle, sdy) == offsetof(ShadeTriangle, x0) + 8 * sizeof(float),
+              "setupBatchKernel writes ShadeTriangle::x0 .. sdx as one row");
+
+struct ScreenVertex8 {
+  I32x8 x, y;
+  F32x8 z, inv_w;
+};
+
+struct Edge8 {
+  I32x8 a, b;
+  I64x8 c;
+};
+
+// As makeEdge (setup.cpp). c is computed in double lanes: exact, since the coordinates are below
+// 2^23 in magnitude and their differences below 2^24, the products stay below 2^47.
+TESSERA_LANES_INLINE Edge8 makeEdge8(const ScreenVertex8& p, const ScreenVertex8& q) {
+  const I32x8 dx = q.x - p.x, dy = q.y - p.y;
+  const F64x8 c = toDouble(dy) * toDouble(p.x) - toDouble(dx) * toDouble(p.y);
+  const I32x8 zero = splat(int32_t{0});
+  const I32x8 top_left = ~nonNegative(dy) | (equal(dy, zero) & ~lessOrEqual(dx, zero));
+  // Off the top-left rule c - 1: the mask's -1 added as a double.
+  return {p.y - q.y, dx, exactInt64(c + toDouble(~top_left))};
+}
+
+TESSERA_LANES_INLINE ScreenVertex8 selectVertex(I32x8 mask, const ScreenVertex8& a,
+                                                const ScreenVertex8& b) {
+  return {select(mask, a.x, b.x), select(mask, a.y, b.y), select(mask, a.z, b.z),
+          select(mask, a.inv_w, b.inv_w)};
+}
+
+// As pixelRange (setup.h), lane by lane.
+TESSERA_LANES_INLINE void pixelRange8(I32x8 lo, I32x8 hi, int size, I32x8& first, I32x8& last) {
+  const I32x8 zero = splat(int32_t{0});
+  first = maximum(zero - shiftRight(splat(kSubpixelHalf) - lo, kSubpixelBits), zero);
+  last = minimum(shiftRight(hi - splat(kSubpixelHalf), kSubpixelBits), splat(size - 1));
+}
+
+// Sets up the batch's first `count` lanes into raster[record] and the planes of shade[record]
+// (the other lanes must hold copies of a real triangle: they are computed, not stored).
+void setupBatchKernel(const SetupBatch& batch, int width, int height, RasterTriangle* raster,
+                      ShadeTriangle* shade) {
+  // Each input is two rows of eight 32-bit values: v0 v1, then v2 area reorder record.
+  F32x8 rows01[8], rows2[8];
+  for (int l = 0; l < SetupBatch::kLanes; ++l) {
+    rows01[l] = load<F32x8>(&batch.input[l].v[0]);
+    rows2[l] = load<F32x8>(&batch.input[l].v[2]);
+  }
+  transpose8x8(rows01);
+  transpose8x8(rows2);
+  const ScreenVertex8 in[3] = {{bitsOf(rows01[0]), bitsOf(rows01[1]), rows01[2], rows01[3]},
+                               {bitsOf(rows01[4]), bitsOf(rows01[5]), rows01[6], rows01[7]},
+                               {bitsOf(rows2[0]), bitsOf(rows2[1]), rows2[2], rows2[3]}};
+  const I32x8 reorder = bitsOf(rows2[6]);
+  const F64x8 area = loadStrided(&batch.input[0].area, sizeof(SetupBatch::Input));
+
+  // Bounding box over pixel centres, and the `small` test in double lanes (exact: below 2^50).
+  const I32x8 min_fx = minimum(minimum(in[0].x, in[1].x), in[2].x);
+  const I32x8 max_fx = maximum(maximum(in[0].x, in[1].x), in[2].x);
+  const I32x8 min_fy = minimum(minimum(in[0].y, in[1].y), in[2].y);
+  const I32x8 max_fy = maximum(maximum(in[0].y, in[1].y), in[2].y);
+  I32x8 min_x, max_x, min_y, max_y;
+  pixelRange8(min_fx, max_fx, width, min_x, max_x);
+  pixelRange8(min_fy, max_fy, height, min_y, max_y);
+  const I32x8 box_w = max_fx - min_fx, box_h = max_fy - min_fy;
+  const F64x8 reach =
+      toDouble(box_h) * toDouble(box_w + box_w + splat(8 * kSubpixelOne)) + toDouble(box_w);
+  const I32x8 small = lessThan(reach, splat(0x1p30)) & splat(int32_t{1});
+
+  // Positive area: front faces are reordered 0, 2, 1.
+  const ScreenVertex8& v0 = in[0];
+  const ScreenVertex8 v1 = selectVertex(reorder, in[2], in[1]);
+  const ScreenVertex8 v2 = selectVertex(reorder, in[1], in[2]);
+  const Edge8 e0 = makeEdge8(v1, v2), e1 = makeEdge8(v2, v0), e2 = makeEdge8(v0, v1);
+
+  const F32x8 inv_area = toFloat(splat(static_cast<double>(kSubpixelOne)) / area);
+  const F32x8 l1dx = toFloat(v2.y - v0.y) * inv_area;
+  const F32x8 l1dy = toFloat(v0.x - v2.x) * inv_area;
+  const F32x8 l2dx = toFloat(v0.y - v1.y) * inv_area;
+  const F32x8 l2dy = toFloat(v1.x - v0.x) * inv_area;
+
+  const F32x8 scale = splat(1.0f / static_cast<float>(kSubpixelOne));
+  const F32x8 x0 = toFloat(v0.x) * scale, y0 = toFloat(v0.y) * scale;
+  const F32x8 dz1 = v1.z - v0.z, dz2 = v2.z - v0.z;
+  const F32x8 dzdx = dz1 * l1dx + dz2 * l2dx;
+  const F32x8 dzdy = dz1 * l1dy + dz2 * l2dy;
+  // std::min({z0, z1, z2}): the first of the smallest.
+  F32x8 z_min = v0.z;
+  z_min = select(lessThan(v1.z, z_min), v1.z, z_min);
+  z_min = select(lessThan(v2.z, z_min), v2.z, z_min);
+
+  // setupShade's planes.
+  const F32x8 q0 = v0.inv_w, q1 = v1.inv_w, q2 = v2.inv_w;
+  const F32x8 sdy = (q1 - q0) * l1dy + (q2 - q0) * l2dy;
+
+  // Lane l of vector k becomes field k of record l.
+  F32x8 raster_c[8] = {floatsOf(low32(e0.c)),  floatsOf(high32(e0.c)), floatsOf(low32(e1.c)),
+                       floatsOf(high32(e1.c)), floatsOf(low32(e2.c)),  floatsOf(high32(e2.c)),
+                       floatsOf(e0.a),         floatsOf(e1.a)};
+  F32x8 raster_box[8] = {floatsOf(e2.a),  floatsOf(e0.b),  floatsOf(e1.b),  floatsOf(e2.b),
+                         floatsOf(min_x), floatsOf(min_y), floatsOf(max_x), floatsOf(max_y)};
+  // The last value is RasterTriangle's tail padding: zero, as in a value-initialized record.
+  F32x8 raster_z[8] = {floatsOf(small), x0, y0, v0.z, dzdx, dzdy, z_min, splat(0.0f)};
+  F32x8 shade_planes[8] = {x0,        y0,        q0,        q1 * l1dx,
+                           q1 * l1dy, q2 * l2dx, q2 * l2dy, (q1 - q0) * l1dx + (q2 - q0) * l2dx};
+  transpose8x8(raster_c);
+  transpose8x8(raster_box);
+  transpose8x8(raster_z);
+  transpose8x8(shade_planes);
+  for (int l = 0; l < batch.count; ++l) {
+    const uint32_t record = batch.input[l].record;
+    char* const r = reinterpret_cast<char*>(&raster[record]);
+    store(r, raster_c[l]);
+    store(r + 32, raster_box[l]);
+    store(r + 64, raster_z[l]);
+    char* const s = reinterpret_cast<char*>(&shade[record]);
+    store(s + offsetof(ShadeTriangle, x0), shade_planes[l]);
+    shade[record].sdy = lane(sdy, l);
+  }
+}
+
+}  // namespace
+}  // namespace tessera::render
