@@ -52,18 +52,20 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
                                       int x_begin, int x_end, int y_begin, int y_end) {
   const int64_t px = static_cast<int64_t>(x_begin) * kSubpixelOne + kSubpixelHalf;
   const int64_t py = static_cast<int64_t>(y_begin) * kSubpixelOne + kSubpixelHalf;
-  int32_t row[3], step_y[3];
+  int32_t row[3];
   I32x8 step_x[3];
   for (int k = 0; k < 3; ++k) {
     // Fits: the triangle is small (RasterTriangle::small).
     row[k] = static_cast<int32_t>(t.a[k] * px + t.b[k] * py + t.c[k]);
     step_x[k] = splat(t.a[k] * kSubpixelOne);
-    step_y[k] = t.b[k] * kSubpixelOne;
   }
   const I32x8 lane = iota();
   const I32x8 last = splat(x_end);
   for (int y = y_begin; y <= y_end; ++y) {
-    const float z_row = rowDepth(t, y);
+    // Stepped at the top, so no value past row y_end is formed: with two rows or more the box is
+    // at least a pixel tall, and |b| * one pixel fits (RasterTriangle::small).
+    if (y != y_begin)
+      for (int k = 0; k < 3; ++k) row[k] += t.b[k] * kSubpixelOne;
     float* depth = depthRow(tile, y);
     uint32_t* keys = keyRow(tile, y);
     for (int x = x_begin; x <= x_end; x += kLanes) {
@@ -72,9 +74,8 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
       const I32x8 e1 = splat(row[1]) + step_x[1] * offset;
       const I32x8 e2 = splat(row[2]) + step_x[2] * offset;
       const I32x8 covered = nonNegative(e0 | e1 | e2) & lessOrEqual(splat(x) + lane, last);
-      if (any(covered)) depthTestRow8(t, key, z_row, x, covered, depth, keys);
+      if (any(covered)) depthTestRow8(t, key, rowDepth(t, y), x, covered, depth, keys);
     }
-    for (int k = 0; k < 3; ++k) row[k] += step_y[k];
   }
 }
 
@@ -182,8 +183,10 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
 // its box touches.
 TESSERA_LANES_INLINE bool hiddenByHiZ(const RasterTriangle& t, const TileVisibility& tile,
                                       int x_begin, int x_end, int y_begin, int y_end) {
-  const int bx0 = (x_begin - tile.x0) / kBlock, bx1 = (x_end - tile.x0) / kBlock;
-  const int by0 = (y_begin - tile.y0) / kBlock, by1 = (y_end - tile.y0) / kBlock;
+  // Shifts: the offsets from the tile's corner are not negative.
+  constexpr int kShift = __builtin_ctz(kBlock);
+  const int bx0 = (x_begin - tile.x0) >> kShift, bx1 = (x_end - tile.x0) >> kShift;
+  const int by0 = (y_begin - tile.y0) >> kShift, by1 = (y_end - tile.y0) >> kShift;
   for (int by = by0; by <= by1; ++by)
     for (int bx = bx0; bx <= bx1; ++bx)
       if (t.z_min < tile.block_max_depth[by * TileVisibility::kHiZBlocksPerRow + bx]) return false;
