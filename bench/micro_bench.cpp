@@ -267,6 +267,40 @@ void BM_SetupShade(benchmark::State& state) {
 }
 BENCHMARK(BM_SetupShade)->Unit(benchmark::kMicrosecond);
 
+bool skipUnsupported(benchmark::State& state, render::Isa isa);
+void isaArgs(benchmark::internal::Benchmark* b);
+
+// The render's setup path for unclipped triangles: edges and planes eight triangles at a time
+// (setup_kernel.h), with the kernel compiled for one instruction set (the argument), for the
+// triangles setupRaster kept.
+void BM_SetupBatch(benchmark::State& state) {
+  const auto isa = static_cast<render::Isa>(state.range(0));
+  if (skipUnsupported(state, isa)) return;
+  const StageInput& in = *stageInput();
+  const Mesh& mesh = *in.scene.scene.objects[0].mesh;
+  const render::SetupKernels kernels = render::setupKernels(isa);
+  const size_t count = in.triangle.size();
+  std::vector<render::SetupBatch> batches((count + 7) / 8);
+  for (size_t i = 0; i < count; ++i) {
+    render::ScreenVertex v[3];
+    for (int k = 0; k < 3; ++k) v[k] = in.vertices.screen[mesh.indices[in.triangle[i] * 3 + k]];
+    batches[i / 8].push(v[0], v[1], v[2], render::signedArea(v[0], v[1], v[2]),
+                        static_cast<uint32_t>(i));
+  }
+  for (render::SetupBatch& batch : batches) batch.padLanes();
+  std::vector<render::RasterTriangle> raster(count);
+  std::vector<render::ShadeTriangle> shade(count);
+  for (auto _ : state) {
+    for (const render::SetupBatch& batch : batches)
+      kernels.setup_batch(batch, StageInput::kWidth, StageInput::kHeight, raster.data(),
+                          shade.data());
+    benchmark::DoNotOptimize(raster.data());
+  }
+  state.SetLabel(render::isaName(isa));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(count));
+}
+BENCHMARK(BM_SetupBatch)->Apply(isaArgs);
+
 void BM_BinTriangles(benchmark::State& state) {
   const StageInput& in = *stageInput();
   const render::TriangleChunk& chunk = in.chunks[0];
