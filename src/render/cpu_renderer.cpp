@@ -237,8 +237,10 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         ++chunk.size;
         chunk.bins.add(grid, box, record);
         orient(area, orientation);
-        setupShadeCorners(ctx, mesh_vertices, idx, orientation, face_normal(), id, material(),
-                          chunk.shade[record]);
+        if (!plainGouraudCorners(ctx, mesh_vertices, idx, orientation, id, material(),
+                                 chunk.shade[record]))
+          setupShadeCorners(ctx, mesh_vertices, idx, orientation, face_normal(), id, material(),
+                            chunk.shade[record]);
         batch.push(v0, v1, v2, area, record);
         if (batch.full()) flush();
         continue;

@@ -189,6 +189,33 @@ void setupShadeCorners(const SetupContext& ctx, const MeshVertices& vertices,
                        const uint32_t index[3], const TriangleOrientation& o, float3 face_normal,
                        uint32_t triangle_id, uint16_t material, ShadeTriangle& shade);
 
+// setupShadeCorners' most common case, inline: a Gouraud triangle facing the viewer, lit in the
+// vertex stage, without vertex colours, UVs or the normal AOV: each corner's colour is the base
+// colour times the vertex's irradiance (the same product setupShadeCorners forms). False, with
+// nothing written, in any other case (a zero normal's NaN included): call setupShadeCorners.
+inline bool plainGouraudCorners(const SetupContext& ctx, const MeshVertices& vertices,
+                                const uint32_t index[3], const TriangleOrientation& o,
+                                uint32_t triangle_id, uint16_t material, ShadeTriangle& shade) {
+  if (ctx.shading != Shading::kGouraud || o.back_facing || !vertices.lit || ctx.has_color ||
+      ctx.has_uv || ctx.want_normals)
+    return false;
+  const float3& l0 = vertices.lit[index[o.order[0]]];
+  const float3& l1 = vertices.lit[index[o.order[1]]];
+  const float3& l2 = vertices.lit[index[o.order[2]]];
+  if (std::isnan(l0.x) || std::isnan(l1.x) || std::isnan(l2.x)) return false;
+  const std::vector<Material>& materials = ctx.object->materials;
+  const Material& m = materials[material < materials.size() ? material : 0];
+  const float3 base = m.base_color.xyz();
+  shade.color[0] = base * l0;
+  shade.color[1] = base * l1;
+  shade.color[2] = base * l2;
+  shade.material = &m;
+  shade.triangle_id = triangle_id;
+  shade.shading = Shading::kGouraud;
+  shade.has_uv = false;
+  return true;
+}
+
 // Unclipped triangles that cullsArea and pixelBox kept, queued for the rest of their setup eight
 // at a time (setup_kernel.h): the same values, bit for bit, as setupRaster and setupShade's
 // planes. Each input is 64 bytes, so that a lane's fields are two rows of eight 32-bit values.
