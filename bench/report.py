@@ -131,7 +131,9 @@ def main():
       "`tessera bench --vs llvmpipe` draws every frame twice, once with tessera and once through "
       "OpenGL in an OSMesa context (llvmpipe), with the same triangles, camera matrices, lights, "
       "lighting model, back-face culling and depth test, at the same resolution and on the same "
-      "number of threads (llvmpipe's `LP_NUM_THREADS` = tessera's `--workers`).")
+      "number of threads (llvmpipe's `LP_NUM_THREADS` = tessera's `--workers`). The two take "
+      "turns in rounds of 5 timed frames (each round after one untimed frame of its own), so "
+      "that the slow and fast spells of a shared machine fall on both alike.")
     w("")
     w(f"Measured {machine['date']} at commit `{commit}`. The numbers change as the renderer "
       "gets faster: regenerate this section (numbers, plots and all) with one command, from the "

@@ -146,25 +146,28 @@ Expected<void> placeView(bench::BenchScene& b, const CameraSettings& camera_sett
   return {};
 }
 
-// Renders `warmup` untimed frames, then `frames` timed ones, posing the scene before each; the
-// clock runs around draw() alone.
+// Renders `warmup` untimed frames, then timed frames [first, first + count), posing the scene
+// before each; the clock runs around draw() alone. Appends the times to `ms`.
 template <typename Draw>
-std::vector<double> timeFrames(bench::BenchScene& b, int warmup, int frames, Draw&& draw) {
+void timeFrames(bench::BenchScene& b, int warmup, int first, int count, Draw&& draw,
+                std::vector<double>& ms) {
   for (int i = 0; i < warmup; ++i) {
-    bench::poseForFrame(b, 0);
+    bench::poseForFrame(b, first);
     draw();
   }
-  std::vector<double> ms;
-  ms.reserve(static_cast<size_t>(frames));
-  for (int i = 0; i < frames; ++i) {
+  for (int i = first; i < first + count; ++i) {
     bench::poseForFrame(b, i);
     const auto start = std::chrono::steady_clock::now();
     draw();
     const auto stop = std::chrono::steady_clock::now();
     ms.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
   }
-  return ms;
 }
+
+// With a reference, the two renderers take turns in rounds of this many timed frames (after one
+// untimed frame each, to bring their own data back into the caches): a shared machine's slow and
+// fast spells then fall on both alike, which a whole run of one then the other does not give.
+constexpr int kFramesPerRound = 5;
 
 }  // namespace
 
@@ -177,7 +180,8 @@ int runBench(const std::vector<std::string>& args) {
       "and prints the median frame time, one line per scene and resolution. With no scene and no\n"
       "--resolution it runs every built-in scene at 640x480, 1920x1080 and 3840x2160. With --vs\n"
       "llvmpipe the same frames are drawn by Mesa's llvmpipe (OpenGL through OSMesa) on as many\n"
-      "threads, and ratio = llvmpipe median / tessera median (above 1: tessera is faster).");
+      "threads, the two taking turns in rounds of 5 frames, and ratio = llvmpipe median / tessera\n"
+      "median (above 1: tessera is faster).");
   flags.addCustom("resolution", "W,H",
                   "image size; repeatable, or a list such as 640x480,1920x1080 "
                   "(default 640x480, 1920x1080 and 3840x2160)",
@@ -293,8 +297,9 @@ int runBench(const std::vector<std::string>& args) {
       }
       options.width = resolution.width;
       options.height = resolution.height;
-      const Timing tessera = summarize(
-          timeFrames(b, s.warmup, s.frames, [&] { renderer.render(b.scene, options, frame); }));
+      auto drawTessera = [&] { renderer.render(b.scene, options, frame); };
+      std::vector<double> tessera_ms, llvmpipe_ms;
+      if (!reference) timeFrames(b, s.warmup, 0, s.frames, drawTessera, tessera_ms);
 
       Timing llvmpipe;
       if (reference) {
@@ -310,9 +315,16 @@ int runBench(const std::vector<std::string>& args) {
           printError("bench", sized.error().message);
           return kExitFailure;
         }
-        llvmpipe =
-            summarize(timeFrames(b, s.warmup, s.frames, [&] { reference->render(b.scene); }));
+        auto drawLlvmpipe = [&] { reference->render(b.scene); };
+        for (int first = 0; first < s.frames; first += kFramesPerRound) {
+          const int count = std::min(kFramesPerRound, s.frames - first);
+          const int warmup = first == 0 ? s.warmup : 1;
+          timeFrames(b, warmup, first, count, drawTessera, tessera_ms);
+          timeFrames(b, warmup, first, count, drawLlvmpipe, llvmpipe_ms);
+        }
+        llvmpipe = summarize(llvmpipe_ms);
       }
+      const Timing tessera = summarize(tessera_ms);
 
       const std::string size =
           std::to_string(resolution.width) + "x" + std::to_string(resolution.height);
