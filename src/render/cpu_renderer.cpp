@@ -186,14 +186,18 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
     const size_t stop = std::min(end, object_end);
     for (; t < stop; ++t) {
       const size_t local = t - xf.triangle_base;
-      // The screen positions of a triangle a few ahead: meshes index their vertices all over, and
-      // waiting for them was most of this loop's time (perf: the screen position loads; the
-      // outcodes, 2 bytes a vertex, stay in cache). Indices past the mesh are clamped.
+      // The vertices of a triangle a few ahead: meshes index them all over, and waiting for them
+      // was most of this loop's time (perf: the screen position loads; the outcodes, 2 bytes a
+      // vertex, stay in cache). Indices past the mesh are clamped.
       if (t + kSetupPrefetchAhead < stop && vertex_count > 0) {
         const uint32_t* ahead = &mesh.indices[(local + kSetupPrefetchAhead) * 3];
         const uint32_t last = static_cast<uint32_t>(vertex_count - 1);
-        for (int k = 0; k < 3; ++k)
-          __builtin_prefetch(&mesh_vertices.screen[std::min(ahead[k], last)]);
+        for (int k = 0; k < 3; ++k) {
+          const uint32_t v = std::min(ahead[k], last);
+          __builtin_prefetch(&mesh_vertices.screen[v]);
+          // The Gouraud corners read the vertex stage's lighting as well (perf: the next wait).
+          if (mesh_vertices.lit) __builtin_prefetch(&mesh_vertices.lit[v]);
+        }
       }
       const uint32_t idx[3] = {mesh.indices[local * 3], mesh.indices[local * 3 + 1],
                                mesh.indices[local * 3 + 2]};
