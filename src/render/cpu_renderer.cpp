@@ -65,6 +65,7 @@ struct CpuRenderer::State {
   size_t chunk_count = 0;
   std::vector<std::unique_ptr<TileVisibility>> tiles;  // one per worker
   std::vector<std::unique_ptr<ShadedTile>> shaded;     // one per worker
+  std::vector<uint8_t> tile_empty;                     // this frame's: no triangle binned
   LineList lines;
   PipelineStats stats;
 
@@ -356,6 +357,14 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const Clock::time_point t_setup = Clock::now();
 
   // Raster, shade and resolve, per tile.
+  // Tiles no triangle touches (the background), found before the workers start so that a run of
+  // them along a row can be filled in one go.
+  s.tile_empty.resize(static_cast<size_t>(grid.tileCount()));
+  for (int tile = 0; tile < grid.tileCount(); ++tile) {
+    size_t binned = 0;
+    for (size_t c = 0; c < s.chunk_count; ++c) binned += s.chunks[c].bins.count(tile);
+    s.tile_empty[static_cast<size_t>(tile)] = binned == 0;
+  }
   const bool plain = plainShading(scene, options.normals);
   const uint32_t background = packSrgba8(scene.background);
   s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile_index, int worker) {
@@ -364,10 +373,14 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     const int x0 = tx * kTileSize, y0 = ty * kTileSize;
     const int width = std::min(kTileSize, options.width - x0);
     const int height = std::min(kTileSize, options.height - y0);
-    size_t binned = 0;
-    for (size_t c = 0; c < s.chunk_count; ++c) binned += s.chunks[c].bins.count(tile);
-    if (binned == 0) {
-      resolveEmptyTile(x0, y0, width, height, background, frame);
+    if (s.tile_empty[tile_index]) {
+      // A run of empty tiles along the row is filled by its first tile, row by row across the
+      // whole run: long runs of stores instead of 64-pixel pieces.
+      if (tx > 0 && s.tile_empty[tile_index - 1]) return;
+      int run_end = tx + 1;
+      while (run_end < grid.columns && s.tile_empty[tile_index + (run_end - tx)]) ++run_end;
+      resolveEmptyTile(x0, y0, std::min(run_end * kTileSize, options.width) - x0, height,
+                       background, frame);
       return;
     }
     TileVisibility& visibility = *s.tiles[static_cast<size_t>(worker)];
