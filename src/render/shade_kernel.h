@@ -89,7 +89,12 @@ TESSERA_LANES_INLINE bool sampleBilinear8(const ShadeTriangle& t, I32x8 mask, F3
   const Texture& texture = *m.albedo;
   const bool bilinear = m.sampler.filter == TextureFilter::kBilinear ||
                         (m.sampler.filter == TextureFilter::kTrilinear && texture.mips.empty());
-  if (!bilinear || texture.width <= 0 || texture.height <= 0) return false;
+  // Up to 16384 texels a side (what the image loader accepts), texel positions (below 65536
+  // times the size) and indices stay within int32.
+  constexpr int kMaxSide = 16384;
+  if (!bilinear || texture.width <= 0 || texture.height <= 0 || texture.width > kMaxSide ||
+      texture.height > kMaxSide)
+    return false;
   // uvAt: t.uv[0] * b0 + t.uv[1] * b1 + t.uv[2] * b2.
   const F32x8 u = splat(t.uv[0].x) * b0 + splat(t.uv[1].x) * b1 + splat(t.uv[2].x) * b2;
   const F32x8 v = splat(t.uv[0].y) * b0 + splat(t.uv[1].y) * b1 + splat(t.uv[2].y) * b2;
