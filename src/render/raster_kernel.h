@@ -1,10 +1,11 @@
 // The tile raster kernel, written once against eight-lane types (simd_lanes.h) and compiled
-// once per instruction set (raster_<isa>.cpp). Every variant runs the same arithmetic in the same
-// order, so they produce the same bits.
+// once per instruction set (kernels_<isa>.cpp). Every variant runs the same arithmetic in the
+// same order, so they produce the same bits.
 //
 // Coverage comes in two forms:
 //   - small triangles (most of a real mesh), whose edge values provably fit in 32 bits over their
-//     bounding box, step 32-bit edge values eight pixels at a time;
+//     bounding box, step 32-bit edge values eight pixels at a time (two rows of four when the
+//     triangle is at most four pixels wide);
 //   - other triangles go through 8x8 blocks: each block is classified by its four corner pixel
 //     centres in 64-bit arithmetic as outside (skipped), inside (depth test only), or partial
 //     (64-bit edge values per pixel).
@@ -213,7 +214,7 @@ TESSERA_LANES_INLINE void rasterTriangle(const RasterTriangle& t, uint32_t key,
   }
 }
 
-constexpr int kPrefetchAhead = 3;
+constexpr int kPrefetchAhead = 3;  // triangles: about a memory latency of raster work
 
 void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
                       TileVisibility& tile) {
