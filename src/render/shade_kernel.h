@@ -1,7 +1,8 @@
 // The shading kernel, written once against eight-lane types (simd_lanes.h) and compiled per
 // instruction set (kernels_<isa>.cpp). Each lane does exactly the float operations, in exactly the
-// order, that shading one pixel takes, so every variant gives the same bits. Texture samples are
-// taken lane by lane through the one sampleAlbedo.
+// order, that shading one pixel takes, so every variant gives the same bits. Bilinear texture
+// samples are taken eight lanes at a time (sampleBilinear8); trilinear ones, and lanes outside its
+// common case, lane by lane through the one sampleAlbedo.
 #pragma once
 
 #include <algorithm>
