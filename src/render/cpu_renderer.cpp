@@ -35,7 +35,8 @@ using namespace render;
 
 namespace {
 
-constexpr size_t kVerticesPerJob = 4096;  // the bunny's 35k vertices: 9 jobs, balanced over 2 workers
+constexpr size_t kVerticesPerJob =
+    4096;  // the bunny's 35k vertices: 9 jobs, balanced over 2 workers
 constexpr size_t kMinTrianglesPerChunk = 4096;
 constexpr size_t kSetupPrefetchAhead = 8;  // triangles
 

@@ -115,9 +115,9 @@ TESSERA_LANES_INLINE void rasterNarrow(const RasterTriangle& t, uint32_t key, Ti
     const F32x8 stored = load2x4<F32x8>(depth, depth + kTileSize);
     const I32x8 pass = covered & lessThan(z, stored);
     store2x4(depth, depth + kTileSize, select(pass, z, stored));
-    store2x4(keys, keys + kTileSize,
-             select(pass, splat(static_cast<int32_t>(key)),
-                    load2x4<I32x8>(keys, keys + kTileSize)));
+    store2x4(
+        keys, keys + kTileSize,
+        select(pass, splat(static_cast<int32_t>(key)), load2x4<I32x8>(keys, keys + kTileSize)));
   }
 }
 
@@ -164,8 +164,7 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
                    lanes64 * splat(static_cast<int64_t>(t.a[k]) * kSubpixelOne);
           covered = covered & nonNegative(e[0] | e[1] | e[2]);
         }
-        depthTestRow8(t, key, rowDepth(t, y), bx, covered, depthRow(tile, y),
-                                  keyRow(tile, y));
+        depthTestRow8(t, key, rowDepth(t, y), bx, covered, depthRow(tile, y), keyRow(tile, y));
       }
       // A block now wholly written by this triangle gets a tighter bound.
       if (inside && x0 == bx && x1 == bx + kBlock - 1 && y0 == by && y1 == by + kBlock - 1) {

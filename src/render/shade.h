@@ -20,8 +20,8 @@ namespace tessera::render {
 // Structure of arrays, laid out like TileVisibility (row y at y * kTileSize, padded).
 struct ShadedTile {
   static constexpr int kSize = kTileSize * kTileSize + kTilePadding;
-  alignas(64) uint32_t rgba[kSize];         // the final colour: sRGB-encoded, or the background
-  alignas(64) float normal_x[kSize];        // world shading normal; filled only when asked
+  alignas(64) uint32_t rgba[kSize];   // the final colour: sRGB-encoded, or the background
+  alignas(64) float normal_x[kSize];  // world shading normal; filled only when asked
   alignas(64) float normal_y[kSize];
   alignas(64) float normal_z[kSize];
 };

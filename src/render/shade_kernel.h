@@ -207,8 +207,7 @@ static_assert(sizeof(ShadeTriangle) >= offsetof(ShadeTriangle, x0) + 24 * sizeof
 // interpolated vertex colours): lane l is shaded from its own triangle's record, whose fields
 // are loaded eight records at a time and transposed into lanes. The same operations per lane as
 // shadeLanes, so the same bits; one evaluation instead of one per triangle.
-TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F32x8 px,
-                                       float py) {
+TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F32x8 px, float py) {
   F32x8 f[24];
   for (int block = 0; block < 3; ++block) {
     for (int l = 0; l < 8; ++l) f[block * 8 + l] = load<F32x8>(&records[l]->x0 + block * 8);

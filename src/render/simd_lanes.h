@@ -581,7 +581,6 @@ TESSERA_LANES_INLINE void storeU16(uint16_t* p, I32x8 a) {
   std::memcpy(p, &narrow, sizeof narrow);
 }
 
-
 // Added for the setup kernel (setup_kernel.h).
 typedef double F64x8 __attribute__((vector_size(64)));
 TESSERA_LANES_INLINE F64x8 splat(double x) {
@@ -645,9 +644,9 @@ TESSERA_LANES_INLINE V load2x4(const void* row0, const void* row1) {
 #if defined(__AVX__) && !defined(TESSERA_SIMD_SCALAR)
   // Straight into the two halves of a register (through memory, the 32-byte reload of two
   // 16-byte stores misses store forwarding and stalls).
-  const __m256 halves = _mm256_insertf128_ps(
-      _mm256_castps128_ps256(_mm_loadu_ps(static_cast<const float*>(row0))),
-      _mm_loadu_ps(static_cast<const float*>(row1)), 1);
+  const __m256 halves =
+      _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(static_cast<const float*>(row0))),
+                           _mm_loadu_ps(static_cast<const float*>(row1)), 1);
   return reinterpret_cast<V>(halves);
 #else
   V v;

@@ -25,15 +25,18 @@ inline float decodeSrgb8(uint8_t code) {
 // 0.503 (exact for every decoded 8-bit value). The Vulkan shaders repeat these operations and
 // constants (makeColorTables uploads them), so both give the same codes.
 struct SrgbEncode {
-  static constexpr float kLinearEnd = 0x1.9a5c38p-9f;     // 0.0031308
+  static constexpr float kLinearEnd = 0x1.9a5c38p-9f;      // 0.0031308
   static constexpr float kLinearFactor = 0x1.9bd334p+11f;  // 12.92 * 255
   static constexpr float kOffset = 0x1.c0ccccp+3f;         // 0.055 * 255
   static constexpr float kPoly[5] = {0x1.0000c6p+0f, 0x1.aa0586p-2f, -0x1.dadc1ep-4f,
                                      0x1.73ab08p-5f, -0x1.5d2276p-7f};
-  // [e + 9] for e in [-9, 0]; padded to 16 for two 8-lane permutes.
+  // [e + 9]: e in [-9, 0] is used; the formula carries on to 16 entries (e up to 6) so that two
+  // 8-lane permutes read a whole table.
   static constexpr float kScale[16] = {
-      0x1.3fed2cp+4f, 0x1.ab0cf2p+4f, 0x1.1d05a6p+5f, 0x1.7c7574p+5f, 0x1.fbda00p+5f, 0x1.52f344p+6f,
-      0x1.c471bep+6f, 0x1.2df86ap+7f, 0x1.931502p+7f, 0x1.0d0666p+8f, 0, 0, 0, 0, 0, 0};
+      0x1.3fed2cp+4f, 0x1.ab0cf2p+4f, 0x1.1d05a6p+5f,  0x1.7c7574p+5f,
+      0x1.fbda00p+5f, 0x1.52f344p+6f, 0x1.c471bep+6f,  0x1.2df86ap+7f,
+      0x1.931502p+7f, 0x1.0d0666p+8f, 0x1.671af4p+8f,  0x1.df591ap+8f,
+      0x1.3fed2cp+9f, 0x1.ab0cf2p+9f, 0x1.1d05a6p+10f, 0x1.7c7574p+10f};
 };
 
 // Linear [0, 1] (clamped; NaN counts as 0) to the nearest 8-bit sRGB code (SrgbEncode). The
