@@ -278,7 +278,7 @@ void BM_SetupBatch(benchmark::State& state) {
   if (skipUnsupported(state, isa)) return;
   const StageInput& in = *stageInput();
   const Mesh& mesh = *in.scene.scene.objects[0].mesh;
-  const render::SetupKernels kernels = render::setupKernels(isa);
+  const render::Kernels kernels = render::kernelsFor(isa);
   const size_t count = in.triangle.size();
   std::vector<render::SetupBatch> batches((count + 7) / 8);
   for (size_t i = 0; i < count; ++i) {
@@ -331,7 +331,7 @@ void isaArgs(benchmark::internal::Benchmark* b) {
 
 // Rasterizes every tile of the frame into its visibility buffer (depth + triangle key), with the
 // kernel compiled for one instruction set (the argument).
-void rasterTile(const StageInput& in, const render::TileKernels& kernels, int tile_index,
+void rasterTile(const StageInput& in, const render::Kernels& kernels, int tile_index,
                 render::TileVisibility& tile) {
   const int tx = tile_index % in.grid.columns, ty = tile_index / in.grid.columns;
   const int x0 = tx * render::kTileSize, y0 = ty * render::kTileSize;
@@ -344,7 +344,7 @@ void BM_TileRaster(benchmark::State& state) {
   const auto isa = static_cast<render::Isa>(state.range(0));
   if (skipUnsupported(state, isa)) return;
   const StageInput& in = *stageInput();
-  const render::TileKernels kernels = render::tileKernels(isa);
+  const render::Kernels kernels = render::kernelsFor(isa);
   auto tile = std::make_unique<render::TileVisibility>();
   for (auto _ : state) {
     for (int t = 0; t < in.grid.tileCount(); ++t) rasterTile(in, kernels, t, *tile);
@@ -360,7 +360,7 @@ void BM_TileShade(benchmark::State& state) {
   const auto isa = static_cast<render::Isa>(state.range(0));
   if (skipUnsupported(state, isa)) return;
   const StageInput& in = *stageInput();
-  const render::TileKernels kernels = render::tileKernels(isa);
+  const render::Kernels kernels = render::kernelsFor(isa);
   std::vector<std::unique_ptr<render::TileVisibility>> tiles;
   for (int t = 0; t < in.grid.tileCount(); ++t) {
     tiles.push_back(std::make_unique<render::TileVisibility>());

@@ -49,7 +49,7 @@ struct VertexJob {
 }  // namespace
 
 struct CpuRenderer::State {
-  State(int workers, Isa isa) : pool(workers), isa(isa), kernels(tileKernels(isa)) {
+  State(int workers, Isa isa) : pool(workers), isa(isa), kernels(kernelsFor(isa)) {
     for (int i = 0; i < pool.size(); ++i) {
       tiles.push_back(std::make_unique<TileVisibility>());
       shaded.push_back(std::make_unique<ShadedTile>());
@@ -58,7 +58,7 @@ struct CpuRenderer::State {
 
   WorkerPool pool;
   Isa isa;
-  TileKernels kernels;
+  Kernels kernels;
   std::vector<ObjectTransforms> objects;
   std::vector<VertexJob> vertex_jobs;
   VertexBuffer vertices;
@@ -146,7 +146,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
   // Unclipped triangles wait here for the rest of their setup (setup_kernel.h). The kernel
   // depends on nothing per object, so one flush per full batch and one at the end of the chunk.
   SetupBatch batch;
-  const SetupBatchFn setup_batch = setupKernels(isa).setup_batch;
+  const SetupBatchFn setup_batch = kernels.setup_batch;
   auto flush = [&] {
     if (batch.count == 0) return;
     batch.padLanes();

@@ -29,42 +29,23 @@ const char* isaName(Isa isa) {
   return "?";
 }
 
-TileKernels tileKernels(Isa isa) {
+Kernels kernelsFor(Isa isa) {
   switch (isa) {
     case Isa::kScalar:
-      return kTileKernelsScalar;
+      return kKernelsScalar;
 #if defined(__x86_64__) || defined(__i386__)
     case Isa::kSse2:
-      return kTileKernelsSse2;
+      return kKernelsSse2;
     case Isa::kAvx2:
-      return kTileKernelsAvx2;
+      return kKernelsAvx2;
     case Isa::kAvx512:
-      return kTileKernelsAvx512;
+      return kKernelsAvx512;
 #else
     default:
-      return kTileKernelsScalar;
+      return kKernelsScalar;
 #endif
   }
-  return kTileKernelsScalar;
-}
-
-SetupKernels setupKernels(Isa isa) {
-  switch (isa) {
-    case Isa::kScalar:
-      return kSetupKernelsScalar;
-#if defined(__x86_64__) || defined(__i386__)
-    case Isa::kSse2:
-      return kSetupKernelsSse2;
-    case Isa::kAvx2:
-      return kSetupKernelsAvx2;
-    case Isa::kAvx512:
-      return kSetupKernelsAvx512;
-#else
-    default:
-      return kSetupKernelsScalar;
-#endif
-  }
-  return kSetupKernelsScalar;
+  return kKernelsScalar;
 }
 
 }  // namespace tessera::render

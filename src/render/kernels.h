@@ -1,7 +1,7 @@
-// The per-instruction-set kernels of the tile stage (raster and shading) and of the vertex stage,
-// and the run-time choice between them. Each kernel is written once (raster_kernel.h,
-// shade_kernel.h, vertex_kernel.h) and compiled once per instruction set (kernels_<isa>.cpp);
-// every variant produces the same bits.
+// The per-instruction-set kernels (vertex, setup, raster, shading) and the run-time choice between
+// them. Each kernel is written once (vertex_kernel.h, setup_kernel.h, raster_kernel.h,
+// shade_kernel.h) and compiled once per instruction set (kernels_<isa>.cpp); every variant
+// produces the same bits.
 #pragma once
 
 #include "render/raster.h"
@@ -22,30 +22,24 @@ const char* isaName(Isa isa);
 using RasterTileFn = void (*)(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
                               int tile_index, TileVisibility& tile);
 
-struct TileKernels {
-  RasterTileFn raster_tile;
-  ShadeTileFn shade_tile;
-  TransformVerticesFn transform_vertices;  // the vertex stage's, not a tile's (vertex_kernel.h)
-};
-
-TileKernels tileKernels(Isa isa);
-
 // Sets up the queued triangles of a batch into their chunk's records (setup_kernel.h).
 using SetupBatchFn = void (*)(const SetupBatch& batch, int width, int height,
                               RasterTriangle* raster, ShadeTriangle* shade);
-struct SetupKernels {
-  SetupBatchFn setup_batch;
+
+// Every kernel compiled for one instruction set.
+struct Kernels {
+  TransformVerticesFn transform_vertices;  // vertex_kernel.h
+  SetupBatchFn setup_batch;                // setup_kernel.h
+  RasterTileFn raster_tile;                // raster_kernel.h
+  ShadeTileFn shade_tile;                  // shade_kernel.h
 };
-SetupKernels setupKernels(Isa isa);
-extern const SetupKernels kSetupKernelsScalar;
-extern const SetupKernels kSetupKernelsSse2;
-extern const SetupKernels kSetupKernelsAvx2;
-extern const SetupKernels kSetupKernelsAvx512;
+
+Kernels kernelsFor(Isa isa);
 
 // One table per instruction set, defined in kernels_<isa>.cpp.
-extern const TileKernels kTileKernelsScalar;
-extern const TileKernels kTileKernelsSse2;
-extern const TileKernels kTileKernelsAvx2;
-extern const TileKernels kTileKernelsAvx512;
+extern const Kernels kKernelsScalar;
+extern const Kernels kKernelsSse2;
+extern const Kernels kKernelsAvx2;
+extern const Kernels kKernelsAvx512;
 
 }  // namespace tessera::render

@@ -1,4 +1,4 @@
-// The tile and vertex kernels compiled for avx2 (CMakeLists.txt gives this file its flags).
+// The kernels compiled for avx2 (CMakeLists.txt gives this file its flags).
 #include "render/kernels.h"
 #include "render/raster_kernel.h"
 #include "render/setup_kernel.h"
@@ -7,8 +7,7 @@
 
 namespace tessera::render {
 
-const TileKernels kTileKernelsAvx2 = {rasterTileKernel, shadeTileKernel, transformVerticesKernel};
-
-const SetupKernels kSetupKernelsAvx2 = {setupBatchKernel};
+const Kernels kKernelsAvx2 = {transformVerticesKernel, setupBatchKernel, rasterTileKernel,
+                              shadeTileKernel};
 
 }  // namespace tessera::render

@@ -1,4 +1,4 @@
-// The tile and vertex kernels compiled for avx512 (CMakeLists.txt gives this file its flags).
+// The kernels compiled for avx512 (CMakeLists.txt gives this file its flags).
 #include "render/kernels.h"
 #include "render/raster_kernel.h"
 #include "render/setup_kernel.h"
@@ -7,8 +7,7 @@
 
 namespace tessera::render {
 
-const TileKernels kTileKernelsAvx512 = {rasterTileKernel, shadeTileKernel, transformVerticesKernel};
-
-const SetupKernels kSetupKernelsAvx512 = {setupBatchKernel};
+const Kernels kKernelsAvx512 = {transformVerticesKernel, setupBatchKernel, rasterTileKernel,
+                                shadeTileKernel};
 
 }  // namespace tessera::render

@@ -1,4 +1,4 @@
-// The tile and vertex kernels compiled for scalar (CMakeLists.txt gives this file its flags).
+// The kernels compiled for scalar (CMakeLists.txt gives this file its flags).
 #define TESSERA_SIMD_SCALAR 1  // the lanes are plain arrays
 #include "render/kernels.h"
 #include "render/raster_kernel.h"
@@ -8,8 +8,7 @@
 
 namespace tessera::render {
 
-const TileKernels kTileKernelsScalar = {rasterTileKernel, shadeTileKernel, transformVerticesKernel};
-
-const SetupKernels kSetupKernelsScalar = {setupBatchKernel};
+const Kernels kKernelsScalar = {transformVerticesKernel, setupBatchKernel, rasterTileKernel,
+                                shadeTileKernel};
 
 }  // namespace tessera::render

@@ -26,7 +26,7 @@ void VertexBuffer::resize(size_t count) {
 void transformVertices(const Mesh& mesh, const ObjectTransforms& transforms,
                        const ViewportTransform& viewport, size_t first, size_t count,
                        VertexBuffer& out) {
-  tileKernels(detectIsa())
+  kernelsFor(detectIsa())
       .transform_vertices(mesh, transforms, viewport, nullptr, first, count, out);
 }
 
