@@ -4,6 +4,10 @@
 #include <cstring>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <tessera/scene/color.h>
 
 namespace tessera::render {
@@ -35,16 +39,37 @@ void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
   }
 }
 
+namespace {
+
+// Fills n pixels with `value`, bypassing the cache where the row is long: nothing reads the
+// background back before the frame is done.
+void fillRow(uint32_t* out, size_t n, uint32_t value) {
+#if defined(__SSE2__)
+  size_t i = 0;
+  while (i < n && (reinterpret_cast<uintptr_t>(out + i) & 15) != 0) out[i++] = value;
+  const __m128i v = _mm_set1_epi32(static_cast<int>(value));
+  for (; i + 4 <= n; i += 4) _mm_stream_si128(reinterpret_cast<__m128i*>(out + i), v);
+  for (; i < n; ++i) out[i] = value;
+#else
+  std::fill_n(out, n, value);
+#endif
+}
+
+}  // namespace
+
 void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background, Frame& frame) {
   const bool depth = !frame.depth.empty(), ids = !frame.triangle_id.empty(),
              normals = !frame.normal.empty();
   for (int y = y0; y < y0 + height; ++y) {
     const size_t row = static_cast<size_t>(y) * frame.width + x0;
-    std::fill_n(&frame.color[row], width, background);
+    fillRow(&frame.color[row], static_cast<size_t>(width), background);
     if (depth) std::fill_n(&frame.depth[row], width, std::numeric_limits<float>::infinity());
     if (ids) std::fill_n(&frame.triangle_id[row], width, kNoTriangle);
     if (normals) std::fill_n(&frame.normal[row], width, float3{});
   }
+#if defined(__SSE2__)
+  _mm_sfence();  // the streamed stores are visible before the pool hands the frame back
+#endif
 }
 
 }  // namespace tessera::render
