@@ -16,6 +16,9 @@
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
 
+#include "render/clip.h"
+#include "render/kernels.h"
+
 using namespace tessera;
 
 // Counts heap allocations while a test asks for it (for the no-allocation-per-frame test).
@@ -349,6 +352,123 @@ TEST(Raster, NonFiniteDegenerateAndOutOfRangeTrianglesAreDropped) {
   std::set<uint32_t> seen(f.triangle_id.begin(), f.triangle_id.end());
   EXPECT_TRUE(seen.count(6));
   EXPECT_FALSE(seen.count(1) || seen.count(2) || seen.count(4) || seen.count(5));
+}
+
+TEST(Raster, DroppedTrianglesInsideGroupsOfEight) {
+  // The pattern above three times over: setup culls eight triangles at a time, and a group
+  // holding an index past the end is taken one triangle at a time.
+  Scene scene = clipSpaceScene();
+  Mesh m;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {nan, 0, 0}, {0.5f, 0.5f, 0}, {kInf, 0, 0}};
+  for (int copy = 0; copy < 3; ++copy)
+    m.indices.insert(m.indices.end(), {0, 1, 3, 0, 1, 5, 0, 2, 4, 0, 0, 1, 0, 1, 99, 0, 1, 2});
+  // Two more groups with nothing wrong in them: kept, culled by area, and off screen.
+  m.positions.push_back({3, 3, 0});  // 6: outside the right and top planes
+  m.positions.push_back({4, 3, 0});
+  m.positions.push_back({3, 4, 0});
+  for (int i = 0; i < 16; ++i) {
+    if (i % 4 == 0) m.indices.insert(m.indices.end(), {0, 1, 2});  // drawn (last wins: equal z)
+    if (i % 4 == 1) m.indices.insert(m.indices.end(), {0, 0, 2});  // zero area
+    if (i % 4 == 2) m.indices.insert(m.indices.end(), {6, 7, 8});  // outside the frustum
+    if (i % 4 == 3) m.indices.insert(m.indices.end(), {0, 2, 4});  // drawn
+  }
+  scene.objects.push_back(unlitObject(m));
+  PipelineStats stats;
+  Frame f = renderScene(scene, 16, 16, 1, &stats);
+  EXPECT_EQ(stats.triangles_in, 34u);
+  EXPECT_EQ(stats.triangles_culled, 12u + 8u);
+  EXPECT_EQ(stats.triangles_setup, 6u + 8u);
+  std::set<uint32_t> seen(f.triangle_id.begin(), f.triangle_id.end());
+  // Ids are triangle index + 1; equal depths keep the first triangle drawn on a pixel.
+  EXPECT_TRUE(seen.count(3)) << "the first kept real triangle";
+  EXPECT_TRUE(seen.count(6)) << "the first valid triangle";
+  for (uint32_t id : seen) {
+    EXPECT_TRUE(id == kNoTriangle || id == 3 || id == 6) << id;
+  }
+}
+
+// The cull kernel of every instruction set against setup's per-triangle functions, on random
+// triangles: some cross a cut plane, some have a non-finite vertex or are wholly outside a plane,
+// some are degenerate, back-facing or off the viewport.
+TEST(Raster, CullKernelMatchesThePerTriangleChecks) {
+  using namespace tessera::render;
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int32_t> coordinate(-300 * kSubpixelOne, 500 * kSubpixelOne);
+  std::uniform_int_distribution<int> pick(0, 15);
+  constexpr int kVertices = 64;
+  std::vector<ScreenVertex> screen(kVertices);
+  std::vector<uint16_t> outcodes(kVertices);
+  for (int i = 0; i < kVertices; ++i) {
+    const int kind = pick(rng);
+    // A few vertices repeat another's position (degenerate triangles).
+    screen[i] = i > 0 && kind == 0 ? screen[i - 1]
+                                   : ScreenVertex{coordinate(rng), coordinate(rng), 0.5f, 1.0f};
+    const uint32_t code = kind == 1   ? uint32_t{kClipNear}
+                          : kind == 2 ? uint32_t{kNonFinite}
+                          : kind == 3 ? uint32_t{kClipLeft}
+                                      : 0u;
+    outcodes[i] = static_cast<uint16_t>(code);
+  }
+  const int width = 201, height = 150;
+  std::map<int, int> decided;  // how many lanes took each branch below
+  for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512}) {
+    if (isa > detectIsa()) continue;
+    const Kernels kernels = kernelsFor(isa);
+    for (CullMode cull : {CullMode::kBack, CullMode::kFront, CullMode::kNone}) {
+      SetupContext ctx;
+      ctx.width = width;
+      ctx.height = height;
+      ctx.cull = cull;
+      for (int group = 0; group < 200; ++group) {
+        uint32_t indices[24];
+        for (uint32_t& index : indices) index = static_cast<uint32_t>(rng() % kVertices);
+        CullGroup out;
+        ASSERT_TRUE(kernels.cull_group(indices, kVertices, screen.data(), outcodes.data(), width,
+                                       height, cull, out));
+        for (int l = 0; l < 8; ++l) {
+          const uint32_t* idx = &indices[3 * l];
+          const uint32_t c0 = outcodes[idx[0]], c1 = outcodes[idx[1]], c2 = outcodes[idx[2]];
+          SCOPED_TRACE(testing::Message() << isaName(isa) << " cull " << static_cast<int>(cull)
+                                          << " group " << group << " lane " << l);
+          if (((c0 | c1 | c2) & kNonFinite) || (c0 & c1 & c2 & kRejectPlanes)) {
+            EXPECT_EQ(out.kind[l], CullGroup::kCulled);
+            ++decided[0];
+            continue;
+          }
+          if (const uint32_t cut = (c0 | c1 | c2) & kCutPlanes) {
+            EXPECT_EQ(out.kind[l], CullGroup::kClip);
+            EXPECT_EQ(static_cast<uint32_t>(out.cut[l]), cut);
+            ++decided[1];
+            continue;
+          }
+          const ScreenVertex &v0 = screen[idx[0]], &v1 = screen[idx[1]], &v2 = screen[idx[2]];
+          const int64_t area = signedArea(v0, v1, v2);
+          const PixelBox box = pixelBox(ctx, v0, v1, v2);
+          if (cullsArea(ctx, area) || box.empty()) {
+            EXPECT_EQ(out.kind[l], CullGroup::kCulled);
+            ++decided[cullsArea(ctx, area) ? 2 : 3];
+            continue;
+          }
+          ++decided[4];
+          ASSERT_EQ(out.kind[l], CullGroup::kVisible);
+          EXPECT_EQ(static_cast<int64_t>(out.area[l]), area);
+          EXPECT_EQ(out.min_x[l], box.min_x);
+          EXPECT_EQ(out.min_y[l], box.min_y);
+          EXPECT_EQ(out.max_x[l], box.max_x);
+          EXPECT_EQ(out.max_y[l], box.max_y);
+        }
+      }
+      // An index past the end: nothing decided, the caller goes one triangle at a time.
+      uint32_t indices[24] = {};
+      indices[17] = kVertices;
+      CullGroup out;
+      EXPECT_FALSE(kernels.cull_group(indices, kVertices, screen.data(), outcodes.data(), width,
+                                      height, cull, out));
+    }
+  }
+  // Every branch was taken: dropped, clipped, culled by area, off the viewport, visible.
+  for (int branch = 0; branch < 5; ++branch) EXPECT_GT(decided[branch], 20) << branch;
 }
 
 TEST(Raster, IdsFollowSceneTriangleOrderAcrossObjects) {

@@ -38,7 +38,7 @@ namespace {
 constexpr size_t kVerticesPerJob =
     4096;  // the bunny's 35k vertices: 9 jobs, balanced over 2 workers
 constexpr size_t kMinTrianglesPerChunk = 4096;
-constexpr size_t kSetupPrefetchAhead = 8;  // triangles
+constexpr size_t kSetupPrefetchGroups = 2;  // groups of eight triangles ahead
 
 struct VertexJob {
   uint32_t object;
@@ -147,6 +147,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
   // depends on nothing per object, so one flush per full batch and one at the end of the chunk.
   SetupBatch batch;
   const SetupBatchFn setup_batch = kernels.setup_batch;
+  const CullGroupFn cull_group = kernels.cull_group;
   auto flush = [&] {
     if (batch.count == 0) return;
     batch.padLanes();
@@ -185,73 +186,40 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         has_uv ? mesh.uvs.data() : nullptr, has_color ? mesh.colors.data() : nullptr};
     const uint16_t* outcodes = vertices.outcode.data() + xf.vertex_base;
 
-    const size_t stop = std::min(end, object_end);
-    for (; t < stop; ++t) {
-      const size_t local = t - xf.triangle_base;
-      // The vertices of a triangle a few ahead: meshes index them all over, and waiting for them
-      // was most of this loop's time (perf: the screen position loads; the outcodes, 2 bytes a
-      // vertex, stay in cache). Indices past the mesh are clamped.
-      if (t + kSetupPrefetchAhead < stop && vertex_count > 0) {
-        const uint32_t* ahead = &mesh.indices[(local + kSetupPrefetchAhead) * 3];
-        const uint32_t last = static_cast<uint32_t>(vertex_count - 1);
-        for (int k = 0; k < 3; ++k) {
-          const uint32_t v = std::min(ahead[k], last);
-          __builtin_prefetch(&mesh_vertices.screen[v]);
-          // The Gouraud corners read the vertex stage's lighting as well (perf: the next wait).
-          if (mesh_vertices.lit) __builtin_prefetch(&mesh_vertices.lit[v]);
-        }
-      }
-      const uint32_t idx[3] = {mesh.indices[local * 3], mesh.indices[local * 3 + 1],
-                               mesh.indices[local * 3 + 2]};
-      if (idx[0] >= vertex_count || idx[1] >= vertex_count || idx[2] >= vertex_count) {
-        ++chunk.culled;
-        continue;
-      }
-      const uint32_t c0 = outcodes[idx[0]], c1 = outcodes[idx[1]], c2 = outcodes[idx[2]];
-      // Non-finite vertices drop their triangle; so does one wholly outside a frustum plane.
-      if (((c0 | c1 | c2) & kNonFinite) || (c0 & c1 & c2 & kRejectPlanes)) {
-        ++chunk.culled;
-        continue;
-      }
-      // Read only for the triangles that survive the cull.
-      auto material = [&] { return has_materials ? mesh.triangle_materials[local] : uint16_t{0}; };
-      auto face_normal = [&] {
-        if (!needs_face_normal) return float3{};
-        const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
-                     p2 = mesh.positions[idx[2]];
-        return xf.normal_matrix * cross(p1 - p0, p2 - p0) * xf.winding_sign;
-      };
-      const uint32_t id = static_cast<uint32_t>(t);
+    // Read only for the triangles that survive the cull.
+    auto material = [&](size_t local) {
+      return has_materials ? mesh.triangle_materials[local] : uint16_t{0};
+    };
+    auto face_normal = [&](const uint32_t idx[3]) {
+      if (!needs_face_normal) return float3{};
+      const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
+                   p2 = mesh.positions[idx[2]];
+      return xf.normal_matrix * cross(p1 - p0, p2 - p0) * xf.winding_sign;
+    };
 
-      const uint32_t cut = (c0 | c1 | c2) & kCutPlanes;
-      if (!cut) {
-        const ScreenVertex& v0 = mesh_vertices.screen[idx[0]];
-        const ScreenVertex& v1 = mesh_vertices.screen[idx[1]];
-        const ScreenVertex& v2 = mesh_vertices.screen[idx[2]];
-        const int64_t area = signedArea(v0, v1, v2);
-        if (cullsArea(ctx, area)) {
-          ++chunk.culled;
-          continue;
-        }
-        const PixelBox box = pixelBox(ctx, v0, v1, v2);
-        if (box.empty()) {
-          ++chunk.culled;
-          continue;
-        }
-        // Binned now, in submission order; the edges and planes come eight at a time (flush).
-        const uint32_t record = nextRecord();
-        ++chunk.size;
-        chunk.bins.add(grid, box, record);
-        orient(area, orientation);
-        if (!plainGouraudCorners(ctx, mesh_vertices, idx, orientation, id, material(),
-                                 chunk.shade[record]))
-          setupShadeCorners(ctx, mesh_vertices, idx, orientation, face_normal(), id, material(),
-                            chunk.shade[record]);
-        batch.push(v0, v1, v2, area, record);
-        if (batch.full()) flush();
-        continue;
-      }
-      // Crosses the near or far plane or leaves the guard band: clip, then fan.
+    // A triangle that passed the cull whole: binned now, in submission order; the edges and
+    // planes come eight at a time (flush).
+    auto drawWhole = [&](size_t t, const uint32_t idx[3], int64_t area, const PixelBox& box)
+        __attribute__((always_inline)) {
+      const size_t local = t - xf.triangle_base;
+      const uint32_t id = static_cast<uint32_t>(t);
+      const uint32_t record = nextRecord();
+      ++chunk.size;
+      chunk.bins.add(grid, box, record);
+      orient(area, orientation);
+      if (!plainGouraudCorners(ctx, mesh_vertices, idx, orientation, id, material(local),
+                               chunk.shade[record]))
+        setupShadeCorners(ctx, mesh_vertices, idx, orientation, face_normal(idx), id,
+                          material(local), chunk.shade[record]);
+      batch.push(mesh_vertices.screen[idx[0]], mesh_vertices.screen[idx[1]],
+                 mesh_vertices.screen[idx[2]], area, record);
+      if (batch.full()) flush();
+    };
+
+    // A triangle crossing the near or far plane or leaving the guard band: clip, then fan.
+    auto drawClipped = [&](size_t t, const uint32_t idx[3], uint32_t cut) {
+      const size_t local = t - xf.triangle_base;
+      const uint32_t id = static_cast<uint32_t>(t);
       ++chunk.clipped;
       ClipVertex in[3];
       for (int k = 0; k < 3; ++k) {
@@ -273,12 +241,90 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         const VertexAttributes a[3] = {{fan[0]->normal, fan[0]->uv, fan[0]->color, false},
                                        {fan[1]->normal, fan[1]->uv, fan[1]->color, false},
                                        {fan[2]->normal, fan[2]->uv, fan[2]->color, false}};
-        setupShade(ctx, sv, a, orientation, raster, face_normal(), id, material(),
+        setupShade(ctx, sv, a, orientation, raster, face_normal(idx), id, material(local),
                    chunk.shade[record]);
         chunk.bins.add(grid, raster, record);
         any = true;
       }
       if (!any) ++chunk.culled;
+    };
+
+    // One triangle through the same checks as the cull kernel.
+    auto drawOne = [&](size_t t) {
+      const size_t local = t - xf.triangle_base;
+      const uint32_t idx[3] = {mesh.indices[local * 3], mesh.indices[local * 3 + 1],
+                               mesh.indices[local * 3 + 2]};
+      if (idx[0] >= vertex_count || idx[1] >= vertex_count || idx[2] >= vertex_count) {
+        ++chunk.culled;
+        return;
+      }
+      const uint32_t c0 = outcodes[idx[0]], c1 = outcodes[idx[1]], c2 = outcodes[idx[2]];
+      // Non-finite vertices drop their triangle; so does one wholly outside a frustum plane.
+      if (((c0 | c1 | c2) & kNonFinite) || (c0 & c1 & c2 & kRejectPlanes)) {
+        ++chunk.culled;
+        return;
+      }
+      if (const uint32_t cut = (c0 | c1 | c2) & kCutPlanes) {
+        drawClipped(t, idx, cut);
+        return;
+      }
+      const ScreenVertex& v0 = mesh_vertices.screen[idx[0]];
+      const ScreenVertex& v1 = mesh_vertices.screen[idx[1]];
+      const ScreenVertex& v2 = mesh_vertices.screen[idx[2]];
+      const int64_t area = signedArea(v0, v1, v2);
+      const PixelBox box =
+          cullsArea(ctx, area) ? PixelBox{0, 0, -1, -1} : pixelBox(ctx, v0, v1, v2);
+      if (box.empty()) {
+        ++chunk.culled;
+        return;
+      }
+      drawWhole(t, idx, area, box);
+    };
+
+    // Eight triangles at a time through the cull kernel; the rest (and groups with an index
+    // outside the mesh) one at a time.
+    constexpr size_t kGroup = CullGroup::kLanes;
+    const size_t stop = std::min(end, object_end);
+    while (t < stop) {
+      const size_t local = t - xf.triangle_base;
+      CullGroup group;
+      if (stop - t < kGroup ||
+          !cull_group(&mesh.indices[local * 3], vertex_count, mesh_vertices.screen, outcodes,
+                      grid.width, grid.height, object.cull, group)) {
+        drawOne(t++);
+        continue;
+      }
+      // The vertices of the group after next: meshes index them all over, and waiting for them
+      // was most of setup's time (perf: the screen position loads, then the Gouraud corners'
+      // lighting). Indices past the mesh are clamped.
+      // Addresses as integers: a prefetch never faults, so indices past the mesh (dropped when
+      // their group comes) need no check here.
+      if (stop - t >= kGroup * (kSetupPrefetchGroups + 1)) {
+        const uint32_t* ahead = &mesh.indices[(local + kGroup * kSetupPrefetchGroups) * 3];
+        const uintptr_t screen = reinterpret_cast<uintptr_t>(mesh_vertices.screen);
+        for (size_t k = 0; k < kGroup * 3; ++k)
+          __builtin_prefetch(
+              reinterpret_cast<const void*>(screen + ahead[k] * sizeof(ScreenVertex)));
+        if (mesh_vertices.lit) {
+          const uintptr_t lit = reinterpret_cast<uintptr_t>(mesh_vertices.lit);
+          for (size_t k = 0; k < kGroup * 3; ++k)
+            __builtin_prefetch(reinterpret_cast<const void*>(lit + ahead[k] * sizeof(float3)));
+        }
+      }
+      for (size_t l = 0; l < kGroup; ++l) {
+        if (group.kind[l] == CullGroup::kCulled) {
+          ++chunk.culled;
+          continue;
+        }
+        const uint32_t* idx = &mesh.indices[(local + l) * 3];
+        if (group.kind[l] == CullGroup::kClip) {
+          drawClipped(t + l, idx, static_cast<uint32_t>(group.cut[l]));
+          continue;
+        }
+        drawWhole(t + l, idx, static_cast<int64_t>(group.area[l]),
+                  PixelBox{group.min_x[l], group.min_y[l], group.max_x[l], group.max_y[l]});
+      }
+      t += kGroup;
     }
   }
   flush();

@@ -26,9 +26,16 @@ using RasterTileFn = void (*)(const std::vector<TriangleChunk>& chunks, size_t c
 using SetupBatchFn = void (*)(const SetupBatch& batch, int width, int height,
                               RasterTriangle* raster, ShadeTriangle* shade);
 
+// Culls the eight triangles whose vertex indices are indices[0..23] (setup_kernel.h). False, with
+// nothing written, when an index is not below vertex_count: the caller takes them one at a time.
+using CullGroupFn = bool (*)(const uint32_t* indices, size_t vertex_count,
+                             const ScreenVertex* screen, const uint16_t* outcodes, int width,
+                             int height, CullMode cull, CullGroup& out);
+
 // Every kernel compiled for one instruction set.
 struct Kernels {
   TransformVerticesFn transform_vertices;  // vertex_kernel.h
+  CullGroupFn cull_group;                  // setup_kernel.h
   SetupBatchFn setup_batch;                // setup_kernel.h
   RasterTileFn raster_tile;                // raster_kernel.h
   ShadeTileFn shade_tile;                  // shade_kernel.h

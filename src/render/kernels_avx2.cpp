@@ -7,7 +7,7 @@
 
 namespace tessera::render {
 
-const Kernels kKernelsAvx2 = {transformVerticesKernel, setupBatchKernel, rasterTileKernel,
-                              shadeTileKernel};
+const Kernels kKernelsAvx2 = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
+                              rasterTileKernel, shadeTileKernel};
 
 }  // namespace tessera::render

@@ -7,7 +7,7 @@
 
 namespace tessera::render {
 
-const Kernels kKernelsAvx512 = {transformVerticesKernel, setupBatchKernel, rasterTileKernel,
-                                shadeTileKernel};
+const Kernels kKernelsAvx512 = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
+                                rasterTileKernel, shadeTileKernel};
 
 }  // namespace tessera::render

@@ -8,7 +8,7 @@
 
 namespace tessera::render {
 
-const Kernels kKernelsScalar = {transformVerticesKernel, setupBatchKernel, rasterTileKernel,
-                                shadeTileKernel};
+const Kernels kKernelsScalar = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
+                                rasterTileKernel, shadeTileKernel};
 
 }  // namespace tessera::render

@@ -7,7 +7,7 @@
 
 namespace tessera::render {
 
-const Kernels kKernelsSse2 = {transformVerticesKernel, setupBatchKernel, rasterTileKernel,
-                              shadeTileKernel};
+const Kernels kKernelsSse2 = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
+                              rasterTileKernel, shadeTileKernel};
 
 }  // namespace tessera::render

@@ -244,6 +244,18 @@ struct SetupBatch {
 };
 static_assert(sizeof(SetupBatch::Input) == 64);
 
+// Eight consecutive triangles of one object through the cull, eight at a time
+// (setup_kernel.h): what the per-triangle checks in setup decide (index range, outcodes,
+// cullsArea, pixelBox), with the same integer results.
+struct CullGroup {
+  static constexpr int kLanes = 8;
+  enum Kind : int32_t { kCulled = 0, kVisible = 1, kClip = 2 };
+  int32_t kind[kLanes];
+  int32_t cut[kLanes];  // kClip: the outcodes' kCutPlanes bits
+  double area[kLanes];  // kVisible: signedArea (exact: below 2^49)
+  int32_t min_x[kLanes], min_y[kLanes], max_x[kLanes], max_y[kLanes];  // kVisible: pixelBox
+};
+
 // Lambert irradiance: ambient plus every directional light, for unit normal n. The vertex kernel
 // (vertex_kernel.h) lights Gouraud vertices with the same operations, eight at a time.
 inline float3 irradiance(float3 ambient, std::span<const DirectionalLight> lights, float3 n) {

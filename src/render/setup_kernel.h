@@ -62,6 +62,78 @@ TESSERA_LANES_INLINE void pixelRange8(I32x8 lo, I32x8 hi, int size, I32x8& first
   last = minimum(shiftRight(hi - splat(kSubpixelHalf), kSubpixelBits), splat(size - 1));
 }
 
+// The cull of eight consecutive triangles (CullGroup), lane by lane as setup's per-triangle checks:
+// outcodes (a non-finite vertex or all three outside one frustum plane drop the triangle; one
+// outside a cut plane sends it to the clipper), then cullsArea on signedArea, then pixelBox.
+bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenVertex* screen,
+                     const uint16_t* outcodes, int width, int height, CullMode cull,
+                     CullGroup& out) {
+  // Indices as int32 lanes: a count below 2^31 keeps the comparison unsigned in effect.
+  if (vertex_count > 0x7fffffffu) return false;
+  const I32x8 count = splat(static_cast<int32_t>(vertex_count));
+  I32x8 bad = splat(int32_t{0});
+  for (int k = 0; k < 3; ++k) {
+    const I32x8 index = load<I32x8>(indices + 8 * k);
+    bad = bad | ~nonNegative(index) | ~lessThan(index, count);
+  }
+  if (any(bad)) return false;
+
+  // Each lane's three screen vertices: rows of (x, y, z, inv_w) pairs, transposed into lanes.
+  F32x8 rows01[8], rows2[8];
+  alignas(32) int32_t code_any[8], code_all[8];
+  for (int l = 0; l < CullGroup::kLanes; ++l) {
+    const uint32_t i0 = indices[3 * l], i1 = indices[3 * l + 1], i2 = indices[3 * l + 2];
+    rows01[l] = load2x4<F32x8>(&screen[i0], &screen[i1]);
+    rows2[l] = load2x4<F32x8>(&screen[i2], &screen[i2]);
+    const uint32_t c0 = outcodes[i0], c1 = outcodes[i1], c2 = outcodes[i2];
+    code_any[l] = static_cast<int32_t>(c0 | c1 | c2);
+    code_all[l] = static_cast<int32_t>(c0 & c1 & c2);
+  }
+  transpose8x8(rows01);
+  transpose8x8(rows2);
+
+  const I32x8 zero = splat(int32_t{0});
+  const I32x8 any_code = load<I32x8>(code_any), all_code = load<I32x8>(code_all);
+  const I32x8 dropped = ~equal(any_code & splat(static_cast<int32_t>(kNonFinite)), zero) |
+                        ~equal(all_code & splat(static_cast<int32_t>(kRejectPlanes)), zero);
+  const I32x8 cut = any_code & splat(static_cast<int32_t>(kCutPlanes));
+  const I32x8 whole = ~dropped & equal(cut, zero);
+  const I32x8 clip = ~dropped & ~whole;
+
+  // Screen positions are valid only where no cut plane is crossed: the other lanes compute on
+  // zeros (and are not used).
+  const I32x8 x0 = select(whole, bitsOf(rows01[0]), zero),
+              y0 = select(whole, bitsOf(rows01[1]), zero);
+  const I32x8 x1 = select(whole, bitsOf(rows01[4]), zero),
+              y1 = select(whole, bitsOf(rows01[5]), zero);
+  const I32x8 x2 = select(whole, bitsOf(rows2[0]), zero),
+              y2 = select(whole, bitsOf(rows2[1]), zero);
+  // signedArea in double lanes: exact, the differences are below 2^24 and the products below
+  // 2^48.
+  const F64x8 area = toDouble(x1 - x0) * toDouble(y2 - y0) - toDouble(y1 - y0) * toDouble(x2 - x0);
+  const I32x8 positive = lessThan(splat(0.0), area), negative = lessThan(area, splat(0.0));
+  // cullsArea.
+  const I32x8 culled = ~(positive | negative) |
+                       (positive & splat(int32_t{cull == CullMode::kBack ? -1 : 0})) |
+                       (negative & splat(int32_t{cull == CullMode::kFront ? -1 : 0}));
+  // pixelBox.
+  I32x8 min_x, max_x, min_y, max_y;
+  pixelRange8(minimum(minimum(x0, x1), x2), maximum(maximum(x0, x1), x2), width, min_x, max_x);
+  pixelRange8(minimum(minimum(y0, y1), y2), maximum(maximum(y0, y1), y2), height, min_y, max_y);
+  const I32x8 empty = lessThan(max_x, min_x) | lessThan(max_y, min_y);
+  const I32x8 visible = whole & ~culled & ~empty;
+
+  store(out.kind, (visible & splat(int32_t{CullGroup::kVisible})) |
+                      (clip & splat(int32_t{CullGroup::kClip})));
+  store(out.cut, cut);
+  store(out.area, area);
+  store(out.min_x, min_x);
+  store(out.min_y, min_y);
+  store(out.max_x, max_x);
+  store(out.max_y, max_y);
+  return true;
+}
+
 // Sets up the batch's first `count` lanes into raster[record] and the planes of shade[record]
 // (the other lanes must hold copies of a real triangle: they are computed, not stored).
 void setupBatchKernel(const SetupBatch& batch, int width, int height, RasterTriangle* raster,

@@ -252,12 +252,13 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
       Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
       const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
       if (plain && any(covered & ~equal(keys, splat(static_cast<int32_t>(first))))) {
+        // Uncovered lanes borrow a covered lane's record; their result is not stored. The keys
+        // go through memory: eight scalar loads beat sixteen lane extracts.
+        alignas(32) uint32_t lane_keys[8];
+        store(lane_keys, select(covered, keys, splat(static_cast<int32_t>(first))));
         const ShadeTriangle* lanes[8];
-        for (int l = 0; l < 8; ++l) {
-          // Uncovered lanes borrow a covered lane's record; their result is not stored.
-          const uint32_t key = lane(covered, l) ? static_cast<uint32_t>(lane(keys, l)) : first;
-          lanes[l] = records[keyChunk(key)] + keyLocal(key);
-        }
+        for (int l = 0; l < 8; ++l)
+          lanes[l] = records[keyChunk(lane_keys[l])] + keyLocal(lane_keys[l]);
         color = shadeMixed(lanes, px, py);
       } else {
         I32x8 todo = covered;

@@ -593,8 +593,33 @@ TESSERA_LANES_INLINE F64x8 toDouble(I32x8 a) {
 TESSERA_LANES_INLINE F32x8 toFloat(F64x8 a) {
   return __builtin_convertvector(a, F32x8);
 }
+// Eight 64-bit lanes as sixteen 32-bit ones: lane l's low half is element 2l, its high half 2l+1.
+typedef int32_t I32x16 __attribute__((vector_size(64)));
+// Shuffles, not __builtin_convertvector: GCC narrows 64-bit lanes to 32 one lane at a time.
+TESSERA_LANES_INLINE I32x8 evenHalves(I32x16 a) {
+  return __builtin_shufflevector(a, a, 0, 2, 4, 6, 8, 10, 12, 14);
+}
+TESSERA_LANES_INLINE I32x8 oddHalves(I32x16 a) {
+  return __builtin_shufflevector(a, a, 1, 3, 5, 7, 9, 11, 13, 15);
+}
+// Compared a quarter or a half at a time: GCC compares wider-than-native vectors lane by lane.
+typedef double F64x2 __attribute__((vector_size(16)));
+typedef int32_t I32x4 __attribute__((vector_size(16)));
 TESSERA_LANES_INLINE I32x8 lessThan(F64x8 a, F64x8 b) {
-  return __builtin_convertvector(a < b, I32x8);
+  // Each 64-bit mask is all ones or zero: its low half will do.
+  auto quarter = [&](auto i) {
+    constexpr int k = decltype(i)::value * 2;
+    const F64x2 x = __builtin_shufflevector(a, a, k, k + 1);
+    const F64x2 y = __builtin_shufflevector(b, b, k, k + 1);
+    return reinterpret_cast<I32x4>(x < y);
+  };
+  const I32x4 q0 = quarter(std::integral_constant<int, 0>{});
+  const I32x4 q1 = quarter(std::integral_constant<int, 1>{});
+  const I32x4 q2 = quarter(std::integral_constant<int, 2>{});
+  const I32x4 q3 = quarter(std::integral_constant<int, 3>{});
+  const I32x4 h0 = __builtin_shufflevector(q0, q1, 0, 2, 4, 6);
+  const I32x4 h1 = __builtin_shufflevector(q2, q3, 0, 2, 4, 6);
+  return __builtin_shufflevector(h0, h1, 0, 1, 2, 3, 4, 5, 6, 7);
 }
 // For lanes holding integers below 2^51 in magnitude: their exact int64 values. Adding 1.5 * 2^52
 // puts the integer in the low mantissa bits (without AVX-512DQ there is no vector conversion).
@@ -604,10 +629,10 @@ TESSERA_LANES_INLINE I64x8 exactInt64(F64x8 a) {
 }
 // The low and the high 32 bits of each lane.
 TESSERA_LANES_INLINE I32x8 low32(I64x8 a) {
-  return __builtin_convertvector(a, I32x8);
+  return evenHalves(reinterpret_cast<I32x16>(a));
 }
 TESSERA_LANES_INLINE I32x8 high32(I64x8 a) {
-  return __builtin_convertvector(a >> 32, I32x8);
+  return oddHalves(reinterpret_cast<I32x16>(a));
 }
 TESSERA_LANES_INLINE I32x8 minimum(I32x8 a, I32x8 b) {
   return b < a ? b : a;
