@@ -43,6 +43,9 @@ struct TileVisibility {
   static constexpr int kHiZBlock = 8;
   static constexpr int kHiZBlocksPerRow = kTileSize / kHiZBlock;
   float block_max_depth[kHiZBlocksPerRow * kHiZBlocksPerRow];
+  // Some bound above is finite: until then Hi-Z rejects nothing and small triangles skip it
+  // (meshes of small triangles alone never tighten a bound).
+  bool hiz_bounded = false;
 
   void clear(int tile_x0, int tile_y0, int tile_width, int tile_height) {
     x0 = tile_x0, y0 = tile_y0, width = tile_width, height = tile_height;
@@ -51,6 +54,7 @@ struct TileVisibility {
       key[i] = kEmptyKey;
     }
     for (float& z : block_max_depth) z = std::numeric_limits<float>::infinity();
+    hiz_bounded = false;
   }
 };
 

@@ -174,6 +174,7 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
         float bound = lane(highest, 0);
         for (int l = 1; l < kLanes; ++l) bound = std::max(bound, lane(highest, l));
         block_max = bound;
+        tile.hiz_bounded = true;
       }
     }
   }
@@ -201,7 +202,7 @@ TESSERA_LANES_INLINE void rasterTriangle(const RasterTriangle& t, uint32_t key,
   const int y_end = std::min(t.max_y, tile.y0 + tile.height - 1);
   if (x_begin > x_end || y_begin > y_end) return;
   if (t.small) {
-    if (hiddenByHiZ(t, tile, x_begin, x_end, y_begin, y_end)) return;
+    if (tile.hiz_bounded && hiddenByHiZ(t, tile, x_begin, x_end, y_begin, y_end)) return;
     // Two rows or more: the box is then at least a pixel tall, so |b| * 2 pixels < 2^30 (from
     // RasterTriangle::small) and the row after y_end that rasterNarrow forms still fits in int32.
     if (x_end - x_begin < 4 && y_end > y_begin)

@@ -200,19 +200,22 @@ static_assert(offsetof(ShadeTriangle, color) == offsetof(ShadeTriangle, x0) + 9 
                   sizeof(ShadeTriangle::color) == 9 * sizeof(float) &&
                   offsetof(ShadeTriangle, sdy) == offsetof(ShadeTriangle, x0) + 8 * sizeof(float),
               "shadeMixed reads x0..sdy and color[3] as 18 consecutive floats");
-static_assert(sizeof(ShadeTriangle) >= offsetof(ShadeTriangle, x0) + 24 * sizeof(float),
-              "shadeMixed reads 24 floats from x0");
+static_assert(sizeof(ShadeTriangle) >= offsetof(ShadeTriangle, x0) + 16 * sizeof(float),
+              "shadeMixed reads 16 floats from x0 eight at a time");
 
 // Eight pixels owned by several triangles, all untextured and not Phong-shaded (colour = the
 // interpolated vertex colours): lane l is shaded from its own triangle's record, whose fields
 // are loaded eight records at a time and transposed into lanes. The same operations per lane as
 // shadeLanes, so the same bits; one evaluation instead of one per triangle.
 TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F32x8 px, float py) {
-  F32x8 f[24];
-  for (int block = 0; block < 3; ++block) {
+  F32x8 f[kPlainFields];
+  for (int block = 0; block < 2; ++block) {
     for (int l = 0; l < 8; ++l) f[block * 8 + l] = load<F32x8>(&records[l]->x0 + block * 8);
     transpose8x8(f + block * 8);
   }
+  const float* last_two[8];
+  for (int l = 0; l < 8; ++l) last_two[l] = &records[l]->x0 + 16;
+  loadPairs(last_two, f[16], f[17]);
   // f: x0, y0, inv_w0, p1dx, p1dy, p2dx, p2dy, sdx, sdy, then color[0..2].xyz.
   const F32x8 dx = px - f[0];
   const F32x8 dy = splat(py) - f[1];

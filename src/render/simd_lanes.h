@@ -680,6 +680,29 @@ TESSERA_LANES_INLINE V load2x4(const void* row0, const void* row1) {
   return v;
 #endif
 }
+// Lane l of `first` and `second` from p[l][0] and p[l][1]: a transpose of eight pairs.
+TESSERA_LANES_INLINE void loadPairs(const float* const p[8], F32x8& first, F32x8& second) {
+#if defined(__AVX__) && !defined(TESSERA_SIMD_SCALAR)
+  auto two = [](const float* a, const float* b) {  // a[0] a[1] b[0] b[1]
+    return _mm_loadh_pi(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(a))),
+                        reinterpret_cast<const __m64*>(b));
+  };
+  const __m256 lo =
+      _mm256_insertf128_ps(_mm256_castps128_ps256(two(p[0], p[1])), two(p[4], p[5]), 1);
+  const __m256 hi =
+      _mm256_insertf128_ps(_mm256_castps128_ps256(two(p[2], p[3])), two(p[6], p[7]), 1);
+  first = reinterpret_cast<F32x8>(_mm256_shuffle_ps(lo, hi, 0x88));
+  second = reinterpret_cast<F32x8>(_mm256_shuffle_ps(lo, hi, 0xdd));
+#else
+  float a[8], b[8];
+  for (int l = 0; l < 8; ++l) {
+    a[l] = p[l][0];
+    b[l] = p[l][1];
+  }
+  first = load<F32x8>(a);
+  second = load<F32x8>(b);
+#endif
+}
 template <typename V>
 TESSERA_LANES_INLINE void store2x4(void* row0, void* row1, V v) {
   std::memcpy(row0, &v, sizeof v / 2);
