@@ -1,6 +1,24 @@
 #include "render/worker_pool.h"
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
 namespace tessera::render {
+
+namespace {
+
+// How long a thread spins before it sleeps: a frame's stages follow one another within
+// microseconds, and a sleeping thread takes tens of them to wake. About 50 us.
+constexpr int kSpinIterations = 2000;
+
+inline void pause() {
+#if defined(__x86_64__) || defined(__i386__)
+  _mm_pause();
+#endif
+}
+
+}  // namespace
 
 WorkerPool::WorkerPool(int workers) {
   int total = workers > 0 ? workers : static_cast<int>(std::thread::hardware_concurrency());
@@ -12,7 +30,7 @@ WorkerPool::WorkerPool(int workers) {
 WorkerPool::~WorkerPool() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    stopping_ = true;
+    stopping_.store(true, std::memory_order_release);
   }
   wake_.notify_all();
   for (std::thread& t : threads_) t.join();
@@ -38,28 +56,42 @@ void WorkerPool::run(size_t count, void* context, Invoker invoker) {
     invoker_ = invoker;
     count_ = count;
     next_.store(0, std::memory_order_relaxed);
-    busy_ = static_cast<int>(threads_.size());
-    ++generation_;
+    busy_.store(static_cast<int>(threads_.size()), std::memory_order_relaxed);
+    generation_.fetch_add(1, std::memory_order_release);
   }
   wake_.notify_all();
   drain(0);
+  for (int i = 0; i < kSpinIterations; ++i) {
+    if (busy_.load(std::memory_order_acquire) == 0) return;
+    pause();
+  }
   std::unique_lock<std::mutex> lock(mutex_);
-  done_.wait(lock, [this] { return busy_ == 0; });
+  done_.wait(lock, [this] { return busy_.load(std::memory_order_acquire) == 0; });
 }
 
 void WorkerPool::workerLoop(int worker) {
   uint64_t seen = 0;
   for (;;) {
-    {
-      std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
-      if (stopping_) return;
-      seen = generation_;
+    auto ready = [&] {
+      return stopping_.load(std::memory_order_acquire) ||
+             generation_.load(std::memory_order_acquire) != seen;
+    };
+    bool woken = false;
+    for (int i = 0; i < kSpinIterations && !woken; ++i) {
+      woken = ready();
+      if (!woken) pause();
     }
+    if (!woken) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, ready);
+    }
+    if (stopping_.load(std::memory_order_acquire)) return;
+    seen = generation_.load(std::memory_order_acquire);
     drain(worker);
-    {
+    if (busy_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+      // Under the mutex: the caller may be between its check and its wait.
       std::lock_guard<std::mutex> lock(mutex_);
-      if (--busy_ == 0) done_.notify_one();
+      done_.notify_one();
     }
   }
 }
