@@ -302,11 +302,13 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
       if (stop - t >= kGroup * (kSetupPrefetchGroups + 1)) {
         const uint32_t* ahead = &mesh.indices[(local + kGroup * kSetupPrefetchGroups) * 3];
         const uintptr_t screen = reinterpret_cast<uintptr_t>(mesh_vertices.screen);
+#pragma GCC unroll 24
         for (size_t k = 0; k < kGroup * 3; ++k)
           __builtin_prefetch(
               reinterpret_cast<const void*>(screen + ahead[k] * sizeof(ScreenVertex)));
         if (mesh_vertices.lit) {
           const uintptr_t lit = reinterpret_cast<uintptr_t>(mesh_vertices.lit);
+#pragma GCC unroll 24
           for (size_t k = 0; k < kGroup * 3; ++k)
             __builtin_prefetch(reinterpret_cast<const void*>(lit + ahead[k] * sizeof(float3)));
         }

@@ -27,10 +27,25 @@ constexpr int kBlock = 8;
 // Depth-tests eight pixels starting at x: covered lanes nearer than the stored depth take z and
 // the key; the others write back what they read (the tile rows are padded, so the eight slots
 // always exist). z is the plane at the pixel centre, computed exactly as everywhere else.
+// The z plane's change from the row's value at the centres of pixels x .. x + 7.
+TESSERA_LANES_INLINE F32x8 depthAcross8(const RasterTriangle& t, int x) {
+  const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
+  return splat(t.dzdx) * (centre - splat(t.x0));
+}
+
+// depthTestRow8 with the row's depth and depthAcross8 at x given.
+TESSERA_LANES_INLINE void depthTestRow8(uint32_t key, float z_row, F32x8 across, int x,
+                                        I32x8 covered, float* depth, uint32_t* keys) {
+  const F32x8 z = splat(z_row) + across;
+  const F32x8 stored = load<F32x8>(depth + x);
+  const I32x8 pass = covered & lessThan(z, stored);
+  store(depth + x, select(pass, z, stored));
+  store(keys + x, select(pass, splat(static_cast<int32_t>(key)), load<I32x8>(keys + x)));
+}
+
 TESSERA_LANES_INLINE void depthTestRow8(const RasterTriangle& t, uint32_t key, float z_row, int x,
                                         I32x8 covered, float* depth, uint32_t* keys) {
-  const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
-  const F32x8 z = splat(z_row) + splat(t.dzdx) * (centre - splat(t.x0));
+  const F32x8 z = splat(z_row) + depthAcross8(t, x);
   const F32x8 stored = load<F32x8>(depth + x);
   const I32x8 pass = covered & lessThan(z, stored);
   store(depth + x, select(pass, z, stored));
@@ -62,20 +77,39 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
   }
   const I32x8 lane = iota();
   const I32x8 last = splat(x_end);
+  // Each lane's offset from the row's first value, and the step to the next eight pixels: the
+  // same values as row + step * (x - x_begin + lane), formed by adds.
+  I32x8 lane_offset[3], chunk_step[3];
+  for (int k = 0; k < 3; ++k) {
+    lane_offset[k] = step_x[k] * lane;
+    chunk_step[k] = splat(t.a[k] * kSubpixelOne * kLanes);
+  }
+  const F32x8 first_across = depthAcross8(t, x_begin);  // most boxes are one chunk wide
+  float* depth = depthRow(tile, y_begin);
+  uint32_t* keys = keyRow(tile, y_begin);
   for (int y = y_begin; y <= y_end; ++y) {
     // Stepped at the top, so no value past row y_end is formed: with two rows or more the box is
     // at least a pixel tall, and |b| * one pixel fits (RasterTriangle::small).
-    if (y != y_begin)
+    if (y != y_begin) {
       for (int k = 0; k < 3; ++k) row[k] += t.b[k] * kSubpixelOne;
-    float* depth = depthRow(tile, y);
-    uint32_t* keys = keyRow(tile, y);
+      depth += kTileSize;
+      keys += kTileSize;
+    }
+    I32x8 e0 = splat(row[0]) + lane_offset[0];
+    I32x8 e1 = splat(row[1]) + lane_offset[1];
+    I32x8 e2 = splat(row[2]) + lane_offset[2];
+    I32x8 column = splat(x_begin) + lane;
     for (int x = x_begin; x <= x_end; x += kLanes) {
-      const I32x8 offset = splat(x - x_begin) + lane;
-      const I32x8 e0 = splat(row[0]) + step_x[0] * offset;
-      const I32x8 e1 = splat(row[1]) + step_x[1] * offset;
-      const I32x8 e2 = splat(row[2]) + step_x[2] * offset;
-      const I32x8 covered = nonNegative(e0 | e1 | e2) & lessOrEqual(splat(x) + lane, last);
-      if (any(covered)) depthTestRow8(t, key, rowDepth(t, y), x, covered, depth, keys);
+      if (x != x_begin) {
+        e0 = e0 + chunk_step[0];
+        e1 = e1 + chunk_step[1];
+        e2 = e2 + chunk_step[2];
+        column = column + splat(kLanes);
+      }
+      const I32x8 covered = nonNegative(e0 | e1 | e2) & lessOrEqual(column, last);
+      if (!any(covered)) continue;
+      const F32x8 across = x == x_begin ? first_across : depthAcross8(t, x);
+      depthTestRow8(key, rowDepth(t, y), across, x, covered, depth, keys);
     }
   }
 }
@@ -100,18 +134,24 @@ TESSERA_LANES_INLINE void rasterNarrow(const RasterTriangle& t, uint32_t key, Ti
   const I32x8 in_columns = lessOrEqual(column, splat(x_end - x_begin));
   const F32x8 centre_dx = toFloat(splat(x_begin) + column) + splat(0.5f) - splat(t.x0);
   const F32x8 dz = splat(t.dzdx) * centre_dx;
+  // rowDepth of each lane's row, lanes 4-7 one row down: the row centre y + 0.5 steps by 2,
+  // exactly (it stays below 2^23), so every lane computes what rowDepth does.
+  F32x8 centre_y = toFloat(splat(y_begin) + second_row) + splat(0.5f);
+  const F32x8 z0 = splat(t.z0), dzdy = splat(t.dzdy), y0 = splat(t.y0);
+  float* depth = depthRow(tile, y_begin) + x_begin;
+  uint32_t* keys = keyRow(tile, y_begin) + x_begin;
   for (int y = y_begin; y <= y_end; y += 2) {
     // Stepped at the top so no value beyond row y_end + 1 is formed (see rasterNarrow's caller).
-    if (y != y_begin)
+    if (y != y_begin) {
       for (int k = 0; k < 3; ++k) edge[k] = edge[k] + splat(step_y[k]);
+      centre_y = centre_y + splat(2.0f);
+      depth += 2 * kTileSize;
+      keys += 2 * kTileSize;
+    }
     const I32x8 rows = y < y_end ? splat(int32_t{-1}) : ~second_row;  // lanes 4-7: row y_end + 1
     const I32x8 covered = nonNegative(edge[0] | edge[1] | edge[2]) & in_columns & rows;
     if (!any(covered)) continue;
-    const float z0 = rowDepth(t, y), z1 = rowDepth(t, y + 1);
-    const F32x8 z_rows = select(second_row, splat(z1), splat(z0));
-    const F32x8 z = z_rows + dz;
-    float* depth = depthRow(tile, y) + x_begin;
-    uint32_t* keys = keyRow(tile, y) + x_begin;
+    const F32x8 z = (z0 + dzdy * (centre_y - y0)) + dz;
     const F32x8 stored = load2x4<F32x8>(depth, depth + kTileSize);
     const I32x8 pass = covered & lessThan(z, stored);
     store2x4(depth, depth + kTileSize, select(pass, z, stored));
