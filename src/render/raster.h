@@ -3,6 +3,7 @@
 // triangles arrive in submission order, so the result does not depend on the worker count).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 
@@ -15,7 +16,11 @@ namespace tessera::render {
 constexpr int kChunkKeyBits = 7;
 constexpr uint32_t kMaxChunks = 1u << kChunkKeyBits;
 constexpr int kLocalKeyBits = 32 - kChunkKeyBits;
-constexpr uint32_t kMaxTrianglesPerChunk = (1u << kLocalKeyBits) - 1;  // the all-ones key is empty
+// The all-ones key is empty; and a chunk's shading records stay within 2 GiB, so that the
+// shading kernel forms their byte offsets in int32 lanes (14 million records: a chunk is at most
+// 1/128 of the scene's triangles, plus the fans of clipped ones).
+constexpr uint32_t kMaxTrianglesPerChunk =
+    std::min<uint64_t>((1u << kLocalKeyBits) - 1, (uint64_t{1} << 31) / sizeof(ShadeTriangle));
 constexpr uint32_t kEmptyKey = 0xffffffffu;
 
 constexpr uint32_t makeKey(uint32_t chunk, uint32_t local) {

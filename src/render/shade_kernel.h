@@ -255,13 +255,18 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
       Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
       const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
       if (plain && any(covered & ~equal(keys, splat(static_cast<int32_t>(first))))) {
-        // Uncovered lanes borrow a covered lane's record; their result is not stored. The keys
-        // go through memory: eight scalar loads beat sixteen lane extracts.
-        alignas(32) uint32_t lane_keys[8];
-        store(lane_keys, select(covered, keys, splat(static_cast<int32_t>(first))));
+        // Uncovered lanes borrow a covered lane's record; their result is not stored. Chunks and
+        // byte offsets (below 2 GiB: kMaxTrianglesPerChunk) are formed in lanes, then read back
+        // one lane at a time.
+        const I32x8 owner = select(covered, keys, splat(static_cast<int32_t>(first)));
+        alignas(32) uint32_t lane_chunk[8], lane_offset[8];
+        store(lane_chunk, shiftRight(owner, kLocalKeyBits) & splat(int32_t{kMaxChunks - 1}));
+        store(lane_offset, (owner & splat(static_cast<int32_t>((1u << kLocalKeyBits) - 1))) *
+                               splat(static_cast<int32_t>(sizeof(ShadeTriangle))));
         const ShadeTriangle* lanes[8];
         for (int l = 0; l < 8; ++l)
-          lanes[l] = records[keyChunk(lane_keys[l])] + keyLocal(lane_keys[l]);
+          lanes[l] = reinterpret_cast<const ShadeTriangle*>(
+              reinterpret_cast<const char*>(records[lane_chunk[l]]) + lane_offset[l]);
         color = shadeMixed(lanes, px, py);
       } else {
         I32x8 todo = covered;
