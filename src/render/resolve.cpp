@@ -12,6 +12,65 @@
 
 namespace tessera::render {
 
+namespace {
+
+// Fills n pixels with `value`, bypassing the cache where the row is long: nothing reads the
+// background back before the frame is done.
+void fillRow(uint32_t* out, size_t n, uint32_t value) {
+#if defined(__SSE2__)
+  // 16-byte streaming stores, four a turn; the frame's rows are 16-byte aligned for any even
+  // width, so the scalar ends are usually empty.
+  size_t i = 0;
+  while (i < n && (reinterpret_cast<uintptr_t>(out + i) & 15) != 0) out[i++] = value;
+  const __m128i v = _mm_set1_epi32(static_cast<int>(value));
+  for (; i + 16 <= n; i += 16) {
+    __m128i* line = reinterpret_cast<__m128i*>(out + i);
+    _mm_stream_si128(line, v);
+    _mm_stream_si128(line + 1, v);
+    _mm_stream_si128(line + 2, v);
+    _mm_stream_si128(line + 3, v);
+  }
+  for (; i + 4 <= n; i += 4) _mm_stream_si128(reinterpret_cast<__m128i*>(out + i), v);
+  for (; i < n; ++i) out[i] = value;
+#else
+  std::fill_n(out, n, value);
+#endif
+}
+
+// Copies n pixels the same way: the frame is not read back while it is drawn.
+void copyRow(uint32_t* out, const uint32_t* in, size_t n) {
+#if defined(__SSE2__)
+  size_t i = 0;
+  while (i < n && (reinterpret_cast<uintptr_t>(out + i) & 15) != 0) {
+    out[i] = in[i];
+    ++i;
+  }
+  for (; i + 16 <= n; i += 16) {
+    __m128i* line = reinterpret_cast<__m128i*>(out + i);
+    const __m128i* from = reinterpret_cast<const __m128i*>(in + i);
+    _mm_stream_si128(line, _mm_loadu_si128(from));
+    _mm_stream_si128(line + 1, _mm_loadu_si128(from + 1));
+    _mm_stream_si128(line + 2, _mm_loadu_si128(from + 2));
+    _mm_stream_si128(line + 3, _mm_loadu_si128(from + 3));
+  }
+  for (; i + 4 <= n; i += 4)
+    _mm_stream_si128(reinterpret_cast<__m128i*>(out + i),
+                     _mm_loadu_si128(reinterpret_cast<const __m128i*>(in + i)));
+  for (; i < n; ++i) out[i] = in[i];
+#else
+  std::memcpy(out, in, n * sizeof(uint32_t));
+#endif
+}
+
+// The streamed stores are visible before the pool hands the frame back.
+void fenceStreams() {
+#if defined(__SSE2__)
+  _mm_sfence();
+#endif
+}
+
+}  // namespace
+
 void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
                  const std::vector<TriangleChunk>& chunks, Frame& frame) {
   const bool depth = !frame.depth.empty(), ids = !frame.triangle_id.empty(),
@@ -19,7 +78,7 @@ void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
   for (int ty = 0; ty < tile.height; ++ty) {
     const size_t row = static_cast<size_t>(tile.y0 + ty) * frame.width + tile.x0;
     const int t0 = ty * kTileSize;
-    std::memcpy(&frame.color[row], &shaded.rgba[t0], sizeof(uint32_t) * tile.width);
+    copyRow(&frame.color[row], &shaded.rgba[t0], static_cast<size_t>(tile.width));
     if (depth) std::memcpy(&frame.depth[row], &tile.depth[t0], sizeof(float) * tile.width);
     if (ids) {
       for (int tx = 0; tx < tile.width; ++tx) {
@@ -37,32 +96,8 @@ void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
                                               shaded.normal_z[t0 + tx]};
     }
   }
+  fenceStreams();
 }
-
-namespace {
-
-// Fills n pixels with `value`, bypassing the cache where the row is long: nothing reads the
-// background back before the frame is done.
-void fillRow(uint32_t* out, size_t n, uint32_t value) {
-#if defined(__SSE2__)
-  // Whole cache lines streamed (four 16-byte stores each), the ends stored plainly.
-  size_t i = 0;
-  while (i < n && (reinterpret_cast<uintptr_t>(out + i) & 63) != 0) out[i++] = value;
-  const __m128i v = _mm_set1_epi32(static_cast<int>(value));
-  for (; i + 16 <= n; i += 16) {
-    __m128i* line = reinterpret_cast<__m128i*>(out + i);
-    _mm_stream_si128(line, v);
-    _mm_stream_si128(line + 1, v);
-    _mm_stream_si128(line + 2, v);
-    _mm_stream_si128(line + 3, v);
-  }
-  for (; i < n; ++i) out[i] = value;
-#else
-  std::fill_n(out, n, value);
-#endif
-}
-
-}  // namespace
 
 void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background, Frame& frame) {
   const bool depth = !frame.depth.empty(), ids = !frame.triangle_id.empty(),
@@ -74,9 +109,7 @@ void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background
     if (ids) std::fill_n(&frame.triangle_id[row], width, kNoTriangle);
     if (normals) std::fill_n(&frame.normal[row], width, float3{});
   }
-#if defined(__SSE2__)
-  _mm_sfence();  // the streamed stores are visible before the pool hands the frame back
-#endif
+  fenceStreams();
 }
 
 }  // namespace tessera::render
