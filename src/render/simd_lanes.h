@@ -595,16 +595,37 @@ TESSERA_LANES_INLINE F32x8 toFloat(F64x8 a) {
 }
 // Eight 64-bit lanes as sixteen 32-bit ones: lane l's low half is element 2l, its high half 2l+1.
 typedef int32_t I32x16 __attribute__((vector_size(64)));
-// Shuffles, not __builtin_convertvector: GCC narrows 64-bit lanes to 32 one lane at a time.
+// Shuffles, not __builtin_convertvector (GCC narrows 64-bit lanes to 32 one lane at a time), and
+// of native-width pieces (a 64-byte shuffle goes through memory, one element at a time).
+typedef int32_t I32x4 __attribute__((vector_size(16)));
+template <int kOdd>
+TESSERA_LANES_INLINE I32x8 pickHalves(I32x16 a) {
+#if defined(__AVX__)
+  // Halves taken as 64-bit elements (an I32x16 shuffle goes through memory too).
+  typedef int64_t I64x4 __attribute__((vector_size(32)));
+  const I64x8 wide = reinterpret_cast<I64x8>(a);
+  const I32x8 lo = reinterpret_cast<I32x8>(I64x4(__builtin_shufflevector(wide, wide, 0, 1, 2, 3)));
+  const I32x8 hi = reinterpret_cast<I32x8>(I64x4(__builtin_shufflevector(wide, wide, 4, 5, 6, 7)));
+  return __builtin_shufflevector(lo, hi, kOdd, kOdd + 2, kOdd + 4, kOdd + 6, kOdd + 8, kOdd + 10,
+                                 kOdd + 12, kOdd + 14);
+#else
+  const I32x4 q0 = __builtin_shufflevector(a, a, 0, 1, 2, 3);
+  const I32x4 q1 = __builtin_shufflevector(a, a, 4, 5, 6, 7);
+  const I32x4 q2 = __builtin_shufflevector(a, a, 8, 9, 10, 11);
+  const I32x4 q3 = __builtin_shufflevector(a, a, 12, 13, 14, 15);
+  const I32x4 h0 = __builtin_shufflevector(q0, q1, kOdd, kOdd + 2, kOdd + 4, kOdd + 6);
+  const I32x4 h1 = __builtin_shufflevector(q2, q3, kOdd, kOdd + 2, kOdd + 4, kOdd + 6);
+  return __builtin_shufflevector(h0, h1, 0, 1, 2, 3, 4, 5, 6, 7);
+#endif
+}
 TESSERA_LANES_INLINE I32x8 evenHalves(I32x16 a) {
-  return __builtin_shufflevector(a, a, 0, 2, 4, 6, 8, 10, 12, 14);
+  return pickHalves<0>(a);
 }
 TESSERA_LANES_INLINE I32x8 oddHalves(I32x16 a) {
-  return __builtin_shufflevector(a, a, 1, 3, 5, 7, 9, 11, 13, 15);
+  return pickHalves<1>(a);
 }
 // Compared a quarter or a half at a time: GCC compares wider-than-native vectors lane by lane.
 typedef double F64x2 __attribute__((vector_size(16)));
-typedef int32_t I32x4 __attribute__((vector_size(16)));
 TESSERA_LANES_INLINE I32x8 lessThan(F64x8 a, F64x8 b) {
   // Each 64-bit mask is all ones or zero: its low half will do.
   auto quarter = [&](auto i) {
