@@ -227,8 +227,8 @@ TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F3
           f[11] * b0 + f[14] * b1 + f[17] * b2};
 }
 
-// Shades the tile in pixel order, eight pixels of a row at a time, then encodes them to sRGB and
-// stores them whole (no read-modify-write of partly written pixels). Eight pixels of one triangle
+// Shades the tile in pixel order, eight pixels of a row at a time, then encodes the row to sRGB
+// and stores it whole (no read-modify-write of partly written pixels). Eight pixels of one triangle
 // take one evaluation; those of several are shaded lane by lane from their own records when every
 // triangle is plain (`plain`: untextured, not Phong, no normal AOV), else each triangle is
 // evaluated once for the eight and the results merged in registers.
@@ -241,16 +241,17 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
   const I32x8 fill = splat(static_cast<int32_t>(background));
   const I32x8 opaque = splat(static_cast<int32_t>(0xff000000u));
   const F32x8 zero = splat(0.0f);
+  // A row's colours in linear light, encoded once the row is shaded: the encode is a long chain
+  // of dependent operations, and eight groups of it side by side keep the core busy where one
+  // after each group's shading left it waiting.
+  alignas(32) float linear[3][kTileSize];
   for (int ty = 0; ty < tile.height; ++ty) {
     const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
     for (int tx = 0; tx < tile.width; tx += 8) {
       const int i = ty * kTileSize + tx;
       const I32x8 keys = load<I32x8>(tile.key + i);
       const I32x8 covered = ~equal(keys, empty);
-      if (!any(covered)) {
-        store(out.rgba + i, fill);
-        continue;
-      }
+      if (!any(covered)) continue;
       const F32x8 px = toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f);
       Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
       const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
@@ -278,14 +279,26 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
           todo = todo & ~mask;
         } while (any(todo));
       }
-      const I32x8 rgba = encodeSrgb8x8(color.x) | shiftLeft(encodeSrgb8x8(color.y), 8) |
-                         shiftLeft(encodeSrgb8x8(color.z), 16) | opaque;
-      store(out.rgba + i, select(covered, rgba, fill));
+      store(linear[0] + tx, color.x);
+      store(linear[1] + tx, color.y);
+      store(linear[2] + tx, color.z);
       if (want_normals) {
         store(out.normal_x + i, normal.x);
         store(out.normal_y + i, normal.y);
         store(out.normal_z + i, normal.z);
       }
+    }
+    for (int tx = 0; tx < tile.width; tx += 8) {
+      const int i = ty * kTileSize + tx;
+      const I32x8 covered = ~equal(load<I32x8>(tile.key + i), empty);
+      if (!any(covered)) {
+        store(out.rgba + i, fill);
+        continue;
+      }
+      const I32x8 rgba = encodeSrgb8x8(load<F32x8>(linear[0] + tx)) |
+                         shiftLeft(encodeSrgb8x8(load<F32x8>(linear[1] + tx)), 8) |
+                         shiftLeft(encodeSrgb8x8(load<F32x8>(linear[2] + tx)), 16) | opaque;
+      store(out.rgba + i, select(covered, rgba, fill));
     }
   }
 }
