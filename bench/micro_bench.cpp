@@ -201,7 +201,6 @@ const StageInput* stageInput() {
     chunk.bins.reset(in->grid.tileCount());
     for (size_t i = 0; i < chunk.size; ++i)
       chunk.bins.add(in->grid, chunk.raster[i], static_cast<uint32_t>(i));
-    chunk.bins.finish();
     return in;
   }();
   return input.get();
@@ -309,7 +308,6 @@ void BM_BinTriangles(benchmark::State& state) {
     bins.reset(in.grid.tileCount());
     for (size_t i = 0; i < chunk.size; ++i)
       bins.add(in.grid, chunk.raster[i], static_cast<uint32_t>(i));
-    bins.finish();
     benchmark::DoNotOptimize(bins.count(0));
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(chunk.size));

@@ -36,32 +36,25 @@ class ChunkBins {
     const int tx0 = box.min_x >> kTileSizeLog2, tx1 = box.max_x >> kTileSizeLog2;
     const int ty0 = box.min_y >> kTileSizeLog2, ty1 = box.max_y >> kTileSizeLog2;
     if (tx0 == tx1 && ty0 == ty1) {
-      const uint32_t tile = static_cast<uint32_t>(ty0 * grid.columns + tx0);
-      entries_.push_back({tile, local_index});
-      ++counts_[tile];
+      tiles_[static_cast<size_t>(ty0 * grid.columns + tx0)].push_back(local_index);
       return;
     }
     addToTiles(grid, tx0, ty0, tx1, ty1, local_index);
   }
-  // Groups the entries by tile, keeping their order within each tile. Call once after the adds.
-  void finish();
-
   // The triangles of `tile`, in the order they were added.
-  const uint32_t* begin(int tile) const { return sorted_.data() + offsets_[tile]; }
-  const uint32_t* end(int tile) const { return sorted_.data() + offsets_[tile + 1]; }
-  size_t count(int tile) const { return offsets_[tile + 1] - offsets_[tile]; }
+  const uint32_t* begin(int tile) const { return tiles_[static_cast<size_t>(tile)].data(); }
+  const uint32_t* end(int tile) const {
+    const std::vector<uint32_t>& list = tiles_[static_cast<size_t>(tile)];
+    return list.data() + list.size();
+  }
+  size_t count(int tile) const { return tiles_[static_cast<size_t>(tile)].size(); }
 
  private:
-  struct Entry {
-    uint32_t tile;
-    uint32_t triangle;
-  };
   // Adds the triangle to tiles [tx0, tx1] x [ty0, ty1].
   void addToTiles(const TileGrid& grid, int tx0, int ty0, int tx1, int ty1, uint32_t local_index);
-  std::vector<Entry> entries_;
-  std::vector<uint32_t> counts_;
-  std::vector<uint32_t> offsets_;  // tile_count + 1
-  std::vector<uint32_t> sorted_;
+  // One list per tile: they keep their capacity from frame to frame, so a frame after warm-up
+  // allocates nothing.
+  std::vector<std::vector<uint32_t>> tiles_;
 };
 
 }  // namespace tessera::render

@@ -330,7 +330,6 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
     }
   }
   flush();
-  chunk.bins.finish();
 }
 
 void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
