@@ -38,7 +38,6 @@ namespace {
 constexpr size_t kVerticesPerJob =
     4096;  // the bunny's 35k vertices: 9 jobs, balanced over 2 workers
 constexpr size_t kMinTrianglesPerChunk = 4096;
-constexpr size_t kSetupPrefetchGroups = 2;  // groups of eight triangles ahead
 
 struct VertexJob {
   uint32_t object;
@@ -293,25 +292,6 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
                       grid.width, grid.height, object.cull, group)) {
         drawOne(t++);
         continue;
-      }
-      // The vertices of the group after next: meshes index them all over, and waiting for them
-      // was most of setup's time (perf: the screen position loads, then the Gouraud corners'
-      // lighting). Indices past the mesh are clamped.
-      // Addresses as integers: a prefetch never faults, so indices past the mesh (dropped when
-      // their group comes) need no check here.
-      if (stop - t >= kGroup * (kSetupPrefetchGroups + 1)) {
-        const uint32_t* ahead = &mesh.indices[(local + kGroup * kSetupPrefetchGroups) * 3];
-        const uintptr_t screen = reinterpret_cast<uintptr_t>(mesh_vertices.screen);
-#pragma GCC unroll 24
-        for (size_t k = 0; k < kGroup * 3; ++k)
-          __builtin_prefetch(
-              reinterpret_cast<const void*>(screen + ahead[k] * sizeof(ScreenVertex)));
-        if (mesh_vertices.lit) {
-          const uintptr_t lit = reinterpret_cast<uintptr_t>(mesh_vertices.lit);
-#pragma GCC unroll 24
-          for (size_t k = 0; k < kGroup * 3; ++k)
-            __builtin_prefetch(reinterpret_cast<const void*>(lit + ahead[k] * sizeof(float3)));
-        }
       }
       for (size_t l = 0; l < kGroup; ++l) {
         if (group.kind[l] == CullGroup::kCulled) {
