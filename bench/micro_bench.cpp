@@ -190,10 +190,12 @@ const StageInput* stageInput() {
       render::TriangleOrientation o;
       if (!render::setupRaster(in->context, v, r, o)) continue;
       render::ShadeTriangle shade;
+      render::ShadeExtras extras;
       const float3 face = in->transforms.normal_matrix * cross(p[1] - p[0], p[2] - p[0]);
-      render::setupShade(in->context, v, a, o, r, face, static_cast<uint32_t>(t), 0, shade);
+      render::setupShade(in->context, v, a, o, r, face, static_cast<uint32_t>(t), 0, shade, extras);
       chunk.raster.push_back(r);
       chunk.shade.push_back(shade);
+      chunk.extras.push_back(extras);
       in->orientation.push_back(o);
       in->triangle.push_back(t);
     }
@@ -244,6 +246,7 @@ void BM_SetupShade(benchmark::State& state) {
   const Mesh& mesh = *in.scene.scene.objects[0].mesh;
   const render::TriangleChunk& chunk = in.chunks[0];
   std::vector<render::ShadeTriangle> out(chunk.size);
+  std::vector<render::ShadeExtras> out_extras(chunk.size);
   for (auto _ : state) {
     for (size_t i = 0; i < chunk.size; ++i) {
       const size_t t = in.triangle[i];
@@ -258,7 +261,7 @@ void BM_SetupShade(benchmark::State& state) {
       }
       const float3 face = in.transforms.normal_matrix * cross(p[1] - p[0], p[2] - p[0]);
       render::setupShade(in.context, v, a, in.orientation[i], chunk.raster[i], face,
-                         static_cast<uint32_t>(t), 0, out[i]);
+                         static_cast<uint32_t>(t), 0, out[i], out_extras[i]);
     }
     benchmark::DoNotOptimize(out.data());
   }

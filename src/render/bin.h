@@ -70,6 +70,7 @@ struct TriangleChunk {
   size_t size = 0;
   std::vector<RasterTriangle> raster;
   std::vector<ShadeTriangle> shade;
+  std::vector<ShadeExtras> extras;  // beside shade, written only where the shading reads them
   ChunkBins bins;
   size_t culled = 0;
   size_t clipped = 0;

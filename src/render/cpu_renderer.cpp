@@ -138,6 +138,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
     if (local == chunk.raster.size()) {
       chunk.raster.emplace_back();
       chunk.shade.emplace_back();
+      chunk.extras.emplace_back();
     }
     return local;
   };
@@ -209,7 +210,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
       if (!plainGouraudCorners(ctx, mesh_vertices, idx, orientation, id, material(local),
                                chunk.shade[record]))
         setupShadeCorners(ctx, mesh_vertices, idx, orientation, face_normal(idx), id,
-                          material(local), chunk.shade[record]);
+                          material(local), chunk.shade[record], chunk.extras[record]);
       batch.push(mesh_vertices.screen[idx[0]], mesh_vertices.screen[idx[1]],
                  mesh_vertices.screen[idx[2]], area, record);
       if (batch.full()) flush();
@@ -241,7 +242,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
                                        {fan[1]->normal, fan[1]->uv, fan[1]->color, false},
                                        {fan[2]->normal, fan[2]->uv, fan[2]->color, false}};
         setupShade(ctx, sv, a, orientation, raster, face_normal(idx), id, material(local),
-                   chunk.shade[record]);
+                   chunk.shade[record], chunk.extras[record]);
         chunk.bins.add(grid, raster, record);
         any = true;
       }

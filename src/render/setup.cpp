@@ -126,7 +126,8 @@ inline __attribute__((always_inline)) void setupShadePlanes(const Corners& corne
 template <typename Corners>
 inline __attribute__((always_inline)) void setupShadeCornersFrom(
     const SetupContext& ctx, const Corners& corners, const TriangleOrientation& o,
-    float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade) {
+    float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade,
+    ShadeExtras& extras) {
   const Material& m = ctx.object->materials[material < ctx.object->materials.size() ? material : 0];
   const float3 base = m.base_color.xyz();
   // Back faces that are drawn are lit from the viewer's side (two-sided lighting).
@@ -149,7 +150,7 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
       const float3 n = flatNormal();
       const float3 e = irradiance(*ctx.scene, n);
       for (int k = 0; k < 3; ++k) {
-        if (ctx.want_normals) shade.normal[k] = n;
+        if (ctx.want_normals) extras.normal[k] = n;
         shade.color[k] = albedo(o.order[k]) * e;
       }
       break;
@@ -161,11 +162,11 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
         // vertex stage's irradiance is its irradiance; NaN there marks a zero normal.
         const float3* lit = o.back_facing ? nullptr : corners.lit(i);
         if (lit && !std::isnan(lit->x)) {
-          if (ctx.want_normals) shade.normal[k] = vertexNormal(i);
+          if (ctx.want_normals) extras.normal[k] = vertexNormal(i);
           shade.color[k] = albedo(i) * *lit;
         } else {
           const float3 n = vertexNormal(i);
-          if (ctx.want_normals) shade.normal[k] = n;
+          if (ctx.want_normals) extras.normal[k] = n;
           shade.color[k] = albedo(i) * irradiance(*ctx.scene, n);
         }
       }
@@ -175,13 +176,13 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
       // The albedo, lit per pixel (Phong) or not at all.
       for (int k = 0; k < 3; ++k) {
         const int i = o.order[k];
-        if (ctx.shading == Shading::kPhong || ctx.want_normals) shade.normal[k] = vertexNormal(i);
+        if (ctx.shading == Shading::kPhong || ctx.want_normals) extras.normal[k] = vertexNormal(i);
         shade.color[k] = albedo(i);
       }
       break;
   }
   if (ctx.has_uv)
-    for (int k = 0; k < 3; ++k) shade.uv[k] = corners.uv(o.order[k]);
+    for (int k = 0; k < 3; ++k) extras.uv[k] = corners.uv(o.order[k]);
   shade.material = &m;
   shade.triangle_id = triangle_id;
   shade.shading = ctx.shading;
@@ -192,25 +193,28 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
 
 void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAttributes a[3],
                 const TriangleOrientation& o, const RasterTriangle& raster, float3 face_normal,
-                uint32_t triangle_id, uint16_t material, ShadeTriangle& shade) {
+                uint32_t triangle_id, uint16_t material, ShadeTriangle& shade,
+                ShadeExtras& extras) {
   const ClippedCorners corners{v, a};
   setupShadePlanes(corners, o, raster, shade);
-  setupShadeCornersFrom(ctx, corners, o, face_normal, triangle_id, material, shade);
+  setupShadeCornersFrom(ctx, corners, o, face_normal, triangle_id, material, shade, extras);
 }
 
 void setupShade(const SetupContext& ctx, const MeshVertices& vertices, const uint32_t index[3],
                 const TriangleOrientation& o, const RasterTriangle& raster, float3 face_normal,
-                uint32_t triangle_id, uint16_t material, ShadeTriangle& shade) {
+                uint32_t triangle_id, uint16_t material, ShadeTriangle& shade,
+                ShadeExtras& extras) {
   const MeshCorners corners{vertices, index};
   setupShadePlanes(corners, o, raster, shade);
-  setupShadeCornersFrom(ctx, corners, o, face_normal, triangle_id, material, shade);
+  setupShadeCornersFrom(ctx, corners, o, face_normal, triangle_id, material, shade, extras);
 }
 
 void setupShadeCorners(const SetupContext& ctx, const MeshVertices& vertices,
                        const uint32_t index[3], const TriangleOrientation& o, float3 face_normal,
-                       uint32_t triangle_id, uint16_t material, ShadeTriangle& shade) {
+                       uint32_t triangle_id, uint16_t material, ShadeTriangle& shade,
+                       ShadeExtras& extras) {
   setupShadeCornersFrom(ctx, MeshCorners{vertices, index}, o, face_normal, triangle_id, material,
-                        shade);
+                        shade, extras);
 }
 
 }  // namespace tessera::render

@@ -66,6 +66,11 @@ struct ShadeTriangle {
   // Per-vertex colour, interpolated: base colour x vertex colour, already lit for flat (the
   // face's irradiance) and Gouraud (each vertex's); Phong multiplies by the per-pixel lighting.
   float3 color[3];
+};
+
+// What only Phong, textured and normal-AOV pixels read, in an array beside the ShadeTriangles:
+// records of untextured flat and Gouraud triangles stay 88 bytes, written and read whole.
+struct ShadeExtras {
   float3 normal[3];  // world shading normals, facing the viewer for drawn back faces
   float2 uv[3];
 };
@@ -176,18 +181,21 @@ struct MeshVertices {
 // zero when the caller knows it is not needed. Vertices are given in input order.
 void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAttributes a[3],
                 const TriangleOrientation& orientation, const RasterTriangle& raster,
-                float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade);
+                float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade,
+                ShadeExtras& extras);
 // The same for an unclipped triangle: its vertices are mesh vertices index[0..2].
 void setupShade(const SetupContext& ctx, const MeshVertices& vertices, const uint32_t index[3],
                 const TriangleOrientation& orientation, const RasterTriangle& raster,
-                float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade);
+                float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade,
+                ShadeExtras& extras);
 
 // The per-corner half of setupShade for an unclipped triangle (material, id, colours, normals,
 // UVs: everything but the barycentric planes x0 .. sdy, which setupBatch computes eight triangles
 // at a time). Reads only o.order and o.back_facing.
 void setupShadeCorners(const SetupContext& ctx, const MeshVertices& vertices,
                        const uint32_t index[3], const TriangleOrientation& o, float3 face_normal,
-                       uint32_t triangle_id, uint16_t material, ShadeTriangle& shade);
+                       uint32_t triangle_id, uint16_t material, ShadeTriangle& shade,
+                       ShadeExtras& extras);
 
 // setupShadeCorners' most common case, inline: a Gouraud triangle facing the viewer, lit in the
 // vertex stage, without vertex colours, UVs or the normal AOV: each corner's colour is the base

@@ -15,21 +15,22 @@ Barycentrics barycentricsAt(const ShadeTriangle& t, float x, float y) {
 
 namespace {
 
-float2 uvAt(const ShadeTriangle& t, const Barycentrics& b) {
-  return t.uv[0] * b.b0 + t.uv[1] * b.b1 + t.uv[2] * b.b2;
+float2 uvAt(const ShadeExtras& e, const Barycentrics& b) {
+  return e.uv[0] * b.b0 + e.uv[1] * b.b1 + e.uv[2] * b.b2;
 }
 
 }  // namespace
 
-float3 sampleAlbedo(const ShadeTriangle& t, const Barycentrics& b, float x, float y) {
+float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Barycentrics& b,
+                    float x, float y) {
   const Texture& texture = *t.material->albedo;
   const Sampler& sampler = t.material->sampler;
-  const float2 uv = uvAt(t, b);
+  const float2 uv = uvAt(extras, b);
   if (sampler.filter != TextureFilter::kTrilinear || texture.mips.empty())
     return texture.sample(uv, sampler).xyz();
   const float2 size{static_cast<float>(texture.width), static_cast<float>(texture.height)};
-  const float2 du = uvAt(t, barycentricsAt(t, x + 1.0f, y)) - uv;
-  const float2 dv = uvAt(t, barycentricsAt(t, x, y + 1.0f)) - uv;
+  const float2 du = uvAt(extras, barycentricsAt(t, x + 1.0f, y)) - uv;
+  const float2 dv = uvAt(extras, barycentricsAt(t, x, y + 1.0f)) - uv;
   const float2 dx{du.x * size.x, du.y * size.y}, dy{dv.x * size.x, dv.y * size.y};
   const float rho2 = std::max(dx.x * dx.x + dx.y * dx.y, dy.x * dy.x + dy.y * dy.y);
   const float lod = rho2 > 0.0f ? 0.5f * std::log2(rho2) : 0.0f;

@@ -35,7 +35,8 @@ Barycentrics barycentricsAt(const ShadeTriangle& t, float x, float y);
 
 // The albedo texture of `t` at window point (x, y), with barycentrics b there. Trilinear
 // filtering takes its level of detail from the UVs at the next pixel centres right and down.
-float3 sampleAlbedo(const ShadeTriangle& t, const Barycentrics& b, float x, float y);
+float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Barycentrics& b,
+                    float x, float y);
 
 // True when every pixel's colour is its triangle's interpolated vertex colours: no object is
 // textured or Phong-shaded and the normal AOV is not asked for.

@@ -84,8 +84,8 @@ TESSERA_LANES_INLINE F32x8 decodeChannel(I32x8 texels, int shift, bool srgb, con
 // texel positions within one texture width or height of the texture (what repeat wraps without a
 // division). False, with nothing computed, when a lane falls outside that: the caller samples lane
 // by lane.
-TESSERA_LANES_INLINE bool sampleBilinear8(const ShadeTriangle& t, I32x8 mask, F32x8 b0, F32x8 b1,
-                                          F32x8 b2, Vec3x8& albedo) {
+TESSERA_LANES_INLINE bool sampleBilinear8(const ShadeTriangle& t, const ShadeExtras& e, I32x8 mask,
+                                          F32x8 b0, F32x8 b1, F32x8 b2, Vec3x8& albedo) {
   const Material& m = *t.material;
   const Texture& texture = *m.albedo;
   const bool bilinear = m.sampler.filter == TextureFilter::kBilinear ||
@@ -96,9 +96,9 @@ TESSERA_LANES_INLINE bool sampleBilinear8(const ShadeTriangle& t, I32x8 mask, F3
   if (!bilinear || texture.width <= 0 || texture.height <= 0 || texture.width > kMaxSide ||
       texture.height > kMaxSide)
     return false;
-  // uvAt: t.uv[0] * b0 + t.uv[1] * b1 + t.uv[2] * b2.
-  const F32x8 u = splat(t.uv[0].x) * b0 + splat(t.uv[1].x) * b1 + splat(t.uv[2].x) * b2;
-  const F32x8 v = splat(t.uv[0].y) * b0 + splat(t.uv[1].y) * b1 + splat(t.uv[2].y) * b2;
+  // uvAt: e.uv[0] * b0 + e.uv[1] * b1 + e.uv[2] * b2.
+  const F32x8 u = splat(e.uv[0].x) * b0 + splat(e.uv[1].x) * b1 + splat(e.uv[2].x) * b2;
+  const F32x8 v = splat(e.uv[0].y) * b0 + splat(e.uv[1].y) * b1 + splat(e.uv[2].y) * b2;
   const F32x8 limit = splat(65536.0f), low = splat(-65536.0f);
   if (any(mask & ~(lessThan(u, limit) & lessThan(low, u) & lessThan(v, limit) & lessThan(low, v))))
     return false;
@@ -152,9 +152,9 @@ TESSERA_LANES_INLINE bool sampleBilinear8(const ShadeTriangle& t, I32x8 mask, F3
 
 // Shades the lanes of `mask` (pixel centres px, py) from triangle t, into `color` and, when
 // asked, `normal`; the other lanes keep what they hold.
-TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const Scene& scene, bool want_normals,
-                                     F32x8 px, float py, I32x8 mask, Vec3x8& color,
-                                     Vec3x8& normal) {
+TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const ShadeExtras& e,
+                                     const Scene& scene, bool want_normals, F32x8 px, float py,
+                                     I32x8 mask, Vec3x8& color, Vec3x8& normal) {
   // Barycentrics exactly as barycentricsAt.
   const F32x8 dx = px - splat(t.x0);
   const float dy = py - t.y0;
@@ -165,19 +165,19 @@ TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const Scene& scene,
 
   Vec3x8 c = interpolate(t.color, b0, b1, b2);
   Vec3x8 albedo;
-  if (t.has_uv && sampleBilinear8(t, mask, b0, b1, b2, albedo)) {
+  if (t.has_uv && sampleBilinear8(t, e, mask, b0, b1, b2, albedo)) {
     c = {c.x * albedo.x, c.y * albedo.y, c.z * albedo.z};
   } else if (t.has_uv) {
     for (int l = 0; l < 8; ++l) {
       if (!lane(mask, l)) continue;
-      const float3 a = sampleAlbedo(t, {lane(b0, l), lane(b1, l), lane(b2, l)}, lane(px, l), py);
+      const float3 a = sampleAlbedo(t, e, {lane(b0, l), lane(b1, l), lane(b2, l)}, lane(px, l), py);
       setLane(c.x, l, lane(c.x, l) * a.x);
       setLane(c.y, l, lane(c.y, l) * a.y);
       setLane(c.z, l, lane(c.z, l) * a.z);
     }
   }
   if (t.shading == Shading::kPhong || (want_normals && t.shading != Shading::kFlat)) {
-    const Vec3x8 n = normalize8(interpolate(t.normal, b0, b1, b2));
+    const Vec3x8 n = normalize8(interpolate(e.normal, b0, b1, b2));
     if (t.shading == Shading::kPhong) {
       const Vec3x8 e = irradiance8(scene, n);
       c = {c.x * e.x, c.y * e.y, c.z * e.z};
@@ -186,9 +186,9 @@ TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const Scene& scene,
       normal = {select(mask, n.x, normal.x), select(mask, n.y, normal.y),
                 select(mask, n.z, normal.z)};
   } else if (want_normals) {
-    normal = {select(mask, splat(t.normal[0].x), normal.x),
-              select(mask, splat(t.normal[0].y), normal.y),
-              select(mask, splat(t.normal[0].z), normal.z)};
+    normal = {select(mask, splat(e.normal[0].x), normal.x),
+              select(mask, splat(e.normal[0].y), normal.y),
+              select(mask, splat(e.normal[0].z), normal.z)};
   }
   color = {select(mask, c.x, color.x), select(mask, c.y, color.y), select(mask, c.z, color.z)};
 }
@@ -236,7 +236,11 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
                      size_t chunk_count, const Scene& scene, bool want_normals, bool plain,
                      uint32_t background, ShadedTile& out) {
   const ShadeTriangle* records[kMaxChunks];
-  for (size_t c = 0; c < chunk_count; ++c) records[c] = chunks[c].shade.data();
+  const ShadeExtras* extras[kMaxChunks];
+  for (size_t c = 0; c < chunk_count; ++c) {
+    records[c] = chunks[c].shade.data();
+    extras[c] = chunks[c].extras.data();
+  }
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const I32x8 fill = splat(static_cast<int32_t>(background));
   const I32x8 opaque = splat(static_cast<int32_t>(0xff000000u));
@@ -275,7 +279,8 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
           const uint32_t key = static_cast<uint32_t>(lane(keys, firstLane(todo)));
           const I32x8 mask = equal(keys, splat(static_cast<int32_t>(key)));
           const ShadeTriangle& t = records[keyChunk(key)][keyLocal(key)];
-          shadeLanes(t, scene, want_normals, px, py, mask, color, normal);
+          const ShadeExtras& e = extras[keyChunk(key)][keyLocal(key)];
+          shadeLanes(t, e, scene, want_normals, px, py, mask, color, normal);
           todo = todo & ~mask;
         } while (any(todo));
       }
