@@ -185,6 +185,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         litPerVertex(object) ? vertices.lit.data() + xf.vertex_base : nullptr,
         has_uv ? mesh.uvs.data() : nullptr, has_color ? mesh.colors.data() : nullptr};
     const uint16_t* outcodes = vertices.outcode.data() + xf.vertex_base;
+    const PlainGouraud plain_gouraud = plainGouraudFor(ctx, mesh_vertices, has_materials);
 
     // Read only for the triangles that survive the cull.
     auto material = [&](size_t local) {
@@ -207,8 +208,8 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
       ++chunk.size;
       chunk.bins.add(grid, box, record);
       orient(area, orientation);
-      if (!plainGouraudCorners(ctx, mesh_vertices, idx, orientation, id, material(local),
-                               chunk.shade[record]))
+      if (!plainGouraudCorners(ctx, plain_gouraud, mesh_vertices, idx, orientation, id,
+                               material(local), chunk.shade[record]))
         setupShadeCorners(ctx, mesh_vertices, idx, orientation, face_normal(idx), id,
                           material(local), chunk.shade[record], chunk.extras[record]);
       batch.push(mesh_vertices.screen[idx[0]], mesh_vertices.screen[idx[1]],

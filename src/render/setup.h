@@ -197,22 +197,40 @@ void setupShadeCorners(const SetupContext& ctx, const MeshVertices& vertices,
                        uint32_t triangle_id, uint16_t material, ShadeTriangle& shade,
                        ShadeExtras& extras);
 
-// setupShadeCorners' most common case, inline: a Gouraud triangle facing the viewer, lit in the
-// vertex stage, without vertex colours, UVs or the normal AOV: each corner's colour is the base
-// colour times the vertex's irradiance (the same product setupShadeCorners forms). False, with
-// nothing written, in any other case (a zero normal's NaN included): call setupShadeCorners.
-inline bool plainGouraudCorners(const SetupContext& ctx, const MeshVertices& vertices,
-                                const uint32_t index[3], const TriangleOrientation& o,
-                                uint32_t triangle_id, uint16_t material, ShadeTriangle& shade) {
-  if (ctx.shading != Shading::kGouraud || o.back_facing || !vertices.lit || ctx.has_color ||
-      ctx.has_uv || ctx.want_normals)
-    return false;
-  const float3& l0 = vertices.lit[index[o.order[0]]];
-  const float3& l1 = vertices.lit[index[o.order[1]]];
-  const float3& l2 = vertices.lit[index[o.order[2]]];
+// Per object: whether plainGouraudCorners applies (Gouraud, lit in the vertex stage, no vertex
+// colours, UVs or normal AOV), and the material when one serves every triangle.
+struct PlainGouraud {
+  bool applies = false;
+  const Material* material = nullptr;  // null: per-triangle materials
+};
+
+inline PlainGouraud plainGouraudFor(const SetupContext& ctx, const MeshVertices& vertices,
+                                    bool per_triangle_materials) {
+  PlainGouraud plain;
+  plain.applies = ctx.shading == Shading::kGouraud && vertices.lit && !ctx.has_color &&
+                  !ctx.has_uv && !ctx.want_normals;
+  if (!per_triangle_materials) plain.material = &ctx.object->materials[0];
+  return plain;
+}
+
+// setupShadeCorners' most common case, inline: a triangle of a PlainGouraud object facing the
+// viewer: each corner's colour is the base colour times the vertex's irradiance (the same
+// product setupShadeCorners forms). False, with nothing written, in any other case (a zero
+// normal's NaN included): call setupShadeCorners.
+inline bool plainGouraudCorners(const SetupContext& ctx, const PlainGouraud& plain,
+                                const MeshVertices& vertices, const uint32_t index[3],
+                                const TriangleOrientation& o, uint32_t triangle_id,
+                                uint16_t material, ShadeTriangle& shade) {
+  if (!plain.applies || o.back_facing) return false;
+  // Facing the viewer the signed area is negative (zero is culled), so orient took the corners
+  // in the order 0, 2, 1.
+  const float3& l0 = vertices.lit[index[0]];
+  const float3& l1 = vertices.lit[index[2]];
+  const float3& l2 = vertices.lit[index[1]];
   if (std::isnan(l0.x) || std::isnan(l1.x) || std::isnan(l2.x)) return false;
   const std::vector<Material>& materials = ctx.object->materials;
-  const Material& m = materials[material < materials.size() ? material : 0];
+  const Material& m =
+      plain.material ? *plain.material : materials[material < materials.size() ? material : 0];
   const float3 base = m.base_color.xyz();
   shade.color[0] = base * l0;
   shade.color[1] = base * l1;
