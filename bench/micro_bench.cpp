@@ -272,6 +272,34 @@ BENCHMARK(BM_SetupShade)->Unit(benchmark::kMicrosecond);
 bool skipUnsupported(benchmark::State& state, render::Isa isa);
 void isaArgs(benchmark::internal::Benchmark* b);
 
+// The cull at the head of setup, eight triangles at a time (setup_kernel.h: index range,
+// outcodes, area, facing, box), over every triangle of the mesh, per instruction set.
+void BM_CullGroups(benchmark::State& state) {
+  const auto isa = static_cast<render::Isa>(state.range(0));
+  if (skipUnsupported(state, isa)) return;
+  const StageInput& in = *stageInput();
+  const Mesh& mesh = *in.scene.scene.objects[0].mesh;
+  const render::Kernels kernels = render::kernelsFor(isa);
+  const size_t groups = mesh.triangleCount() / render::CullGroup::kLanes;
+  size_t visible = 0;
+  for (auto _ : state) {
+    visible = 0;
+    for (size_t g = 0; g < groups; ++g) {
+      render::CullGroup out;
+      kernels.cull_group(&mesh.indices[g * render::CullGroup::kLanes * 3], mesh.vertexCount(),
+                         in.vertices.screen.data(), in.vertices.outcode.data(), StageInput::kWidth,
+                         StageInput::kHeight, in.context.cull, out);
+      for (int l = 0; l < render::CullGroup::kLanes; ++l)
+        visible += out.kind[l] == render::CullGroup::kVisible;
+    }
+    benchmark::DoNotOptimize(visible);
+  }
+  state.SetLabel(render::isaName(isa));
+  state.counters["visible"] = static_cast<double>(visible);
+  state.SetItemsProcessed(state.iterations() *
+                          static_cast<int64_t>(groups * render::CullGroup::kLanes));
+}
+
 // The render's setup path for unclipped triangles: edges and planes eight triangles at a time
 // (setup_kernel.h), with the kernel compiled for one instruction set (the argument), for the
 // triangles setupRaster kept.
@@ -302,6 +330,7 @@ void BM_SetupBatch(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(count));
 }
 BENCHMARK(BM_SetupBatch)->Apply(isaArgs);
+BENCHMARK(BM_CullGroups)->Apply(isaArgs);
 
 void BM_BinTriangles(benchmark::State& state) {
   const StageInput& in = *stageInput();
