@@ -55,18 +55,19 @@ TESSERA_LANES_INLINE Vec3x8 irradiance8(const Scene& scene, const Vec3x8& n) {
 // Eight encodeSrgb8s (tessera/scene/color.h), the same operations lane by lane.
 TESSERA_LANES_INLINE I32x8 encodeSrgb8x8(F32x8 linear) {
   const F32x8 zero = splat(0.0f), one = splat(1.0f);
-  const F32x8 c = select(positive(linear), select(lessThan(linear, one), linear, one), zero);
+  // Clamped to [0, 1], NaN to 0: (x > 0 ? x : 0), then (< 1 ? : 1).
+  const F32x8 c = lowerOf(upperOf(linear, zero), one);
   const I32x8 bits = bitsOf(c);
   // Lanes on the linear segment compute the curve too (from c's exponent, which may be below
   // -9 there: the index is clamped to the table) and take the line.
   const I32x8 e9 = shiftRight(bits, 23) - splat(int32_t{127 - 9});
-  const I32x8 index = select(lessThan(splat(int32_t{0}), e9), e9, splat(int32_t{0}));
+  const I32x8 index = maximum(e9, splat(int32_t{0}));
   const F32x8 x = fromBits((bits & splat(int32_t{0x7fffff})) | splat(int32_t{0x3f800000})) - one;
   const float* k = SrgbEncode::kPoly;
   const F32x8 p =
       (((splat(k[4]) * x + splat(k[3])) * x + splat(k[2])) * x + splat(k[1])) * x + splat(k[0]);
   F32x8 curve = lookup16(SrgbEncode::kScale, index) * p - splat(SrgbEncode::kOffset);
-  curve = select(lessThan(curve, splat(255.0f)), curve, splat(255.0f));
+  curve = lowerOf(curve, splat(255.0f));
   const F32x8 code = select(lessThan(splat(SrgbEncode::kLinearEnd), c), curve,
                             c * splat(SrgbEncode::kLinearFactor));
   return truncate(code + splat(0.5f));

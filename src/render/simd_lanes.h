@@ -131,6 +131,15 @@ TESSERA_LANES_INLINE F32x8 maximum(F32x8 a, F32x8 b) {
   for (int l = 0; l < 8; ++l) a.v[l] = a.v[l] < b.v[l] ? b.v[l] : a.v[l];
   return a;
 }
+// a < b ? a : b and a > b ? a : b lane by lane (the x86 min and max: a NaN in a gives b).
+TESSERA_LANES_INLINE F32x8 lowerOf(F32x8 a, F32x8 b) {
+  for (int l = 0; l < 8; ++l) a.v[l] = a.v[l] < b.v[l] ? a.v[l] : b.v[l];
+  return a;
+}
+TESSERA_LANES_INLINE F32x8 upperOf(F32x8 a, F32x8 b) {
+  for (int l = 0; l < 8; ++l) a.v[l] = a.v[l] > b.v[l] ? a.v[l] : b.v[l];
+  return a;
+}
 TESSERA_LANES_INLINE I32x8 bitsOf(F32x8 a) {
   I32x8 r;
   std::memcpy(&r, &a, sizeof r);
@@ -406,6 +415,24 @@ TESSERA_LANES_INLINE F32x8 squareRoot(F32x8 a) {
 }
 TESSERA_LANES_INLINE F32x8 maximum(F32x8 a, F32x8 b) {
   return a < b ? b : a;
+}
+// a < b ? a : b and a > b ? a : b lane by lane (the x86 min and max: a NaN in a gives b). One
+// instruction with AVX; GCC does not fold the compare and blend into it by itself.
+TESSERA_LANES_INLINE F32x8 lowerOf(F32x8 a, F32x8 b) {
+#if defined(__AVX__)
+  return reinterpret_cast<F32x8>(
+      _mm256_min_ps(reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b)));
+#else
+  return a < b ? a : b;
+#endif
+}
+TESSERA_LANES_INLINE F32x8 upperOf(F32x8 a, F32x8 b) {
+#if defined(__AVX__)
+  return reinterpret_cast<F32x8>(
+      _mm256_max_ps(reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b)));
+#else
+  return a > b ? a : b;
+#endif
 }
 TESSERA_LANES_INLINE I32x8 bitsOf(F32x8 a) {
   return reinterpret_cast<I32x8>(a);
