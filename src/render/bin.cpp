@@ -1,7 +1,5 @@
 #include "render/bin.h"
 
-#include <algorithm>
-
 namespace tessera::render {
 
 void ChunkBins::reset(int tile_count) {

@@ -24,16 +24,16 @@ namespace {  // one private copy per translation unit, each compiled for its ins
 constexpr int kLanes = 8;
 constexpr int kBlock = 8;
 
-// Depth-tests eight pixels starting at x: covered lanes nearer than the stored depth take z and
-// the key; the others write back what they read (the tile rows are padded, so the eight slots
-// always exist). z is the plane at the pixel centre, computed exactly as everywhere else.
 // The z plane's change from the row's value at the centres of pixels x .. x + 7.
 TESSERA_LANES_INLINE F32x8 depthAcross8(const RasterTriangle& t, int x) {
   const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
   return splat(t.dzdx) * (centre - splat(t.x0));
 }
 
-// depthTestRow8 with the row's depth and depthAcross8 at x given.
+// Depth-tests eight pixels starting at x: covered lanes nearer than the stored depth take z and
+// the key; the others write back what they read (the tile rows are padded, so the eight slots
+// always exist). z is the plane at the pixel centre, the row's depth plus depthAcross8 at x,
+// computed exactly as everywhere else.
 TESSERA_LANES_INLINE void depthTestRow8(uint32_t key, float z_row, F32x8 across, int x,
                                         I32x8 covered, float* depth, uint32_t* keys) {
   const F32x8 z = splat(z_row) + across;
@@ -45,11 +45,7 @@ TESSERA_LANES_INLINE void depthTestRow8(uint32_t key, float z_row, F32x8 across,
 
 TESSERA_LANES_INLINE void depthTestRow8(const RasterTriangle& t, uint32_t key, float z_row, int x,
                                         I32x8 covered, float* depth, uint32_t* keys) {
-  const F32x8 z = splat(z_row) + depthAcross8(t, x);
-  const F32x8 stored = load<F32x8>(depth + x);
-  const I32x8 pass = covered & lessThan(z, stored);
-  store(depth + x, select(pass, z, stored));
-  store(keys + x, select(pass, splat(static_cast<int32_t>(key)), load<I32x8>(keys + x)));
+  depthTestRow8(key, z_row, depthAcross8(t, x), x, covered, depth, keys);
 }
 
 TESSERA_LANES_INLINE float rowDepth(const RasterTriangle& t, int y) {
