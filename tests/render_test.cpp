@@ -18,6 +18,7 @@
 
 #include "render/clip.h"
 #include "render/kernels.h"
+#include "render/page_pool.h"
 
 using namespace tessera;
 
@@ -937,4 +938,47 @@ TEST(Renderer, AovsAreFilledOnlyWhenAskedAndDoNotChangeTheColour) {
   renderer.render(scene, options, colour_only);
   EXPECT_EQ(colour_only.depth.size(), 70u * 50u);
   EXPECT_TRUE(colour_only.triangle_id.empty());
+}
+
+TEST(PagePool, BlocksAreLineAlignedDisjointAndReusedBySize) {
+  // Blocks of many sizes, filled with their own byte: none may overlap another or move off a
+  // 64-byte boundary, and a freed block serves the next request of its size class.
+  std::vector<std::pair<unsigned char*, size_t>> blocks;
+  std::mt19937 random(7);
+  for (int i = 0; i < 300; ++i) {
+    const size_t bytes = size_t{1} << (random() % 19) | random() % 97;  // 1 B to ~256 KiB
+    auto* block = static_cast<unsigned char*>(render::poolAllocate(bytes));
+    ASSERT_EQ(reinterpret_cast<uintptr_t>(block) % 64, 0u) << bytes;
+    std::memset(block, i & 0xff, bytes);
+    blocks.push_back({block, bytes});
+  }
+  for (size_t i = 0; i < blocks.size(); ++i)
+    for (size_t b = 0; b < blocks[i].second; ++b)
+      ASSERT_EQ(blocks[i].first[b], static_cast<unsigned char>(i & 0xff)) << i << " " << b;
+  // 100 bytes and 128 bytes share the 128-byte class; 129 does not.
+  void* freed = render::poolAllocate(100);
+  render::poolFree(freed, 100);
+  void* again = render::poolAllocate(128);
+  EXPECT_EQ(again, freed);
+  void* other = render::poolAllocate(129);
+  EXPECT_NE(other, freed);
+  render::poolFree(again, 128);
+  render::poolFree(other, 129);
+  for (auto [block, bytes] : blocks) render::poolFree(block, bytes);
+}
+
+TEST(PagePool, LargeBlocksAndVectorsHoldTheirContents) {
+  // Over 1 MiB a block is a mapping of its own, on a 2 MiB boundary.
+  const size_t large = (size_t{3} << 20) + 5;
+  auto* block = static_cast<unsigned char*>(render::poolAllocate(large));
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(block) % (size_t{2} << 20), 0u);
+  block[0] = 1;
+  block[large - 1] = 2;
+  EXPECT_EQ(block[0] + block[large - 1], 3);
+  render::poolFree(block, large);
+  // A vector growing through every size class keeps what it holds.
+  render::PoolVector<uint32_t> values;
+  for (uint32_t i = 0; i < 1'000'000; ++i) values.push_back(i * 2654435761u);
+  for (uint32_t i = 0; i < 1'000'000; ++i) ASSERT_EQ(values[i], i * 2654435761u) << i;
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(values.data()) % 64, 0u);
 }

@@ -5,7 +5,7 @@ namespace tessera::render {
 void ChunkBins::reset(int tile_count) {
   if (tiles_.size() != static_cast<size_t>(tile_count))
     tiles_.resize(static_cast<size_t>(tile_count));
-  for (std::vector<uint32_t>& list : tiles_) list.clear();
+  for (PoolVector<uint32_t>& list : tiles_) list.clear();
 }
 
 void ChunkBins::addToTiles(const TileGrid& grid, int tx0, int ty0, int tx1, int ty1,

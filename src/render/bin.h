@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "render/fixed_point.h"
+#include "render/page_pool.h"
 #include "render/setup.h"
 
 namespace tessera::render {
@@ -44,7 +45,7 @@ class ChunkBins {
   // The triangles of `tile`, in the order they were added.
   const uint32_t* begin(int tile) const { return tiles_[static_cast<size_t>(tile)].data(); }
   const uint32_t* end(int tile) const {
-    const std::vector<uint32_t>& list = tiles_[static_cast<size_t>(tile)];
+    const PoolVector<uint32_t>& list = tiles_[static_cast<size_t>(tile)];
     return list.data() + list.size();
   }
   size_t count(int tile) const { return tiles_[static_cast<size_t>(tile)].size(); }
@@ -54,7 +55,7 @@ class ChunkBins {
   void addToTiles(const TileGrid& grid, int tx0, int ty0, int tx1, int ty1, uint32_t local_index);
   // One list per tile: they keep their capacity from frame to frame, so a frame after warm-up
   // allocates nothing.
-  std::vector<std::vector<uint32_t>> tiles_;
+  std::vector<PoolVector<uint32_t>> tiles_;
 };
 
 }  // namespace tessera::render
@@ -68,9 +69,9 @@ struct TriangleChunk {
   // records [0, size) are this frame's; the vectors only grow, so a frame after warm-up neither
   // allocates nor initializes what it then overwrites.
   size_t size = 0;
-  std::vector<RasterTriangle> raster;
-  std::vector<ShadeTriangle> shade;
-  std::vector<ShadeExtras> extras;  // beside shade, written only where the shading reads them
+  PoolVector<RasterTriangle> raster;
+  PoolVector<ShadeTriangle> shade;
+  PoolVector<ShadeExtras> extras;  // beside shade, written only where the shading reads them
   ChunkBins bins;
   size_t culled = 0;
   size_t clipped = 0;

@@ -16,7 +16,7 @@ ObjectTransforms makeObjectTransforms(const Object& object, const float4x4& view
 }
 
 void VertexBuffer::resize(size_t count) {
-  for (std::vector<float>* v : {&clip_x, &clip_y, &clip_z, &clip_w}) v->resize(count);
+  for (PoolVector<float>* v : {&clip_x, &clip_y, &clip_z, &clip_w}) v->resize(count);
   normal.resize(count);
   lit.resize(count);
   outcode.resize(count);

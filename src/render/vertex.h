@@ -10,6 +10,7 @@
 #include <tessera/scene/scene.h>
 
 #include "render/clip.h"
+#include "render/page_pool.h"
 #include "render/setup.h"
 
 namespace tessera::render {
@@ -28,17 +29,17 @@ ObjectTransforms makeObjectTransforms(const Object& object, const float4x4& view
 
 // Transformed vertices of the whole scene, objects one after another.
 struct VertexBuffer {
-  std::vector<float> clip_x, clip_y, clip_z, clip_w;
+  PoolVector<float> clip_x, clip_y, clip_z, clip_w;
   // World space, unit (zero if the mesh has none). One array of float3: setup fetches normals by
   // index, and one cache line beats three.
-  std::vector<float3> normal;
+  PoolVector<float3> normal;
   // Gouraud objects with normals only: irradiance(scene, normal), so that setup lights each vertex
   // once instead of once per triangle corner (about six). NaN where the normal is zero: setup
   // then lights that corner itself (with the face normal), as for vertices it cannot take from
   // here (clipped ones, drawn back faces).
-  std::vector<float3> lit;
-  std::vector<uint16_t> outcode;     // clip planes the vertex is outside of (clip.h)
-  std::vector<ScreenVertex> screen;  // valid only where outcode has no kCutPlanes bit
+  PoolVector<float3> lit;
+  PoolVector<uint16_t> outcode;     // clip planes the vertex is outside of (clip.h)
+  PoolVector<ScreenVertex> screen;  // valid only where outcode has no kCutPlanes bit
 
   void resize(size_t count);
   float4 clip(size_t i) const { return {clip_x[i], clip_y[i], clip_z[i], clip_w[i]}; }
