@@ -69,7 +69,7 @@ struct TriangleChunk {
   // records [0, size) are this frame's; the vectors only grow, so a frame after warm-up neither
   // allocates nor initializes what it then overwrites.
   size_t size = 0;
-  PoolVector<RasterTriangle> raster;
+  PoolVector<RasterTriangle> raster;  // 64-byte aligned (PoolVector): setup streams records in
   PoolVector<ShadeTriangle> shade;
   PoolVector<ShadeExtras> extras;  // beside shade, written only where the shading reads them
   ChunkBins bins;

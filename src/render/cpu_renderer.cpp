@@ -13,6 +13,9 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 #include <tessera/base/check.h>
 #include <tessera/scene/color.h>
@@ -312,6 +315,11 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
     }
   }
   flush();
+  // The batch kernel's streaming stores are weakly ordered: they reach memory before the tile
+  // stage (on any thread) reads the records.
+#if defined(__SSE2__)
+  _mm_sfence();
+#endif
 }
 
 void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame& frame) {

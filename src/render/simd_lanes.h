@@ -751,6 +751,22 @@ TESSERA_LANES_INLINE void loadPairs(const float* const p[8], F32x8& first, F32x8
   second = load<F32x8>(b);
 #endif
 }
+// Stores v at p, 32-byte aligned, with streaming stores where there are vector ones: the lines
+// go to memory without being read for ownership first or kept in this core's caches. For records
+// that a later stage reads (setup's raster records); the writer issues an sfence before that
+// stage starts.
+TESSERA_LANES_INLINE void storeStreaming(void* p, F32x8 v) {
+#if defined(__AVX__) && !defined(TESSERA_SIMD_SCALAR)
+  _mm256_stream_ps(static_cast<float*>(p), reinterpret_cast<__m256>(v));
+#elif defined(__SSE2__) && !defined(TESSERA_SIMD_SCALAR)
+  __m128 half[2];
+  std::memcpy(half, &v, sizeof half);
+  _mm_stream_ps(static_cast<float*>(p), half[0]);
+  _mm_stream_ps(static_cast<float*>(p) + 4, half[1]);
+#else
+  store(p, v);
+#endif
+}
 template <typename V>
 TESSERA_LANES_INLINE void store2x4(void* row0, void* row1, V v) {
   std::memcpy(row0, &v, sizeof v / 2);
