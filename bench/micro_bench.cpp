@@ -187,13 +187,15 @@ const StageInput* stageInput() {
       }
       if (!inside) continue;  // the clipper's work: not part of these benchmarks
       render::RasterTriangle r;
+      render::RasterWide w;
       render::TriangleOrientation o;
-      if (!render::setupRaster(in->context, v, r, o)) continue;
+      if (!render::setupRaster(in->context, v, r, w, o)) continue;
       render::ShadeTriangle shade;
       render::ShadeExtras extras;
       const float3 face = in->transforms.normal_matrix * cross(p[1] - p[0], p[2] - p[0]);
       render::setupShade(in->context, v, a, o, r, face, static_cast<uint32_t>(t), 0, shade, extras);
       chunk.raster.push_back(r);
+      chunk.wide.push_back(w);
       chunk.shade.push_back(shade);
       chunk.extras.push_back(extras);
       in->orientation.push_back(o);
@@ -226,13 +228,14 @@ void BM_SetupRaster(benchmark::State& state) {
   const StageInput& in = *stageInput();
   const Mesh& mesh = *in.scene.scene.objects[0].mesh;
   std::vector<render::RasterTriangle> out(mesh.triangleCount());
+  std::vector<render::RasterWide> wide(mesh.triangleCount());
   for (auto _ : state) {
     size_t kept = 0;
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       render::ScreenVertex v[3];
       for (int k = 0; k < 3; ++k) v[k] = in.vertices.screen[mesh.indices[t * 3 + k]];
       render::TriangleOrientation o;
-      kept += render::setupRaster(in.context, v, out[kept], o);
+      kept += render::setupRaster(in.context, v, out[kept], wide[kept], o);
     }
     benchmark::DoNotOptimize(kept);
   }
@@ -318,12 +321,13 @@ void BM_SetupBatch(benchmark::State& state) {
                         static_cast<uint32_t>(i));
   }
   for (render::SetupBatch& batch : batches) batch.padLanes();
-  std::vector<render::RasterTriangle> raster(count);
+  render::PoolVector<render::RasterTriangle> raster(count);  // aligned: streamed into
+  std::vector<render::RasterWide> wide(count);
   std::vector<render::ShadeTriangle> shade(count);
   for (auto _ : state) {
     for (const render::SetupBatch& batch : batches)
       kernels.setup_batch(batch, StageInput::kWidth, StageInput::kHeight, raster.data(),
-                          shade.data());
+                          wide.data(), shade.data());
     benchmark::DoNotOptimize(raster.data());
   }
   state.SetLabel(render::isaName(isa));

@@ -30,7 +30,7 @@ class ChunkBins {
   // Adds triangle `local_index` to every tile its bounding box overlaps. Inline for the common
   // case of a dense mesh: a box inside one tile.
   void add(const TileGrid& grid, const RasterTriangle& triangle, uint32_t local_index) {
-    add(grid, PixelBox{triangle.min_x, triangle.min_y, triangle.max_x, triangle.max_y},
+    add(grid, PixelBox{triangle.min_x, triangle.min_y, triangle.max_x, triangle.maxY()},
         local_index);
   }
   void add(const TileGrid& grid, const PixelBox& box, uint32_t local_index) {
@@ -70,6 +70,7 @@ struct TriangleChunk {
   // allocates nor initializes what it then overwrites.
   size_t size = 0;
   PoolVector<RasterTriangle> raster;  // 64-byte aligned (PoolVector): setup streams records in
+  PoolVector<RasterWide> wide;        // beside raster, written for large triangles only
   PoolVector<ShadeTriangle> shade;
   PoolVector<ShadeExtras> extras;  // beside shade, written only where the shading reads them
   ChunkBins bins;

@@ -140,6 +140,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
     TESSERA_CHECK(local < kMaxTrianglesPerChunk) << "chunk holds too many triangles";
     if (local == chunk.raster.size()) {
       chunk.raster.emplace_back();
+      chunk.wide.emplace_back();
       chunk.shade.emplace_back();
       chunk.extras.emplace_back();
     }
@@ -154,7 +155,8 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
   auto flush = [&] {
     if (batch.count == 0) return;
     batch.padLanes();
-    setup_batch(batch, grid.width, grid.height, chunk.raster.data(), chunk.shade.data());
+    setup_batch(batch, grid.width, grid.height, chunk.raster.data(), chunk.wide.data(),
+                chunk.shade.data());
     batch.count = 0;
   };
 
@@ -240,7 +242,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
         for (int i = 0; i < 3; ++i) sv[i] = projectToScreen(fan[i]->position, width, height);
         const uint32_t record = nextRecord();
         RasterTriangle& raster = chunk.raster[record];
-        if (!setupRaster(ctx, sv, raster, orientation)) continue;
+        if (!setupRaster(ctx, sv, raster, chunk.wide[record], orientation)) continue;
         ++chunk.size;
         const VertexAttributes a[3] = {{fan[0]->normal, fan[0]->uv, fan[0]->color, false},
                                        {fan[1]->normal, fan[1]->uv, fan[1]->color, false},

@@ -24,7 +24,7 @@ using RasterTileFn = void (*)(const std::vector<TriangleChunk>& chunks, size_t c
 
 // Sets up the queued triangles of a batch into their chunk's records (setup_kernel.h).
 using SetupBatchFn = void (*)(const SetupBatch& batch, int width, int height,
-                              RasterTriangle* raster, ShadeTriangle* shade);
+                              RasterTriangle* raster, RasterWide* wide, ShadeTriangle* shade);
 
 // Culls the eight triangles whose vertex indices are indices[0..23] (setup_kernel.h). False, with
 // nothing written, when an index is not below vertex_count: the caller takes them one at a time.

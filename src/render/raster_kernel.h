@@ -60,15 +60,20 @@ TESSERA_LANES_INLINE uint32_t* keyRow(TileVisibility& tile, int y) {
   return tile.key + (y - tile.y0) * kTileSize - tile.x0;
 }
 
+// A small triangle's edge k at the centre of pixel (x, y) in its box: from the value at the box's
+// first pixel, in int64 (the same integer as a * px + b * py + c), within int32 (small()).
+TESSERA_LANES_INLINE int32_t smallEdgeAt(const RasterTriangle& t, int k, int x, int y) {
+  return static_cast<int32_t>(t.corner[k] +
+                              static_cast<int64_t>(t.a[k]) * ((x - t.min_x) * kSubpixelOne) +
+                              static_cast<int64_t>(t.b[k]) * ((y - t.min_y) * kSubpixelOne));
+}
+
 TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
                                       int x_begin, int x_end, int y_begin, int y_end) {
-  const int64_t px = static_cast<int64_t>(x_begin) * kSubpixelOne + kSubpixelHalf;
-  const int64_t py = static_cast<int64_t>(y_begin) * kSubpixelOne + kSubpixelHalf;
   int32_t row[3];
   I32x8 step_x[3];
   for (int k = 0; k < 3; ++k) {
-    // Fits: the triangle is small (RasterTriangle::small).
-    row[k] = static_cast<int32_t>(t.a[k] * px + t.b[k] * py + t.c[k]);
+    row[k] = smallEdgeAt(t, k, x_begin, y_begin);
     step_x[k] = splat(t.a[k] * kSubpixelOne);
   }
   const I32x8 lane = iota();
@@ -115,15 +120,13 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
 // values per pixel as rasterSmall (edge values, z), hence the same bits.
 TESSERA_LANES_INLINE void rasterNarrow(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
                                        int x_begin, int x_end, int y_begin, int y_end) {
-  const int64_t px = static_cast<int64_t>(x_begin) * kSubpixelOne + kSubpixelHalf;
-  const int64_t py = static_cast<int64_t>(y_begin) * kSubpixelOne + kSubpixelHalf;
   const I32x8 column = iota() & splat(int32_t{3});
   const I32x8 second_row = shiftRight(iota(), 2);  // 0 for lanes 0-3, 1 for lanes 4-7
   I32x8 edge[3];
   int32_t step_y[3];
   for (int k = 0; k < 3; ++k) {
     // Fits: the triangle is small (RasterTriangle::small), and the pixels are within its box.
-    edge[k] = splat(static_cast<int32_t>(t.a[k] * px + t.b[k] * py + t.c[k])) +
+    edge[k] = splat(smallEdgeAt(t, k, x_begin, y_begin)) +
               splat(t.a[k] * kSubpixelOne) * column + splat(t.b[k] * kSubpixelOne) * second_row;
     step_y[k] = 2 * t.b[k] * kSubpixelOne;
   }
@@ -157,13 +160,15 @@ TESSERA_LANES_INLINE void rasterNarrow(const RasterTriangle& t, uint32_t key, Ti
   }
 }
 
-TESSERA_LANES_INLINE int64_t edgeAt(const RasterTriangle& t, int k, int x, int y) {
+TESSERA_LANES_INLINE int64_t edgeAt(const RasterTriangle& t, const RasterWide& w, int k, int x,
+                                    int y) {
   return t.a[k] * (static_cast<int64_t>(x) * kSubpixelOne + kSubpixelHalf) +
-         t.b[k] * (static_cast<int64_t>(y) * kSubpixelOne + kSubpixelHalf) + t.c[k];
+         t.b[k] * (static_cast<int64_t>(y) * kSubpixelOne + kSubpixelHalf) + w.c[k];
 }
 
-TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
-                                       int x_begin, int x_end, int y_begin, int y_end) {
+TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide& w, uint32_t key,
+                                       TileVisibility& tile, int x_begin, int x_end, int y_begin,
+                                       int y_end) {
   // Blocks are aligned to the tile so a block row never leaves the tile's rows.
   const int bx_first = tile.x0 + ((x_begin - tile.x0) & ~(kBlock - 1));
   const int by_first = tile.y0 + ((y_begin - tile.y0) & ~(kBlock - 1));
@@ -177,8 +182,8 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
       // so its extremes over the block are at the corners.
       bool outside = false, inside = true;
       for (int k = 0; k < 3; ++k) {
-        const int64_t e00 = edgeAt(t, k, x0, y0), e10 = edgeAt(t, k, x1, y0);
-        const int64_t e01 = edgeAt(t, k, x0, y1), e11 = edgeAt(t, k, x1, y1);
+        const int64_t e00 = edgeAt(t, w, k, x0, y0), e10 = edgeAt(t, w, k, x1, y0);
+        const int64_t e01 = edgeAt(t, w, k, x0, y1), e11 = edgeAt(t, w, k, x1, y1);
         const int64_t lo = std::min(std::min(e00, e10), std::min(e01, e11));
         const int64_t hi = std::max(std::max(e00, e10), std::max(e01, e11));
         outside |= hi < 0;
@@ -188,7 +193,7 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
       float& block_max =
           tile.block_max_depth[((by - tile.y0) / kBlock) * TileVisibility::kHiZBlocksPerRow +
                                (bx - tile.x0) / kBlock];
-      if (t.z_min >= block_max) continue;  // Hi-Z: every stored depth here is nearer
+      if (w.z_min >= block_max) continue;  // Hi-Z: every stored depth here is nearer
       const I32x8 columns = splat(bx) + lanes;
       const I32x8 in_range = lessOrEqual(splat(x0), columns) & lessOrEqual(columns, splat(x1));
       for (int y = y0; y <= y1; ++y) {
@@ -196,7 +201,7 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
         if (!inside) {
           I64x8 e[3];
           for (int k = 0; k < 3; ++k)
-            e[k] = splat(edgeAt(t, k, bx, y)) +
+            e[k] = splat(edgeAt(t, w, k, bx, y)) +
                    lanes64 * splat(static_cast<int64_t>(t.a[k]) * kSubpixelOne);
           covered = covered & nonNegative(e[0] | e[1] | e[2]);
         }
@@ -216,28 +221,36 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, uint32_t key, Ti
   }
 }
 
-// Hi-Z for a small triangle: rejected when its nearest depth is not below the bound of any block
-// its box touches.
+// Hi-Z for a small triangle: rejected when no depth it can write is below the bound of any block
+// its box touches. Its depths are at least the plane's least value over the corners of its box
+// (the plane is linear, the covered pixels inside the box), less a margin far above the rounding
+// of depthTestRow8's arithmetic.
 TESSERA_LANES_INLINE bool hiddenByHiZ(const RasterTriangle& t, const TileVisibility& tile,
                                       int x_begin, int x_end, int y_begin, int y_end) {
+  const float across_begin = t.dzdx * (static_cast<float>(x_begin) + 0.5f - t.x0);
+  const float across_end = t.dzdx * (static_cast<float>(x_end) + 0.5f - t.x0);
+  const float z_low = std::min(rowDepth(t, y_begin), rowDepth(t, y_end)) +
+                      std::min(across_begin, across_end) - 0x1p-16f;
   // Shifts: the offsets from the tile's corner are not negative.
   constexpr int kShift = __builtin_ctz(kBlock);
   const int bx0 = (x_begin - tile.x0) >> kShift, bx1 = (x_end - tile.x0) >> kShift;
   const int by0 = (y_begin - tile.y0) >> kShift, by1 = (y_end - tile.y0) >> kShift;
   for (int by = by0; by <= by1; ++by)
     for (int bx = bx0; bx <= bx1; ++bx)
-      if (t.z_min < tile.block_max_depth[by * TileVisibility::kHiZBlocksPerRow + bx]) return false;
+      if (!(z_low >= tile.block_max_depth[by * TileVisibility::kHiZBlocksPerRow + bx]))
+        return false;
   return true;
 }
 
-TESSERA_LANES_INLINE void rasterTriangle(const RasterTriangle& t, uint32_t key,
-                                         TileVisibility& tile) {
-  const int x_begin = std::max(t.min_x, tile.x0);
-  const int x_end = std::min(t.max_x, tile.x0 + tile.width - 1);
-  const int y_begin = std::max(t.min_y, tile.y0);
-  const int y_end = std::min(t.max_y, tile.y0 + tile.height - 1);
+// `wide` is read only for a large triangle.
+TESSERA_LANES_INLINE void rasterTriangle(const RasterTriangle& t, const RasterWide& wide,
+                                         uint32_t key, TileVisibility& tile) {
+  const int x_begin = std::max<int>(t.min_x, tile.x0);
+  const int x_end = std::min(static_cast<int>(t.max_x), tile.x0 + tile.width - 1);
+  const int y_begin = std::max<int>(t.min_y, tile.y0);
+  const int y_end = std::min(t.maxY(), tile.y0 + tile.height - 1);
   if (x_begin > x_end || y_begin > y_end) return;
-  if (t.small) {
+  if (t.small()) {
     if (tile.hiz_bounded && hiddenByHiZ(t, tile, x_begin, x_end, y_begin, y_end)) return;
     // Two rows or more: the box is then at least a pixel tall, so |b| * 2 pixels < 2^30 (from
     // RasterTriangle::small) and the row after y_end that rasterNarrow forms still fits in int32.
@@ -246,7 +259,7 @@ TESSERA_LANES_INLINE void rasterTriangle(const RasterTriangle& t, uint32_t key,
     else
       rasterSmall(t, key, tile, x_begin, x_end, y_begin, y_end);
   } else {
-    rasterBlocks(t, key, tile, x_begin, x_end, y_begin, y_end);
+    rasterBlocks(t, wide, key, tile, x_begin, x_end, y_begin, y_end);
   }
 }
 
@@ -263,14 +276,14 @@ void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_cou
         // follows this walk (the first two cache lines: all that untextured flat and Gouraud
         // pixels read). Records are written by setup long before and scattered: without this,
         // both passes wait on them.
-        const char* raster = reinterpret_cast<const char*>(&chunk.raster[it[kPrefetchAhead]]);
+        // A raster record is one line (64 bytes, aligned).
+        __builtin_prefetch(&chunk.raster[it[kPrefetchAhead]]);
         const char* shade = reinterpret_cast<const char*>(&chunk.shade[it[kPrefetchAhead]]);
-        __builtin_prefetch(raster);
-        __builtin_prefetch(raster + 64);
         __builtin_prefetch(shade);
         __builtin_prefetch(shade + 64);
       }
-      rasterTriangle(chunk.raster[*it], makeKey(static_cast<uint32_t>(c), *it), tile);
+      rasterTriangle(chunk.raster[*it], chunk.wide[*it], makeKey(static_cast<uint32_t>(c), *it),
+                     tile);
     }
   }
 }

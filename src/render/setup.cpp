@@ -22,15 +22,16 @@ void makeEdge(int32_t ax, int32_t ay, int32_t bx, int32_t by, int32_t& a, int32_
 }  // namespace
 
 bool setupRaster(const SetupContext& ctx, const ScreenVertex& sv0, const ScreenVertex& sv1,
-                 const ScreenVertex& sv2, int64_t area, RasterTriangle& raster,
+                 const ScreenVertex& sv2, int64_t area, RasterTriangle& raster, RasterWide& wide,
                  TriangleOrientation& o) {
   const ScreenVertex* const v[3] = {&sv0, &sv1, &sv2};
 
   // Bounding box over pixel centres.
   const PixelBox box = pixelBox(ctx, sv0, sv1, sv2);
   if (box.empty()) return false;
-  raster.min_x = box.min_x, raster.min_y = box.min_y;
-  raster.max_x = box.max_x, raster.max_y = box.max_y;
+  raster.min_x = static_cast<int16_t>(box.min_x);
+  raster.min_y = static_cast<int16_t>(box.min_y);
+  raster.max_x = static_cast<int16_t>(box.max_x);
   // An edge value at a point of the box is |a| dx + |b| dy at most, with |a| <= box height and
   // |b| <= box width (sub-pixels); the kernel also evaluates up to 7 pixels past the right end.
   // Below 2^30 the 32-bit path cannot overflow.
@@ -38,7 +39,9 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex& sv0, const ScreenV
       static_cast<int64_t>(std::max({sv0.x, sv1.x, sv2.x})) - std::min({sv0.x, sv1.x, sv2.x});
   const int64_t box_h =
       static_cast<int64_t>(std::max({sv0.y, sv1.y, sv2.y})) - std::min({sv0.y, sv1.y, sv2.y});
-  raster.small = box_h * (2 * box_w + 8 * kSubpixelOne) + box_w < (int64_t{1} << 30);
+  const bool small = box_h * (2 * box_w + 8 * kSubpixelOne) + box_w < (int64_t{1} << 30);
+  raster.max_y_small =
+      static_cast<uint16_t>(box.max_y | (small ? RasterTriangle::kSmallBit : 0));
 
   orient(area, o);
   area = area < 0 ? -area : area;
@@ -47,9 +50,15 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex& sv0, const ScreenV
   const ScreenVertex& v2 = *v[o.order[2]];
 
   // Edge k is opposite vertex k: edge 0 = v1->v2, edge 1 = v2->v0, edge 2 = v0->v1.
-  makeEdge(v1.x, v1.y, v2.x, v2.y, raster.a[0], raster.b[0], raster.c[0]);
-  makeEdge(v2.x, v2.y, v0.x, v0.y, raster.a[1], raster.b[1], raster.c[1]);
-  makeEdge(v0.x, v0.y, v1.x, v1.y, raster.a[2], raster.b[2], raster.c[2]);
+  makeEdge(v1.x, v1.y, v2.x, v2.y, raster.a[0], raster.b[0], wide.c[0]);
+  makeEdge(v2.x, v2.y, v0.x, v0.y, raster.a[1], raster.b[1], wide.c[1]);
+  makeEdge(v0.x, v0.y, v1.x, v1.y, raster.a[2], raster.b[2], wide.c[2]);
+  // The values at the box's first pixel centre: in the box, so within int32 when small.
+  const int64_t px = int64_t{box.min_x} * kSubpixelOne + kSubpixelHalf;
+  const int64_t py = int64_t{box.min_y} * kSubpixelOne + kSubpixelHalf;
+  for (int k = 0; k < 3; ++k)
+    raster.corner[k] =
+        small ? static_cast<int32_t>(raster.a[k] * px + raster.b[k] * py + wide.c[k]) : 0;
 
   // Screen-space planes on the snapped positions, in pixels: lambda_1 = E_20 / area,
   // lambda_2 = E_01 / area. The gradients are (edge coefficient) * 256 / area, exact in the
@@ -67,7 +76,7 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex& sv0, const ScreenV
   const float dz1 = v1.z - v0.z, dz2 = v2.z - v0.z;
   raster.dzdx = dz1 * o.l1dx + dz2 * o.l2dx;
   raster.dzdy = dz1 * o.l1dy + dz2 * o.l2dy;
-  raster.z_min = std::min({v0.z, v1.z, v2.z});
+  wide.z_min = std::min({v0.z, v1.z, v2.z});
   return true;
 }
 

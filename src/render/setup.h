@@ -38,17 +38,32 @@ inline ScreenVertex projectToScreen(float4 clip, float width, float height) {
           clip.z * inv_w * 0.5f + 0.5f, inv_w};
 }
 
+// What the raster kernel reads of a triangle: 64 bytes, one cache line (the records are 64-byte
+// aligned: PoolVector). Edge i covers pixel centre (px, py) (in 1/256 pixel) when
+// a*px + b*py + c >= 0, the top-left rule folded into c. A small triangle (every edge value over
+// its bounding box, plus 8 pixels right, fits in int32: what most of a mesh is) keeps its edges'
+// values at the centre of pixel (min_x, min_y) instead of c; a large one keeps c, and its nearest
+// depth for Hi-Z, in a RasterWide beside the record.
 struct RasterTriangle {
-  // Edge i covers pixel centre (px, py) (in 1/256 pixel) when a*px + b*py + c >= 0; the top-left
-  // rule is folded into c.
-  int64_t c[3];
+  int32_t corner[3];  // small: edge i at the centre of pixel (min_x, min_y); large: 0
   int32_t a[3];
   int32_t b[3];
-  int32_t min_x, min_y, max_x, max_y;  // inclusive pixel bounds, clipped to the viewport
-  bool small;  // every edge value over the bounding box (plus 8 pixels right) fits in int32
+  int16_t min_x, min_y, max_x;  // inclusive pixel bounds, clipped to the viewport
+  uint16_t max_y_small;         // max_y, plus kSmallBit for a small triangle
   // Window z at pixel centre (x + 0.5, y + 0.5) = z0 + dzdx * (x + 0.5 - x0) + dzdy * (y + 0.5 -
   // y0)
   float x0, y0, z0, dzdx, dzdy;
+
+  static constexpr uint16_t kSmallBit = 0x8000;
+  int maxY() const { return max_y_small & ~kSmallBit; }
+  bool small() const { return (max_y_small & kSmallBit) != 0; }
+};
+static_assert(sizeof(RasterTriangle) == 64);
+static_assert(kMaxViewport <= RasterTriangle::kSmallBit, "pixel bounds fit in 15 bits");
+
+// The rest of a large triangle's raster record (written for large ones only).
+struct RasterWide {
+  int64_t c[3];
   float z_min;  // the nearest depth of the triangle (at a vertex), for Hi-Z
 };
 
@@ -148,15 +163,16 @@ inline void orient(int64_t area, TriangleOrientation& o) {
 // The rest of setupRaster for a triangle that cullsArea kept: false when it covers no pixel
 // centre's bounding box inside the viewport.
 bool setupRaster(const SetupContext& ctx, const ScreenVertex& v0, const ScreenVertex& v1,
-                 const ScreenVertex& v2, int64_t area, RasterTriangle& raster,
+                 const ScreenVertex& v2, int64_t area, RasterTriangle& raster, RasterWide& wide,
                  TriangleOrientation& orientation);
 
 // False when the triangle is culled: degenerate, facing away (per ctx.cull) or covering no pixel
 // centre's bounding box inside the viewport.
 inline bool setupRaster(const SetupContext& ctx, const ScreenVertex v[3], RasterTriangle& raster,
-                        TriangleOrientation& orientation) {
+                        RasterWide& wide, TriangleOrientation& orientation) {
   const int64_t area = signedArea(v[0], v[1], v[2]);
-  return !cullsArea(ctx, area) && setupRaster(ctx, v[0], v[1], v[2], area, raster, orientation);
+  return !cullsArea(ctx, area) &&
+         setupRaster(ctx, v[0], v[1], v[2], area, raster, wide, orientation);
 }
 
 // One vertex's attributes, as the clipper outputs them.

@@ -13,16 +13,15 @@
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
 
-// The records are written as rows of eight 32-bit values; these are the rows.
-static_assert(offsetof(RasterTriangle, c) == 0 && offsetof(RasterTriangle, a) == 24 &&
-                  offsetof(RasterTriangle, b) == 36 && offsetof(RasterTriangle, min_x) == 48 &&
-                  offsetof(RasterTriangle, min_y) == 52 && offsetof(RasterTriangle, max_x) == 56 &&
-                  offsetof(RasterTriangle, max_y) == 60 && offsetof(RasterTriangle, small) == 64 &&
-                  offsetof(RasterTriangle, x0) == 68 && offsetof(RasterTriangle, y0) == 72 &&
-                  offsetof(RasterTriangle, z0) == 76 && offsetof(RasterTriangle, dzdx) == 80 &&
-                  offsetof(RasterTriangle, dzdy) == 84 && offsetof(RasterTriangle, z_min) == 88 &&
-                  sizeof(RasterTriangle) == 96,
-              "setupBatchKernel writes RasterTriangle as three rows of eight 32-bit values");
+// The raster records are written as two rows of eight 32-bit values; these are the rows.
+static_assert(offsetof(RasterTriangle, corner) == 0 && offsetof(RasterTriangle, a) == 12 &&
+                  offsetof(RasterTriangle, b) == 24 && offsetof(RasterTriangle, min_x) == 36 &&
+                  offsetof(RasterTriangle, min_y) == 38 && offsetof(RasterTriangle, max_x) == 40 &&
+                  offsetof(RasterTriangle, max_y_small) == 42 &&
+                  offsetof(RasterTriangle, x0) == 44 && offsetof(RasterTriangle, y0) == 48 &&
+                  offsetof(RasterTriangle, z0) == 52 && offsetof(RasterTriangle, dzdx) == 56 &&
+                  offsetof(RasterTriangle, dzdy) == 60 && sizeof(RasterTriangle) == 64,
+              "setupBatchKernel writes RasterTriangle as two rows of eight 32-bit values");
 static_assert(offsetof(ShadeTriangle, p1dx) == offsetof(ShadeTriangle, x0) + 3 * sizeof(float) &&
                   offsetof(ShadeTriangle, sdx) == offsetof(ShadeTriangle, x0) + 7 * sizeof(float) &&
                   offsetof(ShadeTriangle, sdy) == offsetof(ShadeTriangle, x0) + 8 * sizeof(float),
@@ -35,7 +34,7 @@ struct ScreenVertex8 {
 
 struct Edge8 {
   I32x8 a, b;
-  I64x8 c;
+  F64x8 c;  // exact: below 2^48
 };
 
 // As makeEdge (setup.cpp). c is computed in double lanes: exact, since the coordinates are below
@@ -46,7 +45,7 @@ TESSERA_LANES_INLINE Edge8 makeEdge8(const ScreenVertex8& p, const ScreenVertex8
   const I32x8 zero = splat(int32_t{0});
   const I32x8 top_left = ~nonNegative(dy) | (equal(dy, zero) & ~lessOrEqual(dx, zero));
   // Off the top-left rule c - 1: the mask's -1 added as a double.
-  return {p.y - q.y, dx, exactInt64(c + toDouble(~top_left))};
+  return {p.y - q.y, dx, c + toDouble(~top_left)};
 }
 
 TESSERA_LANES_INLINE ScreenVertex8 selectVertex(I32x8 mask, const ScreenVertex8& a,
@@ -134,12 +133,12 @@ bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenV
   return true;
 }
 
-// Sets up the batch's first `count` lanes into raster[record] and the planes of shade[record]
-// (the other lanes must hold copies of a real triangle: they are computed, not stored). The raster
-// records are written with streaming stores: the caller fences (_mm_sfence) before another
-// thread reads them.
+// Sets up the batch's first `count` lanes into raster[record] (and wide[record] for large
+// triangles) and the planes of shade[record] (the other lanes must hold copies of a real
+// triangle: they are computed, not stored). The raster records are written with streaming
+// stores: the caller fences (_mm_sfence) before another thread reads them.
 void setupBatchKernel(const SetupBatch& batch, int width, int height, RasterTriangle* raster,
-                      ShadeTriangle* shade) {
+                      RasterWide* wide, ShadeTriangle* shade) {
   // Each input is two rows of eight 32-bit values: v0 v1, then v2 area reorder record.
   F32x8 rows01[8], rows2[8];
   for (int l = 0; l < SetupBatch::kLanes; ++l) {
@@ -165,7 +164,7 @@ void setupBatchKernel(const SetupBatch& batch, int width, int height, RasterTria
   const I32x8 box_w = max_fx - min_fx, box_h = max_fy - min_fy;
   const F64x8 reach =
       toDouble(box_h) * toDouble(box_w + box_w + splat(8 * kSubpixelOne)) + toDouble(box_w);
-  const I32x8 small = lessThan(reach, splat(0x1p30)) & splat(int32_t{1});
+  const I32x8 small = lessThan(reach, splat(0x1p30));
 
   // Positive area: front faces are reordered 0, 2, 1.
   const ScreenVertex8& v0 = in[0];
@@ -193,32 +192,54 @@ void setupBatchKernel(const SetupBatch& batch, int width, int height, RasterTria
   const F32x8 q0 = v0.inv_w, q1 = v1.inv_w, q2 = v2.inv_w;
   const F32x8 sdy = (q1 - q0) * l1dy + (q2 - q0) * l2dy;
 
+  // Small triangles: the edge values at the centre of pixel (min_x, min_y), as setupRaster forms
+  // them (in double lanes: exact, below 2^50; within int32 for a small triangle).
+  const F64x8 px = toDouble(shiftLeft(min_x, kSubpixelBits) + splat(kSubpixelHalf));
+  const F64x8 py = toDouble(shiftLeft(min_y, kSubpixelBits) + splat(kSubpixelHalf));
+  const I32x8 zero = splat(int32_t{0});
+  auto corner = [&](const Edge8& e) {
+    return select(small, low32(exactInt64(toDouble(e.a) * px + toDouble(e.b) * py + e.c)), zero);
+  };
+  const I32x8 box_min = (min_x & splat(int32_t{0xffff})) | shiftLeft(min_y, 16);
+  const I32x8 box_max =
+      (max_x & splat(int32_t{0xffff})) |
+      shiftLeft(max_y | (small & splat(static_cast<int32_t>(RasterTriangle::kSmallBit))), 16);
+
   // Lane l of vector k becomes field k of record l.
-  F32x8 raster_c[8] = {floatsOf(low32(e0.c)),  floatsOf(high32(e0.c)), floatsOf(low32(e1.c)),
-                       floatsOf(high32(e1.c)), floatsOf(low32(e2.c)),  floatsOf(high32(e2.c)),
-                       floatsOf(e0.a),         floatsOf(e1.a)};
-  F32x8 raster_box[8] = {floatsOf(e2.a),  floatsOf(e0.b),  floatsOf(e1.b),  floatsOf(e2.b),
-                         floatsOf(min_x), floatsOf(min_y), floatsOf(max_x), floatsOf(max_y)};
-  // The last value is RasterTriangle's tail padding: zero, as in a value-initialized record.
-  F32x8 raster_z[8] = {floatsOf(small), x0, y0, v0.z, dzdx, dzdy, z_min, splat(0.0f)};
+  F32x8 raster_edges[8] = {floatsOf(corner(e0)), floatsOf(corner(e1)), floatsOf(corner(e2)),
+                           floatsOf(e0.a),       floatsOf(e1.a),       floatsOf(e2.a),
+                           floatsOf(e0.b),       floatsOf(e1.b)};
+  F32x8 raster_rest[8] = {floatsOf(e2.b), floatsOf(box_min), floatsOf(box_max), x0, y0, v0.z,
+                          dzdx,           dzdy};
   F32x8 shade_planes[8] = {x0,        y0,        q0,        q1 * l1dx,
                            q1 * l1dy, q2 * l2dx, q2 * l2dy, (q1 - q0) * l1dx + (q2 - q0) * l2dx};
-  transpose8x8(raster_c);
-  transpose8x8(raster_box);
-  transpose8x8(raster_z);
+  transpose8x8(raster_edges);
+  transpose8x8(raster_rest);
   transpose8x8(shade_planes);
   for (int l = 0; l < batch.count; ++l) {
     const uint32_t record = batch.input[l].record;
     char* const r = reinterpret_cast<char*>(&raster[record]);
-    // Streaming: setup writes some 3 MB of raster records a frame (the bunny at 1080p) that only
-    // the tile stage reads, after every chunk is done. Records are 96 bytes in 64-byte aligned
-    // storage (PoolVector), so each is three aligned 32-byte stores.
-    storeStreaming(r, raster_c[l]);
-    storeStreaming(r + 32, raster_box[l]);
-    storeStreaming(r + 64, raster_z[l]);
+    // Streaming: setup writes some 2 MB of raster records a frame (the bunny at 1080p) that only
+    // the tile stage reads, after every chunk is done. Records are 64 bytes in 64-byte aligned
+    // storage (PoolVector), so each is two aligned 32-byte stores: one whole line.
+    storeStreaming(r, raster_edges[l]);
+    storeStreaming(r + 32, raster_rest[l]);
     char* const s = reinterpret_cast<char*>(&shade[record]);
     store(s + offsetof(ShadeTriangle, x0), shade_planes[l]);
     shade[record].sdy = lane(sdy, l);
+  }
+  // Large triangles (few) keep c and z_min beside the record.
+  if (any(~small)) {
+    alignas(64) int64_t c[3][8];
+    store(c[0], exactInt64(e0.c));
+    store(c[1], exactInt64(e1.c));
+    store(c[2], exactInt64(e2.c));
+    for (int l = 0; l < batch.count; ++l) {
+      if (lane(small, l)) continue;
+      RasterWide& w = wide[batch.input[l].record];
+      for (int k = 0; k < 3; ++k) w.c[k] = c[k][l];
+      w.z_min = lane(z_min, l);
+    }
   }
 }
 
