@@ -43,10 +43,10 @@ void unmapRegion(void* block, size_t bytes) {
 }
 #else
 char* mapRegion(size_t bytes) {
-  return static_cast<char*>(::operator new(bytes, std::align_val_t{kLine}));
+  return static_cast<char*>(::operator new (bytes, std::align_val_t{kLine}));
 }
 void unmapRegion(void* block, size_t) {
-  ::operator delete(block, std::align_val_t{kLine});
+  ::operator delete (block, std::align_val_t{kLine});
 }
 #endif
 

@@ -126,8 +126,8 @@ TESSERA_LANES_INLINE void rasterNarrow(const RasterTriangle& t, uint32_t key, Ti
   int32_t step_y[3];
   for (int k = 0; k < 3; ++k) {
     // Fits: the triangle is small (RasterTriangle::small), and the pixels are within its box.
-    edge[k] = splat(smallEdgeAt(t, k, x_begin, y_begin)) +
-              splat(t.a[k] * kSubpixelOne) * column + splat(t.b[k] * kSubpixelOne) * second_row;
+    edge[k] = splat(smallEdgeAt(t, k, x_begin, y_begin)) + splat(t.a[k] * kSubpixelOne) * column +
+              splat(t.b[k] * kSubpixelOne) * second_row;
     step_y[k] = 2 * t.b[k] * kSubpixelOne;
   }
   const I32x8 in_columns = lessOrEqual(column, splat(x_end - x_begin));

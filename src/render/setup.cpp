@@ -40,8 +40,7 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex& sv0, const ScreenV
   const int64_t box_h =
       static_cast<int64_t>(std::max({sv0.y, sv1.y, sv2.y})) - std::min({sv0.y, sv1.y, sv2.y});
   const bool small = box_h * (2 * box_w + 8 * kSubpixelOne) + box_w < (int64_t{1} << 30);
-  raster.max_y_small =
-      static_cast<uint16_t>(box.max_y | (small ? RasterTriangle::kSmallBit : 0));
+  raster.max_y_small = static_cast<uint16_t>(box.max_y | (small ? RasterTriangle::kSmallBit : 0));
 
   orient(area, o);
   area = area < 0 ? -area : area;

@@ -209,8 +209,8 @@ void setupBatchKernel(const SetupBatch& batch, int width, int height, RasterTria
   F32x8 raster_edges[8] = {floatsOf(corner(e0)), floatsOf(corner(e1)), floatsOf(corner(e2)),
                            floatsOf(e0.a),       floatsOf(e1.a),       floatsOf(e2.a),
                            floatsOf(e0.b),       floatsOf(e1.b)};
-  F32x8 raster_rest[8] = {floatsOf(e2.b), floatsOf(box_min), floatsOf(box_max), x0, y0, v0.z,
-                          dzdx,           dzdy};
+  F32x8 raster_rest[8] = {
+      floatsOf(e2.b), floatsOf(box_min), floatsOf(box_max), x0, y0, v0.z, dzdx, dzdy};
   F32x8 shade_planes[8] = {x0,        y0,        q0,        q1 * l1dx,
                            q1 * l1dy, q2 * l2dx, q2 * l2dy, (q1 - q0) * l1dx + (q2 - q0) * l2dx};
   transpose8x8(raster_edges);
