@@ -472,6 +472,87 @@ TEST(Raster, CullKernelMatchesThePerTriangleChecks) {
   for (int branch = 0; branch < 5; ++branch) EXPECT_GT(decided[branch], 20) << branch;
 }
 
+TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
+  // Every instruction set's batch kernel against the one-triangle setupRaster, on visible
+  // triangles from a pixel to hundreds of pixels across (small ones keep their edge values at the
+  // box corner, large ones c and z_min in RasterWide): the raster records byte for byte, the
+  // large triangles' RasterWide, and the shading planes.
+  using namespace tessera::render;
+  std::mt19937 rng(5);
+  const int width = 640, height = 480;
+  Scene scene;
+  Object object;
+  object.materials = {Material{}};
+  SetupContext ctx;
+  ctx.width = width;
+  ctx.height = height;
+  ctx.cull = CullMode::kNone;
+  ctx.shading = Shading::kFlat;
+  ctx.scene = &scene;
+  ctx.object = &object;
+  std::uniform_int_distribution<int32_t> centre(-100 * kSubpixelOne, 700 * kSubpixelOne);
+  std::uniform_real_distribution<float> depth(0.0f, 1.0f), inv_w(0.1f, 2.0f);
+  const int32_t extents[] = {kSubpixelOne, 6 * kSubpixelOne, 40 * kSubpixelOne, 500 * kSubpixelOne};
+  struct Triangle {
+    ScreenVertex v[3];
+    int64_t area;
+  };
+  std::vector<Triangle> triangles;
+  while (triangles.size() < 400) {
+    const int32_t extent = extents[rng() % 4];
+    std::uniform_int_distribution<int32_t> offset(-extent, extent);
+    const int32_t cx = centre(rng), cy = centre(rng);
+    Triangle t;
+    for (ScreenVertex& v : t.v) v = {cx + offset(rng), cy + offset(rng), depth(rng), inv_w(rng)};
+    t.area = signedArea(t.v[0], t.v[1], t.v[2]);
+    if (t.area == 0 || pixelBox(ctx, t.v[0], t.v[1], t.v[2]).empty()) continue;
+    triangles.push_back(t);
+  }
+  std::vector<RasterTriangle> expected(triangles.size());
+  std::vector<RasterWide> expected_wide(triangles.size());
+  std::vector<ShadeTriangle> expected_shade(triangles.size());
+  int small = 0;
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const Triangle& t = triangles[i];
+    TriangleOrientation o;
+    ASSERT_TRUE(setupRaster(ctx, t.v[0], t.v[1], t.v[2], t.area, expected[i], expected_wide[i], o));
+    const VertexAttributes a{};
+    const VertexAttributes attributes[3] = {a, a, a};
+    ShadeExtras extras;
+    setupShade(ctx, t.v, attributes, o, expected[i], float3{0, 0, 1}, 0, 0, expected_shade[i],
+               extras);
+    small += expected[i].small();
+  }
+  EXPECT_GT(small, 100);
+  EXPECT_GT(static_cast<int>(triangles.size()) - small, 50);
+
+  for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512}) {
+    if (isa > detectIsa()) continue;
+    const Kernels kernels = kernelsFor(isa);
+    PoolVector<RasterTriangle> raster(triangles.size());  // aligned: the kernel streams into it
+    std::vector<RasterWide> wide(triangles.size());
+    std::vector<ShadeTriangle> shade(triangles.size());
+    for (size_t first = 0; first < triangles.size(); first += 8) {
+      SetupBatch batch;
+      for (size_t i = first; i < std::min(first + 8, triangles.size()); ++i)
+        batch.push(triangles[i].v[0], triangles[i].v[1], triangles[i].v[2], triangles[i].area,
+                   static_cast<uint32_t>(i));
+      batch.padLanes();
+      kernels.setup_batch(batch, width, height, raster.data(), wide.data(), shade.data());
+    }
+    for (size_t i = 0; i < triangles.size(); ++i) {
+      SCOPED_TRACE(testing::Message() << isaName(isa) << " triangle " << i);
+      ASSERT_EQ(0, std::memcmp(&raster[i], &expected[i], sizeof(RasterTriangle)));
+      if (!expected[i].small()) {
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(wide[i].c[k], expected_wide[i].c[k]);
+        EXPECT_EQ(wide[i].z_min, expected_wide[i].z_min);
+      }
+      // The planes, x0 .. sdy, as setupShade forms them.
+      EXPECT_EQ(0, std::memcmp(&shade[i].x0, &expected_shade[i].x0, 9 * sizeof(float)));
+    }
+  }
+}
+
 TEST(Raster, IdsFollowSceneTriangleOrderAcrossObjects) {
   Scene scene = clipSpaceScene();
   Mesh left, right;
