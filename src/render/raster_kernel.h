@@ -263,29 +263,61 @@ TESSERA_LANES_INLINE void rasterTriangle(const RasterTriangle& t, const RasterWi
   }
 }
 
-constexpr int kPrefetchAhead = 3;  // triangles: about a memory latency of raster work
+// Triangles: about a memory latency of raster work. Measured frame by frame with the walk across
+// chunks: 5 to 8 all gave the tile stage 4-5%, 3 about 1%.
+constexpr int kPrefetchAhead = 6;
+
+// A position in the walk over a tile's bins: chunk after chunk, each chunk's list in order.
+struct BinCursor {
+  size_t chunk;
+  const uint32_t* it;
+  const uint32_t* end;
+};
+
+// Moves to the next entry, across chunks; false past the last.
+TESSERA_LANES_INLINE bool advance(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                                  int tile_index, BinCursor& at) {
+  if (++at.it != at.end) return true;
+  while (++at.chunk < chunk_count) {
+    at.it = chunks[at.chunk].bins.begin(tile_index);
+    at.end = chunks[at.chunk].bins.end(tile_index);
+    if (at.it != at.end) return true;
+  }
+  return false;
+}
 
 void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
                       TileVisibility& tile) {
-  for (size_t c = 0; c < chunk_count; ++c) {
-    const TriangleChunk& chunk = chunks[c];
-    const uint32_t* end = chunk.bins.end(tile_index);
-    for (const uint32_t* it = chunk.bins.begin(tile_index); it != end; ++it) {
-      if (end - it > kPrefetchAhead) {
-        // A record a few triangles ahead, and its shading record for the shading pass that
-        // follows this walk (the first two cache lines: all that untextured flat and Gouraud
-        // pixels read). Records are written by setup long before and scattered: without this,
-        // both passes wait on them.
-        // A raster record is one line (64 bytes, aligned).
-        __builtin_prefetch(&chunk.raster[it[kPrefetchAhead]]);
-        const char* shade = reinterpret_cast<const char*>(&chunk.shade[it[kPrefetchAhead]]);
-        __builtin_prefetch(shade);
-        __builtin_prefetch(shade + 64);
-      }
-      rasterTriangle(chunk.raster[*it], chunk.wide[*it], makeKey(static_cast<uint32_t>(c), *it),
-                     tile);
-    }
+  // The first entry, then a second cursor kPrefetchAhead entries further on, across chunk
+  // boundaries, so that the first triangles of every chunk's list are prefetched too.
+  BinCursor at{0, nullptr, nullptr};
+  for (; at.chunk < chunk_count; ++at.chunk) {
+    at.it = chunks[at.chunk].bins.begin(tile_index);
+    at.end = chunks[at.chunk].bins.end(tile_index);
+    if (at.it != at.end) break;
   }
+  if (at.chunk == chunk_count) return;
+  BinCursor ahead = at;
+  bool ahead_valid = true;
+  for (int i = 0; i < kPrefetchAhead && ahead_valid; ++i)
+    ahead_valid = advance(chunks, chunk_count, tile_index, ahead);
+  do {
+    if (ahead_valid) {
+      // The record a few triangles ahead (one line), and its shading record for the shading
+      // pass that follows (the first two lines: all that untextured flat and Gouraud pixels
+      // read). Records are written by setup long before and scattered: without this, both
+      // passes wait on them.
+      const TriangleChunk& next = chunks[ahead.chunk];
+      __builtin_prefetch(&next.raster[*ahead.it]);
+      const char* shade = reinterpret_cast<const char*>(&next.shade[*ahead.it]);
+      __builtin_prefetch(shade);
+      __builtin_prefetch(shade + 64);
+      ahead_valid = advance(chunks, chunk_count, tile_index, ahead);
+    }
+    const TriangleChunk& chunk = chunks[at.chunk];
+    rasterTriangle(chunk.raster[*at.it], chunk.wide[*at.it],
+                   makeKey(static_cast<uint32_t>(at.chunk), *at.it), tile);
+  } while (advance(chunks, chunk_count, tile_index, at));
 }
 
 }  // namespace

@@ -1,0 +1,95 @@
+// Where a frame's time goes: the CPU renderer's stage times (vertex, setup+bin, tiles) of a
+// built-in bench scene, frame by frame, as medians, with a hash of every frame's colour so that
+// two builds can be checked for the same image while they are timed. For following the numbers
+// when changing a hot path; `tessera bench` is the yardstick.
+//   build/bench/tessera_stagetimes [scene] [workers] [frames] [width] [height] [simd]
+//   simd: auto, scalar, sse2, avx2, avx512. Defaults: bunny 2 40 1920 1080 auto.
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <tessera/render/cpu_renderer.h>
+
+#include "bench/scenes.h"
+#include "model_scene.h"
+#include "view_setup.h"
+
+using namespace tessera;
+
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+SimdLevel parseSimd(const std::string& s) {
+  if (s == "scalar") return SimdLevel::kScalar;
+  if (s == "sse2") return SimdLevel::kSse2;
+  if (s == "avx2") return SimdLevel::kAvx2;
+  if (s == "avx512") return SimdLevel::kAvx512;
+  return SimdLevel::kAuto;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string name = argc > 1 ? argv[1] : "bunny";
+  const int workers = argc > 2 ? std::atoi(argv[2]) : 2;
+  const int frames = argc > 3 ? std::max(1, std::atoi(argv[3])) : 40;
+  const int width = argc > 4 ? std::atoi(argv[4]) : 1920;
+  const int height = argc > 5 ? std::atoi(argv[5]) : 1080;
+  const SimdLevel simd = parseSimd(argc > 6 ? argv[6] : "auto");
+
+  Expected<bench::BenchScene> made = bench::makeBuiltinScene(name, Shading::kGouraud);
+  if (!made) {
+    std::fprintf(stderr, "tessera_stagetimes: %s\n", made.error().message.c_str());
+    return 1;
+  }
+  bench::BenchScene& b = *made;
+  if (!b.fixed_view) {
+    Expected<Camera> camera = cli::makeCamera(
+        cli::CameraSettings{}, b.bounds, static_cast<float>(width) / static_cast<float>(height));
+    if (!camera) {
+      std::fprintf(stderr, "tessera_stagetimes: %s\n", camera.error().message.c_str());
+      return 1;
+    }
+    b.scene.camera = *camera;
+    cli::addViewLights(b.scene);
+  }
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.depth = options.ids = options.normals = options.lines = false;
+
+  CpuRenderer renderer(workers, simd);
+  Frame frame;
+  bench::poseForFrame(b, 0);
+  renderer.render(b.scene, options, frame);  // the buffers, outside the timing
+
+  std::vector<double> total, vertex, setup, tiles;
+  uint64_t hash = 14695981039346656037ull;  // FNV-1a over every frame's colour
+  for (int i = 0; i < frames; ++i) {
+    bench::poseForFrame(b, i);
+    const auto start = std::chrono::steady_clock::now();
+    renderer.render(b.scene, options, frame);
+    const auto stop = std::chrono::steady_clock::now();
+    total.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
+    const PipelineStats& s = renderer.lastStats();
+    vertex.push_back(s.vertex_ms);
+    setup.push_back(s.setup_ms);
+    tiles.push_back(s.tiles_ms);
+    for (uint32_t c : frame.color) hash = (hash ^ c) * 1099511628211ull;
+  }
+  std::printf(
+      "%s %dx%d, %d workers, %s, %d frames: total %.3f ms (vertex %.3f, setup %.3f, "
+      "tiles %.3f), hash %016llx\n",
+      name.c_str(), width, height, renderer.workerCount(), renderer.simdName(), frames,
+      median(total), median(vertex), median(setup), median(tiles),
+      static_cast<unsigned long long>(hash));
+  return 0;
+}
