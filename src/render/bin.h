@@ -62,8 +62,10 @@ class ChunkBins {
 
 namespace tessera::render {
 
-// The output of setup for one fixed range of the scene's triangles.
-struct TriangleChunk {
+// The output of setup for one fixed range of the scene's triangles. Two workers set up
+// neighbouring chunks at the same time and count into them (size, culled, clipped, the vectors'
+// ends): each chunk has lines of its own (128 bytes: the adjacent-line prefetcher pairs lines).
+struct alignas(128) TriangleChunk {
   size_t first_triangle = 0;  // scene triangle index range [first, first + count)
   size_t triangle_count = 0;
   // records [0, size) are this frame's; the vectors only grow, so a frame after warm-up neither
