@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -11,6 +12,7 @@
 #include <new>
 #include <random>
 #include <set>
+#include <thread>
 
 #include <tessera/render/cpu_renderer.h>
 #include <tessera/scene/color.h>
@@ -19,6 +21,7 @@
 #include "render/clip.h"
 #include "render/kernels.h"
 #include "render/page_pool.h"
+#include "render/worker_pool.h"
 
 using namespace tessera;
 
@@ -1019,6 +1022,31 @@ TEST(Renderer, AovsAreFilledOnlyWhenAskedAndDoNotChangeTheColour) {
   renderer.render(scene, options, colour_only);
   EXPECT_EQ(colour_only.depth.size(), 70u * 50u);
   EXPECT_TRUE(colour_only.triangle_id.empty());
+}
+
+// Every index of every job runs exactly once, on a worker the pool has, whether the workers are
+// spinning (jobs back to back) or asleep (a pause before the job) when it starts, and a job's
+// results are all there when parallelFor returns. A worker may arrive late, during a later job.
+TEST(WorkerPool, EveryIndexRunsOnceAndIsDoneOnReturn) {
+  render::WorkerPool pool(3);
+  ASSERT_EQ(pool.size(), 3);
+  std::mt19937 rng(7);
+  std::vector<std::atomic<int>> runs(600);
+  for (int job = 0; job < 400; ++job) {
+    const size_t count = 1 + rng() % runs.size();
+    if (job % 25 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    for (size_t i = 0; i < count; ++i) runs[i].store(0);
+    std::atomic<int> bad_worker{0};
+    pool.parallelFor(count, [&](size_t i, int worker) {
+      if (worker < 0 || worker >= pool.size()) bad_worker.fetch_add(1);
+      // The other workers finish their indices a little later than the caller would.
+      if (worker != 0) std::this_thread::sleep_for(std::chrono::microseconds(20));
+      runs[i].fetch_add(1);
+    });
+    ASSERT_EQ(bad_worker.load(), 0);
+    for (size_t i = 0; i < count; ++i)
+      ASSERT_EQ(runs[i].load(), 1) << "job " << job << " index " << i;
+  }
 }
 
 TEST(PagePool, BlocksAreLineAlignedDisjointAndReusedBySize) {
