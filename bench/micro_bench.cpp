@@ -325,7 +325,7 @@ void BM_SetupBatch(benchmark::State& state) {
   std::vector<render::RasterWide> wide(count);
   std::vector<render::ShadeTriangle> shade(count);
   for (auto _ : state) {
-    for (const render::SetupBatch& batch : batches)
+    for (render::SetupBatch& batch : batches)
       kernels.setup_batch(batch, StageInput::kWidth, StageInput::kHeight, raster.data(),
                           wide.data(), shade.data());
     benchmark::DoNotOptimize(raster.data());

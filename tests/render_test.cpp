@@ -529,31 +529,43 @@ TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
   EXPECT_GT(small, 100);
   EXPECT_GT(static_cast<int>(triangles.size()) - small, 50);
 
-  for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512}) {
-    if (isa > detectIsa()) continue;
-    const Kernels kernels = kernelsFor(isa);
-    PoolVector<RasterTriangle> raster(triangles.size());  // aligned: the kernel streams into it
-    std::vector<RasterWide> wide(triangles.size());
-    std::vector<ShadeTriangle> shade(triangles.size());
-    for (size_t first = 0; first < triangles.size(); first += 8) {
-      SetupBatch batch;
-      for (size_t i = first; i < std::min(first + 8, triangles.size()); ++i)
-        batch.push(triangles[i].v[0], triangles[i].v[1], triangles[i].v[2], triangles[i].area,
-                   static_cast<uint32_t>(i));
-      batch.padLanes();
-      kernels.setup_batch(batch, width, height, raster.data(), wide.data(), shade.data());
-    }
-    for (size_t i = 0; i < triangles.size(); ++i) {
-      SCOPED_TRACE(testing::Message() << isaName(isa) << " triangle " << i);
-      ASSERT_EQ(0, std::memcmp(&raster[i], &expected[i], sizeof(RasterTriangle)));
-      if (!expected[i].small()) {
-        for (int k = 0; k < 3; ++k) EXPECT_EQ(wide[i].c[k], expected_wide[i].c[k]);
-        EXPECT_EQ(wide[i].z_min, expected_wide[i].z_min);
+  // lead 8: full batches of records on whole lines (streamed as lines); lead 3: a short first
+  // batch, after which the batches' records start inside a line (streamed record by record).
+  for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512})
+    for (size_t lead : {size_t{8}, size_t{3}}) {
+      if (isa > detectIsa()) continue;
+      const Kernels kernels = kernelsFor(isa);
+      PoolVector<RasterTriangle> raster(triangles.size());  // aligned: the kernel streams into it
+      std::vector<RasterWide> wide(triangles.size());
+      PoolVector<ShadeTriangle> shade(triangles.size());
+      for (size_t first = 0; first < triangles.size(); first += first == 0 ? lead : 8) {
+        SetupBatch batch;
+        for (size_t i = first; i < std::min(first + (first == 0 ? lead : 8), triangles.size());
+             ++i) {
+          // The caller's part of the shading record, which the kernel carries to shade[record].
+          ShadeTriangle& staged = batch.nextShade();
+          staged.triangle_id = static_cast<uint32_t>(1000 + i);
+          staged.color[2] = float3{static_cast<float>(i), 0.5f, 0.25f};
+          batch.push(triangles[i].v[0], triangles[i].v[1], triangles[i].v[2], triangles[i].area,
+                     static_cast<uint32_t>(i));
+        }
+        batch.padLanes();
+        kernels.setup_batch(batch, width, height, raster.data(), wide.data(), shade.data());
       }
-      // The planes, x0 .. sdy, as setupShade forms them.
-      EXPECT_EQ(0, std::memcmp(&shade[i].x0, &expected_shade[i].x0, 9 * sizeof(float)));
+      for (size_t i = 0; i < triangles.size(); ++i) {
+        SCOPED_TRACE(testing::Message() << isaName(isa) << " lead " << lead << " triangle " << i);
+        ASSERT_EQ(0, std::memcmp(&raster[i], &expected[i], sizeof(RasterTriangle)));
+        if (!expected[i].small()) {
+          for (int k = 0; k < 3; ++k) EXPECT_EQ(wide[i].c[k], expected_wide[i].c[k]);
+          EXPECT_EQ(wide[i].z_min, expected_wide[i].z_min);
+        }
+        // The planes, x0 .. sdy, as setupShade forms them.
+        EXPECT_EQ(0, std::memcmp(&shade[i].x0, &expected_shade[i].x0, 9 * sizeof(float)));
+        EXPECT_EQ(shade[i].triangle_id, 1000 + i);
+        EXPECT_EQ(shade[i].color[2].x, static_cast<float>(i));
+        EXPECT_EQ(shade[i].color[2].z, 0.25f);
+      }
     }
-  }
 }
 
 TEST(Raster, IdsFollowSceneTriangleOrderAcrossObjects) {

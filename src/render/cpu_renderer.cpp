@@ -213,10 +213,11 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
       ++chunk.size;
       chunk.bins.add(grid, box, record);
       orient(area, orientation);
+      ShadeTriangle& shade = batch.nextShade();
       if (!plainGouraudCorners(ctx, plain_gouraud, mesh_vertices, idx, orientation, id,
-                               material(local), chunk.shade[record]))
+                               material(local), shade))
         setupShadeCorners(ctx, mesh_vertices, idx, orientation, face_normal(idx), id,
-                          material(local), chunk.shade[record], chunk.extras[record]);
+                          material(local), shade, chunk.extras[record]);
       batch.push(mesh_vertices.screen[idx[0]], mesh_vertices.screen[idx[1]],
                  mesh_vertices.screen[idx[2]], area, record);
       if (batch.full()) flush();

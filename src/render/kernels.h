@@ -23,7 +23,7 @@ using RasterTileFn = void (*)(const std::vector<TriangleChunk>& chunks, size_t c
                               int tile_index, TileVisibility& tile);
 
 // Sets up the queued triangles of a batch into their chunk's records (setup_kernel.h).
-using SetupBatchFn = void (*)(const SetupBatch& batch, int width, int height,
+using SetupBatchFn = void (*)(SetupBatch& batch, int width, int height,
                               RasterTriangle* raster, RasterWide* wide, ShadeTriangle* shade);
 
 // Culls the eight triangles whose vertex indices are indices[0..23] (setup_kernel.h). False, with

@@ -261,7 +261,10 @@ inline bool plainGouraudCorners(const SetupContext& ctx, const PlainGouraud& pla
 // Unclipped triangles that cullsArea and pixelBox kept, queued for the rest of their setup eight
 // at a time (setup_kernel.h): the same values, bit for bit, as setupRaster and setupShade's
 // planes. Each input is 64 bytes, so that a lane's fields are two rows of eight 32-bit values.
-struct SetupBatch {
+// The caller fills each lane's shading record but for the planes (nextShade, before push); the
+// kernel adds the planes and streams the records out, eight consecutive ones (704 bytes, eleven
+// lines) as whole lines.
+struct alignas(64) SetupBatch {
   static constexpr int kLanes = 8;
   struct Input {
     ScreenVertex v[3];  // input order
@@ -270,7 +273,11 @@ struct SetupBatch {
     uint32_t record;    // where the results go: the chunk's raster and shade records
   };
   Input input[kLanes];
+  ShadeTriangle shade[kLanes];  // the lanes' shading records, the planes still to come
   int count = 0;
+
+  // The shading record of the lane the next push fills.
+  ShadeTriangle& nextShade() { return shade[count]; }
 
   void push(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, int64_t area,
             uint32_t record) {
@@ -285,6 +292,8 @@ struct SetupBatch {
   }
 };
 static_assert(sizeof(SetupBatch::Input) == 64);
+static_assert(sizeof(ShadeTriangle) * SetupBatch::kLanes % 64 == 0,
+              "eight shading records are whole lines");
 
 // Eight consecutive triangles of one object through the cull, eight at a time
 // (setup_kernel.h): what the per-triangle checks in setup decide (index range, outcodes,

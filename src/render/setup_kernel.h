@@ -134,10 +134,11 @@ bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenV
 }
 
 // Sets up the batch's first `count` lanes into raster[record] (and wide[record] for large
-// triangles) and the planes of shade[record] (the other lanes must hold copies of a real
-// triangle: they are computed, not stored). The raster records are written with streaming
-// stores: the caller fences (_mm_sfence) before another thread reads them.
-void setupBatchKernel(const SetupBatch& batch, int width, int height, RasterTriangle* raster,
+// triangles) and shade[record]: the lane's staged shading record (batch.shade) with the planes
+// added (the other lanes must hold copies of a real triangle: they are computed, not stored).
+// The records are written with streaming stores: the caller fences (_mm_sfence) before another
+// thread reads them.
+void setupBatchKernel(SetupBatch& batch, int width, int height, RasterTriangle* raster,
                       RasterWide* wide, ShadeTriangle* shade) {
   // Each input is two rows of eight 32-bit values: v0 v1, then v2 area reorder record.
   F32x8 rows01[8], rows2[8];
@@ -224,9 +225,27 @@ void setupBatchKernel(const SetupBatch& batch, int width, int height, RasterTria
     // storage (PoolVector), so each is two aligned 32-byte stores: one whole line.
     storeStreaming(r, raster_edges[l]);
     storeStreaming(r + 32, raster_rest[l]);
-    char* const s = reinterpret_cast<char*>(&shade[record]);
+    char* const s = reinterpret_cast<char*>(&batch.shade[l]);
     store(s + offsetof(ShadeTriangle, x0), shade_planes[l]);
-    shade[record].sdy = lane(sdy, l);
+    batch.shade[l].sdy = lane(sdy, l);
+  }
+  // The shading records go out streamed too. Setup writes over last frame's records, which the
+  // other worker's shading pass read: on a host where a line takes hundreds of nanoseconds
+  // between cores, ordinary stores waited on every line (docs/perf.md, round 5). Eight
+  // consecutive records starting on a line (the usual full batch) are eleven whole lines.
+  const uint32_t first = batch.input[0].record;
+  char* const out = reinterpret_cast<char*>(&shade[first]);
+  bool consecutive =
+      batch.count == SetupBatch::kLanes && (reinterpret_cast<uintptr_t>(out) & 63) == 0;
+  for (int l = 1; l < batch.count && consecutive; ++l)
+    consecutive = batch.input[l].record == first + static_cast<uint32_t>(l);
+  if (consecutive) {
+    const char* in = reinterpret_cast<const char*>(batch.shade);
+    for (size_t offset = 0; offset < sizeof batch.shade; offset += 32)
+      storeStreaming(out + offset, load<F32x8>(in + offset));
+  } else {
+    for (int l = 0; l < batch.count; ++l)
+      streamCopy(&shade[batch.input[l].record], &batch.shade[l], sizeof(ShadeTriangle));
   }
   // Large triangles (few) keep c and z_min beside the record.
   if (any(~small)) {

@@ -767,6 +767,19 @@ TESSERA_LANES_INLINE void storeStreaming(void* p, F32x8 v) {
   store(p, v);
 #endif
 }
+// Copies `bytes` (a multiple of 8) from src to 8-byte aligned dst with 8-byte streaming stores
+// where there are any; as with storeStreaming, the writer fences before a later stage reads.
+TESSERA_LANES_INLINE void streamCopy(void* dst, const void* src, size_t bytes) {
+#if defined(__SSE2__) && defined(__x86_64__) && !defined(TESSERA_SIMD_SCALAR)
+  for (size_t i = 0; i < bytes; i += 8) {
+    long long word;
+    std::memcpy(&word, static_cast<const char*>(src) + i, 8);
+    _mm_stream_si64(reinterpret_cast<long long*>(static_cast<char*>(dst) + i), word);
+  }
+#else
+  std::memcpy(dst, src, bytes);
+#endif
+}
 template <typename V>
 TESSERA_LANES_INLINE void store2x4(void* row0, void* row1, V v) {
   std::memcpy(row0, &v, sizeof v / 2);
