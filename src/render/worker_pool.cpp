@@ -1,5 +1,8 @@
 #include "render/worker_pool.h"
 
+#include <cstdint>
+#include <stdexcept>
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #endif
@@ -23,6 +26,7 @@ inline void pause() {
 WorkerPool::WorkerPool(int workers) {
   int total = workers > 0 ? workers : static_cast<int>(std::thread::hardware_concurrency());
   if (total < 1) total = 1;
+  blocks_ = std::vector<Block>(static_cast<size_t>(total));
   threads_.reserve(total - 1);
   for (int i = 1; i < total; ++i) threads_.emplace_back([this, i] { workerLoop(i); });
 }
@@ -36,11 +40,38 @@ WorkerPool::~WorkerPool() {
   for (std::thread& t : threads_) t.join();
 }
 
-void WorkerPool::drain(int worker) {
+bool WorkerPool::takeFront(Block& block, size_t& index) {
+  uint64_t range = block.range.load(std::memory_order_relaxed);
   for (;;) {
-    size_t index = next_.fetch_add(1, std::memory_order_relaxed);
-    if (index >= count_) return;
-    invoker_(context_, index, worker);
+    const uint32_t front = static_cast<uint32_t>(range), back = static_cast<uint32_t>(range >> 32);
+    if (front >= back) return false;
+    if (block.range.compare_exchange_weak(range, range + 1, std::memory_order_relaxed)) {
+      index = front;
+      return true;
+    }
+  }
+}
+
+bool WorkerPool::takeBack(Block& block, size_t& index) {
+  uint64_t range = block.range.load(std::memory_order_relaxed);
+  for (;;) {
+    const uint32_t front = static_cast<uint32_t>(range), back = static_cast<uint32_t>(range >> 32);
+    if (front >= back) return false;
+    if (block.range.compare_exchange_weak(range, range - (uint64_t{1} << 32),
+                                          std::memory_order_relaxed)) {
+      index = back - 1;
+      return true;
+    }
+  }
+}
+
+void WorkerPool::drain(int worker) {
+  const size_t n = blocks_.size();
+  size_t index;
+  while (takeFront(blocks_[static_cast<size_t>(worker)], index)) invoker_(context_, index, worker);
+  for (size_t k = 1; k < n; ++k) {
+    Block& other = blocks_[(static_cast<size_t>(worker) + k) % n];
+    while (takeBack(other, index)) invoker_(context_, index, worker);
   }
 }
 
@@ -50,12 +81,15 @@ void WorkerPool::run(size_t count, void* context, Invoker invoker) {
     for (size_t i = 0; i < count; ++i) invoker(context, i, 0);
     return;
   }
+  if (count > UINT32_MAX) throw std::length_error("WorkerPool: more than 2^32 - 1 indices");
   {
     std::lock_guard<std::mutex> lock(mutex_);
     context_ = context;
     invoker_ = invoker;
-    count_ = count;
-    next_.store(0, std::memory_order_relaxed);
+    const size_t n = blocks_.size();
+    for (size_t w = 0; w < n; ++w)
+      blocks_[w].range.store(static_cast<uint64_t>(count * (w + 1) / n) << 32 | (count * w / n),
+                             std::memory_order_relaxed);
     busy_.store(static_cast<int>(threads_.size()), std::memory_order_relaxed);
     generation_.fetch_add(1, std::memory_order_release);
   }

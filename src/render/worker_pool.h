@@ -22,7 +22,12 @@ class WorkerPool {
   int size() const { return static_cast<int>(threads_.size()) + 1; }
 
   // Calls body(index, worker) for every index in [0, count), spread over the workers; returns
-  // when all are done. Indices are handed out in increasing order.
+  // when all are done. Worker w of n starts on its own block of indices, [count * w / n,
+  // count * (w + 1) / n), in increasing order; a worker whose block is done takes indices from
+  // the far end of the others'. The same blocks go to the same workers stage after stage and
+  // frame after frame, so what one stage writes (the vertices a range of triangles uses, say) is
+  // mostly read by the same core in the next: on a host where a line takes hundreds of
+  // nanoseconds between cores that is worth more than an even split (docs/perf.md, round 5).
   template <typename Body>
   void parallelFor(size_t count, Body&& body) {
     auto invoke = [](void* context, size_t index, int worker) {
@@ -46,11 +51,18 @@ class WorkerPool {
   std::atomic<int> busy_{0};
   std::atomic<bool> stopping_{false};
 
+  // The indices of one worker's block not yet handed out, [front, back), as back << 32 | front:
+  // its owner takes the front, others the back. A line of its own.
+  struct alignas(128) Block {
+    std::atomic<uint64_t> range{0};
+  };
+  bool takeFront(Block& block, size_t& index);
+  bool takeBack(Block& block, size_t& index);
+
   // The current job.
   void* context_ = nullptr;
   Invoker invoker_ = nullptr;
-  size_t count_ = 0;
-  std::atomic<size_t> next_{0};
+  std::vector<Block> blocks_;  // one per worker
 };
 
 }  // namespace tessera::render
