@@ -980,6 +980,17 @@ TEST(Renderer, ReusesItsBuffersAcrossFramesAndSizes) {
   renderer.render(scene, options, frame);
   EXPECT_EQ(frame.color, first.color);
   EXPECT_EQ(frame.triangle_id, first.triangle_id);
+  // The same size, the cube turned and moved into one corner: nothing of the last frame's bins
+  // is left over (setup empties only the tiles it filled).
+  options.width = 160, options.height = 120;
+  renderer.render(scene, options, frame);
+  scene.objects[0].transform.rotation = quat::fromAxisAngle({0, 1, 0}, 0.7f);
+  scene.objects[0].transform.translation = {1.2f, 0.9f, 0};
+  renderer.render(scene, options, frame);
+  CpuRenderer fresh(2);
+  Frame expected;
+  fresh.render(scene, options, expected);
+  EXPECT_EQ(frame.color, expected.color);
 }
 
 TEST(Renderer, CameraInsideAClosedModelSeesItsInsideFaces) {

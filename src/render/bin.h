@@ -37,11 +37,13 @@ class ChunkBins {
     const int tx0 = box.min_x >> kTileSizeLog2, tx1 = box.max_x >> kTileSizeLog2;
     const int ty0 = box.min_y >> kTileSizeLog2, ty1 = box.max_y >> kTileSizeLog2;
     if (tx0 == tx1 && ty0 == ty1) {
-      tiles_[static_cast<size_t>(ty0 * grid.columns + tx0)].push_back(local_index);
+      push(ty0 * grid.columns + tx0, local_index);
       return;
     }
     addToTiles(grid, tx0, ty0, tx1, ty1, local_index);
   }
+  // The tiles given a triangle since the last reset, each once.
+  const std::vector<uint32_t>& usedTiles() const { return used_; }
   // The triangles of `tile`, in the order they were added.
   const uint32_t* begin(int tile) const { return tiles_[static_cast<size_t>(tile)].data(); }
   const uint32_t* end(int tile) const {
@@ -51,11 +53,21 @@ class ChunkBins {
   size_t count(int tile) const { return tiles_[static_cast<size_t>(tile)].size(); }
 
  private:
+  void push(int tile, uint32_t local_index) {
+    PoolVector<uint32_t>& list = tiles_[static_cast<size_t>(tile)];
+    if (list.empty()) used_.push_back(static_cast<uint32_t>(tile));
+    list.push_back(local_index);
+  }
   // Adds the triangle to tiles [tx0, tx1] x [ty0, ty1].
   void addToTiles(const TileGrid& grid, int tx0, int ty0, int tx1, int ty1, uint32_t local_index);
   // One list per tile: they keep their capacity from frame to frame, so a frame after warm-up
   // allocates nothing.
   std::vector<PoolVector<uint32_t>> tiles_;
+  // The tiles whose lists are not empty. reset empties only these: every tile's list end was
+  // read last frame by whichever worker drew the tile, and on a host where a line takes
+  // hundreds of nanoseconds between cores, writing all of them cost a mostly culled chunk most
+  // of its setup time (docs/perf.md, round 5).
+  std::vector<uint32_t> used_;
 };
 
 }  // namespace tessera::render

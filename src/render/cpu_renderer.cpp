@@ -400,12 +400,9 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   // Raster, shade and resolve, per tile.
   // Tiles no triangle touches (the background), found before the workers start so that a run of
   // them along a row can be filled in one go.
-  s.tile_empty.resize(static_cast<size_t>(grid.tileCount()));
-  for (int tile = 0; tile < grid.tileCount(); ++tile) {
-    size_t binned = 0;
-    for (size_t c = 0; c < s.chunk_count; ++c) binned += s.chunks[c].bins.count(tile);
-    s.tile_empty[static_cast<size_t>(tile)] = binned == 0;
-  }
+  s.tile_empty.assign(static_cast<size_t>(grid.tileCount()), 1);
+  for (size_t c = 0; c < s.chunk_count; ++c)
+    for (uint32_t tile : s.chunks[c].bins.usedTiles()) s.tile_empty[tile] = 0;
   const bool plain = plainShading(scene, options.normals);
   const uint32_t background = packSrgba8(scene.background);
   s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile_index, int worker) {

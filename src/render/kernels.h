@@ -23,8 +23,8 @@ using RasterTileFn = void (*)(const std::vector<TriangleChunk>& chunks, size_t c
                               int tile_index, TileVisibility& tile);
 
 // Sets up the queued triangles of a batch into their chunk's records (setup_kernel.h).
-using SetupBatchFn = void (*)(SetupBatch& batch, int width, int height,
-                              RasterTriangle* raster, RasterWide* wide, ShadeTriangle* shade);
+using SetupBatchFn = void (*)(SetupBatch& batch, int width, int height, RasterTriangle* raster,
+                              RasterWide* wide, ShadeTriangle* shade);
 
 // Culls the eight triangles whose vertex indices are indices[0..23] (setup_kernel.h). False, with
 // nothing written, when an index is not below vertex_count: the caller takes them one at a time.
