@@ -50,6 +50,9 @@ class ChunkBins {
     const PoolVector<uint32_t>& list = tiles_[static_cast<size_t>(tile)];
     return list.data() + list.size();
   }
+  size_t tileCount() const { return tiles_.size(); }
+  // Where the list of `tile` is kept (its begin and end), for prefetching.
+  const void* listOf(int tile) const { return &tiles_[static_cast<size_t>(tile)]; }
   size_t count(int tile) const { return tiles_[static_cast<size_t>(tile)].size(); }
 
  private:

@@ -288,6 +288,15 @@ TESSERA_LANES_INLINE bool advance(const std::vector<TriangleChunk>& chunks, size
 
 void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
                       TileVisibility& tile) {
+  // Every chunk's list for this tile, all at once (each is a line or two, written by setup on
+  // either core), and where the next tile's lists are kept, which this worker most likely takes
+  // next: walked one after another, each list was a miss of its own.
+  const int tile_count = static_cast<int>(chunks[0].bins.tileCount());
+  for (size_t c = 0; c < chunk_count; ++c) {
+    const ChunkBins& bins = chunks[c].bins;
+    __builtin_prefetch(bins.begin(tile_index));
+    if (tile_index + 1 < tile_count) __builtin_prefetch(bins.listOf(tile_index + 1));
+  }
   // The first entry, then a second cursor kPrefetchAhead entries further on, across chunk
   // boundaries, so that the first triangles of every chunk's list are prefetched too.
   BinCursor at{0, nullptr, nullptr};
