@@ -4,6 +4,7 @@
 // when changing a hot path; `tessera bench` is the yardstick.
 //   build/bench/tessera_stagetimes [scene] [workers] [frames] [width] [height] [simd]
 //   simd: auto, scalar, sse2, avx2, avx512. Defaults: bunny 2 40 1920 1080 auto.
+//   TESSERA_NOHASH=1 leaves the hash out (and the gap it makes between frames).
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -71,6 +72,10 @@ int main(int argc, char** argv) {
   bench::poseForFrame(b, 0);
   renderer.render(b.scene, options, frame);  // the buffers, outside the timing
 
+  // TESSERA_NOHASH=1: no hash between frames, so that the frames follow one another as in
+  // `tessera bench` (hashing a 1080p frame takes a millisecond or two, long enough for the
+  // workers to go to sleep).
+  const bool hash_frames = std::getenv("TESSERA_NOHASH") == nullptr;
   std::vector<double> total, vertex, setup, tiles;
   uint64_t hash = 14695981039346656037ull;  // FNV-1a over every frame's colour
   for (int i = 0; i < frames; ++i) {
@@ -83,7 +88,8 @@ int main(int argc, char** argv) {
     vertex.push_back(s.vertex_ms);
     setup.push_back(s.setup_ms);
     tiles.push_back(s.tiles_ms);
-    for (uint32_t c : frame.color) hash = (hash ^ c) * 1099511628211ull;
+    if (hash_frames)
+      for (uint32_t c : frame.color) hash = (hash ^ c) * 1099511628211ull;
   }
   std::printf(
       "%s %dx%d, %d workers, %s, %d frames: total %.3f ms (vertex %.3f, setup %.3f, "
