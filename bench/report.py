@@ -247,7 +247,9 @@ def main():
     w("- The fill scene is drawn back to front, so llvmpipe shades every layer of every pixel "
       "(its early depth test cannot reject them), while tessera's visibility buffer shades each "
       "pixel once: this scene measures exactly that design difference.")
-    w("- Micro-benchmarks of single stages and whole frames: `build/bench/tessera_microbench`.")
+    w("- Micro-benchmarks of single stages and whole frames: `build/bench/tessera_microbench`; "
+      "the stage times (vertex, setup, tiles) of a scene frame by frame, with a hash of the "
+      "images for comparing two builds: `build/bench/tessera_stagetimes [scene] [workers] [frames]`.")
     w("")
     section = BEGIN + "\n" + "\n".join(out) + "\n" + END
     page = open(output).read() if os.path.exists(output) else "# Performance\n"
