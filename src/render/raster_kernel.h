@@ -291,6 +291,7 @@ void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_cou
   // Every chunk's list for this tile, all at once (each is a line or two, written by setup on
   // either core), and where the next tile's lists are kept, which this worker most likely takes
   // next: walked one after another, each list was a miss of its own.
+  if (chunk_count == 0) return;
   const int tile_count = static_cast<int>(chunks[0].bins.tileCount());
   for (size_t c = 0; c < chunk_count; ++c) {
     const ChunkBins& bins = chunks[c].bins;

@@ -1,7 +1,8 @@
 #include "render/worker_pool.h"
 
 #include <cstdint>
-#include <stdexcept>
+
+#include <tessera/base/check.h>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -81,7 +82,7 @@ void WorkerPool::run(size_t count, void* context, Invoker invoker) {
     for (size_t i = 0; i < count; ++i) invoker(context, i, 0);
     return;
   }
-  if (count > UINT32_MAX) throw std::length_error("WorkerPool: more than 2^32 - 1 indices");
+  TESSERA_CHECK(count <= UINT32_MAX) << "a parallel loop of " << count << " indices";
   {
     std::lock_guard<std::mutex> lock(mutex_);
     context_ = context;
