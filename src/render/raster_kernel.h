@@ -108,7 +108,9 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
         column = column + splat(kLanes);
       }
       const I32x8 covered = nonNegative(e0 | e1 | e2) & lessOrEqual(column, last);
-      if (!any(covered)) continue;
+      // No branch on an empty group: where no lane is covered the depth test writes back what
+      // it read. At a small triangle's edges such a branch goes either way and mispredicted
+      // often enough to cost more than the work it saved (docs/perf.md, round 5).
       const F32x8 across = x == x_begin ? first_across : depthAcross8(t, x);
       depthTestRow8(key, rowDepth(t, y), across, x, covered, depth, keys);
     }
@@ -149,7 +151,7 @@ TESSERA_LANES_INLINE void rasterNarrow(const RasterTriangle& t, uint32_t key, Ti
     }
     const I32x8 rows = y < y_end ? splat(int32_t{-1}) : ~second_row;  // lanes 4-7: row y_end + 1
     const I32x8 covered = nonNegative(edge[0] | edge[1] | edge[2]) & in_columns & rows;
-    if (!any(covered)) continue;
+    // No branch on an empty group, as in rasterSmall.
     const F32x8 z = (z0 + dzdy * (centre_y - y0)) + dz;
     const F32x8 stored = load2x4<F32x8>(depth, depth + kTileSize);
     const I32x8 pass = covered & lessThan(z, stored);
