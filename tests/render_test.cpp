@@ -21,6 +21,7 @@
 #include "render/clip.h"
 #include "render/kernels.h"
 #include "render/page_pool.h"
+#include "render/replication.h"
 #include "render/worker_pool.h"
 
 using namespace tessera;
@@ -991,6 +992,12 @@ TEST(Renderer, ReusesItsBuffersAcrossFramesAndSizes) {
   Frame expected;
   fresh.render(scene, options, expected);
   EXPECT_EQ(frame.color, expected.color);
+  // While it learns, the renderer alternates between its two ways to run the vertex stage (once,
+  // or once per worker: render/replication.h): the next two frames take one each.
+  for (int i = 0; i < 2; ++i) {
+    renderer.render(scene, options, frame);
+    EXPECT_EQ(frame.color, expected.color) << i;
+  }
 }
 
 TEST(Renderer, CameraInsideAClosedModelSeesItsInsideFaces) {
@@ -1045,6 +1052,46 @@ TEST(Renderer, AovsAreFilledOnlyWhenAskedAndDoNotChangeTheColour) {
   renderer.render(scene, options, colour_only);
   EXPECT_EQ(colour_only.depth.size(), 70u * 50u);
   EXPECT_TRUE(colour_only.triangle_id.empty());
+}
+
+// The vertex stage's two ways: alternated while both are timed, then the one with the lower
+// median, the other every kProbeEvery-th frame; one slow frame does not flip it, a lasting change
+// does, and a different scene starts over.
+TEST(ReplicationChoice, KeepsTheFasterWayAndProbesTheOther) {
+  using render::ReplicationChoice;
+  ReplicationChoice choice;
+  auto frame = [&](double replicated_ms, double shared_ms) {
+    const bool way = choice.next(1000, 2000);
+    choice.record(way, way ? replicated_ms : shared_ms);
+    return way;
+  };
+  for (uint32_t f = 0; f < 2 * ReplicationChoice::kSamples; ++f)
+    EXPECT_EQ(frame(2.0, 3.0), f % 2 == 0) << f;  // alternating while it learns
+  EXPECT_TRUE(choice.preferred);
+  // Replicated is faster: every frame replicated but one in kProbeEvery.
+  int shared = 0;
+  for (int f = 0; f < 64; ++f) shared += !frame(2.0, 3.0);
+  EXPECT_EQ(shared, 64 / static_cast<int>(ReplicationChoice::kProbeEvery));
+  // One very slow replicated frame changes nothing.
+  choice.record(true, 50.0);
+  EXPECT_TRUE(choice.preferred);
+  // The host changes: sharing becomes the faster; after enough frames of each it is preferred.
+  for (int f = 0; f < 200 && choice.preferred; ++f) frame(3.0, 2.0);
+  EXPECT_FALSE(choice.preferred);
+  int replicated = 0;
+  for (int f = 0; f < 64; ++f) replicated += frame(3.0, 2.0);
+  EXPECT_EQ(replicated, 64 / static_cast<int>(ReplicationChoice::kProbeEvery));
+  // Another scene: learning again from the start.
+  EXPECT_TRUE(choice.next(1001, 2000));
+  EXPECT_EQ(choice.count[0] + choice.count[1], 0u);
+  EXPECT_FALSE(choice.next(1001, 2000));
+  // Replicating 1% faster is within the margin: the single transform is kept.
+  ReplicationChoice close;
+  for (int f = 0; f < 40; ++f) {
+    const bool way = close.next(1000, 2000);
+    close.record(way, way ? 1.98 : 2.0);
+  }
+  EXPECT_FALSE(close.preferred);
 }
 
 // Every index of every job runs exactly once, on a worker the pool has, whether the workers are

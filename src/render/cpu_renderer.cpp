@@ -1,6 +1,6 @@
 // The CPU backend: runs the stages in order over a worker pool.
 //
-//   vertex:  parallel over fixed ranges of vertices
+//   vertex:  parallel over fixed ranges of vertices, or (small scenes) once per worker
 //   setup:   parallel over fixed chunks of triangles (assembly, cull, clip, setup, bin per chunk)
 //   raster:  parallel over 64x64 tiles; each tile reads the chunks' bins in chunk order
 //   resolve: in the same tile job, shade each visible pixel once and write the frame
@@ -26,6 +26,7 @@
 #include "render/kernels.h"
 #include "render/lines.h"
 #include "render/raster.h"
+#include "render/replication.h"
 #include "render/resolve.h"
 #include "render/setup.h"
 #include "render/shade.h"
@@ -41,6 +42,15 @@ namespace {
 constexpr size_t kVerticesPerJob =
     4096;  // the bunny's 35k vertices: 9 jobs, balanced over 2 workers
 constexpr size_t kMinTrianglesPerChunk = 4096;
+// Scenes of at most this many vertices may be transformed once per worker, each worker into its
+// own VertexBuffer, which its setup chunks then read: a mesh's triangles reach for vertices all
+// over its vertex order (the bunny's last chunk uses vertices 0 to 34,833), so with one shared
+// buffer part of setup's vertex reads go to lines the other core wrote. Whether that pays depends
+// on the host: on this project's 2-core VM it took 4-7% off the bunny's frame where a line took
+// 450-550 ns between the cores and added 3% where it took 120-140 ns (the same VM, an hour
+// apart), so the renderer times both ways (ReplicationChoice, render/replication.h). 128k
+// vertices take a worker about 0.4 ms (3.4 ns each); above that, transforming twice is not tried.
+constexpr size_t kMaxReplicatedVertices = size_t{1} << 17;
 
 struct VertexJob {
   uint32_t object;
@@ -52,6 +62,7 @@ struct VertexJob {
 
 struct CpuRenderer::State {
   State(int workers, Isa isa) : pool(workers), isa(isa), kernels(kernelsFor(isa)) {
+    transformed.resize(static_cast<size_t>(pool.size()));
     for (int i = 0; i < pool.size(); ++i) {
       tiles.push_back(std::make_unique<TileVisibility>());
       shaded.push_back(std::make_unique<ShadedTile>());
@@ -63,7 +74,15 @@ struct CpuRenderer::State {
   Kernels kernels;
   std::vector<ObjectTransforms> objects;
   std::vector<VertexJob> vertex_jobs;
-  VertexBuffer vertices;
+  // The vertex stage's output: one buffer, or one per worker (kMaxReplicatedVertices).
+  std::vector<VertexBuffer> vertex_buffers;
+  // Per worker, this frame (replicated scenes): its copy of the vertices is made, in how long.
+  struct alignas(64) WorkerCopy {
+    bool done = false;
+    double ms = 0;
+  };
+  std::vector<WorkerCopy> transformed;
+  ReplicationChoice replication;
   std::vector<TriangleChunk> chunks;
   size_t chunk_count = 0;
   std::vector<std::unique_ptr<TileVisibility>> tiles;  // one per worker
@@ -72,8 +91,8 @@ struct CpuRenderer::State {
   LineList lines;
   PipelineStats stats;
 
-  void setupChunk(const Scene& scene, const TileGrid& grid, const GuardBand& guard,
-                  bool want_normals, TriangleChunk& chunk) const;
+  void setupChunk(const Scene& scene, const VertexBuffer& vertices, const TileGrid& grid,
+                  const GuardBand& guard, bool want_normals, TriangleChunk& chunk) const;
 };
 
 namespace {
@@ -117,8 +136,8 @@ const PipelineStats& CpuRenderer::lastStats() const {
   return state_->stats;
 }
 
-void CpuRenderer::State::setupChunk(const Scene& scene, const TileGrid& grid,
-                                    const GuardBand& guard, bool want_normals,
+void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vertices,
+                                    const TileGrid& grid, const GuardBand& guard, bool want_normals,
                                     TriangleChunk& chunk) const {
   chunk.size = 0;
   chunk.bins.reset(grid.tileCount());
@@ -370,15 +389,26 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const GuardBand guard = makeGuardBand(options.width, options.height);
   const ViewportTransform viewport{static_cast<float>(options.width),
                                    static_cast<float>(options.height), guard};
-  s.vertices.resize(vertex_total);
+  const bool replicate = s.pool.size() > 1 && vertex_total <= kMaxReplicatedVertices &&
+                         s.replication.next(vertex_total, triangle_total);
+  const size_t copies = replicate ? static_cast<size_t>(s.pool.size()) : 1;
+  if (s.vertex_buffers.size() < copies) s.vertex_buffers.resize(copies);
+  for (size_t i = 0; i < copies; ++i) s.vertex_buffers[i].resize(vertex_total);
   const VertexLighting lighting{scene.ambient, scene.lights};
-  s.pool.parallelFor(s.vertex_jobs.size(), [&](size_t j, int) {
+  auto transformJob = [&](size_t j, VertexBuffer& out) {
     const VertexJob& job = s.vertex_jobs[j];
     const Object& object = scene.objects[job.object];
     s.kernels.transform_vertices(*object.mesh, s.objects[job.object], viewport,
                                  litPerVertex(object) ? &lighting : nullptr, job.first, job.count,
-                                 s.vertices);
-  });
+                                 out);
+  };
+  // Replicated, each worker transforms its copy in the setup stage, before its first chunk (no
+  // barrier between the two: a worker reads no copy but its own). Every copy holds the same
+  // bits, so which copy a chunk reads never shows in the image.
+  if (!replicate)
+    s.pool.parallelFor(s.vertex_jobs.size(),
+                       [&](size_t j, int) { transformJob(j, s.vertex_buffers[0]); });
+  for (auto& copy : s.transformed) copy = {};
 
   const Clock::time_point t_vertex = Clock::now();
 
@@ -391,8 +421,16 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     s.chunks[c].first_triangle = c * chunk_size;
     s.chunks[c].triangle_count = std::min(chunk_size, triangle_total - c * chunk_size);
   }
-  s.pool.parallelFor(s.chunk_count, [&](size_t c, int) {
-    s.setupChunk(scene, grid, guard, options.normals, s.chunks[c]);
+  s.pool.parallelFor(s.chunk_count, [&](size_t c, int worker) {
+    const size_t w = static_cast<size_t>(worker);
+    if (replicate && !s.transformed[w].done) {
+      const Clock::time_point start = Clock::now();
+      for (size_t j = 0; j < s.vertex_jobs.size(); ++j) transformJob(j, s.vertex_buffers[w]);
+      s.transformed[w].done = true;
+      s.transformed[w].ms = elapsed_ms(start, Clock::now());
+    }
+    s.setupChunk(scene, s.vertex_buffers[replicate ? w : 0], grid, guard, options.normals,
+                 s.chunks[c]);
   });
 
   const Clock::time_point t_setup = Clock::now();
@@ -431,6 +469,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   });
 
   const Clock::time_point t_tiles = Clock::now();
+  if (s.pool.size() > 1 && vertex_total <= kMaxReplicatedVertices)
+    s.replication.record(replicate, elapsed_ms(t_start, t_tiles));
 
   // Lines.
   if (draws_lines) {
@@ -449,6 +489,13 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   s.stats = {};
   s.stats.vertex_ms = elapsed_ms(t_start, t_vertex);
   s.stats.setup_ms = elapsed_ms(t_vertex, t_setup);
+  if (replicate) {
+    // The copies were made inside the setup stage: count the longest as the vertex stage.
+    double copy_ms = 0;
+    for (const auto& copy : s.transformed) copy_ms = std::max(copy_ms, copy.ms);
+    s.stats.vertex_ms += copy_ms;
+    s.stats.setup_ms = std::max(0.0, s.stats.setup_ms - copy_ms);
+  }
   s.stats.tiles_ms = elapsed_ms(t_setup, t_tiles);
   s.stats.lines_ms = elapsed_ms(t_tiles, t_lines);
   s.stats.triangles_in = triangle_total;

@@ -16,7 +16,7 @@ struct PipelineStats {
   size_t triangles_clipped = 0;  // triangles that crossed near/far or left the guard band
   size_t triangles_setup = 0;    // setup records (after clipping)
   // Wall-clock milliseconds of each stage of the last frame (all workers together).
-  double vertex_ms = 0;  // vertex stage
+  double vertex_ms = 0;  // vertex stage (scenes transformed once per worker: the longest copy)
   double setup_ms = 0;   // assembly, cull, clip, setup and binning
   double tiles_ms = 0;   // raster, shade and resolve
   double lines_ms = 0;   // the line pass
