@@ -42,15 +42,20 @@ namespace {
 constexpr size_t kVerticesPerJob =
     4096;  // the bunny's 35k vertices: 9 jobs, balanced over 2 workers
 constexpr size_t kMinTrianglesPerChunk = 4096;
-// Scenes of at most this many vertices may be transformed once per worker, each worker into its
-// own VertexBuffer, which its setup chunks then read: a mesh's triangles reach for vertices all
-// over its vertex order (the bunny's last chunk uses vertices 0 to 34,833), so with one shared
-// buffer part of setup's vertex reads go to lines the other core wrote. Whether that pays depends
-// on the host: on this project's 2-core VM it took 4-7% off the bunny's frame where a line took
-// 450-550 ns between the cores and added 3% where it took 120-140 ns (the same VM, an hour
-// apart), so the renderer times both ways (ReplicationChoice, render/replication.h). 128k
-// vertices take a worker about 0.4 ms (3.4 ns each); above that, transforming twice is not tried.
-constexpr size_t kMaxReplicatedVertices = size_t{1} << 17;
+// Small scenes may be transformed once per worker, each worker into its own VertexBuffer, which
+// its setup chunks then read: a mesh's triangles reach for vertices all over its vertex order
+// (the bunny's last chunk uses vertices 0 to 34,833), so with one shared buffer part of setup's
+// vertex reads go to lines the other core wrote. Whether that pays depends on the host: on this
+// project's 2-core VM it took 4-7% off the bunny's frame where a line took 450-550 ns between the
+// cores and added 3% where it took 120-140 ns (the same VM, an hour apart), so the renderer times
+// both ways (ReplicationChoice, render/replication.h). It is tried while all the copies together
+// hold at most this many vertices (15 MB; two workers: 128k vertices, 0.4 ms each to transform),
+// so that many workers neither hold many copies nor each transform a large mesh.
+constexpr size_t kMaxReplicatedVertexCopies = size_t{1} << 18;
+
+bool mayReplicate(size_t vertex_total, int workers) {
+  return workers > 1 && vertex_total * static_cast<size_t>(workers) <= kMaxReplicatedVertexCopies;
+}
 
 struct VertexJob {
   uint32_t object;
@@ -74,7 +79,7 @@ struct CpuRenderer::State {
   Kernels kernels;
   std::vector<ObjectTransforms> objects;
   std::vector<VertexJob> vertex_jobs;
-  // The vertex stage's output: one buffer, or one per worker (kMaxReplicatedVertices).
+  // The vertex stage's output: one buffer, or one per worker (mayReplicate).
   std::vector<VertexBuffer> vertex_buffers;
   // Per worker, this frame (replicated scenes): its copy of the vertices is made, in how long.
   struct alignas(64) WorkerCopy {
@@ -389,8 +394,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const GuardBand guard = makeGuardBand(options.width, options.height);
   const ViewportTransform viewport{static_cast<float>(options.width),
                                    static_cast<float>(options.height), guard};
-  const bool replicate = s.pool.size() > 1 && vertex_total <= kMaxReplicatedVertices &&
-                         s.replication.next(vertex_total, triangle_total);
+  const bool replicate =
+      mayReplicate(vertex_total, s.pool.size()) && s.replication.next(vertex_total, triangle_total);
   const size_t copies = replicate ? static_cast<size_t>(s.pool.size()) : 1;
   if (s.vertex_buffers.size() < copies) s.vertex_buffers.resize(copies);
   for (size_t i = 0; i < copies; ++i) s.vertex_buffers[i].resize(vertex_total);
@@ -469,7 +474,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   });
 
   const Clock::time_point t_tiles = Clock::now();
-  if (s.pool.size() > 1 && vertex_total <= kMaxReplicatedVertices)
+  if (mayReplicate(vertex_total, s.pool.size()))
     s.replication.record(replicate, elapsed_ms(t_start, t_tiles));
 
   // Lines.
