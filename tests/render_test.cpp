@@ -963,6 +963,31 @@ TEST(Renderer, AllocatesNothingPerFrameAfterWarmUp) {
   EXPECT_EQ(g_allocations.load(), 0u);
 }
 
+// An animation with two workers, frame after frame, against one worker: the same bytes in every
+// frame, while the two-worker renderer alternates and probes its two ways to run the vertex
+// stage (render/replication.h) and its workers take their blocks of chunks and tiles.
+TEST(Renderer, AnAnimationIsTheSameForOneAndTwoWorkers) {
+  Scene scene;
+  scene.camera.position = {0, 0.4f, 3};
+  scene.lights.push_back({normalize(float3{-1, -1, -1}), float3(0.9f)});
+  Object o;
+  o.mesh = std::make_shared<Mesh>(makeUvSphere(96, 48));  // 9,216 triangles: three chunks
+  o.shading = Shading::kGouraud;
+  scene.objects.push_back(o);
+  CpuRenderer one(1), two(2);
+  RenderOptions options;
+  options.width = 160;
+  options.height = 120;
+  Frame a, b;
+  for (int frame = 0; frame < 24; ++frame) {
+    scene.objects[0].transform.rotation = quat::fromAxisAngle({0, 1, 0}, 0.1f * frame);
+    one.render(scene, options, a);
+    two.render(scene, options, b);
+    ASSERT_EQ(a.color, b.color) << "frame " << frame;
+  }
+  EXPECT_GT(coveredCount(a), 160 * 120 / 8);
+}
+
 TEST(Renderer, ReusesItsBuffersAcrossFramesAndSizes) {
   Scene scene;
   Object o;
