@@ -394,8 +394,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const GuardBand guard = makeGuardBand(options.width, options.height);
   const ViewportTransform viewport{static_cast<float>(options.width),
                                    static_cast<float>(options.height), guard};
-  const bool replicate =
-      mayReplicate(vertex_total, s.pool.size()) && s.replication.next(vertex_total, triangle_total);
+  const bool replicable = mayReplicate(vertex_total, s.pool.size());
+  const bool replicate = replicable && s.replication.next(vertex_total, triangle_total);
   const size_t copies = replicate ? static_cast<size_t>(s.pool.size()) : 1;
   if (s.vertex_buffers.size() < copies) s.vertex_buffers.resize(copies);
   for (size_t i = 0; i < copies; ++i) s.vertex_buffers[i].resize(vertex_total);
@@ -474,8 +474,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   });
 
   const Clock::time_point t_tiles = Clock::now();
-  if (mayReplicate(vertex_total, s.pool.size()))
-    s.replication.record(replicate, elapsed_ms(t_start, t_tiles));
+  if (replicable) s.replication.record(replicate, elapsed_ms(t_start, t_tiles));
 
   // Lines.
   if (draws_lines) {

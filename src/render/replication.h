@@ -1,6 +1,6 @@
 // Which way the CPU renderer runs its vertex stage for a small scene with more than one worker:
 // once, shared by every worker's setup, or once per worker, each into its own copy (see
-// kMaxReplicatedVertices in cpu_renderer.cpp). Kept apart so that tests can hold it to its rules.
+// mayReplicate in cpu_renderer.cpp). Kept apart so that tests can hold it to its rules.
 #pragma once
 
 #include <algorithm>

@@ -41,26 +41,14 @@ WorkerPool::~WorkerPool() {
   for (std::thread& t : threads_) t.join();
 }
 
-bool WorkerPool::takeFront(Block& block, size_t& index) {
+bool WorkerPool::take(Block& block, bool front, size_t& index) {
   uint64_t range = block.range.load(std::memory_order_relaxed);
   for (;;) {
-    const uint32_t front = static_cast<uint32_t>(range), back = static_cast<uint32_t>(range >> 32);
-    if (front >= back) return false;
-    if (block.range.compare_exchange_weak(range, range + 1, std::memory_order_relaxed)) {
-      index = front;
-      return true;
-    }
-  }
-}
-
-bool WorkerPool::takeBack(Block& block, size_t& index) {
-  uint64_t range = block.range.load(std::memory_order_relaxed);
-  for (;;) {
-    const uint32_t front = static_cast<uint32_t>(range), back = static_cast<uint32_t>(range >> 32);
-    if (front >= back) return false;
-    if (block.range.compare_exchange_weak(range, range - (uint64_t{1} << 32),
-                                          std::memory_order_relaxed)) {
-      index = back - 1;
+    const uint32_t first = static_cast<uint32_t>(range), end = static_cast<uint32_t>(range >> 32);
+    if (first >= end) return false;
+    const uint64_t rest = front ? range + 1 : range - (uint64_t{1} << 32);
+    if (block.range.compare_exchange_weak(range, rest, std::memory_order_relaxed)) {
+      index = front ? first : end - 1;
       return true;
     }
   }
@@ -69,10 +57,10 @@ bool WorkerPool::takeBack(Block& block, size_t& index) {
 void WorkerPool::drain(int worker) {
   const size_t n = blocks_.size();
   size_t index;
-  while (takeFront(blocks_[static_cast<size_t>(worker)], index)) invoker_(context_, index, worker);
+  while (take(blocks_[static_cast<size_t>(worker)], true, index)) invoker_(context_, index, worker);
   for (size_t k = 1; k < n; ++k) {
     Block& other = blocks_[(static_cast<size_t>(worker) + k) % n];
-    while (takeBack(other, index)) invoker_(context_, index, worker);
+    while (take(other, false, index)) invoker_(context_, index, worker);
   }
 }
 

@@ -56,8 +56,9 @@ class WorkerPool {
   struct alignas(128) Block {
     std::atomic<uint64_t> range{0};
   };
-  bool takeFront(Block& block, size_t& index);
-  bool takeBack(Block& block, size_t& index);
+  // Takes an index of the block, from its front (its owner) or its back (another worker); false
+  // when none is left.
+  bool take(Block& block, bool front, size_t& index);
 
   // The current job.
   void* context_ = nullptr;
