@@ -25,8 +25,12 @@ struct TileGrid {
 
 class ChunkBins {
  public:
-  // Empties the bins for a grid of `tile_count` tiles (keeps the memory).
-  void reset(int tile_count);
+  // Empties the bins for a grid of `tile_count` tiles (keeps the memory). `shared`: other cores
+  // may have read the lists since they were filled (the renderer has more than one worker).
+  // Then every line of the lists is first asked for in write state, all at once: on a host where
+  // a line takes hundreds of nanoseconds between cores, the stores that refill the lists would
+  // otherwise wait for the other core's copies one line at a time (docs/perf.md, round 6).
+  void reset(int tile_count, bool shared = false);
   // Adds triangle `local_index` to every tile its bounding box overlaps. Inline for the common
   // case of a dense mesh: a box inside one tile.
   void add(const TileGrid& grid, const RasterTriangle& triangle, uint32_t local_index) {

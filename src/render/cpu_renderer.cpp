@@ -145,7 +145,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
                                     const TileGrid& grid, const GuardBand& guard, bool want_normals,
                                     TriangleChunk& chunk) const {
   chunk.size = 0;
-  chunk.bins.reset(grid.tileCount());
+  chunk.bins.reset(grid.tileCount(), pool.size() > 1);
   chunk.culled = 0;
   chunk.clipped = 0;
 
