@@ -42,10 +42,21 @@ bench() { "$exe" bench --json --vs llvmpipe --frames "$frames" "$@"; }
 echo "run_all: every scene at every resolution ($frames frames each)" >&2
 bench > "$out/matrix.jsonl"
 echo "run_all: worker scaling and variants of the bunny at 1920x1080" >&2
-{
-  bench --workers 1 --resolution 1920,1080 bunny
-  bench --workers 2 --resolution 1920,1080 bunny
-} > "$out/scaling.jsonl"
+# Worker scaling on the first two cores: one worker pinned to each of them (a shared host's two
+# virtual cores are not always equally fast, and the speed-up is taken against the faster), then
+# two workers on both; three rounds, one after the other, so that a spell of the host falls on
+# all three alike. Each line gets "cpus" and "round" added.
+scaling_run() {
+  local cpus=$1 round=$2
+  shift 2
+  taskset -c "$cpus" "$exe" bench --json --vs llvmpipe --frames "$frames" "$@" |
+    sed "s/}\$/, \"cpus\": \"$cpus\", \"round\": $round}/"
+}
+for round in 1 2 3; do
+  scaling_run 0 "$round" --workers 1 --resolution 1920,1080 bunny
+  scaling_run 1 "$round" --workers 1 --resolution 1920,1080 bunny
+  scaling_run 0,1 "$round" --workers 2 --resolution 1920,1080 bunny
+done > "$out/scaling.jsonl"
 {
   bench --resolution 1920,1080 --shading smooth bunny
   bench --resolution 1920,1080 --backface-type visible bunny
