@@ -1,5 +1,6 @@
 // The vertex stage's kernel (vertex.h), written once against eight-lane types (simd_lanes.h) and
-// compiled per instruction set (kernels_<isa>.cpp), eight vertices at a time.
+// compiled per instruction set (kernels_<isa>.cpp), eight vertices at a time; the AVX-512 variant
+// takes sixteen at a time where it can (transformVertexBlock16, the same operations per lane).
 //
 // What it computes is defined here and nowhere else. For each vertex, with p its position and n
 // its normal, every lane does exactly these float operations in this order (no FMA: tessera_core
@@ -157,6 +158,163 @@ TESSERA_LANES_INLINE void transformVertexBlock(const float3* positions, const fl
                           blend(zero_normal, nan, e.z)});
 }
 
+#if defined(__AVX512F__) && !defined(TESSERA_SIMD_SCALAR)
+// Where a vector register holds sixteen floats (the AVX-512 variant), sixteen vertices a step:
+// transformVertexBlock's operations, lane for lane and in its order, so the same bits with half
+// the instructions. GCC vector extensions, as simd_lanes.h's eight-lane types.
+typedef float F32x16 __attribute__((vector_size(64)));
+typedef int32_t I32x16 __attribute__((vector_size(64)));
+
+TESSERA_LANES_INLINE F32x16 splat16(float x) {
+  return F32x16{} + x;
+}
+
+struct Float3x16 {
+  F32x16 x, y, z;
+};
+
+// p[0..15] (exactly 48 floats) as lanes of x, y and z.
+TESSERA_LANES_INLINE Float3x16 loadFloat3x16(const float3* p) {
+  F32x16 v[3];
+  std::memcpy(v, p, sizeof v);
+  const F32x16 x01 = __builtin_shufflevector(v[0], v[1], 0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30,
+                                             0, 0, 0, 0, 0);
+  const F32x16 y01 = __builtin_shufflevector(v[0], v[1], 1, 4, 7, 10, 13, 16, 19, 22, 25, 28, 31,
+                                             0, 0, 0, 0, 0);
+  const F32x16 z01 = __builtin_shufflevector(v[0], v[1], 2, 5, 8, 11, 14, 17, 20, 23, 26, 29, 0,
+                                             0, 0, 0, 0, 0);
+  return {__builtin_shufflevector(x01, v[2], 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 20, 23, 26, 29),
+          __builtin_shufflevector(y01, v[2], 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 18, 21, 24, 27, 30),
+          __builtin_shufflevector(z01, v[2], 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 16, 19, 22, 25, 28, 31)};
+}
+
+// Writes exactly p[0..15].
+TESSERA_LANES_INLINE void storeFloat3x16(float3* p, const Float3x16& v) {
+  const F32x16 xy0 = __builtin_shufflevector(v.x, v.y, 0, 16, 0, 1, 17, 0, 2, 18, 0, 3, 19, 0, 4,
+                                             20, 0, 5);
+  const F32x16 xy1 = __builtin_shufflevector(v.x, v.y, 21, 0, 6, 22, 0, 7, 23, 0, 8, 24, 0, 9, 25,
+                                             0, 10, 26);
+  const F32x16 xy2 = __builtin_shufflevector(v.x, v.y, 0, 11, 27, 0, 12, 28, 0, 13, 29, 0, 14, 30,
+                                             0, 15, 31, 0);
+  const F32x16 out[3] = {
+      __builtin_shufflevector(xy0, v.z, 0, 1, 16, 3, 4, 17, 6, 7, 18, 9, 10, 19, 12, 13, 20, 15),
+      __builtin_shufflevector(xy1, v.z, 0, 21, 2, 3, 22, 5, 6, 23, 8, 9, 24, 11, 12, 25, 14, 15),
+      __builtin_shufflevector(xy2, v.z, 26, 1, 2, 27, 4, 5, 28, 7, 8, 29, 10, 11, 30, 13, 14, 31)};
+  std::memcpy(p, out, sizeof out);
+}
+
+TESSERA_LANES_INLINE I32x16 planeBit16(I32x16 outside, uint32_t bit) {
+  return outside & static_cast<int32_t>(bit);
+}
+
+TESSERA_LANES_INLINE I32x16 finiteMask16(F32x16 a) {
+  return (reinterpret_cast<I32x16>(a) & 0x7fffffff) <= 0x7f7fffff;
+}
+
+// roundToInt's operations for sixteen lanes.
+TESSERA_LANES_INLINE I32x16 roundToInt16(F32x16 a) {
+  I32x16 r = reinterpret_cast<I32x16>(_mm512_maskz_cvtps_epi32(0xffff, reinterpret_cast<__m512>(a)));
+  if (_mm512_cmpeq_epi32_mask(reinterpret_cast<__m512i>(r), _mm512_set1_epi32(INT32_MIN))) {
+    for (int l = 0; l < 16; ++l)
+      if (r[l] == INT32_MIN) r[l] = static_cast<int32_t>(std::lrint(a[l]));
+  }
+  return r;
+}
+
+// transformVertexBlock for positions[0..15] (and normals[0..15], null for none), read exactly.
+TESSERA_LANES_INLINE void transformVertexBlock16(const float3* positions, const float3* normals,
+                                                 const VertexConstants& k,
+                                                 const VertexLighting* lighting,
+                                                 const VertexBlockOut& out) {
+  auto s = [](F32x8 lanes) { return splat16(lane(lanes, 0)); };
+  const Float3x16 p = loadFloat3x16(positions);
+  F32x16 clip[4];
+  for (int r = 0; r < 4; ++r)
+    clip[r] = s(k.mvp[0][r]) * p.x + s(k.mvp[1][r]) * p.y + s(k.mvp[2][r]) * p.z + s(k.mvp[3][r]);
+  const F32x16 x = clip[0], y = clip[1], z = clip[2], w = clip[3];
+  std::memcpy(out.clip_x, &x, sizeof x);
+  std::memcpy(out.clip_y, &y, sizeof y);
+  std::memcpy(out.clip_z, &z, sizeof z);
+  std::memcpy(out.clip_w, &w, sizeof w);
+
+  const F32x16 neg_w = -w;
+  const F32x16 gx = s(k.guard_x) * w, gy = s(k.guard_y) * w;
+  const I32x16 code =
+      planeBit16(z < neg_w, kClipNear) | planeBit16(w < z, kClipFar) |
+      planeBit16(x < neg_w, kClipLeft) | planeBit16(w < x, kClipRight) |
+      planeBit16(y < neg_w, kClipBottom) | planeBit16(w < y, kClipTop) |
+      planeBit16(x < -gx, kGuardLeft) | planeBit16(gx < x, kGuardRight) |
+      planeBit16(y < -gy, kGuardBottom) | planeBit16(gy < y, kGuardTop);
+  const I32x16 all_finite = finiteMask16(x) & finiteMask16(y) & finiteMask16(z) & finiteMask16(w);
+  typedef uint16_t U16x16 __attribute__((vector_size(32)));
+  const U16x16 codes = __builtin_convertvector(
+      all_finite ? code : I32x16{} + static_cast<int32_t>(kNonFinite), U16x16);
+  std::memcpy(out.outcode, &codes, sizeof codes);
+
+  const F32x16 half = splat16(0.5f);
+  const F32x16 inv_w = splat16(1.0f) / w;
+  const F32x16 wx = (x * inv_w * half + half) * s(k.width);
+  const F32x16 wy = (half - y * inv_w * half) * s(k.height);
+  const F32x16 subpixel = splat16(static_cast<float>(kSubpixelOne));
+  const F32x16 sx = reinterpret_cast<F32x16>(roundToInt16(wx * subpixel));
+  const F32x16 sy = reinterpret_cast<F32x16>(roundToInt16(wy * subpixel));
+  const F32x16 sz = z * inv_w * half + half;
+  // Sixteen (x, y, z, w) records: pairs, then vertices four at a time.
+  const F32x16 xy_low = __builtin_shufflevector(sx, sy, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21,
+                                                6, 22, 7, 23);
+  const F32x16 xy_high = __builtin_shufflevector(sx, sy, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13,
+                                                 29, 14, 30, 15, 31);
+  const F32x16 zw_low = __builtin_shufflevector(sz, inv_w, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5,
+                                                21, 6, 22, 7, 23);
+  const F32x16 zw_high = __builtin_shufflevector(sz, inv_w, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28,
+                                                 13, 29, 14, 30, 15, 31);
+  const F32x16 screen[4] = {
+      __builtin_shufflevector(xy_low, zw_low, 0, 1, 16, 17, 2, 3, 18, 19, 4, 5, 20, 21, 6, 7, 22,
+                              23),
+      __builtin_shufflevector(xy_low, zw_low, 8, 9, 24, 25, 10, 11, 26, 27, 12, 13, 28, 29, 14, 15,
+                              30, 31),
+      __builtin_shufflevector(xy_high, zw_high, 0, 1, 16, 17, 2, 3, 18, 19, 4, 5, 20, 21, 6, 7,
+                              22, 23),
+      __builtin_shufflevector(xy_high, zw_high, 8, 9, 24, 25, 10, 11, 26, 27, 12, 13, 28, 29, 14,
+                              15, 30, 31)};
+  std::memcpy(out.screen, screen, sizeof screen);
+
+  const F32x16 zero{};
+  Float3x16 n{zero, zero, zero};
+  if (normals) {
+    const Float3x16 m = loadFloat3x16(normals);
+    const Float3x16 v{s(k.normal[0][0]) * m.x + s(k.normal[1][0]) * m.y + s(k.normal[2][0]) * m.z,
+                      s(k.normal[0][1]) * m.x + s(k.normal[1][1]) * m.y + s(k.normal[2][1]) * m.z,
+                      s(k.normal[0][2]) * m.x + s(k.normal[1][2]) * m.y + s(k.normal[2][2]) * m.z};
+    const F32x16 squared = v.x * v.x + v.y * v.y + v.z * v.z;
+    F32x16 len;
+    for (int l = 0; l < 16; ++l) len[l] = __builtin_sqrtf(squared[l]);  // one vector sqrt
+    const F32x16 inv_len = splat16(1.0f) / len;
+    const I32x16 nonzero = zero < len;
+    n = {nonzero ? v.x * inv_len : zero, nonzero ? v.y * inv_len : zero,
+         nonzero ? v.z * inv_len : zero};
+  }
+  storeFloat3x16(out.normal, n);
+
+  if (!lighting) return;
+  Float3x16 e{splat16(lighting->ambient.x), splat16(lighting->ambient.y),
+              splat16(lighting->ambient.z)};
+  for (const DirectionalLight& light : lighting->lights) {
+    const F32x16 cos_theta = -(n.x * splat16(light.direction.x) + n.y * splat16(light.direction.y) +
+                               n.z * splat16(light.direction.z));
+    const I32x16 facing = zero < cos_theta;
+    e.x = facing ? e.x + splat16(light.color.x) * cos_theta : e.x;
+    e.y = facing ? e.y + splat16(light.color.y) * cos_theta : e.y;
+    e.z = facing ? e.z + splat16(light.color.z) * cos_theta : e.z;
+  }
+  const I32x16 zero_normal = (n.x == zero) & (n.y == zero) & (n.z == zero);
+  const F32x16 nan = splat16(std::numeric_limits<float>::quiet_NaN());
+  storeFloat3x16(out.lit, {zero_normal ? nan : e.x, zero_normal ? nan : e.y,
+                           zero_normal ? nan : e.z});
+}
+#define TESSERA_VERTEX_BLOCK16 1
+#endif
+
 // TransformVerticesFn (kernels.h).
 void transformVerticesKernel(const Mesh& mesh, const ObjectTransforms& transforms,
                              const ViewportTransform& viewport, const VertexLighting* lighting,
@@ -181,6 +339,16 @@ void transformVerticesKernel(const Mesh& mesh, const ObjectTransforms& transform
   const float3* normals = has_normals ? mesh.normals.data() : nullptr;
   const size_t end = first + count;
   size_t i = first;
+#if defined(TESSERA_VERTEX_BLOCK16)
+  // Sixteen at a time where they fit (these read exactly their sixteen vertices).
+  for (; i + 16 <= end; i += 16) {
+    const size_t o = transforms.vertex_base + i;
+    transformVertexBlock16(
+        positions + i, normals ? normals + i : nullptr, k, lighting,
+        {&out.clip_x[o], &out.clip_y[o], &out.clip_z[o], &out.clip_w[o], &out.outcode[o],
+         &out.screen[o], &out.normal[o], lighting ? &out.lit[o] : nullptr});
+  }
+#endif
   // Whole blocks straight from the mesh while the 16-byte load of the eighth vertex stays inside
   // it (i + 8 < vertex_count).
   for (; i + 8 <= end && i + 8 < vertex_count; i += 8) {
