@@ -1027,6 +1027,44 @@ TEST(Renderer, PlainShadingIsTheSameForEverySimdLevelAndWithTheNormalAov) {
   }
 }
 
+TEST(Renderer, EncodesEveryColourTheSameAtEverySimdLevel) {
+  // The sRGB encode (eight or, with AVX-512, sixteen lanes at a time) against the scalar
+  // variant: an unlit quad filling the view, red rising from below 0 up the image, green and
+  // blue across it (blue past 1), slowly enough that together the channels take every 8-bit
+  // code, the linear segment near black and the clamps included. 257 pixels wide: the last tile's
+  // rows end inside a sixteen-pixel step.
+  Scene scene;
+  scene.camera.position = {0, 0, 1};
+  scene.camera.fov_y_degrees = 90.0f;
+  Mesh quad;
+  quad.positions = {{-0.6f, -1.05f, 0}, {0.6f, -1.05f, 0}, {0.6f, 1.05f, 0}, {-0.6f, 1.05f, 0}};
+  quad.colors = {{-0.012f, 0.03f, 1.35f, 1}, {-0.012f, 0.42f, 0.28f, 1},
+                 {0.09f, 0.42f, 0.28f, 1}, {0.09f, 0.03f, 1.35f, 1}};
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  Object object;
+  object.mesh = std::make_shared<Mesh>(quad);
+  object.shading = Shading::kUnlit;
+  object.cull = CullMode::kNone;
+  scene.objects.push_back(object);
+  RenderOptions options;
+  options.width = 257;
+  options.height = 509;
+  auto render = [&](SimdLevel level) {
+    CpuRenderer renderer(1, level);
+    Frame frame;
+    renderer.render(scene, options, frame);
+    return frame;
+  };
+  const Frame reference = render(SimdLevel::kScalar);
+  std::set<uint32_t> codes;
+  for (uint32_t c : reference.color)
+    for (int shift : {0, 8, 16}) codes.insert((c >> shift) & 0xff);
+  EXPECT_EQ(codes.size(), 256u) << "the channels together take every code";
+  for (SimdLevel level :
+       {SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512, SimdLevel::kAuto})
+    EXPECT_EQ(reference.color, render(level).color) << static_cast<int>(level);
+}
+
 TEST(Renderer, AllocatesNothingPerFrameAfterWarmUp) {
   Scene scene;
   scene.camera.position = {0, 0.5f, 2.5f};

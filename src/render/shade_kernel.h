@@ -73,6 +73,25 @@ TESSERA_LANES_INLINE I32x8 encodeSrgb8x8(F32x8 linear) {
   return truncate(code + splat(0.5f));
 }
 
+#if defined(TESSERA_LANES16)
+// encodeSrgb8x8 for sixteen lanes, the same operations.
+TESSERA_LANES_INLINE I32x16 encodeSrgb8x16(F32x16 linear) {
+  const F32x16 zero = splat16(0.0f), one = splat16(1.0f);
+  const F32x16 c = lowerOf16(upperOf16(linear, zero), one);
+  const I32x16 bits = reinterpret_cast<I32x16>(c);
+  const I32x16 e9 = (bits >> 23) - (127 - 9);
+  const I32x16 index = e9 > 0 ? e9 : 0;
+  const F32x16 x = reinterpret_cast<F32x16>((bits & 0x7fffff) | 0x3f800000) - one;
+  const float* k = SrgbEncode::kPoly;
+  const F32x16 p = (((splat16(k[4]) * x + splat16(k[3])) * x + splat16(k[2])) * x +
+                    splat16(k[1])) * x + splat16(k[0]);
+  F32x16 curve = lookup16x16(SrgbEncode::kScale, index) * p - splat16(SrgbEncode::kOffset);
+  curve = lowerOf16(curve, splat16(255.0f));
+  const F32x16 code = SrgbEncode::kLinearEnd < c ? curve : c * splat16(SrgbEncode::kLinearFactor);
+  return truncate16(code + splat16(0.5f));
+}
+#endif
+
 // One channel of eight texels (bits `shift`..`shift + 7`) in linear light, as decodeTexel.
 TESSERA_LANES_INLINE F32x8 decodeChannel(I32x8 texels, int shift, bool srgb, const float* decode) {
   const I32x8 code = shiftRight(texels, shift) & splat(int32_t{0xff});
@@ -243,8 +262,8 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
     extras[c] = chunks[c].extras.data();
   }
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
-  const I32x8 fill = splat(static_cast<int32_t>(background));
-  const I32x8 opaque = splat(static_cast<int32_t>(0xff000000u));
+  [[maybe_unused]] const I32x8 fill = splat(static_cast<int32_t>(background));
+  [[maybe_unused]] const I32x8 opaque = splat(static_cast<int32_t>(0xff000000u));
   const F32x8 zero = splat(0.0f);
   // A row's colours in linear light, encoded once the row is shaded: the encode is a long chain
   // of dependent operations, and eight groups of it side by side keep the core busy where one
@@ -294,6 +313,24 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
         store(out.normal_z + i, normal.z);
       }
     }
+#if defined(TESSERA_LANES16)
+    // Sixteen pixels a step (the rows are kTileSize wide, a multiple of 16).
+    for (int tx = 0; tx < tile.width; tx += 16) {
+      const int i = ty * kTileSize + tx;
+      const I32x16 covered = load<I32x16>(tile.key + i) != static_cast<int32_t>(kEmptyKey);
+      const I32x16 fill16 = splat16(static_cast<int32_t>(background));
+      if (!_mm512_test_epi32_mask(reinterpret_cast<__m512i>(covered),
+                                  reinterpret_cast<__m512i>(covered))) {
+        store(out.rgba + i, fill16);
+        continue;
+      }
+      const I32x16 rgba = encodeSrgb8x16(load<F32x16>(linear[0] + tx)) |
+                          encodeSrgb8x16(load<F32x16>(linear[1] + tx)) << 8 |
+                          encodeSrgb8x16(load<F32x16>(linear[2] + tx)) << 16 |
+                          static_cast<int32_t>(0xff000000u);
+      store(out.rgba + i, covered ? rgba : fill16);
+    }
+#else
     for (int tx = 0; tx < tile.width; tx += 8) {
       const int i = ty * kTileSize + tx;
       const I32x8 covered = ~equal(load<I32x8>(tile.key + i), empty);
@@ -306,6 +343,7 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
                          shiftLeft(encodeSrgb8x8(load<F32x8>(linear[2] + tx)), 16) | opaque;
       store(out.rgba + i, select(covered, rgba, fill));
     }
+#endif
   }
 }
 

@@ -786,5 +786,49 @@ TESSERA_LANES_INLINE void store2x4(void* row0, void* row1, V v) {
   std::memcpy(row1, reinterpret_cast<const char*>(&v) + sizeof v / 2, sizeof v / 2);
 }
 
+#if defined(__AVX512F__) && !defined(TESSERA_SIMD_SCALAR)
+// Sixteen lanes, for the AVX-512 variant's widest loops (a whole 512-bit register): the same
+// operations per lane as the eight-lane functions they mirror, so the same bits.
+#define TESSERA_LANES16 1
+typedef float F32x16 __attribute__((vector_size(64)));
+typedef int32_t I32x16 __attribute__((vector_size(64)));
+
+TESSERA_LANES_INLINE F32x16 splat16(float x) {
+  return F32x16{} + x;
+}
+TESSERA_LANES_INLINE I32x16 splat16(int32_t x) {
+  return I32x16{} + x;
+}
+// As roundToInt.
+TESSERA_LANES_INLINE I32x16 roundToInt16(F32x16 a) {
+  I32x16 r =
+      reinterpret_cast<I32x16>(_mm512_maskz_cvtps_epi32(0xffff, reinterpret_cast<__m512>(a)));
+  if (_mm512_cmpeq_epi32_mask(reinterpret_cast<__m512i>(r), _mm512_set1_epi32(INT32_MIN))) {
+    for (int l = 0; l < 16; ++l)
+      if (r[l] == INT32_MIN) r[l] = static_cast<int32_t>(std::lrint(a[l]));
+  }
+  return r;
+}
+// As lowerOf and upperOf (the x86 min and max). The maskz forms with every lane here and below
+// are the plain instructions, without the undefined source operand GCC 12 warns about.
+TESSERA_LANES_INLINE F32x16 lowerOf16(F32x16 a, F32x16 b) {
+  return reinterpret_cast<F32x16>(
+      _mm512_maskz_min_ps(0xffff, reinterpret_cast<__m512>(a), reinterpret_cast<__m512>(b)));
+}
+TESSERA_LANES_INLINE F32x16 upperOf16(F32x16 a, F32x16 b) {
+  return reinterpret_cast<F32x16>(
+      _mm512_maskz_max_ps(0xffff, reinterpret_cast<__m512>(a), reinterpret_cast<__m512>(b)));
+}
+// As lookup16: table[index[l]] for indices in [0, 16), one permute.
+TESSERA_LANES_INLINE F32x16 lookup16x16(const float* table, I32x16 index) {
+  return reinterpret_cast<F32x16>(_mm512_maskz_permutexvar_ps(
+      0xffff, reinterpret_cast<__m512i>(index), _mm512_loadu_ps(table)));
+}
+// As truncate.
+TESSERA_LANES_INLINE I32x16 truncate16(F32x16 a) {
+  return __builtin_convertvector(a, I32x16);
+}
+#endif
+
 }  // namespace
 }  // namespace tessera::render

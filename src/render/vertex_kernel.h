@@ -158,17 +158,10 @@ TESSERA_LANES_INLINE void transformVertexBlock(const float3* positions, const fl
                           blend(zero_normal, nan, e.z)});
 }
 
-#if defined(__AVX512F__) && !defined(TESSERA_SIMD_SCALAR)
+#if defined(TESSERA_LANES16)
 // Where a vector register holds sixteen floats (the AVX-512 variant), sixteen vertices a step:
 // transformVertexBlock's operations, lane for lane and in its order, so the same bits with half
-// the instructions. GCC vector extensions, as simd_lanes.h's eight-lane types.
-typedef float F32x16 __attribute__((vector_size(64)));
-typedef int32_t I32x16 __attribute__((vector_size(64)));
-
-TESSERA_LANES_INLINE F32x16 splat16(float x) {
-  return F32x16{} + x;
-}
-
+// the instructions.
 struct Float3x16 {
   F32x16 x, y, z;
 };
@@ -209,16 +202,6 @@ TESSERA_LANES_INLINE I32x16 planeBit16(I32x16 outside, uint32_t bit) {
 
 TESSERA_LANES_INLINE I32x16 finiteMask16(F32x16 a) {
   return (reinterpret_cast<I32x16>(a) & 0x7fffffff) <= 0x7f7fffff;
-}
-
-// roundToInt's operations for sixteen lanes.
-TESSERA_LANES_INLINE I32x16 roundToInt16(F32x16 a) {
-  I32x16 r = reinterpret_cast<I32x16>(_mm512_maskz_cvtps_epi32(0xffff, reinterpret_cast<__m512>(a)));
-  if (_mm512_cmpeq_epi32_mask(reinterpret_cast<__m512i>(r), _mm512_set1_epi32(INT32_MIN))) {
-    for (int l = 0; l < 16; ++l)
-      if (r[l] == INT32_MIN) r[l] = static_cast<int32_t>(std::lrint(a[l]));
-  }
-  return r;
 }
 
 // transformVertexBlock for positions[0..15] (and normals[0..15], null for none), read exactly.
