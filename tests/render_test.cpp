@@ -558,7 +558,9 @@ TEST(Vertex, EveryInstructionSetTransformsToTheSameBits) {
           EXPECT_TRUE(same(reference.outcode, other.outcode, from, to)) << what;
           EXPECT_TRUE(same(reference.screen, other.screen, from, to)) << what;
           EXPECT_TRUE(same(reference.normal, other.normal, from, to)) << what;
-          if (lit) EXPECT_TRUE(same(reference.lit, other.lit, from, to)) << what;
+          if (lit) {
+            EXPECT_TRUE(same(reference.lit, other.lit, from, to)) << what;
+          }
           ++compared;
         }
       }
