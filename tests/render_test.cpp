@@ -90,6 +90,14 @@ Frame renderScene(const Scene& scene, int width, int height, int workers = 1,
   return frame;
 }
 
+// The scene rendered with the kernels of one instruction set.
+Frame renderAt(const Scene& scene, const RenderOptions& options, SimdLevel level, int workers) {
+  CpuRenderer renderer(workers, level);
+  Frame frame;
+  renderer.render(scene, options, frame);
+  return frame;
+}
+
 // One triangle given in window coordinates.
 Mesh windowTriangle(float3 a, float3 b, float3 c, int width, int height) {
   Mesh m;
@@ -495,15 +503,32 @@ TEST(Vertex, EveryInstructionSetTransformsToTheSameBits) {
     float3 p{coordinate(rng), coordinate(rng), coordinate(rng)};
     float3 n{coordinate(rng), coordinate(rng), coordinate(rng)};
     switch (pick(rng)) {
-      case 0: p.x = nan; break;
-      case 1: p.y = inf; break;
-      case 2: p.z = 4.0f; break;              // on the camera's plane: w = 0
-      case 3: p.z = 4.0f - 1e-7f; break;      // just in front of it: huge screen positions
-      case 4: p = p * 400.0f; break;          // beyond the guard band
-      case 7: p = p * (4.0f + coordinate(rng) * coordinate(rng)); break;  // near its edges
-      case 5: n = float3{}; break;            // zero normal: lit is NaN
-      case 6: n.x = nan; break;
-      default: break;
+      case 0:
+        p.x = nan;
+        break;
+      case 1:
+        p.y = inf;
+        break;
+      case 2:
+        p.z = 4.0f;
+        break;  // on the camera's plane: w = 0
+      case 3:
+        p.z = 4.0f - 1e-7f;
+        break;  // just in front of it: huge screen positions
+      case 4:
+        p = p * 400.0f;
+        break;  // beyond the guard band
+      case 7:
+        p = p * (4.0f + coordinate(rng) * coordinate(rng));
+        break;  // near its edges
+      case 5:
+        n = float3{};
+        break;  // zero normal: lit is NaN
+      case 6:
+        n.x = nan;
+        break;
+      default:
+        break;
     }
     mesh.positions.push_back(p);
     mesh.normals.push_back(n);
@@ -537,8 +562,8 @@ TEST(Vertex, EveryInstructionSetTransformsToTheSameBits) {
   auto same = [](const auto& a, const auto& b, size_t from, size_t to) {
     return std::memcmp(a.data() + from, b.data() + from, (to - from) * sizeof(a[0])) == 0;
   };
-  const std::pair<size_t, size_t> ranges[] = {{0, kVertices}, {3, 1000}, {17, 16}, {1, 33},
-                                              {kVertices - 9, 9}, {20, 7}};
+  const std::pair<size_t, size_t> ranges[] = {{0, kVertices}, {3, 1000},          {17, 16},
+                                              {1, 33},        {kVertices - 9, 9}, {20, 7}};
   int compared = 0;
   for (const Mesh* m : {&mesh, &without_normals}) {
     for (bool lit : {false, true}) {
@@ -970,12 +995,7 @@ TEST(Renderer, ImageIsBitIdenticalForEverySimdLevel) {
   RenderOptions options;
   options.width = 301;
   options.height = 203;
-  auto render = [&](SimdLevel level) {
-    CpuRenderer renderer(2, level);
-    Frame frame;
-    renderer.render(scene, options, frame);
-    return frame;
-  };
+  auto render = [&](SimdLevel level) { return renderAt(scene, options, level, 2); };
   Frame scalar = render(SimdLevel::kScalar);
   EXPECT_GT(coveredCount(scalar), 301 * 203 / 3);
   for (SimdLevel level :
@@ -1011,11 +1031,8 @@ TEST(Renderer, PlainShadingIsTheSameForEverySimdLevelAndWithTheNormalAov) {
   options.width = 257;
   options.height = 163;
   auto render = [&](SimdLevel level, bool normals) {
-    CpuRenderer renderer(2, level);
-    Frame frame;
     options.normals = normals;
-    renderer.render(scene, options, frame);
-    return frame;
+    return renderAt(scene, options, level, 2);
   };
   const Frame reference = render(SimdLevel::kScalar, true);
   EXPECT_GT(coveredCount(reference), 257 * 163 / 4);
@@ -1040,31 +1057,22 @@ TEST(Renderer, EncodesEveryColourTheSameAtEverySimdLevel) {
   scene.camera.fov_y_degrees = 90.0f;
   Mesh quad;
   quad.positions = {{-0.6f, -1.05f, 0}, {0.6f, -1.05f, 0}, {0.6f, 1.05f, 0}, {-0.6f, 1.05f, 0}};
-  quad.colors = {{-0.012f, 0.03f, 1.35f, 1}, {-0.012f, 0.42f, 0.28f, 1},
-                 {0.09f, 0.42f, 0.28f, 1}, {0.09f, 0.03f, 1.35f, 1}};
+  quad.colors = {{-0.012f, 0.03f, 1.35f, 1},
+                 {-0.012f, 0.42f, 0.28f, 1},
+                 {0.09f, 0.42f, 0.28f, 1},
+                 {0.09f, 0.03f, 1.35f, 1}};
   quad.indices = {0, 1, 2, 0, 2, 3};
-  Object object;
-  object.mesh = std::make_shared<Mesh>(quad);
-  object.shading = Shading::kUnlit;
-  object.cull = CullMode::kNone;
-  scene.objects.push_back(object);
+  scene.objects.push_back(unlitObject(quad));
   RenderOptions options;
   options.width = 257;
   options.height = 509;
-  auto render = [&](SimdLevel level) {
-    CpuRenderer renderer(1, level);
-    Frame frame;
-    renderer.render(scene, options, frame);
-    return frame;
-  };
-  const Frame reference = render(SimdLevel::kScalar);
+  const Frame reference = renderAt(scene, options, SimdLevel::kScalar, 1);
   std::set<uint32_t> codes;
   for (uint32_t c : reference.color)
     for (int shift : {0, 8, 16}) codes.insert((c >> shift) & 0xff);
   EXPECT_EQ(codes.size(), 256u) << "the channels together take every code";
-  for (SimdLevel level :
-       {SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512, SimdLevel::kAuto})
-    EXPECT_EQ(reference.color, render(level).color) << static_cast<int>(level);
+  for (SimdLevel level : {SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512, SimdLevel::kAuto})
+    EXPECT_EQ(reference.color, renderAt(scene, options, level, 1).color) << static_cast<int>(level);
 }
 
 TEST(Renderer, AllocatesNothingPerFrameAfterWarmUp) {

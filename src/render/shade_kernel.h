@@ -83,8 +83,9 @@ TESSERA_LANES_INLINE I32x16 encodeSrgb8x16(F32x16 linear) {
   const I32x16 index = e9 > 0 ? e9 : 0;
   const F32x16 x = reinterpret_cast<F32x16>((bits & 0x7fffff) | 0x3f800000) - one;
   const float* k = SrgbEncode::kPoly;
-  const F32x16 p = (((splat16(k[4]) * x + splat16(k[3])) * x + splat16(k[2])) * x +
-                    splat16(k[1])) * x + splat16(k[0]);
+  const F32x16 p =
+      (((splat16(k[4]) * x + splat16(k[3])) * x + splat16(k[2])) * x + splat16(k[1])) * x +
+      splat16(k[0]);
   F32x16 curve = lookup16x16(SrgbEncode::kScale, index) * p - splat16(SrgbEncode::kOffset);
   curve = lowerOf16(curve, splat16(255.0f));
   const F32x16 code = SrgbEncode::kLinearEnd < c ? curve : c * splat16(SrgbEncode::kLinearFactor);

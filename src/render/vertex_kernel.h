@@ -170,12 +170,12 @@ struct Float3x16 {
 TESSERA_LANES_INLINE Float3x16 loadFloat3x16(const float3* p) {
   F32x16 v[3];
   std::memcpy(v, p, sizeof v);
-  const F32x16 x01 = __builtin_shufflevector(v[0], v[1], 0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30,
-                                             0, 0, 0, 0, 0);
-  const F32x16 y01 = __builtin_shufflevector(v[0], v[1], 1, 4, 7, 10, 13, 16, 19, 22, 25, 28, 31,
-                                             0, 0, 0, 0, 0);
-  const F32x16 z01 = __builtin_shufflevector(v[0], v[1], 2, 5, 8, 11, 14, 17, 20, 23, 26, 29, 0,
-                                             0, 0, 0, 0, 0);
+  const F32x16 x01 =
+      __builtin_shufflevector(v[0], v[1], 0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 0, 0, 0, 0, 0);
+  const F32x16 y01 =
+      __builtin_shufflevector(v[0], v[1], 1, 4, 7, 10, 13, 16, 19, 22, 25, 28, 31, 0, 0, 0, 0, 0);
+  const F32x16 z01 =
+      __builtin_shufflevector(v[0], v[1], 2, 5, 8, 11, 14, 17, 20, 23, 26, 29, 0, 0, 0, 0, 0, 0);
   return {__builtin_shufflevector(x01, v[2], 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 20, 23, 26, 29),
           __builtin_shufflevector(y01, v[2], 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 18, 21, 24, 27, 30),
           __builtin_shufflevector(z01, v[2], 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 16, 19, 22, 25, 28, 31)};
@@ -183,12 +183,12 @@ TESSERA_LANES_INLINE Float3x16 loadFloat3x16(const float3* p) {
 
 // Writes exactly p[0..15].
 TESSERA_LANES_INLINE void storeFloat3x16(float3* p, const Float3x16& v) {
-  const F32x16 xy0 = __builtin_shufflevector(v.x, v.y, 0, 16, 0, 1, 17, 0, 2, 18, 0, 3, 19, 0, 4,
-                                             20, 0, 5);
-  const F32x16 xy1 = __builtin_shufflevector(v.x, v.y, 21, 0, 6, 22, 0, 7, 23, 0, 8, 24, 0, 9, 25,
-                                             0, 10, 26);
-  const F32x16 xy2 = __builtin_shufflevector(v.x, v.y, 0, 11, 27, 0, 12, 28, 0, 13, 29, 0, 14, 30,
-                                             0, 15, 31, 0);
+  const F32x16 xy0 =
+      __builtin_shufflevector(v.x, v.y, 0, 16, 0, 1, 17, 0, 2, 18, 0, 3, 19, 0, 4, 20, 0, 5);
+  const F32x16 xy1 =
+      __builtin_shufflevector(v.x, v.y, 21, 0, 6, 22, 0, 7, 23, 0, 8, 24, 0, 9, 25, 0, 10, 26);
+  const F32x16 xy2 =
+      __builtin_shufflevector(v.x, v.y, 0, 11, 27, 0, 12, 28, 0, 13, 29, 0, 14, 30, 0, 15, 31, 0);
   const F32x16 out[3] = {
       __builtin_shufflevector(xy0, v.z, 0, 1, 16, 3, 4, 17, 6, 7, 18, 9, 10, 19, 12, 13, 20, 15),
       __builtin_shufflevector(xy1, v.z, 0, 21, 2, 3, 22, 5, 6, 23, 8, 9, 24, 11, 12, 25, 14, 15),
@@ -222,12 +222,11 @@ TESSERA_LANES_INLINE void transformVertexBlock16(const float3* positions, const 
 
   const F32x16 neg_w = -w;
   const F32x16 gx = s(k.guard_x) * w, gy = s(k.guard_y) * w;
-  const I32x16 code =
-      planeBit16(z < neg_w, kClipNear) | planeBit16(w < z, kClipFar) |
-      planeBit16(x < neg_w, kClipLeft) | planeBit16(w < x, kClipRight) |
-      planeBit16(y < neg_w, kClipBottom) | planeBit16(w < y, kClipTop) |
-      planeBit16(x < -gx, kGuardLeft) | planeBit16(gx < x, kGuardRight) |
-      planeBit16(y < -gy, kGuardBottom) | planeBit16(gy < y, kGuardTop);
+  const I32x16 code = planeBit16(z < neg_w, kClipNear) | planeBit16(w < z, kClipFar) |
+                      planeBit16(x < neg_w, kClipLeft) | planeBit16(w < x, kClipRight) |
+                      planeBit16(y < neg_w, kClipBottom) | planeBit16(w < y, kClipTop) |
+                      planeBit16(x < -gx, kGuardLeft) | planeBit16(gx < x, kGuardRight) |
+                      planeBit16(y < -gy, kGuardBottom) | planeBit16(gy < y, kGuardTop);
   const I32x16 all_finite = finiteMask16(x) & finiteMask16(y) & finiteMask16(z) & finiteMask16(w);
   typedef uint16_t U16x16 __attribute__((vector_size(32)));
   const U16x16 codes = __builtin_convertvector(
@@ -243,23 +242,22 @@ TESSERA_LANES_INLINE void transformVertexBlock16(const float3* positions, const 
   const F32x16 sy = reinterpret_cast<F32x16>(roundToInt16(wy * subpixel));
   const F32x16 sz = z * inv_w * half + half;
   // Sixteen (x, y, z, w) records: pairs, then vertices four at a time.
-  const F32x16 xy_low = __builtin_shufflevector(sx, sy, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21,
-                                                6, 22, 7, 23);
-  const F32x16 xy_high = __builtin_shufflevector(sx, sy, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13,
-                                                 29, 14, 30, 15, 31);
-  const F32x16 zw_low = __builtin_shufflevector(sz, inv_w, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5,
-                                                21, 6, 22, 7, 23);
+  const F32x16 xy_low =
+      __builtin_shufflevector(sx, sy, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
+  const F32x16 xy_high =
+      __builtin_shufflevector(sx, sy, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31);
+  const F32x16 zw_low =
+      __builtin_shufflevector(sz, inv_w, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
   const F32x16 zw_high = __builtin_shufflevector(sz, inv_w, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28,
                                                  13, 29, 14, 30, 15, 31);
-  const F32x16 screen[4] = {
-      __builtin_shufflevector(xy_low, zw_low, 0, 1, 16, 17, 2, 3, 18, 19, 4, 5, 20, 21, 6, 7, 22,
-                              23),
-      __builtin_shufflevector(xy_low, zw_low, 8, 9, 24, 25, 10, 11, 26, 27, 12, 13, 28, 29, 14, 15,
-                              30, 31),
-      __builtin_shufflevector(xy_high, zw_high, 0, 1, 16, 17, 2, 3, 18, 19, 4, 5, 20, 21, 6, 7,
-                              22, 23),
-      __builtin_shufflevector(xy_high, zw_high, 8, 9, 24, 25, 10, 11, 26, 27, 12, 13, 28, 29, 14,
-                              15, 30, 31)};
+  const F32x16 screen[4] = {__builtin_shufflevector(xy_low, zw_low, 0, 1, 16, 17, 2, 3, 18, 19, 4,
+                                                    5, 20, 21, 6, 7, 22, 23),
+                            __builtin_shufflevector(xy_low, zw_low, 8, 9, 24, 25, 10, 11, 26, 27,
+                                                    12, 13, 28, 29, 14, 15, 30, 31),
+                            __builtin_shufflevector(xy_high, zw_high, 0, 1, 16, 17, 2, 3, 18, 19, 4,
+                                                    5, 20, 21, 6, 7, 22, 23),
+                            __builtin_shufflevector(xy_high, zw_high, 8, 9, 24, 25, 10, 11, 26, 27,
+                                                    12, 13, 28, 29, 14, 15, 30, 31)};
   std::memcpy(out.screen, screen, sizeof screen);
 
   const F32x16 zero{};
@@ -292,8 +290,8 @@ TESSERA_LANES_INLINE void transformVertexBlock16(const float3* positions, const 
   }
   const I32x16 zero_normal = (n.x == zero) & (n.y == zero) & (n.z == zero);
   const F32x16 nan = splat16(std::numeric_limits<float>::quiet_NaN());
-  storeFloat3x16(out.lit, {zero_normal ? nan : e.x, zero_normal ? nan : e.y,
-                           zero_normal ? nan : e.z});
+  storeFloat3x16(out.lit,
+                 {zero_normal ? nan : e.x, zero_normal ? nan : e.y, zero_normal ? nan : e.z});
 }
 #define TESSERA_VERTEX_BLOCK16 1
 #endif
