@@ -1,5 +1,6 @@
 #include "render/worker_pool.h"
 
+#include <chrono>
 #include <cstdint>
 
 #include <tessera/base/check.h>
@@ -12,14 +13,30 @@ namespace tessera::render {
 
 namespace {
 
-// How long a thread spins before it sleeps: a frame's stages follow one another within
-// microseconds, and a sleeping thread takes tens of them to wake. About 50 us.
-constexpr int kSpinIterations = 2000;
+// How long a thread spins before it sleeps. Stages follow one another within microseconds, but
+// one worker may finish its part of a stage a setup chunk (100 us or more) before the other,
+// and a sleeping thread took 10-30 us to wake on this VM: with a 50 us spin the tile stage
+// started that much late every frame (docs/perf.md, round 6). Measured in time, not pause
+// instructions, whose length differs between processors by ten times.
+constexpr std::chrono::microseconds kSpinTime{250};
 
 inline void pause() {
 #if defined(__x86_64__) || defined(__i386__)
   _mm_pause();
 #endif
+}
+
+// Spins until ready() or kSpinTime has passed; whether ready() was seen.
+template <typename Ready>
+bool spinUntil(Ready&& ready) {
+  const auto until = std::chrono::steady_clock::now() + kSpinTime;
+  for (;;) {
+    for (int i = 0; i < 64; ++i) {
+      if (ready()) return true;
+      pause();
+    }
+    if (std::chrono::steady_clock::now() >= until) return false;
+  }
 }
 
 }  // namespace
@@ -84,10 +101,7 @@ void WorkerPool::run(size_t count, void* context, Invoker invoker) {
   }
   wake_.notify_all();
   drain(0);
-  for (int i = 0; i < kSpinIterations; ++i) {
-    if (busy_.load(std::memory_order_acquire) == 0) return;
-    pause();
-  }
+  if (spinUntil([this] { return busy_.load(std::memory_order_acquire) == 0; })) return;
   std::unique_lock<std::mutex> lock(mutex_);
   done_.wait(lock, [this] { return busy_.load(std::memory_order_acquire) == 0; });
 }
@@ -99,12 +113,7 @@ void WorkerPool::workerLoop(int worker) {
       return stopping_.load(std::memory_order_acquire) ||
              generation_.load(std::memory_order_acquire) != seen;
     };
-    bool woken = false;
-    for (int i = 0; i < kSpinIterations && !woken; ++i) {
-      woken = ready();
-      if (!woken) pause();
-    }
-    if (!woken) {
+    if (!spinUntil(ready)) {
       std::unique_lock<std::mutex> lock(mutex_);
       wake_.wait(lock, ready);
     }
