@@ -18,6 +18,7 @@
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
 
+#include "render/chunk_layout.h"
 #include "render/clip.h"
 #include "render/kernels.h"
 #include "render/page_pool.h"
@@ -598,6 +599,51 @@ TEST(Vertex, EveryInstructionSetTransformsToTheSameBits) {
   EXPECT_TRUE(codes.count(static_cast<uint16_t>(kNonFinite)));
   EXPECT_TRUE(codes.count(0));
   EXPECT_GT(codes.size(), 3u);
+}
+
+TEST(ChunkLayout, CoversEveryTriangleInOrderAndEndsEachBlockSmall) {
+  using namespace tessera::render;
+  for (size_t total : {size_t{0}, size_t{1}, size_t{100}, size_t{4096}, size_t{9216}, size_t{69666},
+                       size_t{200000}, size_t{1000000}}) {
+    const size_t chunk_size = std::max<size_t>(4096, (total + kMaxChunks - 1) / kMaxChunks);
+    for (int workers : {1, 2, 3, 4}) {
+      std::vector<TriangleChunk> chunks;
+      const size_t count = layOutChunks(total, chunk_size, workers, chunks);
+      const std::string what = std::to_string(total) + " triangles, " + std::to_string(workers);
+      ASSERT_LE(count, kMaxChunks) << what;
+      ASSERT_GE(chunks.size(), count) << what;
+      size_t next = 0;
+      for (size_t c = 0; c < count; ++c) {
+        EXPECT_EQ(chunks[c].first_triangle, next) << what << ", chunk " << c;
+        EXPECT_LE(chunks[c].triangle_count, chunk_size) << what << ", chunk " << c;
+        next += chunks[c].triangle_count;
+      }
+      EXPECT_EQ(next, total) << what;
+      // Where blocks end small (more chunks than equal ones), every worker's block but the last
+      // (WorkerPool: count * w / n onwards) ends in chunks of a half, a quarter and an eighth.
+      const bool tapered = count != (total + chunk_size - 1) / chunk_size;
+      if (workers == 1 || total <= 4096 || total == 1000000) {
+        EXPECT_FALSE(tapered) << what;  // one worker, no room for a head, or past kMaxChunks
+      }
+      if (total == 69666 || total == 200000) {
+        EXPECT_EQ(tapered, workers > 1) << what;
+      }
+      if (tapered) {
+        EXPECT_EQ(count % workers, 0u) << what;
+        for (int w = 0; w + 1 < workers; ++w) {
+          const size_t block_end = count * static_cast<size_t>(w + 1) / workers;
+          EXPECT_EQ(chunks[block_end - 1].triangle_count, chunk_size / 8) << what << ", " << w;
+          EXPECT_EQ(chunks[block_end - 2].triangle_count, chunk_size / 4) << what << ", " << w;
+          EXPECT_EQ(chunks[block_end - 3].triangle_count, chunk_size / 2) << what << ", " << w;
+        }
+      }
+    }
+  }
+  // The bunny with two workers: 11 chunks a block, the first ending in 2048, 1024 and 512.
+  std::vector<TriangleChunk> chunks;
+  ASSERT_EQ(layOutChunks(69666, 4096, 2, chunks), 22u);
+  EXPECT_EQ(chunks[10].triangle_count, 512u);
+  EXPECT_EQ(chunks[11].first_triangle, 34833u);
 }
 
 TEST(Raster, SetupBatchKernelMatchesSetupRaster) {

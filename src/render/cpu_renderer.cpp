@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <memory>
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -21,6 +22,7 @@
 #include <tessera/scene/color.h>
 
 #include "render/bin.h"
+#include "render/chunk_layout.h"
 #include "render/clip.h"
 #include "render/fixed_point.h"
 #include "render/kernels.h"
@@ -420,12 +422,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   // Assembly, culling, clipping, setup and binning, per chunk.
   const size_t chunk_size =
       std::max(kMinTrianglesPerChunk, (triangle_total + kMaxChunks - 1) / kMaxChunks);
-  s.chunk_count = (triangle_total + chunk_size - 1) / chunk_size;
-  if (s.chunks.size() < s.chunk_count) s.chunks.resize(s.chunk_count);
-  for (size_t c = 0; c < s.chunk_count; ++c) {
-    s.chunks[c].first_triangle = c * chunk_size;
-    s.chunks[c].triangle_count = std::min(chunk_size, triangle_total - c * chunk_size);
-  }
+  s.chunk_count = layOutChunks(triangle_total, chunk_size, s.pool.size(), s.chunks);
   s.pool.parallelFor(s.chunk_count, [&](size_t c, int worker) {
     const size_t w = static_cast<size_t>(worker);
     if (replicate && !s.transformed[w].done) {

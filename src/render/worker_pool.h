@@ -23,11 +23,13 @@ class WorkerPool {
 
   // Calls body(index, worker) for every index in [0, count), spread over the workers; returns
   // when all are done. Worker w of n starts on its own block of indices, [count * w / n,
-  // count * (w + 1) / n), in increasing order; a worker whose block is done takes indices from
-  // the far end of the others'. The same blocks go to the same workers stage after stage and
-  // frame after frame, so what one stage writes (the vertices a range of triangles uses, say) is
-  // mostly read by the same core in the next: on a host where a line takes hundreds of
-  // nanoseconds between cores that is worth more than an even split (docs/perf.md, round 5).
+  // count * (w + 1) / n), in increasing order; a worker whose block is done helps with the
+  // others', taking their next indices too. The same blocks go to the same workers stage after
+  // stage and frame after frame, so what one stage writes (the vertices a range of triangles
+  // uses, say) is mostly read by the same core in the next: on a host where a line takes
+  // hundreds of nanoseconds between cores that is worth more than an even split (docs/perf.md,
+  // round 5). Every block is handed out in increasing order, so a caller whose blocks end in
+  // small pieces of work has its workers finish close together (round 6).
   template <typename Body>
   void parallelFor(size_t count, Body&& body) {
     auto invoke = [](void* context, size_t index, int worker) {
@@ -51,14 +53,13 @@ class WorkerPool {
   std::atomic<int> busy_{0};
   std::atomic<bool> stopping_{false};
 
-  // The indices of one worker's block not yet handed out, [front, back), as back << 32 | front:
-  // its owner takes the front, others the back. A line of its own.
+  // The indices of one worker's block not yet handed out, [front, back), as back << 32 | front.
+  // A line of its own.
   struct alignas(128) Block {
     std::atomic<uint64_t> range{0};
   };
-  // Takes an index of the block, from its front (its owner) or its back (another worker); false
-  // when none is left.
-  bool take(Block& block, bool front, size_t& index);
+  // Takes the block's next index; false when none is left.
+  bool take(Block& block, size_t& index);
 
   // The current job.
   void* context_ = nullptr;
