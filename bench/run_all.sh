@@ -45,17 +45,24 @@ echo "run_all: worker scaling and variants of the bunny at 1920x1080" >&2
 # Worker scaling on the first two cores: one worker pinned to each of them (a shared host's two
 # virtual cores are not always equally fast, and the speed-up is taken against the faster), then
 # two workers on both; three rounds, one after the other, so that a spell of the host falls on
-# all three alike. Each line gets "cpus" and "round" added.
+# all three alike. Each round measures tessera alone (100 frames in a row) and then beside
+# llvmpipe (the rounds of five frames above, which also give llvmpipe's own scaling). Each line
+# gets "cpus" and "round" added.
 scaling_run() {
   local cpus=$1 round=$2
   shift 2
-  taskset -c "$cpus" "$exe" bench --json --vs llvmpipe --frames "$frames" "$@" |
+  taskset -c "$cpus" "$exe" bench --json "$@" |
     sed "s/}\$/, \"cpus\": \"$cpus\", \"round\": $round}/"
 }
 for round in 1 2 3; do
-  scaling_run 0 "$round" --workers 1 --resolution 1920,1080 bunny
-  scaling_run 1 "$round" --workers 1 --resolution 1920,1080 bunny
-  scaling_run 0,1 "$round" --workers 2 --resolution 1920,1080 bunny
+  for reference in "--frames 100" "--vs llvmpipe --frames $frames"; do
+    # shellcheck disable=SC2086 # the flags split on purpose
+    scaling_run 0 "$round" $reference --workers 1 --resolution 1920,1080 bunny
+    # shellcheck disable=SC2086
+    scaling_run 1 "$round" $reference --workers 1 --resolution 1920,1080 bunny
+    # shellcheck disable=SC2086
+    scaling_run 0,1 "$round" $reference --workers 2 --resolution 1920,1080 bunny
+  done
 done > "$out/scaling.jsonl"
 {
   bench --resolution 1920,1080 --shading smooth bunny
