@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <iterator>
 #include <memory>
 #if defined(__SSE2__)
 #include <immintrin.h>
