@@ -293,7 +293,6 @@ TESSERA_LANES_INLINE void transformVertexBlock16(const float3* positions, const 
   storeFloat3x16(out.lit,
                  {zero_normal ? nan : e.x, zero_normal ? nan : e.y, zero_normal ? nan : e.z});
 }
-#define TESSERA_VERTEX_BLOCK16 1
 #endif
 
 // TransformVerticesFn (kernels.h).
@@ -320,7 +319,7 @@ void transformVerticesKernel(const Mesh& mesh, const ObjectTransforms& transform
   const float3* normals = has_normals ? mesh.normals.data() : nullptr;
   const size_t end = first + count;
   size_t i = first;
-#if defined(TESSERA_VERTEX_BLOCK16)
+#if defined(TESSERA_LANES16)
   // Sixteen at a time where they fit (these read exactly their sixteen vertices).
   for (; i + 16 <= end; i += 16) {
     const size_t o = transforms.vertex_base + i;
