@@ -4,7 +4,8 @@
 usage: bench/report.py RESULTS_DIR OUTPUT_MD
 
 RESULTS_DIR holds matrix.jsonl, scaling.jsonl, variants.jsonl and spheres.jsonl (the output of
-`tessera bench --json --vs llvmpipe`, one object per line) and machine.json. Only the text
+`tessera bench --json --vs llvmpipe`, one object per line), machine.json and, if run_all.sh
+measured it, corelatency.jsonl (tessera_corelatency --json, with "when" added). Only the text
 between the BEGIN and END markers of OUTPUT_MD is replaced (the rest of the page belongs to
 others); a page without them gets the section after its title.
 """
@@ -105,8 +106,9 @@ def median(values):
     return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
 
 
-def scaling_rows(scaling):
-    """The scaling table and its summary: per round and as medians over the rounds."""
+def scaling_rows(scaling, latency):
+    """The scaling table and its summary: per round and as medians over the rounds. latency:
+    the cache line round trip between the cores (ns) measured before each round, by round."""
     def key(r):
         return r.get("cpus", "any"), r["workers"]
     configs = sorted({key(r) for r in scaling}, key=lambda k: (k[1], k[0]))
@@ -114,8 +116,9 @@ def scaling_rows(scaling):
     by = {(key(r), r.get("round", 1)): r for r in scaling}
     with_llvmpipe = all("llvmpipe_median_ms" in r for r in scaling)
     rows = ["| round | " + " | ".join(f"{w} worker{'s' if w > 1 else ''}, cpu {c}"
-                                     for c, w in configs) + " | speed-up | at most |",
-            "|---:|" + "---:|" * (len(configs) + 2)]
+                                     for c, w in configs) + " | speed-up | at most |"
+            + (" core round trip |" if latency else ""),
+            "|---:|" + "---:|" * (len(configs) + 2 + (1 if latency else 0))]
 
     def summary(times):
         one = [times[k] for k in configs if k[1] == 1 and k in times]
@@ -125,11 +128,14 @@ def scaling_rows(scaling):
         fast, slow = min(one), max(one)
         return f"{fast / two[0]:.2f}x", f"{1 + fast / slow:.2f}x"
 
-    def line(label, times, llvm):
+    def line(label, times, llvm, trip):
         cells = [(f"{ms(times[k])} ({ms(llvm[k])})" if with_llvmpipe else ms(times[k]))
                  if k in times else "" for k in configs]
         up, most = summary(times)
-        return f"| {label} | " + " | ".join(cells) + f" | {up} | {most} |"
+        text = f"| {label} | " + " | ".join(cells) + f" | {up} | {most} |"
+        if latency:
+            text += f" {trip:.0f} ns |" if trip is not None else " |"
+        return text
 
     def field(name, k, n):
         return by[(k, n)][name] if (k, n) in by and name in by[(k, n)] else None
@@ -143,8 +149,9 @@ def scaling_rows(scaling):
     for n in rounds:
         times = {k: field("median_ms", k, n) for k in configs if (k, n) in by}
         llvm = {k: field("llvmpipe_median_ms", k, n) for k in configs if (k, n) in by}
-        rows.append(line(str(n), times, llvm))
-    rows.append(line("median", medians, llvm_medians))
+        rows.append(line(str(n), times, llvm, latency.get(n)))
+    rows.append(line("median", medians, llvm_medians,
+                     median(list(latency.values())) if latency else None))
     up, most = summary(medians)
     if up:
         rows.append("")
@@ -163,6 +170,11 @@ def main():
     scaling = read_lines(os.path.join(results, "scaling.jsonl"))
     variants = read_lines(os.path.join(results, "variants.jsonl"))
     spheres = read_lines(os.path.join(results, "spheres.jsonl"))
+    latency_path = os.path.join(results, "corelatency.jsonl")
+    latency = read_lines(latency_path) if os.path.exists(latency_path) else []
+    round_trip = {int(r["when"].split()[1]): r["round_trip_ns"] for r in latency
+                  if r["when"].startswith("round ")}
+    trip_at = {r["when"]: r["round_trip_ns"] for r in latency}
     with open(os.path.join(results, "machine.json")) as f:
         machine = json.load(f)
     plot_triangles(spheres, matrix, os.path.join(results, "frame_time_vs_triangles.png"))
@@ -215,6 +227,9 @@ def main():
     w(f"| compiler | {machine['compiler']} (CMake Release: -O3) |")
     w(f"| OpenGL reference | {first.get('reference', '?')}, {first.get('reference_version', '?')} |")
     w(f"| kernel | Linux {machine['kernel']} |")
+    if "start" in trip_at and "end" in trip_at:
+        w(f"| a cache line's round trip, core 0 to 1 and back | {trip_at['start']:.0f} ns at the "
+          f"start, {trip_at['end']:.0f} ns at the end (`tessera_corelatency`) |")
     w(f"| frames | {machine['frames']} timed (after {first['warmup_frames']} untimed) per scene "
       "and resolution; the median is reported |")
     w("")
@@ -267,20 +282,28 @@ def main():
       "equally fast (another guest may be busy on the hardware beneath one of them), so each "
       "core's own speed is measured, the speed-up is taken against the faster, and the last "
       "column is the most two such cores could give (1 + fast / slow).")
+    if round_trip:
+        w("")
+        w("The last column is the time a cache line took from one core to the other and back, "
+          "measured just before the round (`build/bench/tessera_corelatency`): every line the "
+          "two workers share pays it (the bins and records one core writes and the other reads, "
+          "the pool's hand-offs), and on this shared host it moves between about 100 and 550 ns "
+          "from hour to hour. With two workers tessera's frame is nearest to half the one-worker "
+          "frame when it is low (round 7, below).")
     w("")
     alone = [r for r in scaling if "llvmpipe_median_ms" not in r]
     beside = [r for r in scaling if "llvmpipe_median_ms" in r]
     if alone:
         w("tessera alone:")
         w("")
-        for row in scaling_rows(alone):
+        for row in scaling_rows(alone, round_trip):
             w(row)
         w("")
     if beside:
         w("Beside llvmpipe (each cell: tessera ms, then llvmpipe ms on the same cores with "
           "LP_NUM_THREADS = workers):")
         w("")
-        for row in scaling_rows(beside):
+        for row in scaling_rows(beside, round_trip):
             w(row)
         w("")
     w("### The bunny at 1920x1080 with other shading and culling")

@@ -10,7 +10,8 @@
 #
 # MAX_LOAD: wait (up to WAIT_SECONDS, default 900) until the 1-minute load average is below it
 # before measuring; the doc records the load before and after either way. Needs OSMesa
-# (libosmesa6-dev), the bunny (glmark2-data) and matplotlib (python3-matplotlib).
+# (libosmesa6-dev), the bunny (glmark2-data) and matplotlib (python3-matplotlib), and two cores
+# (the scaling runs pin to cores 0 and 1).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -23,8 +24,14 @@ python=/usr/bin/python3
   { echo "run_all: the plots need matplotlib: apt-get install python3-matplotlib" >&2; exit 1; }
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DTESSERA_OSMESA=ON >/dev/null
-cmake --build "$build" -j"${JOBS:-2}" --target tessera
+cmake --build "$build" -j"${JOBS:-2}" --target tessera tessera_corelatency
 exe="$build/apps/tessera/tessera"
+# A cache line's round trip between cores 0 and 1, which moves by several times on a shared host
+# and which every line the two workers share pays: measured at the start, before each scaling
+# round and at the end, one JSON line each with "when" added.
+core_latency() {
+  "$build/bench/tessera_corelatency" 0 1 --json | sed "s/}\$/, \"when\": \"$1\"}/"
+}
 mkdir -p "$out"
 
 load() { cut -d' ' -f1 /proc/loadavg; }
@@ -37,6 +44,7 @@ if [ -n "${MAX_LOAD:-}" ]; then
   done
 fi
 load_before=$(load)
+core_latency start > "$out/corelatency.jsonl"
 
 bench() { "$exe" bench --json --vs llvmpipe --frames "$frames" "$@"; }
 echo "run_all: every scene at every resolution ($frames frames each)" >&2
@@ -55,6 +63,7 @@ scaling_run() {
     sed "s/}\$/, \"cpus\": \"$cpus\", \"round\": $round}/"
 }
 for round in 1 2 3; do
+  core_latency "round $round" >> "$out/corelatency.jsonl"
   for reference in "--frames 100" "--vs llvmpipe --frames $frames"; do
     # shellcheck disable=SC2086 # the flags split on purpose
     scaling_run 0 "$round" $reference --workers 1 --resolution 1920,1080 bunny
@@ -77,6 +86,7 @@ for k in 16 32 64 128 256 512; do
   bench --resolution 1920,1080 "$spheres/sphere_$((4 * k * k)).obj"
 done > "$out/spheres.jsonl"
 load_after=$(load)
+core_latency end >> "$out/corelatency.jsonl"
 
 compiler=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$build/CMakeCache.txt")
 "$python" - "$out/machine.json" <<EOF

@@ -810,7 +810,8 @@ std::string slurp(const std::filesystem::path& path) {
 }
 
 // Runs tessera with `args` (shell-quoted) and `environment` (NAME=value ... or empty) in a
-// fresh folder, which `folder` receives.
+// fresh folder, which `folder` receives (the caller removes it); without `folder` the folder is
+// removed here.
 CliResult runCli(const std::string& environment, const std::string& args,
                  std::filesystem::path* folder = nullptr) {
   namespace fs = std::filesystem;
@@ -830,7 +831,10 @@ CliResult runCli(const std::string& environment, const std::string& args,
   r.err = slurp(err);
   fs::remove(out);
   fs::remove(err);
-  if (folder) *folder = dir;
+  if (folder)
+    *folder = dir;
+  else
+    fs::remove_all(dir);
   return r;
 }
 

@@ -6,8 +6,10 @@
 //   resolve: in the same tile job, shade each visible pixel once and write the frame
 //   lines:   on the calling thread, after every tile
 //
-// Chunk and job boundaries depend only on the scene, never on the worker count, and a tile is
-// processed by one worker in submission order: the image is bit-identical for any worker count.
+// Where the chunks end depends on the worker count (chunk_layout.h), but they cover the scene's
+// triangles in order, and each tile is processed by one worker that reads the chunks in order:
+// every pixel sees its triangles in submission order, so the image is bit-identical for any
+// worker count.
 #include <tessera/render/cpu_renderer.h>
 
 #include <algorithm>
