@@ -159,7 +159,12 @@ def scaling_rows(scaling, latency):
                 f"tessera {up}")
         if with_llvmpipe:
             text += f", llvmpipe {summary(llvm_medians)[0]}"
-        rows.append(text + f"; the two cores as measured allow at most {most}.")
+        text += f"; the two cores as measured allow at most {most}"
+        one = [medians[k] for k in configs if k[1] == 1]
+        two = [medians[k] for k in configs if k[1] == 2]
+        # What share of the most the two cores allow tessera's speed-up reaches.
+        share = (min(one) / two[0]) / (1 + min(one) / max(one))
+        rows.append(text + f" (tessera reaches {100 * share:.0f}% of it).")
     return rows
 
 def main():
