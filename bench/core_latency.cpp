@@ -95,7 +95,8 @@ int main(int argc, char** argv) {
   }
   if (cpus.empty()) cpus = {0, 1};
   if (cpus.size() != 2 || cpus[0] == cpus[1]) {
-    std::fprintf(stderr, "usage: tessera_corelatency [CPU_A CPU_B] [--json] (two different CPUs)\n");
+    std::fprintf(stderr,
+                 "usage: tessera_corelatency [CPU_A CPU_B] [--json] (two different CPUs)\n");
     return 2;
   }
   std::vector<double> runs;
@@ -111,11 +112,13 @@ int main(int argc, char** argv) {
   std::sort(runs.begin(), runs.end());
   const double median = runs[runs.size() / 2];
   if (json)
-    std::printf("{\"cpus\": \"%d,%d\", \"round_trip_ns\": %.0f, \"min_ns\": %.0f, \"max_ns\": %.0f}\n",
-                cpus[0], cpus[1], median, runs.front(), runs.back());
+    std::printf(
+        "{\"cpus\": \"%d,%d\", \"round_trip_ns\": %.0f, \"min_ns\": %.0f, \"max_ns\": %.0f}\n",
+        cpus[0], cpus[1], median, runs.front(), runs.back());
   else
-    std::printf("CPU %d <-> CPU %d: a cache line's round trip takes %.0f ns (median of %d runs; "
-                "%.0f to %.0f)\n",
-                cpus[0], cpus[1], median, kRuns, runs.front(), runs.back());
+    std::printf(
+        "CPU %d <-> CPU %d: a cache line's round trip takes %.0f ns (median of %d runs; "
+        "%.0f to %.0f)\n",
+        cpus[0], cpus[1], median, kRuns, runs.front(), runs.back());
   return 0;
 }
