@@ -120,13 +120,18 @@ def scaling_rows(scaling, latency):
             + (" core round trip |" if latency else ""),
             "|---:|" + "---:|" * (len(configs) + 2 + (1 if latency else 0))]
 
-    def summary(times):
+    def speedups(times):
+        """1 -> 2 workers against the faster core, and the most the two cores allow; or None."""
         one = [times[k] for k in configs if k[1] == 1 and k in times]
         two = [times[k] for k in configs if k[1] == 2 and k in times]
         if not one or not two:
-            return "", ""
+            return None
         fast, slow = min(one), max(one)
-        return f"{fast / two[0]:.2f}x", f"{1 + fast / slow:.2f}x"
+        return fast / two[0], 1 + fast / slow
+
+    def summary(times):
+        found = speedups(times)
+        return (f"{found[0]:.2f}x", f"{found[1]:.2f}x") if found else ("", "")
 
     def line(label, times, llvm, trip):
         cells = [(f"{ms(times[k])} ({ms(llvm[k])})" if with_llvmpipe else ms(times[k]))
@@ -159,12 +164,9 @@ def scaling_rows(scaling, latency):
                 f"tessera {up}")
         if with_llvmpipe:
             text += f", llvmpipe {summary(llvm_medians)[0]}"
-        text += f"; the two cores as measured allow at most {most}"
-        one = [medians[k] for k in configs if k[1] == 1]
-        two = [medians[k] for k in configs if k[1] == 2]
-        # What share of the most the two cores allow tessera's speed-up reaches.
-        share = (min(one) / two[0]) / (1 + min(one) / max(one))
-        rows.append(text + f" (tessera reaches {100 * share:.0f}% of it).")
+        reached, allowed = speedups(medians)
+        rows.append(text + f"; the two cores as measured allow at most {most} (tessera reaches "
+                    f"{100 * reached / allowed:.0f}% of it).")
     return rows
 
 def main():
