@@ -39,28 +39,23 @@ struct alignas(128) Flag {
 // One run: the mean round trip in nanoseconds, or a negative value if a thread could not be
 // pinned.
 double measure(int cpu_a, int cpu_b) {
+  if (!pinTo(cpu_a)) return -1;
   Flag flag;
-  std::atomic<bool> partner_pinned{false}, partner_ready{false};
+  std::atomic<int> partner_state{0};  // 0: starting, 1: pinned, -1: could not be pinned
   std::thread partner([&] {
-    partner_pinned = pinTo(cpu_b);
-    partner_ready = true;
-    if (!partner_pinned) return;
+    if (!pinTo(cpu_b)) {
+      partner_state = -1;
+      return;
+    }
+    partner_state = 1;
     for (int i = 0; i < kExchanges; ++i) {
       while (flag.turn.load(std::memory_order_acquire) != 1) {
       }
       flag.turn.store(0, std::memory_order_release);
     }
   });
-  const bool pinned = pinTo(cpu_a);
-  while (!partner_ready) std::this_thread::yield();
-  if (!pinned || !partner_pinned) {
-    if (partner_pinned) {  // let the partner finish its loop
-      for (int i = 0; i < kExchanges; ++i) {
-        flag.turn.store(1, std::memory_order_release);
-        while (flag.turn.load(std::memory_order_acquire) != 0) {
-        }
-      }
-    }
+  while (partner_state == 0) std::this_thread::yield();
+  if (partner_state < 0) {
     partner.join();
     return -1;
   }
