@@ -7,7 +7,8 @@
 
 namespace tessera {
 
-void Frame::resize(int w, int h, bool with_depth, bool with_ids, bool with_normals) {
+void Frame::resize(int w, int h, bool with_depth, bool with_ids, bool with_normals,
+                   bool with_coverage) {
   width = w;
   height = h;
   const size_t n = pixelCount();
@@ -23,6 +24,7 @@ void Frame::resize(int w, int h, bool with_depth, bool with_ids, bool with_norma
   depth.resize(with_depth ? n : 0, std::numeric_limits<float>::infinity());
   triangle_id.resize(with_ids ? n : 0);
   normal.resize(with_normals ? n : 0);
+  coverage.resize(with_coverage ? n : 0);
 }
 
 }  // namespace tessera

@@ -1,6 +1,8 @@
 // Per-frame render options.
 #pragma once
 
+#include <tessera/render/sampling.h>
+
 namespace tessera {
 
 struct RenderOptions {
@@ -11,6 +13,13 @@ struct RenderOptions {
   bool normals = false;  // fill Frame::normal (the normal AOV)
   bool lines = true;     // draw Scene::lines and the axes the scene asks for (needs depth: a frame
                          // that draws lines has a depth buffer whatever `depth` says)
+  bool coverage = false;  // fill Frame::coverage (samples covered / samples, 0..255)
+  // Samples per pixel: 1, 2, 4 or 8 (isSampleCount), at the standard positions (sampling.h).
+  // Colour is resolved from every sample; depth, ids and normals stay those of the pixel centre,
+  // the same as with one sample.
+  int msaa = 1;
+  // The sample pattern's sub-pixel offset for this frame (jitterOffset), in pixels.
+  Jitter jitter;
 };
 
 }  // namespace tessera
