@@ -43,14 +43,19 @@ bool SamplingModes::wantsAnotherFrame() const {
 }
 
 std::string SamplingModes::describe() const {
-  std::string text = "MSAA " + std::to_string(msaa_) + "x";
+  std::string text = "MSAA ";
+  text += std::to_string(msaa_);
+  text += "x";
   if (jitter_) text += ", jitter";
-  if (temporal_ && !jitter_) return text + ", TAA (F10)";
-  if (!temporal_ || !jitter_) return text;
+  if (!temporal_) return text;
+  if (!jitter_) return text + ", TAA (F10)";
   text += ", TAA";
-  if (!temporal_pass_.converged())
-    text += " " + std::to_string(temporal_pass_.stillFrames()) + "/" +
-            std::to_string(kJitterCycle);
+  if (!temporal_pass_.converged()) {
+    text += " ";
+    text += std::to_string(temporal_pass_.stillFrames());
+    text += "/";
+    text += std::to_string(kJitterCycle);
+  }
   return text;
 }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+
 #include <tessera/math/mat.h>
 #include <tessera/render/frame.h>
 #include <tessera/render/sampling.h>
@@ -16,16 +17,18 @@ namespace tessera::viewer {
 // Jitter offsets in one cycle: frame i of a run takes jitterOffset(i % kJitterCycle).
 inline constexpr int kJitterCycle = 16;
 
-// Where the point that pixel (x, y) shows was in the previous frame, in window coordinates (pixel
-// centres at +0.5), and its depth there as clip w (view depth for a perspective projection).
-// `depth`: the frame's window z at the pixel's sample, which `jitter` moved; +inf (nothing drawn)
-// is taken at the far plane. `reprojection` is previous view-projection * inverse(current).
+// Where the point at the centre of pixel (x, y) was in the previous frame, in window
+// coordinates (pixel centres at +0.5), and its depth there as clip w (view depth for a
+// perspective projection). `depth`: the frame's window z at the pixel (from its jittered sample:
+// within a pixel of the centre, the same surface); +inf (nothing drawn) is taken at the far
+// plane. `reprojection` is previous view-projection * inverse(current), both without jitter.
+// The centre, not the jittered sample: the history is the unjittered image.
 struct Reprojected {
   float x = 0, y = 0;
   float view_depth = 0;
 };
 Reprojected reprojectPixel(const float4x4& reprojection, const float4x4& inverse_current, int x,
-                           int y, float depth, Jitter jitter, int width, int height);
+                           int y, float depth, int width, int height);
 
 class TemporalResolver {
  public:
@@ -59,24 +62,25 @@ class TemporalResolver {
 
  private:
   void start(const Frame& frame);
-  void decodeCurrent(const Frame& frame);
-  void blendMoving(const Frame& frame, const float4x4& view_projection, Jitter jitter);
+  void blendMoving(Frame& frame, const float4x4& view_projection);
   void accumulateStill();
   void keepDepth(const Frame& frame, const float4x4& view_projection, Jitter jitter);
-  void encodeInto(Frame& frame) const;
+  void encodeInto(Frame& frame);
 
   bool valid_ = false;
   int width_ = 0, height_ = 0;
   float4x4 previous_view_projection_;
   int still_frames_ = 0;
-  std::vector<float3> current_;       // this frame, linear RGB
-  std::vector<float3> history_;       // the last image shown, linear RGB
-  std::vector<float3> next_;          // the image being made (reprojection reads history_)
-  std::vector<float3> still_sum_;     // the frames since the camera stopped, linear RGB
-  std::vector<float3> still_base_;    // the image shown when the camera stopped
-  std::vector<float> previous_depth_; // the last frame's view depth (clip w); +inf for nothing
-  std::vector<uint8_t> count_;        // frames in each pixel's history, up to kMovingHistory
-  std::vector<uint8_t> next_count_;
+  // Linear RGB per pixel. While the camera moves, next_ is the image being made (reprojection
+  // reads history_); while it is still, next_ holds the image shown when it stopped.
+  std::vector<float3> current_;    // this frame
+  std::vector<float3> history_;    // the last image shown
+  std::vector<float3> next_;
+  std::vector<float3> still_sum_;  // the frames since the camera stopped
+  std::vector<float> previous_depth_;  // the last frame's view depth (clip w); +inf for nothing
+  std::vector<uint8_t> count_, next_count_;  // frames in each pixel's history, to kMovingHistory
+  std::vector<uint32_t> next_color_;         // the encoded image being made
+  std::vector<uint32_t> converged_color_;    // the converged image, encoded once
 };
 
 }  // namespace tessera::viewer
