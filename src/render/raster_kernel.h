@@ -288,8 +288,10 @@ TESSERA_LANES_INLINE bool advance(const std::vector<TriangleChunk>& chunks, size
   return false;
 }
 
-void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
-                      TileVisibility& tile) {
+// Calls draw(raster, wide, key) for every triangle binned to the tile, in submission order.
+template <typename Draw>
+TESSERA_LANES_INLINE void walkTileBins(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                                       int tile_index, Draw draw) {
   // Every chunk's list for this tile, all at once (each is a line or two, written by setup on
   // either core), and where the next tile's lists are kept, which this worker most likely takes
   // next: walked one after another, each list was a miss of its own.
@@ -327,9 +329,54 @@ void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_cou
       ahead_valid = advance(chunks, chunk_count, tile_index, ahead);
     }
     const TriangleChunk& chunk = chunks[at.chunk];
-    rasterTriangle(chunk.raster[*at.it], chunk.wide[*at.it],
-                   makeKey(static_cast<uint32_t>(at.chunk), *at.it), tile);
+    draw(chunk.raster[*at.it], chunk.wide[*at.it],
+         makeKey(static_cast<uint32_t>(at.chunk), *at.it));
   } while (advance(chunks, chunk_count, tile_index, at));
+}
+
+void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
+                      TileVisibility& tile) {
+  walkTileBins(
+      chunks, chunk_count, tile_index,
+      [&](const RasterTriangle& t, const RasterWide& w, uint32_t key)
+          __attribute__((always_inline)) { rasterTriangle(t, w, key, tile); });
+}
+
+// A triangle's coverage and depth at one sample of every pixel: the triangle moved by the
+// sample's offset from the pixel centre (-offset), rasterized at pixel centres. The edge values
+// at the centre of the moved triangle are the original's at the sample, exactly: a and b stay, c
+// (or a small triangle's corner values) take a * dx + b * dy, and the depth plane's origin moves
+// by the offset in pixels. A small triangle's moved values fit in int32 (smallBox with the sample
+// reach).
+TESSERA_LANES_INLINE void rasterSample(const RasterTriangle& t, const RasterWide& w, uint32_t key,
+                                       const SampleShift& shift, TileVisibility& tile) {
+  RasterTriangle moved = t;
+  moved.x0 = t.x0 - shift.pixels_x;
+  moved.y0 = t.y0 - shift.pixels_y;
+  if (t.small()) {
+    for (int k = 0; k < 3; ++k)
+      moved.corner[k] = static_cast<int32_t>(t.corner[k] + int64_t{t.a[k]} * shift.dx +
+                                             int64_t{t.b[k]} * shift.dy);
+    rasterTriangle(moved, w, key, tile);  // a small triangle's wide record is not read
+    return;
+  }
+  RasterWide moved_wide;
+  for (int k = 0; k < 3; ++k)
+    moved_wide.c[k] = w.c[k] + int64_t{t.a[k]} * shift.dx + int64_t{t.b[k]} * shift.dy;
+  moved_wide.z_min = w.z_min;
+  rasterTriangle(moved, moved_wide, key, tile);
+}
+
+// Every triangle of the tile into each layer of `layers`, layer i at shifts[i].
+void rasterTileSamplesKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                             int tile_index, TileVisibility* const* layers,
+                             const SampleShift* shifts, int layer_count) {
+  walkTileBins(
+      chunks, chunk_count, tile_index,
+      [&](const RasterTriangle& t, const RasterWide& w, uint32_t key)
+          __attribute__((always_inline)) {
+            for (int i = 0; i < layer_count; ++i) rasterSample(t, w, key, shifts[i], *layers[i]);
+          });
 }
 
 }  // namespace
