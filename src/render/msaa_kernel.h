@@ -60,120 +60,108 @@ TESSERA_LANES_INLINE bool coversCentre(const RasterTriangle& t, const RasterWide
   return true;
 }
 
-// One distinct triangle of a mixed pixel: where it is shaded and how many samples it holds.
-struct Fragment {
-  const ShadeTriangle* shade;
-  const ShadeExtras* extras;
-  float x, y;  // the shading point, window coordinates
-  int samples;
-};
-
-// The distinct triangles of pixel (x, y) (tile index i), in order of first sample, into `out`;
-// returns how many, and the count of uncovered samples in `background`.
-TESSERA_LANES_INLINE int pixelFragments(const MsaaShading& m, int i, int x, int y,
-                                        const std::vector<TriangleChunk>& chunks, Fragment* out,
-                                        int& background) {
-  uint32_t keys[kMaxSamples];
-  for (int s = 0; s < m.samples; ++s) keys[s] = m.tiles->layers[static_cast<size_t>(s)]->key[i];
-  int count = 0;
-  background = 0;
-  for (int s = 0; s < m.samples; ++s) {
-    const uint32_t key = keys[s];
-    bool seen = false;
-    for (int r = 0; r < s && !seen; ++r) seen = keys[r] == key;
-    if (seen) continue;
-    int held = 0;
-    for (int r = s; r < m.samples; ++r) held += keys[r] == key;
-    if (key == kEmptyKey) {
-      background = held;
-      continue;
-    }
-    const TriangleChunk& chunk = chunks[keyChunk(key)];
-    const uint32_t local = keyLocal(key);
-    Fragment& f = out[count++];
-    f.shade = &chunk.shade[local];
-    f.extras = &chunk.extras[local];
-    f.samples = held;
-    // Sample s is this triangle's first in pattern order, the nearest the centre it holds.
-    const bool centre = coversCentre(chunk.raster[local], chunk.wide[local], x, y);
-    constexpr float kToPixels = 1.0f / static_cast<float>(kSubpixelOne);
-    f.x =
-        static_cast<float>(x) + (centre ? 0.5f : static_cast<float>(m.positions[s].x) * kToPixels);
-    f.y =
-        static_cast<float>(y) + (centre ? 0.5f : static_cast<float>(m.positions[s].y) * kToPixels);
+// The sample-s fragments of eight pixels (the lanes of `first`: pixels whose sample s holds a
+// triangle that no earlier sample holds), shaded from their own triangles (keys), each at the
+// pixel centre when the centre passes the triangle's edge tests and otherwise at sample s (the
+// triangle's first in pattern order, the nearest the centre it holds).
+TESSERA_LANES_INLINE Vec3x8 shadeSampleFragments(const MsaaShading& m, int s, I32x8 keys, I32x8 first,
+                                                int x, int y,
+                                                const std::vector<TriangleChunk>& chunks,
+                                                const Scene& scene, bool plain) {
+  alignas(32) uint32_t key[8];
+  alignas(32) int32_t valid[8];
+  alignas(32) float px[8];
+  alignas(32) int32_t at_centre[8];
+  store(key, keys);
+  store(valid, first);
+  const uint32_t borrowed = key[firstLane(first)];  // for the other lanes: computed, not used
+  const ShadeTriangle* records[8];
+  constexpr float kToPixels = 1.0f / static_cast<float>(kSubpixelOne);
+  const float sample_x = static_cast<float>(m.positions[s].x) * kToPixels;
+  const float sample_y = static_cast<float>(y) + static_cast<float>(m.positions[s].y) * kToPixels;
+  const float centre_y = static_cast<float>(y) + 0.5f;
+  alignas(32) float py[8];
+  // The lanes outside `first` borrow a valid lane's triangle, shaded at their centres.
+  const ShadeTriangle* borrowed_record = &chunks[keyChunk(borrowed)].shade[keyLocal(borrowed)];
+  for (int l = 0; l < 8; ++l) {
+    if (valid[l]) continue;
+    records[l] = borrowed_record;
+    at_centre[l] = -1;
+    px[l] = static_cast<float>(x + l) + 0.5f;
+    py[l] = centre_y;
   }
-  return count;
+  for (int l = 0; l < 8; ++l) {
+    if (!valid[l]) continue;
+    const uint32_t k = key[l];
+    const TriangleChunk& chunk = chunks[keyChunk(k)];
+    records[l] = &chunk.shade[keyLocal(k)];
+    const bool centre = coversCentre(chunk.raster[keyLocal(k)], chunk.wide[keyLocal(k)], x + l, y);
+    at_centre[l] = centre ? -1 : 0;
+    px[l] = static_cast<float>(x + l) + (centre ? 0.5f : sample_x);
+    py[l] = centre ? centre_y : sample_y;
+  }
+  if (plain) return shadeMixed(records, load<F32x8>(px), load<F32x8>(py));
+  // Otherwise each triangle once for its lanes at the centre and once for those at the sample.
+  const F32x8 zero = splat(0.0f);
+  Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
+  const I32x8 centre_lanes = load<I32x8>(at_centre);
+  I32x8 todo = first;
+  while (any(todo)) {
+    const uint32_t k = key[firstLane(todo)];
+    const I32x8 mine = todo & equal(keys, splat(static_cast<int32_t>(k)));
+    const TriangleChunk& chunk = chunks[keyChunk(k)];
+    const ShadeTriangle& t = chunk.shade[keyLocal(k)];
+    const ShadeExtras& e = chunk.extras[keyLocal(k)];
+    if (any(mine & centre_lanes))
+      shadeLanes(t, e, scene, false, load<F32x8>(px), centre_y, mine & centre_lanes, color,
+                 normal);
+    if (any(mine & ~centre_lanes))
+      shadeLanes(t, e, scene, false, load<F32x8>(px), sample_y, mine & ~centre_lanes, color,
+                 normal);
+    todo = todo & ~mine;
+  }
+  return color;
 }
 
-// Replaces the linear colours of row ty's mixed pixels by their resolve: each distinct triangle
-// shaded once, weighted by its samples, uncovered samples the background, over the sample count.
-// `plain` (shade.h): fragments are shaded eight at a time from their own records (shadeMixed);
-// otherwise one at a time.
+// Replaces the linear colours of row ty's mixed pixels by their resolve, eight pixels at a time:
+// the uncovered samples' background, then each distinct triangle in the order of its first
+// sample, weighted by the samples it holds, over the sample count.
 void resolveMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
                      const std::vector<TriangleChunk>& chunks, const Scene& scene, bool plain,
                      float linear[3][kTileSize]) {
-  Fragment fragments[kTileSize * kMaxSamples];
-  int first_fragment[kTileSize + 1], background[kTileSize], pixel[kTileSize];
-  int pixels = 0, count = 0;
+  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
+  const I32x8 zero = splat(int32_t{0});
+  const F32x8 inv_samples = splat(1.0f / static_cast<float>(m.samples));
   const int y = tile.y0 + ty;
   for (int tx = 0; tx < tile.width; tx += 8) {
-    const int group = ty * kTileSize + tx;
-    if (!any(load<I32x8>(m.tiles->mixed + group))) continue;
-    for (int l = 0; l < 8 && tx + l < tile.width; ++l) {
-      if (m.tiles->mixed[group + l] == 0) continue;
-      pixel[pixels] = tx + l;
-      first_fragment[pixels] = count;
-      count += pixelFragments(m, group + l, tile.x0 + tx + l, y, chunks, fragments + count,
-                              background[pixels]);
-      ++pixels;
+    const int i = ty * kTileSize + tx;
+    const I32x8 mixed = load<I32x8>(m.tiles->mixed + i);
+    if (!any(mixed)) continue;
+    I32x8 keys[kMaxSamples];
+    I32x8 background = zero;
+    for (int s = 0; s < m.samples; ++s) {
+      keys[s] = load<I32x8>(m.tiles->layers[static_cast<size_t>(s)]->key + i);
+      background = background - equal(keys[s], empty);
     }
-  }
-  if (pixels == 0) return;
-  first_fragment[pixels] = count;
-
-  // Each fragment's colour.
-  alignas(32) float color[3][kTileSize * kMaxSamples + 8];
-  if (plain) {
-    for (int f = 0; f < count; f += 8) {
-      const ShadeTriangle* records[8];
-      alignas(32) float px[8], py[8];
-      for (int l = 0; l < 8; ++l) {
-        const Fragment& from = fragments[f + l < count ? f + l : f];  // the last group: padded
-        records[l] = from.shade;
-        px[l] = from.x;
-        py[l] = from.y;
-      }
-      const Vec3x8 c = shadeMixed(records, load<F32x8>(px), load<F32x8>(py));
-      store(color[0] + f, c.x);
-      store(color[1] + f, c.y);
-      store(color[2] + f, c.z);
+    const F32x8 bg_weight = toFloat(background);
+    Vec3x8 sum{splat(m.background.x) * bg_weight, splat(m.background.y) * bg_weight,
+               splat(m.background.z) * bg_weight};
+    for (int s = 0; s < m.samples; ++s) {
+      I32x8 first = mixed & ~equal(keys[s], empty);
+      for (int r = 0; r < s; ++r) first = first & ~equal(keys[s], keys[r]);
+      if (!any(first)) continue;
+      I32x8 held = zero;
+      for (int r = s; r < m.samples; ++r) held = held - equal(keys[r], keys[s]);
+      const Vec3x8 c =
+          shadeSampleFragments(m, s, keys[s], first, tile.x0 + tx, y, chunks, scene, plain);
+      // Lanes outside `first` may hold anything (a borrowed record off its triangle): not added.
+      const F32x8 weight = toFloat(held);
+      sum = {select(first, sum.x + c.x * weight, sum.x), select(first, sum.y + c.y * weight, sum.y),
+             select(first, sum.z + c.z * weight, sum.z)};
     }
-  } else {
-    const I32x8 lane0 = equal(iota(), splat(int32_t{0}));
-    const F32x8 zero = splat(0.0f);
-    for (int f = 0; f < count; ++f) {
-      const Fragment& from = fragments[f];
-      Vec3x8 c{zero, zero, zero}, normal{zero, zero, zero};
-      shadeLanes(*from.shade, *from.extras, scene, false, splat(from.x), from.y, lane0, c, normal);
-      color[0][f] = lane(c.x, 0);
-      color[1][f] = lane(c.y, 0);
-      color[2][f] = lane(c.z, 0);
-    }
-  }
-
-  // The resolve, pixel by pixel, fragments in order, the background last.
-  const float inv_samples = 1.0f / static_cast<float>(m.samples);
-  for (int p = 0; p < pixels; ++p) {
-    float sum[3] = {0, 0, 0};
-    for (int f = first_fragment[p]; f < first_fragment[p + 1]; ++f) {
-      const float weight = static_cast<float>(fragments[f].samples);
-      for (int c = 0; c < 3; ++c) sum[c] += color[c][f] * weight;
-    }
-    const float bg_weight = static_cast<float>(background[p]);
-    sum[0] += m.background.x * bg_weight;
-    sum[1] += m.background.y * bg_weight;
-    sum[2] += m.background.z * bg_weight;
-    for (int c = 0; c < 3; ++c) linear[c][pixel[p]] = sum[c] * inv_samples;
+    store(linear[0] + tx, select(mixed, sum.x * inv_samples, load<F32x8>(linear[0] + tx)));
+    store(linear[1] + tx, select(mixed, sum.y * inv_samples, load<F32x8>(linear[1] + tx)));
+    store(linear[2] + tx, select(mixed, sum.z * inv_samples, load<F32x8>(linear[2] + tx)));
   }
 }
 
