@@ -64,41 +64,38 @@ TESSERA_LANES_INLINE bool coversCentre(const RasterTriangle& t, const RasterWide
 // triangle that no earlier sample holds), shaded from their own triangles (keys), each at the
 // pixel centre when the centre passes the triangle's edge tests and otherwise at sample s (the
 // triangle's first in pattern order, the nearest the centre it holds).
-TESSERA_LANES_INLINE Vec3x8 shadeSampleFragments(const MsaaShading& m, int s, I32x8 keys, I32x8 first,
-                                                int x, int y,
-                                                const std::vector<TriangleChunk>& chunks,
-                                                const Scene& scene, bool plain) {
+TESSERA_LANES_INLINE Vec3x8 shadeSampleFragments(const MsaaShading& m, int s, I32x8 keys,
+                                                 I32x8 first, int x, int y,
+                                                 const std::vector<TriangleChunk>& chunks,
+                                                 const Scene& scene, bool plain) {
   alignas(32) uint32_t key[8];
   alignas(32) int32_t valid[8];
-  alignas(32) float px[8];
-  alignas(32) int32_t at_centre[8];
   store(key, keys);
   store(valid, first);
-  const uint32_t borrowed = key[firstLane(first)];  // for the other lanes: computed, not used
-  const ShadeTriangle* records[8];
   constexpr float kToPixels = 1.0f / static_cast<float>(kSubpixelOne);
   const float sample_x = static_cast<float>(m.positions[s].x) * kToPixels;
   const float sample_y = static_cast<float>(y) + static_cast<float>(m.positions[s].y) * kToPixels;
   const float centre_y = static_cast<float>(y) + 0.5f;
-  alignas(32) float py[8];
-  // The lanes outside `first` borrow a valid lane's triangle, shaded at their centres.
+  // Every lane starts at its centre with a valid lane's triangle (the other lanes keep that:
+  // computed, not used); the valid lanes then take their own triangle and shading point.
+  alignas(32) float px[8], py[8];
+  alignas(32) int32_t at_centre[8];
+  store(px, toFloat(splat(x) + iota()) + splat(0.5f));
+  store(py, splat(centre_y));
+  store(at_centre, splat(int32_t{-1}));
+  const uint32_t borrowed = key[firstLane(first)];
+  const ShadeTriangle* records[8];
   const ShadeTriangle* borrowed_record = &chunks[keyChunk(borrowed)].shade[keyLocal(borrowed)];
-  for (int l = 0; l < 8; ++l) {
-    if (valid[l]) continue;
-    records[l] = borrowed_record;
-    at_centre[l] = -1;
-    px[l] = static_cast<float>(x + l) + 0.5f;
-    py[l] = centre_y;
-  }
+  for (int l = 0; l < 8; ++l) records[l] = borrowed_record;
   for (int l = 0; l < 8; ++l) {
     if (!valid[l]) continue;
     const uint32_t k = key[l];
     const TriangleChunk& chunk = chunks[keyChunk(k)];
     records[l] = &chunk.shade[keyLocal(k)];
-    const bool centre = coversCentre(chunk.raster[keyLocal(k)], chunk.wide[keyLocal(k)], x + l, y);
-    at_centre[l] = centre ? -1 : 0;
-    px[l] = static_cast<float>(x + l) + (centre ? 0.5f : sample_x);
-    py[l] = centre ? centre_y : sample_y;
+    if (coversCentre(chunk.raster[keyLocal(k)], chunk.wide[keyLocal(k)], x + l, y)) continue;
+    at_centre[l] = 0;
+    px[l] = static_cast<float>(x + l) + sample_x;
+    py[l] = sample_y;
   }
   if (plain) return shadeMixed(records, load<F32x8>(px), load<F32x8>(py));
   // Otherwise each triangle once for its lanes at the centre and once for those at the sample.
@@ -113,8 +110,7 @@ TESSERA_LANES_INLINE Vec3x8 shadeSampleFragments(const MsaaShading& m, int s, I3
     const ShadeTriangle& t = chunk.shade[keyLocal(k)];
     const ShadeExtras& e = chunk.extras[keyLocal(k)];
     if (any(mine & centre_lanes))
-      shadeLanes(t, e, scene, false, load<F32x8>(px), centre_y, mine & centre_lanes, color,
-                 normal);
+      shadeLanes(t, e, scene, false, load<F32x8>(px), centre_y, mine & centre_lanes, color, normal);
     if (any(mine & ~centre_lanes))
       shadeLanes(t, e, scene, false, load<F32x8>(px), sample_y, mine & ~centre_lanes, color,
                  normal);
