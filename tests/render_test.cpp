@@ -1156,6 +1156,10 @@ TEST(Renderer, AllocatesNothingPerFrameAfterWarmUp) {
     }
     for (int i = 0; i < 3; ++i) {
       scene.objects[0].transform.rotation = quat::fromAxisAngle({0, 1, 0}, 0.1f * i);
+      // With one sample and with MSAA (its sample layers, made once per worker), with and
+      // without jitter.
+      options.msaa = i == 2 ? 8 : 1;
+      options.jitter = jitterOffset(static_cast<uint32_t>(i));
       renderer.render(scene, options, frame);
     }
   }
