@@ -148,7 +148,8 @@ float4x4 viewProjection(const Scene& scene) {
 // A red disc in front of a large grey one, edges at every angle.
 DiscBackend occluderScene() {
   DiscBackend backend;
-  backend.discs = {{{0, 0, 0}, 3.0f, {0.3f, 0.3f, 0.3f}}, {{0.1f, 0.05f, 2.0f}, 0.8f, {0.9f, 0.1f, 0.05f}}};
+  backend.discs = {{{0, 0, 0}, 3.0f, {0.3f, 0.3f, 0.3f}},
+                   {{0.1f, 0.05f, 2.0f}, 0.8f, {0.9f, 0.1f, 0.05f}}};
   return backend;
 }
 

@@ -300,13 +300,15 @@ TEST(InputState, TheKeyListNamesEveryMappedKeyAndOnlyThose) {
   int mapped = 0;
   for (int i = 0; i < static_cast<int>(Key::kOther); ++i) {
     const Key k = static_cast<Key>(i);
-    const bool shift_differs = keyAction(k, true).has_value() != keyAction(k, false).has_value() ||
-                               (keyAction(k, true) && keyAction(k, true)->type != keyAction(k)->type);
+    const bool shift_differs =
+        keyAction(k, true).has_value() != keyAction(k, false).has_value() ||
+        (keyAction(k, true) && keyAction(k, true)->type != keyAction(k)->type);
     for (bool shift : {false, true}) {
       if (shift && !shift_differs) continue;  // the same action: listed once, unshifted
       if (!keyAction(k, shift)) continue;
       ++mapped;
-      EXPECT_TRUE(listed(k, shift)) << "key " << i << (shift ? " with shift" : "") << " is unlisted";
+      EXPECT_TRUE(listed(k, shift))
+          << "key " << i << (shift ? " with shift" : "") << " is unlisted";
     }
   }
   EXPECT_EQ(mapped, 14);  // 1 3 7 9 Enter Escape H F1 F2 F3 F10 F12, Shift+F3, Shift+F12
@@ -314,7 +316,8 @@ TEST(InputState, TheKeyListNamesEveryMappedKeyAndOnlyThose) {
     EXPECT_FALSE(help.keys.empty());
     EXPECT_FALSE(help.action.empty());
     for (const KeyChord& chord : help.chords)
-      EXPECT_TRUE(keyAction(chord.key, chord.shift)) << help.keys << " lists a key that does nothing";
+      EXPECT_TRUE(keyAction(chord.key, chord.shift))
+          << help.keys << " lists a key that does nothing";
   }
 }
 

@@ -191,7 +191,8 @@ inline bool near(Rgb a, Rgb b, int tolerance) {
 }
 
 // Pixels of the rectangle [x0, x1) x [y0, y1) that differ between two same-sized pictures.
-inline int countDifferent(const DecodedPng& a, const DecodedPng& b, int x0, int y0, int x1, int y1) {
+inline int countDifferent(const DecodedPng& a, const DecodedPng& b, int x0, int y0, int x1,
+                          int y1) {
   int count = 0;
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x)

@@ -28,8 +28,7 @@ Differences differencesOnEdges(const DecodedPng& a, const DecodedPng& b) {
       ++d.pixels;
       bool edge = false;
       for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
-          edge |= !near(pixel(a, x + dx, y + dy), pixel(a, x, y), 2);
+        for (int dx = -1; dx <= 1; ++dx) edge |= !near(pixel(a, x + dx, y + dy), pixel(a, x, y), 2);
       if (!edge) ++d.away_from_edges;
     }
   return d;
@@ -80,8 +79,8 @@ class ViewerAntiAliasing : public ViewerWindow {
       skip_reason_ = why;
       return false;
     }
-    std::vector<std::string> all{"-w", std::to_string(width), "-h", std::to_string(height),
-                                 "-workers", "2"};
+    std::vector<std::string> all{
+        "-w", std::to_string(width), "-h", std::to_string(height), "-workers", "2"};
     all.insert(all.end(), args.begin(), args.end());
     startViewer(all);
     EXPECT_TRUE(viewer_->waitForLine("tessera view: showing cube"))
@@ -89,8 +88,8 @@ class ViewerAntiAliasing : public ViewerWindow {
     window_ = findWindow();
     EXPECT_FALSE(window_.empty()) << "no visible 'tessera view' window";
     // Keys go to the window under the pointer (there is no window manager to give focus).
-    xdotool({"mousemove", "--window", window_, std::to_string(width / 2),
-             std::to_string(height / 2)});
+    xdotool(
+        {"mousemove", "--window", window_, std::to_string(width / 2), std::to_string(height / 2)});
     return !window_.empty();
   }
 
@@ -99,7 +98,8 @@ class ViewerAntiAliasing : public ViewerWindow {
     DecodedPng last = screenshot();
     for (int i = 0; i < 40; ++i) {
       DecodedPng next = screenshot();
-      if (next.width == last.width && countDifferent(last, next, 0, 0, last.width, last.height) == 0)
+      if (next.width == last.width &&
+          countDifferent(last, next, 0, 0, last.width, last.height) == 0)
         return next;
       last = std::move(next);
     }

@@ -298,6 +298,15 @@ TEST(ViewerErrors, AnUnreadableTextureIsAClearErrorWithStatus1) {
   EXPECT_NE(err.find("no-such-texture.png"), std::string::npos) << err;
 }
 
+TEST(ViewerErrors, AnMsaaCountOtherThan1248IsAUsageErrorNamingThem) {
+  for (const char* bad : {"3", "0", "16", "4294967298", "four"}) {
+    auto [status, err] = runWithoutWindow({"-msaa", bad}, {});
+    EXPECT_EQ(status, 2) << bad;
+    EXPECT_NE(err.find("must be 1, 2, 4 or 8, got '" + std::string(bad) + "'"), std::string::npos)
+        << err;
+  }
+}
+
 TEST(ViewerErrors, BadFlagsAreAUsageErrorWithStatus2) {
   auto [status, err] = runWithoutWindow({"-fps", "0"}, {});
   EXPECT_EQ(status, 2);

@@ -70,14 +70,15 @@ int runView(const std::vector<std::string>& args) {
   flags.addString("texture", &s.texture, "an image used as the albedo of every material");
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
-  flags.addCustom("msaa", "N", "samples per pixel: 1, 2, 4 or 8 (default 4; Shift+F3 cycles)",
-                  [&s](const std::string& v) -> std::string {
-                    long long n = 0;
-                    if (!parseIntStrict(v, n) || n < 1 || n > 8 || !isSampleCount(static_cast<int>(n)))
-                      return "must be 1, 2, 4 or 8, got '" + v + "'";
-                    s.msaa = static_cast<int>(n);
-                    return "";
-                  });
+  flags.addCustom(
+      "msaa", "N", "samples per pixel: 1, 2, 4 or 8 (default 4; Shift+F3 cycles)",
+      [&s](const std::string& v) -> std::string {
+        long long n = 0;
+        if (!parseIntStrict(v, n) || n < 1 || n > 8 || !isSampleCount(static_cast<int>(n)))
+          return "must be 1, 2, 4 or 8, got '" + v + "'";
+        s.msaa = static_cast<int>(n);
+        return "";
+      });
 
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {

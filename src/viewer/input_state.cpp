@@ -33,8 +33,8 @@ std::optional<Action> shiftedFunctionKey(Key key) {
 }  // namespace
 
 std::optional<Action> keyAction(Key key, bool shift) {
-  const bool function_key = key == Key::kF1 || key == Key::kF2 || key == Key::kF3 ||
-                            key == Key::kF10 || key == Key::kF12;
+  const bool function_key =
+      key == Key::kF1 || key == Key::kF2 || key == Key::kF3 || key == Key::kF10 || key == Key::kF12;
   if (shift && function_key) return shiftedFunctionKey(key);
   switch (key) {
     case Key::kOne:
@@ -74,7 +74,7 @@ int nextMsaa(int msaa) {
 const std::vector<KeyHelp>& keyList() {
   static const std::vector<KeyHelp> list = {
       {"left drag", "orbit", {}},
-      {"middle drag, Shift+left", "pan", {}},
+      {"middle or Shift+left drag", "pan", {}},
       {"wheel", "zoom", {}},
       {"1 / 3 / 7 / 9",
        "front / right / top / isometric view",

@@ -55,8 +55,8 @@ void TextOverlay::drawTextBox(SDL_Renderer* renderer, const std::string& text, i
 }
 
 void TextOverlay::drawTable(SDL_Renderer* renderer,
-                            const std::vector<std::pair<std::string, std::string>>& rows,
-                            int width, int height) {
+                            const std::vector<std::pair<std::string, std::string>>& rows, int width,
+                            int height) {
   if (rows.empty()) return;
   size_t key_width = 0;
   for (const auto& row : rows) key_width = std::max(key_width, row.first.size());
@@ -74,8 +74,8 @@ void TextOverlay::drawTable(SDL_Renderer* renderer,
     int w = 0, h = 0;
     for (const auto& row : rows) {
       int line_w = 0;
-      const std::string line = row.first + std::string(key_width - row.first.size() + 2, ' ') +
-                               row.second;
+      const std::string line =
+          row.first + std::string(key_width - row.first.size() + 2, ' ') + row.second;
       TTF_SizeUTF8(chosen, line.c_str(), &line_w, nullptr);
       w = std::max(w, line_w);
     }
@@ -83,8 +83,8 @@ void TextOverlay::drawTable(SDL_Renderer* renderer,
     if (w + 4 * margin <= width && h + 4 * margin <= height) break;
   }
   if (chosen == nullptr) return;
-  SdlPtr<SDL_Surface> surface(TTF_RenderUTF8_Blended_Wrapped(
-      chosen, text.c_str(), SDL_Color{255, 255, 255, 255}, 0));
+  SdlPtr<SDL_Surface> surface(
+      TTF_RenderUTF8_Blended_Wrapped(chosen, text.c_str(), SDL_Color{255, 255, 255, 255}, 0));
   if (!surface) return;
   const int pad = std::max(4, base_size_ / 3);
   drawBox(renderer, surface.get(), std::max(0, (width - surface->w) / 2 - pad),

@@ -25,8 +25,9 @@ class TextOverlay {
                    SDL_Color color, int wrap_width);
   // The lines in two aligned columns, in a box centred on a width x height framebuffer, in the
   // largest size up to fontSize() at which they fit.
-  void drawTable(SDL_Renderer* renderer, const std::vector<std::pair<std::string, std::string>>& rows,
-                 int width, int height);
+  void drawTable(SDL_Renderer* renderer,
+                 const std::vector<std::pair<std::string, std::string>>& rows, int width,
+                 int height);
 
  private:
   TTF_Font* font(int size);

@@ -50,13 +50,13 @@ float rowW(const float4x4& m, float4 v) {
 
 // The reprojection of one row of samples: what does not depend on x and the depth, done once.
 struct RowReprojection {
-  float4 clip_base;  // reprojection * (0, ndc y, 0, 1)
-  float4 clip_x, clip_z;  // reprojection's columns 0 and 2
+  float4 clip_base;        // reprojection * (0, ndc y, 0, 1)
+  float4 clip_x, clip_z;   // reprojection's columns 0 and 2
   float w_base, w_x, w_z;  // the same for row 3 of inverse(current)
   float half_width, half_height;
 
-  RowReprojection(const float4x4& reprojection, const float4x4& inverse_current, int y,
-                  int width, int height) {
+  RowReprojection(const float4x4& reprojection, const float4x4& inverse_current, int y, int width,
+                  int height) {
     const float ny = ndcY(y, {}, height);
     clip_base = reprojection.col[1] * ny + reprojection.col[3];
     clip_x = reprojection.col[0], clip_z = reprojection.col[2];
@@ -92,7 +92,8 @@ void forRowBands(int rows, const Body& body) {
   std::vector<std::jthread> helpers;
   helpers.reserve(static_cast<size_t>(bands - 1));
   for (int b = 1; b < bands; ++b)
-    helpers.emplace_back([&body, rows, bands, b] { body(rows * b / bands, rows * (b + 1) / bands); });
+    helpers.emplace_back(
+        [&body, rows, bands, b] { body(rows * b / bands, rows * (b + 1) / bands); });
   body(0, rows / bands);
 }
 
@@ -148,7 +149,8 @@ void TemporalResolver::start(const Frame& frame) {
 }
 
 void TemporalResolver::resolve(Frame& frame, const float4x4& view_projection, Jitter jitter) {
-  TESSERA_CHECK(frame.depth.size() == frame.pixelCount() && frame.color.size() == frame.depth.size())
+  TESSERA_CHECK(frame.depth.size() == frame.pixelCount() &&
+                frame.color.size() == frame.depth.size())
       << "temporal reprojection needs the frame's colour and depth";
   if (frame.pixelCount() == 0) return;
   const bool resized = frame.width != width_ || frame.height != height_;
@@ -300,8 +302,7 @@ void TemporalResolver::blendMoving(Frame& frame, const float4x4& view_projection
         const float3 box_lo = min(min(rows_lo[0][x], rows_lo[1][x]), rows_lo[2][x]);
         const float3 box_hi = max(max(rows_hi[0][x], rows_hi[1][x]), rows_hi[2][x]);
         HistorySample history;
-        if (!pass.sample(row.at(ndcX(x, {}, w), ndcZ(depth)), depth, box_lo, box_hi,
-                         history)) {
+        if (!pass.sample(row.at(ndcX(x, {}, w), ndcZ(depth)), depth, box_lo, box_hi, history)) {
           next_[i] = current, next_count_[i] = 1;
           continue;
         }

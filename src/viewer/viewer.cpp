@@ -282,7 +282,7 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
     std::snprintf(text, sizeof text, "%s\nrender %.2f ms", fps, render_ms_);
     std::string lines = text;
     if (sampling_.jitter() && sampling_.temporal()) {
-      std::snprintf(text, sizeof text, ", temporal %.2f ms", temporal_ms_);
+      std::snprintf(text, sizeof text, " + TAA %.2f ms", temporal_ms_);
       lines += text;
     }
     std::snprintf(text, sizeof text, "\n%d x %d, %zu triangles, %s\n", pixel_width, pixel_height,
@@ -356,8 +356,7 @@ void Viewer::drawFrame() {
   SDL_GetRendererOutputSize(renderer_.get(), &pixel_w, &pixel_h);
   SDL_GetWindowSize(window_.get(), &window_w, &window_h);
   if (pixel_w <= 0 || pixel_h <= 0) return;  // minimized
-  text_.setScale(window_h > 0 ? static_cast<float>(pixel_h) / static_cast<float>(window_h)
-                              : 1.0f);
+  text_.setScale(window_h > 0 ? static_cast<float>(pixel_h) / static_cast<float>(window_h) : 1.0f);
 
   if (!texture_ || texture_width_ != pixel_w || texture_height_ != pixel_h) {
     texture_.reset(SDL_CreateTexture(renderer_.get(), SDL_PIXELFORMAT_ABGR8888,

@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <vector>
 
-
 #include <tessera/math/mat.h>
 #include <tessera/render/frame.h>
 #include <tessera/render/sampling.h>
@@ -73,10 +72,10 @@ class TemporalResolver {
   int still_frames_ = 0;
   // Linear RGB per pixel. While the camera moves, next_ is the image being made (reprojection
   // reads history_); while it is still, next_ holds the image shown when it stopped.
-  std::vector<float3> current_;    // this frame
-  std::vector<float3> history_;    // the last image shown
+  std::vector<float3> current_;  // this frame
+  std::vector<float3> history_;  // the last image shown
   std::vector<float3> next_;
-  std::vector<float3> still_sum_;  // the frames since the camera stopped
+  std::vector<float3> still_sum_;      // the frames since the camera stopped
   std::vector<float> previous_depth_;  // the last frame's view depth (clip w); +inf for nothing
   std::vector<uint8_t> count_, next_count_;  // frames in each pixel's history, to kMovingHistory
   std::vector<uint32_t> next_color_;         // the encoded image being made
