@@ -246,6 +246,60 @@ TEST_F(BenchCli, BadFlagsExitTwoWithUsage) {
   }
 }
 
+TEST_F(BenchCli, MsaaOtherThanOneTwoFourOrEightIsAUsageError) {
+  for (const char* value : {"3", "0", "16", "-4", "4x", "4294967300"}) {
+    RunResult r = run(std::string("--frames 1 --resolution 16,16 --msaa ") + value + " cube");
+    EXPECT_EQ(r.exit_code, 2) << value;
+    EXPECT_NE(r.err.find("1, 2, 4 or 8"), std::string::npos) << value << "\n" << r.err;
+    EXPECT_NE(r.err.find("usage: tessera bench"), std::string::npos) << value;
+    EXPECT_TRUE(r.out.empty()) << value;
+  }
+}
+
+TEST_F(BenchCli, OutputSaysTheSampleCount) {
+  for (int msaa : {1, 2, 4, 8}) {
+    const std::string flag = msaa == 1 ? "" : " --msaa " + std::to_string(msaa);
+    RunResult r = run("--json --frames 1 --warmup 0 --resolution 32,24 cube" + flag);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+    ASSERT_TRUE(j.is_object()) << r.out;
+    ASSERT_TRUE(j.contains("msaa") && j["msaa"].is_number_integer()) << r.out;
+    EXPECT_EQ(j["msaa"].get<int>(), msaa);  // 1 without the flag: old numbers stay comparable
+  }
+  RunResult text = run("--frames 1 --warmup 0 --resolution 32,24 --msaa 4 cube");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("4 samples per pixel"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("4x MSAA"), std::string::npos) << text.out;
+}
+
+// llvmpipe draws the sample count asked for, or the run fails before anything is timed: a count
+// that GL rounds to another (llvmpipe makes 4 of 2) would not be the same work.
+TEST_F(BenchCli, VersusLlvmpipeDrawsTheSameSampleCountOrFails) {
+  if (!bench::llvmpipeReferenceBuilt()) GTEST_SKIP() << "built without OSMesa";
+  for (int msaa : {2, 4, 8}) {
+    RunResult r =
+        run("--json --frames 1 --warmup 0 --resolution 32,24 --workers 1 --vs llvmpipe "
+            "--msaa " +
+            std::to_string(msaa) + " cube");
+    if (r.exit_code == 0) {
+      nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+      ASSERT_TRUE(j.is_object()) << r.out;
+      EXPECT_EQ(j.value("msaa", 0), msaa);
+      EXPECT_TRUE(j.contains("llvmpipe_median_ms")) << r.out;
+    } else {
+      EXPECT_EQ(r.exit_code, 1) << msaa;
+      EXPECT_NE(r.err.find("cannot draw " + std::to_string(msaa) + " samples per pixel"),
+                std::string::npos)
+          << r.err;
+      EXPECT_TRUE(r.out.empty()) << "nothing is timed with another sample count";
+    }
+    // Multisampling at 4x has been in llvmpipe since Mesa 20.
+    if (msaa == 4) {
+      EXPECT_EQ(r.exit_code, 0) << r.err;
+    }
+  }
+}
+
 TEST_F(BenchCli, HelpExitsZero) {
   RunResult r = run("--help");
   EXPECT_EQ(r.exit_code, 0);
@@ -419,4 +473,131 @@ TEST_F(Reference, ReadBackRowsRunTopDown) {
   ASSERT_EQ(rgba.size(), 64u);
   EXPECT_EQ(rgba[0] & 0xffffffu, 0x0000ffu);   // top-left: red
   EXPECT_EQ(rgba[63] & 0xffffffu, 0x000000u);  // bottom-right: the black background
+}
+
+// ---- the llvmpipe reference, multisampled ----
+
+namespace {
+
+int channelDifference(uint32_t a, uint32_t b) {
+  int worst = 0;
+  for (int k = 0; k < 3; ++k)
+    worst = std::max(worst, std::abs(static_cast<int>((a >> (8 * k)) & 255) -
+                                     static_cast<int>((b >> (8 * k)) & 255)));
+  return worst;
+}
+
+// Whether every pixel within `radius` of (x, y) has the colour of (x, y).
+bool inFlatArea(const std::vector<uint32_t>& rgba, int w, int h, int x, int y, int radius) {
+  for (int dy = -radius; dy <= radius; ++dy)
+    for (int dx = -radius; dx <= radius; ++dx) {
+      const int nx = std::clamp(x + dx, 0, w - 1), ny = std::clamp(y + dy, 0, h - 1);
+      if ((rgba[ny * w + nx] & 0xffffffu) != (rgba[y * w + x] & 0xffffffu)) return false;
+    }
+  return true;
+}
+
+}  // namespace
+
+TEST_F(Reference, SampleCountsItCannotDrawExactlyAreErrors) {
+  EXPECT_EQ(reference_->samples(), 1);
+  ASSERT_TRUE(reference_->setSamples(4).ok());
+  EXPECT_EQ(reference_->samples(), 4);
+  for (int samples : {2, 8}) {
+    Expected<void> set = reference_->setSamples(samples);
+    if (set) {
+      EXPECT_EQ(reference_->samples(), samples);
+    } else {
+      EXPECT_NE(set.error().message.find("cannot draw " + std::to_string(samples)),
+                std::string::npos)
+          << set.error().message;
+      EXPECT_NE(set.error().message.find("exactly 1"), std::string::npos) << set.error().message;
+      EXPECT_EQ(reference_->samples(), 4) << "a refused count leaves the count as it was";
+    }
+    ASSERT_TRUE(reference_->setSamples(4).ok());
+  }
+}
+
+// 4x against 1x of the same flat-shaded cube: silhouette and crease pixels blend, the inside of
+// each face does not change.
+TEST_F(Reference, MultisamplingSmoothsEdgesAndLeavesFlatInteriorsAlone) {
+  Expected<bench::BenchScene> s = scene("cube", Shading::kFlat);
+  ASSERT_TRUE(s.ok());
+  lookAtCube(s->scene);
+  s->scene.background = {0.0f, 0.0f, 0.0f, 1.0f};
+  bench::poseForFrame(*s, 10);
+  const int w = 160, h = 120;
+  ASSERT_TRUE(reference_->setScene(s->scene).ok());
+  ASSERT_TRUE(reference_->setResolution(w, h).ok());
+  std::vector<uint32_t> one, four;
+  reference_->render(s->scene);
+  reference_->readColor(one);
+  ASSERT_TRUE(reference_->setSamples(4).ok());
+  reference_->render(s->scene);
+  reference_->readColor(four);
+  ASSERT_EQ(one.size(), four.size());
+  ASSERT_EQ(one.size(), static_cast<size_t>(w) * h);
+
+  size_t interior = 0, interior_changed = 0, edge_changed = 0, silhouette_blends = 0;
+  const uint32_t black = 0xff000000u;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = static_cast<size_t>(y) * w + x;
+      const int difference = channelDifference(one[i], four[i]);
+      if (inFlatArea(one, w, h, x, y, 2)) {
+        ++interior;
+        // At most 1: the 1x shader encodes sRGB with pow(), the 4x framebuffer with llvmpipe's
+        // own approximation, which differs by one step for a few values.
+        interior_changed += difference > 1;
+      } else {
+        edge_changed += difference > 8;
+      }
+      // Background at 1x (centre outside the cube), part cube at 4x (some sample inside).
+      silhouette_blends += one[i] == black && four[i] != black;
+    }
+  EXPECT_GT(interior, static_cast<size_t>(w) * h / 2);  // mostly flat background and faces
+  EXPECT_EQ(interior_changed, 0u);
+  EXPECT_GT(edge_changed, 50u) << "no edge pixel blends: the frame was not multisampled";
+  EXPECT_GT(silhouette_blends, 20u) << "no background pixel takes part of the cube";
+}
+
+// A white quad over the left part of a pixel: at 4x two of its four samples (standard positions
+// x = 0.125 and 0.375) are white, so the resolve is linear 0.5, sRGB 188, not the 128 of an
+// average of sRGB values. At 1x the centre (0.5) is covered: 255.
+TEST_F(Reference, MultisampleResolveAveragesInLinearLight) {
+  Scene s;
+  s.camera.position = {0, 0, 3};
+  s.camera.target = {0, 0, 0};
+  s.camera.fov_y_degrees = 90.0f;
+  s.camera.near_z = 1;
+  s.camera.far_z = 10;
+  s.background = {0, 0, 0, 1};
+  // 8x8 pixels over [-3, 3]: window x = (X / 3 + 1) * 4. X = 0.4125 gives x = 4.55, so the quad
+  // covers pixel 4 up to 0.55 of its width: centre and samples at 0.125, 0.375.
+  const float edge = 0.4125f;
+  Mesh quad;
+  quad.positions = {{-5, -5, 0}, {edge, -5, 0}, {edge, 5, 0}, {-5, 5, 0}};
+  quad.normals.assign(4, float3{0, 0, 1});
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  Object o;
+  o.mesh = std::make_shared<Mesh>(quad);
+  o.shading = Shading::kUnlit;
+  o.materials[0].base_color = {1, 1, 1, 1};
+  s.objects.push_back(o);
+  ASSERT_TRUE(reference_->setScene(s).ok());
+  ASSERT_TRUE(reference_->setResolution(8, 8).ok());
+  std::vector<uint32_t> one, four;
+  reference_->render(s);
+  reference_->readColor(one);
+  ASSERT_TRUE(reference_->setSamples(4).ok());
+  reference_->render(s);
+  reference_->readColor(four);
+  ASSERT_EQ(four.size(), 64u);
+  for (int y = 0; y < 8; ++y) {
+    EXPECT_EQ(one[y * 8 + 4] & 255, 255u) << "row " << y;
+    EXPECT_EQ(four[y * 8 + 3] & 255, 255u) << "row " << y;  // wholly covered
+    EXPECT_EQ(four[y * 8 + 5] & 255, 0u) << "row " << y;    // wholly uncovered
+    // 188 is sRGB of linear 0.5; llvmpipe's encoder may round one step off.
+    EXPECT_NEAR(static_cast<int>(four[y * 8 + 4] & 255), 188, 1) << "row " << y;
+  }
 }
