@@ -1,5 +1,7 @@
 #include "llvmpipe_multisample.h"
 
+#include <GL/osmesa.h>
+
 namespace tessera::bench {
 
 namespace {
@@ -71,6 +73,12 @@ std::vector<int> exactSampleCounts() {
 
 Expected<void> MultisampleTarget::allocate(int samples, int width, int height) {
   release();
+  // GL 4.5 or ARB_clip_control; libOSMesa does not export it.
+  clip_control_ = reinterpret_cast<PFNGLCLIPCONTROLPROC>(OSMesaGetProcAddress("glClipControl"));
+  if (!clip_control_)
+    return makeError(
+        "OpenGL reference: no glClipControl (OpenGL 4.5 or ARB_clip_control), which the "
+        "multisampled frame needs to put the standard sample positions where tessera has them");
   auto fail = [&](Error error) -> Expected<void> {
     release();
     return error;
@@ -125,6 +133,12 @@ void MultisampleTarget::release() {
 void MultisampleTarget::bindForDrawing() const {
   glBindFramebuffer(GL_FRAMEBUFFER, multisample_fbo_);
   glEnable(GL_FRAMEBUFFER_SRGB);  // fragments and the clear colour are linear; stores encode
+  // GL gives sample positions from a pixel's lower-left corner, y up: llvmpipe's 4x pattern is
+  // the standard one in rows that run bottom-up. With the window origin at the upper left,
+  // window y runs down the rows, so the pattern falls as tessera's (y down from the top-left
+  // corner) and the rows come out top-down. Facing and the fill rule follow the origin (ARB_
+  // clip_control), so culling and the top-left rule stay those of tessera.
+  clip_control_(GL_UPPER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
 }
 
 void MultisampleTarget::resolveAndRead(std::vector<uint32_t>& pixels) const {
@@ -141,6 +155,7 @@ void MultisampleTarget::resolveAndRead(std::vector<uint32_t>& pixels) const {
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glDisable(GL_FRAMEBUFFER_SRGB);
+  clip_control_(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
 }
 
 }  // namespace tessera::bench

@@ -2,8 +2,10 @@
 // depth renderbuffers with N samples each, drawn into, then resolved by glBlitFramebuffer into a
 // single-sample colour renderbuffer that is read back. Colour is sRGB (GL_SRGB8_ALPHA8) with
 // GL_FRAMEBUFFER_SRGB on, so the resolve averages in linear light and encodes once, as tessera
-// does. Private to llvmpipe_reference.cpp; built only with TESSERA_OSMESA. Needs a current
-// context with framebuffer objects (OpenGL 3.0 or ARB_framebuffer_object).
+// does; the window origin is the upper left (glClipControl), so that the standard sample
+// positions fall where tessera's do. Private to llvmpipe_reference.cpp; built only with
+// TESSERA_OSMESA. Needs a current context with framebuffer objects (OpenGL 3.0 or
+// ARB_framebuffer_object) and clip control (OpenGL 4.5 or ARB_clip_control).
 #pragma once
 
 #include <cstdint>
@@ -29,17 +31,19 @@ class MultisampleTarget {
   bool allocated() const { return multisample_fbo_ != 0; }
   int samples() const { return samples_; }
 
-  // Binds the multisampled framebuffer for drawing and clearing, sRGB encoding on.
+  // Binds the multisampled framebuffer for drawing and clearing, sRGB encoding on, the window
+  // origin at the upper left.
   void bindForDrawing() const;
   // Resolves the samples into the single-sample buffer, reads it into `pixels` (RGBA8 sRGB, R in
-  // the low byte, GL's rows: bottom-up) and binds the default framebuffer again. Returns when
-  // the frame is finished, like glFinish.
+  // the low byte, row 0 at the top, as Frame::color) and binds the default framebuffer and the
+  // lower-left origin again. Returns when the frame is finished, like glFinish.
   void resolveAndRead(std::vector<uint32_t>& pixels) const;
 
  private:
   GLuint multisample_fbo_ = 0, resolve_fbo_ = 0;
   GLuint color_ = 0, depth_ = 0, resolved_ = 0;  // renderbuffers
   int samples_ = 0, width_ = 0, height_ = 0;
+  PFNGLCLIPCONTROLPROC clip_control_ = nullptr;
 };
 
 }  // namespace tessera::bench

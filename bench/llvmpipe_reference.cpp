@@ -65,7 +65,7 @@ struct LlvmpipeReference::State {
   size_t light_count = 0;  // the shaders of the current scene are compiled for this many lights
   int samples = 1;
   MultisampleTarget multisample;   // allocated when samples > 1
-  std::vector<uint32_t> resolved;  // the last multisampled frame, resolved, rows bottom-up
+  std::vector<uint32_t> resolved;  // the last multisampled frame, resolved, rows top-down
 
   // Several references may live in one process: GL calls go to the current context.
   void makeCurrent() {
@@ -450,20 +450,19 @@ void LlvmpipeReference::render(const Scene& scene) {
 void LlvmpipeReference::readColor(std::vector<uint32_t>& rgba) const {
   State& s = *state_;
   s.makeCurrent();
-  std::vector<uint32_t> read_back;
-  const std::vector<uint32_t>* bottom_up = &s.resolved;
-  if (s.samples == 1) {
-    read_back.resize(static_cast<size_t>(s.width) * s.height);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, s.width, s.height, GL_RGBA, GL_UNSIGNED_BYTE, read_back.data());
-    bottom_up = &read_back;
+  if (s.samples > 1) {  // read back by render(), top-down
+    TESSERA_CHECK(s.resolved.size() == static_cast<size_t>(s.width) * s.height)
+        << "readColor() needs a render() at the current resolution";
+    rgba = s.resolved;
+    return;
   }
-  TESSERA_CHECK(bottom_up->size() == static_cast<size_t>(s.width) * s.height)
-      << "readColor() needs a render() at the current resolution";
-  rgba.resize(bottom_up->size());
+  std::vector<uint32_t> bottom_up(static_cast<size_t>(s.width) * s.height);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, s.width, s.height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+  rgba.resize(bottom_up.size());
   // GL's row 0 is the bottom one; tessera's the top one.
   for (int y = 0; y < s.height; ++y)
-    std::copy_n(&(*bottom_up)[static_cast<size_t>(s.height - 1 - y) * s.width], s.width,
+    std::copy_n(&bottom_up[static_cast<size_t>(s.height - 1 - y) * s.width], s.width,
                 &rgba[static_cast<size_t>(y) * s.width]);
 }
 

@@ -379,8 +379,9 @@ def main():
         w("`tessera bench --json --vs llvmpipe --resolution 1920,1080 --msaa 1|4 bunny`, 1x then "
           "4x in each of three rounds, so that the two medians of a round come from frames a few "
           "seconds apart. llvmpipe draws the same sample count: colour (sRGB) and depth "
-          "renderbuffers with 4 samples, the draw, a `glBlitFramebuffer` resolve (in linear "
-          "light, as tessera's) into a single-sample renderbuffer and `glReadPixels` of it, "
+          "renderbuffers with 4 samples, the draw (window origin at the upper left, so that its "
+          "standard sample positions fall where tessera's do), a `glBlitFramebuffer` resolve (in "
+          "linear light, as tessera's) into a single-sample renderbuffer and `glReadPixels` of it, "
           "which stands for the copy into the caller's buffer that OSMesa makes of a 1x frame at "
           "`glFinish`. Cost of 4x = the 4x median / the 1x median.")
         w("")

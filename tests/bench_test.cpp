@@ -561,22 +561,20 @@ TEST_F(Reference, MultisamplingSmoothsEdgesAndLeavesFlatInteriorsAlone) {
   EXPECT_GT(silhouette_blends, 20u) << "no background pixel takes part of the cube";
 }
 
-// A white quad over the left part of a pixel: at 4x two of its four samples (standard positions
-// x = 0.125 and 0.375) are white, so the resolve is linear 0.5, sRGB 188, not the 128 of an
-// average of sRGB values. At 1x the centre (0.5) is covered: 255.
-TEST_F(Reference, MultisampleResolveAveragesInLinearLight) {
+namespace {
+
+// A white unlit quad over window x < `right` and y (down) < `bottom` of an 8x8 view.
+Scene whiteCorner(float right, float bottom) {
   Scene s;
   s.camera.position = {0, 0, 3};
   s.camera.target = {0, 0, 0};
-  s.camera.fov_y_degrees = 90.0f;
+  s.camera.fov_y_degrees = 90.0f;  // 8x8 pixels over [-3, 3]: x = (X / 3 + 1) 4, y = (1 - Y / 3) 4
   s.camera.near_z = 1;
   s.camera.far_z = 10;
   s.background = {0, 0, 0, 1};
-  // 8x8 pixels over [-3, 3]: window x = (X / 3 + 1) * 4. X = 0.4125 gives x = 4.55, so the quad
-  // covers pixel 4 up to 0.55 of its width: centre and samples at 0.125, 0.375.
-  const float edge = 0.4125f;
+  const float x = 3.0f * (right / 4.0f - 1.0f), y = 3.0f * (1.0f - bottom / 4.0f);
   Mesh quad;
-  quad.positions = {{-5, -5, 0}, {edge, -5, 0}, {edge, 5, 0}, {-5, 5, 0}};
+  quad.positions = {{-5, y, 0}, {x, y, 0}, {x, 5, 0}, {-5, 5, 0}};
   quad.normals.assign(4, float3{0, 0, 1});
   quad.indices = {0, 1, 2, 0, 2, 3};
   Object o;
@@ -584,6 +582,16 @@ TEST_F(Reference, MultisampleResolveAveragesInLinearLight) {
   o.shading = Shading::kUnlit;
   o.materials[0].base_color = {1, 1, 1, 1};
   s.objects.push_back(o);
+  return s;
+}
+
+}  // namespace
+
+// A white quad over the left part of a pixel: at 4x two of its four samples (standard positions
+// x = 0.125 and 0.375) are white, so the resolve is linear 0.5, sRGB 188, not the 128 of an
+// average of sRGB values. At 1x the centre (0.5) is covered: 255.
+TEST_F(Reference, MultisampleResolveAveragesInLinearLight) {
+  const Scene s = whiteCorner(4.55f, 100.0f);  // pixel column 4 up to 0.55 of its width
   ASSERT_TRUE(reference_->setScene(s).ok());
   ASSERT_TRUE(reference_->setResolution(8, 8).ok());
   std::vector<uint32_t> one, four;
@@ -599,5 +607,65 @@ TEST_F(Reference, MultisampleResolveAveragesInLinearLight) {
     EXPECT_EQ(four[y * 8 + 5] & 255, 0u) << "row " << y;    // wholly uncovered
     // 188 is sRGB of linear 0.5; llvmpipe's encoder may round one step off.
     EXPECT_NEAR(static_cast<int>(four[y * 8 + 4] & 255), 188, 1) << "row " << y;
+  }
+}
+
+// GL gives sample positions from a pixel's lower-left corner, y up; tessera's (sampling.h) from
+// the upper-left, y down. Pixel (4, 4) with the quad over its x < 0.5, y < 0.25 part holds one
+// standard sample, (0.375, 0.125); the pattern mirrored top to bottom has none there.
+TEST_F(Reference, SamplesSitWhereTesserasDo) {
+  const Scene s = whiteCorner(4.5f, 4.25f);
+  ASSERT_TRUE(reference_->setScene(s).ok());
+  ASSERT_TRUE(reference_->setResolution(8, 8).ok());
+  ASSERT_TRUE(reference_->setSamples(4).ok());
+  reference_->render(s);
+  std::vector<uint32_t> gl;
+  reference_->readColor(gl);
+  ASSERT_EQ(gl.size(), 64u);
+  CpuRenderer renderer(1);
+  Frame frame;
+  RenderOptions options = colorAndIds(8, 8);
+  options.msaa = 4;
+  renderer.render(s, options, frame);
+  // One sample of four: linear 0.25, sRGB 137 (llvmpipe's encoder may be a step off).
+  EXPECT_NEAR(static_cast<int>(gl[4 * 8 + 4] & 255), 137, 1);
+  EXPECT_EQ(frame.color[4 * 8 + 4] & 255, 137u);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x)
+      EXPECT_LE(channelDifference(gl[y * 8 + x], frame.color[y * 8 + x]), 1) << x << "," << y;
+}
+
+// The same scene at 4x in both: the same samples covered, so the same colours (within 2/255)
+// in every pixel, edges included. An untextured scene: where a pixel holds two triangles,
+// tessera shades the one whose centre is outside at its first sample and GL at the centre, which
+// on a minified texture picks other texels.
+TEST_F(Reference, MultisampledFrameMatchesTessera) {
+  for (Shading shading : {Shading::kFlat, Shading::kGouraud}) {
+    Expected<bench::BenchScene> s = scene("cube", shading);
+    ASSERT_TRUE(s.ok());
+    lookAtCube(s->scene);
+    bench::poseForFrame(*s, 10);
+    const int w = 160, h = 120;
+    ASSERT_TRUE(reference_->setScene(s->scene).ok());
+    ASSERT_TRUE(reference_->setResolution(w, h).ok());
+    ASSERT_TRUE(reference_->setSamples(4).ok());
+    reference_->render(s->scene);
+    std::vector<uint32_t> gl;
+    reference_->readColor(gl);
+    CpuRenderer renderer(1);
+    Frame frame;
+    RenderOptions options = colorAndIds(w, h);
+    options.msaa = 4;
+    renderer.render(s->scene, options, frame);
+    ASSERT_EQ(gl.size(), frame.pixelCount());
+    size_t far = 0, blended = 0;
+    const uint32_t background = packSrgba8(s->scene.background);
+    for (size_t i = 0; i < gl.size(); ++i) {
+      far += channelDifference(gl[i], frame.color[i]) > 2;
+      // A silhouette pixel: background at its centre, part cube at 4x.
+      blended += frame.triangle_id[i] == kNoTriangle && frame.color[i] != background;
+    }
+    EXPECT_GT(blended, 20u) << "the frame has anti-aliased edges to compare";
+    EXPECT_EQ(far, 0u) << static_cast<int>(shading);
   }
 }

@@ -210,7 +210,7 @@ int runBench(const std::vector<std::string>& args) {
                     long long n = 0;
                     if (!parseIntStrict(v, n) || n < 1 || n > kMaxSamples ||
                         !isSampleCount(static_cast<int>(n)))
-                      return "expected 1, 2, 4 or 8 samples per pixel, got '" + v + "'";
+                      return "samples per pixel must be 1, 2, 4 or 8, not '" + v + "'";
                     s.msaa = static_cast<int>(n);
                     return "";
                   });
