@@ -404,3 +404,38 @@ TEST(Msaa, LinesAreAntialiasedWithSeveralSamples) {
       EXPECT_GT(partial, 40);
   }
 }
+
+TEST(Msaa, ColourComesFromTheSamplesWhenTheCentreHoldsAnotherTriangle) {
+  // A speck covering the centre of pixel (5, 5) and none of its four samples, in front of a quad
+  // covering the whole image: with the centre AOVs asked for, the id AOV shows the speck (as with
+  // one sample) but the colour is the quad's, as the samples say; alone, the speck leaves the
+  // background and a coverage of 0.
+  const int size = 16;
+  const SubPixel speck[3] = {{5 * 256 + 108, 5 * 256 + 110},
+                             {5 * 256 + 150, 5 * 256 + 120},
+                             {5 * 256 + 125, 5 * 256 + 150}};
+  Mesh mesh;
+  for (const SubPixel& p : speck) mesh.positions.push_back(toNdc(p, -0.5f, size, size));
+  mesh.indices = {0, 1, 2};
+  Object red = unlitMesh(mesh);
+  red.materials[0].base_color = {1, 0, 0, 1};
+  Mesh quad;
+  const SubPixel corners[4] = {
+      {-256, -256}, {17 * 256, -256}, {17 * 256, 17 * 256}, {-256, 17 * 256}};
+  for (const SubPixel& p : corners) quad.positions.push_back(toNdc(p, 0.5f, size, size));
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  Scene scene = clipSpaceScene();
+  scene.objects.push_back(red);
+  RenderOptions options = optionsFor(size, size, 4);
+  const Frame alone = render(scene, options);
+  EXPECT_EQ(alone.idAt(5, 5), 1u);  // the centre AOV sees it
+  EXPECT_EQ(alone.colorAt(5, 5) & 0xffffff, 0u);
+  EXPECT_EQ(alone.coverageAt(5, 5), 0);
+  scene.objects.push_back(unlitMesh(quad));
+  const Frame both = render(scene, options);
+  EXPECT_EQ(both.idAt(5, 5), 1u);
+  EXPECT_EQ(both.colorAt(5, 5), both.colorAt(7, 7));  // the quad's white
+  EXPECT_EQ(both.coverageAt(5, 5), 255);
+  options.depth = options.ids = false;  // no centre layer: the same colours
+  EXPECT_EQ(render(scene, options).color, both.color);
+}

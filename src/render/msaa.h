@@ -27,11 +27,12 @@ struct SampleTiles {
   // rasterized when an AOV or the line pass needs them (the same bits as one sample gives).
   std::array<std::unique_ptr<TileVisibility>, kMaxSamples + 1> layers;
   // The key the shading kernel shades at each pixel's centre: the centre layer's where it is
-  // covered (so the normal AOV is the centre's), else the first covered sample's; empty where no
-  // sample is covered. Only its keys are used.
+  // covered (so the normal AOV is the centre's), else the first covered sample's; empty where
+  // neither is. Only its keys are used.
   std::unique_ptr<TileVisibility> primary = std::make_unique<TileVisibility>();
-  // Per pixel (tile layout): all ones where the samples hold different keys; the number of
-  // covered samples.
+  // Per pixel (tile layout): all ones where the samples hold different keys, or the centre layer
+  // another key than the samples (its colour is then the samples' resolve); the number of covered
+  // samples.
   alignas(64) int32_t mixed[kTileSize * kTileSize + kTilePadding];
   alignas(64) int32_t covered[kTileSize * kTileSize + kTilePadding];
 

@@ -38,6 +38,9 @@ void combineSamplesKernel(SampleTiles& tiles, int samples, bool with_centre) {
       if (with_centre) {
         const I32x8 centre = load<I32x8>(tiles.layers[static_cast<size_t>(samples)]->key + i);
         first = select(equal(centre, empty), first, centre);
+        // The centre's triangle is shaded there (for the normal AOV); where it is not the one
+        // every sample holds, the colour comes from the samples' resolve.
+        mixed = mixed | ~equal(centre, k0);
       }
       store(primary.key + i, first);
       store(tiles.mixed + i, mixed);
