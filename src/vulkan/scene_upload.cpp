@@ -78,9 +78,15 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
                      std::to_string(kMaxGpuTriangles) + " (29-bit triangle keys)");
 
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
-  out.view_projection = scene.camera.projection(aspect) * scene.camera.view();
-  const float4x4 view_projection_zo =
-      zeroToOneProjection(scene.camera, aspect) * scene.camera.view();
+  // Jitter moves the geometry by -jitter pixels after the projection (sampling.h), so the sample
+  // pattern, fixed on the pixel grid, moves by +jitter relative to the scene.
+  const Jitter j = options.jitter;
+  out.view_projection =
+      jitteredProjection(scene.camera.projection(aspect), j, options.width, options.height) *
+      scene.camera.view();
+  const float4x4 view_projection_zo = jitteredProjection(zeroToOneProjection(scene.camera, aspect),
+                                                         j, options.width, options.height) *
+                                      scene.camera.view();
 
   out.objects.clear();
   out.models.clear();
@@ -303,7 +309,7 @@ bool drawsLines(const Scene& scene, const RenderOptions& options) {
 
 void resizeFrame(const Scene& scene, const RenderOptions& options, Frame& frame) {
   frame.resize(options.width, options.height, options.depth || drawsLines(scene, options),
-               options.ids, options.normals);
+               options.ids, options.normals, options.coverage);
 }
 
 void copyResults(const uint32_t* color, const uint32_t* depth, const uint32_t* ids,
@@ -324,6 +330,7 @@ void clearFrame(Frame& frame) {
   std::fill(frame.depth.begin(), frame.depth.end(), std::numeric_limits<float>::infinity());
   std::fill(frame.triangle_id.begin(), frame.triangle_id.end(), kNoTriangle);
   std::fill(frame.normal.begin(), frame.normal.end(), float3{});
+  std::fill(frame.coverage.begin(), frame.coverage.end(), uint8_t{0});
 }
 
 Expected<void> renderIntoFrame(const Scene& scene, const RenderOptions& options, Frame& frame,
@@ -332,6 +339,8 @@ Expected<void> renderIntoFrame(const Scene& scene, const RenderOptions& options,
                 options.height <= render::kMaxViewport)
       << "viewport " << options.width << "x" << options.height << " is outside 1.."
       << render::kMaxViewport;
+  TESSERA_CHECK(isSampleCount(options.msaa))
+      << "msaa " << options.msaa << " is not a sample count (1, 2, 4 or 8)";
   resizeFrame(scene, options, frame);
   Expected<void> result = draw();
   if (!result) clearFrame(frame);

@@ -2,19 +2,34 @@
 // vulkan-raster, fragment stage: the CPU's materials and lights (shading.glsl) on the
 // hardware-interpolated attributes; writes the packed sRGB colour, the triangle id
 // (gl_PrimitiveID + the object's first triangle + 1) and the world normal.
+//
+// TESSERA_MSAA = 1: the multisample pass's variant. It writes the linear colour with alpha 1 (the
+// resolve averages it with the background's alpha 0 into covered samples / samples), and takes
+// its attributes at the centroid: at the pixel centre when the triangle covers it, else inside
+// the triangle, as the CPU's resolve shades a triangle at its first covered sample.
 #include "common.glsl"
 #include "shading.glsl"
 
+#if TESSERA_MSAA
+#define TESSERA_INTERPOLATION centroid
+#else
+#define TESSERA_INTERPOLATION
+#endif
+
 layout(push_constant) uniform Draw { uint object; } draw;
 
-layout(location = 0) in vec3 in_normal;
-layout(location = 1) in vec2 in_uv;
-layout(location = 2) in vec3 in_color_front;
-layout(location = 3) in vec3 in_color_back;
+layout(location = 0) TESSERA_INTERPOLATION in vec3 in_normal;
+layout(location = 1) TESSERA_INTERPOLATION in vec2 in_uv;
+layout(location = 2) TESSERA_INTERPOLATION in vec3 in_color_front;
+layout(location = 3) TESSERA_INTERPOLATION in vec3 in_color_back;
 
+#if TESSERA_MSAA
+layout(location = 0) out vec4 out_linear;
+#else
 layout(location = 0) out uint out_color;
 layout(location = 1) out uint out_id;
 layout(location = 2) out vec4 out_normal;
+#endif
 
 void main() {
   // Derivatives first, in uniform control flow.
@@ -61,7 +76,11 @@ void main() {
   }
   if (shading == kShadingFlat || shading == kShadingPhong) color *= irradiance(normal);
 
+#if TESSERA_MSAA
+  out_linear = vec4(color, 1.0);
+#else
   out_color = packColor(color);
   out_id = t + 1u;
   out_normal = vec4(normal, 0.0);
+#endif
 }
