@@ -3,6 +3,7 @@
 // coverage AOV, jitter, and the device's sample-count limits.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,18 +18,12 @@ namespace {
 
 constexpr int kSampleCounts[] = {1, 2, 4, 8};
 
-// A white unlit rectangle on black covering window x < right and y < bottom (from beyond the
-// top-left corner), in a width x height clip-space scene: two triangles sharing a diagonal.
-Scene rectangleScene(float right, float bottom, int width, int height) {
+// White unlit triangles on black in a clip-space scene.
+Scene whiteOnBlack(Mesh mesh) {
   Scene scene = clipSpaceScene();
   scene.background = {0, 0, 0, 1};
-  Mesh mesh;
-  mesh.positions = {windowToNdc(-1, -1, 0, width, height), windowToNdc(right, -1, 0, width, height),
-                    windowToNdc(right, bottom, 0, width, height),
-                    windowToNdc(-1, bottom, 0, width, height)};
-  mesh.indices = {0, 2, 1, 0, 3, 2};
   Object object;
-  object.mesh = std::make_shared<Mesh>(mesh);
+  object.mesh = std::make_shared<Mesh>(std::move(mesh));
   object.shading = Shading::kUnlit;
   object.cull = CullMode::kNone;
   object.materials[0].base_color = {1, 1, 1, 1};
@@ -36,53 +31,93 @@ Scene rectangleScene(float right, float bottom, int width, int height) {
   return scene;
 }
 
-// The contract's image of rectangleScene, sample by sample: sample (sx, sy) of pixel (x, y) is
-// covered when x + sx/256 < right - jitter.x and y + sy/256 < bottom - jitter.y (the right and
-// bottom edges are not top-left edges: a sample exactly on one is outside). In 1/256 pixel.
-struct ExpectedPixel {
-  int covered = 0;
-  uint32_t color = 0;
-  uint8_t coverage = 0;
-};
-ExpectedPixel expectedRectanglePixel(int x, int y, int right256, int bottom256, int samples) {
-  ExpectedPixel e;
-  for (const SamplePosition& s : samplePattern(samples))
-    e.covered += x * 256 + s.x < right256 && y * 256 + s.y < bottom256;
-  const uint32_t grey = encodeSrgb8(static_cast<float>(e.covered) / static_cast<float>(samples));
-  e.color = grey | grey << 8 | grey << 16 | 255u << 24;
-  e.coverage = static_cast<uint8_t>((e.covered * 255 + samples / 2) / samples);
-  return e;
+// A rectangle covering window x < right and y < bottom (from beyond the top-left corner) in a
+// width x height image: two triangles sharing a diagonal.
+Scene rectangleScene(float right, float bottom, int width, int height) {
+  Mesh mesh;
+  mesh.positions = {windowToNdc(-1, -1, 0, width, height), windowToNdc(right, -1, 0, width, height),
+                    windowToNdc(right, bottom, 0, width, height),
+                    windowToNdc(-1, bottom, 0, width, height)};
+  mesh.indices = {0, 2, 1, 0, 3, 2};
+  return whiteOnBlack(std::move(mesh));
 }
 
-// Renders rectangleScene(right, bottom) with `jitter` and checks every pixel's colour and
-// coverage against the contract; returns how many pixels are partly covered.
+// A white unlit triangle on black: a, b, c in window pixels.
+Scene triangleScene(float2 a, float2 b, float2 c, int width, int height) {
+  Mesh mesh;
+  mesh.positions = {windowToNdc(a.x, a.y, 0, width, height),
+                    windowToNdc(b.x, b.y, 0, width, height),
+                    windowToNdc(c.x, c.y, 0, width, height)};
+  mesh.indices = {0, 1, 2};
+  return whiteOnBlack(std::move(mesh));
+}
+
+// Whether the sample point (px, py), in 1/256 pixel, is covered: the test's own statement of
+// the contract for its scene.
+using CoverTest = std::function<bool(int64_t px, int64_t py)>;
+
+// Renders `scene` (white triangles on black) and checks every pixel: with n of the S samples
+// covered, the colour is sRGB(n / S) (linear light, encoded once) and the coverage AOV
+// (n * 255 + S / 2) / S. Returns how many pixels are partly covered.
 template <typename B>
-int expectRectangleResolves(B& backend, int samples, float right, float bottom, Jitter jitter) {
-  constexpr int kW = 24, kH = 12;
-  RenderOptions o = options(kW, kH);
+int expectResolvesTo(B& backend, const Scene& scene, int width, int height, int samples,
+                     Jitter jitter, const CoverTest& covers) {
+  RenderOptions o = options(width, height);
   o.msaa = samples;
   o.coverage = true;
   o.jitter = jitter;
-  const Frame frame = renderWith(backend, rectangleScene(right, bottom, kW, kH), o);
-  const int right256 = static_cast<int>(std::lround((right - jitter.x) * 256));
-  const int bottom256 = static_cast<int>(std::lround((bottom - jitter.y) * 256));
+  const Frame frame = renderWith(backend, scene, o);
+  if (frame.coverage.size() != frame.pixelCount()) {
+    ADD_FAILURE() << backend.name() << ": no coverage AOV";
+    return 0;
+  }
   int partial = 0, wrong = 0;
-  for (int y = 0; y < kH; ++y) {
-    for (int x = 0; x < kW; ++x) {
-      const ExpectedPixel e = expectedRectanglePixel(x, y, right256, bottom256, samples);
-      partial += e.covered > 0 && e.covered < samples;
-      const bool ok = frame.colorAt(x, y) == e.color && frame.coverageAt(x, y) == e.coverage;
-      if (!ok && ++wrong <= 5)
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      int n = 0;
+      for (const SamplePosition& s : samplePattern(samples))
+        n += covers(int64_t{x} * 256 + s.x, int64_t{y} * 256 + s.y);
+      partial += n > 0 && n < samples;
+      const uint32_t grey = encodeSrgb8(static_cast<float>(n) / static_cast<float>(samples));
+      const uint32_t color = grey | grey << 8 | grey << 16 | 255u << 24;
+      const int coverage = (n * 255 + samples / 2) / samples;
+      if ((frame.colorAt(x, y) != color || frame.coverageAt(x, y) != coverage) && ++wrong <= 5)
         ADD_FAILURE() << backend.name() << " msaa " << samples << " jitter (" << jitter.x << ", "
                       << jitter.y << ") pixel (" << x << ", " << y << "): colour " << std::hex
                       << frame.colorAt(x, y) << " coverage " << std::dec
-                      << int(frame.coverageAt(x, y)) << ", expected " << std::hex << e.color
-                      << " and " << std::dec << int(e.coverage) << " (" << e.covered << " of "
-                      << samples << " samples)";
+                      << int(frame.coverageAt(x, y)) << ", expected " << std::hex << color
+                      << " and " << std::dec << coverage << " (" << n << " of " << samples
+                      << " samples)";
     }
   }
   EXPECT_EQ(wrong, 0) << backend.name() << " msaa " << samples;
   return partial;
+}
+
+// rectangleScene(right, bottom): sample (px, py) is covered when px < right - jitter.x and
+// py < bottom - jitter.y (the geometry moves by -jitter; the right and bottom edges are not
+// top-left edges, so a sample exactly on one is outside).
+template <typename B>
+int expectRectangleResolves(B& backend, int samples, float right, float bottom, Jitter jitter) {
+  constexpr int kW = 24, kH = 12;
+  const int64_t right256 = std::lround((right - jitter.x) * 256);
+  const int64_t bottom256 = std::lround((bottom - jitter.y) * 256);
+  return expectResolvesTo(backend, rectangleScene(right, bottom, kW, kH), kW, kH, samples, jitter,
+                          [&](int64_t px, int64_t py) { return px < right256 && py < bottom256; });
+}
+
+// A triangle whose right edge runs from a (top) to b (bottom) at a slant, its third corner far
+// to the left: a sample is covered when it is strictly left of a->b (a right edge), in exact
+// integer arithmetic on the 1/256 grid.
+template <typename B>
+int expectSlantedEdgeResolves(B& backend, int samples, Jitter jitter) {
+  constexpr int kW = 24, kH = 16;
+  const float2 a{9.3125f, -2.0f}, b{15.0f, 18.0f}, c{-200.0f, 8.0f};
+  const int64_t ax = std::lround((a.x - jitter.x) * 256), ay = std::lround((a.y - jitter.y) * 256);
+  const int64_t bx = std::lround((b.x - jitter.x) * 256), by = std::lround((b.y - jitter.y) * 256);
+  return expectResolvesTo(
+      backend, triangleScene(a, b, c, kW, kH), kW, kH, samples, jitter,
+      [&](int64_t px, int64_t py) { return (px - ax) * (by - ay) < (bx - ax) * (py - ay); });
 }
 
 // The id, depth and normal AOVs at `samples` are those of one sample, byte for byte.
@@ -142,6 +177,20 @@ TEST(VulkanRasterMsaa, JitterMovesTheSamplePattern) {
   }
 }
 
+TEST(VulkanRasterMsaa, SlantedEdgeCoversTheAnalyticSamples) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  RasterPtr raster = makeRaster();
+  ASSERT_TRUE(raster);
+  for (int samples : kSampleCounts) {
+    if (!rasterTakes(*raster, samples)) continue;
+    const int partial = expectSlantedEdgeResolves(*raster, samples, {});
+    if (samples > 1) {
+      EXPECT_GT(partial, 3) << samples;
+    }
+    expectSlantedEdgeResolves(*raster, samples, jitterOffset(3));
+  }
+}
+
 TEST(VulkanRasterMsaa, CentreAovsDoNotChangeWithTheSampleCount) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   RasterPtr raster = makeRaster();
@@ -191,4 +240,139 @@ TEST(VulkanRasterMsaa, UnsupportedCountIsAnError) {
   expectRefused(*odd, 4, "standardSampleLocations");
   // The same backend still renders what it takes.
   renderWith(*odd, cubeScene(), options(32, 16));
+}
+
+// ---- vulkan (compute) ----
+
+// A grid of cells x cells quads over the whole viewport and beyond, its inner vertices moved at
+// random: every sample of every pixel is covered by one of its triangles (no cracks).
+Scene crackFreeGridScene(int cells, int width, int height, uint32_t seed) {
+  Mesh mesh;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> wobble(-0.4f, 0.4f);
+  const float step_x = (width + 4.0f) / cells, step_y = (height + 4.0f) / cells;
+  for (int j = 0; j <= cells; ++j) {
+    for (int i = 0; i <= cells; ++i) {
+      const bool inner = i > 0 && j > 0 && i < cells && j < cells;
+      const float x = -2.0f + step_x * (i + (inner ? wobble(rng) : 0.0f));
+      const float y = -2.0f + step_y * (j + (inner ? wobble(rng) : 0.0f));
+      mesh.positions.push_back(windowToNdc(x, y, 0, width, height));
+    }
+  }
+  const uint32_t stride = static_cast<uint32_t>(cells + 1);
+  for (uint32_t j = 0; j < static_cast<uint32_t>(cells); ++j) {
+    for (uint32_t i = 0; i < static_cast<uint32_t>(cells); ++i) {
+      const uint32_t a = j * stride + i, b = a + 1, c = a + stride, d = c + 1;
+      mesh.indices.insert(mesh.indices.end(), {a, d, b, a, c, d});
+    }
+  }
+  return whiteOnBlack(std::move(mesh));
+}
+
+TEST(VulkanComputeMsaa, HalfCoveredPixelsResolveInLinearLight) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  for (bool atomics32 : {false, true}) {
+    VulkanOptions vk;
+    vk.force_32bit_atomics = atomics32;
+    ComputePtr gpu = makeCompute(vk);
+    ASSERT_TRUE(gpu);
+    for (int samples : kSampleCounts) {
+      // Column 10 and row 6 are half covered (sRGB 188, coverage 128), their corner less.
+      const int partial = expectRectangleResolves(*gpu, samples, 10.5f, 6.5f, {});
+      EXPECT_EQ(partial, samples > 1 ? 6 + 10 + 1 : 0) << samples;
+    }
+  }
+}
+
+TEST(VulkanComputeMsaa, SlantedEdgeCoversTheAnalyticSamples) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  for (int samples : kSampleCounts) {
+    const int partial = expectSlantedEdgeResolves(*gpu, samples, {});
+    if (samples > 1) {
+      EXPECT_GT(partial, 3) << samples;
+    }
+  }
+}
+
+TEST(VulkanComputeMsaa, JitterMovesTheSamplePattern) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  for (int samples : kSampleCounts) {
+    for (Jitter j : {Jitter{0.125f, -0.25f}, Jitter{-0.3125f, 0.1875f}, jitterOffset(5)})
+      expectRectangleResolves(*gpu, samples, 10.5f, 6.5f, j);
+    expectSlantedEdgeResolves(*gpu, samples, jitterOffset(3));
+  }
+}
+
+TEST(VulkanComputeMsaa, SharedEdgesLeaveNoSampleUncovered) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  constexpr int kW = 40, kH = 30;
+  const Scene grid = crackFreeGridScene(13, kW, kH, 17);
+  for (int samples : kSampleCounts) {
+    expectResolvesTo(*gpu, grid, kW, kH, samples, {}, [](int64_t, int64_t) { return true; });
+    expectResolvesTo(*gpu, grid, kW, kH, samples, jitterOffset(7),
+                     [](int64_t, int64_t) { return true; });
+  }
+}
+
+TEST(VulkanComputeMsaa, CentreAovsDoNotChangeWithTheSampleCount) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  for (bool atomics32 : {false, true}) {
+    VulkanOptions vk;
+    vk.force_32bit_atomics = atomics32;
+    ComputePtr gpu = makeCompute(vk);
+    ASSERT_TRUE(gpu);
+    for (int samples : {2, 4, 8}) {
+      expectCentreAovsUnchanged(*gpu, "compute: dense", denseScene(), samples);
+      expectCentreAovsUnchanged(*gpu, "compute: near plane", nearPlaneScene(), samples);
+      expectCentreAovsUnchanged(*gpu, "compute: textured", texturedScene(), samples);
+    }
+  }
+}
+
+TEST(VulkanComputeMsaa, ThirtyTwoBitCommitResolvesTheSame) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr wide = makeCompute();
+  VulkanOptions vk;
+  vk.force_32bit_atomics = true;
+  ComputePtr narrow = makeCompute(vk);
+  ASSERT_TRUE(wide && narrow);
+  const Scene scene = randomTriangles(3000, 12.0f, 70, 60, 40, 9);  // deep overlaps
+  for (int samples : {2, 4, 8}) {
+    RenderOptions o = options();
+    o.msaa = samples;
+    o.coverage = true;
+    const Frame a = renderWith(*wide, scene, o), b = renderWith(*narrow, scene, o);
+    EXPECT_TRUE(a.color == b.color) << samples;
+    EXPECT_TRUE(a.coverage == b.coverage) << samples;
+    EXPECT_TRUE(a.triangle_id == b.triangle_id) << samples;
+  }
+}
+
+TEST(VulkanComputeMsaa, VisibilityBeyondTheDeviceLimitIsAnError) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  // 128 x 96 pixels: 96 KiB of visibility at one sample, 864 KiB at eight (and the centre).
+  VulkanOptions vk;
+  vk.pretend_max_buffer_bytes = 300 * 1024;
+  ComputePtr gpu = makeCompute(vk);
+  ASSERT_TRUE(gpu);
+  RenderOptions o = options(128, 96);
+  renderWith(*gpu, cubeScene(), o);
+  o.msaa = 8;
+  Frame frame;
+  gpu->render(cubeScene(), o, frame);
+  const Expected<void> result = gpu->lastResult();
+  ASSERT_FALSE(result.ok());
+  EXPECT_NE(result.error().message.find("visibility buffer"), std::string::npos)
+      << result.error().message;
+  EXPECT_NE(result.error().message.find("maxStorageBufferRange"), std::string::npos)
+      << result.error().message;
+  // Two samples and the centre fit: 288 KiB.
+  o.msaa = 2;
+  renderWith(*gpu, cubeScene(), o);
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <span>
 
 #include <tessera/base/check.h>
 #include <tessera/scene/color.h>
@@ -31,6 +32,41 @@ float4x4 zeroToOneProjection(const Camera& camera, float aspect) {
   remap(2, 2) = 0.5f;
   remap(2, 3) = 0.5f;
   return remap * *camera.projection_override;
+}
+
+bool drawsLines(const Scene& scene, const RenderOptions& options) {
+  return options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
+                           std::any_of(scene.objects.begin(), scene.objects.end(),
+                                       [](const Object& o) { return o.show_axes; }));
+}
+
+// The compute backend's visibility layers: the pixel centre first when the frame's centre AOVs
+// (depth, ids, normals, or the depth the lines test against) need it and the pattern does not
+// sample it, then the samples in pattern order.
+void fillSampling(const Scene& scene, const RenderOptions& options, GpuFrameConstants& f) {
+  const std::span<const SamplePosition> pattern = samplePattern(options.msaa);
+  const bool centre = pattern.size() > 1 && (options.depth || options.ids || options.normals ||
+                                             drawsLines(scene, options));
+  f.samples = static_cast<uint32_t>(pattern.size());
+  f.first_sample_layer = centre ? 1u : 0u;
+  f.layers = f.samples + f.first_sample_layer;
+  if (centre) f.layer_x[0] = f.layer_y[0] = render::kSubpixelHalf;
+  for (size_t s = 0; s < pattern.size(); ++s) {
+    f.layer_x[f.first_sample_layer + s] = pattern[s].x;
+    f.layer_y[f.first_sample_layer + s] = pattern[s].y;
+  }
+  f.sample_min_x = f.sample_min_y = render::kSubpixelOne;
+  f.sample_max_x = f.sample_max_y = 0;
+  for (uint32_t l = 0; l < f.layers; ++l) {
+    f.sample_min_x = std::min(f.sample_min_x, f.layer_x[l]);
+    f.sample_max_x = std::max(f.sample_max_x, f.layer_x[l]);
+    f.sample_min_y = std::min(f.sample_min_y, f.layer_y[l]);
+    f.sample_max_y = std::max(f.sample_max_y, f.layer_y[l]);
+  }
+  // The background in linear light, as the resolve averages it: its sRGB code decoded.
+  const float* decode = srgbDecodeTable();
+  for (int k = 0; k < 3; ++k) f.background_linear[k] = decode[(f.background >> (8 * k)) & 255u];
+  f.background_linear[3] = 1.0f;
 }
 
 bool isFinite3(float3 p) {
@@ -218,10 +254,11 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
   f.object_count = static_cast<uint32_t>(out.objects.size());
   f.light_count = static_cast<uint32_t>(out.lights.size());
   f.background = packSrgba8(scene.background);
-  f.flags = options.normals ? kFrameNormals : 0u;
+  f.flags = (options.normals ? kFrameNormals : 0u) | (options.coverage ? kFrameCoverage : 0u);
   f.ambient[0] = scene.ambient.x;
   f.ambient[1] = scene.ambient.y;
   f.ambient[2] = scene.ambient.z;
+  fillSampling(scene, options, f);
   return {};
 }
 
@@ -296,16 +333,6 @@ void appendSceneDescriptors(const SceneBuffers& buffers,
         &buffers.triangle_materials, &buffers.texels, &buffers.color_tables})
     infos.push_back(VkDescriptorBufferInfo{b->buffer, 0, VK_WHOLE_SIZE});
 }
-
-namespace {
-
-bool drawsLines(const Scene& scene, const RenderOptions& options) {
-  return options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
-                           std::any_of(scene.objects.begin(), scene.objects.end(),
-                                       [](const Object& o) { return o.show_axes; }));
-}
-
-}  // namespace
 
 void resizeFrame(const Scene& scene, const RenderOptions& options, Frame& frame) {
   frame.resize(options.width, options.height, options.depth || drawsLines(scene, options),
