@@ -5,148 +5,27 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <map>
 #include <thread>
-#include <tuple>
 
-#define GL_GLEXT_PROTOTYPES 1
-#include <GL/gl.h>
-#include <GL/glext.h>
+// First: it defines GL_GLEXT_PROTOTYPES before anything includes GL/gl.h.
+#include "llvmpipe_multisample.h"
+#include "llvmpipe_programs.h"
+
 #include <GL/osmesa.h>
 
+#include <tessera/render/sampling.h>
 #include <tessera/scene/color.h>
 
 namespace tessera::bench {
 
 namespace {
 
-// Fixed attribute locations, bound before linking.
-enum AttributeLocation : GLuint { kPosition = 0, kNormal = 1, kUv = 2, kColor = 3 };
-
-// The lighting of tessera's shading stage (src/render/setup.cpp and shade.cpp) in GLSL 1.20:
-// Lambert from directional lights plus ambient, on the world normal. Flat and Gouraud light the
-// vertices (flat ones carry the face normal) and interpolate albedo times light; smooth (Phong)
-// interpolates albedo and normal and lights each fragment; the texture multiplies per fragment;
-// back faces that are drawn are lit from the viewer's side; sRGB encoding comes once, last.
-constexpr const char* kVertexShader = R"(
-attribute vec3 a_position;
-attribute vec3 a_normal;
-attribute vec2 a_uv;
-attribute vec4 a_color;
-uniform mat4 u_model_view_projection;
-uniform mat3 u_normal_matrix;
-uniform float u_normal_sign;
-uniform vec3 u_base_color;
-uniform vec3 u_ambient;
-#if LIGHT_COUNT > 0
-uniform vec3 u_light_direction[LIGHT_COUNT];
-uniform vec3 u_light_color[LIGHT_COUNT];
-#endif
-varying vec2 v_uv;
-varying vec3 v_front;  // albedo, times the lighting when it is per vertex
-varying vec3 v_back;   // the same for a back face (two-sided lighting)
-varying vec3 v_normal;
-
-vec3 irradiance(vec3 n) {
-  vec3 e = u_ambient;
-#if LIGHT_COUNT > 0
-  for (int i = 0; i < LIGHT_COUNT; ++i) e += u_light_color[i] * max(-dot(n, u_light_direction[i]), 0.0);
-#endif
-  return e;
-}
-
-void main() {
-  gl_Position = u_model_view_projection * vec4(a_position, 1.0);
-#ifdef HAS_UV
-  v_uv = a_uv;
-#endif
-  vec3 albedo = u_base_color;
-#ifdef HAS_COLOR
-  albedo *= a_color.rgb;
-#endif
-#if defined(LIT_PER_VERTEX) || defined(LIT_PER_PIXEL)
-  vec3 n = normalize(u_normal_matrix * a_normal) * u_normal_sign;
-#endif
-#ifdef LIT_PER_VERTEX
-  v_front = albedo * irradiance(n);
-#ifdef TWO_SIDED
-  v_back = albedo * irradiance(-n);
-#endif
-#else
-  v_front = albedo;
-  v_back = albedo;
-#endif
-#ifdef LIT_PER_PIXEL
-  v_normal = n;
-#endif
-}
-)";
-
-constexpr const char* kFragmentShader = R"(
-uniform sampler2D u_albedo;
-uniform vec3 u_ambient;
-#if LIGHT_COUNT > 0
-uniform vec3 u_light_direction[LIGHT_COUNT];
-uniform vec3 u_light_color[LIGHT_COUNT];
-#endif
-varying vec2 v_uv;
-varying vec3 v_front;
-varying vec3 v_back;
-varying vec3 v_normal;
-
-vec3 irradiance(vec3 n) {
-  vec3 e = u_ambient;
-#if LIGHT_COUNT > 0
-  for (int i = 0; i < LIGHT_COUNT; ++i) e += u_light_color[i] * max(-dot(n, u_light_direction[i]), 0.0);
-#endif
-  return e;
-}
-
-// IEC 61966-2-1.
-vec3 encodeSrgb(vec3 c) {
-  c = clamp(c, 0.0, 1.0);
-  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
-}
-
-void main() {
-#ifdef TWO_SIDED
-  vec3 color = gl_FrontFacing ? v_front : v_back;
-#else
-  vec3 color = v_front;
-#endif
-#ifdef HAS_UV
-  color *= texture2D(u_albedo, v_uv).rgb;
-#endif
-#ifdef LIT_PER_PIXEL
-  vec3 n = normalize(v_normal);
-#ifdef TWO_SIDED
-  if (!gl_FrontFacing) n = -n;
-#endif
-  color *= irradiance(n);
-#endif
-  gl_FragColor = vec4(encodeSrgb(color), 1.0);
-}
-)";
-
-struct ProgramKey {
-  Shading shading;
-  bool has_uv, has_color, two_sided;
-  int light_count;
-  auto tie() const { return std::tie(shading, has_uv, has_color, two_sided, light_count); }
-  bool operator<(const ProgramKey& o) const { return tie() < o.tie(); }
-};
-
-struct Program {
-  GLuint id = 0;
-  GLint model_view_projection, normal_matrix, normal_sign, ambient, light_direction, light_color,
-      base_color, albedo;
-};
-
 // Consecutive triangles with one material: a range of indices (indexed objects) or of vertices.
 struct DrawRange {
   GLint first = 0;
   GLsizei count = 0;
   uint16_t material = 0;
+  ProgramKey key;                    // what the program is compiled for, bar the framebuffer
   const Program* program = nullptr;  // set once the shaders are compiled
   GLuint texture = 0;                // the material's albedo texture when it is sampled
 };
@@ -159,45 +38,6 @@ struct GpuObject {
   std::vector<DrawRange> ranges;
   std::vector<GLuint> textures;  // per material; 0 where it has no albedo texture
 };
-
-const char* glErrorName(GLenum error) {
-  switch (error) {
-    case GL_INVALID_ENUM:
-      return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE:
-      return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION:
-      return "GL_INVALID_OPERATION";
-    case GL_OUT_OF_MEMORY:
-      return "GL_OUT_OF_MEMORY";
-    default:
-      return "a GL error";
-  }
-}
-
-Expected<void> checkGl(const char* what) {
-  GLenum error = glGetError();
-  if (error == GL_NO_ERROR) return {};
-  while (glGetError() != GL_NO_ERROR) {
-  }
-  return makeError(std::string("OpenGL reference: ") + what + " failed with " + glErrorName(error));
-}
-
-Expected<GLuint> compileShader(GLenum type, const std::string& source) {
-  GLuint shader = glCreateShader(type);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    glDeleteShader(shader);
-    return makeError(std::string("OpenGL reference: shader compile failed: ") + log);
-  }
-  return shader;
-}
 
 void toGl(const float4x4& m, float out[16]) {
   for (int c = 0; c < 4; ++c)
@@ -220,9 +60,12 @@ struct LlvmpipeReference::State {
   int width = 0, height = 0;
   std::string renderer, version;
   int threads = 0;
-  std::map<ProgramKey, Program> programs;
+  ProgramCache programs;
   std::vector<GpuObject> objects;
   size_t light_count = 0;  // the shaders of the current scene are compiled for this many lights
+  int samples = 1;
+  MultisampleTarget multisample;   // allocated when samples > 1
+  std::vector<uint32_t> resolved;  // the last multisampled frame, resolved, rows top-down
 
   // Several references may live in one process: GL calls go to the current context.
   void makeCurrent() {
@@ -240,52 +83,18 @@ struct LlvmpipeReference::State {
     objects.clear();
   }
 
-  Expected<Program*> program(const ProgramKey& key) {
-    auto found = programs.find(key);
-    if (found != programs.end()) return &found->second;
-    std::string defines =
-        "#version 120\n#define LIGHT_COUNT " + std::to_string(key.light_count) + "\n";
-    if (key.shading == Shading::kFlat || key.shading == Shading::kGouraud)
-      defines += "#define LIT_PER_VERTEX\n";
-    if (key.shading == Shading::kPhong) defines += "#define LIT_PER_PIXEL\n";
-    if (key.has_uv) defines += "#define HAS_UV\n";
-    if (key.has_color) defines += "#define HAS_COLOR\n";
-    if (key.two_sided) defines += "#define TWO_SIDED\n";
-    Expected<GLuint> vs = compileShader(GL_VERTEX_SHADER, defines + kVertexShader);
-    if (!vs) return vs.error();
-    Expected<GLuint> fs = compileShader(GL_FRAGMENT_SHADER, defines + kFragmentShader);
-    if (!fs) {
-      glDeleteShader(*vs);
-      return fs.error();
-    }
-    Program p;
-    p.id = glCreateProgram();
-    glAttachShader(p.id, *vs);
-    glAttachShader(p.id, *fs);
-    glBindAttribLocation(p.id, kPosition, "a_position");
-    glBindAttribLocation(p.id, kNormal, "a_normal");
-    glBindAttribLocation(p.id, kUv, "a_uv");
-    glBindAttribLocation(p.id, kColor, "a_color");
-    glLinkProgram(p.id);
-    glDeleteShader(*vs);
-    glDeleteShader(*fs);
-    GLint ok = 0;
-    glGetProgramiv(p.id, GL_LINK_STATUS, &ok);
-    if (!ok) {
-      char log[2048] = {};
-      glGetProgramInfoLog(p.id, sizeof log, nullptr, log);
-      glDeleteProgram(p.id);
-      return makeError(std::string("OpenGL reference: shader link failed: ") + log);
-    }
-    p.model_view_projection = glGetUniformLocation(p.id, "u_model_view_projection");
-    p.normal_matrix = glGetUniformLocation(p.id, "u_normal_matrix");
-    p.normal_sign = glGetUniformLocation(p.id, "u_normal_sign");
-    p.ambient = glGetUniformLocation(p.id, "u_ambient");
-    p.light_direction = glGetUniformLocation(p.id, "u_light_direction");
-    p.light_color = glGetUniformLocation(p.id, "u_light_color");
-    p.base_color = glGetUniformLocation(p.id, "u_base_color");
-    p.albedo = glGetUniformLocation(p.id, "u_albedo");
-    return &programs.emplace(key, p).first->second;
+  // Points every draw range at the program for its key and the current framebuffer, compiling
+  // what is missing (now, not in the timed loop).
+  Expected<void> linkPrograms() {
+    for (GpuObject& g : objects)
+      for (DrawRange& range : g.ranges) {
+        ProgramKey key = range.key;
+        key.framebuffer_encodes_srgb = samples > 1;
+        Expected<const Program*> program = programs.get(key);
+        if (!program) return program.error();
+        range.program = *program;
+      }
+    return {};
   }
 
   Expected<void> upload(const Object& object) {
@@ -308,7 +117,10 @@ struct LlvmpipeReference::State {
       const uint16_t material = materialOf(t);
       if (g.ranges.empty() || g.ranges.back().material != material) {
         const GLint first = g.ranges.empty() ? 0 : g.ranges.back().first + g.ranges.back().count;
-        g.ranges.push_back({first, 0, material});
+        DrawRange range;
+        range.first = first;
+        range.material = material;
+        g.ranges.push_back(range);
       }
       g.ranges.back().count += elements;
     };
@@ -483,7 +295,8 @@ LlvmpipeReference::~LlvmpipeReference() {
     if (!state_->color.empty()) {
       state_->makeCurrent();
       state_->releaseScene();
-      for (auto& [key, program] : state_->programs) glDeleteProgram(program.id);
+      state_->programs.release();
+      state_->multisample.release();
     }
     OSMesaDestroyContext(state_->context);
   }
@@ -543,7 +356,38 @@ Expected<void> LlvmpipeReference::setResolution(int width, int height) {
   s.width = width;
   s.height = height;
   glViewport(0, 0, width, height);
+  if (s.samples > 1)
+    if (Expected<void> allocated = s.multisample.allocate(s.samples, width, height); !allocated)
+      return allocated;
   return checkGl("resizing");
+}
+
+Expected<void> LlvmpipeReference::setSamples(int samples) {
+  State& s = *state_;
+  TESSERA_CHECK(isSampleCount(samples)) << samples << " samples per pixel";
+  s.makeCurrent();
+  if (samples > 1) {
+    const std::vector<int> counts = exactSampleCounts();
+    if (std::find(counts.begin(), counts.end(), samples) == counts.end()) {
+      std::string supported = "1";
+      for (size_t i = 0; i < counts.size(); ++i)
+        supported += (i + 1 == counts.size() ? " or " : ", ") + std::to_string(counts[i]);
+      return makeError("the OpenGL reference (" + s.renderer + ", " + s.version + ") cannot draw " +
+                       std::to_string(samples) +
+                       " samples per pixel: its framebuffers take exactly " + supported +
+                       " (another count would not be the same work)");
+    }
+    if (Expected<void> allocated = s.multisample.allocate(samples, s.width, s.height); !allocated)
+      return allocated;
+  } else {
+    s.multisample.release();
+  }
+  s.samples = samples;
+  return s.linkPrograms();
+}
+
+int LlvmpipeReference::samples() const {
+  return state_->samples;
 }
 
 Expected<void> LlvmpipeReference::setScene(const Scene& scene) {
@@ -559,17 +403,14 @@ Expected<void> LlvmpipeReference::setScene(const Scene& scene) {
     TESSERA_CHECK(object.mesh) << "an object without a mesh";
     if (Expected<void> uploaded = s.upload(object); !uploaded) return uploaded;
     GpuObject& g = s.objects.back();
-    // Compile every program the object needs now, not in the timed loop.
     for (DrawRange& range : g.ranges) {
       const size_t m = range.material < object.materials.size() ? range.material : 0;
       range.texture = g.has_uv ? g.textures[m] : 0;
-      const ProgramKey key{object.shading, range.texture != 0, g.has_color,
-                           object.cull != CullMode::kBack, light_count};
-      Expected<Program*> program = s.program(key);
-      if (!program) return program.error();
-      range.program = *program;
+      range.key = {object.shading, range.texture != 0, g.has_color, object.cull != CullMode::kBack,
+                   light_count};
     }
   }
+  if (Expected<void> linked = s.linkPrograms(); !linked) return linked;
   return checkGl("uploading the scene");
 }
 
@@ -581,9 +422,14 @@ void LlvmpipeReference::render(const Scene& scene) {
   TESSERA_CHECK(scene.lights.size() == s.light_count)
       << "the shaders were compiled for " << s.light_count << " lights";
   const float4 bg = scene.background;
-  glClearColor(static_cast<float>(encodeSrgb8(bg.x)) / 255.0f,
-               static_cast<float>(encodeSrgb8(bg.y)) / 255.0f,
-               static_cast<float>(encodeSrgb8(bg.z)) / 255.0f, 1.0f);
+  if (s.samples > 1) {
+    s.multisample.bindForDrawing();
+    glClearColor(bg.x, bg.y, bg.z, 1.0f);  // linear: the sRGB framebuffer encodes it
+  } else {
+    glClearColor(static_cast<float>(encodeSrgb8(bg.x)) / 255.0f,
+                 static_cast<float>(encodeSrgb8(bg.y)) / 255.0f,
+                 static_cast<float>(encodeSrgb8(bg.z)) / 255.0f, 1.0f);
+  }
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
@@ -594,12 +440,22 @@ void LlvmpipeReference::render(const Scene& scene) {
   const float4x4 projection = scene.camera.projection(aspect);
   for (size_t i = 0; i < scene.objects.size(); ++i)
     s.draw(scene, scene.objects[i], s.objects[i], view, projection);
-  glFinish();
+  if (s.samples > 1) {
+    s.multisample.resolveAndRead(s.resolved);
+  } else {
+    glFinish();
+  }
 }
 
 void LlvmpipeReference::readColor(std::vector<uint32_t>& rgba) const {
   State& s = *state_;
   s.makeCurrent();
+  if (s.samples > 1) {  // read back by render(), top-down
+    TESSERA_CHECK(s.resolved.size() == static_cast<size_t>(s.width) * s.height)
+        << "readColor() needs a render() at the current resolution";
+    rgba = s.resolved;
+    return;
+  }
   std::vector<uint32_t> bottom_up(static_cast<size_t>(s.width) * s.height);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, s.width, s.height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
@@ -649,6 +505,12 @@ Expected<void> LlvmpipeReference::setScene(const Scene&) {
 }
 Expected<void> LlvmpipeReference::setResolution(int, int) {
   return makeError("no OSMesa");
+}
+Expected<void> LlvmpipeReference::setSamples(int) {
+  return makeError("no OSMesa");
+}
+int LlvmpipeReference::samples() const {
+  return 1;
 }
 void LlvmpipeReference::render(const Scene&) {}
 void LlvmpipeReference::readColor(std::vector<uint32_t>& rgba) const {

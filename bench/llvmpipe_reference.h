@@ -2,7 +2,8 @@
 // Mesa's OpenGL in an off-screen OSMesa context, which renders with llvmpipe. Same triangles,
 // camera matrices, lights and lighting model (GLSL 1.20: flat, Gouraud, per-pixel Phong, unlit),
 // the same back-face culling and depth test, from buffers uploaded once; every frame ends with
-// glFinish. Built only with TESSERA_OSMESA; otherwise create() says so.
+// glFinish (single-sampled) or with the resolved image read back (multisampled, setSamples).
+// Built only with TESSERA_OSMESA; otherwise create() says so.
 #pragma once
 
 #include <cstdint>
@@ -38,8 +39,15 @@ class LlvmpipeReference {
   Expected<void> setScene(const Scene& scene);
   // Sizes the colour and depth buffers.
   Expected<void> setResolution(int width, int height);
+  // Samples per pixel: 1 (the default), 2, 4 or 8 (isSampleCount). Above 1 every frame is drawn
+  // into a multisampled framebuffer object of exactly that many samples and resolved in linear
+  // light (llvmpipe_multisample.h). An error, naming the counts the context has, when it cannot
+  // give exactly `samples` (llvmpipe has 4 only); the count then stays as it was.
+  Expected<void> setSamples(int samples);
+  int samples() const;
   // Draws the scene given to setScene (the same objects; their transforms, the camera, the
-  // lights and the background are read now) and waits for it to finish.
+  // lights and the background are read now) and waits for it to finish; multisampled, that
+  // includes the resolve and the read-back that readColor() then returns.
   void render(const Scene& scene);
   // The last frame as RGBA8 sRGB, R in the low byte, row 0 at the top (like Frame::color).
   void readColor(std::vector<uint32_t>& rgba) const;

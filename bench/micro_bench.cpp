@@ -291,7 +291,7 @@ void BM_CullGroups(benchmark::State& state) {
       render::CullGroup out;
       kernels.cull_group(&mesh.indices[g * render::CullGroup::kLanes * 3], mesh.vertexCount(),
                          in.vertices.screen.data(), in.vertices.outcode.data(), StageInput::kWidth,
-                         StageInput::kHeight, in.context.cull, out);
+                         StageInput::kHeight, in.context.cull, 0, out);
       for (int l = 0; l < render::CullGroup::kLanes; ++l)
         visible += out.kind[l] == render::CullGroup::kVisible;
     }
@@ -326,7 +326,7 @@ void BM_SetupBatch(benchmark::State& state) {
   std::vector<render::ShadeTriangle> shade(count);
   for (auto _ : state) {
     for (render::SetupBatch& batch : batches)
-      kernels.setup_batch(batch, StageInput::kWidth, StageInput::kHeight, raster.data(),
+      kernels.setup_batch(batch, StageInput::kWidth, StageInput::kHeight, 0, raster.data(),
                           wide.data(), shade.data());
     benchmark::DoNotOptimize(raster.data());
   }
@@ -406,7 +406,7 @@ void BM_TileShade(benchmark::State& state) {
   for (auto _ : state) {
     for (int t = 0; t < in.grid.tileCount(); ++t)
       kernels.shade_tile(*tiles[t], in.chunks, in.chunks.size(), scene, false,
-                         render::plainShading(scene, false), background, *shaded);
+                         render::plainShading(scene, false), background, nullptr, *shaded);
     benchmark::DoNotOptimize(shaded->rgba);
   }
   state.SetLabel(render::isaName(isa));

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Regenerates docs/perf.md from a fresh measurement: builds tessera (Release), runs every built-in
-# scene at every standard resolution beside llvmpipe, the bunny at 1080p with 1 and 2 workers and
-# with other shading and culling, and UV spheres of 1k to 1M triangles at 1080p; then writes the
-# raw results (docs/perf/*.jsonl), the plots (docs/perf/*.png) and the rendering section of
-# docs/perf.md (between bench/report.py's markers; the rest of the page is left alone).
+# scene at every standard resolution beside llvmpipe, the bunny at 1080p with 1 and 2 workers,
+# with other shading and culling and with 4x MSAA against 1x (llvmpipe at the same sample count),
+# and UV spheres of 1k to 1M triangles at 1080p; then writes the raw results (docs/perf/*.jsonl),
+# the plots (docs/perf/*.png) and the rendering section of docs/perf.md (between bench/report.py's
+# markers; the rest of the page is left alone).
 #
 #   bench/run_all.sh                  # FRAMES=30 timed frames per scene and resolution
 #   FRAMES=50 MAX_LOAD=0.5 bench/run_all.sh
@@ -78,6 +79,15 @@ done > "$out/scaling.jsonl"
   bench --resolution 1920,1080 --backface-type visible bunny
   bench --resolution 1920,1080 --shading flat bunny
 } > "$out/variants.jsonl"
+echo "run_all: the bunny at 1920x1080 with 1x and 4x MSAA, three rounds" >&2
+# The cost of 4x MSAA is the 4x median over the 1x median: each round measures the two back to
+# back, so that a spell of the host falls on both alike; llvmpipe draws the same sample count
+# (a multisampled framebuffer object, resolved and read back). Each line gets "round" added.
+for round in 1 2 3; do
+  for msaa in 1 4; do
+    bench --resolution 1920,1080 --msaa "$msaa" bunny | sed "s/}\$/, \"round\": $round}/"
+  done
+done > "$out/msaa.jsonl"
 echo "run_all: UV spheres of 1k to 1M triangles at 1920x1080" >&2
 spheres=$(mktemp -d)
 trap 'rm -rf "$spheres"' EXIT

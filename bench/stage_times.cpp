@@ -2,8 +2,9 @@
 // built-in bench scene, frame by frame, as medians, with a hash of every frame's colour so that
 // two builds can be checked for the same image while they are timed. For following the numbers
 // when changing a hot path; `tessera bench` is the yardstick.
-//   build/bench/tessera_stagetimes [scene] [workers] [frames] [width] [height] [simd]
-//   simd: auto, scalar, sse2, avx2, avx512. Defaults: bunny 2 40 1920 1080 auto.
+//   build/bench/tessera_stagetimes [scene] [workers] [frames] [width] [height] [simd] [msaa]
+//   simd: auto, scalar, sse2, avx2, avx512; msaa: 1, 2, 4, 8. Defaults: bunny 2 40 1920 1080
+//   auto 1.
 //   TESSERA_NOHASH=1 leaves the hash out (and the gap it makes between frames).
 #include <algorithm>
 #include <chrono>
@@ -45,6 +46,11 @@ int main(int argc, char** argv) {
   const int width = argc > 4 ? std::atoi(argv[4]) : 1920;
   const int height = argc > 5 ? std::atoi(argv[5]) : 1080;
   const SimdLevel simd = parseSimd(argc > 6 ? argv[6] : "auto");
+  const int msaa = argc > 7 ? std::atoi(argv[7]) : 1;
+  if (!isSampleCount(msaa)) {
+    std::fprintf(stderr, "tessera_stagetimes: msaa must be 1, 2, 4 or 8\n");
+    return 2;
+  }
 
   Expected<bench::BenchScene> made = bench::makeBuiltinScene(name, Shading::kGouraud);
   if (!made) {
@@ -66,6 +72,7 @@ int main(int argc, char** argv) {
   options.width = width;
   options.height = height;
   options.depth = options.ids = options.normals = options.lines = false;
+  options.msaa = msaa;
 
   CpuRenderer renderer(workers, simd);
   Frame frame;
@@ -92,9 +99,9 @@ int main(int argc, char** argv) {
       for (uint32_t c : frame.color) hash = (hash ^ c) * 1099511628211ull;
   }
   std::printf(
-      "%s %dx%d, %d workers, %s, %d frames: total %.3f ms (vertex %.3f, setup %.3f, "
+      "%s %dx%d, %d workers, %s, %dx msaa, %d frames: total %.3f ms (vertex %.3f, setup %.3f, "
       "tiles %.3f), hash %016llx\n",
-      name.c_str(), width, height, renderer.workerCount(), renderer.simdName(), frames,
+      name.c_str(), width, height, renderer.workerCount(), renderer.simdName(), msaa, frames,
       median(total), median(vertex), median(setup), median(tiles),
       static_cast<unsigned long long>(hash));
   return 0;

@@ -18,4 +18,14 @@ common=(--resolution 320,320)
 "$tessera" render "$bunny" "${common[@]}" --aov normal -o "$tmp/normal.png"
 ffmpeg -loglevel error -y -i "$tmp/color.png" -i "$tmp/id.png" -i "$tmp/normal.png" \
   -filter_complex hstack=inputs=3 "$out/aovs.png"
+# Anti-aliasing: the same close-up of the ear and the Y axis at 1x, 4x MSAA and 4x MSAA with 16
+# jittered frames, each pixel shown 3x3.
+closeup=(--resolution 160,120 --camera-position -0.1,1.0,2.6 --camera-focal-point -0.2,0.6,0
+  --camera-view-angle 28 --axes)
+"$tessera" render "$bunny" "${closeup[@]}" --msaa 1 -o "$tmp/aa1.png"
+"$tessera" render "$bunny" "${closeup[@]}" --msaa 4 -o "$tmp/aa4.png"
+"$tessera" render "$bunny" "${closeup[@]}" --msaa 4 --samples 16 -o "$tmp/aa16.png"
+ffmpeg -loglevel error -y -i "$tmp/aa1.png" -i "$tmp/aa4.png" -i "$tmp/aa16.png" -filter_complex \
+  "[0]scale=iw*3:ih*3:flags=neighbor[a];[1]scale=iw*3:ih*3:flags=neighbor[b];[2]scale=iw*3:ih*3:flags=neighbor[c];[a][b][c]hstack=inputs=3" \
+  "$out/antialiasing.png"
 ls -la "$out"

@@ -1,9 +1,7 @@
-// Tests of the benchmark: the built-in scenes, `tessera bench` run as a real process, and the
-// llvmpipe reference drawing the same pixels as tessera. Nothing here times anything.
+// Tests of the benchmark: the built-in scenes and `tessera bench` run as a real process (the
+// llvmpipe reference's own tests: bench_reference_test.cpp). Nothing here times anything.
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -11,45 +9,18 @@
 #include <nlohmann/json.hpp>
 
 #include <tessera/render/cpu_renderer.h>
-#include <tessera/scene/color.h>
 
 #include "bench/llvmpipe_reference.h"
 #include "bench/scenes.h"
+#include "bench_test_scenes.h"
 #include "run_process.h"
 #include "temp_folder.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
 
-namespace {
-
-Expected<bench::BenchScene> scene(const std::string& name, Shading shading = Shading::kGouraud) {
-  return bench::makeBuiltinScene(name, shading);
-}
-
-// The cube demo's view: the caller of a scene places camera and lights.
-void lookAtCube(Scene& s) {
-  s.camera.position = {0.0f, 1.1f, 2.4f};
-  s.camera.target = {0, 0, 0};
-  s.camera.fov_y_degrees = 50.0f;
-  s.camera.near_z = 0.1f;
-  s.camera.far_z = 20.0f;
-  s.lights = {{normalize(float3{-0.6f, -1.0f, -0.8f}), float3(0.85f)},
-              {normalize(float3{0.8f, 0.3f, -0.4f}), float3(0.2f)}};
-  s.ambient = float3(0.12f);
-}
-
-RenderOptions colorAndIds(int width, int height) {
-  RenderOptions options;
-  options.width = width;
-  options.height = height;
-  options.depth = false;
-  options.ids = true;
-  options.lines = false;
-  return options;
-}
-
-}  // namespace
+using test::colorAndIds;
+using test::scene;
 
 TEST(BenchScenes, BuiltinScenesHaveTheAdvertisedTriangleCounts) {
   const std::pair<const char*, size_t> expected[] = {{"cube", bench::kCubeTriangles},
@@ -246,6 +217,60 @@ TEST_F(BenchCli, BadFlagsExitTwoWithUsage) {
   }
 }
 
+TEST_F(BenchCli, MsaaOtherThanOneTwoFourOrEightIsAUsageError) {
+  for (const char* value : {"3", "0", "16", "-4", "4x", "4294967300"}) {
+    RunResult r = run(std::string("--frames 1 --resolution 16,16 --msaa ") + value + " cube");
+    EXPECT_EQ(r.exit_code, 2) << value;
+    EXPECT_NE(r.err.find("1, 2, 4 or 8"), std::string::npos) << value << "\n" << r.err;
+    EXPECT_NE(r.err.find("usage: tessera bench"), std::string::npos) << value;
+    EXPECT_TRUE(r.out.empty()) << value;
+  }
+}
+
+TEST_F(BenchCli, OutputSaysTheSampleCount) {
+  for (int msaa : {1, 2, 4, 8}) {
+    const std::string flag = msaa == 1 ? "" : " --msaa " + std::to_string(msaa);
+    RunResult r = run("--json --frames 1 --warmup 0 --resolution 32,24 cube" + flag);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+    ASSERT_TRUE(j.is_object()) << r.out;
+    ASSERT_TRUE(j.contains("msaa") && j["msaa"].is_number_integer()) << r.out;
+    EXPECT_EQ(j["msaa"].get<int>(), msaa);  // 1 without the flag: old numbers stay comparable
+  }
+  RunResult text = run("--frames 1 --warmup 0 --resolution 32,24 --msaa 4 cube");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("4 samples per pixel"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("4x MSAA"), std::string::npos) << text.out;
+}
+
+// llvmpipe draws the sample count asked for, or the run fails before anything is timed: a count
+// that GL rounds to another (llvmpipe makes 4 of 2) would not be the same work.
+TEST_F(BenchCli, VersusLlvmpipeDrawsTheSameSampleCountOrFails) {
+  if (!bench::llvmpipeReferenceBuilt()) GTEST_SKIP() << "built without OSMesa";
+  for (int msaa : {2, 4, 8}) {
+    RunResult r =
+        run("--json --frames 1 --warmup 0 --resolution 32,24 --workers 1 --vs llvmpipe "
+            "--msaa " +
+            std::to_string(msaa) + " cube");
+    if (r.exit_code == 0) {
+      nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+      ASSERT_TRUE(j.is_object()) << r.out;
+      EXPECT_EQ(j.value("msaa", 0), msaa);
+      EXPECT_TRUE(j.contains("llvmpipe_median_ms")) << r.out;
+    } else {
+      EXPECT_EQ(r.exit_code, 1) << msaa;
+      EXPECT_NE(r.err.find("cannot draw " + std::to_string(msaa) + " samples per pixel"),
+                std::string::npos)
+          << r.err;
+      EXPECT_TRUE(r.out.empty()) << "nothing is timed with another sample count";
+    }
+    // Multisampling at 4x has been in llvmpipe since Mesa 20.
+    if (msaa == 4) {
+      EXPECT_EQ(r.exit_code, 0) << r.err;
+    }
+  }
+}
+
 TEST_F(BenchCli, HelpExitsZero) {
   RunResult r = run("--help");
   EXPECT_EQ(r.exit_code, 0);
@@ -281,142 +306,4 @@ TEST_F(BenchCli, VersusLlvmpipeAddsTheReference) {
   ASSERT_TRUE(j.contains("ratio") && j["ratio"].is_number());
   EXPECT_NE(j.value("reference", "").find("llvmpipe"), std::string::npos);
   EXPECT_EQ(j.value("workers", 0), 1);
-}
-
-// ---- the llvmpipe reference draws what tessera draws ----
-
-namespace {
-
-struct Comparison {
-  double coverage_agreement = 0;  // share of pixels both cover or both leave empty
-  double close_colors = 0;        // share of the pixels both cover within 2/255 per channel
-  size_t tessera_covered = 0;
-};
-
-// Renders `s` with tessera and the reference at w x h and compares them pixel by pixel.
-Comparison compareWithReference(bench::LlvmpipeReference& reference, const Scene& s, int w, int h) {
-  CpuRenderer renderer(1);
-  Frame frame;
-  renderer.render(s, colorAndIds(w, h), frame);
-  EXPECT_TRUE(reference.setScene(s).ok());
-  EXPECT_TRUE(reference.setResolution(w, h).ok());
-  reference.render(s);
-  std::vector<uint32_t> gl;
-  reference.readColor(gl);
-  EXPECT_EQ(gl.size(), frame.pixelCount());
-  const uint32_t background = packSrgba8(s.background) & 0xffffffu;
-  Comparison c;
-  size_t agree = 0, both = 0, close = 0;
-  for (size_t i = 0; i < gl.size() && i < frame.pixelCount(); ++i) {
-    const bool by_tessera = frame.triangle_id[i] != kNoTriangle;
-    const bool by_gl = (gl[i] & 0xffffffu) != background;
-    agree += by_tessera == by_gl;
-    c.tessera_covered += by_tessera;
-    if (!by_tessera || !by_gl) continue;
-    ++both;
-    int worst = 0;
-    for (int k = 0; k < 3; ++k)
-      worst = std::max(worst, std::abs(static_cast<int>((frame.color[i] >> (8 * k)) & 255) -
-                                       static_cast<int>((gl[i] >> (8 * k)) & 255)));
-    close += worst <= 2;
-  }
-  c.coverage_agreement = static_cast<double>(agree) / static_cast<double>(gl.size());
-  c.close_colors = both ? static_cast<double>(close) / static_cast<double>(both) : 0.0;
-  return c;
-}
-
-class Reference : public ::testing::Test {
- protected:
-  void SetUp() override {
-    if (!bench::llvmpipeReferenceBuilt()) GTEST_SKIP() << "built without OSMesa";
-    Expected<std::unique_ptr<bench::LlvmpipeReference>> created =
-        bench::LlvmpipeReference::create(1);
-    ASSERT_TRUE(created.ok()) << created.error().message;
-    reference_ = std::move(*created);
-  }
-  std::unique_ptr<bench::LlvmpipeReference> reference_;
-};
-
-}  // namespace
-
-TEST_F(Reference, RendersWithLlvmpipe) {
-  EXPECT_TRUE(reference_->isLlvmpipe()) << reference_->renderer();
-  EXPECT_NE(reference_->version().find("Mesa"), std::string::npos) << reference_->version();
-  EXPECT_EQ(reference_->threads(), 1);
-}
-
-TEST_F(Reference, CubeCoversTheSamePixelsAsTessera) {
-  Expected<bench::BenchScene> s = scene("cube", Shading::kFlat);
-  ASSERT_TRUE(s.ok());
-  lookAtCube(s->scene);
-  bench::poseForFrame(*s, 10);
-  const Comparison c = compareWithReference(*reference_, s->scene, 160, 120);
-  EXPECT_GT(c.tessera_covered, 160u * 120u / 10);  // the cube is in view
-  EXPECT_GE(c.coverage_agreement, 0.98);
-  EXPECT_GE(c.close_colors, 0.98);
-}
-
-TEST_F(Reference, ShadingModelsMatchTessera) {
-  for (Shading shading : {Shading::kFlat, Shading::kGouraud, Shading::kPhong, Shading::kUnlit}) {
-    for (CullMode cull : {CullMode::kBack, CullMode::kNone}) {
-      Expected<bench::BenchScene> s = scene("textured", shading);
-      ASSERT_TRUE(s.ok());
-      lookAtCube(s->scene);
-      s->scene.objects[0].cull = cull;
-      s->scene.objects[0].transform.scale = float3(0.8f);
-      bench::poseForFrame(*s, 5);
-      const Comparison c = compareWithReference(*reference_, s->scene, 96, 72);
-      EXPECT_GE(c.coverage_agreement, 0.98) << static_cast<int>(shading);
-      EXPECT_GE(c.close_colors, 0.98) << static_cast<int>(shading);
-    }
-  }
-}
-
-TEST_F(Reference, TwoReferencesKeepTheirOwnFrames) {
-  Expected<std::unique_ptr<bench::LlvmpipeReference>> other = bench::LlvmpipeReference::create(1);
-  ASSERT_TRUE(other.ok()) << other.error().message;
-  Expected<bench::BenchScene> cube = scene("cube", Shading::kFlat);
-  Expected<bench::BenchScene> fill = scene("fill", Shading::kUnlit);
-  ASSERT_TRUE(cube.ok() && fill.ok());
-  lookAtCube(cube->scene);
-  ASSERT_TRUE(reference_->setScene(cube->scene).ok());
-  ASSERT_TRUE(reference_->setResolution(32, 24).ok());
-  ASSERT_TRUE((*other)->setScene(fill->scene).ok());
-  ASSERT_TRUE((*other)->setResolution(16, 16).ok());
-  reference_->render(cube->scene);
-  (*other)->render(fill->scene);
-  std::vector<uint32_t> cube_pixels, fill_pixels;
-  reference_->readColor(cube_pixels);
-  (*other)->readColor(fill_pixels);
-  ASSERT_EQ(cube_pixels.size(), 32u * 24u);
-  ASSERT_EQ(fill_pixels.size(), 16u * 16u);
-  const uint32_t background = packSrgba8(cube->scene.background);
-  EXPECT_EQ(cube_pixels[0], background);             // a corner of the cube's frame is background
-  EXPECT_NE(cube_pixels[12 * 32 + 16], background);  // its centre is the cube
-  for (uint32_t p : fill_pixels) EXPECT_NE(p, packSrgba8(fill->scene.background));
-}
-
-TEST_F(Reference, ReadBackRowsRunTopDown) {
-  // A red layer over the upper half of the view only: the top rows of the read-back are red.
-  Scene s;
-  s.camera.position = {0, 0, 3};
-  s.camera.near_z = 1;
-  s.camera.far_z = 10;
-  Mesh upper;
-  upper.positions = {{-5, 0.1f, 0}, {5, 0.1f, 0}, {5, 5, 0}, {-5, 5, 0}};
-  upper.normals.assign(4, float3{0, 0, 1});
-  upper.indices = {0, 1, 2, 0, 2, 3};
-  Object o;
-  o.mesh = std::make_shared<Mesh>(upper);
-  o.shading = Shading::kUnlit;
-  o.materials[0].base_color = {1, 0, 0, 1};
-  s.objects.push_back(o);
-  ASSERT_TRUE(reference_->setScene(s).ok());
-  ASSERT_TRUE(reference_->setResolution(8, 8).ok());
-  reference_->render(s);
-  std::vector<uint32_t> rgba;
-  reference_->readColor(rgba);
-  ASSERT_EQ(rgba.size(), 64u);
-  EXPECT_EQ(rgba[0] & 0xffffffu, 0x0000ffu);   // top-left: red
-  EXPECT_EQ(rgba[63] & 0xffffffu, 0x000000u);  // bottom-right: the black background
 }

@@ -395,3 +395,66 @@ TEST_F(Cli, DataModelsMatchTheirReferenceImages) {
     tessera::test::expectMatchesReference(out, c.reference, {2, 6});
   }
 }
+
+TEST_F(Cli, SampleCountsOutsideTheAllowedOnesAreUsageErrors) {
+  writeQuadObj("quad.obj");
+  for (const std::string& args :
+       {std::string("render quad.obj -o out.png --msaa 3"),
+        std::string("render quad.obj -o out.png --msaa 16"),
+        std::string("render quad.obj -o out.png --samples 0"),
+        std::string("cube -out out.gif -msaa 3"), std::string("cube -out out.gif -samples 0")}) {
+    SCOPED_TRACE(args);
+    RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 2);
+    const bool names_values = r.err.find("1, 2, 4 or 8") != std::string::npos ||
+                              r.err.find("1 to 4096") != std::string::npos;
+    EXPECT_TRUE(names_values) << r.err;
+    EXPECT_EQ(filesInDir(), (std::set<std::string>{"quad.obj"}));
+  }
+}
+
+TEST_F(Cli, MsaaSmoothsEdgesAndLeavesTheIdAovAlone) {
+  // A quad seen at an angle: its slanted edges get in-between colours with --msaa 4 (the default)
+  // and none with --msaa 1; the id AOV is the same at any sample count; the coverage AOV is grey
+  // in [0, 255] with in-between values at the edges only.
+  writeQuadObj("quad.obj");
+  const std::string view =
+      " --resolution 64,48 --background-color 0,0,0 --shading unlit "
+      "--camera-position 1.3,0.4,3 --camera-focal-point 0,0,0";
+  auto distinct = [](const DecodedPng& png) {
+    std::set<int> values;
+    for (int y = 0; y < png.height; ++y)
+      for (int x = 0; x < png.width; ++x) values.insert(png.at(x, y, 0));
+    return values.size();
+  };
+  DecodedPng one, four, id1, id8, coverage;
+  ASSERT_EQ(run("render quad.obj -o one.png --msaa 1" + view).exit_code, 0);
+  ASSERT_EQ(run("render quad.obj -o four.png" + view).exit_code, 0);
+  ASSERT_EQ(run("render quad.obj -o id1.png --aov id --msaa 1" + view).exit_code, 0);
+  ASSERT_EQ(run("render quad.obj -o id8.png --aov id --msaa 8 --samples 4" + view).exit_code, 0);
+  ASSERT_EQ(run("render quad.obj -o cov.png --aov coverage --msaa 4" + view).exit_code, 0);
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "one.png").string(), one));
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "four.png").string(), four));
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "id1.png").string(), id1));
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "id8.png").string(), id8));
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "cov.png").string(), coverage));
+  EXPECT_EQ(distinct(one), 2u);  // the quad's colour and the background
+  EXPECT_GT(distinct(four), 3u);
+  EXPECT_EQ(id1.samples, id8.samples);
+  ASSERT_EQ(coverage.channels, 1);
+  EXPECT_EQ(coverage.bit_depth, 8);
+  int partial = 0, full = 0;
+  for (int y = 0; y < coverage.height; ++y)
+    for (int x = 0; x < coverage.width; ++x) {
+      const int c = coverage.at(x, y, 0);
+      partial += c != 0 && c != 255;
+      full += c == 255;
+      // At the same sample count, fully covered pixels are the quad's colour, uncovered ones the
+      // background.
+      if (c == 255 || c == 0) {
+        EXPECT_EQ(four.at(x, y, 0), c == 0 ? 0 : one.at(x, y, 0)) << x << "," << y;
+      }
+    }
+  EXPECT_GT(partial, 20);
+  EXPECT_GT(full, 200);
+}

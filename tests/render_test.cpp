@@ -429,57 +429,60 @@ TEST(Raster, CullKernelMatchesThePerTriangleChecks) {
   for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512}) {
     if (isa > detectIsa()) continue;
     const Kernels kernels = kernelsFor(isa);
-    for (CullMode cull : {CullMode::kBack, CullMode::kFront, CullMode::kNone}) {
-      SetupContext ctx;
-      ctx.width = width;
-      ctx.height = height;
-      ctx.cull = cull;
-      for (int group = 0; group < 200; ++group) {
-        uint32_t indices[24];
-        for (uint32_t& index : indices) index = static_cast<uint32_t>(rng() % kVertices);
-        CullGroup out;
-        ASSERT_TRUE(kernels.cull_group(indices, kVertices, screen.data(), outcodes.data(), width,
-                                       height, cull, out));
-        for (int l = 0; l < 8; ++l) {
-          const uint32_t* idx = &indices[3 * l];
-          const uint32_t c0 = outcodes[idx[0]], c1 = outcodes[idx[1]], c2 = outcodes[idx[2]];
-          SCOPED_TRACE(testing::Message() << isaName(isa) << " cull " << static_cast<int>(cull)
-                                          << " group " << group << " lane " << l);
-          if (((c0 | c1 | c2) & kNonFinite) || (c0 & c1 & c2 & kRejectPlanes)) {
-            EXPECT_EQ(out.kind[l], CullGroup::kCulled);
-            ++decided[0];
-            continue;
+    for (int32_t reach : {0, kSampleReach})
+      for (CullMode cull : {CullMode::kBack, CullMode::kFront, CullMode::kNone}) {
+        SetupContext ctx;
+        ctx.width = width;
+        ctx.height = height;
+        ctx.cull = cull;
+        ctx.sample_reach = reach;
+        for (int group = 0; group < 200; ++group) {
+          uint32_t indices[24];
+          for (uint32_t& index : indices) index = static_cast<uint32_t>(rng() % kVertices);
+          CullGroup out;
+          ASSERT_TRUE(kernels.cull_group(indices, kVertices, screen.data(), outcodes.data(), width,
+                                         height, cull, reach, out));
+          for (int l = 0; l < 8; ++l) {
+            const uint32_t* idx = &indices[3 * l];
+            const uint32_t c0 = outcodes[idx[0]], c1 = outcodes[idx[1]], c2 = outcodes[idx[2]];
+            SCOPED_TRACE(testing::Message()
+                         << isaName(isa) << " cull " << static_cast<int>(cull) << " reach " << reach
+                         << " group " << group << " lane " << l);
+            if (((c0 | c1 | c2) & kNonFinite) || (c0 & c1 & c2 & kRejectPlanes)) {
+              EXPECT_EQ(out.kind[l], CullGroup::kCulled);
+              ++decided[0];
+              continue;
+            }
+            if (const uint32_t cut = (c0 | c1 | c2) & kCutPlanes) {
+              EXPECT_EQ(out.kind[l], CullGroup::kClip);
+              EXPECT_EQ(static_cast<uint32_t>(out.cut[l]), cut);
+              ++decided[1];
+              continue;
+            }
+            const ScreenVertex &v0 = screen[idx[0]], &v1 = screen[idx[1]], &v2 = screen[idx[2]];
+            const int64_t area = signedArea(v0, v1, v2);
+            const PixelBox box = pixelBox(ctx, v0, v1, v2);
+            if (cullsArea(ctx, area) || box.empty()) {
+              EXPECT_EQ(out.kind[l], CullGroup::kCulled);
+              ++decided[cullsArea(ctx, area) ? 2 : 3];
+              continue;
+            }
+            ++decided[4];
+            ASSERT_EQ(out.kind[l], CullGroup::kVisible);
+            EXPECT_EQ(static_cast<int64_t>(out.area[l]), area);
+            EXPECT_EQ(out.min_x[l], box.min_x);
+            EXPECT_EQ(out.min_y[l], box.min_y);
+            EXPECT_EQ(out.max_x[l], box.max_x);
+            EXPECT_EQ(out.max_y[l], box.max_y);
           }
-          if (const uint32_t cut = (c0 | c1 | c2) & kCutPlanes) {
-            EXPECT_EQ(out.kind[l], CullGroup::kClip);
-            EXPECT_EQ(static_cast<uint32_t>(out.cut[l]), cut);
-            ++decided[1];
-            continue;
-          }
-          const ScreenVertex &v0 = screen[idx[0]], &v1 = screen[idx[1]], &v2 = screen[idx[2]];
-          const int64_t area = signedArea(v0, v1, v2);
-          const PixelBox box = pixelBox(ctx, v0, v1, v2);
-          if (cullsArea(ctx, area) || box.empty()) {
-            EXPECT_EQ(out.kind[l], CullGroup::kCulled);
-            ++decided[cullsArea(ctx, area) ? 2 : 3];
-            continue;
-          }
-          ++decided[4];
-          ASSERT_EQ(out.kind[l], CullGroup::kVisible);
-          EXPECT_EQ(static_cast<int64_t>(out.area[l]), area);
-          EXPECT_EQ(out.min_x[l], box.min_x);
-          EXPECT_EQ(out.min_y[l], box.min_y);
-          EXPECT_EQ(out.max_x[l], box.max_x);
-          EXPECT_EQ(out.max_y[l], box.max_y);
         }
+        // An index past the end: nothing decided, the caller goes one triangle at a time.
+        uint32_t indices[24] = {};
+        indices[17] = kVertices;
+        CullGroup out;
+        EXPECT_FALSE(kernels.cull_group(indices, kVertices, screen.data(), outcodes.data(), width,
+                                        height, cull, reach, out));
       }
-      // An index past the end: nothing decided, the caller goes one triangle at a time.
-      uint32_t indices[24] = {};
-      indices[17] = kVertices;
-      CullGroup out;
-      EXPECT_FALSE(kernels.cull_group(indices, kVertices, screen.data(), outcodes.data(), width,
-                                      height, cull, out));
-    }
   }
   // Every branch was taken: dropped, clipped, culled by area, off the viewport, visible.
   for (int branch = 0; branch < 5; ++branch) EXPECT_GT(decided[branch], 20) << branch;
@@ -682,61 +685,68 @@ TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
     if (t.area == 0 || pixelBox(ctx, t.v[0], t.v[1], t.v[2]).empty()) continue;
     triangles.push_back(t);
   }
-  std::vector<RasterTriangle> expected(triangles.size());
-  std::vector<RasterWide> expected_wide(triangles.size());
-  std::vector<ShadeTriangle> expected_shade(triangles.size());
-  int small = 0;
-  for (size_t i = 0; i < triangles.size(); ++i) {
-    const Triangle& t = triangles[i];
-    TriangleOrientation o;
-    ASSERT_TRUE(setupRaster(ctx, t.v[0], t.v[1], t.v[2], t.area, expected[i], expected_wide[i], o));
-    const VertexAttributes a{};
-    const VertexAttributes attributes[3] = {a, a, a};
-    ShadeExtras extras;
-    setupShade(ctx, t.v, attributes, o, expected[i], float3{0, 0, 1}, 0, 0, expected_shade[i],
-               extras);
-    small += expected[i].small();
-  }
-  EXPECT_GT(small, 100);
-  EXPECT_GT(static_cast<int>(triangles.size()) - small, 50);
-
-  // lead 8: full batches of records on whole lines (streamed as lines); lead 3: a short first
-  // batch, after which the batches' records start inside a line (streamed record by record).
-  for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512})
-    for (size_t lead : {size_t{8}, size_t{3}}) {
-      if (isa > detectIsa()) continue;
-      const Kernels kernels = kernelsFor(isa);
-      PoolVector<RasterTriangle> raster(triangles.size());  // aligned: the kernel streams into it
-      std::vector<RasterWide> wide(triangles.size());
-      PoolVector<ShadeTriangle> shade(triangles.size());
-      for (size_t first = 0; first < triangles.size(); first += first == 0 ? lead : 8) {
-        SetupBatch batch;
-        for (size_t i = first; i < std::min(first + (first == 0 ? lead : 8), triangles.size());
-             ++i) {
-          // The caller's part of the shading record, which the kernel carries to shade[record].
-          ShadeTriangle& staged = batch.nextShade();
-          staged.triangle_id = static_cast<uint32_t>(1000 + i);
-          staged.color[2] = float3{static_cast<float>(i), 0.5f, 0.25f};
-          batch.push(triangles[i].v[0], triangles[i].v[1], triangles[i].v[2], triangles[i].area,
-                     static_cast<uint32_t>(i));
-        }
-        batch.padLanes();
-        kernels.setup_batch(batch, width, height, raster.data(), wide.data(), shade.data());
-      }
-      for (size_t i = 0; i < triangles.size(); ++i) {
-        SCOPED_TRACE(testing::Message() << isaName(isa) << " lead " << lead << " triangle " << i);
-        ASSERT_EQ(0, std::memcmp(&raster[i], &expected[i], sizeof(RasterTriangle)));
-        if (!expected[i].small()) {
-          for (int k = 0; k < 3; ++k) EXPECT_EQ(wide[i].c[k], expected_wide[i].c[k]);
-          EXPECT_EQ(wide[i].z_min, expected_wide[i].z_min);
-        }
-        // The planes, x0 .. sdy, as setupShade forms them.
-        EXPECT_EQ(0, std::memcmp(&shade[i].x0, &expected_shade[i].x0, 9 * sizeof(float)));
-        EXPECT_EQ(shade[i].triangle_id, 1000 + i);
-        EXPECT_EQ(shade[i].color[2].x, static_cast<float>(i));
-        EXPECT_EQ(shade[i].color[2].z, 0.25f);
-      }
+  // With one sample, and with MSAA's reach (boxes grown by half a pixel, the small test by more).
+  for (int32_t reach : {0, kSampleReach}) {
+    ctx.sample_reach = reach;
+    std::vector<RasterTriangle> expected(triangles.size());
+    std::vector<RasterWide> expected_wide(triangles.size());
+    std::vector<ShadeTriangle> expected_shade(triangles.size());
+    int small = 0;
+    for (size_t i = 0; i < triangles.size(); ++i) {
+      const Triangle& t = triangles[i];
+      TriangleOrientation o;
+      ASSERT_TRUE(
+          setupRaster(ctx, t.v[0], t.v[1], t.v[2], t.area, expected[i], expected_wide[i], o));
+      const VertexAttributes a{};
+      const VertexAttributes attributes[3] = {a, a, a};
+      ShadeExtras extras;
+      setupShade(ctx, t.v, attributes, o, expected[i], float3{0, 0, 1}, 0, 0, expected_shade[i],
+                 extras);
+      small += expected[i].small();
     }
+    EXPECT_GT(small, 100);
+    EXPECT_GT(static_cast<int>(triangles.size()) - small, 50);
+
+    // lead 8: full batches of records on whole lines (streamed as lines); lead 3: a short first
+    // batch, after which the batches' records start inside a line (streamed record by record).
+    for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512})
+      for (size_t lead : {size_t{8}, size_t{3}}) {
+        if (isa > detectIsa()) continue;
+        const Kernels kernels = kernelsFor(isa);
+        PoolVector<RasterTriangle> raster(triangles.size());  // aligned: the kernel streams into it
+        std::vector<RasterWide> wide(triangles.size());
+        PoolVector<ShadeTriangle> shade(triangles.size());
+        for (size_t first = 0; first < triangles.size(); first += first == 0 ? lead : 8) {
+          SetupBatch batch;
+          for (size_t i = first; i < std::min(first + (first == 0 ? lead : 8), triangles.size());
+               ++i) {
+            // The caller's part of the shading record, which the kernel carries to shade[record].
+            ShadeTriangle& staged = batch.nextShade();
+            staged.triangle_id = static_cast<uint32_t>(1000 + i);
+            staged.color[2] = float3{static_cast<float>(i), 0.5f, 0.25f};
+            batch.push(triangles[i].v[0], triangles[i].v[1], triangles[i].v[2], triangles[i].area,
+                       static_cast<uint32_t>(i));
+          }
+          batch.padLanes();
+          kernels.setup_batch(batch, width, height, reach, raster.data(), wide.data(),
+                              shade.data());
+        }
+        for (size_t i = 0; i < triangles.size(); ++i) {
+          SCOPED_TRACE(testing::Message() << isaName(isa) << " reach " << reach << " lead " << lead
+                                          << " triangle " << i);
+          ASSERT_EQ(0, std::memcmp(&raster[i], &expected[i], sizeof(RasterTriangle)));
+          if (!expected[i].small()) {
+            for (int k = 0; k < 3; ++k) EXPECT_EQ(wide[i].c[k], expected_wide[i].c[k]);
+            EXPECT_EQ(wide[i].z_min, expected_wide[i].z_min);
+          }
+          // The planes, x0 .. sdy, as setupShade forms them.
+          EXPECT_EQ(0, std::memcmp(&shade[i].x0, &expected_shade[i].x0, 9 * sizeof(float)));
+          EXPECT_EQ(shade[i].triangle_id, 1000 + i);
+          EXPECT_EQ(shade[i].color[2].x, static_cast<float>(i));
+          EXPECT_EQ(shade[i].color[2].z, 0.25f);
+        }
+      }
+  }
 }
 
 TEST(Raster, IdsFollowSceneTriangleOrderAcrossObjects) {
@@ -1146,6 +1156,10 @@ TEST(Renderer, AllocatesNothingPerFrameAfterWarmUp) {
     }
     for (int i = 0; i < 3; ++i) {
       scene.objects[0].transform.rotation = quat::fromAxisAngle({0, 1, 0}, 0.1f * i);
+      // With one sample and with MSAA (its sample layers, made once per worker), with and
+      // without jitter.
+      options.msaa = i == 2 ? 8 : 1;
+      options.jitter = jitterOffset(static_cast<uint32_t>(i));
       renderer.render(scene, options, frame);
     }
   }

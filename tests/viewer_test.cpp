@@ -176,10 +176,11 @@ InputEvent motion(float x, float y, bool shift = false) {
   return e;
 }
 
-InputEvent key(Key k) {
+InputEvent key(Key k, bool shift = false) {
   InputEvent e;
   e.type = InputEvent::Type::kKeyDown;
   e.key = k;
+  e.shift = shift;
   return e;
 }
 
@@ -260,6 +261,7 @@ TEST(InputState, WheelZoomsAndKeysMapAsInF3d) {
       {Key::kEnter, Action::Type::kResetCamera},   {Key::kEscape, Action::Type::kQuit},
       {Key::kF1, Action::Type::kToggleStats},      {Key::kF2, Action::Type::kToggleWorldAxes},
       {Key::kF3, Action::Type::kToggleObjectAxes}, {Key::kF12, Action::Type::kScreenshot},
+      {Key::kF10, Action::Type::kToggleJitter},    {Key::kH, Action::Type::kToggleKeyList},
   };
   for (const auto& [k, type] : commands) {
     a = input.handle(key(k), 100.0f);
@@ -267,6 +269,56 @@ TEST(InputState, WheelZoomsAndKeysMapAsInF3d) {
     EXPECT_EQ(a->type, type);
   }
   EXPECT_FALSE(input.handle(key(Key::kOther), 100.0f));
+}
+
+TEST(InputState, ShiftPicksTheSecondRowOfFunctionKeysAndNothingElse) {
+  InputState input;
+  std::optional<Action> a = input.handle(key(Key::kF3, true), 100.0f);
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a->type, Action::Type::kCycleMsaa);
+  a = input.handle(key(Key::kF12, true), 100.0f);
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a->type, Action::Type::kToggleTemporal);
+  // Shift+F1, Shift+F2 (another backend's keys) and Shift+F10 do not fall back to F1, F2, F10.
+  for (Key k : {Key::kF1, Key::kF2, Key::kF10}) EXPECT_FALSE(input.handle(key(k, true), 100.0f));
+  // Keys with no second row ignore Shift.
+  a = input.handle(key(Key::kSeven, true), 100.0f);
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a->view, ViewPreset::kTop);
+  a = input.handle(key(Key::kH, true), 100.0f);
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a->type, Action::Type::kToggleKeyList);
+}
+
+TEST(InputState, TheKeyListNamesEveryMappedKeyAndOnlyThose) {
+  auto listed = [](Key k, bool shift) {
+    for (const KeyHelp& help : keyList())
+      for (const KeyChord& chord : help.chords)
+        if (chord.key == k && chord.shift == shift) return true;
+    return false;
+  };
+  int mapped = 0;
+  for (int i = 0; i < static_cast<int>(Key::kOther); ++i) {
+    const Key k = static_cast<Key>(i);
+    const bool shift_differs =
+        keyAction(k, true).has_value() != keyAction(k, false).has_value() ||
+        (keyAction(k, true) && keyAction(k, true)->type != keyAction(k)->type);
+    for (bool shift : {false, true}) {
+      if (shift && !shift_differs) continue;  // the same action: listed once, unshifted
+      if (!keyAction(k, shift)) continue;
+      ++mapped;
+      EXPECT_TRUE(listed(k, shift))
+          << "key " << i << (shift ? " with shift" : "") << " is unlisted";
+    }
+  }
+  EXPECT_EQ(mapped, 14);  // 1 3 7 9 Enter Escape H F1 F2 F3 F10 F12, Shift+F3, Shift+F12
+  for (const KeyHelp& help : keyList()) {
+    EXPECT_FALSE(help.keys.empty());
+    EXPECT_FALSE(help.action.empty());
+    for (const KeyChord& chord : help.chords)
+      EXPECT_TRUE(keyAction(chord.key, chord.shift))
+          << help.keys << " lists a key that does nothing";
+  }
 }
 
 TEST(InputState, CameraActionsReachTheCameraAndOthersDoNot) {

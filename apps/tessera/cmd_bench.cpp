@@ -11,6 +11,8 @@
 #include <sstream>
 #include <thread>
 
+#include <tessera/render/sampling.h>
+
 #include "backends.h"
 #include "bench/llvmpipe_reference.h"
 #include "bench/scenes.h"
@@ -38,6 +40,7 @@ struct BenchSettings {
   CameraSettings camera;
   int workers = 0;
   std::string backend = "cpu";
+  int msaa = 1;
   int device = -1;
   bool json = false;
   bool all = false;
@@ -169,23 +172,11 @@ void timeFrames(bench::BenchScene& b, int warmup, int first, int count, Draw&& d
 // fast spells then fall on both alike, which a whole run of one then the other does not give.
 constexpr int kFramesPerRound = 5;
 
-}  // namespace
-
-int runBench(const std::vector<std::string>& args) {
-  BenchSettings s;
-  bool resolution_given = false;
-  FlagSet flags(
-      "tessera bench [SCENE|MODEL...] [flags]\n\n"
-      "Times frames of the built-in scenes (cube, bunny, dense, fill, textured) or of model files\n"
-      "and prints the median frame time, one line per scene and resolution. With no scene and no\n"
-      "--resolution it runs every built-in scene at 640x480, 1920x1080 and 3840x2160. With --vs\n"
-      "llvmpipe the same frames are drawn by Mesa's llvmpipe (OpenGL through OSMesa) on as many\n"
-      "threads, the two taking turns in rounds of 5 frames, and ratio = llvmpipe median / tessera\n"
-      "median (above 1: tessera is faster).");
+void addBenchFlags(FlagSet& flags, BenchSettings& s, bool& resolution_given) {
   flags.addCustom("resolution", "W,H",
                   "image size; repeatable, or a list such as 640x480,1920x1080 "
                   "(default 640x480, 1920x1080 and 3840x2160)",
-                  [&](const std::string& v) {
+                  [&s, &resolution_given](const std::string& v) {
                     resolution_given = true;
                     return parseResolutions(v, s.resolutions);
                   });
@@ -200,14 +191,180 @@ int runBench(const std::vector<std::string>& args) {
   flags.addInt("workers", &s.workers,
                "render threads, and llvmpipe's LP_NUM_THREADS; 0 = all cores (default 0)", 0, 1024);
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
+  flags.addCustom("msaa", "N",
+                  "samples per pixel: 1, 2, 4 or 8 (default 1); with --vs llvmpipe, llvmpipe "
+                  "draws as many through a multisampled framebuffer object",
+                  [&s](const std::string& v) -> std::string {
+                    long long n = 0;
+                    if (!parseIntStrict(v, n) || n < 1 || n > kMaxSamples ||
+                        !isSampleCount(static_cast<int>(n)))
+                      return "samples per pixel must be 1, 2, 4 or 8, not '" + v + "'";
+                    s.msaa = static_cast<int>(n);
+                    return "";
+                  });
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
   flags.addChoice("vs", &s.versus, {"llvmpipe"},
                   "time the same frames on Mesa's llvmpipe too (needs a build with OSMesa)");
   flags.addSwitch("json", &s.json,
                   "print one JSON object per line: scene, resolution, width, height, triangles, "
-                  "frames, median_ms... and llvmpipe_median_ms, ratio with --vs");
+                  "frames, msaa, median_ms... and llvmpipe_median_ms, ratio with --vs");
   flags.addSwitch("all", &s.all, "every built-in scene at every standard resolution (the default)");
+}
 
+// Every scene is built or loaded before anything is timed, so a bad argument fails at once.
+Expected<std::vector<bench::BenchScene>> openScenes(const std::vector<std::string>& args,
+                                                    Shading shading, CullMode cull) {
+  std::vector<bench::BenchScene> scenes;
+  for (const std::string& arg : args) {
+    Expected<bench::BenchScene> scene = openScene(arg, shading);
+    if (!scene) return scene.error();
+    for (const std::string& warning : scene->warnings)
+      std::cerr << "tessera bench: warning: " << warning << "\n";
+    for (Object& object : scene->scene.objects) object.cull = cull;
+    scenes.push_back(std::move(*scene));
+  }
+  return scenes;
+}
+
+// The OSMesa reference on `workers` threads, drawing `msaa` samples per pixel. An llvmpipe that
+// cannot draw exactly as many fails here, before anything is timed: timing it at another count
+// would not be the same work.
+Expected<std::unique_ptr<bench::LlvmpipeReference>> makeReference(int workers, int msaa) {
+  // create() sets LP_NUM_THREADS to the worker count before llvmpipe starts its threads.
+  Expected<std::unique_ptr<bench::LlvmpipeReference>> reference =
+      bench::LlvmpipeReference::create(workers);
+  if (!reference) return reference;
+  if (Expected<void> sampled = (*reference)->setSamples(msaa); !sampled) return sampled.error();
+  if (!(*reference)->isLlvmpipe())
+    std::cerr << "tessera bench: warning: OSMesa renders with '" << (*reference)->renderer()
+              << "', not llvmpipe\n";
+  return reference;
+}
+
+// What one run of the benchmark draws with, for every scene and resolution.
+struct BenchRun {
+  const BenchSettings& settings;
+  CullMode cull;
+  int workers;  // the count in use (settings.workers, or the cores for 0)
+  Backend& renderer;
+  bench::LlvmpipeReference* reference;  // null without --vs
+  RenderOptions options;
+  Frame frame;
+};
+
+struct Measured {
+  Timing tessera, llvmpipe;  // llvmpipe: zero without a reference
+};
+
+// Times tessera, and the reference in turns with it, on one scene at one resolution.
+// `reference_loaded`: whether the reference holds this scene already.
+Expected<Measured> measure(BenchRun& run, bench::BenchScene& b, Resolution resolution,
+                           bool& reference_loaded) {
+  const BenchSettings& s = run.settings;
+  if (Expected<void> placed = placeView(b, s.camera, resolution); !placed) return placed.error();
+  run.options.width = resolution.width;
+  run.options.height = resolution.height;
+  auto drawTessera = [&] { run.renderer.render(b.scene, run.options, run.frame); };
+  std::vector<double> tessera_ms, llvmpipe_ms;
+  Measured measured;
+  if (!run.reference) {
+    timeFrames(b, s.warmup, 0, s.frames, drawTessera, tessera_ms);
+  } else {
+    if (!reference_loaded) {
+      if (Expected<void> loaded = run.reference->setScene(b.scene); !loaded) return loaded.error();
+      reference_loaded = true;
+    }
+    if (Expected<void> sized = run.reference->setResolution(resolution.width, resolution.height);
+        !sized)
+      return sized.error();
+    auto drawLlvmpipe = [&] { run.reference->render(b.scene); };
+    for (int first = 0; first < s.frames; first += kFramesPerRound) {
+      const int count = std::min(kFramesPerRound, s.frames - first);
+      const int warmup = first == 0 ? s.warmup : 1;
+      timeFrames(b, warmup, first, count, drawTessera, tessera_ms);
+      timeFrames(b, warmup, first, count, drawLlvmpipe, llvmpipe_ms);
+    }
+    measured.llvmpipe = summarize(llvmpipe_ms);
+  }
+  // A backend that failed (e.g. a device without the sample count) says why.
+  if (Expected<void> rendered = run.renderer.lastResult(); !rendered) return rendered.error();
+  measured.tessera = summarize(tessera_ms);
+  return measured;
+}
+
+// One line of output: a JSON object with --json, else a line of text.
+void printMeasured(const BenchRun& run, const bench::BenchScene& b, Resolution resolution,
+                   const Measured& m) {
+  const BenchSettings& s = run.settings;
+  const std::string size =
+      std::to_string(resolution.width) + "x" + std::to_string(resolution.height);
+  const size_t triangles = b.scene.triangleCount();
+  const double ratio = m.llvmpipe.median_ms / m.tessera.median_ms;
+  if (s.json) {
+    std::cout << "{\"scene\": " << jsonString(b.name) << ", \"resolution\": \"" << size
+              << "\", \"width\": " << resolution.width << ", \"height\": " << resolution.height
+              << ", \"triangles\": " << triangles << ", \"frames\": " << s.frames
+              << ", \"warmup_frames\": " << s.warmup << ", \"msaa\": " << s.msaa
+              << ", \"shading\": \"" << s.shading << "\", \"back_faces\": \""
+              << (run.cull == CullMode::kBack ? "culled" : "drawn")
+              << "\", \"backend\": " << jsonString(run.renderer.name())
+              << ", \"workers\": " << run.workers
+              << ", \"median_ms\": " << fixed(m.tessera.median_ms, 4)
+              << ", \"mean_ms\": " << fixed(m.tessera.mean_ms, 4)
+              << ", \"min_ms\": " << fixed(m.tessera.min_ms, 4)
+              << ", \"max_ms\": " << fixed(m.tessera.max_ms, 4);
+    if (run.reference)
+      std::cout << ", \"llvmpipe_median_ms\": " << fixed(m.llvmpipe.median_ms, 4)
+                << ", \"llvmpipe_mean_ms\": " << fixed(m.llvmpipe.mean_ms, 4)
+                << ", \"llvmpipe_min_ms\": " << fixed(m.llvmpipe.min_ms, 4)
+                << ", \"llvmpipe_max_ms\": " << fixed(m.llvmpipe.max_ms, 4)
+                << ", \"ratio\": " << fixed(ratio, 4)
+                << ", \"reference\": " << jsonString(run.reference->renderer())
+                << ", \"reference_version\": " << jsonString(run.reference->version());
+    std::cout << "}\n";
+  } else {
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "%-10s %10s %9zu triangles %5d frames %dx MSAA  tessera %9.3f ms", b.name.c_str(),
+                  size.c_str(), triangles, s.frames, s.msaa, m.tessera.median_ms);
+    std::cout << line;
+    if (run.reference) {
+      std::snprintf(line, sizeof line, "  llvmpipe %9.3f ms  ratio %6.2f", m.llvmpipe.median_ms,
+                    ratio);
+      std::cout << line;
+    }
+    std::cout << "\n";
+  }
+  std::cout << std::flush;
+}
+
+void printHeader(const BenchRun& run) {
+  const BenchSettings& s = run.settings;
+  std::cout << "# tessera bench: backend " << run.renderer.name() << ", " << run.workers
+            << (run.workers == 1 ? " worker" : " workers") << ", " << s.shading << " shading, "
+            << (run.cull == CullMode::kBack ? "back faces culled" : "back faces drawn") << ", "
+            << s.msaa << (s.msaa == 1 ? " sample" : " samples") << " per pixel, " << s.warmup
+            << " warm-up + " << s.frames << " timed frames, median\n";
+  if (run.reference)
+    std::cout << "# reference: " << run.reference->renderer() << ", " << run.reference->version()
+              << ", LP_NUM_THREADS=" << run.reference->threads() << "\n";
+  std::cout << std::flush;
+}
+
+}  // namespace
+
+int runBench(const std::vector<std::string>& args) {
+  BenchSettings s;
+  bool resolution_given = false;
+  FlagSet flags(
+      "tessera bench [SCENE|MODEL...] [flags]\n\n"
+      "Times frames of the built-in scenes (cube, bunny, dense, fill, textured) or of model files\n"
+      "and prints the median frame time, one line per scene and resolution. With no scene and no\n"
+      "--resolution it runs every built-in scene at 640x480, 1920x1080 and 3840x2160. With --vs\n"
+      "llvmpipe the same frames are drawn by Mesa's llvmpipe (OpenGL through OSMesa) on as many\n"
+      "threads, the two taking turns in rounds of 5 frames, and ratio = llvmpipe median / tessera\n"
+      "median (above 1: tessera is faster).");
+  addBenchFlags(flags, s, resolution_given);
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {
     std::cout << flags.usage();
@@ -227,143 +384,41 @@ int runBench(const std::vector<std::string>& args) {
     if (Expected<Camera> camera = makeCamera(s.camera, unit, 1.0f); !camera)
       return usageError(camera.error().message);
   }
-  std::vector<std::string> scene_args = *positional;
-  if (scene_args.empty()) scene_args = bench::builtinSceneNames();
+  auto failure = [](const Error& error) {
+    printError("bench", error.message);
+    return kExitFailure;
+  };
   if (s.resolutions.empty()) s.resolutions = kStandardResolutions;
-  const Shading shading = shadingFromName(s.shading);
   const CullMode cull = s.backface == "visible" ? CullMode::kNone : CullMode::kBack;
   const int workers = s.workers > 0
                           ? s.workers
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-
-  // Every scene is built or loaded before anything is timed, so a bad argument fails at once.
-  std::vector<bench::BenchScene> scenes;
-  for (const std::string& arg : scene_args) {
-    Expected<bench::BenchScene> scene = openScene(arg, shading);
-    if (!scene) {
-      printError("bench", scene.error().message);
-      return kExitFailure;
-    }
-    for (const std::string& warning : scene->warnings)
-      std::cerr << "tessera bench: warning: " << warning << "\n";
-    for (Object& object : scene->scene.objects) object.cull = cull;
-    scenes.push_back(std::move(*scene));
-  }
-
+  Expected<std::vector<bench::BenchScene>> scenes =
+      openScenes(positional->empty() ? bench::builtinSceneNames() : *positional,
+                 shadingFromName(s.shading), cull);
+  if (!scenes) return failure(scenes.error());
   std::unique_ptr<bench::LlvmpipeReference> reference;
   if (s.versus == "llvmpipe") {
-    // create() sets LP_NUM_THREADS to the worker count before llvmpipe starts its threads.
-    Expected<std::unique_ptr<bench::LlvmpipeReference>> created =
-        bench::LlvmpipeReference::create(workers);
-    if (!created) {
-      printError("bench", created.error().message);
-      return kExitFailure;
-    }
+    Expected<std::unique_ptr<bench::LlvmpipeReference>> created = makeReference(workers, s.msaa);
+    if (!created) return failure(created.error());
     reference = std::move(*created);
-    if (!reference->isLlvmpipe())
-      std::cerr << "tessera bench: warning: OSMesa renders with '" << reference->renderer()
-                << "', not llvmpipe\n";
   }
   Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
-  if (!backend) {
-    printError("bench", backend.error().message);
-    return kExitFailure;
-  }
-  Backend& renderer = **backend;
+  if (!backend) return failure(backend.error());
 
-  if (!s.json) {
-    std::cout << "# tessera bench: backend " << renderer.name() << ", " << workers
-              << (workers == 1 ? " worker" : " workers") << ", " << s.shading << " shading, "
-              << (cull == CullMode::kBack ? "back faces culled" : "back faces drawn") << ", "
-              << s.warmup << " warm-up + " << s.frames << " timed frames, median\n";
-    if (reference)
-      std::cout << "# reference: " << reference->renderer() << ", " << reference->version()
-                << ", LP_NUM_THREADS=" << reference->threads() << "\n";
-    std::cout << std::flush;
-  }
-
-  RenderOptions options;
-  options.depth = false;
-  options.ids = false;
-  options.normals = false;
-  options.lines = false;
-  Frame frame;
-  for (bench::BenchScene& b : scenes) {
+  BenchRun run{s, cull, workers, **backend, reference.get(), {}, {}};
+  run.options.depth = false;
+  run.options.ids = false;
+  run.options.normals = false;
+  run.options.lines = false;
+  run.options.msaa = s.msaa;
+  if (!s.json) printHeader(run);
+  for (bench::BenchScene& b : *scenes) {
     bool reference_loaded = false;
     for (const Resolution& resolution : s.resolutions) {
-      if (Expected<void> placed = placeView(b, s.camera, resolution); !placed) {
-        printError("bench", placed.error().message);
-        return kExitFailure;
-      }
-      options.width = resolution.width;
-      options.height = resolution.height;
-      auto drawTessera = [&] { renderer.render(b.scene, options, frame); };
-      std::vector<double> tessera_ms, llvmpipe_ms;
-      if (!reference) timeFrames(b, s.warmup, 0, s.frames, drawTessera, tessera_ms);
-
-      Timing llvmpipe;
-      if (reference) {
-        if (!reference_loaded) {
-          if (Expected<void> loaded = reference->setScene(b.scene); !loaded) {
-            printError("bench", loaded.error().message);
-            return kExitFailure;
-          }
-          reference_loaded = true;
-        }
-        if (Expected<void> sized = reference->setResolution(resolution.width, resolution.height);
-            !sized) {
-          printError("bench", sized.error().message);
-          return kExitFailure;
-        }
-        auto drawLlvmpipe = [&] { reference->render(b.scene); };
-        for (int first = 0; first < s.frames; first += kFramesPerRound) {
-          const int count = std::min(kFramesPerRound, s.frames - first);
-          const int warmup = first == 0 ? s.warmup : 1;
-          timeFrames(b, warmup, first, count, drawTessera, tessera_ms);
-          timeFrames(b, warmup, first, count, drawLlvmpipe, llvmpipe_ms);
-        }
-        llvmpipe = summarize(llvmpipe_ms);
-      }
-      const Timing tessera = summarize(tessera_ms);
-
-      const std::string size =
-          std::to_string(resolution.width) + "x" + std::to_string(resolution.height);
-      const size_t triangles = b.scene.triangleCount();
-      const double ratio = llvmpipe.median_ms / tessera.median_ms;
-      if (s.json) {
-        std::cout << "{\"scene\": " << jsonString(b.name) << ", \"resolution\": \"" << size
-                  << "\", \"width\": " << resolution.width << ", \"height\": " << resolution.height
-                  << ", \"triangles\": " << triangles << ", \"frames\": " << s.frames
-                  << ", \"warmup_frames\": " << s.warmup << ", \"shading\": \"" << s.shading
-                  << "\", \"back_faces\": \"" << (cull == CullMode::kBack ? "culled" : "drawn")
-                  << "\", \"backend\": " << jsonString(renderer.name())
-                  << ", \"workers\": " << workers
-                  << ", \"median_ms\": " << fixed(tessera.median_ms, 4)
-                  << ", \"mean_ms\": " << fixed(tessera.mean_ms, 4)
-                  << ", \"min_ms\": " << fixed(tessera.min_ms, 4)
-                  << ", \"max_ms\": " << fixed(tessera.max_ms, 4);
-        if (reference)
-          std::cout << ", \"llvmpipe_median_ms\": " << fixed(llvmpipe.median_ms, 4)
-                    << ", \"llvmpipe_mean_ms\": " << fixed(llvmpipe.mean_ms, 4)
-                    << ", \"llvmpipe_min_ms\": " << fixed(llvmpipe.min_ms, 4)
-                    << ", \"llvmpipe_max_ms\": " << fixed(llvmpipe.max_ms, 4)
-                    << ", \"ratio\": " << fixed(ratio, 4)
-                    << ", \"reference\": " << jsonString(reference->renderer())
-                    << ", \"reference_version\": " << jsonString(reference->version());
-        std::cout << "}\n";
-      } else {
-        char line[512];
-        std::snprintf(line, sizeof line, "%-10s %10s %9zu triangles %5d frames  tessera %9.3f ms",
-                      b.name.c_str(), size.c_str(), triangles, s.frames, tessera.median_ms);
-        std::cout << line;
-        if (reference) {
-          std::snprintf(line, sizeof line, "  llvmpipe %9.3f ms  ratio %6.2f", llvmpipe.median_ms,
-                        ratio);
-          std::cout << line;
-        }
-        std::cout << "\n";
-      }
-      std::cout << std::flush;
+      Expected<Measured> measured = measure(run, b, resolution, reference_loaded);
+      if (!measured) return failure(measured.error());
+      printMeasured(run, b, resolution, *measured);
     }
   }
   return kExitOk;

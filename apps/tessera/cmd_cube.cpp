@@ -11,6 +11,7 @@
 #include "backends.h"
 #include "commands.h"
 #include "flags.h"
+#include "sampling_flags.h"
 
 namespace tessera::cli {
 
@@ -27,6 +28,7 @@ struct CubeSettings {
   std::string backend = "cpu";
   int device = -1;
   bool axes = false;
+  SamplingSettings sampling;
 };
 
 Scene makeCubeScene(const CubeSettings& settings) {
@@ -62,7 +64,7 @@ int runCube(const std::vector<std::string>& args) {
   CubeSettings s;
   FlagSet flags(
       "tessera cube [-w 480] [-h 480] [-fps 30] [-dur 4s] [-fov 50] [-out cube.gif] "
-      "[-workers 0] [-axes]",
+      "[-workers 0] [-axes] [-msaa 1] [-samples 1]",
       /*single_dash=*/true);
   flags.addInt("w|width", &s.width, "image width in pixels (default 480)", 1, 16384);
   flags.addInt("h|height", &s.height, "image height in pixels (default 480)", 1, 16384);
@@ -76,6 +78,7 @@ int runCube(const std::vector<std::string>& args) {
   flags.addSwitch("axes", &s.axes, "draw the world axes and the cube's own axes");
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
+  addSamplingFlags(flags, s.sampling);  // the demo keeps its look: one sample unless asked
 
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {
@@ -117,6 +120,7 @@ int runCube(const std::vector<std::string>& args) {
   options.height = s.height;
   options.depth = false;
   options.ids = false;
+  Accumulator accumulator;
   Frame frame;
   Progress progress("cube: frame", static_cast<int>(frame_count));
   for (long long i = 0; i < frame_count; ++i) {
@@ -124,8 +128,9 @@ int runCube(const std::vector<std::string>& args) {
     const float angle = 2.0f * kPi * static_cast<float>(i) / static_cast<float>(frame_count);
     scene.objects[0].transform.rotation =
         quat::fromAxisAngle({0, 1, 0}, angle) * quat::fromAxisAngle({1, 0, 0}, 0.35f);
-    renderer.render(scene, options, frame);
-    if (Expected<void> rendered = renderer.lastResult(); !rendered) {
+    if (Expected<void> rendered =
+            renderSampled(renderer, accumulator, scene, options, s.sampling, frame);
+        !rendered) {
       printError("cube", rendered.error().message);
       return kExitFailure;
     }

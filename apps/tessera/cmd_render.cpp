@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "flags.h"
 #include "model_scene.h"
+#include "sampling_flags.h"
 #include "view_setup.h"
 
 namespace tessera::cli {
@@ -39,6 +40,7 @@ struct RenderSettings {
   bool axes = false;
   bool info = false;
   std::string texture;
+  SamplingSettings sampling{.msaa = 4};  // the image a user expects: anti-aliased
 };
 
 enum class OutputKind { kPng, kVideo, kSequence };  // kVideo: .gif or .mp4
@@ -54,6 +56,7 @@ Expected<void> writeStill(const std::filesystem::path& path, const Frame& frame,
   if (aov == "id") return io::writeIdPng(path, frame);
   if (aov == "depth") return io::writeDepthPng(path, frame);
   if (aov == "normal") return io::writeNormalPng(path, frame);
+  if (aov == "coverage") return io::writeCoveragePng(path, frame);
   return io::writePngRgba8(path, frame.width, frame.height, frame.color.data());
 }
 
@@ -92,8 +95,10 @@ int runRender(const std::vector<std::string>& args) {
                   "flat, smooth (per-pixel), gouraud (per-vertex) or unlit (default smooth)");
   flags.addChoice("backface-type", &s.backface, {"visible", "hidden"},
                   "draw or cull back faces (default: glTF materials say, else visible)");
-  flags.addChoice("aov", &s.aov, {"color", "id", "depth", "normal"},
-                  "what to write: colour, triangle id, window depth or world normal");
+  flags.addChoice("aov", &s.aov, {"color", "id", "depth", "normal", "coverage"},
+                  "what to write: colour, triangle id, window depth, world normal (all three at "
+                  "the pixel centre, whatever --msaa says) or coverage (covered samples)");
+  addSamplingFlags(flags, s.sampling);
   flags.addInt("turntable", &s.turntable, "frames of one full turn about the up axis", 1, 100000);
   flags.addInt("fps", &s.fps, "frames per second of a turntable (default 30)", 1, 100);
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
@@ -207,6 +212,13 @@ int runRender(const std::vector<std::string>& args) {
   options.ids = s.aov == "id" || s.aov == "normal";
   options.normals = s.aov == "normal";
   options.lines = s.aov == "color";
+  options.coverage = s.aov == "coverage";
+  // The id, depth and normal AOVs are the pixel centre's: one sample, no jitter. Coverage is
+  // frame 0's (not jittered) at the --msaa count.
+  SamplingSettings sampling = s.sampling;
+  if (s.aov != "color") sampling.samples = 1;
+  if (s.aov == "id" || s.aov == "depth" || s.aov == "normal") sampling.msaa = 1;
+  Accumulator accumulator;
   Frame frame;
   const int frame_count = std::max(s.turntable, 1);
   std::unique_ptr<io::FrameSink> sink;
@@ -227,8 +239,9 @@ int runRender(const std::vector<std::string>& args) {
         up, 2.0f * kPi * static_cast<float>(i) / static_cast<float>(frame_count));
     scene.objects[0].transform.rotation = turn;
     scene.objects[0].transform.translation = center - rotate(turn, center);
-    renderer.render(scene, options, frame);
-    if (Expected<void> rendered = renderer.lastResult(); !rendered) {
+    if (Expected<void> rendered =
+            renderSampled(renderer, accumulator, scene, options, sampling, frame);
+        !rendered) {
       printError("render", rendered.error().message);
       return kExitFailure;
     }

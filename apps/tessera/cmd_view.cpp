@@ -9,6 +9,7 @@
 
 #include <tessera/io/image_loader.h>
 #include <tessera/io/model_loader.h>
+#include <tessera/render/sampling.h>
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
 
@@ -37,6 +38,7 @@ struct ViewSettings {
   std::string texture;
   std::string backend = "cpu";
   int device = -1;
+  int msaa = 4;  // what `tessera render` makes by default
 };
 
 // The built-in model: the demo's orange cube, flat-shaded.
@@ -55,7 +57,7 @@ int runView(const std::vector<std::string>& args) {
   ViewSettings s;
   FlagSet flags(
       "tessera view [MODEL] [-w 800] [-h 600] [-fps 60] [-fov 50] [-stats] [-axes] "
-      "[-fullscreen] [-workers 0] [-texture PATH] [-backend cpu]",
+      "[-fullscreen] [-workers 0] [-texture PATH] [-backend cpu] [-msaa 4]",
       /*single_dash=*/true);
   flags.addInt("w|width", &s.width, "window width (default 800)", 1, 16384);
   flags.addInt("h|height", &s.height, "window height (default 600)", 1, 16384);
@@ -68,13 +70,24 @@ int runView(const std::vector<std::string>& args) {
   flags.addString("texture", &s.texture, "an image used as the albedo of every material");
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
+  flags.addCustom(
+      "msaa", "N", "samples per pixel: 1, 2, 4 or 8 (default 4; Shift+F3 cycles)",
+      [&s](const std::string& v) -> std::string {
+        long long n = 0;
+        if (!parseIntStrict(v, n) || n < 1 || n > 8 || !isSampleCount(static_cast<int>(n)))
+          return "must be 1, 2, 4 or 8, got '" + v + "'";
+        s.msaa = static_cast<int>(n);
+        return "";
+      });
 
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {
     std::cout << flags.usage()
               << "\nMouse: left drag orbits, wheel zooms, middle or shift + left drag pans.\n"
                  "Keys: 1 front, 3 right, 7 top, 9 isometric, Enter resets the camera,\n"
-                 "F1 stats, F2 world axes, F3 object axes, F12 screenshot, Escape quits.\n"
+                 "F1 stats, F2 world axes, F3 object axes, F10 sub-pixel jitter, F12 screenshot,\n"
+                 "Shift+F3 cycles MSAA 1/2/4/8, Shift+F12 temporal reprojection (on with\n"
+                 "jitter), H lists the keys in the window, Escape quits.\n"
                  "Drop a model file on the window to load it.\n";
     return kExitOk;
   }
@@ -153,6 +166,7 @@ int runView(const std::vector<std::string>& args) {
   options.stats = s.stats;
   options.world_axes = s.axes;
   options.fullscreen = s.fullscreen;
+  options.msaa = s.msaa;
   options.view_direction = threeQuarterDirection({0, 1, 0});
   if (Expected<void> ran = viewer::runViewer(options, **backend, hooks, model_path); !ran) {
     printError("view", ran.error().message);

@@ -43,6 +43,7 @@ struct PngLayout {
 constexpr PngLayout kRgb8{SPNG_COLOR_TYPE_TRUECOLOR, 8, 3};
 constexpr PngLayout kRgba8{SPNG_COLOR_TYPE_TRUECOLOR_ALPHA, 8, 4};
 constexpr PngLayout kGray16{SPNG_COLOR_TYPE_GRAYSCALE, 16, 1};
+constexpr PngLayout kGray8{SPNG_COLOR_TYPE_GRAYSCALE, 8, 1};
 
 // Encodes row by row: fill_row(y, row) fills one row in the layout's format (16-bit samples in
 // host byte order, which SPNG_FMT_PNG converts), so no whole-image copy is ever made.
@@ -213,6 +214,20 @@ Expected<void> writeNormalPng(const std::filesystem::path& path, const Frame& fr
         row[3 * x + 1] = drawn ? unitToByte(n.y * 0.5f + 0.5f) : 0;
         row[3 * x + 2] = drawn ? unitToByte(n.z * 0.5f + 0.5f) : 0;
       }
+    });
+  });
+}
+
+Expected<void> writeCoveragePng(const std::filesystem::path& path, const Frame& frame) {
+  if (frame.coverage.empty()) {
+    return makeError("cannot write '" + path.string() +
+                     "': coverage was not rendered (set RenderOptions::coverage)");
+  }
+  checkFrameBuffer(frame, frame.coverage.size(), "coverage");
+  return writeAtomically(path, [&](AtomicFile& file) {
+    return encodePng(file, frame.width, frame.height, kGray8, [&](int y, uint8_t* row) {
+      std::memcpy(row, frame.coverage.data() + static_cast<size_t>(y) * frame.width,
+                  static_cast<size_t>(frame.width));
     });
   });
 }

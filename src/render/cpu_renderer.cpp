@@ -28,6 +28,7 @@
 #include "render/fixed_point.h"
 #include "render/kernels.h"
 #include "render/lines.h"
+#include "render/msaa.h"
 #include "render/raster.h"
 #include "render/replication.h"
 #include "render/resolve.h"
@@ -95,12 +96,18 @@ struct CpuRenderer::State {
   size_t chunk_count = 0;
   std::vector<std::unique_ptr<TileVisibility>> tiles;  // one per worker
   std::vector<std::unique_ptr<ShadedTile>> shaded;     // one per worker
+  std::vector<std::unique_ptr<SampleTiles>> sampled;   // one per worker, made for MSAA
+  std::vector<SampleShift> shifts;                     // this frame's sample layers
   std::vector<uint8_t> tile_empty;                     // this frame's: no triangle binned
   LineList lines;
   PipelineStats stats;
 
   void setupChunk(const Scene& scene, const VertexBuffer& vertices, const TileGrid& grid,
-                  const GuardBand& guard, bool want_normals, TriangleChunk& chunk) const;
+                  const GuardBand& guard, bool want_normals, int32_t sample_reach,
+                  TriangleChunk& chunk) const;
+  // Raster, shade and resolve of one tile with several samples per pixel (msaa.h).
+  void renderSampledTile(const Scene& scene, const RenderOptions& options, int tile, int worker,
+                         const TileGrid& grid, bool with_centre, bool plain, Frame& frame);
 };
 
 namespace {
@@ -146,7 +153,7 @@ const PipelineStats& CpuRenderer::lastStats() const {
 
 void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vertices,
                                     const TileGrid& grid, const GuardBand& guard, bool want_normals,
-                                    TriangleChunk& chunk) const {
+                                    int32_t sample_reach, TriangleChunk& chunk) const {
   chunk.size = 0;
   chunk.bins.reset(grid.tileCount(), pool.size() > 1);
   chunk.culled = 0;
@@ -182,8 +189,8 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
   auto flush = [&] {
     if (batch.count == 0) return;
     batch.padLanes();
-    setup_batch(batch, grid.width, grid.height, chunk.raster.data(), chunk.wide.data(),
-                chunk.shade.data());
+    setup_batch(batch, grid.width, grid.height, sample_reach, chunk.raster.data(),
+                chunk.wide.data(), chunk.shade.data());
     batch.count = 0;
   };
 
@@ -209,6 +216,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
     ctx.has_uv = has_uv;
     ctx.has_color = has_color;
     ctx.want_normals = want_normals;
+    ctx.sample_reach = sample_reach;
     // Flat shading lights the face; so do vertices of a mesh without normals.
     const bool needs_face_normal =
         object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;
@@ -324,7 +332,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
       CullGroup group;
       if (stop - t < kGroup ||
           !cull_group(&mesh.indices[local * 3], vertex_count, mesh_vertices.screen, outcodes,
-                      grid.width, grid.height, object.cull, group)) {
+                      grid.width, grid.height, object.cull, sample_reach, group)) {
         drawOne(t++);
         continue;
       }
@@ -352,20 +360,68 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
 #endif
 }
 
+void CpuRenderer::State::renderSampledTile(const Scene& scene, const RenderOptions& options,
+                                           int tile, int worker, const TileGrid& grid,
+                                           bool with_centre, bool plain, Frame& frame) {
+  const int tx = tile % grid.columns, ty = tile / grid.columns;
+  const int x0 = tx * kTileSize, y0 = ty * kTileSize;
+  const int width = std::min(kTileSize, options.width - x0);
+  const int height = std::min(kTileSize, options.height - y0);
+  SampleTiles& st = *sampled[static_cast<size_t>(worker)];
+  const int layer_count = static_cast<int>(shifts.size());
+  TileVisibility* layers[kMaxSamples + 1];
+  for (int i = 0; i < layer_count; ++i) {
+    layers[i] = &st.layer(i);
+    layers[i]->clear(x0, y0, width, height);
+  }
+  kernels.raster_tile_samples(chunks, chunk_count, tile, layers, shifts.data(), layer_count);
+  kernels.combine_samples(st, options.msaa, with_centre);
+  const MsaaShading msaa{&st, options.msaa, samplePattern(options.msaa).data(),
+                         scene.background.xyz()};
+  ShadedTile& out = *shaded[static_cast<size_t>(worker)];
+  kernels.shade_tile(*st.primary, chunks, chunk_count, scene, options.normals, plain,
+                     packSrgba8(scene.background), &msaa, out);
+  // The AOVs are the centre layer's: the same as one sample gives.
+  resolveTile(with_centre ? *layers[options.msaa] : *st.primary, out, chunks, frame);
+  if (options.coverage) resolveCoverage(*st.primary, st.covered, options.msaa, frame);
+}
+
 void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
   TESSERA_CHECK(options.width > 0 && options.height > 0 && options.width <= kMaxViewport &&
                 options.height <= kMaxViewport)
       << "viewport " << options.width << "x" << options.height << " is outside 1.." << kMaxViewport;
+  TESSERA_CHECK(isSampleCount(options.msaa))
+      << options.msaa << " samples per pixel: not 1, 2, 4 or 8";
   State& s = *state_;
   const bool draws_lines =
       options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
                         std::any_of(scene.objects.begin(), scene.objects.end(),
                                     [](const Object& o) { return o.show_axes; }));
   frame.resize(options.width, options.height, options.depth || draws_lines, options.ids,
-               options.normals);
+               options.normals, options.coverage);
 
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
-  const float4x4 view_projection = scene.camera.projection(aspect) * scene.camera.view();
+  const float4x4 view_projection =
+      jitteredProjection(scene.camera.projection(aspect), options.jitter, options.width,
+                         options.height) *
+      scene.camera.view();
+  // With MSAA the pixel centres are a layer of their own, rasterized only for what reads them.
+  const bool sampled = options.msaa > 1;
+  const bool with_centre =
+      sampled && (options.depth || options.ids || options.normals || draws_lines);
+  const int32_t sample_reach = sampled ? kSampleReach : 0;
+  if (sampled) {
+    s.shifts.clear();
+    for (const SamplePosition& p : samplePattern(options.msaa)) {
+      const int32_t dx = p.x - kSubpixelHalf, dy = p.y - kSubpixelHalf;
+      constexpr float kToPixels = 1.0f / static_cast<float>(kSubpixelOne);
+      s.shifts.push_back(
+          {dx, dy, static_cast<float>(dx) * kToPixels, static_cast<float>(dy) * kToPixels});
+    }
+    if (with_centre) s.shifts.push_back({});
+    if (s.sampled.empty())
+      for (int i = 0; i < s.pool.size(); ++i) s.sampled.push_back(std::make_unique<SampleTiles>());
+  }
 
   // Per-object constants, vertex and triangle bases.
   s.objects.resize(scene.objects.size());
@@ -433,7 +489,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       s.transformed[w].ms = elapsed_ms(start, Clock::now());
     }
     s.setupChunk(scene, s.vertex_buffers[replicate ? w : 0], grid, guard, options.normals,
-                 s.chunks[c]);
+                 sample_reach, s.chunks[c]);
   });
 
   const Clock::time_point t_setup = Clock::now();
@@ -462,13 +518,18 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
                        background, frame);
       return;
     }
+    if (sampled) {
+      s.renderSampledTile(scene, options, tile, worker, grid, with_centre, plain, frame);
+      return;
+    }
     TileVisibility& visibility = *s.tiles[static_cast<size_t>(worker)];
     visibility.clear(x0, y0, width, height);
     s.kernels.raster_tile(s.chunks, s.chunk_count, tile, visibility);
     ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
     s.kernels.shade_tile(visibility, s.chunks, s.chunk_count, scene, options.normals, plain,
-                         background, shaded);
+                         background, nullptr, shaded);
     resolveTile(visibility, shaded, s.chunks, frame);
+    if (options.coverage) resolveCoverage(visibility, nullptr, 1, frame);
   });
 
   const Clock::time_point t_tiles = Clock::now();
@@ -482,7 +543,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     for (size_t i = 0; i < scene.objects.size(); ++i)
       if (scene.objects[i].show_axes)
         appendAxes(s.lines, s.objects[i].model, scene.objects[i].axes_length);
-    drawLines(s.lines, view_projection, frame);
+    drawLines(s.lines, view_projection, frame, sampled);
   }
 
   const Clock::time_point t_lines = Clock::now();

@@ -4,6 +4,7 @@
 // produces the same bits.
 #pragma once
 
+#include "render/msaa.h"
 #include "render/raster.h"
 #include "render/setup.h"
 #include "render/shade.h"
@@ -22,23 +23,34 @@ const char* isaName(Isa isa);
 using RasterTileFn = void (*)(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
                               int tile_index, TileVisibility& tile);
 
+// The same into several layers, layer i with its samples at shifts[i] (raster_kernel.h).
+using RasterTileSamplesFn = void (*)(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                                     int tile_index, TileVisibility* const* layers,
+                                     const SampleShift* shifts, int layer_count);
+
+// SampleTiles' primary keys, mixed pixels and covered counts from its layers (msaa_kernel.h).
+using CombineSamplesFn = void (*)(SampleTiles& tiles, int samples, bool with_centre);
+
 // Sets up the queued triangles of a batch into their chunk's records (setup_kernel.h).
-using SetupBatchFn = void (*)(SetupBatch& batch, int width, int height, RasterTriangle* raster,
-                              RasterWide* wide, ShadeTriangle* shade);
+// `sample_reach`: SetupContext::sample_reach.
+using SetupBatchFn = void (*)(SetupBatch& batch, int width, int height, int32_t sample_reach,
+                              RasterTriangle* raster, RasterWide* wide, ShadeTriangle* shade);
 
 // Culls the eight triangles whose vertex indices are indices[0..23] (setup_kernel.h). False, with
 // nothing written, when an index is not below vertex_count: the caller takes them one at a time.
 using CullGroupFn = bool (*)(const uint32_t* indices, size_t vertex_count,
                              const ScreenVertex* screen, const uint16_t* outcodes, int width,
-                             int height, CullMode cull, CullGroup& out);
+                             int height, CullMode cull, int32_t sample_reach, CullGroup& out);
 
 // Every kernel compiled for one instruction set.
 struct Kernels {
-  TransformVerticesFn transform_vertices;  // vertex_kernel.h
-  CullGroupFn cull_group;                  // setup_kernel.h
-  SetupBatchFn setup_batch;                // setup_kernel.h
-  RasterTileFn raster_tile;                // raster_kernel.h
-  ShadeTileFn shade_tile;                  // shade_kernel.h
+  TransformVerticesFn transform_vertices;   // vertex_kernel.h
+  CullGroupFn cull_group;                   // setup_kernel.h
+  SetupBatchFn setup_batch;                 // setup_kernel.h
+  RasterTileFn raster_tile;                 // raster_kernel.h
+  ShadeTileFn shade_tile;                   // shade_kernel.h
+  RasterTileSamplesFn raster_tile_samples;  // raster_kernel.h
+  CombineSamplesFn combine_samples;         // msaa_kernel.h
 };
 
 Kernels kernelsFor(Isa isa);

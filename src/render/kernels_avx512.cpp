@@ -8,6 +8,7 @@
 namespace tessera::render {
 
 const Kernels kKernelsAvx512 = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
-                                rasterTileKernel, shadeTileKernel};
+                                rasterTileKernel,        shadeTileKernel, rasterTileSamplesKernel,
+                                combineSamplesKernel};
 
 }  // namespace tessera::render

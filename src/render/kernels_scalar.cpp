@@ -9,6 +9,7 @@
 namespace tessera::render {
 
 const Kernels kKernelsScalar = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
-                                rasterTileKernel, shadeTileKernel};
+                                rasterTileKernel,        shadeTileKernel, rasterTileSamplesKernel,
+                                combineSamplesKernel};
 
 }  // namespace tessera::render

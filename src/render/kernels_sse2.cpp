@@ -8,6 +8,7 @@
 namespace tessera::render {
 
 const Kernels kKernelsSse2 = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
-                              rasterTileKernel, shadeTileKernel};
+                              rasterTileKernel,        shadeTileKernel, rasterTileSamplesKernel,
+                              combineSamplesKernel};
 
 }  // namespace tessera::render

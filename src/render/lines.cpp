@@ -46,24 +46,60 @@ bool clipSegment(float4& a, float4& b) {
 
 }  // namespace
 
-void drawLines(const LineList& lines, const float4x4& view_projection, Frame& frame) {
+namespace {
+
+// Mixes `color` (linear) into pixel (x, y) with weight `a`, where z is nearer than the depth.
+void blendPixel(Frame& frame, int x, int y, float z, float3 color, float a) {
+  if (x < 0 || y < 0 || x >= frame.width || y >= frame.height || a <= 0.0f) return;
+  const size_t index = static_cast<size_t>(y) * frame.width + x;
+  if (!(z < frame.depth[index])) return;
+  const uint32_t old = frame.color[index];
+  uint32_t mixed = old & 0xff000000u;
+  for (int k = 0; k < 3; ++k) {
+    const float under = decodeSrgb8(static_cast<uint8_t>(old >> (8 * k)));
+    mixed |= static_cast<uint32_t>(encodeSrgb8(under + (color[k] - under) * a)) << (8 * k);
+  }
+  frame.color[index] = mixed;
+}
+
+}  // namespace
+
+void drawLines(const LineList& lines, const float4x4& view_projection, Frame& frame,
+               bool antialiased) {
   const float w = static_cast<float>(frame.width), h = static_cast<float>(frame.height);
   for (size_t i = 0; i + 1 < lines.points.size(); i += 2) {
     float4 a = view_projection * float4{lines.points[i], 1.0f};
     float4 b = view_projection * float4{lines.points[i + 1], 1.0f};
     if (!clipSegment(a, b)) continue;
-    const uint32_t color = packSrgba8(float4{lines.colors[i / 2], 1.0f});
+    const float3 linear = lines.colors[i / 2];
+    const uint32_t color = packSrgba8(float4{linear, 1.0f});
     auto window = [&](float4 p) {
       return float3{(p.x / p.w * 0.5f + 0.5f) * w, (0.5f - p.y / p.w * 0.5f) * h,
                     p.z / p.w * 0.5f + 0.5f};
     };
     const float3 sa = window(a), sb = window(b);
     if (!isFinite(sa) || !isFinite(sb)) continue;
+    const bool x_major = std::fabs(sb.x - sa.x) >= std::fabs(sb.y - sa.y);
     const float steps = std::ceil(std::max(std::fabs(sb.x - sa.x), std::fabs(sb.y - sa.y)));
     const int n = static_cast<int>(std::min(steps, 4.0f * (w + h)));
     for (int s = 0; s <= n; ++s) {
       const float t = n > 0 ? static_cast<float>(s) / n : 0.0f;
       const float3 p = lerp(sa, sb, t);
+      if (antialiased) {
+        // The two pixel centres across the line nearest p, by their distance from it.
+        const float across = (x_major ? p.y : p.x) - 0.5f;
+        const float low = std::floor(across), f = across - low;
+        const int along = static_cast<int>(std::floor(x_major ? p.x : p.y));
+        const int first = static_cast<int>(low);
+        if (x_major) {
+          blendPixel(frame, along, first, p.z, linear, 1.0f - f);
+          blendPixel(frame, along, first + 1, p.z, linear, f);
+        } else {
+          blendPixel(frame, first, along, p.z, linear, 1.0f - f);
+          blendPixel(frame, first + 1, along, p.z, linear, f);
+        }
+        continue;
+      }
       const int x = static_cast<int>(std::floor(p.x)), y = static_cast<int>(std::floor(p.y));
       if (x < 0 || y < 0 || x >= frame.width || y >= frame.height) continue;
       const size_t index = static_cast<size_t>(y) * frame.width + x;

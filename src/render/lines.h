@@ -13,7 +13,9 @@ namespace tessera::render {
 void appendAxes(LineList& lines, const float4x4& frame_matrix, float length);
 
 // Draws each segment (one pixel wide, clipped to the view frustum) where it is nearer than the
-// frame's depth.
-void drawLines(const LineList& lines, const float4x4& view_projection, Frame& frame);
+// frame's depth. Antialiased (with MSAA), each step along the line's major axis covers the two
+// pixels nearest it across, weighted by distance and blended in linear light.
+void drawLines(const LineList& lines, const float4x4& view_projection, Frame& frame,
+               bool antialiased = false);
 
 }  // namespace tessera::render

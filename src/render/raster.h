@@ -63,4 +63,11 @@ struct TileVisibility {
   }
 };
 
+// Where one sample layer's samples lie: their offset from the pixel centre, in 1/256 pixel and
+// in pixels (sampling.h's positions less the centre).
+struct SampleShift {
+  int32_t dx = 0, dy = 0;
+  float pixels_x = 0, pixels_y = 0;
+};
+
 }  // namespace tessera::render

@@ -288,8 +288,10 @@ TESSERA_LANES_INLINE bool advance(const std::vector<TriangleChunk>& chunks, size
   return false;
 }
 
-void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
-                      TileVisibility& tile) {
+// Calls draw(raster, wide, key) for every triangle binned to the tile, in submission order.
+template <typename Draw>
+TESSERA_LANES_INLINE void walkTileBins(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                                       int tile_index, Draw draw) {
   // Every chunk's list for this tile, all at once (each is a line or two, written by setup on
   // either core), and where the next tile's lists are kept, which this worker most likely takes
   // next: walked one after another, each list was a miss of its own.
@@ -327,9 +329,156 @@ void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_cou
       ahead_valid = advance(chunks, chunk_count, tile_index, ahead);
     }
     const TriangleChunk& chunk = chunks[at.chunk];
-    rasterTriangle(chunk.raster[*at.it], chunk.wide[*at.it],
-                   makeKey(static_cast<uint32_t>(at.chunk), *at.it), tile);
+    draw(chunk.raster[*at.it], chunk.wide[*at.it],
+         makeKey(static_cast<uint32_t>(at.chunk), *at.it));
   } while (advance(chunks, chunk_count, tile_index, at));
+}
+
+void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
+                      TileVisibility& tile) {
+  walkTileBins(
+      chunks, chunk_count, tile_index,
+      [&](const RasterTriangle& t, const RasterWide& w, uint32_t key)
+          __attribute__((always_inline)) { rasterTriangle(t, w, key, tile); });
+}
+
+// A triangle's coverage and depth at one sample of every pixel: the triangle moved by the
+// sample's offset from the pixel centre (-offset), rasterized at pixel centres. The edge values
+// at the centre of the moved triangle are the original's at the sample, exactly: a and b stay, c
+// (or a small triangle's corner values) take a * dx + b * dy, and the depth plane's origin moves
+// by the offset in pixels. The record's box holds every pixel any sample may cover (setup grows
+// it by kSampleReach); the moved triangle's own box, from its snapped vertices (which a, b and x0,
+// y0 give back exactly), is narrower by up to a pixel on each side: most of a dense mesh's
+// triangles are a few pixels across, so that is a large share of their pixels. A small
+// triangle's moved values fit in int32 (smallBox with the sample reach).
+TESSERA_LANES_INLINE void rasterSample(const RasterTriangle& t, const RasterWide& w, uint32_t key,
+                                       const SampleShift& shift, TileVisibility& tile) {
+  // The snapped vertices in 1/256 pixel (edge 2 runs v0 -> v1, edge 1 v2 -> v0; setup.cpp).
+  const int32_t v0x = static_cast<int32_t>(t.x0 * static_cast<float>(kSubpixelOne));
+  const int32_t v0y = static_cast<int32_t>(t.y0 * static_cast<float>(kSubpixelOne));
+  const int32_t v1x = v0x + t.b[2], v1y = v0y - t.a[2];
+  const int32_t v2x = v0x - t.b[1], v2y = v0y + t.a[1];
+  // pixelRange (setup.h) of the moved vertices, within the record's box.
+  const int32_t lo_x = std::min({v0x, v1x, v2x}) - shift.dx,
+                hi_x = std::max({v0x, v1x, v2x}) - shift.dx;
+  const int32_t lo_y = std::min({v0y, v1y, v2y}) - shift.dy,
+                hi_y = std::max({v0y, v1y, v2y}) - shift.dy;
+  const int min_x = std::max<int>(t.min_x, -((kSubpixelHalf - lo_x) >> kSubpixelBits));
+  const int max_x = std::min<int>(t.max_x, (hi_x - kSubpixelHalf) >> kSubpixelBits);
+  const int min_y = std::max<int>(t.min_y, -((kSubpixelHalf - lo_y) >> kSubpixelBits));
+  const int max_y = std::min<int>(t.maxY(), (hi_y - kSubpixelHalf) >> kSubpixelBits);
+  if (min_x > max_x || min_y > max_y) return;
+
+  RasterTriangle moved = t;
+  moved.x0 = t.x0 - shift.pixels_x;
+  moved.y0 = t.y0 - shift.pixels_y;
+  moved.min_x = static_cast<int16_t>(min_x);
+  moved.min_y = static_cast<int16_t>(min_y);
+  moved.max_x = static_cast<int16_t>(max_x);
+  moved.max_y_small = static_cast<uint16_t>(max_y | (t.max_y_small & RasterTriangle::kSmallBit));
+  if (t.small()) {
+    // The corner values at the moved box's first pixel.
+    const int64_t step_x = int64_t{min_x - t.min_x} * kSubpixelOne + shift.dx;
+    const int64_t step_y = int64_t{min_y - t.min_y} * kSubpixelOne + shift.dy;
+    for (int k = 0; k < 3; ++k)
+      moved.corner[k] =
+          static_cast<int32_t>(t.corner[k] + int64_t{t.a[k]} * step_x + int64_t{t.b[k]} * step_y);
+    rasterTriangle(moved, w, key, tile);  // a small triangle's wide record is not read
+    return;
+  }
+  RasterWide moved_wide;
+  for (int k = 0; k < 3; ++k)
+    moved_wide.c[k] = w.c[k] + int64_t{t.a[k]} * shift.dx + int64_t{t.b[k]} * shift.dy;
+  moved_wide.z_min = w.z_min;
+  rasterTriangle(moved, moved_wide, key, tile);
+}
+
+// A small triangle into every layer at once: rasterSmall's walk over its box, eight pixels at a
+// time, with each layer's edge values the centre's plus that sample's a * dx + b * dy (within
+// int32: smallBox with the sample reach) and its depth as rasterSample forms it (the same bits).
+TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t key,
+                                             TileVisibility* const* layers,
+                                             const SampleShift* shifts, int layer_count) {
+  const TileVisibility& tile = *layers[0];
+  const int x_begin = std::max<int>(t.min_x, tile.x0);
+  const int x_end = std::min(static_cast<int>(t.max_x), tile.x0 + tile.width - 1);
+  const int y_begin = std::max<int>(t.min_y, tile.y0);
+  const int y_end = std::min(t.maxY(), tile.y0 + tile.height - 1);
+  if (x_begin > x_end || y_begin > y_end) return;
+  // Per layer: the edge offsets, the depth plane's origin, and whether Hi-Z hides it there.
+  I32x8 offset[kMaxSamples + 1][3];
+  float x0[kMaxSamples + 1], y0[kMaxSamples + 1];
+  bool drawn[kMaxSamples + 1];
+  int drawn_count = 0;
+  for (int i = 0; i < layer_count; ++i) {
+    for (int k = 0; k < 3; ++k) offset[i][k] = splat(t.a[k] * shifts[i].dx + t.b[k] * shifts[i].dy);
+    x0[i] = t.x0 - shifts[i].pixels_x;
+    y0[i] = t.y0 - shifts[i].pixels_y;
+    drawn[i] = true;
+    if (layers[i]->hiz_bounded) {
+      RasterTriangle moved = t;
+      moved.x0 = x0[i];
+      moved.y0 = y0[i];
+      drawn[i] = !hiddenByHiZ(moved, *layers[i], x_begin, x_end, y_begin, y_end);
+    }
+    drawn_count += drawn[i];
+  }
+  if (drawn_count == 0) return;
+  int32_t row[3];
+  I32x8 lane_offset[3], chunk_step[3];
+  const I32x8 lane = iota();
+  for (int k = 0; k < 3; ++k) {
+    row[k] = smallEdgeAt(t, k, x_begin, y_begin);
+    lane_offset[k] = splat(t.a[k] * kSubpixelOne) * lane;
+    chunk_step[k] = splat(t.a[k] * kSubpixelOne * kLanes);
+  }
+  const I32x8 last = splat(x_end);
+  const F32x8 dzdx = splat(t.dzdx);
+  for (int y = y_begin; y <= y_end; ++y) {
+    if (y != y_begin)
+      for (int k = 0; k < 3; ++k) row[k] += t.b[k] * kSubpixelOne;
+    const int row_offset = (y - tile.y0) * kTileSize - tile.x0;
+    I32x8 e0 = splat(row[0]) + lane_offset[0];
+    I32x8 e1 = splat(row[1]) + lane_offset[1];
+    I32x8 e2 = splat(row[2]) + lane_offset[2];
+    I32x8 column = splat(x_begin) + lane;
+    for (int x = x_begin; x <= x_end; x += kLanes) {
+      if (x != x_begin) {
+        e0 = e0 + chunk_step[0];
+        e1 = e1 + chunk_step[1];
+        e2 = e2 + chunk_step[2];
+        column = column + splat(kLanes);
+      }
+      const I32x8 in_range = lessOrEqual(column, last);
+      const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
+      for (int i = 0; i < layer_count; ++i) {
+        if (!drawn[i]) continue;
+        const I32x8 covered =
+            nonNegative((e0 + offset[i][0]) | (e1 + offset[i][1]) | (e2 + offset[i][2])) & in_range;
+        if (!any(covered)) continue;
+        // rowDepth and depthAcross8 of the moved triangle (rasterSample).
+        const float z_row = t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - y0[i]);
+        depthTestRow8(key, z_row, dzdx * (centre - splat(x0[i])), x, covered,
+                      layers[i]->depth + row_offset, layers[i]->key + row_offset);
+      }
+    }
+  }
+}
+
+// Every triangle of the tile into each layer of `layers`, layer i at shifts[i].
+void rasterTileSamplesKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                             int tile_index, TileVisibility* const* layers,
+                             const SampleShift* shifts, int layer_count) {
+  walkTileBins(
+      chunks, chunk_count, tile_index,
+      [&](const RasterTriangle& t, const RasterWide& w, uint32_t key)
+          __attribute__((always_inline)) {
+            if (t.small()) {
+              rasterSmallSamples(t, key, layers, shifts, layer_count);
+              return;
+            }
+            for (int i = 0; i < layer_count; ++i) rasterSample(t, w, key, shifts[i], *layers[i]);
+          });
 }
 
 }  // namespace

@@ -99,15 +99,28 @@ void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
   fenceStreams();
 }
 
+void resolveCoverage(const TileVisibility& tile, const int32_t* covered, int samples,
+                     Frame& frame) {
+  for (int ty = 0; ty < tile.height; ++ty) {
+    uint8_t* out = &frame.coverage[static_cast<size_t>(tile.y0 + ty) * frame.width + tile.x0];
+    const int t0 = ty * kTileSize;
+    for (int tx = 0; tx < tile.width; ++tx) {
+      out[tx] = covered ? static_cast<uint8_t>((covered[t0 + tx] * 255 + samples / 2) / samples)
+                        : (tile.key[t0 + tx] == kEmptyKey ? 0 : 255);
+    }
+  }
+}
+
 void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background, Frame& frame) {
   const bool depth = !frame.depth.empty(), ids = !frame.triangle_id.empty(),
-             normals = !frame.normal.empty();
+             normals = !frame.normal.empty(), coverage = !frame.coverage.empty();
   for (int y = y0; y < y0 + height; ++y) {
     const size_t row = static_cast<size_t>(y) * frame.width + x0;
     fillRow(&frame.color[row], static_cast<size_t>(width), background);
     if (depth) std::fill_n(&frame.depth[row], width, std::numeric_limits<float>::infinity());
     if (ids) std::fill_n(&frame.triangle_id[row], width, kNoTriangle);
     if (normals) std::fill_n(&frame.normal[row], width, float3{});
+    if (coverage) std::fill_n(&frame.coverage[row], width, uint8_t{0});
   }
   fenceStreams();
 }

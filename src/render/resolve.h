@@ -17,7 +17,13 @@ namespace tessera::render {
 void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
                  const std::vector<TriangleChunk>& chunks, Frame& frame);
 
-// A tile no triangle touches: background colour, no id, depth +inf (and zero normals).
+// The coverage AOV of the tile's pixels: with one sample (`covered` null) 255 where the tile's key
+// is a triangle's; with `samples`, covered[i] of them covered: (covered * 255 + samples / 2) /
+// samples.
+void resolveCoverage(const TileVisibility& tile, const int32_t* covered, int samples, Frame& frame);
+
+// A tile no triangle touches: background colour, no id, depth +inf (and zero normals and
+// coverage).
 void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background, Frame& frame);
 
 }  // namespace tessera::render

@@ -32,14 +32,11 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex& sv0, const ScreenV
   raster.min_x = static_cast<int16_t>(box.min_x);
   raster.min_y = static_cast<int16_t>(box.min_y);
   raster.max_x = static_cast<int16_t>(box.max_x);
-  // An edge value at a point of the box is |a| dx + |b| dy at most, with |a| <= box height and
-  // |b| <= box width (sub-pixels); the kernel also evaluates up to 7 pixels past the right end.
-  // Below 2^30 the 32-bit path cannot overflow.
   const int64_t box_w =
       static_cast<int64_t>(std::max({sv0.x, sv1.x, sv2.x})) - std::min({sv0.x, sv1.x, sv2.x});
   const int64_t box_h =
       static_cast<int64_t>(std::max({sv0.y, sv1.y, sv2.y})) - std::min({sv0.y, sv1.y, sv2.y});
-  const bool small = box_h * (2 * box_w + 8 * kSubpixelOne) + box_w < (int64_t{1} << 30);
+  const bool small = smallBox(box_w, box_h, ctx.sample_reach);
   raster.max_y_small = static_cast<uint16_t>(box.max_y | (small ? RasterTriangle::kSmallBit : 0));
 
   orient(area, o);

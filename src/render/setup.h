@@ -99,7 +99,24 @@ struct SetupContext {
   bool has_uv = false;
   bool has_color = false;
   bool want_normals = false;  // the normal AOV is asked for
+  // How far (1/256 pixel) a sample may lie from its pixel's centre: 0 with one sample at the
+  // centre, kSampleReach with MSAA. Boxes then hold every pixel a sample of which may be covered.
+  int32_t sample_reach = 0;
 };
+
+// With MSAA, samples lie strictly within half a pixel of the centre (sampling.h).
+constexpr int32_t kSampleReach = kSubpixelHalf;
+
+// Whether every edge value the 32-bit raster paths form fits in int32 (RasterTriangle::small):
+// an edge value at a point is |a| dx + |b| dy at most from a vertex, with |a| <= box height and
+// |b| <= box width (sub-pixels, the snapped vertices' box); the kernels reach up to 7 pixels past
+// the box's right end and a row past its bottom. Samples reach `sample_reach` past a pixel centre
+// whose pixel reaches `sample_reach` past the box: the box grows by twice that on each side.
+inline bool smallBox(int64_t box_w, int64_t box_h, int32_t sample_reach) {
+  box_w += 4 * int64_t{sample_reach};
+  box_h += 4 * int64_t{sample_reach};
+  return box_h * (2 * box_w + 8 * kSubpixelOne) + box_w < (int64_t{1} << 30);
+}
 
 // What setupRaster learnt that setupShade needs.
 struct TriangleOrientation {
@@ -144,10 +161,11 @@ inline void pixelRange(int32_t lo, int32_t hi, int size, int32_t& first, int32_t
 inline PixelBox pixelBox(const SetupContext& ctx, const ScreenVertex& v0, const ScreenVertex& v1,
                          const ScreenVertex& v2) {
   PixelBox box;
-  pixelRange(std::min({v0.x, v1.x, v2.x}), std::max({v0.x, v1.x, v2.x}), ctx.width, box.min_x,
-             box.max_x);
-  pixelRange(std::min({v0.y, v1.y, v2.y}), std::max({v0.y, v1.y, v2.y}), ctx.height, box.min_y,
-             box.max_y);
+  const int32_t reach = ctx.sample_reach;
+  pixelRange(std::min({v0.x, v1.x, v2.x}) - reach, std::max({v0.x, v1.x, v2.x}) + reach, ctx.width,
+             box.min_x, box.max_x);
+  pixelRange(std::min({v0.y, v1.y, v2.y}) - reach, std::max({v0.y, v1.y, v2.y}) + reach, ctx.height,
+             box.min_y, box.max_y);
   return box;
 }
 

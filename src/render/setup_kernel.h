@@ -66,7 +66,7 @@ TESSERA_LANES_INLINE void pixelRange8(I32x8 lo, I32x8 hi, int size, I32x8& first
 // outside a cut plane sends it to the clipper), then cullsArea on signedArea, then pixelBox.
 bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenVertex* screen,
                      const uint16_t* outcodes, int width, int height, CullMode cull,
-                     CullGroup& out) {
+                     int32_t sample_reach, CullGroup& out) {
   // Indices as int32 lanes: a count below 2^31 keeps the comparison unsigned in effect.
   if (vertex_count > 0x7fffffffu) return false;
   const I32x8 count = splat(static_cast<int32_t>(vertex_count));
@@ -117,8 +117,11 @@ bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenV
                        (negative & splat(int32_t{cull == CullMode::kFront ? -1 : 0}));
   // pixelBox.
   I32x8 min_x, max_x, min_y, max_y;
-  pixelRange8(minimum(minimum(x0, x1), x2), maximum(maximum(x0, x1), x2), width, min_x, max_x);
-  pixelRange8(minimum(minimum(y0, y1), y2), maximum(maximum(y0, y1), y2), height, min_y, max_y);
+  const I32x8 reach = splat(sample_reach);
+  pixelRange8(minimum(minimum(x0, x1), x2) - reach, maximum(maximum(x0, x1), x2) + reach, width,
+              min_x, max_x);
+  pixelRange8(minimum(minimum(y0, y1), y2) - reach, maximum(maximum(y0, y1), y2) + reach, height,
+              min_y, max_y);
   const I32x8 empty = lessThan(max_x, min_x) | lessThan(max_y, min_y);
   const I32x8 visible = whole & ~culled & ~empty;
 
@@ -138,8 +141,8 @@ bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenV
 // added (the other lanes must hold copies of a real triangle: they are computed, not stored).
 // The records are written with streaming stores: the caller fences (_mm_sfence) before another
 // thread reads them.
-void setupBatchKernel(SetupBatch& batch, int width, int height, RasterTriangle* raster,
-                      RasterWide* wide, ShadeTriangle* shade) {
+void setupBatchKernel(SetupBatch& batch, int width, int height, int32_t sample_reach,
+                      RasterTriangle* raster, RasterWide* wide, ShadeTriangle* shade) {
   // Each input is two rows of eight 32-bit values: v0 v1, then v2 area reorder record.
   F32x8 rows01[8], rows2[8];
   for (int l = 0; l < SetupBatch::kLanes; ++l) {
@@ -160,9 +163,12 @@ void setupBatchKernel(SetupBatch& batch, int width, int height, RasterTriangle* 
   const I32x8 min_fy = minimum(minimum(in[0].y, in[1].y), in[2].y);
   const I32x8 max_fy = maximum(maximum(in[0].y, in[1].y), in[2].y);
   I32x8 min_x, max_x, min_y, max_y;
-  pixelRange8(min_fx, max_fx, width, min_x, max_x);
-  pixelRange8(min_fy, max_fy, height, min_y, max_y);
-  const I32x8 box_w = max_fx - min_fx, box_h = max_fy - min_fy;
+  const I32x8 sample = splat(sample_reach);
+  pixelRange8(min_fx - sample, max_fx + sample, width, min_x, max_x);
+  pixelRange8(min_fy - sample, max_fy + sample, height, min_y, max_y);
+  // smallBox (setup.h), lane by lane.
+  const I32x8 grow = splat(4 * sample_reach);
+  const I32x8 box_w = max_fx - min_fx + grow, box_h = max_fy - min_fy + grow;
   const F64x8 reach =
       toDouble(box_h) * toDouble(box_w + box_w + splat(8 * kSubpixelOne)) + toDouble(box_w);
   const I32x8 small = lessThan(reach, splat(0x1p30));

@@ -4,43 +4,92 @@
 
 namespace tessera::viewer {
 
-std::optional<Action> keyAction(Key key) {
+namespace {
+
+std::optional<Action> act(Action::Type type) {
   Action action;
+  action.type = type;
+  return action;
+}
+
+std::optional<Action> view(ViewPreset preset) {
+  Action action;
+  action.type = Action::Type::kSetView, action.view = preset;
+  return action;
+}
+
+// Shift + a function key: the second row of the map.
+std::optional<Action> shiftedFunctionKey(Key key) {
+  switch (key) {
+    case Key::kF3:
+      return act(Action::Type::kCycleMsaa);
+    case Key::kF12:
+      return act(Action::Type::kToggleTemporal);
+    default:
+      return std::nullopt;  // Shift+F1, Shift+F2, Shift+F10: not in this viewer
+  }
+}
+
+}  // namespace
+
+std::optional<Action> keyAction(Key key, bool shift) {
+  const bool function_key =
+      key == Key::kF1 || key == Key::kF2 || key == Key::kF3 || key == Key::kF10 || key == Key::kF12;
+  if (shift && function_key) return shiftedFunctionKey(key);
   switch (key) {
     case Key::kOne:
-      action.type = Action::Type::kSetView, action.view = ViewPreset::kFront;
-      return action;
+      return view(ViewPreset::kFront);
     case Key::kThree:
-      action.type = Action::Type::kSetView, action.view = ViewPreset::kRight;
-      return action;
+      return view(ViewPreset::kRight);
     case Key::kSeven:
-      action.type = Action::Type::kSetView, action.view = ViewPreset::kTop;
-      return action;
+      return view(ViewPreset::kTop);
     case Key::kNine:
-      action.type = Action::Type::kSetView, action.view = ViewPreset::kIsometric;
-      return action;
+      return view(ViewPreset::kIsometric);
     case Key::kEnter:
-      action.type = Action::Type::kResetCamera;
-      return action;
+      return act(Action::Type::kResetCamera);
     case Key::kEscape:
-      action.type = Action::Type::kQuit;
-      return action;
+      return act(Action::Type::kQuit);
+    case Key::kH:
+      return act(Action::Type::kToggleKeyList);
     case Key::kF1:
-      action.type = Action::Type::kToggleStats;
-      return action;
+      return act(Action::Type::kToggleStats);
     case Key::kF2:
-      action.type = Action::Type::kToggleWorldAxes;
-      return action;
+      return act(Action::Type::kToggleWorldAxes);
     case Key::kF3:
-      action.type = Action::Type::kToggleObjectAxes;
-      return action;
+      return act(Action::Type::kToggleObjectAxes);
+    case Key::kF10:
+      return act(Action::Type::kToggleJitter);
     case Key::kF12:
-      action.type = Action::Type::kScreenshot;
-      return action;
+      return act(Action::Type::kScreenshot);
     case Key::kOther:
       break;
   }
   return std::nullopt;
+}
+
+int nextMsaa(int msaa) {
+  return msaa >= 8 ? 1 : msaa * 2;
+}
+
+const std::vector<KeyHelp>& keyList() {
+  static const std::vector<KeyHelp> list = {
+      {"left drag", "orbit", {}},
+      {"middle or Shift+left drag", "pan", {}},
+      {"wheel", "zoom", {}},
+      {"1 / 3 / 7 / 9",
+       "front / right / top / isometric view",
+       {{Key::kOne}, {Key::kThree}, {Key::kSeven}, {Key::kNine}}},
+      {"Enter", "reset the camera", {{Key::kEnter}}},
+      {"F1", "stats overlay", {{Key::kF1}}},
+      {"F2 / F3", "world axes / object axes", {{Key::kF2}, {Key::kF3}}},
+      {"F10", "sub-pixel jitter", {{Key::kF10}}},
+      {"F12", "screenshot", {{Key::kF12}}},
+      {"Shift+F3", "MSAA 1, 2, 4, 8 samples", {{Key::kF3, true}}},
+      {"Shift+F12", "temporal reprojection", {{Key::kF12, true}}},
+      {"H", "this list", {{Key::kH}}},
+      {"Escape", "quit", {{Key::kEscape}}},
+  };
+  return list;
 }
 
 std::optional<Action> InputState::handle(const InputEvent& event, float viewport_height) {
@@ -83,7 +132,7 @@ std::optional<Action> InputState::handle(const InputEvent& event, float viewport
       return action;
     }
     case InputEvent::Type::kKeyDown:
-      return keyAction(event.key);
+      return keyAction(event.key, event.shift);
   }
   return std::nullopt;
 }

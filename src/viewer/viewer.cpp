@@ -2,9 +2,6 @@
 // screenshots. Camera and input logic live in orbit_camera / input_state (no SDL).
 #include <tessera/viewer/viewer.h>
 
-#include <SDL.h>
-#include <SDL_ttf.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -19,7 +16,11 @@
 #include <tessera/render/frame.h>
 #include <tessera/viewer/input_state.h>
 #include <tessera/viewer/orbit_camera.h>
+#include <tessera/viewer/sampling_modes.h>
 #include <tessera/viewer/scene_loader.h>
+
+#include "overlay.h"
+#include "sdl_support.h"
 
 namespace tessera::viewer {
 
@@ -27,140 +28,6 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-struct SdlDeleter {
-  void operator()(SDL_Window* w) const { SDL_DestroyWindow(w); }
-  void operator()(SDL_Renderer* r) const { SDL_DestroyRenderer(r); }
-  void operator()(SDL_Texture* t) const { SDL_DestroyTexture(t); }
-  void operator()(SDL_Surface* s) const { SDL_FreeSurface(s); }
-  void operator()(TTF_Font* f) const { TTF_CloseFont(f); }
-};
-template <typename T>
-using SdlPtr = std::unique_ptr<T, SdlDeleter>;
-
-// SDL_Init / TTF_Init and their matching quits.
-class SdlSession {
- public:
-  ~SdlSession() {
-    if (ttf_) TTF_Quit();
-    if (video_) SDL_Quit();
-  }
-  Expected<void> start() {
-    // A desktop citizen: let the screen saver run, and let the first click on the window start
-    // a drag rather than only focus it.
-    SDL_SetHint(SDL_HINT_VIDEO_ALLOW_SCREENSAVER, "1");
-    SDL_SetHint(SDL_HINT_MOUSE_FOCUS_CLICKTHROUGH, "1");
-    if (SDL_Init(SDL_INIT_VIDEO) != 0) {
-      const char* driver = std::getenv("SDL_VIDEODRIVER");
-      std::string message = std::string("cannot open a window: ") + SDL_GetError();
-      if (driver != nullptr && *driver != '\0')
-        message += " (SDL_VIDEODRIVER=" + std::string(driver) + ")";
-      else if (std::getenv("DISPLAY") == nullptr && std::getenv("WAYLAND_DISPLAY") == nullptr)
-        message += " (neither DISPLAY nor WAYLAND_DISPLAY is set: is there a display?)";
-      return makeError(message);
-    }
-    video_ = true;
-    // Debian's SDL falls back to an invisible driver when there is no display; a viewer that
-    // shows nothing is no viewer, unless that driver was asked for by name.
-    const std::string current = SDL_GetCurrentVideoDriver() ? SDL_GetCurrentVideoDriver() : "";
-    const char* requested = std::getenv("SDL_VIDEODRIVER");
-    if ((current == "offscreen" || current == "dummy" || current == "evdev") &&
-        (requested == nullptr || current != requested))
-      return makeError("cannot open a window: no display (SDL found none and fell back to its '" +
-                       current +
-                       "' driver); set DISPLAY (X11) or WAYLAND_DISPLAY, or run under xvfb-run");
-    if (TTF_Init() != 0) return makeError(std::string("cannot start SDL2_ttf: ") + TTF_GetError());
-    ttf_ = true;
-    return {};
-  }
-
- private:
-  bool video_ = false;
-  bool ttf_ = false;
-};
-
-Key toKey(SDL_Keycode code) {
-  switch (code) {
-    case SDLK_1:
-    case SDLK_KP_1:
-      return Key::kOne;
-    case SDLK_3:
-    case SDLK_KP_3:
-      return Key::kThree;
-    case SDLK_7:
-    case SDLK_KP_7:
-      return Key::kSeven;
-    case SDLK_9:
-    case SDLK_KP_9:
-      return Key::kNine;
-    case SDLK_RETURN:
-    case SDLK_KP_ENTER:
-      return Key::kEnter;
-    case SDLK_ESCAPE:
-      return Key::kEscape;
-    case SDLK_F1:
-      return Key::kF1;
-    case SDLK_F2:
-      return Key::kF2;
-    case SDLK_F3:
-      return Key::kF3;
-    case SDLK_F12:
-      return Key::kF12;
-    default:
-      return Key::kOther;
-  }
-}
-
-std::optional<MouseButton> toButton(Uint8 button) {
-  switch (button) {
-    case SDL_BUTTON_LEFT:
-      return MouseButton::kLeft;
-    case SDL_BUTTON_MIDDLE:
-      return MouseButton::kMiddle;
-    case SDL_BUTTON_RIGHT:
-      return MouseButton::kRight;
-    default:
-      return std::nullopt;
-  }
-}
-
-// The SDL event as the input mapping sees it; nullopt for events it does not take.
-std::optional<InputEvent> toInputEvent(const SDL_Event& e) {
-  InputEvent in;
-  in.shift = (SDL_GetModState() & KMOD_SHIFT) != 0;
-  switch (e.type) {
-    case SDL_MOUSEBUTTONDOWN:
-    case SDL_MOUSEBUTTONUP: {
-      std::optional<MouseButton> button = toButton(e.button.button);
-      if (!button) return std::nullopt;
-      in.type = e.type == SDL_MOUSEBUTTONDOWN ? InputEvent::Type::kButtonDown
-                                              : InputEvent::Type::kButtonUp;
-      in.button = *button;
-      in.x = static_cast<float>(e.button.x), in.y = static_cast<float>(e.button.y);
-      return in;
-    }
-    case SDL_MOUSEMOTION:
-      in.type = InputEvent::Type::kMotion;
-      in.x = static_cast<float>(e.motion.x), in.y = static_cast<float>(e.motion.y);
-      return in;
-    case SDL_MOUSEWHEEL:
-      in.type = InputEvent::Type::kWheel;
-      in.wheel = e.wheel.preciseY;
-      if (e.wheel.direction == SDL_MOUSEWHEEL_FLIPPED) in.wheel = -in.wheel;
-      return in;
-    case SDL_KEYDOWN:
-      if (e.key.repeat != 0) return std::nullopt;  // toggles must not flicker while held
-      in.type = InputEvent::Type::kKeyDown;
-      in.key = toKey(e.key.keysym.sym);
-      return in;
-    case SDL_WINDOWEVENT:
-      if (e.window.event != SDL_WINDOWEVENT_FOCUS_LOST) return std::nullopt;
-      in.type = InputEvent::Type::kFocusLost;
-      return in;
-    default:
-      return std::nullopt;
-  }
-}
 
 fs::path nextScreenshotPath() {
   for (int n = 1; n < 100000; ++n) {
@@ -181,7 +48,10 @@ float axesLength(const Bounds& bounds) {
 class Viewer {
  public:
   Viewer(const ViewerOptions& options, Backend& backend, const ViewerHooks& hooks)
-      : options_(options), backend_(backend), hooks_(hooks) {
+      : options_(options),
+        backend_(backend),
+        hooks_(hooks),
+        sampling_(options.msaa, options.jitter, options.temporal) {
     stats_ = options.stats;
     world_axes_ = options.world_axes;
     render_options_.depth = false;
@@ -200,11 +70,13 @@ class Viewer {
   void handleAction(const Action& action);
   void drawFrame();
   void drawOverlay(int pixel_width, int pixel_height);
-  void drawTextBox(const std::string& text, int x, int y, bool from_bottom, SDL_Color color,
-                   int wrap_width);
+  void drawKeyList(int pixel_width, int pixel_height);
+  void renderScene(int pixel_width, int pixel_height);
   void saveScreenshot(int pixel_width, int pixel_height);
   float pixelAspect() const;
-  void ensureFont(float pixel_scale);
+  // Frames keep coming without input: the stats measure them, a load shows its progress, the
+  // jitter cycles or the temporal pass converges.
+  bool animating() const { return stats_ || loader_.busy() || sampling_.wantsAnotherFrame(); }
 
   ViewerOptions options_;
   Backend& backend_;
@@ -216,9 +88,7 @@ class Viewer {
   SdlPtr<SDL_Renderer> renderer_;
   SdlPtr<SDL_Texture> texture_;
   int texture_width_ = 0, texture_height_ = 0;
-  SdlPtr<TTF_Font> font_;
-  int font_size_ = 0;
-  fs::path font_path_;
+  TextOverlay text_;
 
   Scene scene_;
   std::string scene_name_;
@@ -227,11 +97,13 @@ class Viewer {
   OrbitCamera camera_;
   InputState input_;
   RenderOptions render_options_;
+  SamplingModes sampling_;
   Frame frame_;
 
   bool stats_ = false;
   bool world_axes_ = false;
   bool object_axes_ = false;
+  bool key_list_ = false;
   bool quit_ = false;
   bool dirty_ = true;         // the window needs presenting again
   bool view_changed_ = true;  // ...and the scene rendering again (camera, scene or axes changed)
@@ -241,13 +113,13 @@ class Viewer {
   Clock::time_point load_started_;
 
   double render_ms_ = 0.0;
+  double temporal_ms_ = 0.0;
   double fps_ = 0.0;
   int frames_in_window_ = 0;
   Clock::time_point fps_window_start_ = Clock::now();
 };
 
 Expected<void> Viewer::open(const fs::path& font_path) {
-  font_path_ = font_path;
   Uint32 flags = SDL_WINDOW_RESIZABLE | SDL_WINDOW_ALLOW_HIGHDPI;
   if (options_.fullscreen) flags |= SDL_WINDOW_FULLSCREEN_DESKTOP;
   window_.reset(SDL_CreateWindow("tessera view", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
@@ -258,8 +130,7 @@ Expected<void> Viewer::open(const fs::path& font_path) {
   if (!renderer_) renderer_.reset(SDL_CreateRenderer(window_.get(), -1, SDL_RENDERER_SOFTWARE));
   if (!renderer_) return makeError(std::string("cannot create a renderer: ") + SDL_GetError());
   SDL_EventState(SDL_DROPFILE, SDL_ENABLE);
-  ensureFont(1.0f);
-  if (!font_)
+  if (!text_.open(font_path))
     return makeError("cannot open the font " + font_path.string() + ": " + TTF_GetError());
   return {};
 }
@@ -268,16 +139,6 @@ float Viewer::pixelAspect() const {
   int w = 0, h = 0;
   SDL_GetRendererOutputSize(renderer_.get(), &w, &h);
   return w > 0 && h > 0 ? static_cast<float>(w) / static_cast<float>(h) : 4.0f / 3.0f;
-}
-
-void Viewer::ensureFont(float pixel_scale) {
-  // 15 points, in pixels on a HiDPI display so that text is as sharp as the model.
-  const int size = std::max(8, static_cast<int>(15.0f * pixel_scale + 0.5f));
-  if (font_ && size == font_size_) return;
-  SdlPtr<TTF_Font> font(TTF_OpenFont(font_path_.c_str(), size));
-  if (!font) return;  // keep the previous size
-  font_ = std::move(font);
-  font_size_ = size;
 }
 
 void Viewer::startLoad(const fs::path& path) {
@@ -301,6 +162,7 @@ void Viewer::showScene(Scene scene, const std::string& name) {
   for (Object& object : scene_.objects)
     if (object.mesh) object.axes_length = axesLength(object.mesh->bounds()) * 0.75f;
   SDL_SetWindowTitle(window_.get(), ("tessera view: " + name).c_str());
+  sampling_.reset();
   dirty_ = view_changed_ = true;
 }
 
@@ -341,14 +203,31 @@ void Viewer::handleAction(const Action& action) {
       break;
     case Action::Type::kToggleWorldAxes:
       world_axes_ = !world_axes_;
+      sampling_.reset();
       view_changed_ = true;
       break;
     case Action::Type::kToggleObjectAxes:
       object_axes_ = !object_axes_;
+      sampling_.reset();
       view_changed_ = true;
       break;
     case Action::Type::kScreenshot:
       screenshot_requested_ = true;
+      break;
+    case Action::Type::kCycleMsaa:
+      sampling_.cycleMsaa();
+      view_changed_ = true;
+      break;
+    case Action::Type::kToggleJitter:
+      sampling_.toggleJitter();
+      view_changed_ = true;
+      break;
+    case Action::Type::kToggleTemporal:
+      sampling_.toggleTemporal();
+      view_changed_ = true;
+      break;
+    case Action::Type::kToggleKeyList:
+      key_list_ = !key_list_;
       break;
     case Action::Type::kQuit:
       quit_ = true;
@@ -383,26 +262,16 @@ void Viewer::handleEvent(const SDL_Event& event) {
     handleAction(*action);
 }
 
-void Viewer::drawTextBox(const std::string& text, int x, int y, bool from_bottom, SDL_Color color,
-                         int wrap_width) {
-  if (text.empty() || !font_) return;
-  SdlPtr<SDL_Surface> surface(TTF_RenderUTF8_Blended_Wrapped(
-      font_.get(), text.c_str(), color, static_cast<Uint32>(std::max(wrap_width, 16))));
-  if (!surface) return;
-  SdlPtr<SDL_Texture> texture(SDL_CreateTextureFromSurface(renderer_.get(), surface.get()));
-  if (!texture) return;
-  const int pad = std::max(4, font_size_ / 3);
-  SDL_Rect box{x, from_bottom ? y - surface->h - 2 * pad : y, surface->w + 2 * pad,
-               surface->h + 2 * pad};
-  SDL_SetRenderDrawBlendMode(renderer_.get(), SDL_BLENDMODE_BLEND);
-  SDL_SetRenderDrawColor(renderer_.get(), 0, 0, 0, 170);
-  SDL_RenderFillRect(renderer_.get(), &box);
-  SDL_Rect dst{box.x + pad, box.y + pad, surface->w, surface->h};
-  SDL_RenderCopy(renderer_.get(), texture.get(), nullptr, &dst);
+void Viewer::drawKeyList(int pixel_width, int pixel_height) {
+  std::vector<std::pair<std::string, std::string>> rows;
+  for (const KeyHelp& help : keyList()) rows.emplace_back(help.keys, help.action);
+  rows.emplace_back("", "");
+  rows.emplace_back("now", sampling_.describe());
+  text_.drawTable(renderer_.get(), rows, pixel_width, pixel_height);
 }
 
 void Viewer::drawOverlay(int pixel_width, int pixel_height) {
-  const int margin = std::max(6, font_size_ / 2);
+  const int margin = std::max(6, text_.fontSize() / 2);
   const int wrap = pixel_width - 4 * margin;
   if (stats_) {
     // fps: frames presented per second of wall-clock time (0 until the first half second is
@@ -410,9 +279,17 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
     char fps[32] = "-- fps";
     if (fps_ > 0.0) std::snprintf(fps, sizeof fps, "%.1f fps", fps_);
     char text[256];
-    std::snprintf(text, sizeof text, "%s\nrender %.2f ms\n%d x %d, %zu triangles, %s", fps,
-                  render_ms_, pixel_width, pixel_height, scene_.triangleCount(), backend_.name());
-    drawTextBox(text, margin, margin, false, SDL_Color{255, 255, 255, 255}, wrap);
+    std::snprintf(text, sizeof text, "%s\nrender %.2f ms", fps, render_ms_);
+    std::string lines = text;
+    if (sampling_.jitter() && sampling_.temporal()) {
+      std::snprintf(text, sizeof text, " + TAA %.2f ms", temporal_ms_);
+      lines += text;
+    }
+    std::snprintf(text, sizeof text, "\n%d x %d, %zu triangles, %s\n", pixel_width, pixel_height,
+                  scene_.triangleCount(), backend_.name());
+    lines += text + sampling_.describe();
+    text_.drawTextBox(renderer_.get(), lines, margin, margin, false, SDL_Color{255, 255, 255, 255},
+                      wrap);
   }
   std::string status;
   SDL_Color color{255, 255, 255, 255};
@@ -425,7 +302,8 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
     status = "error: " + error_;
     color = SDL_Color{255, 120, 110, 255};
   }
-  drawTextBox(status, margin, pixel_height - margin, true, color, wrap);
+  text_.drawTextBox(renderer_.get(), status, margin, pixel_height - margin, true, color, wrap);
+  if (key_list_) drawKeyList(pixel_width, pixel_height);
 }
 
 void Viewer::saveScreenshot(int pixel_width, int pixel_height) {
@@ -447,12 +325,38 @@ void Viewer::saveScreenshot(int pixel_width, int pixel_height) {
   std::cout << "saved " << path.string() << std::endl;
 }
 
+void Viewer::renderScene(int pixel_width, int pixel_height) {
+  scene_.camera = camera_.camera();
+  scene_.show_world_axes = world_axes_;
+  for (Object& object : scene_.objects) object.show_axes = object_axes_;
+  if (hooks_.place_lights) hooks_.place_lights(scene_);
+  render_options_.width = pixel_width;
+  render_options_.height = pixel_height;
+  sampling_.prepare(render_options_);
+  const Clock::time_point start = Clock::now();
+  backend_.render(scene_, render_options_, frame_);
+  const Clock::time_point rendered_at = Clock::now();
+  render_ms_ = std::chrono::duration<double, std::milli>(rendered_at - start).count();
+  // A backend that could not draw the frame (a Vulkan device lost, a fence timeout) says why
+  // in the window rather than showing an empty frame silently.
+  if (Expected<void> rendered = backend_.lastResult(); !rendered) {
+    error_ = rendered.error().message;
+    sampling_.reset();
+  } else {
+    // The view-projection the backend used, as the CPU renderer builds it, without the jitter.
+    const float aspect = static_cast<float>(pixel_width) / static_cast<float>(pixel_height);
+    sampling_.finish(frame_, scene_.camera.projection(aspect) * scene_.camera.view());
+    temporal_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - rendered_at).count();
+  }
+  if (texture_) SDL_UpdateTexture(texture_.get(), nullptr, frame_.color.data(), pixel_width * 4);
+}
+
 void Viewer::drawFrame() {
   int pixel_w = 0, pixel_h = 0, window_w = 0, window_h = 0;
   SDL_GetRendererOutputSize(renderer_.get(), &pixel_w, &pixel_h);
   SDL_GetWindowSize(window_.get(), &window_w, &window_h);
   if (pixel_w <= 0 || pixel_h <= 0) return;  // minimized
-  ensureFont(window_h > 0 ? static_cast<float>(pixel_h) / static_cast<float>(window_h) : 1.0f);
+  text_.setScale(window_h > 0 ? static_cast<float>(pixel_h) / static_cast<float>(window_h) : 1.0f);
 
   if (!texture_ || texture_width_ != pixel_w || texture_height_ != pixel_h) {
     texture_.reset(SDL_CreateTexture(renderer_.get(), SDL_PIXELFORMAT_ABGR8888,
@@ -462,23 +366,12 @@ void Viewer::drawFrame() {
   }
 
   // The scene is rendered again only when it would look different, or continuously while the
-  // stats are shown (they measure it); an overlay-only update reuses the last frame.
-  if (view_changed_ || stats_ || frame_.width != pixel_w || frame_.height != pixel_h) {
+  // stats are shown (they measure it) or the jittered samples change it; an overlay-only update
+  // reuses the last frame.
+  if (view_changed_ || stats_ || sampling_.wantsAnotherFrame() || frame_.width != pixel_w ||
+      frame_.height != pixel_h) {
     view_changed_ = false;
-    scene_.camera = camera_.camera();
-    scene_.show_world_axes = world_axes_;
-    for (Object& object : scene_.objects) object.show_axes = object_axes_;
-    if (hooks_.place_lights) hooks_.place_lights(scene_);
-    render_options_.width = pixel_w;
-    render_options_.height = pixel_h;
-    const Clock::time_point start = Clock::now();
-    backend_.render(scene_, render_options_, frame_);
-    render_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    // A backend that could not draw the frame (a Vulkan device lost, a fence timeout) says why
-    // in the window rather than showing an empty frame silently.
-    if (Expected<void> rendered = backend_.lastResult(); !rendered)
-      error_ = rendered.error().message;
-    if (texture_) SDL_UpdateTexture(texture_.get(), nullptr, frame_.color.data(), pixel_w * 4);
+    renderScene(pixel_w, pixel_h);
   }
 
   SDL_SetRenderDrawColor(renderer_.get(), 0, 0, 0, 255);
@@ -520,14 +413,15 @@ void Viewer::run(const std::optional<fs::path>& model) {
   const auto loading_interval =
       std::max<Clock::duration>(frame_interval, std::chrono::milliseconds(100));
   auto nextDraw = [&](Clock::time_point last_draw) {
-    return last_draw + (dirty_ || stats_ ? frame_interval : loading_interval);
+    const bool moving = dirty_ || stats_ || sampling_.wantsAnotherFrame();
+    return last_draw + (moving ? frame_interval : loading_interval);
   };
   Clock::time_point last_draw = Clock::now() - loading_interval;
   while (!quit_) {
     // Draw when something changed, and keep drawing while something changes by itself (the
     // stats, a load in progress); otherwise sleep until an event arrives.
     int timeout_ms = -1;
-    if (dirty_ || stats_ || loader_.busy()) {
+    if (dirty_ || animating()) {
       const auto wait =
           std::chrono::duration_cast<std::chrono::milliseconds>(nextDraw(last_draw) - Clock::now());
       timeout_ms = static_cast<int>(std::max<long long>(0, wait.count()));
@@ -540,7 +434,7 @@ void Viewer::run(const std::optional<fs::path>& model) {
     if (quit_) break;
     takeLoadResult();
     const Clock::time_point now = Clock::now();
-    if ((dirty_ || stats_ || loader_.busy()) && now >= nextDraw(last_draw)) {
+    if ((dirty_ || animating()) && now >= nextDraw(last_draw)) {
       dirty_ = false;
       last_draw = now;
       drawFrame();

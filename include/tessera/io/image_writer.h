@@ -22,8 +22,10 @@ Expected<void> writePngGray16(const std::filesystem::path& path, int width, int 
 //   id:     RGB8, value = triangle index + 1 as R + 256 G + 65536 B; 0 = no triangle
 //   depth:  16-bit grey of window z (0 = near; 65535 = far or nothing drawn)
 //   normal: RGB8 of world normal * 0.5 + 0.5; black where nothing was drawn
+//   coverage: 8-bit grey of samples covered / samples (Frame::coverage): an alpha matte
 Expected<void> writeIdPng(const std::filesystem::path& path, const Frame& frame);
 Expected<void> writeDepthPng(const std::filesystem::path& path, const Frame& frame);
 Expected<void> writeNormalPng(const std::filesystem::path& path, const Frame& frame);
+Expected<void> writeCoveragePng(const std::filesystem::path& path, const Frame& frame);
 
 }  // namespace tessera::io

@@ -8,11 +8,11 @@ namespace tessera {
 struct RenderOptions {
   int width = 480;
   int height = 480;
-  bool depth = true;     // fill Frame::depth (the depth AOV)
-  bool ids = true;       // fill Frame::triangle_id (the id AOV)
-  bool normals = false;  // fill Frame::normal (the normal AOV)
-  bool lines = true;     // draw Scene::lines and the axes the scene asks for (needs depth: a frame
-                         // that draws lines has a depth buffer whatever `depth` says)
+  bool depth = true;      // fill Frame::depth (the depth AOV)
+  bool ids = true;        // fill Frame::triangle_id (the id AOV)
+  bool normals = false;   // fill Frame::normal (the normal AOV)
+  bool lines = true;      // draw Scene::lines and the axes the scene asks for (needs depth: a frame
+                          // that draws lines has a depth buffer whatever `depth` says)
   bool coverage = false;  // fill Frame::coverage (samples covered / samples, 0..255)
   // Samples per pixel: 1, 2, 4 or 8 (isSampleCount), at the standard positions (sampling.h).
   // Colour is resolved from every sample; depth, ids and normals stay those of the pixel centre,

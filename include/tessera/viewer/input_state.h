@@ -3,6 +3,8 @@
 #pragma once
 
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <tessera/viewer/orbit_camera.h>
 
@@ -11,7 +13,21 @@ namespace tessera::viewer {
 enum class MouseButton { kLeft, kMiddle, kRight };
 
 // The keys the viewer reacts to; every other key is kOther.
-enum class Key { kOne, kThree, kSeven, kNine, kEnter, kEscape, kF1, kF2, kF3, kF12, kOther };
+enum class Key {
+  kOne,
+  kThree,
+  kSeven,
+  kNine,
+  kEnter,
+  kEscape,
+  kH,
+  kF1,
+  kF2,
+  kF3,
+  kF10,
+  kF12,
+  kOther
+};
 
 struct InputEvent {
   enum class Type { kButtonDown, kButtonUp, kMotion, kWheel, kKeyDown, kFocusLost };
@@ -20,7 +36,7 @@ struct InputEvent {
   float x = 0, y = 0;                       // pointer position in window coordinates (points)
   float wheel = 0;                          // kWheel: steps, positive away from the user
   Key key = Key::kOther;                    // kKeyDown
-  bool shift = false;                       // shift held (kButtonDown picks pan with it)
+  bool shift = false;  // shift held (kButtonDown picks pan with it; kKeyDown: Shift+F3...)
 };
 
 struct Action {
@@ -34,6 +50,10 @@ struct Action {
     kToggleWorldAxes,
     kToggleObjectAxes,
     kScreenshot,
+    kCycleMsaa,       // 1, 2, 4, 8 samples per pixel
+    kToggleJitter,    // sub-pixel jitter, a new offset each frame
+    kToggleTemporal,  // temporal reprojection of the jittered frames
+    kToggleKeyList,   // the in-window list of keys
     kQuit,
   };
   Type type = Type::kOrbit;
@@ -42,8 +62,27 @@ struct Action {
   ViewPreset view = ViewPreset::kFront;
 };
 
-// The keyboard map, as f3d users know it.
-std::optional<Action> keyAction(Key key);
+// The keyboard map (ARCHITECTURE.md, "The viewer's keys"): f3d's keys, and the function keys
+// with Shift for the second row. A shifted function key the viewer has no action for does
+// nothing (it never falls back to the unshifted key's action); the other keys ignore Shift.
+std::optional<Action> keyAction(Key key, bool shift = false);
+
+// The next sample count of Shift+F3's cycle: 1 -> 2 -> 4 -> 8 -> 1.
+int nextMsaa(int msaa);
+
+// One line of the in-window key list: the keys as printed, what they do, and the keys it names
+// (so that a test can hold the list and keyAction to each other).
+struct KeyChord {
+  Key key = Key::kOther;
+  bool shift = false;
+};
+struct KeyHelp {
+  std::string keys;
+  std::string action;
+  std::vector<KeyChord> chords;  // empty for the mouse lines
+};
+// Every key the viewer implements, and the mouse, in the order the list shows them.
+const std::vector<KeyHelp>& keyList();
 
 // Which drag a button press starts and where the pointer was; turns pointer motion into orbit
 // and pan actions. The kind of drag is chosen at the press (left: orbit, shift + left or middle:

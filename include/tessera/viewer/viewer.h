@@ -22,6 +22,9 @@ struct ViewerOptions {
   bool stats = false;           // the stats overlay (F1) at start
   bool world_axes = false;      // the world axes (F2) at start
   bool fullscreen = false;
+  int msaa = 4;          // samples per pixel at start (Shift+F3 cycles 1, 2, 4, 8)
+  bool jitter = false;   // sub-pixel jitter at start (F10)
+  bool temporal = true;  // temporal reprojection of the jittered frames (Shift+F12)
   float3 view_direction{0.6f, 0.45f, 1.0f};  // from the model towards the camera at start/reset
 };
 

@@ -1,0 +1,212 @@
+#include "llvmpipe_programs.h"
+
+namespace tessera::bench {
+
+namespace {
+
+// The lighting of tessera's shading stage (src/render/setup.cpp and shade.cpp) in GLSL 1.20:
+// Lambert from directional lights plus ambient, on the world normal. Flat and Gouraud light the
+// vertices (flat ones carry the face normal) and interpolate albedo times light; smooth (Phong)
+// interpolates albedo and normal and lights each fragment; the texture multiplies per fragment;
+// back faces that are drawn are lit from the viewer's side; sRGB encoding comes once, last: in the
+// fragment shader, or (multisampled) in the sRGB framebuffer, after the resolve has averaged.
+constexpr const char* kVertexShader = R"(
+attribute vec3 a_position;
+attribute vec3 a_normal;
+attribute vec2 a_uv;
+attribute vec4 a_color;
+uniform mat4 u_model_view_projection;
+uniform mat3 u_normal_matrix;
+uniform float u_normal_sign;
+uniform vec3 u_base_color;
+uniform vec3 u_ambient;
+#if LIGHT_COUNT > 0
+uniform vec3 u_light_direction[LIGHT_COUNT];
+uniform vec3 u_light_color[LIGHT_COUNT];
+#endif
+varying vec2 v_uv;
+varying vec3 v_front;  // albedo, times the lighting when it is per vertex
+varying vec3 v_back;   // the same for a back face (two-sided lighting)
+varying vec3 v_normal;
+
+vec3 irradiance(vec3 n) {
+  vec3 e = u_ambient;
+#if LIGHT_COUNT > 0
+  for (int i = 0; i < LIGHT_COUNT; ++i) e += u_light_color[i] * max(-dot(n, u_light_direction[i]), 0.0);
+#endif
+  return e;
+}
+
+void main() {
+  gl_Position = u_model_view_projection * vec4(a_position, 1.0);
+#ifdef HAS_UV
+  v_uv = a_uv;
+#endif
+  vec3 albedo = u_base_color;
+#ifdef HAS_COLOR
+  albedo *= a_color.rgb;
+#endif
+#if defined(LIT_PER_VERTEX) || defined(LIT_PER_PIXEL)
+  vec3 n = normalize(u_normal_matrix * a_normal) * u_normal_sign;
+#endif
+#ifdef LIT_PER_VERTEX
+  v_front = albedo * irradiance(n);
+#ifdef TWO_SIDED
+  v_back = albedo * irradiance(-n);
+#endif
+#else
+  v_front = albedo;
+  v_back = albedo;
+#endif
+#ifdef LIT_PER_PIXEL
+  v_normal = n;
+#endif
+}
+)";
+
+constexpr const char* kFragmentShader = R"(
+uniform sampler2D u_albedo;
+uniform vec3 u_ambient;
+#if LIGHT_COUNT > 0
+uniform vec3 u_light_direction[LIGHT_COUNT];
+uniform vec3 u_light_color[LIGHT_COUNT];
+#endif
+varying vec2 v_uv;
+varying vec3 v_front;
+varying vec3 v_back;
+varying vec3 v_normal;
+
+vec3 irradiance(vec3 n) {
+  vec3 e = u_ambient;
+#if LIGHT_COUNT > 0
+  for (int i = 0; i < LIGHT_COUNT; ++i) e += u_light_color[i] * max(-dot(n, u_light_direction[i]), 0.0);
+#endif
+  return e;
+}
+
+// IEC 61966-2-1.
+vec3 encodeSrgb(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
+}
+
+void main() {
+#ifdef TWO_SIDED
+  vec3 color = gl_FrontFacing ? v_front : v_back;
+#else
+  vec3 color = v_front;
+#endif
+#ifdef HAS_UV
+  color *= texture2D(u_albedo, v_uv).rgb;
+#endif
+#ifdef LIT_PER_PIXEL
+  vec3 n = normalize(v_normal);
+#ifdef TWO_SIDED
+  if (!gl_FrontFacing) n = -n;
+#endif
+  color *= irradiance(n);
+#endif
+#ifdef FRAMEBUFFER_ENCODES_SRGB
+  gl_FragColor = vec4(color, 1.0);  // the sRGB colour buffer clamps and encodes
+#else
+  gl_FragColor = vec4(encodeSrgb(color), 1.0);
+#endif
+}
+)";
+
+const char* glErrorName(GLenum error) {
+  switch (error) {
+    case GL_INVALID_ENUM:
+      return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE:
+      return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION:
+      return "GL_INVALID_OPERATION";
+    case GL_OUT_OF_MEMORY:
+      return "GL_OUT_OF_MEMORY";
+    default:
+      return "a GL error";
+  }
+}
+
+Expected<GLuint> compileShader(GLenum type, const std::string& source) {
+  GLuint shader = glCreateShader(type);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    glDeleteShader(shader);
+    return makeError(std::string("OpenGL reference: shader compile failed: ") + log);
+  }
+  return shader;
+}
+
+}  // namespace
+
+Expected<void> checkGl(const char* what) {
+  GLenum error = glGetError();
+  if (error == GL_NO_ERROR) return {};
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  return makeError(std::string("OpenGL reference: ") + what + " failed with " + glErrorName(error));
+}
+
+Expected<const Program*> ProgramCache::get(const ProgramKey& key) {
+  auto found = programs_.find(key);
+  if (found != programs_.end()) return &found->second;
+  std::string defines =
+      "#version 120\n#define LIGHT_COUNT " + std::to_string(key.light_count) + "\n";
+  if (key.shading == Shading::kFlat || key.shading == Shading::kGouraud)
+    defines += "#define LIT_PER_VERTEX\n";
+  if (key.shading == Shading::kPhong) defines += "#define LIT_PER_PIXEL\n";
+  if (key.has_uv) defines += "#define HAS_UV\n";
+  if (key.has_color) defines += "#define HAS_COLOR\n";
+  if (key.two_sided) defines += "#define TWO_SIDED\n";
+  if (key.framebuffer_encodes_srgb) defines += "#define FRAMEBUFFER_ENCODES_SRGB\n";
+  Expected<GLuint> vs = compileShader(GL_VERTEX_SHADER, defines + kVertexShader);
+  if (!vs) return vs.error();
+  Expected<GLuint> fs = compileShader(GL_FRAGMENT_SHADER, defines + kFragmentShader);
+  if (!fs) {
+    glDeleteShader(*vs);
+    return fs.error();
+  }
+  Program p;
+  p.id = glCreateProgram();
+  glAttachShader(p.id, *vs);
+  glAttachShader(p.id, *fs);
+  glBindAttribLocation(p.id, kPosition, "a_position");
+  glBindAttribLocation(p.id, kNormal, "a_normal");
+  glBindAttribLocation(p.id, kUv, "a_uv");
+  glBindAttribLocation(p.id, kColor, "a_color");
+  glLinkProgram(p.id);
+  glDeleteShader(*vs);
+  glDeleteShader(*fs);
+  GLint ok = 0;
+  glGetProgramiv(p.id, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetProgramInfoLog(p.id, sizeof log, nullptr, log);
+    glDeleteProgram(p.id);
+    return makeError(std::string("OpenGL reference: shader link failed: ") + log);
+  }
+  p.model_view_projection = glGetUniformLocation(p.id, "u_model_view_projection");
+  p.normal_matrix = glGetUniformLocation(p.id, "u_normal_matrix");
+  p.normal_sign = glGetUniformLocation(p.id, "u_normal_sign");
+  p.ambient = glGetUniformLocation(p.id, "u_ambient");
+  p.light_direction = glGetUniformLocation(p.id, "u_light_direction");
+  p.light_color = glGetUniformLocation(p.id, "u_light_color");
+  p.base_color = glGetUniformLocation(p.id, "u_base_color");
+  p.albedo = glGetUniformLocation(p.id, "u_albedo");
+  return &programs_.emplace(key, p).first->second;
+}
+
+void ProgramCache::release() {
+  for (auto& [key, program] : programs_) glDeleteProgram(program.id);
+  programs_.clear();
+}
+
+}  // namespace tessera::bench

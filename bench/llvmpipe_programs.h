@@ -1,0 +1,55 @@
+// The llvmpipe reference's OpenGL side that is not about the scene: the GLSL 1.20 programs that
+// implement tessera's lighting, one per combination of what a draw needs, and the GL error check.
+// Private to llvmpipe_reference.cpp; built only with TESSERA_OSMESA. Needs a current context.
+#pragma once
+
+#include <map>
+#include <string>
+#include <tuple>
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <tessera/base/expected.h>
+#include <tessera/scene/scene.h>
+
+namespace tessera::bench {
+
+// Fixed attribute locations, bound before linking.
+enum AttributeLocation : GLuint { kPosition = 0, kNormal = 1, kUv = 2, kColor = 3 };
+
+// What a program is compiled for.
+struct ProgramKey {
+  Shading shading = Shading::kGouraud;
+  bool has_uv = false, has_color = false, two_sided = false;
+  int light_count = 0;
+  // true: the fragment shader writes linear colour and an sRGB framebuffer encodes it (so that a
+  // multisample resolve averages in linear light); false: the shader encodes sRGB itself.
+  bool framebuffer_encodes_srgb = false;
+  auto tie() const {
+    return std::tie(shading, has_uv, has_color, two_sided, light_count, framebuffer_encodes_srgb);
+  }
+  bool operator<(const ProgramKey& o) const { return tie() < o.tie(); }
+};
+
+struct Program {
+  GLuint id = 0;
+  GLint model_view_projection, normal_matrix, normal_sign, ambient, light_direction, light_color,
+      base_color, albedo;
+};
+
+// The programs of one context, compiled on first use and kept until release().
+class ProgramCache {
+ public:
+  Expected<const Program*> get(const ProgramKey& key);
+  void release();
+
+ private:
+  std::map<ProgramKey, Program> programs_;
+};
+
+// glGetError after `what`: an error naming it and the GL error, or success. Clears every error.
+Expected<void> checkGl(const char* what);
+
+}  // namespace tessera::bench
