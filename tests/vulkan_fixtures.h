@@ -113,7 +113,8 @@ inline Parity compare(const Frame& a, const Frame& b) {
   EXPECT_EQ(a.height, b.height);
   p.pixels = a.pixelCount();
   for (size_t i = 0; i < p.pixels; ++i) {
-    if (a.triangle_id[i] != kNoTriangle || b.triangle_id[i] != kNoTriangle) {
+    if (!a.triangle_id.empty() && !b.triangle_id.empty() &&
+        (a.triangle_id[i] != kNoTriangle || b.triangle_id[i] != kNoTriangle)) {
       ++p.covered;
       p.same_id += a.triangle_id[i] == b.triangle_id[i];
     }

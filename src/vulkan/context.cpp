@@ -198,27 +198,6 @@ DeviceInfo describeDevice(const DeviceCapabilities& caps, int index) {
   return info;
 }
 
-std::string rasterSampleCountProblem(const DeviceCapabilities& caps, int samples) {
-  if (samples == 1) return {};
-  std::string problem;
-  if (!(caps.framebuffer_sample_counts & static_cast<VkSampleCountFlags>(samples))) {
-    problem = "the device does not take " + std::to_string(samples) +
-              " samples per pixel (framebufferColorSampleCounts & framebufferDepthSampleCounts "
-              "allow";
-    for (int n = 1; n <= 64; n *= 2) {
-      if (!(caps.framebuffer_sample_counts & static_cast<VkSampleCountFlags>(n))) continue;
-      problem += ' ';
-      problem += std::to_string(n);
-    }
-    problem += ")";
-  } else if (!caps.standard_sample_locations) {
-    problem =
-        "the device does not place its samples at the standard positions "
-        "(standardSampleLocations is false), so its coverage would not be tessera's";
-  }
-  return problem;
-}
-
 Expected<std::unique_ptr<Context>> Context::create(const VulkanOptions& options, BackendKind kind) {
   std::unique_ptr<Context> context(new Context());
   context->fence_timeout_ms = options.fence_timeout_ms;

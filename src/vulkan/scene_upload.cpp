@@ -385,7 +385,7 @@ void drawSceneLines(const Scene& scene, const RenderOptions& options, const Pack
   for (size_t i = 0; i < scene.objects.size(); ++i)
     if (scene.objects[i].show_axes)
       render::appendAxes(lines, packed.models[i], scene.objects[i].axes_length);
-  render::drawLines(lines, packed.view_projection, frame);
+  render::drawLines(lines, packed.view_projection, frame, /*antialiased=*/options.msaa > 1);
 }
 
 }  // namespace tessera::vulkan

@@ -2,10 +2,12 @@
 //
 //   "vulkan"         ComputeBackend: a tiled rasterizer written entirely in compute shaders
 //                    (clear, transform, setup and cull, bin into 16x16 tiles, fine raster with a
-//                    64-bit atomic min of depth << 32 | triangle key, shade, resolve). Coverage
-//                    uses the CPU's fixed-point arithmetic, so its triangle ids match the CPU's.
+//                    64-bit atomic min of depth << 32 | triangle key per sample, shade and
+//                    resolve). Coverage uses the CPU's fixed-point arithmetic at the standard
+//                    sample positions, so its triangle ids and coverage match the CPU's.
 //   "vulkan-raster"  RasterBackend: the same scene through Vulkan's graphics pipeline (vertex and
-//                    fragment shaders, a depth attachment, a R32_UINT triangle-id attachment).
+//                    fragment shaders, a depth attachment, a R32_UINT triangle-id attachment;
+//                    with MSAA, a multisampled pass resolved by the render pass).
 //
 // Nothing here exposes a Vulkan type: only tessera_vulkan sees Vulkan. The Vulkan loader is
 // opened at run time, so every way of not having Vulkan (no loader, no device, a device without

@@ -22,6 +22,12 @@ layout(location = 0) TESSERA_INTERPOLATION in vec3 in_normal;
 layout(location = 1) TESSERA_INTERPOLATION in vec2 in_uv;
 layout(location = 2) TESSERA_INTERPOLATION in vec3 in_color_front;
 layout(location = 3) TESSERA_INTERPOLATION in vec3 in_color_back;
+#if TESSERA_MSAA
+// The UV at the pixel centre: its differences across the quad give the level of detail.
+layout(location = 4) in vec2 in_uv_centre;
+#else
+#define in_uv_centre in_uv
+#endif
 
 #if TESSERA_MSAA
 layout(location = 0) out vec4 out_linear;
@@ -33,7 +39,7 @@ layout(location = 2) out vec4 out_normal;
 
 void main() {
   // Derivatives first, in uniform control flow.
-  const vec2 uv_dx = dFdx(in_uv), uv_dy = dFdy(in_uv);
+  const vec2 uv_dx = dFdx(in_uv_centre), uv_dy = dFdy(in_uv_centre);
   const GpuObject object = objects[draw.object];
   const uint t = object.triangle_base + uint(gl_PrimitiveID);
   const float flip = gl_FrontFacing ? 1.0 : -1.0;
