@@ -53,7 +53,10 @@ struct ComputeBackend::State {
   VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
   VkPipeline clear = VK_NULL_HANDLE, transform = VK_NULL_HANDLE, setup = VK_NULL_HANDLE,
              bin_args = VK_NULL_HANDLE, bin = VK_NULL_HANDLE, scan = VK_NULL_HANDLE,
-             raster = VK_NULL_HANDLE, raster_id = VK_NULL_HANDLE, shade = VK_NULL_HANDLE;
+             shade = VK_NULL_HANDLE;
+  // The fine raster (and the 32-bit path's second pass) by visibility layers per pixel, made on
+  // first use: the layer count sizes the shader's shared memory.
+  VkPipeline raster[kMaxVisibilityLayers + 1] = {}, raster_id[kMaxVisibilityLayers + 1] = {};
   VkQueryPool timestamps = VK_NULL_HANDLE;
 
   PackedScene packed;
@@ -69,7 +72,9 @@ struct ComputeBackend::State {
 
   ~State();
   Expected<void> createPipelines();
-  Expected<VkPipeline> createPipeline(std::span<const uint32_t> spirv);
+  Expected<VkPipeline> createPipeline(std::span<const uint32_t> spirv,
+                                      const VkSpecializationInfo* specialization = nullptr);
+  Expected<void> ensureRasterPipelines(uint32_t layers);
   Expected<void> ensureWorkingBuffers(const RenderOptions& options);
   void writeDescriptors();
   Expected<void> recordAndRun(const RenderOptions& options);
@@ -85,8 +90,12 @@ ComputeBackend::State::~State() {
   c.fence_timeout_ms = std::max<uint32_t>(c.fence_timeout_ms, 5000);
   if (!c.waitForPending()) return;
   VkDevice device = c.device;
-  for (VkPipeline p : {clear, transform, setup, bin_args, bin, scan, raster, raster_id, shade})
+  for (VkPipeline p : {clear, transform, setup, bin_args, bin, scan, shade})
     if (p) c.vk.vkDestroyPipeline(device, p, nullptr);
+  for (int l = 0; l <= kMaxVisibilityLayers; ++l) {
+    if (raster[l]) c.vk.vkDestroyPipeline(device, raster[l], nullptr);
+    if (raster_id[l]) c.vk.vkDestroyPipeline(device, raster_id[l], nullptr);
+  }
   if (pipeline_layout) c.vk.vkDestroyPipelineLayout(device, pipeline_layout, nullptr);
   if (descriptor_pool) c.vk.vkDestroyDescriptorPool(device, descriptor_pool, nullptr);
   if (set_layout) c.vk.vkDestroyDescriptorSetLayout(device, set_layout, nullptr);
@@ -97,7 +106,8 @@ ComputeBackend::State::~State() {
     c.destroyBuffer(*b);
 }
 
-Expected<VkPipeline> ComputeBackend::State::createPipeline(std::span<const uint32_t> spirv) {
+Expected<VkPipeline> ComputeBackend::State::createPipeline(
+    std::span<const uint32_t> spirv, const VkSpecializationInfo* specialization) {
   Context& c = *context;
   Expected<VkShaderModule> module = c.createShaderModule(spirv);
   if (!module) return module.error();
@@ -107,6 +117,7 @@ Expected<VkPipeline> ComputeBackend::State::createPipeline(std::span<const uint3
   create.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   create.stage.module = *module;
   create.stage.pName = "main";
+  create.stage.pSpecializationInfo = specialization;
   create.layout = pipeline_layout;
   VkPipeline pipeline = VK_NULL_HANDLE;
   const VkResult created =
@@ -170,12 +181,7 @@ Expected<void> ComputeBackend::State::createPipelines() {
       {&scan, spirv::kScan},
       {&shade, spirv::kShade},
   };
-  if (atomic64) {
-    entries.push_back({&raster, spirv::kRasterAtomic64});
-  } else {
-    entries.push_back({&raster, spirv::kRasterDepth32});
-    entries.push_back({&raster_id, spirv::kRasterId32});
-  }
+  if (Expected<void> r = ensureRasterPipelines(1); !r) return r;
   for (const Entry& e : entries) {
     Expected<VkPipeline> pipeline = createPipeline(e.spirv);
     if (!pipeline) return pipeline.error();
@@ -188,6 +194,32 @@ Expected<void> ComputeBackend::State::createPipelines() {
     query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
     query_info.queryCount = kTimestampCount;
     TESSERA_VK_CHECK(c.vk.vkCreateQueryPool(c.device, &query_info, nullptr, &timestamps));
+  }
+  return {};
+}
+
+Expected<void> ComputeBackend::State::ensureRasterPipelines(uint32_t layers) {
+  TESSERA_CHECK(layers >= 1 && layers <= kMaxVisibilityLayers) << layers << " layers";
+  if (raster[layers]) return {};
+  // raster.comp's shared memory for a batch of B records: edge coefficients, thresholds per
+  // layer, depth plane and key, 32 half-row buckets; B = 64 unless that does not fit.
+  auto shared_bytes = [&](uint32_t batch) { return batch * (176 + 12 * layers) + 128; };
+  const uint32_t batch =
+      shared_bytes(64) <= context->caps.properties.limits.maxComputeSharedMemorySize ? 64 : 32;
+  const uint32_t constants[2] = {layers, batch};
+  const VkSpecializationMapEntry map[2] = {{0, 0, sizeof(uint32_t)},
+                                           {1, sizeof(uint32_t), sizeof(uint32_t)}};
+  const VkSpecializationInfo specialization{2, map, sizeof(constants), constants};
+  Expected<VkPipeline> first =
+      createPipeline(atomic64 ? std::span<const uint32_t>(spirv::kRasterAtomic64)
+                              : std::span<const uint32_t>(spirv::kRasterDepth32),
+                     &specialization);
+  if (!first) return first.error();
+  raster[layers] = *first;
+  if (!atomic64) {
+    Expected<VkPipeline> second = createPipeline(spirv::kRasterId32, &specialization);
+    if (!second) return second.error();
+    raster_id[layers] = *second;
   }
   return {};
 }
@@ -205,6 +237,7 @@ Expected<void> ComputeBackend::State::ensureWorkingBuffers(const RenderOptions& 
   packed.frame.extra_capacity = extra_capacity;
   packed.frame.bin_capacity = bin_capacity;
   packed.frame.segment_capacity = static_cast<uint32_t>(segment_capacity);
+  const size_t output_words_per_pixel = 3 + (options.normals ? 3 : 0) + (options.coverage ? 1 : 0);
 
   struct Need {
     Buffer* buffer;
@@ -230,8 +263,9 @@ Expected<void> ComputeBackend::State::ensureWorkingBuffers(const RenderOptions& 
        MemoryKind::kDevice, "bin entry"},
       {&segments, segment_capacity * 4 * sizeof(uint32_t), kStorage, MemoryKind::kDevice,
        "raster segment"},
-      {&visibility, pixels * sizeof(uint64_t), kStorage, MemoryKind::kDevice, "visibility"},
-      {&output, pixels * (options.normals ? 6 : 3) * sizeof(uint32_t), kStorage, MemoryKind::kHost,
+      {&visibility, pixels * packed.frame.layers * sizeof(uint64_t), kStorage, MemoryKind::kDevice,
+       "visibility"},
+      {&output, pixels * output_words_per_pixel * sizeof(uint32_t), kStorage, MemoryKind::kHost,
        "output image"},
   };
   for (const Need& need : needs)
@@ -314,7 +348,7 @@ Expected<void> ComputeBackend::State::recordAndRun(const RenderOptions& options)
   timestamp(0);
 
   // 1. Clear.
-  dispatch(clear, (pixels + 255) / 256);
+  dispatch(clear, (pixels * packed.frame.layers + 255) / 256);
   // Orders the cleared visibility buffer, tile bins and counters before setup's counter
   // atomics, binning and the fine raster's commits.
   computeToCompute();
@@ -349,11 +383,11 @@ Expected<void> ComputeBackend::State::recordAndRun(const RenderOptions& options)
   timestamp(4);
 
   // 5. Fine raster.
-  dispatchIndirect(raster, kRasterDispatchOffset);
-  if (raster_id) {
+  dispatchIndirect(raster[packed.frame.layers], kRasterDispatchOffset);
+  if (!atomic64) {
     // Orders the committed depths (pass 1 of the 32-bit path) before pass 2 compares with them.
     computeToCompute();
-    dispatchIndirect(raster_id, kRasterDispatchOffset);
+    dispatchIndirect(raster_id[packed.frame.layers], kRasterDispatchOffset);
   }
   // Orders the visibility buffer's commits before the shade pass reads it.
   computeToCompute();
@@ -406,6 +440,7 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
     return makeError("an earlier frame is still running: " + r.error().message);
   if (Expected<void> r = packScene(scene, options, IndexPolicy::kAsGiven, packed); !r) return r;
   if (Expected<void> r = uploadScene(*context, packed, scene_buffers); !r) return r;
+  if (Expected<void> r = ensureRasterPipelines(packed.frame.layers); !r) return r;
 
   // First-frame capacities: every visible triangle in a few tiles, a few clipped triangles.
   if (bin_capacity == 0)
@@ -441,6 +476,10 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   const uint32_t* words = static_cast<const uint32_t*>(output.mapped);
   copyResults(words, words + n, words + 2 * n,
               options.normals ? reinterpret_cast<const float*>(words + 3 * n) : nullptr, 3, frame);
+  if (options.coverage) {
+    const uint32_t* coverage = words + (options.normals ? 6 : 3) * n;
+    for (size_t p = 0; p < n; ++p) frame.coverage[p] = static_cast<uint8_t>(coverage[p]);
+  }
   drawSceneLines(scene, options, packed, frame);
 
   stats.triangles_in = packed.triangle_count;

@@ -50,7 +50,8 @@ bool validationRequestedByEnvironment() {
 }
 
 DeviceCapabilities queryDevice(const VulkanFunctions& vk, VkPhysicalDevice physical,
-                               const std::vector<std::string>& pretend_missing) {
+                               const std::vector<std::string>& pretend_missing,
+                               int pretend_max_samples) {
   DeviceCapabilities caps;
   caps.physical = physical;
   vk.vkGetPhysicalDeviceProperties(physical, &caps.properties);
@@ -97,6 +98,13 @@ DeviceCapabilities queryDevice(const VulkanFunctions& vk, VkPhysicalDevice physi
   if (pretends(pretend_missing, "shaderFloat64")) caps.shader_float64 = false;
   if (pretends(pretend_missing, "shaderBufferInt64Atomics")) caps.int64_atomics = false;
   if (pretends(pretend_missing, "geometryShader")) caps.geometry_shader = false;
+  const VkPhysicalDeviceLimits& limits = caps.properties.limits;
+  caps.framebuffer_sample_counts =
+      limits.framebufferColorSampleCounts & limits.framebufferDepthSampleCounts;
+  caps.standard_sample_locations = limits.standardSampleLocations == VK_TRUE &&
+                                   !pretends(pretend_missing, "standardSampleLocations");
+  if (pretend_max_samples > 0)
+    caps.framebuffer_sample_counts &= static_cast<VkSampleCountFlags>(2 * pretend_max_samples - 1);
   // 64-bit atomics on int64 values need int64 arithmetic in the same shader.
   caps.int64_atomics = caps.int64_atomics && caps.shader_int64;
 
@@ -175,7 +183,18 @@ DeviceInfo describeDevice(const DeviceCapabilities& caps, int index) {
   }
   const std::string raster_missing = missingRequirements(caps, BackendKind::kRaster);
   info.raster_usable = raster_missing.empty();
-  info.raster_note = info.raster_usable ? "graphics pipeline" : "missing " + raster_missing;
+  info.raster_sample_counts = {1};
+  for (int n : {2, 4, 8})
+    if (rasterSampleCountProblem(caps, n).empty()) info.raster_sample_counts.push_back(n);
+  if (info.raster_usable) {
+    info.raster_note = "graphics pipeline, MSAA";
+    for (size_t i = 0; i < info.raster_sample_counts.size(); ++i) {
+      info.raster_note += i ? '/' : ' ';
+      info.raster_note += std::to_string(info.raster_sample_counts[i]);
+    }
+  } else {
+    info.raster_note = "missing " + raster_missing;
+  }
   return info;
 }
 
@@ -331,7 +350,8 @@ Expected<void> Context::pickDevice(const VulkanOptions& options, BackendKind kin
   int best = -1, best_rank = 1000;
   std::string reasons;
   for (uint32_t i = 0; i < count; ++i) {
-    DeviceCapabilities candidate = queryDevice(vk, physical[i], options.pretend_missing_features);
+    DeviceCapabilities candidate =
+        queryDevice(vk, physical[i], options.pretend_missing_features, options.pretend_max_samples);
     const std::string missing = missingRequirements(candidate, kind);
     if (!missing.empty()) {
       reasons += std::string(reasons.empty() ? "" : "; ") + std::to_string(i) + " (" +

@@ -33,14 +33,23 @@ struct DeviceCapabilities {
   bool int64_atomics = false;  // shaderBufferInt64Atomics
   bool geometry_shader = false;
   bool depth32_attachment = false;
+  // Sample counts a colour and a depth attachment both take (framebufferColorSampleCounts &
+  // framebufferDepthSampleCounts), and whether they sit at the standard positions: what
+  // vulkan-raster's MSAA needs.
+  VkSampleCountFlags framebuffer_sample_counts = VK_SAMPLE_COUNT_1_BIT;
+  bool standard_sample_locations = false;
   uint32_t timestamp_valid_bits = 0;  // of the chosen queue family (0: no timestamps)
 };
 
+// pretend_max_samples > 0 treats every sample count above it as unsupported.
 DeviceCapabilities queryDevice(const VulkanFunctions& vk, VkPhysicalDevice physical,
-                               const std::vector<std::string>& pretend_missing);
+                               const std::vector<std::string>& pretend_missing,
+                               int pretend_max_samples = 0);
 // Why a backend cannot run on the device ("" when it can).
 std::string missingRequirements(const DeviceCapabilities& caps, BackendKind kind);
 DeviceInfo describeDevice(const DeviceCapabilities& caps, int index);
+// Why vulkan-raster cannot render with `samples` per pixel on the device ("" when it can).
+std::string rasterSampleCountProblem(const DeviceCapabilities& caps, int samples);
 
 enum class MemoryKind {
   kDevice,  // written and read by the GPU only: device-local where the device has it

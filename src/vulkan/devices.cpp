@@ -1,4 +1,5 @@
-// listDevices(): a short-lived instance that enumerates the physical devices.
+// listDevices(): a short-lived instance that enumerates the physical devices; and what a
+// device's multisampling limits allow vulkan-raster.
 #include <tessera/vulkan/vulkan_backend.h>
 
 #include "vulkan/context.h"
@@ -48,6 +49,27 @@ Expected<std::vector<DeviceInfo>> listDevices() {
   if (Expected<void> r = loadGlobalFunctions(vk); !r) return r.error();
   InstanceGuard guard{vk};
   return enumerate(vk, guard);
+}
+
+std::string rasterSampleCountProblem(const DeviceCapabilities& caps, int samples) {
+  if (samples == 1) return {};
+  std::string problem;
+  if (!(caps.framebuffer_sample_counts & static_cast<VkSampleCountFlags>(samples))) {
+    problem = "the device does not take " + std::to_string(samples) +
+              " samples per pixel (framebufferColorSampleCounts & framebufferDepthSampleCounts "
+              "allow";
+    for (int n = 1; n <= 64; n *= 2) {
+      if (!(caps.framebuffer_sample_counts & static_cast<VkSampleCountFlags>(n))) continue;
+      problem += ' ';
+      problem += std::to_string(n);
+    }
+    problem += ")";
+  } else if (!caps.standard_sample_locations) {
+    problem =
+        "the device does not place its samples at the standard positions "
+        "(standardSampleLocations is false), so its coverage would not be tessera's";
+  }
+  return problem;
 }
 
 }  // namespace tessera::vulkan

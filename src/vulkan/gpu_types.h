@@ -35,7 +35,13 @@ enum Binding : uint32_t {
 };
 
 // GpuFrameConstants::flags
-constexpr uint32_t kFrameNormals = 1u;  // write the normal AOV
+constexpr uint32_t kFrameNormals = 1u;   // write the normal AOV
+constexpr uint32_t kFrameCoverage = 2u;  // write the coverage AOV
+
+// Visibility layers per pixel (compute backend): the samples, and before them the pixel centre
+// when the frame's AOVs need it and the pattern has more than one sample (none of the standard
+// patterns of 2, 4 or 8 samples has one at the centre).
+constexpr int kMaxVisibilityLayers = 9;
 
 // GpuObject::flags
 constexpr uint32_t kObjectHasUv = 1u;
@@ -70,8 +76,16 @@ struct GpuFrameConstants {
   uint32_t object_count, light_count, extra_capacity, bin_capacity;
   uint32_t background, flags, segment_capacity, pad0;
   float ambient[4];
+  // Sampling (compute backend): samples per pixel, visibility layers per pixel, the first
+  // layer that is a sample (1 when layer 0 is the pixel centre), the bounds of the layers'
+  // positions and each layer's position, in 1/256 pixel from the pixel's top-left corner.
+  uint32_t samples, layers, first_sample_layer, pad1;
+  int32_t sample_min_x, sample_min_y, sample_max_x, sample_max_y;
+  float background_linear[4];
+  int32_t layer_x[kMaxVisibilityLayers], layer_y[kMaxVisibilityLayers];
+  uint32_t pad2[2];
 };
-static_assert(sizeof(GpuFrameConstants) == 80);
+static_assert(sizeof(GpuFrameConstants) == 208);
 
 struct GpuLight {
   float direction[4];

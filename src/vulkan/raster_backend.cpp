@@ -1,7 +1,11 @@
-// The "vulkan-raster" backend: the scene through Vulkan's graphics pipeline. One render pass
-// with three colour attachments (packed sRGB colour and triangle id as R32_UINT, the world normal
-// as RGBA32F) and a D32 depth attachment; one indexed draw per object; then the attachments are
-// copied into a mapped buffer and the CPU's line pass draws the axes on the host.
+// The "vulkan-raster" backend: the scene through Vulkan's graphics pipeline. One indexed draw per
+// object in each pass of src/vulkan/raster_passes.h:
+//   - the AOV pass (one sample): packed sRGB colour, triangle id, world normal and depth, copied
+//     into a mapped buffer; with MSAA it still gives the id, depth and normal AOVs (and the
+//     depth the lines are tested against), which are the pixel centre's at any sample count;
+//   - with options.msaa > 1, the multisample pass: the pipeline's own multisampling at the
+//     standard sample positions, resolved to linear colour and coverage, encoded on the host.
+// Then the CPU's line pass draws the axes on the host.
 //
 // Window coordinates match the CPU's: the zero-to-one projection gives the same window z, and a
 // negative-height viewport puts pixel (0, 0) at the top left with Y up in NDC, so the OpenGL
@@ -9,33 +13,47 @@
 #include <tessera/vulkan/vulkan_backend.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 
 #include <tessera/base/check.h>
+#include <tessera/scene/color.h>
 
-#include "render/fixed_point.h"
 #include "shaders/MeshFrag.spv.h"
-#include "shaders/MeshVert.spv.h"
+#include "shaders/MeshFragMsaa.spv.h"
 #include "vulkan/context.h"
 #include "vulkan/gpu_types.h"
+#include "vulkan/raster_passes.h"
 #include "vulkan/scene_upload.h"
 
 namespace tessera::vulkan {
 
 namespace {
 
-constexpr VkFormat kColorFormat = VK_FORMAT_R32_UINT;  // packed RGBA8, encoded by the shader
-constexpr VkFormat kIdFormat = VK_FORMAT_R32_UINT;
-constexpr VkFormat kNormalFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-constexpr int kAttachmentCount = 4;  // colour, id, normal, depth
-
-struct Image {
-  VkImage image = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  VkImageView view = VK_NULL_HANDLE;
+// The readback buffer, per pixel: normal (16 bytes), resolved linear colour (8), packed colour,
+// id and depth (4 each). Each region starts at a multiple of its texel size.
+struct ReadbackLayout {
+  VkDeviceSize normal, resolved, color, id, depth, total;
 };
+ReadbackLayout readbackLayout(size_t pixels) {
+  return {0, pixels * 16, pixels * 24, pixels * 28, pixels * 32, pixels * 36};
+}
+
+// IEEE half to float (the resolved RGBA16F colour).
+float halfToFloat(uint16_t h) {
+  const uint32_t sign = static_cast<uint32_t>(h & 0x8000u) << 16;
+  const uint32_t exponent = (h >> 10) & 0x1fu, mantissa = h & 0x3ffu;
+  if (exponent == 0) {  // zero or subnormal: mantissa * 2^-24
+    const float value = std::ldexp(static_cast<float>(mantissa), -24);
+    return sign ? -value : value;
+  }
+  uint32_t bits = sign | (exponent == 31 ? 0x7f800000u | (mantissa << 13)
+                                         : ((exponent + 112) << 23) | (mantissa << 13));
+  float value;
+  std::memcpy(&value, &bits, sizeof(value));
+  return value;
+}
 
 }  // namespace
 
@@ -45,14 +63,17 @@ struct RasterBackend::State {
   VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
   VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
   VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
-  VkRenderPass render_pass = VK_NULL_HANDLE;
-  VkPipeline pipelines[3] = {};  // by CullMode: back, front, none
+  VkRenderPass aov_pass = VK_NULL_HANDLE;
+  VkPipeline aov_pipelines[3] = {};  // by CullMode: back, front, none
+  // The multisample pass of the last sample count used (made on first use), and its pipelines.
+  int ms_samples = 0;
+  VkRenderPass ms_pass = VK_NULL_HANDLE;
+  VkPipeline ms_pipelines[3] = {};
   VkQueryPool timestamps = VK_NULL_HANDLE;
 
-  int width = 0, height = 0;
-  Image attachments[kAttachmentCount];
-  VkFramebuffer framebuffer = VK_NULL_HANDLE;
+  PassTargets aov_targets, ms_targets;
   Buffer readback;
+  std::vector<uint32_t> resolved_colors;  // the multisample pass's colour, encoded
 
   PackedScene packed;
   SceneBuffers scene_buffers;
@@ -61,9 +82,17 @@ struct RasterBackend::State {
 
   ~State();
   Expected<void> createPipelines();
-  Expected<void> ensureTargets(int w, int h);
-  void destroyTargets();
+  Expected<void> ensureMultisamplePass(int samples);
+  Expected<void> ensureTargets(int w, int h, int samples, bool aov_pass_needed);
+  void destroyMultisamplePass();
+  void writeDescriptors();
+  void recordPass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer,
+                  const VkPipeline pipelines[3], const VkClearValue* clears, uint32_t clear_count);
+  void recordCopy(VkCommandBuffer cmd, const Image& image, bool depth, VkDeviceSize offset);
+  void resolveOnHost(int samples, Frame& frame);
+  void readResults(int samples, bool aov_pass_ran, Frame& frame);
   Expected<void> renderFrame(const Scene& scene, const RenderOptions& options, Frame& frame);
+  void readTimings();
 };
 
 RasterBackend::State::~State() {
@@ -73,10 +102,12 @@ RasterBackend::State::~State() {
   // the Context leaks everything rather than hang.
   c.fence_timeout_ms = std::max<uint32_t>(c.fence_timeout_ms, 5000);
   if (!c.waitForPending()) return;
-  destroyTargets();
-  for (VkPipeline p : pipelines)
+  destroyPassTargets(c, aov_targets);
+  destroyPassTargets(c, ms_targets);
+  destroyMultisamplePass();
+  for (VkPipeline p : aov_pipelines)
     if (p) c.vk.vkDestroyPipeline(c.device, p, nullptr);
-  if (render_pass) c.vk.vkDestroyRenderPass(c.device, render_pass, nullptr);
+  if (aov_pass) c.vk.vkDestroyRenderPass(c.device, aov_pass, nullptr);
   if (pipeline_layout) c.vk.vkDestroyPipelineLayout(c.device, pipeline_layout, nullptr);
   if (descriptor_pool) c.vk.vkDestroyDescriptorPool(c.device, descriptor_pool, nullptr);
   if (set_layout) c.vk.vkDestroyDescriptorSetLayout(c.device, set_layout, nullptr);
@@ -121,149 +152,13 @@ Expected<void> RasterBackend::State::createPipelines() {
   allocate.pSetLayouts = &set_layout;
   TESSERA_VK_CHECK(vk.vkAllocateDescriptorSets(c.device, &allocate, &descriptor_set));
 
-  // The render pass: every attachment cleared, drawn, then left ready to be copied out.
-  VkAttachmentDescription attachments[kAttachmentCount]{};
-  const VkFormat formats[kAttachmentCount] = {kColorFormat, kIdFormat, kNormalFormat, kDepthFormat};
-  for (int i = 0; i < kAttachmentCount; ++i) {
-    attachments[i].format = formats[i];
-    attachments[i].samples = VK_SAMPLE_COUNT_1_BIT;
-    attachments[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    attachments[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    attachments[i].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    attachments[i].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    attachments[i].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    attachments[i].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-  }
-  const VkAttachmentReference color_refs[3] = {{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
-                                               {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
-                                               {2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}};
-  const VkAttachmentReference depth_ref{3, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-  VkSubpassDescription subpass{};
-  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  subpass.colorAttachmentCount = 3;
-  subpass.pColorAttachments = color_refs;
-  subpass.pDepthStencilAttachment = &depth_ref;
-  constexpr VkPipelineStageFlags kAttachmentStages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
-                                                     VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
-                                                     VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-  constexpr VkAccessFlags kAttachmentWrites =
-      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  VkSubpassDependency dependencies[2]{};
-  // Orders this frame's clears (and the layout transitions out of UNDEFINED) after the previous
-  // frame's copies out of the same images.
-  dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
-  dependencies[0].dstSubpass = 0;
-  dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
-  dependencies[0].dstStageMask = kAttachmentStages;
-  dependencies[0].srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-  dependencies[0].dstAccessMask = kAttachmentWrites | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
-  // Orders the attachment writes (and the transition to TRANSFER_SRC_OPTIMAL) before the copies
-  // into the readback buffer.
-  dependencies[1].srcSubpass = 0;
-  dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
-  dependencies[1].srcStageMask = kAttachmentStages;
-  dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
-  dependencies[1].srcAccessMask = kAttachmentWrites;
-  dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-  VkRenderPassCreateInfo pass_info{};
-  pass_info.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
-  pass_info.attachmentCount = kAttachmentCount;
-  pass_info.pAttachments = attachments;
-  pass_info.subpassCount = 1;
-  pass_info.pSubpasses = &subpass;
-  pass_info.dependencyCount = 2;
-  pass_info.pDependencies = dependencies;
-  TESSERA_VK_CHECK(vk.vkCreateRenderPass(c.device, &pass_info, nullptr, &render_pass));
-
-  Expected<VkShaderModule> vert = c.createShaderModule(spirv::kMeshVert);
-  if (!vert) return vert.error();
-  Expected<VkShaderModule> frag = c.createShaderModule(spirv::kMeshFrag);
-  if (!frag) {
-    vk.vkDestroyShaderModule(c.device, *vert, nullptr);
-    return frag.error();
-  }
-  VkPipelineShaderStageCreateInfo stages[2]{};
-  stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-  stages[0].module = *vert;
-  stages[0].pName = "main";
-  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-  stages[1].module = *frag;
-  stages[1].pName = "main";
-
-  const VkVertexInputBindingDescription vertex_binding{0, sizeof(GpuVertex),
-                                                       VK_VERTEX_INPUT_RATE_VERTEX};
-  const VkVertexInputAttributeDescription vertex_attributes[4] = {
-      {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, position)},
-      {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal)},
-      {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv)},
-      {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(GpuVertex, color)}};
-  VkPipelineVertexInputStateCreateInfo vertex_input{};
-  vertex_input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
-  vertex_input.vertexBindingDescriptionCount = 1;
-  vertex_input.pVertexBindingDescriptions = &vertex_binding;
-  vertex_input.vertexAttributeDescriptionCount = 4;
-  vertex_input.pVertexAttributeDescriptions = vertex_attributes;
-  VkPipelineInputAssemblyStateCreateInfo assembly{};
-  assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
-  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  VkPipelineViewportStateCreateInfo viewport{};
-  viewport.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
-  viewport.viewportCount = 1;
-  viewport.scissorCount = 1;
-  VkPipelineRasterizationStateCreateInfo rasterization{};
-  rasterization.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
-  rasterization.polygonMode = VK_POLYGON_MODE_FILL;
-  rasterization.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-  rasterization.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo multisample{};
-  multisample.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
-  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo depth{};
-  depth.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
-  depth.depthTestEnable = VK_TRUE;
-  depth.depthWriteEnable = VK_TRUE;
-  depth.depthCompareOp = VK_COMPARE_OP_LESS;  // the CPU's z < stored: the first of equals wins
-  VkPipelineColorBlendAttachmentState blend[3]{};
-  for (VkPipelineColorBlendAttachmentState& b : blend)
-    b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                       VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  VkPipelineColorBlendStateCreateInfo color_blend{};
-  color_blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
-  color_blend.attachmentCount = 3;
-  color_blend.pAttachments = blend;
-  const VkDynamicState dynamic_states[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  VkPipelineDynamicStateCreateInfo dynamic{};
-  dynamic.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
-  dynamic.dynamicStateCount = 2;
-  dynamic.pDynamicStates = dynamic_states;
-
-  VkGraphicsPipelineCreateInfo create[3]{};
-  VkPipelineRasterizationStateCreateInfo rasterizations[3] = {rasterization, rasterization,
-                                                              rasterization};
-  rasterizations[0].cullMode = VK_CULL_MODE_BACK_BIT;   // CullMode::kBack
-  rasterizations[1].cullMode = VK_CULL_MODE_FRONT_BIT;  // CullMode::kFront
-  rasterizations[2].cullMode = VK_CULL_MODE_NONE;       // CullMode::kNone
-  for (int i = 0; i < 3; ++i) {
-    create[i].sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
-    create[i].stageCount = 2;
-    create[i].pStages = stages;
-    create[i].pVertexInputState = &vertex_input;
-    create[i].pInputAssemblyState = &assembly;
-    create[i].pViewportState = &viewport;
-    create[i].pRasterizationState = &rasterizations[i];
-    create[i].pMultisampleState = &multisample;
-    create[i].pDepthStencilState = &depth;
-    create[i].pColorBlendState = &color_blend;
-    create[i].pDynamicState = &dynamic;
-    create[i].layout = pipeline_layout;
-    create[i].renderPass = render_pass;
-  }
-  const VkResult created =
-      vk.vkCreateGraphicsPipelines(c.device, VK_NULL_HANDLE, 3, create, nullptr, pipelines);
-  vk.vkDestroyShaderModule(c.device, *vert, nullptr);
-  vk.vkDestroyShaderModule(c.device, *frag, nullptr);
-  TESSERA_VK_CHECK(created);
+  Expected<VkRenderPass> pass = createAovPass(c);
+  if (!pass) return pass.error();
+  aov_pass = *pass;
+  if (Expected<void> r =
+          createMeshPipelines(c, pipeline_layout, aov_pass, 1, 3, spirv::kMeshFrag, aov_pipelines);
+      !r)
+    return r;
 
   if (c.caps.timestamp_valid_bits > 0) {
     VkQueryPoolCreateInfo query_info{};
@@ -275,94 +170,49 @@ Expected<void> RasterBackend::State::createPipelines() {
   return {};
 }
 
-void RasterBackend::State::destroyTargets() {
+void RasterBackend::State::destroyMultisamplePass() {
   Context& c = *context;
-  if (framebuffer) c.vk.vkDestroyFramebuffer(c.device, framebuffer, nullptr);
-  framebuffer = VK_NULL_HANDLE;
-  for (Image& image : attachments) {
-    if (image.view) c.vk.vkDestroyImageView(c.device, image.view, nullptr);
-    if (image.image) c.vk.vkDestroyImage(c.device, image.image, nullptr);
-    if (image.memory) c.vk.vkFreeMemory(c.device, image.memory, nullptr);
-    image = Image{};
+  for (VkPipeline& p : ms_pipelines) {
+    if (p) c.vk.vkDestroyPipeline(c.device, p, nullptr);
+    p = VK_NULL_HANDLE;
   }
-  width = height = 0;
+  if (ms_pass) c.vk.vkDestroyRenderPass(c.device, ms_pass, nullptr);
+  ms_pass = VK_NULL_HANDLE;
+  ms_samples = 0;
 }
 
-Expected<void> RasterBackend::State::ensureTargets(int w, int h) {
-  if (w == width && h == height && framebuffer) return {};
-  destroyTargets();
+Expected<void> RasterBackend::State::ensureMultisamplePass(int samples) {
+  if (ms_samples == samples) return {};
   Context& c = *context;
-  const VkFormat formats[kAttachmentCount] = {kColorFormat, kIdFormat, kNormalFormat, kDepthFormat};
-  VkImageView views[kAttachmentCount];
-  for (int i = 0; i < kAttachmentCount; ++i) {
-    const bool is_depth = i == 3;
-    VkImageCreateInfo create{};
-    create.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-    create.imageType = VK_IMAGE_TYPE_2D;
-    create.format = formats[i];
-    create.extent = {static_cast<uint32_t>(w), static_cast<uint32_t>(h), 1};
-    create.mipLevels = 1;
-    create.arrayLayers = 1;
-    create.samples = VK_SAMPLE_COUNT_1_BIT;
-    create.tiling = VK_IMAGE_TILING_OPTIMAL;
-    create.usage = (is_depth ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT
-                             : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) |
-                   VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    create.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    Image& image = attachments[i];
-    TESSERA_VK_CHECK(c.vk.vkCreateImage(c.device, &create, nullptr, &image.image));
-    VkMemoryRequirements requirements{};
-    c.vk.vkGetImageMemoryRequirements(c.device, image.image, &requirements);
-    Expected<uint32_t> type =
-        c.findMemoryType(requirements.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    if (!type) return type.error();
-    VkMemoryAllocateInfo allocate{};
-    allocate.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    allocate.allocationSize = requirements.size;
-    allocate.memoryTypeIndex = *type;
-    TESSERA_VK_CHECK(c.vk.vkAllocateMemory(c.device, &allocate, nullptr, &image.memory));
-    TESSERA_VK_CHECK(c.vk.vkBindImageMemory(c.device, image.image, image.memory, 0));
-    VkImageViewCreateInfo view{};
-    view.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-    view.image = image.image;
-    view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    view.format = formats[i];
-    view.subresourceRange = {static_cast<VkImageAspectFlags>(is_depth ? VK_IMAGE_ASPECT_DEPTH_BIT
-                                                                      : VK_IMAGE_ASPECT_COLOR_BIT),
-                             0, 1, 0, 1};
-    TESSERA_VK_CHECK(c.vk.vkCreateImageView(c.device, &view, nullptr, &image.view));
-    views[i] = image.view;
-  }
-  VkFramebufferCreateInfo framebuffer_info{};
-  framebuffer_info.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
-  framebuffer_info.renderPass = render_pass;
-  framebuffer_info.attachmentCount = kAttachmentCount;
-  framebuffer_info.pAttachments = views;
-  framebuffer_info.width = static_cast<uint32_t>(w);
-  framebuffer_info.height = static_cast<uint32_t>(h);
-  framebuffer_info.layers = 1;
-  TESSERA_VK_CHECK(c.vk.vkCreateFramebuffer(c.device, &framebuffer_info, nullptr, &framebuffer));
-  width = w;
-  height = h;
-  // Colour, id and depth are 4 bytes a pixel, the normal 16.
-  const size_t pixels = static_cast<size_t>(w) * h;
-  return c.ensureBuffer(readback, pixels * 28, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::kHost,
-                        "readback");
-}
-
-Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const RenderOptions& options,
-                                                 Frame& frame) {
-  Context& c = *context;
-  const VulkanFunctions& vk = c.vk;
-  // Nothing the GPU may still read (an earlier frame abandoned after a timeout) is touched
-  // before that frame has finished: buffers, descriptors and mapped inputs alike.
-  if (Expected<void> r = c.waitForPending(); !r)
-    return makeError("an earlier frame is still running: " + r.error().message);
-  if (Expected<void> r = packScene(scene, options, IndexPolicy::kDegenerateDropped, packed); !r)
+  destroyPassTargets(c, ms_targets);
+  destroyMultisamplePass();
+  Expected<VkRenderPass> pass = createMultisamplePass(c, samples);
+  if (!pass) return pass.error();
+  ms_pass = *pass;
+  if (Expected<void> r = createMeshPipelines(c, pipeline_layout, ms_pass, samples, 1,
+                                             spirv::kMeshFragMsaa, ms_pipelines);
+      !r)
     return r;
-  if (Expected<void> r = uploadScene(c, packed, scene_buffers); !r) return r;
-  if (Expected<void> r = ensureTargets(options.width, options.height); !r) return r;
+  ms_samples = samples;
+  return {};
+}
 
+Expected<void> RasterBackend::State::ensureTargets(int w, int h, int samples,
+                                                   bool aov_pass_needed) {
+  Context& c = *context;
+  if (aov_pass_needed && (aov_targets.width != w || aov_targets.height != h))
+    if (Expected<void> r = createPassTargets(c, aov_pass, w, h, 1, aov_targets); !r) return r;
+  if (samples > 1) {
+    if (Expected<void> r = ensureMultisamplePass(samples); !r) return r;
+    if (ms_targets.width != w || ms_targets.height != h || ms_targets.samples != samples)
+      if (Expected<void> r = createPassTargets(c, ms_pass, w, h, samples, ms_targets); !r) return r;
+  }
+  const size_t pixels = static_cast<size_t>(w) * h;
+  return c.ensureBuffer(readback, readbackLayout(pixels).total, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                        MemoryKind::kHost, "readback");
+}
+
+void RasterBackend::State::writeDescriptors() {
   std::vector<VkDescriptorBufferInfo> infos;
   appendSceneDescriptors(scene_buffers, infos);
   VkWriteDescriptorSet writes[kSceneBindingCount]{};
@@ -374,25 +224,20 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
     writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     writes[i].pBufferInfo = &infos[i];
   }
-  vk.vkUpdateDescriptorSets(c.device, kSceneBindingCount, writes, 0, nullptr);
+  context->vk.vkUpdateDescriptorSets(context->device, kSceneBindingCount, writes, 0, nullptr);
+}
 
-  Expected<VkCommandBuffer> begun = c.beginCommands();
-  if (!begun) return begun.error();
-  VkCommandBuffer cmd = *begun;
-  if (timestamps) {
-    vk.vkCmdResetQueryPool(cmd, timestamps, 0, 2);
-    vk.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps, 0);
-  }
-
-  VkClearValue clears[kAttachmentCount]{};
-  clears[0].color.uint32[0] = packed.frame.background;
-  clears[3].depthStencil = {1.0f, 0};
+void RasterBackend::State::recordPass(VkCommandBuffer cmd, VkRenderPass pass,
+                                      VkFramebuffer framebuffer, const VkPipeline pipelines[3],
+                                      const VkClearValue* clears, uint32_t clear_count) {
+  const VulkanFunctions& vk = context->vk;
+  const int width = packed.frame.width, height = packed.frame.height;
   VkRenderPassBeginInfo begin{};
   begin.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
-  begin.renderPass = render_pass;
+  begin.renderPass = pass;
   begin.framebuffer = framebuffer;
   begin.renderArea = {{0, 0}, {static_cast<uint32_t>(width), static_cast<uint32_t>(height)}};
-  begin.clearValueCount = kAttachmentCount;
+  begin.clearValueCount = clear_count;
   begin.pClearValues = clears;
   vk.vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
   // Negative height: y = 0 of the framebuffer is NDC y = +1, the top row, as the CPU's viewport.
@@ -409,8 +254,7 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
   const VkDeviceSize zero = 0;
   vk.vkCmdBindVertexBuffers(cmd, 0, 1, &scene_buffers.vertices.buffer, &zero);
   vk.vkCmdBindIndexBuffer(cmd, scene_buffers.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
-  stats = RasterStats{};
-  stats.triangles_in = packed.triangle_count;
+  stats.draws = 0;
   for (uint32_t i = 0; i < packed.objects.size(); ++i) {
     const GpuObject& object = packed.objects[i];
     if (object.triangle_count == 0) continue;
@@ -424,21 +268,97 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
     ++stats.draws;
   }
   vk.vkCmdEndRenderPass(cmd);
+}
 
-  // The render pass's outgoing dependency orders the attachment writes before these copies.
-  const size_t pixels = static_cast<size_t>(width) * height;
-  // Each region starts at a multiple of its texel size: the 16-byte normals first, then colour,
-  // id and depth (4 bytes each).
-  const VkDeviceSize offsets[kAttachmentCount] = {pixels * 16, pixels * 20, 0, pixels * 24};
-  for (int i = 0; i < kAttachmentCount; ++i) {
-    VkBufferImageCopy region{};
-    region.bufferOffset = offsets[i];
-    region.imageSubresource = {static_cast<VkImageAspectFlags>(i == 3 ? VK_IMAGE_ASPECT_DEPTH_BIT
-                                                                      : VK_IMAGE_ASPECT_COLOR_BIT),
-                               0, 0, 1};
-    region.imageExtent = {static_cast<uint32_t>(width), static_cast<uint32_t>(height), 1};
-    vk.vkCmdCopyImageToBuffer(cmd, attachments[i].image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                              readback.buffer, 1, &region);
+// The render pass's outgoing dependency orders its attachment writes (and resolve) before this.
+void RasterBackend::State::recordCopy(VkCommandBuffer cmd, const Image& image, bool depth,
+                                      VkDeviceSize offset) {
+  VkBufferImageCopy region{};
+  region.bufferOffset = offset;
+  region.imageSubresource = {static_cast<VkImageAspectFlags>(depth ? VK_IMAGE_ASPECT_DEPTH_BIT
+                                                                   : VK_IMAGE_ASPECT_COLOR_BIT),
+                             0, 0, 1};
+  region.imageExtent = {static_cast<uint32_t>(packed.frame.width),
+                        static_cast<uint32_t>(packed.frame.height), 1};
+  context->vk.vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                     readback.buffer, 1, &region);
+}
+
+// The resolved linear colour to sRGB (the CPU's encode, once) and its alpha, the share of
+// covered samples, to the coverage AOV (when the frame has one): (covered * 255 + S / 2) / S.
+void RasterBackend::State::resolveOnHost(int samples, Frame& frame) {
+  const size_t pixels = frame.pixelCount();
+  const uint16_t* halves = reinterpret_cast<const uint16_t*>(
+      static_cast<const char*>(readback.mapped) + readbackLayout(pixels).resolved);
+  resolved_colors.resize(pixels);
+  const bool with_coverage = !frame.coverage.empty();
+  for (size_t p = 0; p < pixels; ++p) {
+    const uint16_t* h = halves + 4 * p;
+    resolved_colors[p] = encodeSrgb8(halfToFloat(h[0])) |
+                         static_cast<uint32_t>(encodeSrgb8(halfToFloat(h[1]))) << 8 |
+                         static_cast<uint32_t>(encodeSrgb8(halfToFloat(h[2]))) << 16 | 255u << 24;
+    if (with_coverage) {
+      const long covered = std::lround(halfToFloat(h[3]) * static_cast<float>(samples));
+      const int n = static_cast<int>(std::clamp<long>(covered, 0, samples));
+      frame.coverage[p] = static_cast<uint8_t>((n * 255 + samples / 2) / samples);
+    }
+  }
+}
+
+Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const RenderOptions& options,
+                                                 Frame& frame) {
+  Context& c = *context;
+  const VulkanFunctions& vk = c.vk;
+  const int samples = options.msaa;
+  if (const std::string problem = rasterSampleCountProblem(c.caps, samples); !problem.empty())
+    return makeError("vulkan-raster cannot render " + std::to_string(samples) +
+                     "x MSAA on device " + std::to_string(c.info.index) + " (" + c.info.name +
+                     "): " + problem);
+  // Nothing the GPU may still read (an earlier frame abandoned after a timeout) is touched
+  // before that frame has finished: buffers, descriptors and mapped inputs alike.
+  if (Expected<void> r = c.waitForPending(); !r)
+    return makeError("an earlier frame is still running: " + r.error().message);
+  if (Expected<void> r = packScene(scene, options, IndexPolicy::kDegenerateDropped, packed); !r)
+    return r;
+  if (Expected<void> r = uploadScene(c, packed, scene_buffers); !r) return r;
+  // The AOV pass gives the colour at one sample, and the pixel centres' AOVs at any count.
+  const bool aov_pass_needed =
+      samples == 1 || !frame.depth.empty() || !frame.triangle_id.empty() || !frame.normal.empty();
+  if (Expected<void> r = ensureTargets(options.width, options.height, samples, aov_pass_needed); !r)
+    return r;
+  writeDescriptors();
+
+  Expected<VkCommandBuffer> begun = c.beginCommands();
+  if (!begun) return begun.error();
+  VkCommandBuffer cmd = *begun;
+  if (timestamps) {
+    vk.vkCmdResetQueryPool(cmd, timestamps, 0, 2);
+    vk.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps, 0);
+  }
+  stats = RasterStats{};
+  stats.triangles_in = packed.triangle_count;
+  stats.samples = samples;
+  const size_t pixels = static_cast<size_t>(options.width) * options.height;
+  const ReadbackLayout layout = readbackLayout(pixels);
+  if (aov_pass_needed) {
+    VkClearValue clears[kAovAttachmentCount]{};
+    clears[kAovColor].color.uint32[0] = packed.frame.background;
+    clears[kAovDepth].depthStencil = {1.0f, 0};
+    recordPass(cmd, aov_pass, aov_targets.framebuffer, aov_pipelines, clears, kAovAttachmentCount);
+    if (samples == 1) recordCopy(cmd, aov_targets.images[kAovColor], false, layout.color);
+    recordCopy(cmd, aov_targets.images[kAovId], false, layout.id);
+    recordCopy(cmd, aov_targets.images[kAovNormal], false, layout.normal);
+    recordCopy(cmd, aov_targets.images[kAovDepth], true, layout.depth);
+  }
+  if (samples > 1) {
+    // Samples no triangle covers keep the background, in linear light, with alpha 0.
+    VkClearValue clears[kMsAttachmentCount]{};
+    const float* decode = srgbDecodeTable();
+    for (int k = 0; k < 3; ++k)
+      clears[kMsColor].color.float32[k] = decode[(packed.frame.background >> (8 * k)) & 255u];
+    clears[kMsDepth].depthStencil = {1.0f, 0};
+    recordPass(cmd, ms_pass, ms_targets.framebuffer, ms_pipelines, clears, kMsAttachmentCount);
+    recordCopy(cmd, ms_targets.images[kMsResolve], false, layout.resolved);
   }
   // Orders the copies' writes into the readback buffer before the host reads it (after the
   // fence).
@@ -447,29 +367,45 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
   if (timestamps) vk.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, 1);
   if (Expected<void> r = c.submitAndWait(); !r) return r;
 
-  char* bytes = static_cast<char*>(readback.mapped);
-  uint32_t* ids = reinterpret_cast<uint32_t*>(bytes + offsets[1]);
-  float* depths = reinterpret_cast<float*>(bytes + offsets[3]);
-  // The CPU's empty pixels are +inf deep; the depth attachment clears to 1.
-  for (size_t p = 0; p < pixels; ++p)
-    if (ids[p] == kNoTriangle) depths[p] = std::numeric_limits<float>::infinity();
-  copyResults(reinterpret_cast<const uint32_t*>(bytes + offsets[0]),
-              reinterpret_cast<const uint32_t*>(depths), ids,
-              reinterpret_cast<const float*>(bytes + offsets[2]), 4, frame);
+  readResults(samples, aov_pass_needed, frame);
   drawSceneLines(scene, options, packed, frame);
-
-  if (timestamps) {
-    uint64_t ticks[2] = {};
-    if (vk.vkGetQueryPoolResults(c.device, timestamps, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
-                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS) {
-      const uint32_t bits = c.caps.timestamp_valid_bits;
-      const uint64_t mask = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
-      stats.gpu_ms = static_cast<double>((ticks[1] - ticks[0]) & mask) *
-                     c.caps.properties.limits.timestampPeriod * 1e-6;
-      stats.timings_valid = true;
-    }
-  }
+  readTimings();
   return {};
+}
+
+void RasterBackend::State::readResults(int samples, bool aov_pass_ran, Frame& frame) {
+  const size_t pixels = frame.pixelCount();
+  const ReadbackLayout layout = readbackLayout(pixels);
+  char* bytes = static_cast<char*>(readback.mapped);
+  uint32_t* ids = reinterpret_cast<uint32_t*>(bytes + layout.id);
+  float* depths = reinterpret_cast<float*>(bytes + layout.depth);
+  // The CPU's empty pixels are +inf deep; the depth attachment clears to 1.
+  if (aov_pass_ran)
+    for (size_t p = 0; p < pixels; ++p)
+      if (ids[p] == kNoTriangle) depths[p] = std::numeric_limits<float>::infinity();
+  const uint32_t* colors = reinterpret_cast<const uint32_t*>(bytes + layout.color);
+  if (samples > 1) {
+    resolveOnHost(samples, frame);
+    colors = resolved_colors.data();
+  } else if (!frame.coverage.empty()) {
+    for (size_t p = 0; p < pixels; ++p) frame.coverage[p] = ids[p] == kNoTriangle ? 0 : 255;
+  }
+  copyResults(colors, reinterpret_cast<const uint32_t*>(depths), ids,
+              reinterpret_cast<const float*>(bytes + layout.normal), 4, frame);
+}
+
+void RasterBackend::State::readTimings() {
+  if (!timestamps) return;
+  Context& c = *context;
+  uint64_t ticks[2] = {};
+  if (c.vk.vkGetQueryPoolResults(c.device, timestamps, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
+                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) != VK_SUCCESS)
+    return;  // timings are diagnostics: a frame never fails over them
+  const uint32_t bits = c.caps.timestamp_valid_bits;
+  const uint64_t mask = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
+  stats.gpu_ms = static_cast<double>((ticks[1] - ticks[0]) & mask) *
+                 c.caps.properties.limits.timestampPeriod * 1e-6;
+  stats.timings_valid = true;
 }
 
 Expected<std::unique_ptr<RasterBackend>> RasterBackend::create(const VulkanOptions& options) {

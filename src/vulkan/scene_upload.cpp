@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <span>
 
 #include <tessera/base/check.h>
 #include <tessera/scene/color.h>
@@ -31,6 +32,41 @@ float4x4 zeroToOneProjection(const Camera& camera, float aspect) {
   remap(2, 2) = 0.5f;
   remap(2, 3) = 0.5f;
   return remap * *camera.projection_override;
+}
+
+bool drawsLines(const Scene& scene, const RenderOptions& options) {
+  return options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
+                           std::any_of(scene.objects.begin(), scene.objects.end(),
+                                       [](const Object& o) { return o.show_axes; }));
+}
+
+// The compute backend's visibility layers: the pixel centre first when the frame's centre AOVs
+// (depth, ids, normals, or the depth the lines test against) need it and the pattern does not
+// sample it, then the samples in pattern order.
+void fillSampling(const Scene& scene, const RenderOptions& options, GpuFrameConstants& f) {
+  const std::span<const SamplePosition> pattern = samplePattern(options.msaa);
+  const bool centre = pattern.size() > 1 && (options.depth || options.ids || options.normals ||
+                                             drawsLines(scene, options));
+  f.samples = static_cast<uint32_t>(pattern.size());
+  f.first_sample_layer = centre ? 1u : 0u;
+  f.layers = f.samples + f.first_sample_layer;
+  if (centre) f.layer_x[0] = f.layer_y[0] = render::kSubpixelHalf;
+  for (size_t s = 0; s < pattern.size(); ++s) {
+    f.layer_x[f.first_sample_layer + s] = pattern[s].x;
+    f.layer_y[f.first_sample_layer + s] = pattern[s].y;
+  }
+  f.sample_min_x = f.sample_min_y = render::kSubpixelOne;
+  f.sample_max_x = f.sample_max_y = 0;
+  for (uint32_t l = 0; l < f.layers; ++l) {
+    f.sample_min_x = std::min(f.sample_min_x, f.layer_x[l]);
+    f.sample_max_x = std::max(f.sample_max_x, f.layer_x[l]);
+    f.sample_min_y = std::min(f.sample_min_y, f.layer_y[l]);
+    f.sample_max_y = std::max(f.sample_max_y, f.layer_y[l]);
+  }
+  // The background in linear light, as the resolve averages it: its sRGB code decoded.
+  const float* decode = srgbDecodeTable();
+  for (int k = 0; k < 3; ++k) f.background_linear[k] = decode[(f.background >> (8 * k)) & 255u];
+  f.background_linear[3] = 1.0f;
 }
 
 bool isFinite3(float3 p) {
@@ -78,9 +114,15 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
                      std::to_string(kMaxGpuTriangles) + " (29-bit triangle keys)");
 
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
-  out.view_projection = scene.camera.projection(aspect) * scene.camera.view();
-  const float4x4 view_projection_zo =
-      zeroToOneProjection(scene.camera, aspect) * scene.camera.view();
+  // Jitter moves the geometry by -jitter pixels after the projection (sampling.h), so the sample
+  // pattern, fixed on the pixel grid, moves by +jitter relative to the scene.
+  const Jitter j = options.jitter;
+  out.view_projection =
+      jitteredProjection(scene.camera.projection(aspect), j, options.width, options.height) *
+      scene.camera.view();
+  const float4x4 view_projection_zo = jitteredProjection(zeroToOneProjection(scene.camera, aspect),
+                                                         j, options.width, options.height) *
+                                      scene.camera.view();
 
   out.objects.clear();
   out.models.clear();
@@ -212,10 +254,11 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
   f.object_count = static_cast<uint32_t>(out.objects.size());
   f.light_count = static_cast<uint32_t>(out.lights.size());
   f.background = packSrgba8(scene.background);
-  f.flags = options.normals ? kFrameNormals : 0u;
+  f.flags = (options.normals ? kFrameNormals : 0u) | (options.coverage ? kFrameCoverage : 0u);
   f.ambient[0] = scene.ambient.x;
   f.ambient[1] = scene.ambient.y;
   f.ambient[2] = scene.ambient.z;
+  fillSampling(scene, options, f);
   return {};
 }
 
@@ -291,19 +334,9 @@ void appendSceneDescriptors(const SceneBuffers& buffers,
     infos.push_back(VkDescriptorBufferInfo{b->buffer, 0, VK_WHOLE_SIZE});
 }
 
-namespace {
-
-bool drawsLines(const Scene& scene, const RenderOptions& options) {
-  return options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
-                           std::any_of(scene.objects.begin(), scene.objects.end(),
-                                       [](const Object& o) { return o.show_axes; }));
-}
-
-}  // namespace
-
 void resizeFrame(const Scene& scene, const RenderOptions& options, Frame& frame) {
   frame.resize(options.width, options.height, options.depth || drawsLines(scene, options),
-               options.ids, options.normals);
+               options.ids, options.normals, options.coverage);
 }
 
 void copyResults(const uint32_t* color, const uint32_t* depth, const uint32_t* ids,
@@ -324,6 +357,7 @@ void clearFrame(Frame& frame) {
   std::fill(frame.depth.begin(), frame.depth.end(), std::numeric_limits<float>::infinity());
   std::fill(frame.triangle_id.begin(), frame.triangle_id.end(), kNoTriangle);
   std::fill(frame.normal.begin(), frame.normal.end(), float3{});
+  std::fill(frame.coverage.begin(), frame.coverage.end(), uint8_t{0});
 }
 
 Expected<void> renderIntoFrame(const Scene& scene, const RenderOptions& options, Frame& frame,
@@ -332,6 +366,8 @@ Expected<void> renderIntoFrame(const Scene& scene, const RenderOptions& options,
                 options.height <= render::kMaxViewport)
       << "viewport " << options.width << "x" << options.height << " is outside 1.."
       << render::kMaxViewport;
+  TESSERA_CHECK(isSampleCount(options.msaa))
+      << "msaa " << options.msaa << " is not a sample count (1, 2, 4 or 8)";
   resizeFrame(scene, options, frame);
   Expected<void> result = draw();
   if (!result) clearFrame(frame);
@@ -349,7 +385,7 @@ void drawSceneLines(const Scene& scene, const RenderOptions& options, const Pack
   for (size_t i = 0; i < scene.objects.size(); ++i)
     if (scene.objects[i].show_axes)
       render::appendAxes(lines, packed.models[i], scene.objects[i].axes_length);
-  render::drawLines(lines, packed.view_projection, frame);
+  render::drawLines(lines, packed.view_projection, frame, /*antialiased=*/options.msaa > 1);
 }
 
 }  // namespace tessera::vulkan

@@ -59,7 +59,7 @@ void appendSceneDescriptors(const SceneBuffers& buffers,
                             std::vector<VkDescriptorBufferInfo>& infos);
 
 // Sizes the frame as the CPU renderer does: colour always; depth when asked for or when lines
-// are drawn (they are depth-tested); ids and normals when asked for.
+// are drawn (they are depth-tested); ids, normals and coverage when asked for.
 void resizeFrame(const Scene& scene, const RenderOptions& options, Frame& frame);
 // Copies the results the frame holds buffers for (words of `pixels` each: colour, depth bits, id;
 // then three floats a pixel of normal, when `normals` is given).

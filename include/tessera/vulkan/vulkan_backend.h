@@ -2,10 +2,12 @@
 //
 //   "vulkan"         ComputeBackend: a tiled rasterizer written entirely in compute shaders
 //                    (clear, transform, setup and cull, bin into 16x16 tiles, fine raster with a
-//                    64-bit atomic min of depth << 32 | triangle key, shade, resolve). Coverage
-//                    uses the CPU's fixed-point arithmetic, so its triangle ids match the CPU's.
+//                    64-bit atomic min of depth << 32 | triangle key per sample, shade and
+//                    resolve). Coverage uses the CPU's fixed-point arithmetic at the standard
+//                    sample positions, so its triangle ids and coverage match the CPU's.
 //   "vulkan-raster"  RasterBackend: the same scene through Vulkan's graphics pipeline (vertex and
-//                    fragment shaders, a depth attachment, a R32_UINT triangle-id attachment).
+//                    fragment shaders, a depth attachment, a R32_UINT triangle-id attachment;
+//                    with MSAA, a multisampled pass resolved by the render pass).
 //
 // Nothing here exposes a Vulkan type: only tessera_vulkan sees Vulkan. The Vulkan loader is
 // opened at run time, so every way of not having Vulkan (no loader, no device, a device without
@@ -34,8 +36,9 @@ struct DeviceInfo {
   std::string compute_note;     // what is missing, or which paths the backend takes
   bool raster_usable = false;   // the "vulkan-raster" backend runs on it
   std::string raster_note;
-  bool int64_atomics = false;  // shaderBufferInt64Atomics
-  bool float64 = false;        // shaderFloat64
+  std::vector<int> raster_sample_counts;  // the RenderOptions::msaa values vulkan-raster takes
+  bool int64_atomics = false;             // shaderBufferInt64Atomics
+  bool float64 = false;                   // shaderFloat64
 };
 
 // Every Vulkan device, in the loader's order. An Error when there is no loader or no instance.
@@ -60,8 +63,12 @@ struct VulkanOptions {
   // overflow path: the frame is rendered again with bins as large as the count asked for.
   uint32_t initial_bin_capacity = 0;
   // Treat these device features as absent (for tests of the fallbacks and of the errors):
-  // "shaderInt64", "shaderFloat64", "shaderBufferInt64Atomics", "geometryShader".
+  // "shaderInt64", "shaderFloat64", "shaderBufferInt64Atomics", "geometryShader",
+  // "standardSampleLocations".
   std::vector<std::string> pretend_missing_features;
+  // Raster backend: treat sample counts above this as unsupported by the device (0 = the
+  // device's own): tests of the "sample count not supported" error.
+  int pretend_max_samples = 0;
   // Treat the device's largest storage buffer (maxStorageBufferRange) as this many bytes when
   // smaller (0 = the device's own): tests of the "scene too large for the device" error.
   uint64_t pretend_max_buffer_bytes = 0;
@@ -136,7 +143,8 @@ class ComputeBackend final : public Backend {
 // What the raster backend did in its last frame.
 struct RasterStats {
   size_t triangles_in = 0;
-  size_t draws = 0;   // one indexed draw per object
+  size_t draws = 0;   // one indexed draw per object (in each pass)
+  int samples = 1;    // RenderOptions::msaa: above 1, the multisample pass ran
   double gpu_ms = 0;  // render pass and copies, from timestamps (0 without timestamps)
   bool timings_valid = false;
 };

@@ -2,7 +2,8 @@
 // Pass 4, binning, run twice with the scan between: mode 0 counts the entries of every tile,
 // mode 1 fills them at the offsets the scan computed. One invocation per visible record; a
 // record enters each 16x16 tile of its bounding box unless one of its edges is negative at every
-// pixel centre of the tile (an exact test: no covered pixel is ever lost). Entries past the
+// sample point of the tile (an exact test, conservative: no covered sample is ever lost; with
+// one sample the points are the pixel centres). Entries past the
 // buffer's capacity are not written; the count tells the host, which grows the buffer and
 // renders the frame again.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
@@ -11,12 +12,14 @@
 
 layout(local_size_x = 64) in;
 
-// Largest value of edge k over the pixel centres of [x0, x1] x [y0, y1].
+// Largest value of edge k over the rectangle that holds every sample point of the pixels
+// [x0, x1] x [y0, y1].
 int64_t edgeMaximum(RasterRecord r, int k, int x0, int x1, int y0, int y1) {
-  const int x = r.a[k] >= 0 ? x1 : x0;
-  const int y = r.b[k] >= 0 ? y1 : y0;
-  return int64_t(r.a[k]) * (int64_t(x) * kSubpixelOne + kSubpixelHalf) +
-         int64_t(r.b[k]) * (int64_t(y) * kSubpixelOne + kSubpixelHalf) + r.c[k];
+  const int64_t x = r.a[k] >= 0 ? int64_t(x1) * kSubpixelOne + frame.sample_max_x
+                                : int64_t(x0) * kSubpixelOne + frame.sample_min_x;
+  const int64_t y = r.b[k] >= 0 ? int64_t(y1) * kSubpixelOne + frame.sample_max_y
+                                : int64_t(y0) * kSubpixelOne + frame.sample_min_y;
+  return int64_t(r.a[k]) * x + int64_t(r.b[k]) * y + r.c[k];
 }
 
 void main() {

@@ -1,6 +1,6 @@
 #version 460
-// Pass 1, clear: the visibility buffer to "empty" (all ones: farther than any depth), every
-// tile's bin counters to zero, and the frame's counters to zero.
+// Pass 1, clear: the visibility buffer (every layer of every pixel) to "empty" (all ones:
+// farther than any depth), every tile's bin counters to zero, and the frame's counters to zero.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "common.glsl"
 #include "records.glsl"
@@ -11,9 +11,9 @@ layout(std430, set = 0, binding = 17) buffer VisibilityBuffer { uint visibility_
 
 void main() {
   const uint i = flatWorkgroupIndex() * 256u + gl_LocalInvocationIndex;
-  const uint pixels = uint(frame.width) * uint(frame.height);
+  const uint entries = uint(frame.width) * uint(frame.height) * frame.layers;
   const uint tiles_count = uint(frame.tile_columns) * uint(frame.tile_rows);
-  if (i < pixels) {
+  if (i < entries) {
     visibility_words[2u * i] = kEmptyWord;
     visibility_words[2u * i + 1u] = kEmptyWord;
   }

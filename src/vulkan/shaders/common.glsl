@@ -3,6 +3,8 @@
 // shaders include this file too and must run without shaderInt64.
 
 const uint kFrameNormals = 1u;
+const uint kFrameCoverage = 2u;
+const int kMaxVisibilityLayers = 9;
 const uint kObjectHasUv = 1u;
 const uint kObjectHasColor = 2u;
 const uint kObjectHasNormals = 4u;
@@ -30,6 +32,12 @@ struct FrameConstants {
   uint object_count, light_count, extra_capacity, bin_capacity;
   uint background, flags, segment_capacity, pad0;
   vec4 ambient;
+  uint samples, layers, first_sample_layer, pad1;
+  int sample_min_x, sample_min_y, sample_max_x, sample_max_y;
+  vec4 background_linear;
+  int layer_x[kMaxVisibilityLayers];
+  int layer_y[kMaxVisibilityLayers];
+  uint pad2[2];
 };
 
 struct Light {

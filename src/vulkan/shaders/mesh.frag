@@ -2,23 +2,44 @@
 // vulkan-raster, fragment stage: the CPU's materials and lights (shading.glsl) on the
 // hardware-interpolated attributes; writes the packed sRGB colour, the triangle id
 // (gl_PrimitiveID + the object's first triangle + 1) and the world normal.
+//
+// TESSERA_MSAA = 1: the multisample pass's variant. It writes the linear colour with alpha 1 (the
+// resolve averages it with the background's alpha 0 into covered samples / samples), and takes
+// its attributes at the centroid: at the pixel centre when the triangle covers it, else inside
+// the triangle, as the CPU's resolve shades a triangle at its first covered sample.
 #include "common.glsl"
 #include "shading.glsl"
 
+#if TESSERA_MSAA
+#define TESSERA_INTERPOLATION centroid
+#else
+#define TESSERA_INTERPOLATION
+#endif
+
 layout(push_constant) uniform Draw { uint object; } draw;
 
-layout(location = 0) in vec3 in_normal;
-layout(location = 1) in vec2 in_uv;
-layout(location = 2) in vec3 in_color_front;
-layout(location = 3) in vec3 in_color_back;
+layout(location = 0) TESSERA_INTERPOLATION in vec3 in_normal;
+layout(location = 1) TESSERA_INTERPOLATION in vec2 in_uv;
+layout(location = 2) TESSERA_INTERPOLATION in vec3 in_color_front;
+layout(location = 3) TESSERA_INTERPOLATION in vec3 in_color_back;
+#if TESSERA_MSAA
+// The UV at the pixel centre: its differences across the quad give the level of detail.
+layout(location = 4) in vec2 in_uv_centre;
+#else
+#define in_uv_centre in_uv
+#endif
 
+#if TESSERA_MSAA
+layout(location = 0) out vec4 out_linear;
+#else
 layout(location = 0) out uint out_color;
 layout(location = 1) out uint out_id;
 layout(location = 2) out vec4 out_normal;
+#endif
 
 void main() {
   // Derivatives first, in uniform control flow.
-  const vec2 uv_dx = dFdx(in_uv), uv_dy = dFdy(in_uv);
+  const vec2 uv_dx = dFdx(in_uv_centre), uv_dy = dFdy(in_uv_centre);
   const GpuObject object = objects[draw.object];
   const uint t = object.triangle_base + uint(gl_PrimitiveID);
   const float flip = gl_FrontFacing ? 1.0 : -1.0;
@@ -61,7 +82,11 @@ void main() {
   }
   if (shading == kShadingFlat || shading == kShadingPhong) color *= irradiance(normal);
 
+#if TESSERA_MSAA
+  out_linear = vec4(color, 1.0);
+#else
   out_color = packColor(color);
   out_id = t + 1u;
   out_normal = vec4(normal, 0.0);
+#endif
 }

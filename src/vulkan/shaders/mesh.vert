@@ -19,6 +19,9 @@ layout(location = 1) out vec2 out_uv;
 // material's base colour, constant over a triangle, is applied per fragment.
 layout(location = 2) out vec3 out_color_front;
 layout(location = 3) out vec3 out_color_back;
+// The UV again, for the multisample pass's derivatives: its copy at location 1 is interpolated at
+// the centroid, whose screen-space differences do not give the footprint.
+layout(location = 4) out vec2 out_uv_centre;
 
 void main() {
   const GpuObject object = objects[draw.object];
@@ -35,6 +38,7 @@ void main() {
     normal = normalizeAsCpu(multiply3x3(object.normal_matrix, in_normal));
   out_normal = normal;
   out_uv = (object.flags & kObjectHasUv) != 0u ? in_uv : vec2(0.0);
+  out_uv_centre = out_uv;
   const vec3 color = (object.flags & kObjectHasColor) != 0u ? in_color.xyz : vec3(1.0);
   const bool gouraud =
       object.shading == kShadingGouraud && (object.flags & kObjectHasNormals) != 0u;

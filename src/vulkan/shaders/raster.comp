@@ -1,12 +1,16 @@
 #version 460
 // Pass 5, fine raster: one workgroup per segment of a tile's list (a tile with few triangles is
 // one segment), one invocation per pixel of the 16x16 tile. The segment's records are staged in
-// shared memory 128 at a time; each invocation evaluates the three edge functions at its pixel
-// centre (exactly: the 64-bit edge test of src/render/raster.cpp, reduced per tile to an
-// equivalent 32-bit one) and the depth plane in float as the CPU does, and keeps the smallest
-// (ordered depth, triangle key) pair in registers. Then one commit per
-// pixel into the visibility buffer, by atomic min, since several segments of one tile may run at
-// once.
+// shared memory kBatch at a time; each invocation evaluates the three edge functions at each of
+// its pixel's visibility layers (the sample points, and the pixel centre when the frame's AOVs
+// need it: gpu_types.h) exactly (the 64-bit edge test of src/render/raster.cpp, reduced per tile
+// and layer to an equivalent 32-bit one) and the depth plane at the point in float as the CPU
+// does, and keeps the smallest (ordered depth, triangle key) pair of each layer in registers.
+// Then one commit per layer into the visibility buffer (pixel-major: entry pixel * layers +
+// layer), by atomic min, since several segments of one tile may run at once.
+//
+// Specialization constants: kLayers, the layers per pixel (frame.layers), and kBatch, the records
+// staged at a time (smaller when more layers would not fit the device's shared memory).
 //
 // TESSERA_RASTER_MODE 0: 64-bit atomicMin of the whole key (shaderBufferInt64Atomics).
 // Without 64-bit atomics the same result takes two passes over the segments, each with 32-bit
@@ -29,10 +33,12 @@ layout(std430, set = 0, binding = 17) buffer VisibilityBuffer { uint64_t visibil
 layout(std430, set = 0, binding = 17) buffer VisibilityBuffer { uint visibility_words[]; };
 #endif
 
-const uint kBatch = 64u;
-// Per staged record: the edge coefficients and, per edge, the threshold that turns the 64-bit
-// test into a 32-bit one (below); the depth plane; the key.
-shared ivec3 s_a[kBatch], s_b[kBatch], s_threshold[kBatch];
+layout(constant_id = 0) const uint kLayers = 1u;
+layout(constant_id = 1) const uint kBatch = 64u;
+// Per staged record: the edge coefficients and, per layer and edge, the threshold that turns the
+// 64-bit test into a 32-bit one (below; layer l of record j at l * kBatch + j); the depth plane;
+// the key.
+shared ivec3 s_a[kBatch], s_b[kBatch], s_threshold[kLayers * kBatch];
 shared float s_x0[kBatch], s_y0[kBatch], s_z0[kBatch], s_dzdx[kBatch], s_dzdy[kBatch];
 shared uint s_key[kBatch];
 // The batch's records sorted into half-rows of the tile (16 rows x 2 halves of 8 pixels): each
@@ -43,14 +49,47 @@ const uint kBuckets = 32u;
 shared uint s_bucket_count[kBuckets];
 shared uint s_bucket[kBuckets][kBatch];
 
-// Edge k at the pixel (tile_x + lx, tile_y + ly) is e = origin + 256 * (a lx + b ly), with
-// origin its (64-bit) value at the tile's first pixel centre. Since |a|, |b| < 2^24 and
+// Edge k at a layer's point of pixel (tile_x + lx, tile_y + ly) is e = origin + 256 * (a lx +
+// b ly), with origin its (64-bit) value at that layer's point of the tile's first pixel. Since |a|, |b| < 2^24 and
 // lx, ly < 16, d = a lx + b ly is below 2^29 in magnitude: an exact int32. And e >= 0 exactly
 // when d >= ceil(-origin / 256) = -(origin >> 8) (arithmetic shift: floor). Clamping that
 // threshold to +-2^30 keeps every outcome (d never reaches it) and makes it an int32 too.
 int edgeThreshold(int64_t origin) {
   const int64_t threshold = -(origin >> 8);
   return int(clamp(threshold, -(1l << 30), 1l << 30));
+}
+
+// Stages record r in slot `lane` of the batch: coefficients, each layer's thresholds, depth
+// plane and key, and adds it to the buckets of the half-rows its bounding box touches.
+void stageRecord(uint lane, RasterRecord r, int tile_x, int tile_y) {
+  const ivec3 a = ivec3(r.a[0], r.a[1], r.a[2]), b = ivec3(r.b[0], r.b[1], r.b[2]);
+  s_a[lane] = a;
+  s_b[lane] = b;
+  for (uint l = 0u; l < kLayers; ++l) {
+    const int64_t origin_x = int64_t(tile_x) * kSubpixelOne + frame.layer_x[l];
+    const int64_t origin_y = int64_t(tile_y) * kSubpixelOne + frame.layer_y[l];
+    s_threshold[l * kBatch + lane] =
+        ivec3(edgeThreshold(int64_t(a.x) * origin_x + int64_t(b.x) * origin_y + r.c[0]),
+              edgeThreshold(int64_t(a.y) * origin_x + int64_t(b.y) * origin_y + r.c[1]),
+              edgeThreshold(int64_t(a.z) * origin_x + int64_t(b.z) * origin_y + r.c[2]));
+  }
+  s_x0[lane] = r.x0;
+  s_y0[lane] = r.y0;
+  s_z0[lane] = r.z0;
+  s_dzdx[lane] = r.dzdx;
+  s_dzdy[lane] = r.dzdy;
+  s_key[lane] = r.key;
+  // Covered points lie inside the bounding box (setup's pixel range), so a half-row outside it
+  // has nothing to find.
+  const int row0 = max(r.min_y - tile_y, 0), row1 = min(r.max_y - tile_y, kTileSize - 1);
+  const int column0 = max(r.min_x - tile_x, 0) >> 3;
+  const int column1 = min(r.max_x - tile_x, kTileSize - 1) >> 3;
+  for (int row = row0; row <= row1; ++row) {
+    for (int column = column0; column <= column1; ++column) {
+      const uint bucket = uint(row * 2 + column);
+      s_bucket[bucket][atomicAdd(s_bucket_count[bucket], 1u)] = lane;
+    }
+  }
 }
 
 void main() {
@@ -64,18 +103,25 @@ void main() {
   const int x = tile_x + lx, y = tile_y + ly;
   const bool inside = x < frame.width && y < frame.height;
   const uint pixel = uint(y) * uint(frame.width) + uint(x);
-  const int64_t origin_x = int64_t(tile_x) * kSubpixelOne + kSubpixelHalf;
-  const int64_t origin_y = int64_t(tile_y) * kSubpixelOne + kSubpixelHalf;
-  precise float centre_x = float(x) + 0.5;
-  precise float centre_y = float(y) + 0.5;
+  // Each layer's point in window coordinates (exact: a multiple of 1/256 below 2^15).
+  float point_x[kMaxVisibilityLayers], point_y[kMaxVisibilityLayers];
+  for (uint l = 0u; l < kLayers; ++l) {
+    point_x[l] = float(x) + float(frame.layer_x[l]) * (1.0 / 256.0);
+    point_y[l] = float(y) + float(frame.layer_y[l]) * (1.0 / 256.0);
+  }
 
 #if TESSERA_RASTER_MODE == 0
-  uint best_depth = kEmptyWord, best_key = kEmptyWord;
+  uint best_depth[kMaxVisibilityLayers], best_key[kMaxVisibilityLayers];
+  for (uint l = 0u; l < kLayers; ++l) best_depth[l] = best_key[l] = kEmptyWord;
 #elif TESSERA_RASTER_MODE == 1
-  uint best_depth = kEmptyWord;
+  uint best_depth[kMaxVisibilityLayers];
+  for (uint l = 0u; l < kLayers; ++l) best_depth[l] = kEmptyWord;
 #else
-  const uint target_depth = inside ? visibility_words[2u * pixel + 1u] : kEmptyWord;
-  uint best_key = kEmptyWord;
+  uint target_depth[kMaxVisibilityLayers], best_key[kMaxVisibilityLayers];
+  for (uint l = 0u; l < kLayers; ++l) {
+    target_depth[l] = inside ? visibility_words[2u * (pixel * kLayers + l) + 1u] : kEmptyWord;
+    best_key[l] = kEmptyWord;
+  }
 #endif
 
   for (uint first = segment.y; first < segment.z; first += kBatch) {
@@ -84,33 +130,7 @@ void main() {
     const uint lane = gl_LocalInvocationIndex;
     if (lane < kBuckets) s_bucket_count[lane] = 0u;
     barrier();  // the buckets are empty before any record is added to them
-    if (lane < n) {
-      const RasterRecord r = raster_records[bin_entries[first + lane]];
-      const ivec3 a = ivec3(r.a[0], r.a[1], r.a[2]), b = ivec3(r.b[0], r.b[1], r.b[2]);
-      s_a[lane] = a;
-      s_b[lane] = b;
-      s_threshold[lane] =
-          ivec3(edgeThreshold(int64_t(a.x) * origin_x + int64_t(b.x) * origin_y + r.c[0]),
-                edgeThreshold(int64_t(a.y) * origin_x + int64_t(b.y) * origin_y + r.c[1]),
-                edgeThreshold(int64_t(a.z) * origin_x + int64_t(b.z) * origin_y + r.c[2]));
-      s_x0[lane] = r.x0;
-      s_y0[lane] = r.y0;
-      s_z0[lane] = r.z0;
-      s_dzdx[lane] = r.dzdx;
-      s_dzdy[lane] = r.dzdy;
-      s_key[lane] = r.key;
-      // Covered pixels lie inside the bounding box (setup's pixel range), so a half-row outside
-      // it has nothing to find.
-      const int row0 = max(r.min_y - tile_y, 0), row1 = min(r.max_y - tile_y, kTileSize - 1);
-      const int column0 = max(r.min_x - tile_x, 0) >> 3;
-      const int column1 = min(r.max_x - tile_x, kTileSize - 1) >> 3;
-      for (int row = row0; row <= row1; ++row) {
-        for (int column = column0; column <= column1; ++column) {
-          const uint bucket = uint(row * 2 + column);
-          s_bucket[bucket][atomicAdd(s_bucket_count[bucket], 1u)] = lane;
-        }
-      }
-    }
+    if (lane < n) stageRecord(lane, raster_records[bin_entries[first + lane]], tile_x, tile_y);
     barrier();  // the batch is staged and sorted before any lane reads it
     if (!inside) continue;
     const uint bucket = uint(ly * 2 + (lx >> 3));
@@ -118,34 +138,40 @@ void main() {
     for (uint i = 0u; i < count; ++i) {
       const uint j = s_bucket[bucket][i];
       const ivec3 d = s_a[j] * lx + s_b[j] * ly;
-      if (any(lessThan(d, s_threshold[j]))) continue;
-      // Window z at the pixel centre, as the CPU: z0 + dzdy * dy, then + dzdx * dx.
-      precise float dy = centre_y - s_y0[j];
-      precise float z_row = s_z0[j] + s_dzdy[j] * dy;
-      precise float dx = centre_x - s_x0[j];
-      precise float z = z_row + s_dzdx[j] * dx;
-      if (!(z < uintBitsToFloat(0x7f800000u))) continue;  // NaN or +inf never pass z < stored
-      const uint depth = orderedDepth(z);
+      for (uint l = 0u; l < kLayers; ++l) {
+        if (any(lessThan(d, s_threshold[l * kBatch + j]))) continue;
+        // Window z at the layer's point, as the CPU at a pixel centre: z0 + dzdy * dy, then
+        // + dzdx * dx.
+        precise float dy = point_y[l] - s_y0[j];
+        precise float z_row = s_z0[j] + s_dzdy[j] * dy;
+        precise float dx = point_x[l] - s_x0[j];
+        precise float z = z_row + s_dzdx[j] * dx;
+        if (!(z < uintBitsToFloat(0x7f800000u))) continue;  // NaN or +inf never pass z < stored
+        const uint depth = orderedDepth(z);
 #if TESSERA_RASTER_MODE == 0
-      if (depth < best_depth || (depth == best_depth && s_key[j] < best_key)) {
-        best_depth = depth;
-        best_key = s_key[j];
-      }
+        if (depth < best_depth[l] || (depth == best_depth[l] && s_key[j] < best_key[l])) {
+          best_depth[l] = depth;
+          best_key[l] = s_key[j];
+        }
 #elif TESSERA_RASTER_MODE == 1
-      best_depth = min(best_depth, depth);
+        best_depth[l] = min(best_depth[l], depth);
 #else
-      if (depth == target_depth) best_key = min(best_key, s_key[j]);
+        if (depth == target_depth[l]) best_key[l] = min(best_key[l], s_key[j]);
 #endif
+      }
     }
   }
 
   if (!inside) return;
+  for (uint l = 0u; l < kLayers; ++l) {
+    const uint entry = pixel * kLayers + l;
 #if TESSERA_RASTER_MODE == 0
-  if (best_depth != kEmptyWord)
-    atomicMin(visibility[pixel], (uint64_t(best_depth) << 32) | uint64_t(best_key));
+    if (best_depth[l] != kEmptyWord)
+      atomicMin(visibility[entry], (uint64_t(best_depth[l]) << 32) | uint64_t(best_key[l]));
 #elif TESSERA_RASTER_MODE == 1
-  if (best_depth != kEmptyWord) atomicMin(visibility_words[2u * pixel + 1u], best_depth);
+    if (best_depth[l] != kEmptyWord) atomicMin(visibility_words[2u * entry + 1u], best_depth[l]);
 #else
-  if (best_key != kEmptyWord) atomicMin(visibility_words[2u * pixel], best_key);
+    if (best_key[l] != kEmptyWord) atomicMin(visibility_words[2u * entry], best_key[l]);
 #endif
+  }
 }

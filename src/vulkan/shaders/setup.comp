@@ -142,15 +142,16 @@ bool setupTriangle(ScreenVertex sv[3], ClipVertex v[3], TriangleContext ctx,
   if ((back_facing && ctx.cull == kCullBack) || (!back_facing && ctx.cull == kCullFront))
     return false;
 
-  // Bounding box over pixel centres: the centre of pixel i is i*256 + 128, so
-  // first = ceil((lo - 128) / 256) and last = floor((hi - 128) / 256) (arithmetic shifts floor).
+  // Bounding box over the pixels' sample points (the centres, with one sample): pixel i has
+  // points from i*256 + sample_min to i*256 + sample_max, so first = ceil((lo - max) / 256) and
+  // last = floor((hi - min) / 256) (arithmetic shifts floor).
   const int lo_x = min(sv[0].x, min(sv[1].x, sv[2].x)), hi_x = max(sv[0].x, max(sv[1].x, sv[2].x));
   const int lo_y = min(sv[0].y, min(sv[1].y, sv[2].y)), hi_y = max(sv[0].y, max(sv[1].y, sv[2].y));
-  raster.min_x = max(-((kSubpixelHalf - lo_x) >> kSubpixelBits), 0);
-  raster.max_x = min((hi_x - kSubpixelHalf) >> kSubpixelBits, frame.width - 1);
+  raster.min_x = max(-((frame.sample_max_x - lo_x) >> kSubpixelBits), 0);
+  raster.max_x = min((hi_x - frame.sample_min_x) >> kSubpixelBits, frame.width - 1);
   if (raster.min_x > raster.max_x) return false;
-  raster.min_y = max(-((kSubpixelHalf - lo_y) >> kSubpixelBits), 0);
-  raster.max_y = min((hi_y - kSubpixelHalf) >> kSubpixelBits, frame.height - 1);
+  raster.min_y = max(-((frame.sample_max_y - lo_y) >> kSubpixelBits), 0);
+  raster.max_y = min((hi_y - frame.sample_min_y) >> kSubpixelBits, frame.height - 1);
   if (raster.min_y > raster.max_y) return false;
 
   // The rasterizer takes positive areas only: front faces are reordered 0, 2, 1.

@@ -1,11 +1,19 @@
 #version 460
-// Pass 6, shade and resolve: one invocation per pixel. The visibility buffer's triangle key
-// gives the setup record; the pixel is shaded once from it (perspective-correct barycentrics,
-// material, texture, lights: src/render/shade.cpp) and written out with the CPU's sRGB encode,
-// together with the AOVs of Frame: window depth (+inf where empty), triangle id (scene index + 1,
-// 0 where empty) and, when asked, the world normal.
+// Pass 6, shade and resolve: one invocation per pixel. A visibility layer's triangle key gives
+// the setup record; a triangle is shaded from it (perspective-correct barycentrics, material,
+// texture, lights: src/render/shade.cpp) and written out with the CPU's sRGB encode, together
+// with the AOVs of Frame: window depth (+inf where empty), triangle id (scene index + 1, 0 where
+// empty), when asked the world normal, and the coverage (covered samples / samples, 0..255).
 //
-// Output words (n pixels): colour [0, n), depth [n, 2n), id [2n, 3n), normal [3n, 6n).
+// The colour resolve of render/sampling.h's contract: when every sample holds the same triangle
+// it is shaded at the pixel centre, exactly as with one sample; otherwise each distinct triangle
+// of the samples is shaded once, at the centre when the centre passes its three edge tests, else
+// at the first sample (in pattern order) it holds, and weighted by the samples it holds; samples
+// that hold none take the background; the sum is divided by the sample count in linear light and
+// encoded once. The id, depth and normal AOVs are the pixel centre's layer (layer 0).
+//
+// Output words (n pixels): colour [0, n), depth [n, 2n), id [2n, 3n), then normal (3 words a
+// pixel) from 3n when asked, then coverage (one word a pixel) when asked.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "common.glsl"
 #include "records.glsl"
@@ -49,44 +57,118 @@ vec3 sampleAlbedo(ShadeRecord s, vec2 origin, vec3 b, vec2 centre) {
   return sampleTextureTrilinear(m, uv, lod).xyz;
 }
 
+const uint kMaxSamples = 8u;
+
+uint layerKey(uint pixel, uint layer) {
+  return visibility_words[2u * (pixel * frame.layers + layer)];
+}
+uint layerDepth(uint pixel, uint layer) {
+  return visibility_words[2u * (pixel * frame.layers + layer) + 1u];
+}
+
+// The setup record of a triangle key (scene triangle << 3 | fan piece).
+uint recordSlot(uint key) {
+  const uint t = key >> 3, piece = key & 7u;
+  return piece == 0u ? t : frame.triangle_count + extra_base[t] + piece - 1u;
+}
+
+vec2 recordOrigin(uint slot) { return vec2(raster_records[slot].x0, raster_records[slot].y0); }
+
+// The shading normal (also the normal AOV): flat shading keeps the face normal.
+vec3 normalAt(ShadeRecord s, vec3 b) {
+  if ((s.shading & 255u) == kShadingFlat) return s.normal[0].xyz;
+  return normalizeAsCpu(s.normal[0].xyz * b.x + s.normal[1].xyz * b.y + s.normal[2].xyz * b.z);
+}
+
+// The linear colour of record `slot` at window point p.
+vec3 shadeAt(uint slot, vec2 p) {
+  const ShadeRecord s = shade_records[slot];
+  const vec2 origin = recordOrigin(slot);
+  const vec3 b = barycentricsAt(s, origin, p);
+  precise vec3 color = s.color[0].xyz * b.x + s.color[1].xyz * b.y + s.color[2].xyz * b.z;
+  if ((s.shading & kShadeHasUv) != 0u) color = color * sampleAlbedo(s, origin, b, p);
+  if ((s.shading & 255u) == kShadingPhong) color = color * irradiance(normalAt(s, b));
+  return color;
+}
+
+// Whether the pixel centre (x, y) passes the record's three edge tests.
+bool coversCentre(uint slot, int x, int y) {
+  const int64_t px = int64_t(x) * kSubpixelOne + kSubpixelHalf;
+  const int64_t py = int64_t(y) * kSubpixelOne + kSubpixelHalf;
+  for (int k = 0; k < 3; ++k)
+    if (int64_t(raster_records[slot].a[k]) * px + int64_t(raster_records[slot].b[k]) * py +
+            raster_records[slot].c[k] < 0l)
+      return false;
+  return true;
+}
+
+// The resolved sRGB colour of pixel (x, y); `covered` receives the samples holding a triangle.
+uint resolveColor(uint pixel, int x, int y, out uint covered) {
+  const uint samples = frame.samples, first = frame.first_sample_layer;
+  uint keys[kMaxSamples], counts[kMaxSamples], first_sample[kMaxSamples];
+  uint distinct = 0u;
+  covered = 0u;
+  for (uint i = 0u; i < samples; ++i) {
+    const uint key = layerKey(pixel, first + i);
+    if (key == kEmptyWord) continue;
+    ++covered;
+    uint d = 0u;
+    while (d < distinct && keys[d] != key) ++d;
+    if (d == distinct) {
+      keys[d] = key;
+      counts[d] = 0u;
+      first_sample[d] = i;
+      ++distinct;
+    }
+    ++counts[d];
+  }
+  const vec2 centre = vec2(float(x) + 0.5, float(y) + 0.5);
+  if (covered == 0u) return frame.background;
+  if (distinct == 1u && covered == samples) return packColor(shadeAt(recordSlot(keys[0]), centre));
+  precise vec3 sum = frame.background_linear.xyz * float(samples - covered);
+  for (uint d = 0u; d < distinct; ++d) {
+    const uint slot = recordSlot(keys[d]);
+    const uint layer = first + first_sample[d];
+    const vec2 point =
+        coversCentre(slot, x, y)
+            ? centre
+            : vec2(float(x) + float(frame.layer_x[layer]) * (1.0 / 256.0),
+                   float(y) + float(frame.layer_y[layer]) * (1.0 / 256.0));
+    sum = sum + shadeAt(slot, point) * float(counts[d]);
+  }
+  // Times 1 / samples, exactly (a power of two), rather than a division a GPU may round loosely.
+  precise vec3 average = sum * uintBitsToFloat(uint(127 - findMSB(samples)) << 23);
+  return packColor(average);
+}
+
 void main() {
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= frame.width || y >= frame.height) return;
   const uint n = uint(frame.width) * uint(frame.height);
   const uint pixel = uint(y) * uint(frame.width) + uint(x);
   const bool normals = (frame.flags & kFrameNormals) != 0u;
-  const uint key = visibility_words[2u * pixel];
+  uint covered;
+  output_words[pixel] = resolveColor(pixel, x, y, covered);
+  if ((frame.flags & kFrameCoverage) != 0u)
+    output_words[(normals ? 6u : 3u) * n + pixel] =
+        (covered * 255u + frame.samples / 2u) / frame.samples;
+
+  // The AOVs: the pixel centre is layer 0 (a sample itself when there is one sample).
+  const bool has_centre = frame.samples == 1u || frame.first_sample_layer == 1u;
+  const uint key = has_centre ? layerKey(pixel, 0u) : kEmptyWord;
+  vec3 normal = vec3(0.0);
   if (key == kEmptyWord) {
-    output_words[pixel] = frame.background;
     output_words[n + pixel] = 0x7f800000u;  // +inf
     output_words[2u * n + pixel] = 0u;
-    if (normals) {
-      output_words[3u * n + 3u * pixel] = 0u;
-      output_words[3u * n + 3u * pixel + 1u] = 0u;
-      output_words[3u * n + 3u * pixel + 2u] = 0u;
-    }
-    return;
+  } else {
+    const uint slot = recordSlot(key);
+    const ShadeRecord s = shade_records[slot];
+    output_words[n + pixel] = floatBitsToUint(depthFromOrdered(layerDepth(pixel, 0u)));
+    output_words[2u * n + pixel] = s.triangle_id + 1u;
+    if (normals)
+      normal = normalAt(s, barycentricsAt(s, recordOrigin(slot),
+                                          vec2(float(x) + 0.5, float(y) + 0.5)));
   }
-  const uint t = key >> 3, piece = key & 7u;
-  const uint slot = piece == 0u ? t : frame.triangle_count + extra_base[t] + piece - 1u;
-  const ShadeRecord s = shade_records[slot];
-  const vec2 origin = vec2(raster_records[slot].x0, raster_records[slot].y0);
-  const vec2 centre = vec2(float(x) + 0.5, float(y) + 0.5);
-  const vec3 b = barycentricsAt(s, origin, centre);
-
-  const uint shading = s.shading & 255u;
-  precise vec3 color = s.color[0].xyz * b.x + s.color[1].xyz * b.y + s.color[2].xyz * b.z;
-  if ((s.shading & kShadeHasUv) != 0u) color = color * sampleAlbedo(s, origin, b, centre);
-  vec3 normal = s.normal[0].xyz;
-  if (shading == kShadingPhong || (normals && shading != kShadingFlat)) {
-    normal = normalizeAsCpu(s.normal[0].xyz * b.x + s.normal[1].xyz * b.y +
-                            s.normal[2].xyz * b.z);
-    if (shading == kShadingPhong) color = color * irradiance(normal);
-  }
-
-  output_words[pixel] = packColor(color);
-  output_words[n + pixel] = floatBitsToUint(depthFromOrdered(visibility_words[2u * pixel + 1u]));
-  output_words[2u * n + pixel] = s.triangle_id + 1u;
   if (normals) {
     output_words[3u * n + 3u * pixel] = floatBitsToUint(normal.x);
     output_words[3u * n + 3u * pixel + 1u] = floatBitsToUint(normal.y);
