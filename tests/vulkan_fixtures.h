@@ -270,6 +270,17 @@ inline float3 windowToNdc(float x, float y, float z, int width, int height) {
 
 // `count` random triangles, each inside a `size`-pixel box placed in [x0, x0 + span) x
 // [y0, y0 + span) (window pixels), at random depths, both windings.
+
+// White, unlit, both faces drawn.
+inline Object whiteUnlitObject(Mesh mesh) {
+  Object object;
+  object.mesh = std::make_shared<Mesh>(std::move(mesh));
+  object.shading = Shading::kUnlit;
+  object.cull = CullMode::kNone;
+  object.materials[0].base_color = {1, 1, 1, 1};
+  return object;
+}
+
 inline Scene randomTriangles(int count, float size, float x0, float y0, float span, uint32_t seed) {
   Scene scene = clipSpaceScene();
   std::mt19937 rng(seed);
@@ -285,12 +296,7 @@ inline Scene randomTriangles(int count, float size, float x0, float y0, float sp
       mesh.indices.push_back(static_cast<uint32_t>(mesh.indices.size()));
     }
   }
-  Object object;
-  object.mesh = std::make_shared<Mesh>(std::move(mesh));
-  object.shading = Shading::kUnlit;
-  object.cull = CullMode::kNone;
-  object.materials[0].base_color = {1, 1, 1, 1};
-  scene.objects.push_back(object);
+  scene.objects.push_back(whiteUnlitObject(std::move(mesh)));
   return scene;
 }
 

@@ -23,12 +23,7 @@ constexpr int kSampleCounts[] = {1, 2, 4, 8};
 Scene whiteOnBlack(Mesh mesh) {
   Scene scene = clipSpaceScene();
   scene.background = {0, 0, 0, 1};
-  Object object;
-  object.mesh = std::make_shared<Mesh>(std::move(mesh));
-  object.shading = Shading::kUnlit;
-  object.cull = CullMode::kNone;
-  object.materials[0].base_color = {1, 1, 1, 1};
-  scene.objects.push_back(object);
+  scene.objects.push_back(whiteUnlitObject(std::move(mesh)));
   return scene;
 }
 

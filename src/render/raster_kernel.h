@@ -68,38 +68,32 @@ TESSERA_LANES_INLINE int32_t smallEdgeAt(const RasterTriangle& t, int k, int x, 
                               static_cast<int64_t>(t.b[k]) * ((y - t.min_y) * kSubpixelOne));
 }
 
-TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
-                                      int x_begin, int x_end, int y_begin, int y_end) {
+// Walks a small triangle's box from (x_begin, y_begin) to (x_end, y_end), eight pixels of a row at
+// a time, calling visit(y, x, e0, e1, e2, in_range) with the three edge values at the centres of
+// pixels x .. x + 7 and the lanes within x_end. The values are row + step * (x - x_begin + lane),
+// formed by adds; each row is stepped at its top, so no value past row y_end is formed: with two
+// rows or more the box is at least a pixel tall, and |b| * one pixel fits (RasterTriangle::small).
+template <typename Visit>
+TESSERA_LANES_INLINE void walkSmallBox(const RasterTriangle& t, const TileVisibility& tile,
+                                       int x_begin, int x_end, int y_begin, int y_end,
+                                       Visit visit) {
   int32_t row[3];
-  I32x8 step_x[3];
+  I32x8 lane_offset[3], chunk_step[3];
+  const I32x8 lane = iota();
   for (int k = 0; k < 3; ++k) {
     row[k] = smallEdgeAt(t, k, x_begin, y_begin);
-    step_x[k] = splat(t.a[k] * kSubpixelOne);
-  }
-  const I32x8 lane = iota();
-  const I32x8 last = splat(x_end);
-  // Each lane's offset from the row's first value, and the step to the next eight pixels: the
-  // same values as row + step * (x - x_begin + lane), formed by adds.
-  I32x8 lane_offset[3], chunk_step[3];
-  for (int k = 0; k < 3; ++k) {
-    lane_offset[k] = step_x[k] * lane;
+    lane_offset[k] = splat(t.a[k] * kSubpixelOne) * lane;
     chunk_step[k] = splat(t.a[k] * kSubpixelOne * kLanes);
   }
-  const F32x8 first_across = depthAcross8(t, x_begin);  // most boxes are one chunk wide
-  float* depth = depthRow(tile, y_begin);
-  uint32_t* keys = keyRow(tile, y_begin);
+  const I32x8 last = splat(x_end);
   for (int y = y_begin; y <= y_end; ++y) {
-    // Stepped at the top, so no value past row y_end is formed: with two rows or more the box is
-    // at least a pixel tall, and |b| * one pixel fits (RasterTriangle::small).
-    if (y != y_begin) {
+    if (y != y_begin)
       for (int k = 0; k < 3; ++k) row[k] += t.b[k] * kSubpixelOne;
-      depth += kTileSize;
-      keys += kTileSize;
-    }
     I32x8 e0 = splat(row[0]) + lane_offset[0];
     I32x8 e1 = splat(row[1]) + lane_offset[1];
     I32x8 e2 = splat(row[2]) + lane_offset[2];
     I32x8 column = splat(x_begin) + lane;
+    const int row_offset = (y - tile.y0) * kTileSize - tile.x0;
     for (int x = x_begin; x <= x_end; x += kLanes) {
       if (x != x_begin) {
         e0 = e0 + chunk_step[0];
@@ -107,14 +101,27 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
         e2 = e2 + chunk_step[2];
         column = column + splat(kLanes);
       }
-      const I32x8 covered = nonNegative(e0 | e1 | e2) & lessOrEqual(column, last);
-      // No branch on an empty group: where no lane is covered the depth test writes back what
-      // it read. At a small triangle's edges such a branch goes either way and mispredicted
-      // often enough to cost more than the work it saved (docs/perf.md, round 5).
-      const F32x8 across = x == x_begin ? first_across : depthAcross8(t, x);
-      depthTestRow8(key, rowDepth(t, y), across, x, covered, depth, keys);
+      visit(y, row_offset, x, e0, e1, e2, lessOrEqual(column, last));
     }
   }
+}
+
+TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
+                                      int x_begin, int x_end, int y_begin, int y_end) {
+  const F32x8 first_across = depthAcross8(t, x_begin);  // most boxes are one chunk wide
+  walkSmallBox(
+      t, tile, x_begin, x_end, y_begin, y_end,
+      [&](int y, int row_offset, int x, I32x8 e0, I32x8 e1, I32x8 e2, I32x8 in_range)
+          __attribute__((always_inline)) {
+            const I32x8 covered = nonNegative(e0 | e1 | e2) & in_range;
+            // No branch on an empty group: where no lane is covered the depth test
+            // writes back what it read. At a small triangle's edges such a branch goes
+            // either way and mispredicted often enough to cost more than the work it
+            // saved (docs/perf.md, round 5).
+            const F32x8 across = x == x_begin ? first_across : depthAcross8(t, x);
+            depthTestRow8(key, rowDepth(t, y), across, x, covered, tile.depth + row_offset,
+                          tile.key + row_offset);
+          });
 }
 
 // Triangles at most four pixels wide (most of a dense mesh): two rows per step, lanes 0-3 on row
@@ -424,45 +431,24 @@ TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t k
     drawn_count += drawn[i];
   }
   if (drawn_count == 0) return;
-  int32_t row[3];
-  I32x8 lane_offset[3], chunk_step[3];
-  const I32x8 lane = iota();
-  for (int k = 0; k < 3; ++k) {
-    row[k] = smallEdgeAt(t, k, x_begin, y_begin);
-    lane_offset[k] = splat(t.a[k] * kSubpixelOne) * lane;
-    chunk_step[k] = splat(t.a[k] * kSubpixelOne * kLanes);
-  }
-  const I32x8 last = splat(x_end);
   const F32x8 dzdx = splat(t.dzdx);
-  for (int y = y_begin; y <= y_end; ++y) {
-    if (y != y_begin)
-      for (int k = 0; k < 3; ++k) row[k] += t.b[k] * kSubpixelOne;
-    const int row_offset = (y - tile.y0) * kTileSize - tile.x0;
-    I32x8 e0 = splat(row[0]) + lane_offset[0];
-    I32x8 e1 = splat(row[1]) + lane_offset[1];
-    I32x8 e2 = splat(row[2]) + lane_offset[2];
-    I32x8 column = splat(x_begin) + lane;
-    for (int x = x_begin; x <= x_end; x += kLanes) {
-      if (x != x_begin) {
-        e0 = e0 + chunk_step[0];
-        e1 = e1 + chunk_step[1];
-        e2 = e2 + chunk_step[2];
-        column = column + splat(kLanes);
-      }
-      const I32x8 in_range = lessOrEqual(column, last);
-      const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
-      for (int i = 0; i < layer_count; ++i) {
-        if (!drawn[i]) continue;
-        const I32x8 covered =
-            nonNegative((e0 + offset[i][0]) | (e1 + offset[i][1]) | (e2 + offset[i][2])) & in_range;
-        if (!any(covered)) continue;
-        // rowDepth and depthAcross8 of the moved triangle (rasterSample).
-        const float z_row = t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - y0[i]);
-        depthTestRow8(key, z_row, dzdx * (centre - splat(x0[i])), x, covered,
-                      layers[i]->depth + row_offset, layers[i]->key + row_offset);
-      }
-    }
-  }
+  walkSmallBox(
+      t, tile, x_begin, x_end, y_begin, y_end,
+      [&](int y, int row_offset, int x, I32x8 e0, I32x8 e1, I32x8 e2, I32x8 in_range)
+          __attribute__((always_inline)) {
+            const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
+            for (int i = 0; i < layer_count; ++i) {
+              if (!drawn[i]) continue;
+              const I32x8 covered =
+                  nonNegative((e0 + offset[i][0]) | (e1 + offset[i][1]) | (e2 + offset[i][2])) &
+                  in_range;
+              if (!any(covered)) continue;
+              // rowDepth and depthAcross8 of the moved triangle (rasterSample).
+              const float z_row = t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - y0[i]);
+              depthTestRow8(key, z_row, dzdx * (centre - splat(x0[i])), x, covered,
+                            layers[i]->depth + row_offset, layers[i]->key + row_offset);
+            }
+          });
 }
 
 // Every triangle of the tile into each layer of `layers`, layer i at shifts[i].
