@@ -1,6 +1,7 @@
 // Per-frame render options.
 #pragma once
 
+#include <tessera/render/projection.h>
 #include <tessera/render/sampling.h>
 
 namespace tessera {
@@ -20,6 +21,10 @@ struct RenderOptions {
   int msaa = 1;
   // The sample pattern's sub-pixel offset for this frame (jitterOffset), in pixels.
   Jitter jitter;
+  // How pixels map to view rays (projection.h). Perspective takes the classic pipeline; the
+  // other modes test each pixel's ray against the triangles (render/ray_setup.h), with the
+  // camera's fov_y_degrees as the mode's view angle.
+  Projection projection = Projection::kPerspective;
 };
 
 }  // namespace tessera
