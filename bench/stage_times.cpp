@@ -3,8 +3,10 @@
 // two builds can be checked for the same image while they are timed. For following the numbers
 // when changing a hot path; `tessera bench` is the yardstick.
 //   build/bench/tessera_stagetimes [scene] [workers] [frames] [width] [height] [simd] [msaa]
-//   simd: auto, scalar, sse2, avx2, avx512; msaa: 1, 2, 4, 8. Defaults: bunny 2 40 1920 1080
-//   auto 1.
+//                                  [projection]
+//   simd: auto, scalar, sse2, avx2, avx512; msaa: 1, 2, 4, 8; projection: projection.h's names
+//   (the scene's camera and view angle in that mode). Defaults: bunny 2 40 1920 1080 auto 1
+//   perspective.
 //   TESSERA_NOHASH=1 leaves the hash out (and the gap it makes between frames).
 #include <algorithm>
 #include <chrono>
@@ -12,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <optional>
 #include <vector>
 
 #include <tessera/render/cpu_renderer.h>
@@ -47,6 +50,13 @@ int main(int argc, char** argv) {
   const int height = argc > 5 ? std::atoi(argv[5]) : 1080;
   const SimdLevel simd = parseSimd(argc > 6 ? argv[6] : "auto");
   const int msaa = argc > 7 ? std::atoi(argv[7]) : 1;
+  const std::optional<Projection> projection =
+      parseProjection(argc > 8 ? argv[8] : "perspective");
+  if (!projection) {
+    std::fprintf(stderr, "tessera_stagetimes: projection must be %s\n",
+                 projectionChoices().c_str());
+    return 2;
+  }
   if (!isSampleCount(msaa)) {
     std::fprintf(stderr, "tessera_stagetimes: msaa must be 1, 2, 4 or 8\n");
     return 2;
@@ -73,6 +83,10 @@ int main(int argc, char** argv) {
   options.height = height;
   options.depth = options.ids = options.normals = options.lines = false;
   options.msaa = msaa;
+  options.projection = *projection;
+  if (*projection != Projection::kPerspective) {
+    cli::fitDistanceRange(b.scene.camera, b.bounds);
+  }
 
   CpuRenderer renderer(workers, simd);
   Frame frame;

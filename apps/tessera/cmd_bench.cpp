@@ -139,8 +139,17 @@ Expected<bench::BenchScene> openScene(const std::string& arg, Shading shading) {
 // the model as `tessera render` does (or the one the camera flags give) with the view's lights.
 Expected<void> placeView(bench::BenchScene& b, const CameraSettings& camera_settings,
                          Resolution resolution) {
-  if (b.fixed_view && !camera_settings.explicitCamera()) return {};
   const float aspect = static_cast<float>(resolution.width) / static_cast<float>(resolution.height);
+  if (b.fixed_view && !camera_settings.explicitCamera()) {
+    // The scene's own camera and view angle, drawn in the mode asked for.
+    if (std::string range = checkViewAngle(camera_settings.projectionMode(),
+                                           b.scene.camera.fov_y_degrees, aspect);
+        !range.empty())
+      return makeError(b.name + ": " + range);
+    if (camera_settings.projectionMode() != Projection::kPerspective)
+      fitDistanceRange(b.scene.camera, b.bounds);
+    return {};
+  }
   Expected<Camera> camera = makeCamera(camera_settings, b.bounds, aspect);
   if (!camera) return camera.error();
   b.scene.camera = *camera;
@@ -378,6 +387,9 @@ int runBench(const std::vector<std::string>& args) {
   if (!positional) return usageError(positional.error().message);
   if (s.all && (!positional->empty() || resolution_given))
     return usageError("--all runs the full matrix: give no scene and no --resolution with it");
+  if (s.camera.projectionMode() != Projection::kPerspective && s.versus == "llvmpipe")
+    return usageError("--vs llvmpipe draws the perspective projection only; leave it out for --projection " +
+                      s.camera.projection);
   if (s.camera.explicitCamera()) {
     // The camera flags fail alike for every model: check them before any work.
     const Bounds unit{{-1, -1, -1}, {1, 1, 1}};
@@ -412,6 +424,7 @@ int runBench(const std::vector<std::string>& args) {
   run.options.normals = false;
   run.options.lines = false;
   run.options.msaa = s.msaa;
+  run.options.projection = s.camera.projectionMode();
   if (!s.json) printHeader(run);
   for (bench::BenchScene& b : *scenes) {
     bool reference_loaded = false;

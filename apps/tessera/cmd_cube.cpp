@@ -23,6 +23,7 @@ struct CubeSettings {
   int fps = 30;
   float duration = 4.0f;
   float fov = 50.0f;
+  std::string projection = "perspective";
   std::string output = "cube.gif";
   int workers = 0;
   std::string backend = "cpu";
@@ -64,13 +65,19 @@ int runCube(const std::vector<std::string>& args) {
   CubeSettings s;
   FlagSet flags(
       "tessera cube [-w 480] [-h 480] [-fps 30] [-dur 4s] [-fov 50] [-out cube.gif] "
-      "[-workers 0] [-axes] [-msaa 1] [-samples 1]",
+      "[-workers 0] [-axes] [-msaa 1] [-samples 1] [-projection perspective]",
       /*single_dash=*/true);
   flags.addInt("w|width", &s.width, "image width in pixels (default 480)", 1, 16384);
   flags.addInt("h|height", &s.height, "image height in pixels (default 480)", 1, 16384);
   flags.addInt("fps", &s.fps, "frames per second (default 30)", 1, 100);
   flags.addSeconds("dur|duration", &s.duration, "length of one full turn (default 4s)");
-  flags.addFloat("fov", &s.fov, "vertical field of view in degrees (default 50)", 1, 170);
+  flags.addFloat("fov", &s.fov,
+                 "vertical view angle in degrees (default 50); up to the projection's range", 1,
+                 360);
+  std::vector<std::string> modes;
+  for (Projection p : kProjections) modes.push_back(projectionName(p));
+  flags.addChoice("projection", &s.projection, modes,
+                  "how pixels map to view rays (default perspective)");
   flags.addString("out|o|output", &s.output,
                   "output: .gif, or a PNG sequence such as frames/cube_{frame}.png "
                   "(default cube.gif)");
@@ -93,6 +100,13 @@ int runCube(const std::vector<std::string>& args) {
   if (!positional->empty()) {
     printError("cube", "unexpected argument '" + positional->front() + "'");
     std::cerr << flags.usage();
+    return kExitUsage;
+  }
+  const Projection projection = parseProjection(s.projection).value_or(Projection::kPerspective);
+  if (std::string range = checkViewAngle(projection, s.fov,
+                                         static_cast<float>(s.width) / static_cast<float>(s.height));
+      !range.empty()) {
+    printError("cube", "-fov: " + range);
     return kExitUsage;
   }
   const long long frame_count = std::llround(static_cast<double>(s.duration) * s.fps);
@@ -120,6 +134,7 @@ int runCube(const std::vector<std::string>& args) {
   options.height = s.height;
   options.depth = false;
   options.ids = false;
+  options.projection = projection;
   Accumulator accumulator;
   Frame frame;
   Progress progress("cube: frame", static_cast<int>(frame_count));

@@ -36,6 +36,13 @@ void fitNearFarDistance(Camera& camera, const Bounds& bounds) {
 
 }  // namespace
 
+void fitDistanceRange(Camera& camera, const Bounds& bounds) {
+  const float distance = length(bounds.center() - camera.position);
+  const float radius = bounds.radius() * 1.01f;
+  camera.far_z = distance + radius + 1e-6f;
+  camera.near_z = std::max(distance - radius, camera.far_z * 1e-4f);
+}
+
 Expected<Camera> makeCamera(const CameraSettings& settings, const Bounds& bounds, float aspect) {
   const float3 up = settings.upAxis();
   Expected<float> angle = viewAngle(settings, aspect);

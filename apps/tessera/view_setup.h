@@ -51,6 +51,11 @@ inline void addCameraFlags(FlagSet& flags, CameraSettings& c) {
                   "how pixels map to view rays (default perspective; docs/usage.md)");
 }
 
+// Near and far as distances from the eye (the nonlinear projections' depth) around the bounds'
+// sphere, wherever the model turns about its centre: a range along the view axis may cut its
+// corners short.
+void fitDistanceRange(Camera& camera, const Bounds& bounds);
+
 // The view angle the settings give for an image of this aspect: the flag's, or the mode's
 // default. An error naming the mode's range when it is out of it (a usage error).
 Expected<float> viewAngle(const CameraSettings& settings, float aspect);

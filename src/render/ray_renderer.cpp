@@ -92,6 +92,9 @@ void RayRenderer::setupChunk(const Scene& scene, const RenderOptions& options, i
   rctx.width = options.width;
   rctx.height = options.height;
   rctx.fov_y_radians = static_cast<double>(scene.camera.fov_y_degrees) * std::numbers::pi / 180.0;
+  const bool centre_only =
+      options.msaa == 1 && options.jitter.x == 0.0f && options.jitter.y == 0.0f;
+  rctx.sample_reach = centre_only ? 0.0 : kRayReach;
   for (size_t t = begin; t < end; ++object_index) {
     const Object& object = scene.objects[object_index];
     const ObjectTransforms& xf = objects_[object_index];

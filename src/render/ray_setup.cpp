@@ -10,12 +10,6 @@ namespace {
 
 constexpr double kPiD = std::numbers::pi;
 constexpr double kHalfPi = kPiD / 2;
-// Cones this wide or wider take the whole image: their extent in the mode's angles is not worth
-// bounding (and at 90 degrees the cone stops being convex).
-constexpr double kWholeImageCone = 88.0 * kPiD / 180.0;
-// Pixels added on every side of a box: samples and jitter lie within a pixel of the centre, and a
-// pixel more covers the rounding of the angles.
-constexpr double kBoxMargin = 2.0;
 
 struct Interval {
   double lo, hi;
@@ -26,74 +20,109 @@ struct WindowBox {
   double x0, y0, x1, y1;
 };
 
-struct Cone {
-  double m[3];  // unit axis
-  double radius;
+struct Dir {
+  double v[3];
+  double dot(const Dir& o) const { return v[0] * o.v[0] + v[1] * o.v[1] + v[2] * o.v[2]; }
+  Dir cross(const Dir& o) const {
+    return {{v[1] * o.v[2] - v[2] * o.v[1], v[2] * o.v[0] - v[0] * o.v[2],
+             v[0] * o.v[1] - v[1] * o.v[0]}};
+  }
 };
 
-bool boundingCone(const float3 p[3], Cone& cone) {
-  double u[3][3];
+bool unitDirection(float3 p, Dir& d) {
+  const double x = p.x, y = p.y, z = p.z;
+  const double len = std::sqrt(x * x + y * y + z * z);
+  if (!(len > 0.0) || !std::isfinite(len)) return false;
+  d = {{x / len, y / len, z / len}};
+  return true;
+}
+
+// The triangle's directions as the mode's angles about `axis` (the pole: +Y for the cylindrical
+// and spherical modes, the view axis -Z for the polar ones): the range of the angle from the axis
+// and of the azimuth around it. A great-circle arc shorter than half a turn changes azimuth
+// monotonically unless it passes the pole, so the corners give the azimuths (unwrapped the short
+// way) unless the triangle holds a pole; the angle from the axis is extreme at the corners or
+// where an arc comes nearest either pole.
+struct AngularExtent {
+  Interval polar{0, 0};  // angle from the axis, [0, pi]
+  Interval azimuth{0, 0};  // may leave [-pi, pi]; the whole turn when `full`
+  bool full = false;
+};
+
+// The azimuth of d about `axis` with `ref` at azimuth 0 and ref2 = axis x ref at +pi/2.
+double azimuthOf(const Dir& d, const Dir& ref, const Dir& ref2) {
+  return std::atan2(d.dot(ref2), d.dot(ref));
+}
+
+bool angularExtent(const Dir u[3], const Dir& axis, const Dir& ref, const Dir& ref2,
+                   AngularExtent& e) {
+  // Edge planes of the directions' cone, oriented to hold the triangle.
+  Dir n[3];
+  for (int k = 0; k < 3; ++k) n[k] = u[(k + 1) % 3].cross(u[(k + 2) % 3]);
+  const double orientation = u[0].dot(n[0]);
+  if (orientation == 0.0) return false;
+  auto holds = [&](const Dir& d) {
+    for (int k = 0; k < 3; ++k)
+      if (d.dot(n[k]) * orientation < 0.0) return false;
+    return true;
+  };
+  const Dir back{{-axis.v[0], -axis.v[1], -axis.v[2]}};
+  e.polar = {kPiD, 0.0};
   for (int k = 0; k < 3; ++k) {
-    const double x = p[k].x, y = p[k].y, z = p[k].z;
-    const double len = std::sqrt(x * x + y * y + z * z);
-    if (!(len > 0.0) || !std::isfinite(len)) return false;
-    u[k][0] = x / len, u[k][1] = y / len, u[k][2] = z / len;
+    const double angle = std::acos(std::clamp(u[k].dot(axis), -1.0, 1.0));
+    e.polar = {std::min(e.polar.lo, angle), std::max(e.polar.hi, angle)};
   }
-  double m[3] = {u[0][0] + u[1][0] + u[2][0], u[0][1] + u[1][1] + u[2][1],
-                 u[0][2] + u[1][2] + u[2][2]};
-  const double len = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-  if (!(len > 1e-9)) return false;
-  double min_cos = 1.0;
-  for (int i = 0; i < 3; ++i) cone.m[i] = m[i] / len;
-  for (int k = 0; k < 3; ++k)
-    min_cos = std::min(min_cos, cone.m[0] * u[k][0] + cone.m[1] * u[k][1] + cone.m[2] * u[k][2]);
-  // A little more than the corners need: the directions were rounded on the way.
-  cone.radius = std::acos(std::clamp(min_cos, -1.0, 1.0)) + 1e-6;
-  return cone.radius < kWholeImageCone;
-}
-
-// The half-width of the azimuth range of a cone of `radius` whose axis makes angle `polar_sin`'s
-// angle with the pole; pi when it holds a pole.
-double azimuthHalfWidth(double radius, double polar_sin) {
-  const double ratio = std::sin(radius) / polar_sin;
-  return ratio >= 1.0 ? kPiD : std::asin(ratio);
-}
-
-// Longitude (about +Y, 0 straight ahead) and latitude intervals of the cone (cylindrical and
-// spherical modes); the longitude interval may leave [-pi, pi] (the caller wraps it).
-void lonLatExtent(const Cone& c, Interval& lon, Interval& lat) {
-  const double lat_c = std::asin(std::clamp(c.m[1], -1.0, 1.0));
-  const double lon_c = std::atan2(c.m[0], -c.m[2]);
-  lat = {lat_c - c.radius, lat_c + c.radius};
-  if (lat.hi >= kHalfPi || lat.lo <= -kHalfPi) {
-    lon = {-kPiD, kPiD};
-    lat = {std::max(lat.lo, -kHalfPi), std::min(lat.hi, kHalfPi)};
-    return;
+  // Each arc's nearest approach to either pole, when it lies within the arc.
+  for (int k = 0; k < 3; ++k) {
+    const Dir& a = u[(k + 1) % 3];
+    const Dir& b = u[(k + 2) % 3];
+    const Dir m = a.cross(b);
+    const double mm = m.dot(m);
+    if (!(mm > 0.0)) continue;
+    for (const Dir* pole : {&axis, &back}) {
+      const double t = pole->dot(m) / mm;
+      Dir q{{pole->v[0] - t * m.v[0], pole->v[1] - t * m.v[1], pole->v[2] - t * m.v[2]}};
+      const double len = std::sqrt(q.dot(q));
+      if (!(len > 1e-12)) continue;  // the arc's plane is perpendicular to the pole
+      for (double& c : q.v) c /= len;
+      if (a.cross(q).dot(m) < 0.0 || q.cross(b).dot(m) < 0.0) continue;
+      const double angle = std::acos(std::clamp(q.dot(axis), -1.0, 1.0));
+      e.polar = {std::min(e.polar.lo, angle), std::max(e.polar.hi, angle)};
+    }
   }
-  const double half = azimuthHalfWidth(c.radius, std::cos(lat_c));
-  lon = half >= kPiD ? Interval{-kPiD, kPiD} : Interval{lon_c - half, lon_c + half};
+  const bool holds_axis = holds(axis), holds_back = holds(back);
+  if (holds_axis) e.polar.lo = 0.0;
+  if (holds_back) e.polar.hi = kPiD;
+  e.full = holds_axis || holds_back;
+  if (e.full) return true;
+  // Azimuths unwrapped the short way from the first corner; the three arcs must agree.
+  double az[3];
+  az[0] = azimuthOf(u[0], ref, ref2);
+  auto wrap = [](double x) { return std::remainder(x, 2 * kPiD); };
+  for (int k = 1; k < 3; ++k) az[k] = az[0] + wrap(azimuthOf(u[k], ref, ref2) - az[0]);
+  if (std::fabs(az[2] - az[1]) >= kPiD) return false;
+  e.azimuth = {std::min({az[0], az[1], az[2]}), std::max({az[0], az[1], az[2]})};
+  return true;
 }
 
-// The window box of the cone in the cylindrical or spherical mode: one, or two across the seam.
-int lonLatBoxes(const RaySetupContext& ctx, const Cone& c, WindowBox out[2]) {
-  Interval lon, lat;
-  lonLatExtent(c, lon, lat);
+// The window boxes of the extent in the cylindrical or spherical mode: one, or two across the seam.
+int lonLatBoxes(const RaySetupContext& ctx, const AngularExtent& e, WindowBox out[2]) {
   const double s = ctx.fov_y_radians / 2, w = ctx.width, h = ctx.height;
   const double aspect = w / h;
   auto windowX = [&](double theta) { return (theta / s / aspect + 1.0) * w / 2.0; };
-  auto windowY = [&](double phi) {
+  auto windowY = [&](double polar) {
+    const double phi = kHalfPi - polar;  // latitude
     const double v = ctx.projection == Projection::kSpherical
                          ? phi / s
                          : std::tan(std::clamp(phi, -1.5707, 1.5707)) / std::tan(s);
     return (1.0 - v) * h / 2.0;
   };
-  const double y0 = windowY(lat.hi), y1 = windowY(lat.lo);
-  // Wrap the longitudes into [-pi, pi]: an interval past one end continues from the other.
+  const double y0 = windowY(e.polar.lo), y1 = windowY(e.polar.hi);
+  const Interval lon = e.full ? Interval{-kPiD, kPiD} : e.azimuth;
+  // Longitudes past one end of [-pi, pi] continue from the other.
   Interval parts[2] = {lon, {1, 0}};
   int count = 1;
-  if (lon.hi - lon.lo >= 2 * kPiD) {
-    parts[0] = {-kPiD, kPiD};
-  } else if (lon.lo < -kPiD) {
+  if (lon.lo < -kPiD) {
     parts[0] = {-kPiD, lon.hi};
     parts[1] = {lon.lo + 2 * kPiD, kPiD};
     count = 2;
@@ -106,35 +135,28 @@ int lonLatBoxes(const RaySetupContext& ctx, const Cone& c, WindowBox out[2]) {
   return count;
 }
 
-// The window box of the cone in the fisheye or stereographic mode (polar about -Z).
-WindowBox polarBox(const RaySetupContext& ctx, const Cone& c) {
-  const double alpha_c = std::acos(std::clamp(-c.m[2], -1.0, 1.0));
-  const double psi_c = std::atan2(c.m[1], c.m[0]);
-  double lo = alpha_c - c.radius, hi = alpha_c + c.radius;
-  bool full = false;
-  if (lo <= 0) lo = 0, full = true;
-  if (hi >= kPiD) hi = kPiD, full = true;
-  double half = full ? kPiD : azimuthHalfWidth(c.radius, std::sin(alpha_c));
-  if (half >= kPiD) full = true;
+// The window box of the extent in the fisheye or stereographic mode: an annular sector about the
+// image's centre (azimuth 0 along +u, pi/2 along +v).
+WindowBox polarBox(const RaySetupContext& ctx, const AngularExtent& e) {
   const double s = ctx.fov_y_radians / 2;
   auto radius = [&](double alpha) {
     if (ctx.projection == Projection::kFisheye) return alpha / s;
     return std::min(std::tan(std::min(alpha, kPiD * 0.999999) / 2) / std::tan(s / 2), 1e6);
   };
-  const double r_lo = radius(lo), r_hi = radius(hi);
+  const double r_lo = radius(e.polar.lo), r_hi = radius(e.polar.hi);
   double u0 = -r_hi, u1 = r_hi, v0 = -r_hi, v1 = r_hi;
-  if (!full) {
+  if (!e.full) {
     u0 = v0 = 1e300, u1 = v1 = -1e300;
     auto take = [&](double r, double psi) {
       const double u = r * std::cos(psi), v = r * std::sin(psi);
       u0 = std::min(u0, u), u1 = std::max(u1, u), v0 = std::min(v0, v), v1 = std::max(v1, v);
     };
     for (double r : {r_lo, r_hi})
-      for (double psi : {psi_c - half, psi_c + half}) take(r, psi);
+      for (double psi : {e.azimuth.lo, e.azimuth.hi}) take(r, psi);
     // The sector's outer arc reaches furthest where it crosses an axis direction.
-    for (int k = -4; k <= 4; ++k) {
+    for (int k = -8; k <= 8; ++k) {
       const double axis = k * kHalfPi;
-      if (axis > psi_c - half && axis < psi_c + half) take(r_hi, axis);
+      if (axis > e.azimuth.lo && axis < e.azimuth.hi) take(r_hi, axis);
     }
   }
   const double w = ctx.width, h = ctx.height, aspect = w / h;
@@ -142,12 +164,14 @@ WindowBox polarBox(const RaySetupContext& ctx, const Cone& c) {
           (1.0 - v0) * h / 2.0};
 }
 
-// The pixels of a window box, widened by the margin and clipped to the image; false when empty.
+// The pixels some ray of which may fall in the window box: a pixel's rays lie within
+// ctx.sample_reach of its centre. A hundredth of a pixel more covers the rounding of the angles.
 bool toPixels(const RaySetupContext& ctx, const WindowBox& b, int16_t out[4]) {
-  const double lo_x = std::max(std::floor(b.x0 - kBoxMargin), 0.0);
-  const double lo_y = std::max(std::floor(b.y0 - kBoxMargin), 0.0);
-  const double hi_x = std::min(std::ceil(b.x1 + kBoxMargin), ctx.width - 1.0);
-  const double hi_y = std::min(std::ceil(b.y1 + kBoxMargin), ctx.height - 1.0);
+  const double reach = ctx.sample_reach + 0.01;
+  const double lo_x = std::max(std::ceil(b.x0 - 0.5 - reach), 0.0);
+  const double lo_y = std::max(std::ceil(b.y0 - 0.5 - reach), 0.0);
+  const double hi_x = std::min(std::floor(b.x1 - 0.5 + reach), ctx.width - 1.0);
+  const double hi_y = std::min(std::floor(b.y1 - 0.5 + reach), ctx.height - 1.0);
   if (!(lo_x <= hi_x && lo_y <= hi_y)) return false;
   out[0] = static_cast<int16_t>(lo_x), out[1] = static_cast<int16_t>(lo_y);
   out[2] = static_cast<int16_t>(hi_x), out[3] = static_cast<int16_t>(hi_y);
@@ -161,15 +185,20 @@ void emptyBox(int16_t box[4]) {
 bool setBoxes(const RaySetupContext& ctx, const float3 p[3], RayTriangle& out) {
   emptyBox(out.box[0]);
   emptyBox(out.box[1]);
-  Cone cone;
-  if (!boundingCone(p, cone))
-    return toPixels(ctx, {0, 0, ctx.width - 1.0, ctx.height - 1.0}, out.box[0]);
+  const bool polar =
+      ctx.projection == Projection::kFisheye || ctx.projection == Projection::kStereographic;
+  // Polar modes: axis -Z, azimuth 0 along +X and pi/2 along +Y (the image's u and v). The others:
+  // axis +Y, longitude 0 straight ahead (-Z) and pi/2 along +X.
+  const Dir axis = polar ? Dir{{0, 0, -1}} : Dir{{0, 1, 0}};
+  const Dir ref = polar ? Dir{{1, 0, 0}} : Dir{{0, 0, -1}};
+  const Dir ref2 = polar ? Dir{{0, 1, 0}} : Dir{{1, 0, 0}};
+  Dir u[3];
+  AngularExtent e;
+  if (!unitDirection(p[0], u[0]) || !unitDirection(p[1], u[1]) || !unitDirection(p[2], u[2]) ||
+      !angularExtent(u, axis, ref, ref2, e))
+    return toPixels(ctx, {0, 0, ctx.width + 1.0, ctx.height + 1.0}, out.box[0]);
   WindowBox boxes[2];
-  int count = 1;
-  if (ctx.projection == Projection::kCylindrical || ctx.projection == Projection::kSpherical)
-    count = lonLatBoxes(ctx, cone, boxes);
-  else
-    boxes[0] = polarBox(ctx, cone);
+  const int count = polar ? (boxes[0] = polarBox(ctx, e), 1) : lonLatBoxes(ctx, e, boxes);
   int kept = 0;
   for (int i = 0; i < count; ++i)
     if (toPixels(ctx, boxes[i], out.box[kept])) ++kept;

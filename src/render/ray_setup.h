@@ -20,11 +20,10 @@
 //   covered: every E_k > 0 or (E_k == 0 and owner bit k), and S > 0, and 0 <= z <= 1
 // (z: the distance mapped linearly from near (0) to far (1), with inv_range = 1 / (far - near)).
 //
-// Which pixels to test: the triangle's rays lie in a cone around the normalised sum of its corner
-// directions (the smallest angle that holds the three corners; a cone narrower than a hemisphere
-// is convex on the sphere, so it holds the whole triangle); the cone's extent in the mode's
-// angles gives up to two pixel boxes (two where it crosses the seam of a 360-degree image),
-// widened by two pixels for the samples. A cone of 88 degrees or more takes the whole image.
+// Which pixels to test: the triangle's directions as the mode's angles (latitude and longitude, or
+// the angle from the view axis and the azimuth about it), exact at the corners, at the arcs' nearest
+// approaches to the poles and for triangles holding a pole; mapped to up to two pixel boxes (two
+// where the triangle crosses the seam of a 360-degree image), widened by the samples' reach.
 #pragma once
 
 #include <cstdint>
@@ -52,7 +51,12 @@ struct RaySetupContext {
   int width = 0, height = 0;
   double fov_y_radians = 0;
   CullMode cull = CullMode::kBack;
+  // How far (pixels) a pixel's rays lie from its centre: 0 with one sample and no jitter; up to
+  // a pixel with MSAA and jitter (kRayReach).
+  double sample_reach = 0;
 };
+// Samples lie within the pixel, and jitter moves them by at most half a pixel.
+constexpr double kRayReach = 1.0;
 
 // Corners p[3] in camera space, in input order. False when the triangle is culled (its plane
 // passes through the eye, it faces away per ctx.cull, or no pixel can see it); otherwise the
