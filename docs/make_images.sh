@@ -28,4 +28,14 @@ closeup=(--resolution 160,120 --camera-position -0.1,1.0,2.6 --camera-focal-poin
 ffmpeg -loglevel error -y -i "$tmp/aa1.png" -i "$tmp/aa4.png" -i "$tmp/aa16.png" -filter_complex \
   "[0]scale=iw*3:ih*3:flags=neighbor[a];[1]scale=iw*3:ih*3:flags=neighbor[b];[2]scale=iw*3:ih*3:flags=neighbor[c];[a][b][c]hstack=inputs=3" \
   "$out/antialiasing.png"
+# Projections: the same room (docs/projection_room.py) as a 360x180 panorama and a 180-degree
+# fisheye, from one camera.
+python3 "$root/docs/projection_room.py" "$tmp/room" "$bunny"
+room=(--camera-position 0.5,1.7,1.5 --camera-focal-point 0,1.2,-2 --background-color 0.45,0.62,0.85)
+"$tessera" render "$tmp/room/room.obj" "${room[@]}" --projection spherical --resolution 1024,512 \
+  -o "$tmp/panorama.png"
+"$tessera" render "$tmp/room/room.obj" "${room[@]}" --projection fisheye --resolution 512,512 \
+  -o "$tmp/fisheye.png"
+ffmpeg -loglevel error -y -i "$tmp/panorama.png" -i "$tmp/fisheye.png" \
+  -filter_complex hstack=inputs=2 "$out/projections.png"
 ls -la "$out"

@@ -458,3 +458,42 @@ TEST_F(Cli, MsaaSmoothsEdgesAndLeavesTheIdAovAlone) {
   EXPECT_GT(partial, 20);
   EXPECT_GT(full, 200);
 }
+
+TEST_F(Cli, ProjectionsRenderAndRefuseViewAnglesOutOfTheirRange) {
+  writeQuadObj("quad.obj");
+  // A panorama of the quad from the default framing: the quad in the middle, background at the
+  // seam; the id and depth AOVs come out too.
+  for (const std::string mode : {"cylindrical", "spherical", "stereographic", "fisheye"}) {
+    SCOPED_TRACE(mode);
+    RunResult r = run("render quad.obj --resolution 64,32 --background-color 1,0,0 --projection " +
+                      mode + " -o " + mode + ".png");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    DecodedPng png;
+    ASSERT_TRUE(tessera::test::decodePng((dir_ / (mode + ".png")).string(), png));
+    EXPECT_FALSE(png.at(32, 16, 0) == 255 && png.at(32, 16, 1) == 0);  // the quad
+    EXPECT_TRUE(png.at(1, 16, 0) == 255 && png.at(1, 16, 1) == 0);     // the background
+    ASSERT_EQ(run("render quad.obj --resolution 64,32 --aov id -o id_" + mode + ".png" +
+                  " --projection " + mode)
+                  .exit_code,
+              0);
+  }
+  for (const std::string& args :
+       {std::string("render quad.obj -o out.png --projection fisheye --camera-view-angle 400"),
+        std::string("render quad.obj -o out.png --projection perspective --camera-view-angle 180"),
+        std::string("render quad.obj -o out.png --projection spherical --camera-view-angle 180 "
+                    "--resolution 400,150"),
+        std::string("render quad.obj -o out.png --projection hyperbolic"),
+        std::string("cube -out out.gif -projection fisheye -fov 361"),
+        std::string("bench cube --projection spherical --vs llvmpipe --frames 1")}) {
+    SCOPED_TRACE(args);
+    RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    const bool names_range = r.err.find("360") != std::string::npos ||
+                             r.err.find("180") != std::string::npos ||
+                             r.err.find("fisheye") != std::string::npos ||
+                             r.err.find("perspective projection only") != std::string::npos;
+    EXPECT_TRUE(names_range) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "out.gif"));
+}

@@ -36,8 +36,8 @@ inline void addCameraFlags(FlagSet& flags, CameraSettings& c) {
                   "point the camera looks at");
   flags.addFloat3("camera-view-up", &c.view_up, &c.has_view_up, "camera up direction");
   flags.addCustom("camera-view-angle", "DEG",
-                  "vertical view angle in degrees (default 30; with another --projection the "
-                  "widest the mode allows: a 2:1 spherical image at 180 is a 360x180 panorama)",
+                  "vertical view angle in degrees (default 30; spherical and cylindrical: the "
+                  "whole panorama, fisheye and stereographic: 180)",
                   [&c](const std::string& text) -> std::string {
                     if (!parseFloatStrict(text, c.view_angle) || !(c.view_angle > 0.0f))
                       return "needs a number of degrees above 0, got '" + text + "'";
