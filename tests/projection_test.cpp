@@ -159,9 +159,10 @@ TEST(Projection, NoBackgroundInsideAClosedRoom) {
           holes += frame.idAt(x, y) == kNoTriangle;
           // Every sample of a pixel sees the room (watertight per sample): full coverage, except
           // at the fisheye's rim, where samples leave the circle of rays.
-          if (msaa > 1 && m.projection != Projection::kFisheye)
+          if (msaa > 1 && m.projection != Projection::kFisheye) {
             EXPECT_EQ(frame.coverageAt(x, y), 255) << projectionName(m.projection) << " " << x
                                                    << "," << y;
+          }
         }
       }
       EXPECT_GT(rays, m.width * m.height / 2);

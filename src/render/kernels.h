@@ -6,6 +6,7 @@
 
 #include "render/msaa.h"
 #include "render/raster.h"
+#include "render/ray_setup.h"
 #include "render/setup.h"
 #include "render/shade.h"
 #include "render/vertex.h"
@@ -42,6 +43,18 @@ using CullGroupFn = bool (*)(const uint32_t* indices, size_t vertex_count,
                              const ScreenVertex* screen, const uint16_t* outcodes, int width,
                              int height, CullMode cull, int32_t sample_reach, CullGroup& out);
 
+// The nonlinear projections' tile raster: every triangle binned to the tile (TriangleChunk::ray),
+// in submission order, into the visibility buffer at the rays of `layer` (ray_kernel.h).
+using RasterRayTileFn = void (*)(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                                 int tile_index, const RayLayer& layer, int width, RayDepth depth,
+                                 TileVisibility& tile);
+// Their shading: the tile's visible pixels at their centre rays, mixed pixels resolved from the
+// sample rays when `msaa` is given, then the sRGB encode (ray_kernel.h).
+using ShadeRayTileFn = void (*)(const TileVisibility& tile,
+                                const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                                const Scene& scene, bool want_normals, uint32_t background,
+                                const RayTable& rays, const MsaaShading* msaa, ShadedTile& out);
+
 // Every kernel compiled for one instruction set.
 struct Kernels {
   TransformVerticesFn transform_vertices;   // vertex_kernel.h
@@ -51,6 +64,8 @@ struct Kernels {
   ShadeTileFn shade_tile;                   // shade_kernel.h
   RasterTileSamplesFn raster_tile_samples;  // raster_kernel.h
   CombineSamplesFn combine_samples;         // msaa_kernel.h
+  RasterRayTileFn raster_ray_tile;          // ray_kernel.h
+  ShadeRayTileFn shade_ray_tile;            // ray_kernel.h
 };
 
 Kernels kernelsFor(Isa isa);

@@ -1,6 +1,7 @@
 // The kernels compiled for avx512 (CMakeLists.txt gives this file its flags).
 #include "render/kernels.h"
 #include "render/raster_kernel.h"
+#include "render/ray_kernel.h"
 #include "render/setup_kernel.h"
 #include "render/shade_kernel.h"
 #include "render/vertex_kernel.h"
@@ -9,6 +10,6 @@ namespace tessera::render {
 
 const Kernels kKernelsAvx512 = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
                                 rasterTileKernel,        shadeTileKernel, rasterTileSamplesKernel,
-                                combineSamplesKernel};
+                                combineSamplesKernel, rasterRayTileKernel, shadeRayTileKernel};
 
 }  // namespace tessera::render

@@ -2,6 +2,7 @@
 #define TESSERA_SIMD_SCALAR 1  // the lanes are plain arrays
 #include "render/kernels.h"
 #include "render/raster_kernel.h"
+#include "render/ray_kernel.h"
 #include "render/setup_kernel.h"
 #include "render/shade_kernel.h"
 #include "render/vertex_kernel.h"
@@ -10,6 +11,6 @@ namespace tessera::render {
 
 const Kernels kKernelsScalar = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
                                 rasterTileKernel,        shadeTileKernel, rasterTileSamplesKernel,
-                                combineSamplesKernel};
+                                combineSamplesKernel, rasterRayTileKernel, shadeRayTileKernel};
 
 }  // namespace tessera::render

@@ -199,7 +199,7 @@ bool projectDirection(Projection p, const double din[3], int width, int height, 
 }
 
 bool RayTable::update(Projection p, int width, int height, float fov_y_degrees, int samples,
-                      Jitter jitter) {
+                      Jitter jitter, const RowRunner& run_rows) {
   if (p == projection_ && width == width_ && height == height_ && fov_y_degrees == fov_ &&
       samples == samples_ && jitter.x == jitter_.x && jitter.y == jitter_.y)
     return false;
@@ -219,7 +219,9 @@ bool RayTable::update(Projection p, int width, int height, float fov_y_degrees, 
     layer.x.assign(count + 8, 0.0f);
     layer.y.assign(count + 8, 0.0f);
     layer.z.assign(count + 8, 0.0f);
-    for (int y = 0; y < height; ++y) {
+  }
+  auto row = [&](int y) {
+    for (RayLayer& layer : layers_) {
       for (int x = 0; x < width; ++x) {
         double d[3] = {0, 0, 0};
         if (!rayDirection(p, x + static_cast<double>(layer.offset_x),
@@ -231,7 +233,11 @@ bool RayTable::update(Projection p, int width, int height, float fov_y_degrees, 
         layer.z[at] = static_cast<float>(d[2]);
       }
     }
-  }
+  };
+  if (run_rows)
+    run_rows(height, row);
+  else
+    for (int y = 0; y < height; ++y) row(y);
   return true;
 }
 

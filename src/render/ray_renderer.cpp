@@ -10,7 +10,6 @@
 #include "render/chunk_layout.h"
 #include "render/clip.h"
 #include "render/lines.h"
-#include "render/ray_kernel.h"
 #include "render/ray_setup.h"
 #include "render/resolve.h"
 
@@ -168,8 +167,9 @@ void RayRenderer::renderTile(const Scene& scene, const RenderOptions& options, i
   if (options.msaa == 1) {
     TileVisibility& visibility = *tiles_[static_cast<size_t>(worker)];
     visibility.clear(x0, y0, width, height);
-    rasterRayTile(chunks_, chunk_count_, tile, rays_.centre(), options.width, depth, visibility);
-    shadeRayTile(visibility, chunks_, chunk_count_, scene, options.normals, background, rays_,
+    kernels_->raster_ray_tile(chunks_, chunk_count_, tile, rays_.centre(), options.width, depth,
+                              visibility);
+    kernels_->shade_ray_tile(visibility, chunks_, chunk_count_, scene, options.normals, background, rays_,
                  nullptr, out);
     resolveTile(visibility, out, chunks_, frame);
     if (options.coverage) resolveCoverage(visibility, nullptr, 1, frame);
@@ -180,12 +180,13 @@ void RayRenderer::renderTile(const Scene& scene, const RenderOptions& options, i
   for (int i = 0; i < samples + (with_centre ? 1 : 0); ++i) {
     TileVisibility& layer = st.layer(i);
     layer.clear(x0, y0, width, height);
-    rasterRayTile(chunks_, chunk_count_, tile, i < samples ? rays_.sample(i) : rays_.centre(),
-                  options.width, depth, layer);
+    kernels_->raster_ray_tile(chunks_, chunk_count_, tile,
+                              i < samples ? rays_.sample(i) : rays_.centre(), options.width, depth,
+                              layer);
   }
   kernels_->combine_samples(st, samples, with_centre);
   const MsaaShading msaa{&st, samples, samplePattern(samples).data(), scene.background.xyz()};
-  shadeRayTile(*st.primary, chunks_, chunk_count_, scene, options.normals, background, rays_,
+  kernels_->shade_ray_tile(*st.primary, chunks_, chunk_count_, scene, options.normals, background, rays_,
                &msaa, out);
   resolveTile(with_centre ? st.layer(samples) : *st.primary, out, chunks_, frame);
   if (options.coverage) resolveCoverage(*st.primary, st.covered, samples, frame);
@@ -214,7 +215,11 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   };
   const Clock::time_point t_start = Clock::now();
   rays_.update(options.projection, options.width, options.height, scene.camera.fov_y_degrees,
-               options.msaa, options.jitter);
+               options.msaa, options.jitter,
+               [&pool](int rows, const std::function<void(int)>& row) {
+                 pool.parallelFor(static_cast<size_t>(rows),
+                                  [&](size_t y, int) { row(static_cast<int>(y)); });
+               });
   transform(scene, options, pool, kernels);
   const Clock::time_point t_vertex = Clock::now();
 

@@ -10,7 +10,8 @@
 //
 // No clipping: a ray meets a triangle or not, in front of the eye or not, and hits nearer than
 // near or past far are not drawn. The image is bit-identical for any worker count (a tile's
-// triangles in submission order, one worker per tile) and any SIMD level (one kernel build).
+// triangles in submission order, one worker per tile) and any SIMD level (the kernels' lanes do
+// the same operations on every instruction set).
 #pragma once
 
 #include <memory>

@@ -67,10 +67,14 @@ bool angularExtent(const Dir u[3], const Dir& axis, const Dir& ref, const Dir& r
     return true;
   };
   const Dir back{{-axis.v[0], -axis.v[1], -axis.v[2]}};
-  e.polar = {kPiD, 0.0};
+  // The angle from the axis falls as its cosine rises: the extremes are kept as cosines and
+  // turned into angles once.
+  double cos_lo = 1.0;   // the cosine of the largest angle (the least cosine)
+  double cos_hi = -1.0;  // the cosine of the smallest angle
   for (int k = 0; k < 3; ++k) {
-    const double angle = std::acos(std::clamp(u[k].dot(axis), -1.0, 1.0));
-    e.polar = {std::min(e.polar.lo, angle), std::max(e.polar.hi, angle)};
+    const double c = u[k].dot(axis);
+    cos_lo = std::min(cos_lo, c);
+    cos_hi = std::max(cos_hi, c);
   }
   // Each arc's nearest approach to either pole, when it lies within the arc.
   for (int k = 0; k < 3; ++k) {
@@ -86,10 +90,12 @@ bool angularExtent(const Dir u[3], const Dir& axis, const Dir& ref, const Dir& r
       if (!(len > 1e-12)) continue;  // the arc's plane is perpendicular to the pole
       for (double& c : q.v) c /= len;
       if (a.cross(q).dot(m) < 0.0 || q.cross(b).dot(m) < 0.0) continue;
-      const double angle = std::acos(std::clamp(q.dot(axis), -1.0, 1.0));
-      e.polar = {std::min(e.polar.lo, angle), std::max(e.polar.hi, angle)};
+      const double c = q.dot(axis);
+      cos_lo = std::min(cos_lo, c);
+      cos_hi = std::max(cos_hi, c);
     }
   }
+  e.polar = {std::acos(std::clamp(cos_hi, -1.0, 1.0)), std::acos(std::clamp(cos_lo, -1.0, 1.0))};
   const bool holds_axis = holds(axis), holds_back = holds(back);
   if (holds_axis) e.polar.lo = 0.0;
   if (holds_back) e.polar.hi = kPiD;

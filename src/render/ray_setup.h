@@ -46,6 +46,12 @@ struct alignas(64) RayTriangle {
 };
 static_assert(sizeof(RayTriangle) == 64);
 
+// How a hit's distance t along its unit ray becomes depth: (t - near) * inv_range, kept in [0, 1].
+struct RayDepth {
+  float near = 0.1f;
+  float inv_range = 1.0f;
+};
+
 struct RaySetupContext {
   Projection projection = Projection::kSpherical;
   int width = 0, height = 0;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -66,8 +67,12 @@ struct RayLayer {
 // (with the jitter). Rebuilt only when the mode, size, view angle, sample count or jitter change.
 class RayTable {
  public:
+  // Runs row(i) for every i in [0, count), in any order and on any thread (the renderer's
+  // workers); empty: in order on the calling thread.
+  using RowRunner = std::function<void(int count, const std::function<void(int)>& row)>;
   // True when it was rebuilt.
-  bool update(Projection p, int width, int height, float fov_y_degrees, int samples, Jitter jitter);
+  bool update(Projection p, int width, int height, float fov_y_degrees, int samples, Jitter jitter,
+              const RowRunner& run_rows = {});
   const RayLayer& sample(int i) const { return layers_[static_cast<size_t>(i)]; }
   const RayLayer& centre() const { return layers_.back(); }
   int samples() const { return samples_; }
