@@ -10,6 +10,7 @@
 #include <tessera/render/projection.h>
 #include <tessera/scene/color.h>
 
+#include "allocation_counter.h"  // g_count_allocations, g_allocations
 #include "projection_scenes.h"
 
 namespace tessera {
@@ -317,6 +318,35 @@ TEST(Projection, ImagesAreBitIdenticalForAnyWorkerCountAndSimdLevel) {
       }
     }
   }
+}
+
+TEST(Projection, AllocatesNothingPerFrameAfterWarmUp) {
+  const ModeCase m = kModes[1];
+  Scene scene = roomScene(m);
+  scene.show_world_axes = true;
+  CpuRenderer renderer(3);
+  RenderOptions options;
+  options.width = m.width;
+  options.height = m.height;
+  options.projection = m.projection;
+  options.normals = true;
+  Frame frame;
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      g_allocations = 0;
+      g_count_allocations = true;
+    }
+    for (int i = 0; i < 3; ++i) {
+      scene.objects[1].transform.rotation = quat::fromAxisAngle({0, 1, 0}, 0.1f * i);
+      // One sample, then 8x MSAA, with and without jitter: the rays are made again for each
+      // jitter, into the same buffers.
+      options.msaa = i == 2 ? 8 : 1;
+      options.jitter = jitterOffset(static_cast<uint32_t>(i));
+      renderer.render(scene, options, frame);
+    }
+  }
+  g_count_allocations = false;
+  EXPECT_EQ(g_allocations.load(), 0u);
 }
 
 }  // namespace

@@ -27,29 +27,7 @@
 
 using namespace tessera;
 
-// Counts heap allocations while a test asks for it (for the no-allocation-per-frame test).
-static std::atomic<bool> g_count_allocations{false};
-static std::atomic<size_t> g_allocations{0};
-
-// A place for a debugger's breakpoint: every counted allocation passes here.
-__attribute__((noinline)) void countedAllocation() {
-  g_allocations.fetch_add(1);
-}
-
-void* operator new(size_t size) {
-  if (g_count_allocations.load(std::memory_order_relaxed)) countedAllocation();
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, size_t) noexcept {
-  std::free(p);
-}
-#pragma GCC diagnostic pop
+#include "allocation_counter.h"  // g_count_allocations, g_allocations
 
 namespace {
 

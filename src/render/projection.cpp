@@ -206,12 +206,14 @@ bool RayTable::update(Projection p, int width, int height, float fov_y_degrees, 
   projection_ = p, width_ = width, height_ = height, fov_ = fov_y_degrees;
   samples_ = samples, jitter_ = jitter;
   const std::span<const SamplePosition> pattern = samplePattern(samples);
-  layers_.resize(pattern.size() + 1);
-  const double fov = static_cast<double>(fov_y_degrees) * kPiD / 180.0;
+  // The layers only grow, so that going back to a sample count seen before allocates nothing.
+  layer_count_ = static_cast<int>(pattern.size()) + 1;
+  if (layers_.size() < static_cast<size_t>(layer_count_))
+    layers_.resize(static_cast<size_t>(layer_count_));
   const size_t count = static_cast<size_t>(width) * static_cast<size_t>(height);
-  for (size_t i = 0; i < layers_.size(); ++i) {
-    RayLayer& layer = layers_[i];
-    const bool centre = i == pattern.size();
+  for (int i = 0; i < layer_count_; ++i) {
+    RayLayer& layer = layers_[static_cast<size_t>(i)];
+    const bool centre = i == layer_count_ - 1;
     // Sample positions are in 1/256 pixel from the pixel's corner (sampling.h).
     layer.offset_x = (centre ? 0.5f : static_cast<float>(pattern[i].x) / 256.0f) + jitter.x;
     layer.offset_y = (centre ? 0.5f : static_cast<float>(pattern[i].y) / 256.0f) + jitter.y;
@@ -220,14 +222,17 @@ bool RayTable::update(Projection p, int width, int height, float fov_y_degrees, 
     layer.y.assign(count + 8, 0.0f);
     layer.z.assign(count + 8, 0.0f);
   }
-  auto row = [&](int y) {
-    for (RayLayer& layer : layers_) {
-      for (int x = 0; x < width; ++x) {
+  // Two pointers captured: the std::function made of it keeps them inline (no allocation).
+  const double fov = static_cast<double>(fov_y_degrees) * kPiD / 180.0;
+  auto row = [this, &fov](int y) {
+    for (int i = 0; i < layer_count_; ++i) {
+      RayLayer& layer = layers_[static_cast<size_t>(i)];
+      for (int x = 0; x < width_; ++x) {
         double d[3] = {0, 0, 0};
-        if (!rayDirection(p, x + static_cast<double>(layer.offset_x),
-                          y + static_cast<double>(layer.offset_y), width, height, fov, d))
+        if (!rayDirection(projection_, x + static_cast<double>(layer.offset_x),
+                          y + static_cast<double>(layer.offset_y), width_, height_, fov, d))
           d[0] = d[1] = d[2] = 0;
-        const size_t at = static_cast<size_t>(y) * width + x;
+        const size_t at = static_cast<size_t>(y) * width_ + x;
         layer.x[at] = static_cast<float>(d[0]);
         layer.y[at] = static_cast<float>(d[1]);
         layer.z[at] = static_cast<float>(d[2]);

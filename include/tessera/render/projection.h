@@ -74,7 +74,7 @@ class RayTable {
   bool update(Projection p, int width, int height, float fov_y_degrees, int samples, Jitter jitter,
               const RowRunner& run_rows = {});
   const RayLayer& sample(int i) const { return layers_[static_cast<size_t>(i)]; }
-  const RayLayer& centre() const { return layers_.back(); }
+  const RayLayer& centre() const { return layers_[static_cast<size_t>(layer_count_ - 1)]; }
   int samples() const { return samples_; }
   int width() const { return width_; }
   int height() const { return height_; }
@@ -82,6 +82,7 @@ class RayTable {
  private:
   Projection projection_ = Projection::kPerspective;
   int width_ = 0, height_ = 0, samples_ = 0;
+  int layer_count_ = 0;  // the samples' and the centres': layers_ may hold more
   float fov_ = 0;
   Jitter jitter_{-1, -1};
   std::vector<RayLayer> layers_;
