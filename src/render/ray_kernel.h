@@ -108,8 +108,9 @@ struct RayShading {
     shadeLanesAt(t, e, scene, want_normals, b0, b1, b2, mask, color, normal,
                  [&](int l, const Barycentrics& b) {
                    const int px = x + l;
-                   const int right = px + 1 < width ? px + 1 : px - 1;
-                   const int down = y + 1 < height ? y + 1 : y - 1;
+                   // A one-pixel-wide (or tall) image has no neighbour: the pixel itself.
+                   const int right = px + 1 < width ? px + 1 : std::max(px - 1, 0);
+                   const int down = y + 1 < height ? y + 1 : std::max(y - 1, 0);
                    const size_t w = static_cast<size_t>(width);
                    Barycentrics br, bd;
                    rayBarycentrics(r, rayAt(rays.centre(), static_cast<size_t>(y) * w + right),
