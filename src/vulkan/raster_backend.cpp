@@ -310,6 +310,11 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
   Context& c = *context;
   const VulkanFunctions& vk = c.vk;
   const int samples = options.msaa;
+  // The fixed-function rasterizer draws straight edges: under a nonlinear projection an edge is a
+  // curve, which only the compute backend's per-pixel rays give.
+  if (options.projection != Projection::kPerspective)
+    return makeError("vulkan-raster draws the perspective projection only; use --backend cpu or "
+                     "vulkan");
   if (const std::string problem = rasterSampleCountProblem(c.caps, samples); !problem.empty())
     return makeError("vulkan-raster cannot render " + std::to_string(samples) +
                      "x MSAA on device " + std::to_string(c.info.index) + " (" + c.info.name +
