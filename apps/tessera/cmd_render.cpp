@@ -213,6 +213,7 @@ int runRender(const std::vector<std::string>& args) {
   options.normals = s.aov == "normal";
   options.lines = s.aov == "color";
   options.coverage = s.aov == "coverage";
+  options.projection = s.camera.projectionMode();
   // The id, depth and normal AOVs are the pixel centre's: one sample, no jitter. Coverage is
   // frame 0's (not jittered) at the --msaa count.
   SamplingSettings sampling = s.sampling;

@@ -1,12 +1,51 @@
 #include "view_setup.h"
 
+#include <algorithm>
+
 #include "model_scene.h"
 
 namespace tessera::cli {
 
+Expected<float> viewAngle(const CameraSettings& settings, float aspect) {
+  const Projection mode = settings.projectionMode();
+  const float angle =
+      settings.has_view_angle ? settings.view_angle : defaultViewAngle(mode, aspect);
+  if (std::string range = checkViewAngle(mode, angle, aspect); !range.empty())
+    return makeError("--camera-view-angle: " + range);
+  return angle;
+}
+
+namespace {
+
+// Near and far as distances from the camera (the nonlinear projections' depth): the nearest
+// point of the bounds (0 inside them) and the farthest corner.
+void fitNearFarDistance(Camera& camera, const Bounds& bounds) {
+  const float3 p = camera.position;
+  const float3 nearest{std::clamp(p.x, bounds.min.x, bounds.max.x),
+                       std::clamp(p.y, bounds.min.y, bounds.max.y),
+                       std::clamp(p.z, bounds.min.z, bounds.max.z)};
+  float farthest = 0.0f;
+  for (int i = 0; i < 8; ++i) {
+    const float3 corner{i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
+                        i & 4 ? bounds.max.z : bounds.min.z};
+    farthest = std::max(farthest, length(corner - p));
+  }
+  camera.far_z = farthest > 0.0f ? farthest * 1.01f + 1e-6f : 1.0f;
+  camera.near_z = std::max(length(nearest - p) * 0.99f, camera.far_z * 1e-4f);
+}
+
+}  // namespace
+
 Expected<Camera> makeCamera(const CameraSettings& settings, const Bounds& bounds, float aspect) {
   const float3 up = settings.upAxis();
-  Camera camera = frameBounds(bounds, threeQuarterDirection(up), up, settings.view_angle, aspect);
+  Expected<float> angle = viewAngle(settings, aspect);
+  if (!angle) return makeError(angle.error().message);
+  const bool perspective = settings.projectionMode() == Projection::kPerspective;
+  // The nonlinear modes frame the model as a 90-degree view would: a panorama or fisheye of the
+  // model seen from outside, the model in the middle.
+  Camera camera = frameBounds(bounds, threeQuarterDirection(up), up,
+                              perspective ? *angle : std::min(*angle, 90.0f), aspect);
+  camera.fov_y_degrees = *angle;
   if (!settings.explicitCamera()) return camera;
   if (settings.has_position) camera.position = settings.position;
   if (settings.has_focal_point) camera.target = settings.focal_point;
@@ -14,7 +53,10 @@ Expected<Camera> makeCamera(const CameraSettings& settings, const Bounds& bounds
   if (length(camera.target - camera.position) == 0.0f)
     return makeError("the camera position and focal point are the same point");
   if (length(camera.up) == 0.0f) return makeError("--camera-view-up must not be zero");
-  fitNearFar(camera, bounds);
+  if (perspective)
+    fitNearFar(camera, bounds);
+  else
+    fitNearFarDistance(camera, bounds);
   return camera;
 }
 

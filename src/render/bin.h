@@ -8,6 +8,7 @@
 
 #include "render/fixed_point.h"
 #include "render/page_pool.h"
+#include "render/ray_setup.h"
 #include "render/setup.h"
 
 namespace tessera::render {
@@ -94,6 +95,7 @@ struct alignas(128) TriangleChunk {
   PoolVector<RasterWide> wide;        // beside raster, written for large triangles only
   PoolVector<ShadeTriangle> shade;
   PoolVector<ShadeExtras> extras;  // beside shade, written only where the shading reads them
+  PoolVector<RayTriangle> ray;     // the nonlinear projections' raster records, beside shade
   ChunkBins bins;
   size_t culled = 0;
   size_t clipped = 0;

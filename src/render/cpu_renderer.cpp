@@ -30,6 +30,7 @@
 #include "render/lines.h"
 #include "render/msaa.h"
 #include "render/raster.h"
+#include "render/ray_renderer.h"
 #include "render/replication.h"
 #include "render/resolve.h"
 #include "render/setup.h"
@@ -101,6 +102,7 @@ struct CpuRenderer::State {
   std::vector<uint8_t> tile_empty;                     // this frame's: no triangle binned
   LineList lines;
   PipelineStats stats;
+  RayRenderer rays;  // the nonlinear projections
 
   void setupChunk(const Scene& scene, const VertexBuffer& vertices, const TileGrid& grid,
                   const GuardBand& guard, bool want_normals, int32_t sample_reach,
@@ -111,12 +113,6 @@ struct CpuRenderer::State {
 };
 
 namespace {
-
-// Gouraud objects with vertex normals are lit per vertex in the vertex stage (VertexBuffer::lit).
-bool litPerVertex(const Object& object) {
-  return object.shading == Shading::kGouraud && object.mesh &&
-         object.mesh->normals.size() == object.mesh->vertexCount();
-}
 
 Isa chooseIsa(SimdLevel level) {
   const Isa best = detectIsa();
@@ -393,6 +389,10 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   TESSERA_CHECK(isSampleCount(options.msaa))
       << options.msaa << " samples per pixel: not 1, 2, 4 or 8";
   State& s = *state_;
+  if (options.projection != Projection::kPerspective) {
+    s.rays.render(scene, options, frame, s.pool, s.kernels, s.stats);
+    return;
+  }
   const bool draws_lines =
       options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
                         std::any_of(scene.objects.begin(), scene.objects.end(),

@@ -64,6 +64,42 @@ void blendPixel(Frame& frame, int x, int y, float z, float3 color, float a) {
 
 }  // namespace
 
+namespace {
+
+// Steps along the window-space segment sa-sb (z: window depth) a pixel at a time.
+void drawWindowSegment(Frame& frame, float3 sa, float3 sb, float3 linear, bool antialiased) {
+  const float w = static_cast<float>(frame.width), h = static_cast<float>(frame.height);
+  const uint32_t color = packSrgba8(float4{linear, 1.0f});
+  const bool x_major = std::fabs(sb.x - sa.x) >= std::fabs(sb.y - sa.y);
+  const float steps = std::ceil(std::max(std::fabs(sb.x - sa.x), std::fabs(sb.y - sa.y)));
+  const int n = static_cast<int>(std::min(steps, 4.0f * (w + h)));
+  for (int s = 0; s <= n; ++s) {
+    const float t = n > 0 ? static_cast<float>(s) / n : 0.0f;
+    const float3 p = lerp(sa, sb, t);
+    if (antialiased) {
+      // The two pixel centres across the line nearest p, by their distance from it.
+      const float across = (x_major ? p.y : p.x) - 0.5f;
+      const float low = std::floor(across), f = across - low;
+      const int along = static_cast<int>(std::floor(x_major ? p.x : p.y));
+      const int first = static_cast<int>(low);
+      if (x_major) {
+        blendPixel(frame, along, first, p.z, linear, 1.0f - f);
+        blendPixel(frame, along, first + 1, p.z, linear, f);
+      } else {
+        blendPixel(frame, first, along, p.z, linear, 1.0f - f);
+        blendPixel(frame, first + 1, along, p.z, linear, f);
+      }
+      continue;
+    }
+    const int x = static_cast<int>(std::floor(p.x)), y = static_cast<int>(std::floor(p.y));
+    if (x < 0 || y < 0 || x >= frame.width || y >= frame.height) continue;
+    const size_t index = static_cast<size_t>(y) * frame.width + x;
+    if (p.z < frame.depth[index]) frame.color[index] = color;
+  }
+}
+
+}  // namespace
+
 void drawLines(const LineList& lines, const float4x4& view_projection, Frame& frame,
                bool antialiased) {
   const float w = static_cast<float>(frame.width), h = static_cast<float>(frame.height);
@@ -71,39 +107,45 @@ void drawLines(const LineList& lines, const float4x4& view_projection, Frame& fr
     float4 a = view_projection * float4{lines.points[i], 1.0f};
     float4 b = view_projection * float4{lines.points[i + 1], 1.0f};
     if (!clipSegment(a, b)) continue;
-    const float3 linear = lines.colors[i / 2];
-    const uint32_t color = packSrgba8(float4{linear, 1.0f});
     auto window = [&](float4 p) {
       return float3{(p.x / p.w * 0.5f + 0.5f) * w, (0.5f - p.y / p.w * 0.5f) * h,
                     p.z / p.w * 0.5f + 0.5f};
     };
     const float3 sa = window(a), sb = window(b);
     if (!isFinite(sa) || !isFinite(sb)) continue;
-    const bool x_major = std::fabs(sb.x - sa.x) >= std::fabs(sb.y - sa.y);
-    const float steps = std::ceil(std::max(std::fabs(sb.x - sa.x), std::fabs(sb.y - sa.y)));
-    const int n = static_cast<int>(std::min(steps, 4.0f * (w + h)));
-    for (int s = 0; s <= n; ++s) {
-      const float t = n > 0 ? static_cast<float>(s) / n : 0.0f;
-      const float3 p = lerp(sa, sb, t);
-      if (antialiased) {
-        // The two pixel centres across the line nearest p, by their distance from it.
-        const float across = (x_major ? p.y : p.x) - 0.5f;
-        const float low = std::floor(across), f = across - low;
-        const int along = static_cast<int>(std::floor(x_major ? p.x : p.y));
-        const int first = static_cast<int>(low);
-        if (x_major) {
-          blendPixel(frame, along, first, p.z, linear, 1.0f - f);
-          blendPixel(frame, along, first + 1, p.z, linear, f);
-        } else {
-          blendPixel(frame, first, along, p.z, linear, 1.0f - f);
-          blendPixel(frame, first + 1, along, p.z, linear, f);
-        }
+    drawWindowSegment(frame, sa, sb, lines.colors[i / 2], antialiased);
+  }
+}
+
+void drawRayLines(const LineList& lines, const float4x4& view, const RayLines& mode, Frame& frame,
+                  bool antialiased) {
+  // Pieces short enough that the curve between their ends is within a fraction of a pixel of the
+  // chord at the image sizes in use; a piece whose ends land on both sides of a seam is skipped.
+  constexpr int kPieces = 256;
+  const double seam = 0.5 * frame.width;
+  for (size_t i = 0; i + 1 < lines.points.size(); i += 2) {
+    const float3 a = (view * float4{lines.points[i], 1.0f}).xyz();
+    const float3 b = (view * float4{lines.points[i + 1], 1.0f}).xyz();
+    bool have_last = false;
+    float3 last{};
+    for (int k = 0; k <= kPieces; ++k) {
+      const float3 p = lerp(a, b, static_cast<float>(k) / kPieces);
+      const double d[3] = {p.x, p.y, p.z};
+      const double distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      double sx, sy;
+      const bool seen = distance >= mode.near && distance <= mode.far &&
+                        projectDirection(mode.projection, d, frame.width, frame.height,
+                                         mode.fov_y_radians, sx, sy);
+      if (!seen) {
+        have_last = false;
         continue;
       }
-      const int x = static_cast<int>(std::floor(p.x)), y = static_cast<int>(std::floor(p.y));
-      if (x < 0 || y < 0 || x >= frame.width || y >= frame.height) continue;
-      const size_t index = static_cast<size_t>(y) * frame.width + x;
-      if (p.z < frame.depth[index]) frame.color[index] = color;
+      const float3 q{static_cast<float>(sx), static_cast<float>(sy),
+                     static_cast<float>((distance - mode.near) / (mode.far - mode.near))};
+      if (have_last && std::fabs(q.x - last.x) < seam)
+        drawWindowSegment(frame, last, q, lines.colors[i / 2], antialiased);
+      last = q;
+      have_last = true;
     }
   }
 }

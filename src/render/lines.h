@@ -4,6 +4,7 @@
 
 #include <tessera/math/math.h>
 #include <tessera/render/frame.h>
+#include <tessera/render/projection.h>
 #include <tessera/scene/scene.h>
 
 namespace tessera::render {
@@ -17,5 +18,15 @@ void appendAxes(LineList& lines, const float4x4& frame_matrix, float length);
 // pixels nearest it across, weighted by distance and blended in linear light.
 void drawLines(const LineList& lines, const float4x4& view_projection, Frame& frame,
                bool antialiased = false);
+
+// The nonlinear projections' lines: camera-space points through the mode's mapping, depth as the
+// distance from near (0) to far (1), as the ray path writes it.
+struct RayLines {
+  Projection projection = Projection::kSpherical;
+  double fov_y_radians = 1;
+  double near = 0.1, far = 100;
+};
+void drawRayLines(const LineList& lines, const float4x4& view, const RayLines& mode, Frame& frame,
+                  bool antialiased = false);
 
 }  // namespace tessera::render

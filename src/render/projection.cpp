@@ -112,20 +112,19 @@ std::string checkViewAngle(Projection p, float angle, float aspect) {
   return "";
 }
 
-float widestViewAngle(Projection p, float aspect) {
+float defaultViewAngle(Projection p, float aspect) {
   switch (p) {
     case Projection::kPerspective:
-      return 170.0f;
+      return 30.0f;
     case Projection::kCylindrical:
       return std::min(170.0f, 360.0f / aspect);
     case Projection::kSpherical:
       return std::min(180.0f, 360.0f / aspect);
     case Projection::kStereographic:
-      return 350.0f;
     case Projection::kFisheye:
-      return 360.0f;
+      return 180.0f;
   }
-  return 170.0f;
+  return 30.0f;
 }
 
 bool rayDirection(Projection p, double sx, double sy, int width, int height, double fov,
@@ -216,9 +215,10 @@ bool RayTable::update(Projection p, int width, int height, float fov_y_degrees, 
     // Sample positions are in 1/256 pixel from the pixel's corner (sampling.h).
     layer.offset_x = (centre ? 0.5f : static_cast<float>(pattern[i].x) / 256.0f) + jitter.x;
     layer.offset_y = (centre ? 0.5f : static_cast<float>(pattern[i].y) / 256.0f) + jitter.y;
-    layer.x.resize(count);
-    layer.y.resize(count);
-    layer.z.resize(count);
+    // Eight zero rays past the end: the kernels read eight pixels at a time.
+    layer.x.assign(count + 8, 0.0f);
+    layer.y.assign(count + 8, 0.0f);
+    layer.z.assign(count + 8, 0.0f);
     for (int y = 0; y < height; ++y) {
       for (int x = 0; x < width; ++x) {
         double d[3] = {0, 0, 0};

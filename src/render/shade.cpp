@@ -28,9 +28,19 @@ float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Bar
   const float2 uv = uvAt(extras, b);
   if (sampler.filter != TextureFilter::kTrilinear || texture.mips.empty())
     return texture.sample(uv, sampler).xyz();
+  return sampleAlbedo(t, extras, b, barycentricsAt(t, x + 1.0f, y), barycentricsAt(t, x, y + 1.0f));
+}
+
+float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Barycentrics& b,
+                    const Barycentrics& right, const Barycentrics& down) {
+  const Texture& texture = *t.material->albedo;
+  const Sampler& sampler = t.material->sampler;
+  const float2 uv = uvAt(extras, b);
+  if (sampler.filter != TextureFilter::kTrilinear || texture.mips.empty())
+    return texture.sample(uv, sampler).xyz();
   const float2 size{static_cast<float>(texture.width), static_cast<float>(texture.height)};
-  const float2 du = uvAt(extras, barycentricsAt(t, x + 1.0f, y)) - uv;
-  const float2 dv = uvAt(extras, barycentricsAt(t, x, y + 1.0f)) - uv;
+  const float2 du = uvAt(extras, right) - uv;
+  const float2 dv = uvAt(extras, down) - uv;
   const float2 dx{du.x * size.x, du.y * size.y}, dy{dv.x * size.x, dv.y * size.y};
   const float rho2 = std::max(dx.x * dx.x + dx.y * dx.y, dy.x * dy.x + dy.y * dy.y);
   const float lod = rho2 > 0.0f ? 0.5f * std::log2(rho2) : 0.0f;

@@ -37,6 +37,10 @@ Barycentrics barycentricsAt(const ShadeTriangle& t, float x, float y);
 // filtering takes its level of detail from the UVs at the next pixel centres right and down.
 float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Barycentrics& b,
                     float x, float y);
+// The same with the barycentrics at the next pixel centres right and down given (the nonlinear
+// projections, whose barycentrics come from rays).
+float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Barycentrics& b,
+                    const Barycentrics& right, const Barycentrics& down);
 
 // True when every pixel's colour is its triangle's interpolated vertex colours: no object is
 // textured or Phong-shaded and the normal AOV is not asked for.

@@ -25,12 +25,6 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
     extras[c] = chunks[c].extras.data();
   }
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
-#if defined(TESSERA_LANES16)
-  const I32x16 fill = splat16(static_cast<int32_t>(background));  // the encode's width
-#else
-  const I32x8 fill = splat(static_cast<int32_t>(background));
-  const I32x8 opaque = splat(static_cast<int32_t>(0xff000000u));
-#endif
   const F32x8 zero = splat(0.0f);
   // A row's colours in linear light, encoded once the row is shaded: the encode is a long chain
   // of dependent operations, and eight groups of it side by side keep the core busy where one
@@ -81,36 +75,7 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
       }
     }
     if (msaa) resolveMixedRow(*msaa, tile, ty, chunks, scene, plain, linear);
-#if defined(TESSERA_LANES16)
-    // Sixteen pixels a step (the rows are kTileSize wide, a multiple of 16).
-    for (int tx = 0; tx < tile.width; tx += 16) {
-      const int i = ty * kTileSize + tx;
-      const I32x16 covered = load<I32x16>(tile.key + i) != static_cast<int32_t>(kEmptyKey);
-      if (!_mm512_test_epi32_mask(reinterpret_cast<__m512i>(covered),
-                                  reinterpret_cast<__m512i>(covered))) {
-        store(out.rgba + i, fill);
-        continue;
-      }
-      const I32x16 rgba = encodeSrgb8x16(load<F32x16>(linear[0] + tx)) |
-                          encodeSrgb8x16(load<F32x16>(linear[1] + tx)) << 8 |
-                          encodeSrgb8x16(load<F32x16>(linear[2] + tx)) << 16 |
-                          static_cast<int32_t>(0xff000000u);
-      store(out.rgba + i, covered ? rgba : fill);
-    }
-#else
-    for (int tx = 0; tx < tile.width; tx += 8) {
-      const int i = ty * kTileSize + tx;
-      const I32x8 covered = ~equal(load<I32x8>(tile.key + i), empty);
-      if (!any(covered)) {
-        store(out.rgba + i, fill);
-        continue;
-      }
-      const I32x8 rgba = encodeSrgb8x8(load<F32x8>(linear[0] + tx)) |
-                         shiftLeft(encodeSrgb8x8(load<F32x8>(linear[1] + tx)), 8) |
-                         shiftLeft(encodeSrgb8x8(load<F32x8>(linear[2] + tx)), 16) | opaque;
-      store(out.rgba + i, select(covered, rgba, fill));
-    }
-#endif
+    encodeShadedRow(tile, ty, linear, background, out);
   }
 }
 

@@ -172,19 +172,14 @@ TESSERA_LANES_INLINE bool sampleBilinear8(const ShadeTriangle& t, const ShadeExt
   return true;
 }
 
-// Shades the lanes of `mask` (pixel centres px, py) from triangle t, into `color` and, when
-// asked, `normal`; the other lanes keep what they hold.
-TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const ShadeExtras& e,
-                                     const Scene& scene, bool want_normals, F32x8 px, float py,
-                                     I32x8 mask, Vec3x8& color, Vec3x8& normal) {
-  // Barycentrics exactly as barycentricsAt.
-  const F32x8 dx = px - splat(t.x0);
-  const float dy = py - t.y0;
-  const F32x8 inv_s = splat(1.0f) / (splat(t.inv_w0) + splat(t.sdx) * dx + splat(t.sdy * dy));
-  const F32x8 b1 = (splat(t.p1dx) * dx + splat(t.p1dy * dy)) * inv_s;
-  const F32x8 b2 = (splat(t.p2dx) * dx + splat(t.p2dy * dy)) * inv_s;
-  const F32x8 b0 = splat(1.0f) - b1 - b2;
-
+// Shades the lanes of `mask` from triangle t at barycentrics b0, b1, b2, into `color` and, when
+// asked, `normal`; the other lanes keep what they hold. Lanes the eight-lane bilinear filter does
+// not take get their albedo from albedo_lane(l, Barycentrics) one at a time.
+template <typename AlbedoLane>
+TESSERA_LANES_INLINE void shadeLanesAt(const ShadeTriangle& t, const ShadeExtras& e,
+                                       const Scene& scene, bool want_normals, F32x8 b0, F32x8 b1,
+                                       F32x8 b2, I32x8 mask, Vec3x8& color, Vec3x8& normal,
+                                       AlbedoLane albedo_lane) {
   Vec3x8 c = interpolate(t.color, b0, b1, b2);
   Vec3x8 albedo;
   if (t.has_uv && sampleBilinear8(t, e, mask, b0, b1, b2, albedo)) {
@@ -192,7 +187,7 @@ TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const ShadeExtras& 
   } else if (t.has_uv) {
     for (int l = 0; l < 8; ++l) {
       if (!lane(mask, l)) continue;
-      const float3 a = sampleAlbedo(t, e, {lane(b0, l), lane(b1, l), lane(b2, l)}, lane(px, l), py);
+      const float3 a = albedo_lane(l, Barycentrics{lane(b0, l), lane(b1, l), lane(b2, l)});
       setLane(c.x, l, lane(c.x, l) * a.x);
       setLane(c.y, l, lane(c.y, l) * a.y);
       setLane(c.z, l, lane(c.z, l) * a.z);
@@ -213,6 +208,22 @@ TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const ShadeExtras& 
               select(mask, splat(e.normal[0].z), normal.z)};
   }
   color = {select(mask, c.x, color.x), select(mask, c.y, color.y), select(mask, c.z, color.z)};
+}
+
+// Shades the lanes of `mask` (pixel centres px, py) from triangle t, into `color` and, when
+// asked, `normal`; the other lanes keep what they hold.
+TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const ShadeExtras& e,
+                                     const Scene& scene, bool want_normals, F32x8 px, float py,
+                                     I32x8 mask, Vec3x8& color, Vec3x8& normal) {
+  // Barycentrics exactly as barycentricsAt.
+  const F32x8 dx = px - splat(t.x0);
+  const float dy = py - t.y0;
+  const F32x8 inv_s = splat(1.0f) / (splat(t.inv_w0) + splat(t.sdx) * dx + splat(t.sdy * dy));
+  const F32x8 b1 = (splat(t.p1dx) * dx + splat(t.p1dy * dy)) * inv_s;
+  const F32x8 b2 = (splat(t.p2dx) * dx + splat(t.p2dy * dy)) * inv_s;
+  const F32x8 b0 = splat(1.0f) - b1 - b2;
+  shadeLanesAt(t, e, scene, want_normals, b0, b1, b2, mask, color, normal,
+               [&](int l, const Barycentrics& b) { return sampleAlbedo(t, e, b, lane(px, l), py); });
 }
 
 // The float fields from x0 to color[2], in order: what an untextured flat, Gouraud or unlit pixel
@@ -247,6 +258,47 @@ TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F3
   const F32x8 b0 = splat(1.0f) - b1 - b2;
   return {f[9] * b0 + f[12] * b1 + f[15] * b2, f[10] * b0 + f[13] * b1 + f[16] * b2,
           f[11] * b0 + f[14] * b1 + f[17] * b2};
+}
+
+// Encodes row ty of the tile's linear colours to sRGB into out.rgba, whole; the background where
+// no triangle is.
+TESSERA_LANES_INLINE void encodeShadedRow(const TileVisibility& tile, int ty,
+                                          const float linear[3][kTileSize], uint32_t background,
+                                          ShadedTile& out) {
+#if defined(TESSERA_LANES16)
+  const I32x16 fill = splat16(static_cast<int32_t>(background));  // the encode's width
+  // Sixteen pixels a step (the rows are kTileSize wide, a multiple of 16).
+  for (int tx = 0; tx < tile.width; tx += 16) {
+    const int i = ty * kTileSize + tx;
+    const I32x16 covered = load<I32x16>(tile.key + i) != static_cast<int32_t>(kEmptyKey);
+    if (!_mm512_test_epi32_mask(reinterpret_cast<__m512i>(covered),
+                                reinterpret_cast<__m512i>(covered))) {
+      store(out.rgba + i, fill);
+      continue;
+    }
+    const I32x16 rgba = encodeSrgb8x16(load<F32x16>(linear[0] + tx)) |
+                        encodeSrgb8x16(load<F32x16>(linear[1] + tx)) << 8 |
+                        encodeSrgb8x16(load<F32x16>(linear[2] + tx)) << 16 |
+                        static_cast<int32_t>(0xff000000u);
+    store(out.rgba + i, covered ? rgba : fill);
+  }
+#else
+  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
+  const I32x8 fill = splat(static_cast<int32_t>(background));
+  const I32x8 opaque = splat(static_cast<int32_t>(0xff000000u));
+  for (int tx = 0; tx < tile.width; tx += 8) {
+    const int i = ty * kTileSize + tx;
+    const I32x8 covered = ~equal(load<I32x8>(tile.key + i), empty);
+    if (!any(covered)) {
+      store(out.rgba + i, fill);
+      continue;
+    }
+    const I32x8 rgba = encodeSrgb8x8(load<F32x8>(linear[0] + tx)) |
+                       shiftLeft(encodeSrgb8x8(load<F32x8>(linear[1] + tx)), 8) |
+                       shiftLeft(encodeSrgb8x8(load<F32x8>(linear[2] + tx)), 16) | opaque;
+    store(out.rgba + i, select(covered, rgba, fill));
+  }
+#endif
 }
 
 }  // namespace

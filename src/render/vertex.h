@@ -27,6 +27,12 @@ struct ObjectTransforms {
 
 ObjectTransforms makeObjectTransforms(const Object& object, const float4x4& view_projection);
 
+// Gouraud objects with vertex normals are lit per vertex in the vertex stage (VertexBuffer::lit).
+inline bool litPerVertex(const Object& object) {
+  return object.shading == Shading::kGouraud && object.mesh &&
+         object.mesh->normals.size() == object.mesh->vertexCount();
+}
+
 // Transformed vertices of the whole scene, objects one after another.
 struct VertexBuffer {
   PoolVector<float> clip_x, clip_y, clip_z, clip_w;

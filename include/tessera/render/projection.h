@@ -36,10 +36,10 @@ std::string projectionChoices();
 // "" when `fov_y_degrees` (the vertical view angle) is valid for the mode on an image of this
 // aspect (width / height); otherwise a message naming the valid range.
 std::string checkViewAngle(Projection p, float fov_y_degrees, float aspect);
-// The largest valid view angle of the mode at this aspect (what a panorama wants by default):
-// perspective 170, cylindrical min(170, 360 / aspect), spherical min(180, 360 / aspect),
-// stereographic 350 and fisheye 360.
-float widestViewAngle(Projection p, float aspect);
+// The view angle a mode takes when none is given, for an image of this aspect (width / height):
+// perspective 30, cylindrical min(170, 360 / aspect) and spherical min(180, 360 / aspect) (a 2:1
+// spherical image is a whole 360 x 180 panorama), stereographic and fisheye 180.
+float defaultViewAngle(Projection p, float aspect);
 
 // The unit camera-space ray (+X right, +Y up, looking down -Z) through window point (sx, sy)
 // (pixel centres at +0.5) of a width x height image with vertical view angle fov_y_radians;
@@ -56,7 +56,7 @@ bool projectDirection(Projection p, const double d[3], int width, int height,
 // The rays of one sample of every pixel, rounded to float, as three planes (x, y, z), row-major
 // from the top row: the ray of pixel (x, y) is at index y * width + x. The sample lies at
 // (x + offset_x, y + offset_y): a standard sample position plus the frame's jitter. A pixel with no
-// ray holds (0, 0, 0), which no triangle covers.
+// ray holds (0, 0, 0), which no triangle covers. Eight zero rays follow the last pixel.
 struct RayLayer {
   float offset_x = 0.5f, offset_y = 0.5f;
   std::vector<float> x, y, z;

@@ -1,0 +1,231 @@
+#include "render/ray_kernel.h"
+
+#include "render/shade_lanes.h"
+
+namespace tessera::render {
+
+namespace {
+
+struct Ray8 {
+  F32x8 x, y, z;
+};
+
+TESSERA_LANES_INLINE Ray8 loadRays(const RayLayer& layer, size_t at) {
+  return {load<F32x8>(layer.x.data() + at), load<F32x8>(layer.y.data() + at),
+          load<F32x8>(layer.z.data() + at)};
+}
+
+// E_k of eight rays, as dotRay.
+TESSERA_LANES_INLINE F32x8 edgeValue(const RayTriangle& t, int k, const Ray8& d) {
+  return (d.x * splat(t.n[k][0]) + d.y * splat(t.n[k][1])) + d.z * splat(t.n[k][2]);
+}
+
+TESSERA_LANES_INLINE I32x8 lessOrEqualF(F32x8 a, F32x8 b) {
+  return lessThan(a, b) | equal(a, b);
+}
+
+// One box of a triangle, clipped to the tile, eight pixels of a row at a time.
+TESSERA_LANES_INLINE void rasterRayBox(const RayTriangle& t, const int16_t box[4], uint32_t key,
+                                       const RayLayer& layer, int width, RayDepth range,
+                                       TileVisibility& tile) {
+  const int x_begin = std::max<int>(box[0], tile.x0);
+  const int x_end = std::min<int>(box[2], tile.x0 + tile.width - 1);
+  const int y_begin = std::max<int>(box[1], tile.y0);
+  const int y_end = std::min<int>(box[3], tile.y0 + tile.height - 1);
+  if (x_begin > x_end || y_begin > y_end) return;
+  const F32x8 zero = splat(0.0f), one = splat(1.0f);
+  const F32x8 det = splat(t.det), near = splat(range.near), inv_range = splat(range.inv_range);
+  I32x8 owner[3];
+  for (int k = 0; k < 3; ++k) owner[k] = splat(static_cast<int32_t>(-((t.owner >> k) & 1)));
+  const I32x8 last = splat(x_end);
+  const I32x8 key_lanes = splat(static_cast<int32_t>(key));
+  for (int y = y_begin; y <= y_end; ++y) {
+    const size_t row = static_cast<size_t>(y) * static_cast<size_t>(width);
+    float* depth = tile.depth + (y - tile.y0) * kTileSize - tile.x0;
+    uint32_t* keys = tile.key + (y - tile.y0) * kTileSize - tile.x0;
+    for (int x = x_begin; x <= x_end; x += 8) {
+      const Ray8 d = loadRays(layer, row + static_cast<size_t>(x));
+      I32x8 covered = lessOrEqual(splat(x) + iota(), last);
+      F32x8 e[3];
+      for (int k = 0; k < 3; ++k) {
+        e[k] = edgeValue(t, k, d);
+        covered = covered & (lessThan(zero, e[k]) | (equal(e[k], zero) & owner[k]));
+      }
+      const F32x8 sum = (e[0] + e[1]) + e[2];
+      const F32x8 z = (det / sum - near) * inv_range;
+      covered = covered & lessThan(zero, sum) & lessOrEqualF(zero, z) & lessOrEqualF(z, one);
+      const F32x8 stored = load<F32x8>(depth + x);
+      const I32x8 pass = covered & lessThan(z, stored);
+      store(depth + x, select(pass, z, stored));
+      store(keys + x, select(pass, key_lanes, load<I32x8>(keys + x)));
+    }
+  }
+}
+
+// The barycentrics of eight rays' hits, as rayBarycentrics.
+TESSERA_LANES_INLINE void rayBarycentrics8(const RayTriangle& t, const Ray8& d, F32x8& b0,
+                                           F32x8& b1, F32x8& b2) {
+  const F32x8 e0 = edgeValue(t, 0, d), e1 = edgeValue(t, 1, d), e2 = edgeValue(t, 2, d);
+  const F32x8 inv_s = splat(1.0f) / ((e0 + e1) + e2);
+  b1 = e1 * inv_s;
+  b2 = e2 * inv_s;
+  b0 = splat(1.0f) - b1 - b2;
+}
+
+float3 rayAt(const RayLayer& layer, size_t at) {
+  return {layer.x[at], layer.y[at], layer.z[at]};
+}
+
+// What shading a tile reads of the frame's rays.
+struct RayShading {
+  const Scene& scene;
+  const std::vector<TriangleChunk>& chunks;
+  const RayTable& rays;
+  int width, height;
+
+  // Shades the lanes of `mask` from triangle `key` at the rays d (pixels x .. x + 7 of row y);
+  // lanes the eight-lane texture filter does not take find their level of detail from the centre
+  // rays of the next pixels right and down (or left and up at the image's edge).
+  TESSERA_LANES_INLINE void shade(uint32_t key, const Ray8& d, int x, int y, I32x8 mask,
+                                  bool want_normals, Vec3x8& color, Vec3x8& normal) const {
+    const TriangleChunk& chunk = chunks[keyChunk(key)];
+    const ShadeTriangle& t = chunk.shade[keyLocal(key)];
+    const ShadeExtras& e = chunk.extras[keyLocal(key)];
+    const RayTriangle& r = chunk.ray[keyLocal(key)];
+    F32x8 b0, b1, b2;
+    rayBarycentrics8(r, d, b0, b1, b2);
+    shadeLanesAt(t, e, scene, want_normals, b0, b1, b2, mask, color, normal,
+                 [&](int l, const Barycentrics& b) {
+                   const int px = x + l;
+                   const int right = px + 1 < width ? px + 1 : px - 1;
+                   const int down = y + 1 < height ? y + 1 : y - 1;
+                   const size_t w = static_cast<size_t>(width);
+                   Barycentrics br, bd;
+                   rayBarycentrics(r, rayAt(rays.centre(), static_cast<size_t>(y) * w + right),
+                                   br.b0, br.b1, br.b2);
+                   rayBarycentrics(r, rayAt(rays.centre(), static_cast<size_t>(down) * w + px),
+                                   bd.b0, bd.b1, bd.b2);
+                   return sampleAlbedo(t, e, b, br, bd);
+                 });
+  }
+};
+
+// The sample-s fragments of eight pixels (the lanes of `first`), each triangle shaded at the centre
+// ray of the lanes whose centre ray passes through it and at sample s's ray elsewhere.
+Vec3x8 shadeRayFragments(const RayShading& rs, int s, I32x8 keys, I32x8 first, int x, int y) {
+  const size_t at = static_cast<size_t>(y) * static_cast<size_t>(rs.width) + static_cast<size_t>(x);
+  const Ray8 centre = loadRays(rs.rays.centre(), at), sample = loadRays(rs.rays.sample(s), at);
+  const F32x8 zero = splat(0.0f);
+  Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
+  I32x8 todo = first;
+  while (any(todo)) {
+    const uint32_t key = static_cast<uint32_t>(lane(keys, firstLane(todo)));
+    const I32x8 mine = todo & equal(keys, splat(static_cast<int32_t>(key)));
+    const RayTriangle& r = rs.chunks[keyChunk(key)].ray[keyLocal(key)];
+    alignas(32) int32_t at_centre[8];
+    for (int l = 0; l < 8; ++l)
+      at_centre[l] = lane(mine, l) && rayCovers(r, {lane(centre.x, l), lane(centre.y, l),
+                                                    lane(centre.z, l)})
+                         ? -1
+                         : 0;
+    const I32x8 c = load<I32x8>(at_centre);
+    const Ray8 d{select(c, centre.x, sample.x), select(c, centre.y, sample.y),
+                 select(c, centre.z, sample.z)};
+    rs.shade(key, d, x, y, mine, false, color, normal);
+    todo = todo & ~mine;
+  }
+  return color;
+}
+
+// resolveMixedRow (msaa_kernel.h) with the fragments shaded from rays.
+void resolveMixedRayRow(const RayShading& rs, const MsaaShading& m, const TileVisibility& tile,
+                        int ty, float linear[3][kTileSize]) {
+  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
+  const I32x8 zero = splat(int32_t{0});
+  const F32x8 inv_samples = splat(1.0f / static_cast<float>(m.samples));
+  const int y = tile.y0 + ty;
+  for (int tx = 0; tx < tile.width; tx += 8) {
+    const int i = ty * kTileSize + tx;
+    const I32x8 mixed = load<I32x8>(m.tiles->mixed + i);
+    if (!any(mixed)) continue;
+    I32x8 keys[kMaxSamples];
+    I32x8 background = zero;
+    for (int s = 0; s < m.samples; ++s) {
+      keys[s] = load<I32x8>(m.tiles->layers[static_cast<size_t>(s)]->key + i);
+      background = background - equal(keys[s], empty);
+    }
+    const F32x8 bg_weight = toFloat(background);
+    Vec3x8 sum{splat(m.background.x) * bg_weight, splat(m.background.y) * bg_weight,
+               splat(m.background.z) * bg_weight};
+    for (int s = 0; s < m.samples; ++s) {
+      I32x8 first = mixed & ~equal(keys[s], empty);
+      for (int r = 0; r < s; ++r) first = first & ~equal(keys[s], keys[r]);
+      if (!any(first)) continue;
+      I32x8 held = zero;
+      for (int r = s; r < m.samples; ++r) held = held - equal(keys[r], keys[s]);
+      const Vec3x8 c = shadeRayFragments(rs, s, keys[s], first, tile.x0 + tx, y);
+      const F32x8 weight = toFloat(held);
+      sum = {select(first, sum.x + c.x * weight, sum.x), select(first, sum.y + c.y * weight, sum.y),
+             select(first, sum.z + c.z * weight, sum.z)};
+    }
+    store(linear[0] + tx, select(mixed, sum.x * inv_samples, load<F32x8>(linear[0] + tx)));
+    store(linear[1] + tx, select(mixed, sum.y * inv_samples, load<F32x8>(linear[1] + tx)));
+    store(linear[2] + tx, select(mixed, sum.z * inv_samples, load<F32x8>(linear[2] + tx)));
+  }
+}
+
+}  // namespace
+
+void rasterRayTile(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
+                   const RayLayer& layer, int width, RayDepth depth, TileVisibility& tile) {
+  for (size_t c = 0; c < chunk_count; ++c) {
+    const TriangleChunk& chunk = chunks[c];
+    for (const uint32_t* it = chunk.bins.begin(tile_index); it != chunk.bins.end(tile_index);
+         ++it) {
+      const RayTriangle& t = chunk.ray[*it];
+      const uint32_t key = makeKey(static_cast<uint32_t>(c), *it);
+      rasterRayBox(t, t.box[0], key, layer, width, depth, tile);
+      if (t.box[1][0] <= t.box[1][2]) rasterRayBox(t, t.box[1], key, layer, width, depth, tile);
+    }
+  }
+}
+
+void shadeRayTile(const TileVisibility& tile, const std::vector<TriangleChunk>& chunks,
+                  size_t, const Scene& scene, bool want_normals, uint32_t background,
+                  const RayTable& rays, const MsaaShading* msaa, ShadedTile& out) {
+  const RayShading rs{scene, chunks, rays, rays.width(), rays.height()};
+  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
+  const F32x8 zero = splat(0.0f);
+  alignas(32) float linear[3][kTileSize];
+  for (int ty = 0; ty < tile.height; ++ty) {
+    const int y = tile.y0 + ty;
+    const size_t row = static_cast<size_t>(y) * static_cast<size_t>(rs.width);
+    for (int tx = 0; tx < tile.width; tx += 8) {
+      const int i = ty * kTileSize + tx;
+      const I32x8 keys = load<I32x8>(tile.key + i);
+      I32x8 todo = ~equal(keys, empty);
+      if (!any(todo)) continue;
+      const int x = tile.x0 + tx;
+      const Ray8 d = loadRays(rays.centre(), row + static_cast<size_t>(x));
+      Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
+      do {
+        const uint32_t key = static_cast<uint32_t>(lane(keys, firstLane(todo)));
+        const I32x8 mask = equal(keys, splat(static_cast<int32_t>(key)));
+        rs.shade(key, d, x, y, mask, want_normals, color, normal);
+        todo = todo & ~mask;
+      } while (any(todo));
+      store(linear[0] + tx, color.x);
+      store(linear[1] + tx, color.y);
+      store(linear[2] + tx, color.z);
+      if (want_normals) {
+        store(out.normal_x + i, normal.x);
+        store(out.normal_y + i, normal.y);
+        store(out.normal_z + i, normal.z);
+      }
+    }
+    if (msaa) resolveMixedRayRow(rs, *msaa, tile, ty, linear);
+    encodeShadedRow(tile, ty, linear, background, out);
+  }
+}
+
+}  // namespace tessera::render
