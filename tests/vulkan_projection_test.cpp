@@ -5,11 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <tessera/render/projection.h>
 
+#include "run_process.h"
+#include "temp_folder.h"
 #include "vulkan_fixtures.h"
 
 namespace tessera::vulkan_test {
@@ -233,6 +236,18 @@ TEST(VulkanProjection, DenseSphereAroundTheEyeLeavesNoCrack) {
   }
 }
 
+// Narrow view angles: pixels a few arc minutes wide, so the GPU's float cone boxes have the least
+// room (their margins are fixed angles plus pixels).
+TEST(VulkanProjection, NarrowViewAnglesMatchCpu) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  for (ModeSetup m : kModes) {
+    m.view_angle = 24.0f;
+    expectModeParity(*gpu, "narrow sphere room", sphereRoomScene(), m, modeOptions(m));
+  }
+}
+
 TEST(VulkanProjection, TrianglesAcrossTheSeamMatchCpu) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   ComputePtr gpu = makeCompute();
@@ -344,6 +359,45 @@ TEST(VulkanProjection, RasterBackendRefusesNonlinearProjections) {
   const Frame frame = renderWith(*raster, roomScene(), options());
   EXPECT_LT(emptyPixels(frame), frame.pixelCount());
 }
+
+#ifdef TESSERA_EXE
+// The CLI: vulkan-raster refuses with exit status 1, the message and no output file; the vulkan
+// backend writes the CPU's id AOV byte for byte.
+TEST(VulkanProjection, CliRefusesVulkanRasterAndDrawsWithVulkan) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  const std::filesystem::path dir = test::makeTestFolder("tessera_vulkan_projection");
+  test::writeFile(dir / "tri.obj",
+                  "v -1 -1 -3\nv 1 -1 -3\nv 0 1 -3\nv -1 0 3\nv 1 0 3\nv 0 1.5 3\n"
+                  "f 1 2 3\nf 4 6 5\n");
+  const std::string model = "tri.obj --camera-position 0,0,0 --camera-focal-point 0,0,-1 ";
+  const test::RunResult refused = test::runInFolder(
+      dir, TESSERA_EXE,
+      "render " + model + "--projection spherical --backend vulkan-raster -o refused.png");
+  EXPECT_EQ(refused.exit_code, 1) << refused.err;
+  EXPECT_NE(refused.err.find("vulkan-raster draws the perspective projection only; use --backend "
+                             "cpu or vulkan"),
+            std::string::npos)
+      << refused.err;
+  size_t files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 1u) << "only the model: no output, no temporary";
+  for (const char* mode : {"spherical", "fisheye"}) {
+    std::string ids[2];
+    for (int b = 0; b < 2; ++b) {
+      const std::string backend = b == 0 ? "cpu" : "vulkan";
+      const test::RunResult r = test::runInFolder(
+          dir, TESSERA_EXE,
+          "render " + model + "--resolution 128,64 --aov id --projection " + mode +
+              " --backend " + backend + " -o " + backend + ".png");
+      EXPECT_EQ(r.exit_code, 0) << mode << ", " << backend << ": " << r.err;
+      ids[b] = test::slurp(dir / (backend + ".png"));
+    }
+    EXPECT_FALSE(ids[0].empty()) << mode;
+    EXPECT_EQ(ids[0], ids[1]) << mode;
+  }
+  std::filesystem::remove_all(dir);
+}
+#endif  // TESSERA_EXE
 
 }  // namespace
 }  // namespace tessera::vulkan_test

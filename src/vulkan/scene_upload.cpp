@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numbers>
 #include <span>
 
 #include <tessera/base/check.h>
@@ -395,7 +396,15 @@ void drawSceneLines(const Scene& scene, const RenderOptions& options, const Pack
   for (size_t i = 0; i < scene.objects.size(); ++i)
     if (scene.objects[i].show_axes)
       render::appendAxes(lines, packed.models[i], scene.objects[i].axes_length);
-  render::drawLines(lines, packed.view_projection, frame, /*antialiased=*/options.msaa > 1);
+  if (options.projection == Projection::kPerspective) {
+    render::drawLines(lines, packed.view_projection, frame, /*antialiased=*/options.msaa > 1);
+    return;
+  }
+  // The nonlinear projections' lines: the CPU's, through the same mapping (packed.view_projection
+  // is the view matrix then).
+  const double fov = static_cast<double>(scene.camera.fov_y_degrees) * std::numbers::pi / 180.0;
+  const render::RayLines mode{options.projection, fov, scene.camera.near_z, scene.camera.far_z};
+  render::drawRayLines(lines, packed.view_projection, mode, frame, options.msaa > 1);
 }
 
 }  // namespace tessera::vulkan
