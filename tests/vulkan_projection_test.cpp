@@ -78,9 +78,11 @@ Scene surroundingScene() {
   return scene;
 }
 
-// A closed cube room around the camera, a Gouraud sphere ahead and a Phong cube beside it.
+// A closed cube room around the camera, a Gouraud sphere ahead and a Phong cube beside it, and
+// the world axes (the line pass through the mode's mapping).
 Scene roomScene() {
   Scene scene = surroundingScene();
+  scene.show_world_axes = true;
   scene.objects.push_back(roomObject(9.0f));
   scene.objects.push_back(sphereObject(32, 16, {0.6f, -0.3f, -2.5f}, 0.8f, Shading::kGouraud));
   Object cube;
