@@ -198,17 +198,37 @@ Frame expectModeParity(ComputeBackend& backend, const char* name, Scene scene, c
   return gpu;
 }
 
+// Each test gets a compute backend (and is skipped only without any Vulkan device).
+class VulkanProjection : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    TESSERA_SKIP_WITHOUT_VULKAN();
+    gpu_ = makeCompute(vk_);
+    ASSERT_TRUE(gpu_);
+  }
+  ComputeBackend& gpu() { return *gpu_; }
+  VulkanOptions vk_;
+  ComputePtr gpu_;
+};
+
+// The 32-bit commit path with float division in the ray depth.
+class VulkanProjectionFallbacks : public VulkanProjection {
+ protected:
+  void SetUp() override {
+    vk_.force_32bit_atomics = true;
+    vk_.force_fp32_setup = true;
+    VulkanProjection::SetUp();
+  }
+};
+
 size_t emptyPixels(const Frame& frame) {
   return static_cast<size_t>(
       std::count(frame.triangle_id.begin(), frame.triangle_id.end(), kNoTriangle));
 }
 
-TEST(VulkanProjection, RoomAroundTheCameraMatchesCpuInEveryMode) {
-  TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr gpu = makeCompute();
-  ASSERT_TRUE(gpu);
+TEST_F(VulkanProjection, RoomAroundTheCameraMatchesCpuInEveryMode) {
   for (const ModeSetup& m : kModes) {
-    const Frame frame = expectModeParity(*gpu, "room", roomScene(), m, modeOptions(m));
+    const Frame frame = expectModeParity(gpu(), "room", roomScene(), m, modeOptions(m));
     // The closed room fills the panoramas (they have a ray at every pixel).
     if (m.projection == Projection::kSpherical || m.projection == Projection::kCylindrical) {
       EXPECT_EQ(emptyPixels(frame), 0u) << projectionName(m.projection);
@@ -216,12 +236,10 @@ TEST(VulkanProjection, RoomAroundTheCameraMatchesCpuInEveryMode) {
   }
 }
 
-TEST(VulkanProjection, DenseSphereAroundTheEyeLeavesNoCrack) {
-  TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr gpu = makeCompute();
-  ASSERT_TRUE(gpu);
+TEST_F(VulkanProjection, DenseSphereAroundTheEyeLeavesNoCrack) {
   for (const ModeSetup& m : kModes) {
-    const Frame frame = expectModeParity(*gpu, "sphere room", sphereRoomScene(), m, modeOptions(m));
+    const Frame frame =
+        expectModeParity(gpu(), "sphere room", sphereRoomScene(), m, modeOptions(m));
     // Every pixel with a ray sees the shell: a crack between triangles would show the background.
     // The fisheye at 360 degrees has rays inside its image circle only (radius: half the height).
     size_t rayless = 0;
@@ -240,22 +258,16 @@ TEST(VulkanProjection, DenseSphereAroundTheEyeLeavesNoCrack) {
 
 // Narrow view angles: pixels a few arc minutes wide, so the GPU's float cone boxes have the least
 // room (their margins are fixed angles plus pixels).
-TEST(VulkanProjection, NarrowViewAnglesMatchCpu) {
-  TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr gpu = makeCompute();
-  ASSERT_TRUE(gpu);
+TEST_F(VulkanProjection, NarrowViewAnglesMatchCpu) {
   for (ModeSetup m : kModes) {
     m.view_angle = 24.0f;
-    expectModeParity(*gpu, "narrow sphere room", sphereRoomScene(), m, modeOptions(m));
+    expectModeParity(gpu(), "narrow sphere room", sphereRoomScene(), m, modeOptions(m));
   }
 }
 
-TEST(VulkanProjection, TrianglesAcrossTheSeamMatchCpu) {
-  TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr gpu = makeCompute();
-  ASSERT_TRUE(gpu);
+TEST_F(VulkanProjection, TrianglesAcrossTheSeamMatchCpu) {
   for (const ModeSetup& m : kModes) {
-    const Frame frame = expectModeParity(*gpu, "seam", seamScene(), m, modeOptions(m));
+    const Frame frame = expectModeParity(gpu(), "seam", seamScene(), m, modeOptions(m));
     if (m.projection != Projection::kSpherical) continue;
     // The sphere behind the camera shows at both the left and the right edge of the panorama.
     const int row = m.height / 2 - 3;
@@ -264,72 +276,52 @@ TEST(VulkanProjection, TrianglesAcrossTheSeamMatchCpu) {
   }
 }
 
-TEST(VulkanProjection, TrianglesAtThePolesMatchCpu) {
-  TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr gpu = makeCompute();
-  ASSERT_TRUE(gpu);
+TEST_F(VulkanProjection, TrianglesAtThePolesMatchCpu) {
   for (const ModeSetup& m : kModes) {
-    const Frame frame = expectModeParity(*gpu, "poles", poleScene(), m, modeOptions(m));
+    const Frame frame = expectModeParity(gpu(), "poles", poleScene(), m, modeOptions(m));
     if (m.projection != Projection::kSpherical) continue;
     // The zenith triangle holds the pole: the whole top row of the panorama.
     for (int x = 0; x < m.width; ++x) EXPECT_NE(frame.triangle_id[x], kNoTriangle) << x;
   }
 }
 
-TEST(VulkanProjection, TexturedSceneMatchesCpu) {
-  TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr gpu = makeCompute();
-  ASSERT_TRUE(gpu);
-  for (const ModeSetup& m : kModes) expectModeParity(*gpu, "textured", texturedScene(), m, modeOptions(m));
+TEST_F(VulkanProjection, TexturedSceneMatchesCpu) {
+  for (const ModeSetup& m : kModes)
+    expectModeParity(gpu(), "textured", texturedScene(), m, modeOptions(m));
 }
 
-TEST(VulkanProjection, MsaaMatchesCpu) {
-  TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr gpu = makeCompute();
-  ASSERT_TRUE(gpu);
+TEST_F(VulkanProjection, MsaaMatchesCpu) {
   for (const ModeSetup& m : kModes) {
-    expectModeParity(*gpu, "room", roomScene(), m, modeOptions(m, 4));
-    expectModeParity(*gpu, "seam", seamScene(), m, modeOptions(m, 4));
+    expectModeParity(gpu(), "room", roomScene(), m, modeOptions(m, 4));
+    expectModeParity(gpu(), "seam", seamScene(), m, modeOptions(m, 4));
   }
-  expectModeParity(*gpu, "poles", poleScene(), kModes[1], modeOptions(kModes[1], 8));
-  expectModeParity(*gpu, "sphere room", sphereRoomScene(), kModes[3], modeOptions(kModes[3], 2));
+  expectModeParity(gpu(), "poles", poleScene(), kModes[1], modeOptions(kModes[1], 8));
+  expectModeParity(gpu(), "sphere room", sphereRoomScene(), kModes[3], modeOptions(kModes[3], 2));
 }
 
-TEST(VulkanProjection, JitteredFramesMatchCpu) {
-  TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr gpu = makeCompute();
-  ASSERT_TRUE(gpu);
+TEST_F(VulkanProjection, JitteredFramesMatchCpu) {
   for (const ModeSetup& m : kModes)
     for (uint32_t index : {1u, 5u}) {
-      expectModeParity(*gpu, "room", roomScene(), m, modeOptions(m, 1, jitterOffset(index)));
-      expectModeParity(*gpu, "seam", seamScene(), m, modeOptions(m, 4, jitterOffset(index)));
+      expectModeParity(gpu(), "room", roomScene(), m, modeOptions(m, 1, jitterOffset(index)));
+      expectModeParity(gpu(), "seam", seamScene(), m, modeOptions(m, 4, jitterOffset(index)));
     }
 }
 
-TEST(VulkanProjection, ThirtyTwoBitCommitAndFloatDivisionMatchCpu) {
-  TESSERA_SKIP_WITHOUT_VULKAN();
-  VulkanOptions vk;
-  vk.force_32bit_atomics = true;
-  vk.force_fp32_setup = true;
-  ComputePtr gpu = makeCompute(vk);
-  ASSERT_TRUE(gpu);
+TEST_F(VulkanProjectionFallbacks, ThirtyTwoBitCommitAndFloatDivisionMatchCpu) {
   for (const ModeSetup& m : kModes) {
-    expectModeParity(*gpu, "room", roomScene(), m, modeOptions(m));
-    expectModeParity(*gpu, "sphere room", sphereRoomScene(), m, modeOptions(m, 4));
+    expectModeParity(gpu(), "room", roomScene(), m, modeOptions(m));
+    expectModeParity(gpu(), "sphere room", sphereRoomScene(), m, modeOptions(m, 4));
   }
 }
 
 // The ray passes leave nothing behind: a perspective frame after panoramas is the same, bit for
 // bit, as before them, and a panorama after a resize matches the CPU's.
-TEST(VulkanProjection, SwitchingModesKeepsEachFrameExact) {
-  TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr gpu = makeCompute();
-  ASSERT_TRUE(gpu);
+TEST_F(VulkanProjection, SwitchingModesKeepsEachFrameExact) {
   const Scene scene = roomScene();
   const RenderOptions perspective = options();
-  const Frame before = renderWith(*gpu, scene, perspective);
-  for (const ModeSetup& m : kModes) expectModeParity(*gpu, "room", scene, m, modeOptions(m));
-  const Frame after = renderWith(*gpu, scene, perspective);
+  const Frame before = renderWith(gpu(), scene, perspective);
+  for (const ModeSetup& m : kModes) expectModeParity(gpu(), "room", scene, m, modeOptions(m));
+  const Frame after = renderWith(gpu(), scene, perspective);
   EXPECT_EQ(after.color, before.color);
   EXPECT_EQ(after.triangle_id, before.triangle_id);
   EXPECT_EQ(after.depth, before.depth);
@@ -338,10 +330,10 @@ TEST(VulkanProjection, SwitchingModesKeepsEachFrameExact) {
   ModeSetup wide = kModes[1];
   wide.width = 200;
   wide.height = 100;
-  expectModeParity(*gpu, "room, resized", scene, wide, modeOptions(wide));
+  expectModeParity(gpu(), "room, resized", scene, wide, modeOptions(wide));
 }
 
-TEST(VulkanProjection, RasterBackendRefusesNonlinearProjections) {
+TEST(VulkanRasterProjection, RefusesNonlinearProjections) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   RasterPtr raster = makeRaster();
   ASSERT_TRUE(raster);
@@ -365,7 +357,7 @@ TEST(VulkanProjection, RasterBackendRefusesNonlinearProjections) {
 #ifdef TESSERA_EXE
 // The CLI: vulkan-raster refuses with exit status 1, the message and no output file; the vulkan
 // backend writes the CPU's id AOV byte for byte.
-TEST(VulkanProjection, CliRefusesVulkanRasterAndDrawsWithVulkan) {
+TEST(VulkanProjectionCli, RefusesVulkanRasterAndDrawsWithVulkan) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   const std::filesystem::path dir = test::makeTestFolder("tessera_vulkan_projection");
   test::writeFile(dir / "tri.obj",
@@ -387,10 +379,10 @@ TEST(VulkanProjection, CliRefusesVulkanRasterAndDrawsWithVulkan) {
     std::string ids[2];
     for (int b = 0; b < 2; ++b) {
       const std::string backend = b == 0 ? "cpu" : "vulkan";
-      const test::RunResult r = test::runInFolder(
-          dir, TESSERA_EXE,
-          "render " + model + "--resolution 128,64 --aov id --projection " + mode +
-              " --backend " + backend + " -o " + backend + ".png");
+      const test::RunResult r =
+          test::runInFolder(dir, TESSERA_EXE,
+                            "render " + model + "--resolution 128,64 --aov id --projection " +
+                                mode + " --backend " + backend + " -o " + backend + ".png");
       EXPECT_EQ(r.exit_code, 0) << mode << ", " << backend << ": " << r.err;
       ids[b] = test::slurp(dir / (backend + ".png"));
     }

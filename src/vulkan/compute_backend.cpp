@@ -94,19 +94,10 @@ ComputeBackend::State::~State() {
 Expected<void> ComputeBackend::State::createPipelines() {
   Context& c = *context;
   if (Expected<void> r = pipelines.create(c, atomic64, fp64); !r) return r;
-  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kComputeBindingCount};
-  VkDescriptorPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  pool_info.maxSets = 1;
-  pool_info.poolSizeCount = 1;
-  pool_info.pPoolSizes = &pool_size;
-  TESSERA_VK_CHECK(c.vk.vkCreateDescriptorPool(c.device, &pool_info, nullptr, &descriptor_pool));
-  VkDescriptorSetAllocateInfo allocate{};
-  allocate.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  allocate.descriptorPool = descriptor_pool;
-  allocate.descriptorSetCount = 1;
-  allocate.pSetLayouts = &pipelines.set_layout;
-  TESSERA_VK_CHECK(c.vk.vkAllocateDescriptorSets(c.device, &allocate, &descriptor_set));
+  if (Expected<void> r = c.allocateStorageSet(kComputeBindingCount, pipelines.set_layout,
+                                              descriptor_pool, descriptor_set);
+      !r)
+    return r;
 
   if (c.caps.timestamp_valid_bits > 0) {
     VkQueryPoolCreateInfo query_info{};
@@ -202,9 +193,9 @@ void ComputeBackend::State::writeDescriptors() {
   Context& c = *context;
   std::vector<VkDescriptorBufferInfo> infos;
   appendSceneDescriptors(scene_buffers, infos);
-  for (const Buffer* b : {&transformed, &raster_records, &shade_records, &extra_base, &counters,
-                          &visible_list, &tiles, &bin_entries, &segments, &visibility, &output,
-                          &rays})
+  for (const Buffer* b :
+       {&transformed, &raster_records, &shade_records, &extra_base, &counters, &visible_list,
+        &tiles, &bin_entries, &segments, &visibility, &output, &rays})
     infos.push_back(VkDescriptorBufferInfo{b->buffer, 0, VK_WHOLE_SIZE});
   TESSERA_CHECK(infos.size() == kComputeBindingCount);
   std::vector<VkWriteDescriptorSet> writes(infos.size());
@@ -365,7 +356,8 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
     return makeError("an earlier frame is still running: " + r.error().message);
   if (options.projection != Projection::kPerspective) {
     const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
-    if (std::string problem = checkViewAngle(options.projection, scene.camera.fov_y_degrees, aspect);
+    if (std::string problem =
+            checkViewAngle(options.projection, scene.camera.fov_y_degrees, aspect);
         !problem.empty())
       return makeError(problem);
     if (!(scene.camera.far_z > scene.camera.near_z && scene.camera.near_z >= 0.0f))

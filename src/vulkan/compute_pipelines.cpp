@@ -43,7 +43,8 @@ RasterShaders rasterShaders(bool ray, bool atomic64, bool fp64) {
     if (atomic64) return {spirv::kRasterAtomic64, {}};
     return {spirv::kRasterDepth32, spirv::kRasterId32};
   }
-  if (atomic64) return {fp64 ? Spirv(spirv::kRayRasterAtomic64Fp64) : spirv::kRayRasterAtomic64Fp32, {}};
+  if (atomic64)
+    return {fp64 ? Spirv(spirv::kRayRasterAtomic64Fp64) : spirv::kRayRasterAtomic64Fp32, {}};
   if (fp64) return {spirv::kRayRasterDepth32Fp64, spirv::kRayRasterId32Fp64};
   return {spirv::kRayRasterDepth32Fp32, spirv::kRayRasterId32Fp32};
 }
@@ -73,27 +74,10 @@ Expected<VkPipeline> ComputePipelines::createPipeline(Context& c, Spirv spirv,
 Expected<void> ComputePipelines::create(Context& c, bool with_atomic64, bool with_fp64) {
   atomic64 = with_atomic64;
   fp64 = with_fp64;
-  std::vector<VkDescriptorSetLayoutBinding> bindings(kComputeBindingCount);
-  for (uint32_t i = 0; i < kComputeBindingCount; ++i) {
-    bindings[i].binding = i;
-    bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    bindings[i].descriptorCount = 1;
-    bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
-  }
-  VkDescriptorSetLayoutCreateInfo layout_info{};
-  layout_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  layout_info.bindingCount = kComputeBindingCount;
-  layout_info.pBindings = bindings.data();
-  TESSERA_VK_CHECK(c.vk.vkCreateDescriptorSetLayout(c.device, &layout_info, nullptr, &set_layout));
-
-  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(GpuPassConstants)};
-  VkPipelineLayoutCreateInfo pipeline_layout_info{};
-  pipeline_layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-  pipeline_layout_info.setLayoutCount = 1;
-  pipeline_layout_info.pSetLayouts = &set_layout;
-  pipeline_layout_info.pushConstantRangeCount = 1;
-  pipeline_layout_info.pPushConstantRanges = &push;
-  TESSERA_VK_CHECK(c.vk.vkCreatePipelineLayout(c.device, &pipeline_layout_info, nullptr, &layout));
+  if (Expected<void> r = c.createStorageLayouts(kComputeBindingCount, VK_SHADER_STAGE_COMPUTE_BIT,
+                                                sizeof(GpuPassConstants), set_layout, layout);
+      !r)
+    return r;
 
   struct Entry {
     VkPipeline* pipeline;

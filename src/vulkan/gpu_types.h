@@ -151,8 +151,8 @@ static_assert(sizeof(GpuRasterRecord) == 88);
 struct GpuRayRecord {
   float n[9];  // n[3 k + i]: component i of n_k
   float det;
-  uint32_t key;    // scene triangle index << 3
-  uint32_t owner;  // bit k: rays exactly on edge k are covered
+  uint32_t key;       // scene triangle index << 3
+  uint32_t owner;     // bit k: rays exactly on edge k are covered
   int32_t box[2][4];  // min_x, min_y, max_x, max_y
 };
 static_assert(sizeof(GpuRayRecord) == 80 && sizeof(GpuRayRecord) <= sizeof(GpuRasterRecord));

@@ -35,7 +35,8 @@ void main() {
     const ivec4 box = ray_records[slot].box[b];
     if (box.x > box.z || box.y > box.w) continue;
     for (int ty = box.y >> kTileSizeLog2; ty <= box.w >> kTileSizeLog2; ++ty)
-      for (int tx = box.x >> kTileSizeLog2; tx <= box.z >> kTileSizeLog2; ++tx) binInto(slot, tx, ty);
+      for (int tx = box.x >> kTileSizeLog2; tx <= box.z >> kTileSizeLog2; ++tx)
+        binInto(slot, tx, ty);
   }
   if (pass.mode == 0u) atomicAdd(counters.binned_records, 1u);
 }
