@@ -25,6 +25,7 @@
 #include "render/fixed_point.h"
 #include "vulkan/compute_pipelines.h"
 #include "vulkan/context.h"
+#include "vulkan/descriptor_sets.h"
 #include "vulkan/gpu_types.h"
 #include "vulkan/scene_upload.h"
 
@@ -82,8 +83,8 @@ ComputeBackend::State::~State() {
   c.fence_timeout_ms = std::max<uint32_t>(c.fence_timeout_ms, 5000);
   if (!c.waitForPending()) return;
   VkDevice device = c.device;
-  pipelines.destroy(c);
   if (descriptor_pool) c.vk.vkDestroyDescriptorPool(device, descriptor_pool, nullptr);
+  pipelines.destroy(c);
   if (timestamps) c.vk.vkDestroyQueryPool(device, timestamps, nullptr);
   destroySceneBuffers(c, scene_buffers);
   for (Buffer* b : {&transformed, &raster_records, &shade_records, &extra_base, &counters,
@@ -94,8 +95,8 @@ ComputeBackend::State::~State() {
 Expected<void> ComputeBackend::State::createPipelines() {
   Context& c = *context;
   if (Expected<void> r = pipelines.create(c, atomic64, fp64); !r) return r;
-  if (Expected<void> r = c.allocateStorageSet(kComputeBindingCount, pipelines.set_layout,
-                                              descriptor_pool, descriptor_set);
+  if (Expected<void> r = allocateStorageSet(c, kComputeBindingCount, pipelines.set_layout,
+                                            descriptor_pool, descriptor_set);
       !r)
     return r;
 

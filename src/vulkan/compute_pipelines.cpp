@@ -25,6 +25,7 @@
 #include "shaders/Shade.spv.h"
 #include "shaders/TransformFp32.spv.h"
 #include "shaders/TransformFp64.spv.h"
+#include "vulkan/descriptor_sets.h"
 
 namespace tessera::vulkan {
 
@@ -74,8 +75,8 @@ Expected<VkPipeline> ComputePipelines::createPipeline(Context& c, Spirv spirv,
 Expected<void> ComputePipelines::create(Context& c, bool with_atomic64, bool with_fp64) {
   atomic64 = with_atomic64;
   fp64 = with_fp64;
-  if (Expected<void> r = c.createStorageLayouts(kComputeBindingCount, VK_SHADER_STAGE_COMPUTE_BIT,
-                                                sizeof(GpuPassConstants), set_layout, layout);
+  if (Expected<void> r = createStorageLayouts(c, kComputeBindingCount, VK_SHADER_STAGE_COMPUTE_BIT,
+                                              sizeof(GpuPassConstants), set_layout, layout);
       !r)
     return r;
 

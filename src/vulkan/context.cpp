@@ -518,47 +518,6 @@ Expected<VkShaderModule> Context::createShaderModule(std::span<const uint32_t> s
   return module;
 }
 
-Expected<void> Context::createStorageLayouts(uint32_t count, VkShaderStageFlags stages,
-                                             uint32_t push_bytes, VkDescriptorSetLayout& set_layout,
-                                             VkPipelineLayout& pipeline_layout) {
-  std::vector<VkDescriptorSetLayoutBinding> bindings(count);
-  for (uint32_t i = 0; i < count; ++i)
-    bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr};
-  VkDescriptorSetLayoutCreateInfo layout_info{};
-  layout_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  layout_info.bindingCount = count;
-  layout_info.pBindings = bindings.data();
-  TESSERA_VK_CHECK(vk.vkCreateDescriptorSetLayout(device, &layout_info, nullptr, &set_layout));
-  const VkPushConstantRange push{stages, 0, push_bytes};
-  VkPipelineLayoutCreateInfo pipeline_layout_info{};
-  pipeline_layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-  pipeline_layout_info.setLayoutCount = 1;
-  pipeline_layout_info.pSetLayouts = &set_layout;
-  pipeline_layout_info.pushConstantRangeCount = 1;
-  pipeline_layout_info.pPushConstantRanges = &push;
-  TESSERA_VK_CHECK(
-      vk.vkCreatePipelineLayout(device, &pipeline_layout_info, nullptr, &pipeline_layout));
-  return {};
-}
-
-Expected<void> Context::allocateStorageSet(uint32_t bindings, VkDescriptorSetLayout set_layout,
-                                           VkDescriptorPool& pool, VkDescriptorSet& set) {
-  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, bindings};
-  VkDescriptorPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  pool_info.maxSets = 1;
-  pool_info.poolSizeCount = 1;
-  pool_info.pPoolSizes = &pool_size;
-  TESSERA_VK_CHECK(vk.vkCreateDescriptorPool(device, &pool_info, nullptr, &pool));
-  VkDescriptorSetAllocateInfo allocate{};
-  allocate.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  allocate.descriptorPool = pool;
-  allocate.descriptorSetCount = 1;
-  allocate.pSetLayouts = &set_layout;
-  TESSERA_VK_CHECK(vk.vkAllocateDescriptorSets(device, &allocate, &set));
-  return {};
-}
-
 Expected<void> Context::waitForPending() {
   if (!pending_) return {};
   const uint64_t timeout_ns = static_cast<uint64_t>(fence_timeout_ms) * 1000000ull;

@@ -78,14 +78,6 @@ class Context {
   Expected<uint32_t> findMemoryType(uint32_t type_bits, VkMemoryPropertyFlags required,
                                     VkMemoryPropertyFlags preferred) const;
   Expected<VkShaderModule> createShaderModule(std::span<const uint32_t> spirv);
-  // A descriptor set layout of `bindings` storage buffers (bindings 0..bindings-1) seen by
-  // `stages`, and a pipeline layout of that one set and `push_bytes` of push constants.
-  Expected<void> createStorageLayouts(uint32_t bindings, VkShaderStageFlags stages,
-                                      uint32_t push_bytes, VkDescriptorSetLayout& set_layout,
-                                      VkPipelineLayout& pipeline_layout);
-  // A pool for one such set of `bindings` storage buffers, and the set.
-  Expected<void> allocateStorageSet(uint32_t bindings, VkDescriptorSetLayout set_layout,
-                                    VkDescriptorPool& pool, VkDescriptorSet& set);
 
   // Begins recording the frame's command buffer (waiting first for any earlier submission).
   Expected<VkCommandBuffer> beginCommands();

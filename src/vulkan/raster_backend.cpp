@@ -23,6 +23,7 @@
 #include "shaders/MeshFrag.spv.h"
 #include "shaders/MeshFragMsaa.spv.h"
 #include "vulkan/context.h"
+#include "vulkan/descriptor_sets.h"
 #include "vulkan/gpu_types.h"
 #include "vulkan/raster_passes.h"
 #include "vulkan/scene_upload.h"
@@ -121,12 +122,12 @@ Expected<void> RasterBackend::State::createPipelines() {
   const VulkanFunctions& vk = c.vk;
   constexpr VkShaderStageFlags kStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
-  if (Expected<void> r = c.createStorageLayouts(kSceneBindingCount, kStages, sizeof(uint32_t),
-                                                set_layout, pipeline_layout);
+  if (Expected<void> r = createStorageLayouts(c, kSceneBindingCount, kStages, sizeof(uint32_t),
+                                              set_layout, pipeline_layout);
       !r)
     return r;
   if (Expected<void> r =
-          c.allocateStorageSet(kSceneBindingCount, set_layout, descriptor_pool, descriptor_set);
+          allocateStorageSet(c, kSceneBindingCount, set_layout, descriptor_pool, descriptor_set);
       !r)
     return r;
 
