@@ -7,28 +7,25 @@
 // each says what it orders. When setup asks for more clip records, or binning for more entries,
 // than the buffers hold, the frame is recorded again with larger buffers (a second round): no
 // triangle is ever dropped.
+//
+// The nonlinear projections (RenderOptions::projection other than perspective) take the same
+// passes with other shaders for setup, binning, the fine raster and shading (the ray passes,
+// shaders/rays.glsl): each pixel's ray, from the CPU's own RayTable, is tested against the
+// triangle's planes through the eye, as the CPU does; the transform pass then runs with the view
+// matrix in place of view-projection, giving camera-space positions.
 #include <tessera/vulkan/vulkan_backend.h>
 
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <string>
 
 #include <tessera/base/check.h>
 
 #include "render/fixed_point.h"
-#include "shaders/Bin.spv.h"
-#include "shaders/BinArgs.spv.h"
-#include "shaders/Clear.spv.h"
-#include "shaders/RasterAtomic64.spv.h"
-#include "shaders/RasterDepth32.spv.h"
-#include "shaders/RasterId32.spv.h"
-#include "shaders/Scan.spv.h"
-#include "shaders/SetupFp32.spv.h"
-#include "shaders/SetupFp64.spv.h"
-#include "shaders/Shade.spv.h"
-#include "shaders/TransformFp32.spv.h"
-#include "shaders/TransformFp64.spv.h"
+#include "vulkan/compute_pipelines.h"
 #include "vulkan/context.h"
+#include "vulkan/descriptor_sets.h"
 #include "vulkan/gpu_types.h"
 #include "vulkan/scene_upload.h"
 
@@ -47,22 +44,20 @@ struct ComputeBackend::State {
   bool atomic64 = false;
   bool fp64 = false;
 
-  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
-  VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
+  ComputePipelines pipelines;
   VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
   VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
-  VkPipeline clear = VK_NULL_HANDLE, transform = VK_NULL_HANDLE, setup = VK_NULL_HANDLE,
-             bin_args = VK_NULL_HANDLE, bin = VK_NULL_HANDLE, scan = VK_NULL_HANDLE,
-             shade = VK_NULL_HANDLE;
-  // The fine raster (and the 32-bit path's second pass) by visibility layers per pixel, made on
-  // first use: the layer count sizes the shader's shared memory.
-  VkPipeline raster[kMaxVisibilityLayers + 1] = {}, raster_id[kMaxVisibilityLayers + 1] = {};
   VkQueryPool timestamps = VK_NULL_HANDLE;
 
   PackedScene packed;
   SceneBuffers scene_buffers;
   Buffer transformed, raster_records, shade_records, extra_base, counters, visible_list, tiles,
       bin_entries, segments, visibility, output;
+  // The nonlinear projections' rays: the RayTable's layers as the shaders read them (rays.glsl),
+  // rewritten only when the table is rebuilt (or the buffer was reallocated).
+  RayTable ray_table;
+  Buffer rays;
+  bool rays_current = false;
   uint32_t bin_capacity = 0;
   uint32_t extra_capacity = 0;
 
@@ -72,10 +67,8 @@ struct ComputeBackend::State {
 
   ~State();
   Expected<void> createPipelines();
-  Expected<VkPipeline> createPipeline(std::span<const uint32_t> spirv,
-                                      const VkSpecializationInfo* specialization = nullptr);
-  Expected<void> ensureRasterPipelines(uint32_t layers);
   Expected<void> ensureWorkingBuffers(const RenderOptions& options);
+  Expected<void> uploadRays(const Scene& scene, const RenderOptions& options);
   void writeDescriptors();
   Expected<void> recordAndRun(const RenderOptions& options);
   Expected<void> renderFrame(const Scene& scene, const RenderOptions& options, Frame& frame);
@@ -90,103 +83,22 @@ ComputeBackend::State::~State() {
   c.fence_timeout_ms = std::max<uint32_t>(c.fence_timeout_ms, 5000);
   if (!c.waitForPending()) return;
   VkDevice device = c.device;
-  for (VkPipeline p : {clear, transform, setup, bin_args, bin, scan, shade})
-    if (p) c.vk.vkDestroyPipeline(device, p, nullptr);
-  for (int l = 0; l <= kMaxVisibilityLayers; ++l) {
-    if (raster[l]) c.vk.vkDestroyPipeline(device, raster[l], nullptr);
-    if (raster_id[l]) c.vk.vkDestroyPipeline(device, raster_id[l], nullptr);
-  }
-  if (pipeline_layout) c.vk.vkDestroyPipelineLayout(device, pipeline_layout, nullptr);
   if (descriptor_pool) c.vk.vkDestroyDescriptorPool(device, descriptor_pool, nullptr);
-  if (set_layout) c.vk.vkDestroyDescriptorSetLayout(device, set_layout, nullptr);
+  pipelines.destroy(c);
   if (timestamps) c.vk.vkDestroyQueryPool(device, timestamps, nullptr);
   destroySceneBuffers(c, scene_buffers);
   for (Buffer* b : {&transformed, &raster_records, &shade_records, &extra_base, &counters,
-                    &visible_list, &tiles, &bin_entries, &segments, &visibility, &output})
+                    &visible_list, &tiles, &bin_entries, &segments, &visibility, &output, &rays})
     c.destroyBuffer(*b);
-}
-
-Expected<VkPipeline> ComputeBackend::State::createPipeline(
-    std::span<const uint32_t> spirv, const VkSpecializationInfo* specialization) {
-  Context& c = *context;
-  Expected<VkShaderModule> module = c.createShaderModule(spirv);
-  if (!module) return module.error();
-  VkComputePipelineCreateInfo create{};
-  create.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
-  create.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-  create.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  create.stage.module = *module;
-  create.stage.pName = "main";
-  create.stage.pSpecializationInfo = specialization;
-  create.layout = pipeline_layout;
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  const VkResult created =
-      c.vk.vkCreateComputePipelines(c.device, VK_NULL_HANDLE, 1, &create, nullptr, &pipeline);
-  c.vk.vkDestroyShaderModule(c.device, *module, nullptr);
-  TESSERA_VK_CHECK(created);
-  return pipeline;
 }
 
 Expected<void> ComputeBackend::State::createPipelines() {
   Context& c = *context;
-  std::vector<VkDescriptorSetLayoutBinding> bindings(kComputeBindingCount);
-  for (uint32_t i = 0; i < kComputeBindingCount; ++i) {
-    bindings[i].binding = i;
-    bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    bindings[i].descriptorCount = 1;
-    bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
-  }
-  VkDescriptorSetLayoutCreateInfo layout_info{};
-  layout_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  layout_info.bindingCount = kComputeBindingCount;
-  layout_info.pBindings = bindings.data();
-  TESSERA_VK_CHECK(c.vk.vkCreateDescriptorSetLayout(c.device, &layout_info, nullptr, &set_layout));
-
-  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(GpuPassConstants)};
-  VkPipelineLayoutCreateInfo pipeline_layout_info{};
-  pipeline_layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-  pipeline_layout_info.setLayoutCount = 1;
-  pipeline_layout_info.pSetLayouts = &set_layout;
-  pipeline_layout_info.pushConstantRangeCount = 1;
-  pipeline_layout_info.pPushConstantRanges = &push;
-  TESSERA_VK_CHECK(
-      c.vk.vkCreatePipelineLayout(c.device, &pipeline_layout_info, nullptr, &pipeline_layout));
-
-  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kComputeBindingCount};
-  VkDescriptorPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  pool_info.maxSets = 1;
-  pool_info.poolSizeCount = 1;
-  pool_info.pPoolSizes = &pool_size;
-  TESSERA_VK_CHECK(c.vk.vkCreateDescriptorPool(c.device, &pool_info, nullptr, &descriptor_pool));
-  VkDescriptorSetAllocateInfo allocate{};
-  allocate.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  allocate.descriptorPool = descriptor_pool;
-  allocate.descriptorSetCount = 1;
-  allocate.pSetLayouts = &set_layout;
-  TESSERA_VK_CHECK(c.vk.vkAllocateDescriptorSets(c.device, &allocate, &descriptor_set));
-
-  struct Entry {
-    VkPipeline* pipeline;
-    std::span<const uint32_t> spirv;
-  };
-  std::vector<Entry> entries = {
-      {&clear, spirv::kClear},
-      {&transform, fp64 ? std::span<const uint32_t>(spirv::kTransformFp64)
-                        : std::span<const uint32_t>(spirv::kTransformFp32)},
-      {&setup, fp64 ? std::span<const uint32_t>(spirv::kSetupFp64)
-                    : std::span<const uint32_t>(spirv::kSetupFp32)},
-      {&bin_args, spirv::kBinArgs},
-      {&bin, spirv::kBin},
-      {&scan, spirv::kScan},
-      {&shade, spirv::kShade},
-  };
-  if (Expected<void> r = ensureRasterPipelines(1); !r) return r;
-  for (const Entry& e : entries) {
-    Expected<VkPipeline> pipeline = createPipeline(e.spirv);
-    if (!pipeline) return pipeline.error();
-    *e.pipeline = *pipeline;
-  }
+  if (Expected<void> r = pipelines.create(c, atomic64, fp64); !r) return r;
+  if (Expected<void> r = allocateStorageSet(c, kComputeBindingCount, pipelines.set_layout,
+                                            descriptor_pool, descriptor_set);
+      !r)
+    return r;
 
   if (c.caps.timestamp_valid_bits > 0) {
     VkQueryPoolCreateInfo query_info{};
@@ -194,32 +106,6 @@ Expected<void> ComputeBackend::State::createPipelines() {
     query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
     query_info.queryCount = kTimestampCount;
     TESSERA_VK_CHECK(c.vk.vkCreateQueryPool(c.device, &query_info, nullptr, &timestamps));
-  }
-  return {};
-}
-
-Expected<void> ComputeBackend::State::ensureRasterPipelines(uint32_t layers) {
-  TESSERA_CHECK(layers >= 1 && layers <= kMaxVisibilityLayers) << layers << " layers";
-  if (raster[layers]) return {};
-  // raster.comp's shared memory for a batch of B records: edge coefficients, thresholds per
-  // layer, depth plane and key, 32 half-row buckets; B = 64 unless that does not fit.
-  auto shared_bytes = [&](uint32_t batch) { return batch * (176 + 12 * layers) + 128; };
-  const uint32_t batch =
-      shared_bytes(64) <= context->caps.properties.limits.maxComputeSharedMemorySize ? 64 : 32;
-  const uint32_t constants[2] = {layers, batch};
-  const VkSpecializationMapEntry map[2] = {{0, 0, sizeof(uint32_t)},
-                                           {1, sizeof(uint32_t), sizeof(uint32_t)}};
-  const VkSpecializationInfo specialization{2, map, sizeof(constants), constants};
-  Expected<VkPipeline> first =
-      createPipeline(atomic64 ? std::span<const uint32_t>(spirv::kRasterAtomic64)
-                              : std::span<const uint32_t>(spirv::kRasterDepth32),
-                     &specialization);
-  if (!first) return first.error();
-  raster[layers] = *first;
-  if (!atomic64) {
-    Expected<VkPipeline> second = createPipeline(spirv::kRasterId32, &specialization);
-    if (!second) return second.error();
-    raster_id[layers] = *second;
   }
   return {};
 }
@@ -276,12 +162,41 @@ Expected<void> ComputeBackend::State::ensureWorkingBuffers(const RenderOptions& 
   return {};
 }
 
+Expected<void> ComputeBackend::State::uploadRays(const Scene& scene, const RenderOptions& options) {
+  constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  // The perspective passes do not read binding 19, but it must hold a buffer.
+  if (options.projection == Projection::kPerspective)
+    return context->ensureBuffer(rays, 0, kStorage, MemoryKind::kHost, "ray");
+  const bool rebuilt = ray_table.update(options.projection, options.width, options.height,
+                                        scene.camera.fov_y_degrees, options.msaa, options.jitter);
+  // Layer 0 the pixel centres, then the samples; with one sample the centre is the sample.
+  const int layers = options.msaa == 1 ? 1 : options.msaa + 1;
+  const size_t pixels = static_cast<size_t>(options.width) * options.height;
+  const size_t bytes = layers * pixels * 3 * sizeof(float);
+  if (!rays.buffer || rays.size < bytes) rays_current = false;  // a new buffer holds nothing yet
+  if (Expected<void> r = context->ensureBuffer(rays, bytes, kStorage, MemoryKind::kHost, "ray"); !r)
+    return r;
+  if (!rebuilt && rays_current) return {};
+  float* out = static_cast<float*>(rays.mapped);
+  for (int l = 0; l < layers; ++l) {
+    const RayLayer& layer = l == 0 ? ray_table.centre() : ray_table.sample(l - 1);
+    for (size_t p = 0; p < pixels; ++p, out += 3) {
+      out[0] = layer.x[p];
+      out[1] = layer.y[p];
+      out[2] = layer.z[p];
+    }
+  }
+  rays_current = true;
+  return {};
+}
+
 void ComputeBackend::State::writeDescriptors() {
   Context& c = *context;
   std::vector<VkDescriptorBufferInfo> infos;
   appendSceneDescriptors(scene_buffers, infos);
-  for (const Buffer* b : {&transformed, &raster_records, &shade_records, &extra_base, &counters,
-                          &visible_list, &tiles, &bin_entries, &segments, &visibility, &output})
+  for (const Buffer* b :
+       {&transformed, &raster_records, &shade_records, &extra_base, &counters, &visible_list,
+        &tiles, &bin_entries, &segments, &visibility, &output, &rays})
     infos.push_back(VkDescriptorBufferInfo{b->buffer, 0, VK_WHOLE_SIZE});
   TESSERA_CHECK(infos.size() == kComputeBindingCount);
   std::vector<VkWriteDescriptorSet> writes(infos.size());
@@ -314,7 +229,7 @@ Expected<void> ComputeBackend::State::recordAndRun(const RenderOptions& options)
   auto dispatch = [&](VkPipeline pipeline, uint64_t groups, uint32_t mode = 0) {
     vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     const GpuPassConstants constants{mode, 0, 0, 0};
-    vk.vkCmdPushConstants(cmd, pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
+    vk.vkCmdPushConstants(cmd, pipelines.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
                           &constants);
     const DispatchGrid grid = dispatchGrid(groups);
     if (grid.x) vk.vkCmdDispatch(cmd, grid.x, grid.y, 1);
@@ -322,7 +237,7 @@ Expected<void> ComputeBackend::State::recordAndRun(const RenderOptions& options)
   auto dispatchIndirect = [&](VkPipeline pipeline, VkDeviceSize offset, uint32_t mode = 0) {
     vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     const GpuPassConstants constants{mode, 0, 0, 0};
-    vk.vkCmdPushConstants(cmd, pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
+    vk.vkCmdPushConstants(cmd, pipelines.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
                           &constants);
     vk.vkCmdDispatchIndirect(cmd, counters.buffer, offset);
   };
@@ -342,59 +257,61 @@ Expected<void> ComputeBackend::State::recordAndRun(const RenderOptions& options)
   };
 
   if (timestamps) vk.vkCmdResetQueryPool(cmd, timestamps, 0, kTimestampCount);
-  vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_layout, 0, 1,
+  vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines.layout, 0, 1,
                              &descriptor_set, 0, nullptr);
   const uint64_t pixels = static_cast<uint64_t>(options.width) * options.height;
+  const ProjectionPasses& passes =
+      options.projection == Projection::kPerspective ? pipelines.perspective : pipelines.ray;
   timestamp(0);
 
   // 1. Clear.
-  dispatch(clear, (pixels * packed.frame.layers + 255) / 256);
+  dispatch(pipelines.clear, (pixels * packed.frame.layers + 255) / 256);
   // Orders the cleared visibility buffer, tile bins and counters before setup's counter
   // atomics, binning and the fine raster's commits.
   computeToCompute();
   timestamp(1);
 
   // 2. Transform.
-  dispatch(transform, (packed.vertex_count + 255) / 256);
+  dispatch(pipelines.transform, (packed.vertex_count + 255) / 256);
   // Orders the clip-space vertices before setup reads them.
   computeToCompute();
   timestamp(2);
 
   // 3. Setup and cull.
-  dispatch(setup, (packed.triangle_count + 63) / 64);
+  dispatch(passes.setup, (packed.triangle_count + 63) / 64);
   // Orders setup's records, visible list and counters before the bin-args pass reads the count.
   computeToCompute();
-  dispatch(bin_args, 1);
+  dispatch(pipelines.bin_args, 1);
   // Orders the bin passes' dispatch size before the indirect dispatch reads it.
   computeToIndirect();
   timestamp(3);
 
   // 4. Bin: count, scan, fill.
-  dispatchIndirect(bin, kBinDispatchOffset, 0);
+  dispatchIndirect(passes.bin, kBinDispatchOffset, 0);
   // Orders the per-tile counts before the scan reads them.
   computeToCompute();
-  dispatch(scan, 1);
+  dispatch(pipelines.scan, 1);
   // Orders the tile offsets, the segments and the raster's dispatch size before the fill reads
   // the offsets and the raster's indirect dispatch reads its size.
   computeToIndirect();
-  dispatchIndirect(bin, kBinDispatchOffset, 1);
+  dispatchIndirect(passes.bin, kBinDispatchOffset, 1);
   // Orders the filled bins before the fine raster reads them.
   computeToCompute();
   timestamp(4);
 
   // 5. Fine raster.
-  dispatchIndirect(raster[packed.frame.layers], kRasterDispatchOffset);
+  dispatchIndirect(passes.raster[packed.frame.layers], kRasterDispatchOffset);
   if (!atomic64) {
     // Orders the committed depths (pass 1 of the 32-bit path) before pass 2 compares with them.
     computeToCompute();
-    dispatchIndirect(raster_id[packed.frame.layers], kRasterDispatchOffset);
+    dispatchIndirect(passes.raster_id[packed.frame.layers], kRasterDispatchOffset);
   }
   // Orders the visibility buffer's commits before the shade pass reads it.
   computeToCompute();
   timestamp(5);
 
   // 6. Shade and resolve.
-  vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shade);
+  vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, passes.shade);
   vk.vkCmdDispatch(cmd, (static_cast<uint32_t>(options.width) + 7) / 8,
                    (static_cast<uint32_t>(options.height) + 7) / 8, 1);
   // Orders the output image, the counters and the tile counts before the host reads them
@@ -438,9 +355,22 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   // before that frame has finished: buffers, descriptors and mapped inputs alike.
   if (Expected<void> r = context->waitForPending(); !r)
     return makeError("an earlier frame is still running: " + r.error().message);
+  if (options.projection != Projection::kPerspective) {
+    const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
+    if (std::string problem =
+            checkViewAngle(options.projection, scene.camera.fov_y_degrees, aspect);
+        !problem.empty())
+      return makeError(problem);
+    if (!(scene.camera.far_z > scene.camera.near_z && scene.camera.near_z >= 0.0f))
+      return makeError("the " + std::string(projectionName(options.projection)) +
+                       " projection needs 0 <= near < far");
+  }
   if (Expected<void> r = packScene(scene, options, IndexPolicy::kAsGiven, packed); !r) return r;
   if (Expected<void> r = uploadScene(*context, packed, scene_buffers); !r) return r;
-  if (Expected<void> r = ensureRasterPipelines(packed.frame.layers); !r) return r;
+  const bool ray_passes = options.projection != Projection::kPerspective;
+  if (Expected<void> r = pipelines.ensureRaster(*context, packed.frame.layers, ray_passes); !r)
+    return r;
+  if (Expected<void> r = uploadRays(scene, options); !r) return r;
 
   // First-frame capacities: every visible triangle in a few tiles, a few clipped triangles.
   if (bin_capacity == 0)

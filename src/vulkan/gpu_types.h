@@ -31,7 +31,8 @@ enum Binding : uint32_t {
   kBindingSegments = 16,     // uvec4 (tile, first entry, end entry, 0): fine-raster work items
   kBindingVisibility = 17,   // uint64 per pixel: ordered depth << 32 | triangle key
   kBindingOutput = 18,       // colour, depth, id, normal words
-  kComputeBindingCount = 19,
+  kBindingRays = 19,         // float[]: the nonlinear projections' rays (RayTable), xyz per pixel
+  kComputeBindingCount = 20,
 };
 
 // GpuFrameConstants::flags
@@ -74,16 +75,19 @@ struct GpuFrameConstants {
   float guard_x, guard_y;
   uint32_t triangle_count, vertex_count;
   uint32_t object_count, light_count, extra_capacity, bin_capacity;
-  uint32_t background, flags, segment_capacity, pad0;
+  uint32_t background, flags, segment_capacity;
+  uint32_t projection;  // tessera::Projection; anything but 0 takes the ray passes
   float ambient[4];
   // Sampling (compute backend): samples per pixel, visibility layers per pixel, the first
   // layer that is a sample (1 when layer 0 is the pixel centre), the bounds of the layers'
   // positions and each layer's position, in 1/256 pixel from the pixel's top-left corner.
-  uint32_t samples, layers, first_sample_layer, pad1;
+  uint32_t samples, layers, first_sample_layer;
+  float view_half_angle;  // the ray passes: half the vertical view angle, radians
   int32_t sample_min_x, sample_min_y, sample_max_x, sample_max_y;
   float background_linear[4];
   int32_t layer_x[kMaxVisibilityLayers], layer_y[kMaxVisibilityLayers];
-  uint32_t pad2[2];
+  // The ray passes' depth: z = (distance - ray_near) * ray_inv_range (render/ray_setup.h).
+  float ray_near, ray_inv_range;
 };
 static_assert(sizeof(GpuFrameConstants) == 208);
 
@@ -139,6 +143,19 @@ struct GpuRasterRecord {
   uint32_t key;
 };
 static_assert(sizeof(GpuRasterRecord) == 88);
+
+// The ray passes' setup output for coverage and depth (the CPU's render::RayTriangle): edge
+// normals n_k (a ray d covers the triangle when every d . n_k > 0, or == 0 with owner bit k), the
+// determinant, up to two inclusive pixel boxes (the second empty unless the triangle crosses the
+// seam of a 360-degree image). Lives in the raster record buffer, whose slots are larger.
+struct GpuRayRecord {
+  float n[9];  // n[3 k + i]: component i of n_k
+  float det;
+  uint32_t key;       // scene triangle index << 3
+  uint32_t owner;     // bit k: rays exactly on edge k are covered
+  int32_t box[2][4];  // min_x, min_y, max_x, max_y
+};
+static_assert(sizeof(GpuRayRecord) == 80 && sizeof(GpuRayRecord) <= sizeof(GpuRasterRecord));
 
 // Setup's output for shading (the CPU's ShadeTriangle).
 struct GpuShadeRecord {

@@ -23,6 +23,7 @@
 #include "shaders/MeshFrag.spv.h"
 #include "shaders/MeshFragMsaa.spv.h"
 #include "vulkan/context.h"
+#include "vulkan/descriptor_sets.h"
 #include "vulkan/gpu_types.h"
 #include "vulkan/raster_passes.h"
 #include "vulkan/scene_upload.h"
@@ -121,36 +122,14 @@ Expected<void> RasterBackend::State::createPipelines() {
   const VulkanFunctions& vk = c.vk;
   constexpr VkShaderStageFlags kStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
-  VkDescriptorSetLayoutBinding bindings[kSceneBindingCount]{};
-  for (uint32_t i = 0; i < kSceneBindingCount; ++i)
-    bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, kStages, nullptr};
-  VkDescriptorSetLayoutCreateInfo layout_info{};
-  layout_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  layout_info.bindingCount = kSceneBindingCount;
-  layout_info.pBindings = bindings;
-  TESSERA_VK_CHECK(vk.vkCreateDescriptorSetLayout(c.device, &layout_info, nullptr, &set_layout));
-  VkPushConstantRange push{kStages, 0, sizeof(uint32_t)};
-  VkPipelineLayoutCreateInfo pipeline_layout_info{};
-  pipeline_layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-  pipeline_layout_info.setLayoutCount = 1;
-  pipeline_layout_info.pSetLayouts = &set_layout;
-  pipeline_layout_info.pushConstantRangeCount = 1;
-  pipeline_layout_info.pPushConstantRanges = &push;
-  TESSERA_VK_CHECK(
-      vk.vkCreatePipelineLayout(c.device, &pipeline_layout_info, nullptr, &pipeline_layout));
-  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSceneBindingCount};
-  VkDescriptorPoolCreateInfo pool_info{};
-  pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  pool_info.maxSets = 1;
-  pool_info.poolSizeCount = 1;
-  pool_info.pPoolSizes = &pool_size;
-  TESSERA_VK_CHECK(vk.vkCreateDescriptorPool(c.device, &pool_info, nullptr, &descriptor_pool));
-  VkDescriptorSetAllocateInfo allocate{};
-  allocate.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  allocate.descriptorPool = descriptor_pool;
-  allocate.descriptorSetCount = 1;
-  allocate.pSetLayouts = &set_layout;
-  TESSERA_VK_CHECK(vk.vkAllocateDescriptorSets(c.device, &allocate, &descriptor_set));
+  if (Expected<void> r = createStorageLayouts(c, kSceneBindingCount, kStages, sizeof(uint32_t),
+                                              set_layout, pipeline_layout);
+      !r)
+    return r;
+  if (Expected<void> r =
+          allocateStorageSet(c, kSceneBindingCount, set_layout, descriptor_pool, descriptor_set);
+      !r)
+    return r;
 
   Expected<VkRenderPass> pass = createAovPass(c);
   if (!pass) return pass.error();
@@ -310,6 +289,12 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
   Context& c = *context;
   const VulkanFunctions& vk = c.vk;
   const int samples = options.msaa;
+  // The fixed-function rasterizer draws straight edges: under a nonlinear projection an edge is a
+  // curve, which only the compute backend's per-pixel rays give.
+  if (options.projection != Projection::kPerspective)
+    return makeError(
+        "vulkan-raster draws the perspective projection only; use --backend cpu or "
+        "vulkan");
   if (const std::string problem = rasterSampleCountProblem(c.caps, samples); !problem.empty())
     return makeError("vulkan-raster cannot render " + std::to_string(samples) +
                      "x MSAA on device " + std::to_string(c.info.index) + " (" + c.info.name +

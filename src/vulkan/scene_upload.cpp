@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numbers>
 #include <span>
 
 #include <tessera/base/check.h>
@@ -117,9 +118,13 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
   // Jitter moves the geometry by -jitter pixels after the projection (sampling.h), so the sample
   // pattern, fixed on the pixel grid, moves by +jitter relative to the scene.
   const Jitter j = options.jitter;
+  // The nonlinear projections' passes take camera-space positions (the view matrix in place of
+  // view-projection, as the CPU's vertex stage in those modes) and carry the jitter in the rays.
+  const bool rays = options.projection != Projection::kPerspective;
   out.view_projection =
-      jitteredProjection(scene.camera.projection(aspect), j, options.width, options.height) *
-      scene.camera.view();
+      rays ? scene.camera.view()
+           : jitteredProjection(scene.camera.projection(aspect), j, options.width, options.height) *
+                 scene.camera.view();
   const float4x4 view_projection_zo = jitteredProjection(zeroToOneProjection(scene.camera, aspect),
                                                          j, options.width, options.height) *
                                       scene.camera.view();
@@ -259,6 +264,12 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
   f.ambient[1] = scene.ambient.y;
   f.ambient[2] = scene.ambient.z;
   fillSampling(scene, options, f);
+  f.projection = static_cast<uint32_t>(options.projection);
+  if (rays) {
+    f.view_half_angle = radians(scene.camera.fov_y_degrees) * 0.5f;
+    f.ray_near = scene.camera.near_z;
+    f.ray_inv_range = 1.0f / (scene.camera.far_z - scene.camera.near_z);
+  }
   return {};
 }
 
@@ -385,7 +396,15 @@ void drawSceneLines(const Scene& scene, const RenderOptions& options, const Pack
   for (size_t i = 0; i < scene.objects.size(); ++i)
     if (scene.objects[i].show_axes)
       render::appendAxes(lines, packed.models[i], scene.objects[i].axes_length);
-  render::drawLines(lines, packed.view_projection, frame, /*antialiased=*/options.msaa > 1);
+  if (options.projection == Projection::kPerspective) {
+    render::drawLines(lines, packed.view_projection, frame, /*antialiased=*/options.msaa > 1);
+    return;
+  }
+  // The nonlinear projections' lines: the CPU's, through the same mapping (packed.view_projection
+  // is the view matrix then).
+  const double fov = static_cast<double>(scene.camera.fov_y_degrees) * std::numbers::pi / 180.0;
+  const render::RayLines mode{options.projection, fov, scene.camera.near_z, scene.camera.far_z};
+  render::drawRayLines(lines, packed.view_projection, mode, frame, options.msaa > 1);
 }
 
 }  // namespace tessera::vulkan

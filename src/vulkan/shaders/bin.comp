@@ -6,11 +6,41 @@
 // one sample the points are the pixel centres). Entries past the
 // buffer's capacity are not written; the count tells the host, which grows the buffer and
 // renders the frame again.
+//
+// TESSERA_RAY = 1 (the nonlinear projections): a record enters each tile of its one or two pixel
+// boxes (conservative, from a cone around the triangle: ray_setup.comp).
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "common.glsl"
 #include "records.glsl"
 
 layout(local_size_x = 64) in;
+
+// Counts (mode 0) or writes (mode 1) the entry of record `slot` in tile (tx, ty).
+void binInto(uint slot, int tx, int ty) {
+  const uint tile = uint(ty * frame.tile_columns + tx);
+  if (pass.mode == 0u) {
+    atomicAdd(tiles[tile].count, 1u);
+  } else {
+    const uint entry = tiles[tile].offset + atomicAdd(tiles[tile].cursor, 1u);
+    if (entry < frame.bin_capacity) bin_entries[entry] = slot;
+  }
+}
+
+#if TESSERA_RAY
+void main() {
+  const uint i = flatWorkgroupIndex() * 64u + gl_LocalInvocationIndex;
+  if (i >= counters.visible) return;
+  const uint slot = visible_list[i];
+  for (int b = 0; b < 2; ++b) {
+    const ivec4 box = ray_records[slot].box[b];
+    if (box.x > box.z || box.y > box.w) continue;
+    for (int ty = box.y >> kTileSizeLog2; ty <= box.w >> kTileSizeLog2; ++ty)
+      for (int tx = box.x >> kTileSizeLog2; tx <= box.z >> kTileSizeLog2; ++tx)
+        binInto(slot, tx, ty);
+  }
+  if (pass.mode == 0u) atomicAdd(counters.binned_records, 1u);
+}
+#else
 
 // Largest value of edge k over the rectangle that holds every sample point of the pixels
 // [x0, x1] x [y0, y1].
@@ -39,14 +69,9 @@ void main() {
           edgeMaximum(r, 2, x0, x1, y0, y1) < 0l)
         continue;
       binned = true;
-      const uint tile = uint(ty * frame.tile_columns + tx);
-      if (pass.mode == 0u) {
-        atomicAdd(tiles[tile].count, 1u);
-      } else {
-        const uint entry = tiles[tile].offset + atomicAdd(tiles[tile].cursor, 1u);
-        if (entry < frame.bin_capacity) bin_entries[entry] = slot;
-      }
+      binInto(slot, tx, ty);
     }
   }
   if (pass.mode == 0u && binned) atomicAdd(counters.binned_records, 1u);
 }
+#endif

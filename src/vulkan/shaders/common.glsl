@@ -2,6 +2,11 @@
 // src/vulkan/gpu_types.h lays them out (std430). No 64-bit types here: the raster backend's
 // shaders include this file too and must run without shaderInt64.
 
+// TESSERA_RAY = 1: the compute backend's ray passes (the nonlinear projections; rays.glsl).
+#ifndef TESSERA_RAY
+#define TESSERA_RAY 0
+#endif
+
 const uint kFrameNormals = 1u;
 const uint kFrameCoverage = 2u;
 const int kMaxVisibilityLayers = 9;
@@ -30,14 +35,16 @@ struct FrameConstants {
   float guard_x, guard_y;
   uint triangle_count, vertex_count;
   uint object_count, light_count, extra_capacity, bin_capacity;
-  uint background, flags, segment_capacity, pad0;
+  uint background, flags, segment_capacity;
+  uint projection;  // tessera::Projection
   vec4 ambient;
-  uint samples, layers, first_sample_layer, pad1;
+  uint samples, layers, first_sample_layer;
+  float view_half_angle;  // radians
   int sample_min_x, sample_min_y, sample_max_x, sample_max_y;
   vec4 background_linear;
   int layer_x[kMaxVisibilityLayers];
   int layer_y[kMaxVisibilityLayers];
-  uint pad2[2];
+  float ray_near, ray_inv_range;  // the ray passes' depth: (distance - near) * inv_range
 };
 
 struct Light {

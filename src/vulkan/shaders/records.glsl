@@ -1,5 +1,6 @@
 // The compute backend's working buffers (bindings 8..16 and 18), as src/vulkan/gpu_types.h.
-// Needs GL_EXT_shader_explicit_arithmetic_types_int64.
+// Needs GL_EXT_shader_explicit_arithmetic_types_int64. TESSERA_RAY = 1 (the ray passes of the
+// nonlinear projections): binding 9 holds RayRecords instead of RasterRecords (rays.glsl).
 
 // The transform pass's output (the CPU's VertexBuffer).
 struct TransformedVertex {
@@ -51,7 +52,11 @@ struct TileBin {
 };
 
 layout(std430, set = 0, binding = 8) buffer TransformedBuffer { TransformedVertex transformed[]; };
+#if TESSERA_RAY
+#include "rays.glsl"
+#else
 layout(std430, set = 0, binding = 9) buffer RasterRecordBuffer { RasterRecord raster_records[]; };
+#endif
 layout(std430, set = 0, binding = 10) buffer ShadeRecordBuffer { ShadeRecord shade_records[]; };
 layout(std430, set = 0, binding = 11) buffer ExtraBaseBuffer { uint extra_base[]; };
 layout(std430, set = 0, binding = 12) buffer CounterBuffer { Counters counters; };

@@ -21,6 +21,7 @@
 #include "records.glsl"
 #include "screen.glsl"
 #include "shading.glsl"
+#include "setup_common.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -31,13 +32,6 @@ layout(local_size_x = 64) in;
 #endif
 
 const int kMaxClippedVertices = 9;
-
-// A clipped vertex: its clip-space position and its weights over the source triangle's three
-// vertices (the CPU carries the attributes themselves; the weights give the same values).
-struct ClipVertex {
-  vec4 position;
-  vec3 weights;
-};
 
 float planeDistance(uint plane, vec4 p) {
   precise float d;
@@ -92,21 +86,6 @@ uint clipTriangle(uint planes) {
   return (uint(count) << 1) | src;
 }
 
-// What setup needs about the source triangle beyond its clip-space vertices.
-struct TriangleContext {
-  uint triangle;  // scene triangle index
-  uint material;  // index into the material buffer
-  uint cull;
-  uint shading;
-  bool has_uv;
-  bool has_color;
-  bool clipped;
-  vec3 face_normal;  // world space, unnormalized
-  vec3 normal[3];    // the source vertices' attributes
-  vec2 uv[3];
-  vec4 color[3];
-};
-
 // Edge from a to b: (b - a) x (p - a) with y down; the top-left bias folded into c.
 void makeEdge(int ax, int ay, int bx, int by, out int a, out int b, out int64_t c) {
   a = ay - by;
@@ -115,19 +94,6 @@ void makeEdge(int ax, int ay, int bx, int by, out int a, out int b, out int64_t 
   const int dx = bx - ax, dy = by - ay;
   const bool top_left = dy < 0 || (dy == 0 && dx > 0);
   if (!top_left) c -= 1l;
-}
-
-vec3 weighted3(vec3 values[3], vec3 w) {
-  precise vec3 r = values[0] * w.x + values[1] * w.y + values[2] * w.z;
-  return r;
-}
-vec2 weighted2(vec2 values[3], vec3 w) {
-  precise vec2 r = values[0] * w.x + values[1] * w.y + values[2] * w.z;
-  return r;
-}
-vec4 weighted4(vec4 values[3], vec3 w) {
-  precise vec4 r = values[0] * w.x + values[1] * w.y + values[2] * w.z;
-  return r;
 }
 
 // src/render/setup.cpp, setupRaster then setupShade: true when the triangle is visible.
@@ -205,49 +171,8 @@ bool setupTriangle(ScreenVertex sv[3], ClipVertex v[3], TriangleContext ctx,
   shade.sdx = sdx;
   shade.sdy = sdy;
 
-  const GpuMaterial material = materials[ctx.material];
-  const vec3 base = material.base_color.xyz;
-  // Back faces that are drawn are lit from the viewer's side (two-sided lighting).
-  const float flip = back_facing ? -1.0 : 1.0;
-  precise vec3 flat_normal = normalizeAsCpu(ctx.face_normal) * flip;
-  const vec3 flat_irradiance = ctx.shading == kShadingFlat ? irradiance(flat_normal) : vec3(1.0);
-  for (int k = 0; k < 3; ++k) {
-    const int source = order[k];
-    vec3 vertex_normal = ctx.normal[source];
-    vec2 uv = ctx.uv[source];
-    vec4 color = ctx.color[source];
-    if (ctx.clipped) {
-      vertex_normal = weighted3(ctx.normal, v[source].weights);
-      uv = weighted2(ctx.uv, v[source].weights);
-      color = weighted4(ctx.color, v[source].weights);
-    }
-    precise vec3 n = ctx.shading == kShadingFlat ? flat_normal
-                                                 : normalizeAsCpu(vertex_normal) * flip;
-    if (n.x == 0.0 && n.y == 0.0 && n.z == 0.0) n = flat_normal;
-    shade.normal[k] = vec4(n, 0.0);
-    shade.uv[k] = uv;
-    precise vec3 albedo = ctx.has_color ? base * color.xyz : base;
-    precise vec3 lit =
-        albedo * (ctx.shading == kShadingGouraud ? irradiance(n) : flat_irradiance);
-    shade.color[k] = vec4(lit, 0.0);
-  }
-  shade.triangle_id = ctx.triangle;
-  shade.material = ctx.material;
-  shade.shading =
-      ctx.shading | (ctx.has_uv && (material.texture_flags & kTexturePresent) != 0u ? kShadeHasUv
-                                                                                     : 0u);
+  setupShadeCorners(ctx, v, order, back_facing, shade);
   return true;
-}
-
-// The object holding triangle t: the last one whose triangle_base is <= t.
-uint objectOfTriangle(uint t) {
-  uint lo = 0u, hi = frame.object_count;
-  while (lo < hi) {
-    const uint mid = (lo + hi) / 2u;
-    if (objects[mid].triangle_base <= t) lo = mid + 1u;
-    else hi = mid;
-  }
-  return lo - 1u;
 }
 
 void emit(uint slot, RasterRecord raster, ShadeRecord shade) {
@@ -285,29 +210,7 @@ void main() {
     return;
   }
 
-  TriangleContext ctx;
-  ctx.triangle = t;
-  ctx.material = objectMaterialIndex(
-      object, (object.flags & kObjectHasTriangleMaterials) != 0u ? triangle_materials[t] : 0u);
-  ctx.cull = object.cull;
-  ctx.shading = object.shading;
-  ctx.has_uv = (object.flags & kObjectHasUv) != 0u;
-  ctx.has_color = (object.flags & kObjectHasColor) != 0u;
-  vec3 p[3];
-  for (int k = 0; k < 3; ++k) {
-    const uint g = object.vertex_base + idx[k];
-    ctx.normal[k] = transformed[g].normal;
-    ctx.uv[k] = ctx.has_uv ? vertexUv(g) : vec2(0.0);
-    ctx.color[k] = ctx.has_color ? vertexColor(g) : vec4(1.0);
-    p[k] = vertexPosition(g);
-  }
-  precise vec3 e1 = p[1] - p[0];
-  precise vec3 e2 = p[2] - p[0];
-  precise vec3 edge_cross = vec3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
-                                 e1.x * e2.y - e1.y * e2.x);
-  precise vec3 face_normal = multiply3x3(object.normal_matrix, edge_cross) * object.winding_sign;
-  ctx.face_normal = face_normal;
-
+  TriangleContext ctx = triangleContext(t, object, idx);
   RasterRecord raster;
   ShadeRecord shade;
   const uint cut = (codes[0] | codes[1] | codes[2]) & kCutPlanes;

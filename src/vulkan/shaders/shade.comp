@@ -12,6 +12,11 @@
 // that hold none take the background; the sum is divided by the sample count in linear light and
 // encoded once. The id, depth and normal AOVs are the pixel centre's layer (layer 0).
 //
+// TESSERA_RAY = 1 (the nonlinear projections): the barycentrics of a point are those of its ray's
+// hit (rayBarycentrics), "the centre passes the edge tests" is the centre ray's plane test, and
+// the trilinear level of detail takes the centre rays of the next pixels right and down (left and
+// up at the image's edge), as the CPU's ray path.
+//
 // Output words (n pixels): colour [0, n), depth [n, 2n), id [2n, 3n), then normal (3 words a
 // pixel) from 3n when asked, then coverage (one word a pixel) when asked.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
@@ -37,20 +42,61 @@ vec3 barycentricsAt(ShadeRecord s, vec2 origin, vec2 p) {
   return vec3(b0, b1, b2);
 }
 
+// A shading point of pixel (x, y): its centre (kCentre) or the point of visibility layer `layer`.
+const uint kCentre = 0xffffu;
+
+#if TESSERA_RAY
+// The ray of a pixel's point.
+vec3 pointRay(ivec2 pixel, uint layer) {
+  const uint ray_layer = layer == kCentre ? 0u : rayLayerOf(layer);
+  return rayAt(ray_layer, uint(pixel.y) * uint(frame.width) + uint(pixel.x));
+}
+
+// The barycentrics of record `slot` at a pixel's point.
+vec3 pointBarycentrics(uint slot, ShadeRecord s, ivec2 pixel, uint layer) {
+  return rayBarycentrics(ray_records[slot], pointRay(pixel, layer));
+}
+
+// The barycentrics the trilinear level of detail takes for the next pixel right (step (1, 0)) or
+// down: at its centre ray, or at the pixel left or up's where there is no next pixel.
+vec3 neighbourBarycentrics(uint slot, ShadeRecord s, ivec2 pixel, uint layer, ivec2 step) {
+  ivec2 next = pixel + step;
+  if (next.x >= frame.width) next.x = max(pixel.x - 1, 0);
+  if (next.y >= frame.height) next.y = max(pixel.y - 1, 0);
+  return pointBarycentrics(slot, s, next, kCentre);
+}
+#else
+// The barycentrics of record `slot` at a pixel's point (in window coordinates).
+vec3 pointBarycentrics(uint slot, ShadeRecord s, ivec2 pixel, uint layer) {
+  const vec2 offset = layer == kCentre
+                          ? vec2(0.5)
+                          : vec2(float(frame.layer_x[layer]), float(frame.layer_y[layer])) *
+                                (1.0 / 256.0);
+  const vec2 origin = vec2(raster_records[slot].x0, raster_records[slot].y0);
+  return barycentricsAt(s, origin, vec2(pixel) + offset);
+}
+
+// The barycentrics the trilinear level of detail takes for the next pixel right (step (1, 0)) or
+// down: at the same point of that pixel.
+vec3 neighbourBarycentrics(uint slot, ShadeRecord s, ivec2 pixel, uint layer, ivec2 step) {
+  return pointBarycentrics(slot, s, pixel + step, layer);
+}
+#endif
+
 vec2 uvAt(ShadeRecord s, vec3 b) {
   precise vec2 uv = s.uv[0] * b.x + s.uv[1] * b.y + s.uv[2] * b.z;
   return uv;
 }
 
 // render::sampleAlbedo: trilinear filtering takes its level of detail from the UVs at the next
-// pixel centres right and down.
-vec3 sampleAlbedo(ShadeRecord s, vec2 origin, vec3 b, vec2 centre) {
+// pixels right and down.
+vec3 sampleAlbedo(uint slot, ShadeRecord s, vec3 b, ivec2 pixel, uint layer) {
   const GpuMaterial m = materials[s.material];
   const vec2 uv = uvAt(s, b);
   if ((m.texture_flags & kTextureTrilinear) == 0u) return sampleTexture(m, uv).xyz;
   const vec2 size = vec2(float(m.texture_width), float(m.texture_height));
-  precise vec2 du = uvAt(s, barycentricsAt(s, origin, centre + vec2(1.0, 0.0))) - uv;
-  precise vec2 dv = uvAt(s, barycentricsAt(s, origin, centre + vec2(0.0, 1.0))) - uv;
+  precise vec2 du = uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(1, 0))) - uv;
+  precise vec2 dv = uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(0, 1))) - uv;
   precise vec2 dx = du * size, dy = dv * size;
   precise float rho2 = max(dx.x * dx.x + dx.y * dx.y, dy.x * dy.x + dy.y * dy.y);
   const float lod = rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0;
@@ -72,25 +118,28 @@ uint recordSlot(uint key) {
   return piece == 0u ? t : frame.triangle_count + extra_base[t] + piece - 1u;
 }
 
-vec2 recordOrigin(uint slot) { return vec2(raster_records[slot].x0, raster_records[slot].y0); }
-
 // The shading normal (also the normal AOV): flat shading keeps the face normal.
 vec3 normalAt(ShadeRecord s, vec3 b) {
   if ((s.shading & 255u) == kShadingFlat) return s.normal[0].xyz;
   return normalizeAsCpu(s.normal[0].xyz * b.x + s.normal[1].xyz * b.y + s.normal[2].xyz * b.z);
 }
 
-// The linear colour of record `slot` at window point p.
-vec3 shadeAt(uint slot, vec2 p) {
+// The linear colour of record `slot` at a point of pixel (x, y).
+vec3 shadeAt(uint slot, ivec2 pixel, uint layer) {
   const ShadeRecord s = shade_records[slot];
-  const vec2 origin = recordOrigin(slot);
-  const vec3 b = barycentricsAt(s, origin, p);
+  const vec3 b = pointBarycentrics(slot, s, pixel, layer);
   precise vec3 color = s.color[0].xyz * b.x + s.color[1].xyz * b.y + s.color[2].xyz * b.z;
-  if ((s.shading & kShadeHasUv) != 0u) color = color * sampleAlbedo(s, origin, b, p);
+  if ((s.shading & kShadeHasUv) != 0u) color = color * sampleAlbedo(slot, s, b, pixel, layer);
   if ((s.shading & 255u) == kShadingPhong) color = color * irradiance(normalAt(s, b));
   return color;
 }
 
+#if TESSERA_RAY
+// Whether the centre ray of pixel (x, y) passes the record's plane test (no depth range).
+bool coversCentre(uint slot, int x, int y) {
+  return rayCovers(ray_records[slot], pointRay(ivec2(x, y), kCentre));
+}
+#else
 // Whether the pixel centre (x, y) passes the record's three edge tests.
 bool coversCentre(uint slot, int x, int y) {
   const int64_t px = int64_t(x) * kSubpixelOne + kSubpixelHalf;
@@ -101,6 +150,7 @@ bool coversCentre(uint slot, int x, int y) {
       return false;
   return true;
 }
+#endif
 
 // The resolved sRGB colour of pixel (x, y); `covered` receives the samples holding a triangle.
 uint resolveColor(uint pixel, int x, int y, out uint covered) {
@@ -122,19 +172,15 @@ uint resolveColor(uint pixel, int x, int y, out uint covered) {
     }
     ++counts[d];
   }
-  const vec2 centre = vec2(float(x) + 0.5, float(y) + 0.5);
+  const ivec2 pixel_xy = ivec2(x, y);
   if (covered == 0u) return frame.background;
-  if (distinct == 1u && covered == samples) return packColor(shadeAt(recordSlot(keys[0]), centre));
+  if (distinct == 1u && covered == samples)
+    return packColor(shadeAt(recordSlot(keys[0]), pixel_xy, kCentre));
   precise vec3 sum = frame.background_linear.xyz * float(samples - covered);
   for (uint d = 0u; d < distinct; ++d) {
     const uint slot = recordSlot(keys[d]);
-    const uint layer = first + first_sample[d];
-    const vec2 point =
-        coversCentre(slot, x, y)
-            ? centre
-            : vec2(float(x) + float(frame.layer_x[layer]) * (1.0 / 256.0),
-                   float(y) + float(frame.layer_y[layer]) * (1.0 / 256.0));
-    sum = sum + shadeAt(slot, point) * float(counts[d]);
+    const uint layer = coversCentre(slot, x, y) ? kCentre : first + first_sample[d];
+    sum = sum + shadeAt(slot, pixel_xy, layer) * float(counts[d]);
   }
   // Times 1 / samples, exactly (a power of two), rather than a division a GPU may round loosely.
   precise vec3 average = sum * uintBitsToFloat(uint(127 - findMSB(samples)) << 23);
@@ -165,9 +211,7 @@ void main() {
     const ShadeRecord s = shade_records[slot];
     output_words[n + pixel] = floatBitsToUint(depthFromOrdered(layerDepth(pixel, 0u)));
     output_words[2u * n + pixel] = s.triangle_id + 1u;
-    if (normals)
-      normal = normalAt(s, barycentricsAt(s, recordOrigin(slot),
-                                          vec2(float(x) + 0.5, float(y) + 0.5)));
+    if (normals) normal = normalAt(s, pointBarycentrics(slot, s, ivec2(x, y), kCentre));
   }
   if (normals) {
     output_words[3u * n + 3u * pixel] = floatBitsToUint(normal.x);

@@ -1,0 +1,46 @@
+// The compute backend's pipelines: one descriptor set layout (every binding a storage buffer) and
+// push-constant range for all of them, the passes every frame runs (clear, transform, bin args,
+// scan), and two sets of the passes that depend on the projection: the classic pipeline's
+// (perspective: edge functions on projected vertices) and the ray passes' (the nonlinear
+// projections: each pixel's ray tested against the triangle's planes). The fine raster's pipelines
+// are made on first use per visibility layer count, which sizes their shared memory.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include <tessera/base/expected.h>
+
+#include "vulkan/context.h"
+#include "vulkan/gpu_types.h"
+
+namespace tessera::vulkan {
+
+// The passes whose shaders differ between the classic pipeline and the ray passes.
+struct ProjectionPasses {
+  VkPipeline setup = VK_NULL_HANDLE, bin = VK_NULL_HANDLE, shade = VK_NULL_HANDLE;
+  // Fine raster by visibility layers per pixel; raster_id is the 32-bit path's second pass.
+  VkPipeline raster[kMaxVisibilityLayers + 1] = {}, raster_id[kMaxVisibilityLayers + 1] = {};
+};
+
+struct ComputePipelines {
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkPipeline clear = VK_NULL_HANDLE, transform = VK_NULL_HANDLE, bin_args = VK_NULL_HANDLE,
+             scan = VK_NULL_HANDLE;
+  ProjectionPasses perspective, ray;
+  bool atomic64 = false;  // 64-bit atomic commits, else the two 32-bit passes
+  bool fp64 = false;      // divisions in double
+
+  // Makes the layouts and every pipeline but the fine raster's (those for one layer excepted).
+  Expected<void> create(Context& context, bool with_atomic64, bool with_fp64);
+  // The fine raster's pipelines for `layers` visibility layers, of the ray passes or not.
+  Expected<void> ensureRaster(Context& context, uint32_t layers, bool ray);
+  void destroy(Context& context);
+
+ private:
+  Expected<VkPipeline> createPipeline(Context& context, std::span<const uint32_t> spirv,
+                                      const VkSpecializationInfo* specialization = nullptr);
+};
+
+}  // namespace tessera::vulkan

@@ -1,0 +1,48 @@
+#include "vulkan/descriptor_sets.h"
+
+#include <vector>
+
+namespace tessera::vulkan {
+
+Expected<void> createStorageLayouts(Context& c, uint32_t count, VkShaderStageFlags stages,
+                                    uint32_t push_bytes, VkDescriptorSetLayout& set_layout,
+                                    VkPipelineLayout& pipeline_layout) {
+  std::vector<VkDescriptorSetLayoutBinding> bindings(count);
+  for (uint32_t i = 0; i < count; ++i)
+    bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr};
+  VkDescriptorSetLayoutCreateInfo layout_info{};
+  layout_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+  layout_info.bindingCount = count;
+  layout_info.pBindings = bindings.data();
+  TESSERA_VK_CHECK(c.vk.vkCreateDescriptorSetLayout(c.device, &layout_info, nullptr, &set_layout));
+  const VkPushConstantRange push{stages, 0, push_bytes};
+  VkPipelineLayoutCreateInfo pipeline_layout_info{};
+  pipeline_layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+  pipeline_layout_info.setLayoutCount = 1;
+  pipeline_layout_info.pSetLayouts = &set_layout;
+  pipeline_layout_info.pushConstantRangeCount = 1;
+  pipeline_layout_info.pPushConstantRanges = &push;
+  TESSERA_VK_CHECK(
+      c.vk.vkCreatePipelineLayout(c.device, &pipeline_layout_info, nullptr, &pipeline_layout));
+  return {};
+}
+
+Expected<void> allocateStorageSet(Context& c, uint32_t bindings, VkDescriptorSetLayout set_layout,
+                                  VkDescriptorPool& pool, VkDescriptorSet& set) {
+  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, bindings};
+  VkDescriptorPoolCreateInfo pool_info{};
+  pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+  pool_info.maxSets = 1;
+  pool_info.poolSizeCount = 1;
+  pool_info.pPoolSizes = &pool_size;
+  TESSERA_VK_CHECK(c.vk.vkCreateDescriptorPool(c.device, &pool_info, nullptr, &pool));
+  VkDescriptorSetAllocateInfo allocate{};
+  allocate.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+  allocate.descriptorPool = pool;
+  allocate.descriptorSetCount = 1;
+  allocate.pSetLayouts = &set_layout;
+  TESSERA_VK_CHECK(c.vk.vkAllocateDescriptorSets(c.device, &allocate, &set));
+  return {};
+}
+
+}  // namespace tessera::vulkan
