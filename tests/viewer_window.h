@@ -1,6 +1,7 @@
 // The fixture of the window tests: the real `tessera view` under its own Xvfb, driven by real X
 // input (xdotool sends XTEST pointer and key events), and the helpers that read its screenshots.
-// Shared by viewer_window_test.cpp and viewer_window_aa_test.cpp.
+// Shared by viewer_window_test.cpp, viewer_window_aa_test.cpp and
+// viewer_window_projection_test.cpp.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -221,6 +222,36 @@ inline Coverage coverage(const DecodedPng& png, Rgb background) {
   c.centre_x /= static_cast<double>(count);
   c.centre_y /= static_cast<double>(count);
   return c;
+}
+
+inline bool isText(Rgb p) {
+  return p.r > 160 && p.g > 160 && p.b > 160;
+}
+
+// The rows [first, last] of each line of white text inside the rectangle, top to bottom.
+inline std::vector<std::pair<int, int>> textLines(const DecodedPng& png, int x0, int y0, int x1,
+                                                  int y1) {
+  std::vector<std::pair<int, int>> lines;
+  bool in_line = false;
+  for (int y = y0; y < y1; ++y) {
+    int text = 0;
+    for (int x = x0; x < x1; ++x) text += isText(pixel(png, x, y)) ? 1 : 0;
+    if (text > 0 && !in_line) lines.push_back({y, y});
+    if (text > 0) lines.back().second = y;
+    in_line = text > 0;
+  }
+  return lines;
+}
+
+// Whether the white text of rows [first, last] is the same in both pictures, in columns
+// [0, x_end) (all of them by default). Anti-aliased text takes the colour of what is under its
+// box: compare where that is the same in both.
+inline bool sameText(const DecodedPng& a, const DecodedPng& b, std::pair<int, int> rows,
+                     int x_end = -1) {
+  for (int y = rows.first; y <= rows.second; ++y)
+    for (int x = 0; x < (x_end < 0 ? a.width : x_end); ++x)
+      if (isText(pixel(a, x, y)) != isText(pixel(b, x, y))) return false;
+  return true;
 }
 
 class ViewerWindow : public ::testing::Test {

@@ -16,6 +16,7 @@
 #include <tessera/render/frame.h>
 #include <tessera/viewer/input_state.h>
 #include <tessera/viewer/orbit_camera.h>
+#include <tessera/viewer/projection_mode.h>
 #include <tessera/viewer/sampling_modes.h>
 #include <tessera/viewer/scene_loader.h>
 
@@ -51,7 +52,10 @@ class Viewer {
       : options_(options),
         backend_(backend),
         hooks_(hooks),
-        sampling_(options.msaa, options.jitter, options.temporal) {
+        sampling_(options.msaa, options.jitter, options.temporal),
+        projection_(options.projection),
+        view_angles_{options.fov_y_degrees, options.view_angle} {
+    sampling_.setProjection(projection_);
     stats_ = options.stats;
     world_axes_ = options.world_axes;
     render_options_.depth = false;
@@ -98,6 +102,9 @@ class Viewer {
   InputState input_;
   RenderOptions render_options_;
   SamplingModes sampling_;
+  Projection projection_;
+  ViewAngles view_angles_;
+  float view_angle_ = 0.0f;  // the angle of the last frame's projection
   Frame frame_;
 
   bool stats_ = false;
@@ -108,7 +115,8 @@ class Viewer {
   bool dirty_ = true;         // the window needs presenting again
   bool view_changed_ = true;  // ...and the scene rendering again (camera, scene or axes changed)
   bool screenshot_requested_ = false;
-  std::string error_;  // the last load error, shown until the next load
+  std::string error_;         // the last load error, shown until the next load
+  std::string render_error_;  // why the backend could not draw the last frame, if it could not
   fs::path loading_path_;
   Clock::time_point load_started_;
 
@@ -211,6 +219,11 @@ void Viewer::handleAction(const Action& action) {
       sampling_.reset();
       view_changed_ = true;
       break;
+    case Action::Type::kCycleProjection:
+      projection_ = nextProjection(projection_);
+      sampling_.setProjection(projection_);
+      view_changed_ = true;
+      break;
     case Action::Type::kScreenshot:
       screenshot_requested_ = true;
       break;
@@ -266,7 +279,8 @@ void Viewer::drawKeyList(int pixel_width, int pixel_height) {
   std::vector<std::pair<std::string, std::string>> rows;
   for (const KeyHelp& help : keyList()) rows.emplace_back(help.keys, help.action);
   rows.emplace_back("", "");
-  rows.emplace_back("now", sampling_.describe());
+  rows.emplace_back("now",
+                    describeProjection(projection_, view_angle_) + ", " + sampling_.describe());
   text_.drawTable(renderer_.get(), rows, pixel_width, pixel_height);
 }
 
@@ -281,13 +295,13 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
     char text[256];
     std::snprintf(text, sizeof text, "%s\nrender %.2f ms", fps, render_ms_);
     std::string lines = text;
-    if (sampling_.jitter() && sampling_.temporal()) {
+    if (sampling_.blending()) {
       std::snprintf(text, sizeof text, " + TAA %.2f ms", temporal_ms_);
       lines += text;
     }
     std::snprintf(text, sizeof text, "\n%d x %d, %zu triangles, %s\n", pixel_width, pixel_height,
                   scene_.triangleCount(), backend_.name());
-    lines += text + sampling_.describe();
+    lines += text + describeProjection(projection_, view_angle_) + "\n" + sampling_.describe();
     text_.drawTextBox(renderer_.get(), lines, margin, margin, false, SDL_Color{255, 255, 255, 255},
                       wrap);
   }
@@ -298,8 +312,9 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
     char elapsed[32];
     std::snprintf(elapsed, sizeof elapsed, " (%.1f s)", seconds);
     status = "loading " + loader_.name() + "..." + elapsed;
-  } else if (!error_.empty()) {
-    status = "error: " + error_;
+  } else if (!error_.empty() || !render_error_.empty()) {
+    status =
+        "error: " + error_ + (error_.empty() || render_error_.empty() ? "" : "\n") + render_error_;
     color = SDL_Color{255, 120, 110, 255};
   }
   text_.drawTextBox(renderer_.get(), status, margin, pixel_height - margin, true, color, wrap);
@@ -326,25 +341,33 @@ void Viewer::saveScreenshot(int pixel_width, int pixel_height) {
 }
 
 void Viewer::renderScene(int pixel_width, int pixel_height) {
+  const float aspect = static_cast<float>(pixel_width) / static_cast<float>(pixel_height);
+  view_angle_ = viewAngleFor(projection_, aspect, view_angles_);
+  camera_.setProjection(projection_, view_angle_);
   scene_.camera = camera_.camera();
   scene_.show_world_axes = world_axes_;
   for (Object& object : scene_.objects) object.show_axes = object_axes_;
   if (hooks_.place_lights) hooks_.place_lights(scene_);
   render_options_.width = pixel_width;
   render_options_.height = pixel_height;
+  render_options_.projection = projection_;
   sampling_.prepare(render_options_);
   const Clock::time_point start = Clock::now();
   backend_.render(scene_, render_options_, frame_);
   const Clock::time_point rendered_at = Clock::now();
   render_ms_ = std::chrono::duration<double, std::milli>(rendered_at - start).count();
-  // A backend that could not draw the frame (a Vulkan device lost, a fence timeout) says why
-  // in the window rather than showing an empty frame silently.
+  // A backend that could not draw the frame (a Vulkan device lost, a fence timeout, a projection
+  // it does not draw) says why in the window rather than showing an empty frame silently; the
+  // message goes once the backend draws again (another mode, another frame).
   if (Expected<void> rendered = backend_.lastResult(); !rendered) {
-    error_ = rendered.error().message;
+    if (render_error_ != rendered.error().message)
+      std::cerr << "tessera view: error: " << rendered.error().message << std::endl;
+    render_error_ = rendered.error().message;
     sampling_.reset();
   } else {
-    // The view-projection the backend used, as the CPU renderer builds it, without the jitter.
-    const float aspect = static_cast<float>(pixel_width) / static_cast<float>(pixel_height);
+    render_error_.clear();
+    // The view-projection the backend used, as the CPU renderer builds it, without the jitter
+    // (the temporal pass uses it in perspective only).
     sampling_.finish(frame_, scene_.camera.projection(aspect) * scene_.camera.view());
     temporal_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - rendered_at).count();
   }
