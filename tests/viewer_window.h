@@ -337,6 +337,31 @@ class ViewerWindow : public ::testing::Test {
     return "";
   }
 
+  // Starts the viewer on the cube in a width x height window with `args` and points at its window
+  // (window_); the X server starts at the first call. False, with the reason in skip_reason_, when
+  // no X server can start.
+  bool openCube(const std::vector<std::string>& args, int width, int height) {
+    if (xserver_ == nullptr && !startX(skip_reason_)) return false;
+    std::vector<std::string> all{
+        "-w", std::to_string(width), "-h", std::to_string(height), "-workers", "2"};
+    all.insert(all.end(), args.begin(), args.end());
+    startViewer(all);
+    EXPECT_TRUE(viewer_->waitForLine("tessera view: showing cube"))
+        << viewer_->output() << slurp(dir_ / "viewer.err");
+    window_ = findWindow();
+    EXPECT_FALSE(window_.empty()) << "no visible 'tessera view' window";
+    // Keys go to the window under the pointer (there is no window manager to give focus).
+    xdotool(
+        {"mousemove", "--window", window_, std::to_string(width / 2), std::to_string(height / 2)});
+    return !window_.empty();
+  }
+
+  // Escape quits with status 0.
+  void quit() {
+    xdotool({"key", "Escape"});
+    EXPECT_EQ(viewer_->waitExit(), 0) << viewer_->output() << slurp(dir_ / "viewer.err");
+  }
+
   // Presses F12 and decodes the screenshot the viewer reports.
   DecodedPng screenshot() {
     xdotool({"key", "F12"});
@@ -355,6 +380,8 @@ class ViewerWindow : public ::testing::Test {
   std::string display_;
   std::unique_ptr<Process> xserver_;
   std::unique_ptr<Process> viewer_;
+  std::string window_;       // the viewer's window id (openCube)
+  std::string skip_reason_;  // why openCube could not start an X server
 };
 
 }  // namespace tessera::test

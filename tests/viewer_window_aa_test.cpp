@@ -46,27 +46,6 @@ size_t distinctColours(const DecodedPng& png) {
 
 class ViewerAntiAliasing : public ViewerWindow {
  protected:
-  // Starts the viewer with `args` and points at its window; false if there is no X to run on.
-  bool open(const std::vector<std::string>& args, int width, int height) {
-    std::string why;
-    if (!startX(why)) {
-      skip_reason_ = why;
-      return false;
-    }
-    std::vector<std::string> all{
-        "-w", std::to_string(width), "-h", std::to_string(height), "-workers", "2"};
-    all.insert(all.end(), args.begin(), args.end());
-    startViewer(all);
-    EXPECT_TRUE(viewer_->waitForLine("tessera view: showing cube"))
-        << viewer_->output() << slurp(dir_ / "viewer.err");
-    window_ = findWindow();
-    EXPECT_FALSE(window_.empty()) << "no visible 'tessera view' window";
-    // Keys go to the window under the pointer (there is no window manager to give focus).
-    xdotool(
-        {"mousemove", "--window", window_, std::to_string(width / 2), std::to_string(height / 2)});
-    return !window_.empty();
-  }
-
   // Screenshots until two in a row are the same: the image has stopped changing.
   DecodedPng steadyScreenshot() {
     DecodedPng last = screenshot();
@@ -80,18 +59,10 @@ class ViewerAntiAliasing : public ViewerWindow {
     ADD_FAILURE() << "the image kept changing";
     return last;
   }
-
-  void quit() {
-    xdotool({"key", "Escape"});
-    EXPECT_EQ(viewer_->waitExit(), 0) << viewer_->output() << slurp(dir_ / "viewer.err");
-  }
-
-  std::string window_;
-  std::string skip_reason_;
 };
 
 TEST_F(ViewerAntiAliasing, ShiftF3CyclesMsaaOnTheEdgesAndThroughTheOverlay) {
-  if (!open({"-msaa", "1"}, 320, 240)) GTEST_SKIP() << skip_reason_;
+  if (!openCube({"-msaa", "1"}, 320, 240)) GTEST_SKIP() << skip_reason_;
   // -msaa 1: the flat-shaded cube in its face colours and the background, nothing between.
   const DecodedPng one = screenshot();
   ASSERT_EQ(one.width, 320);
@@ -125,7 +96,7 @@ TEST_F(ViewerAntiAliasing, ShiftF3CyclesMsaaOnTheEdgesAndThroughTheOverlay) {
 }
 
 TEST_F(ViewerAntiAliasing, HListsEveryKeyAndHidesAgain) {
-  if (!open({}, 480, 400)) GTEST_SKIP() << skip_reason_;
+  if (!openCube({}, 480, 400)) GTEST_SKIP() << skip_reason_;
   const DecodedPng plain = screenshot();
   xdotool({"key", "h"});
   const DecodedPng listed = screenshot();
@@ -142,7 +113,7 @@ TEST_F(ViewerAntiAliasing, HListsEveryKeyAndHidesAgain) {
 }
 
 TEST_F(ViewerAntiAliasing, JitterWithTemporalReprojectionSmoothsAStillImageOnTheEdgesOnly) {
-  if (!open({"-msaa", "1"}, 240, 180)) GTEST_SKIP() << skip_reason_;
+  if (!openCube({"-msaa", "1"}, 240, 180)) GTEST_SKIP() << skip_reason_;
   const DecodedPng plain = screenshot();
   ASSERT_EQ(plain.width, 240);
   // F10 (temporal reprojection is on by default): the still camera converges to the average of

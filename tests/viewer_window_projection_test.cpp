@@ -36,29 +36,7 @@ Box modelBox(const DecodedPng& png, Rgb background) {
 
 class ViewerProjection : public ViewerWindow {
  protected:
-  // Starts the viewer on the cube with `args` and points at its window; false (and the reason in
-  // skip_reason_) when no X server can start.
-  bool open(const std::vector<std::string>& args) {
-    if (xserver_ == nullptr) {
-      std::string why;
-      if (!startX(why)) {
-        skip_reason_ = why;
-        return false;
-      }
-    }
-    std::vector<std::string> all{
-        "-w", std::to_string(kWidth), "-h", std::to_string(kHeight), "-workers", "2"};
-    all.insert(all.end(), args.begin(), args.end());
-    startViewer(all);
-    EXPECT_TRUE(viewer_->waitForLine("tessera view: showing cube"))
-        << viewer_->output() << slurp(dir_ / "viewer.err");
-    const std::string window = findWindow();
-    EXPECT_FALSE(window.empty()) << "no visible 'tessera view' window";
-    // Keys go to the window under the pointer (there is no window manager to give focus).
-    xdotool(
-        {"mousemove", "--window", window, std::to_string(kWidth / 2), std::to_string(kHeight / 2)});
-    return !window.empty();
-  }
+  bool open(const std::vector<std::string>& args) { return openCube(args, kWidth, kHeight); }
 
   DecodedPng afterF4() {
     xdotool({"key", "F4"});
@@ -67,13 +45,6 @@ class ViewerProjection : public ViewerWindow {
     EXPECT_EQ(png.height, kHeight);
     return png;
   }
-
-  void quit() {
-    xdotool({"key", "Escape"});
-    EXPECT_EQ(viewer_->waitExit(), 0) << viewer_->output() << slurp(dir_ / "viewer.err");
-  }
-
-  std::string skip_reason_;
 };
 
 TEST_F(ViewerProjection, F4CyclesTheModesBackToTheFirstPictureAndAStartModeDrawsTheSame) {
