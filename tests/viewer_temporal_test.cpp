@@ -62,6 +62,56 @@ TEST(SamplingModes, JitterTakesEachOffsetOfTheCycleInTurnAndAsksForDepthWithTemp
   EXPECT_TRUE(modes.wantsAnotherFrame());  // raw jittered frames change every frame
 }
 
+// A frame of one colour, its depth in the middle of the range: what a still camera sees.
+Frame flatFrame(uint32_t color) {
+  Frame frame;
+  frame.resize(8, 8, /*with_depth=*/true, false, false);
+  std::fill(frame.color.begin(), frame.color.end(), color);
+  std::fill(frame.depth.begin(), frame.depth.end(), 0.5f);
+  return frame;
+}
+
+TEST(SamplingModes, TemporalReprojectionRestsInTheNonlinearProjectionsAndRestartsOnASwitch) {
+  SamplingModes modes(1, /*jitter=*/true, /*temporal=*/true);
+  const float4x4 view_projection = perspective(radians(50.0f), 1.0f, 0.5f, 50.0f);
+  RenderOptions options;
+  const uint32_t dark = 0xff202020u, light = 0xffe0e0e0u;
+  // Perspective: the second frame at a still camera is blended with the first.
+  for (uint32_t color : {dark, light}) {
+    Frame frame = flatFrame(color);
+    modes.prepare(options);
+    EXPECT_TRUE(options.depth);
+    modes.finish(frame, view_projection);
+    if (color == light) {
+      EXPECT_NE(frame.color[0], light);
+    }
+  }
+  EXPECT_EQ(modes.describe(), "MSAA 1x, jitter, TAA 2/16");
+  // Spherical: no depth asked for, every frame shown as drawn, the jitter cycling for ever.
+  modes.setProjection(Projection::kSpherical);
+  EXPECT_EQ(modes.describe(), "MSAA 1x, jitter, TAA: perspective only");
+  for (int i = 0; i < 2 * kJitterCycle; ++i) {
+    const uint32_t color = i % 2 ? dark : light;
+    Frame frame = flatFrame(color);
+    modes.prepare(options);
+    EXPECT_FALSE(options.depth);
+    modes.finish(frame, view_projection);
+    EXPECT_EQ(frame.color[0], color) << i;
+    EXPECT_TRUE(modes.wantsAnotherFrame());
+  }
+  // Back in perspective the history starts again: the first frame is shown as drawn.
+  modes.setProjection(Projection::kPerspective);
+  EXPECT_EQ(modes.describe(), "MSAA 1x, jitter, TAA 0/16");
+  Frame frame = flatFrame(light);
+  modes.prepare(options);
+  modes.finish(frame, view_projection);
+  EXPECT_EQ(frame.color[0], light);
+  // Without jitter a nonlinear mode still says why the temporal pass is idle.
+  SamplingModes plain(4, false, true);
+  plain.setProjection(Projection::kFisheye);
+  EXPECT_EQ(plain.describe(), "MSAA 4x, TAA: perspective only");
+}
+
 TEST(SrgbEncodeTable, GivesEncodeSrgb8sCodes) {
   const SrgbEncodeTable& table = SrgbEncodeTable::instance();
   // A dense sample of [0, 1] and a little beyond, and both sides of every code's threshold.

@@ -1,6 +1,7 @@
 // The fixture of the window tests: the real `tessera view` under its own Xvfb, driven by real X
 // input (xdotool sends XTEST pointer and key events), and the helpers that read its screenshots.
-// Shared by viewer_window_test.cpp and viewer_window_aa_test.cpp.
+// Shared by viewer_window_test.cpp, viewer_window_aa_test.cpp and
+// viewer_window_projection_test.cpp.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -223,6 +224,36 @@ inline Coverage coverage(const DecodedPng& png, Rgb background) {
   return c;
 }
 
+inline bool isText(Rgb p) {
+  return p.r > 160 && p.g > 160 && p.b > 160;
+}
+
+// The rows [first, last] of each line of white text inside the rectangle, top to bottom.
+inline std::vector<std::pair<int, int>> textLines(const DecodedPng& png, int x0, int y0, int x1,
+                                                  int y1) {
+  std::vector<std::pair<int, int>> lines;
+  bool in_line = false;
+  for (int y = y0; y < y1; ++y) {
+    int text = 0;
+    for (int x = x0; x < x1; ++x) text += isText(pixel(png, x, y)) ? 1 : 0;
+    if (text > 0 && !in_line) lines.push_back({y, y});
+    if (text > 0) lines.back().second = y;
+    in_line = text > 0;
+  }
+  return lines;
+}
+
+// Whether the white text of rows [first, last] is the same in both pictures, in columns
+// [0, x_end) (all of them by default). Anti-aliased text takes the colour of what is under its
+// box: compare where that is the same in both.
+inline bool sameText(const DecodedPng& a, const DecodedPng& b, std::pair<int, int> rows,
+                     int x_end = -1) {
+  for (int y = rows.first; y <= rows.second; ++y)
+    for (int x = 0; x < (x_end < 0 ? a.width : x_end); ++x)
+      if (isText(pixel(a, x, y)) != isText(pixel(b, x, y))) return false;
+  return true;
+}
+
 class ViewerWindow : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -306,6 +337,31 @@ class ViewerWindow : public ::testing::Test {
     return "";
   }
 
+  // Starts the viewer on the cube in a width x height window with `args` and points at its window
+  // (window_); the X server starts at the first call. False, with the reason in skip_reason_, when
+  // no X server can start.
+  bool openCube(const std::vector<std::string>& args, int width, int height) {
+    if (xserver_ == nullptr && !startX(skip_reason_)) return false;
+    std::vector<std::string> all{
+        "-w", std::to_string(width), "-h", std::to_string(height), "-workers", "2"};
+    all.insert(all.end(), args.begin(), args.end());
+    startViewer(all);
+    EXPECT_TRUE(viewer_->waitForLine("tessera view: showing cube"))
+        << viewer_->output() << slurp(dir_ / "viewer.err");
+    window_ = findWindow();
+    EXPECT_FALSE(window_.empty()) << "no visible 'tessera view' window";
+    // Keys go to the window under the pointer (there is no window manager to give focus).
+    xdotool(
+        {"mousemove", "--window", window_, std::to_string(width / 2), std::to_string(height / 2)});
+    return !window_.empty();
+  }
+
+  // Escape quits with status 0.
+  void quit() {
+    xdotool({"key", "Escape"});
+    EXPECT_EQ(viewer_->waitExit(), 0) << viewer_->output() << slurp(dir_ / "viewer.err");
+  }
+
   // Presses F12 and decodes the screenshot the viewer reports.
   DecodedPng screenshot() {
     xdotool({"key", "F12"});
@@ -324,6 +380,8 @@ class ViewerWindow : public ::testing::Test {
   std::string display_;
   std::unique_ptr<Process> xserver_;
   std::unique_ptr<Process> viewer_;
+  std::string window_;       // the viewer's window id (openCube)
+  std::string skip_reason_;  // why openCube could not start an X server
 };
 
 }  // namespace tessera::test

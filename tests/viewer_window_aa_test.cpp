@@ -44,55 +44,8 @@ size_t distinctColours(const DecodedPng& png) {
   return colours.size();
 }
 
-bool isText(Rgb p) {
-  return p.r > 160 && p.g > 160 && p.b > 160;
-}
-
-// The rows [first, last] of each line of white text inside the rectangle, top to bottom.
-std::vector<std::pair<int, int>> textLines(const DecodedPng& png, int x0, int y0, int x1, int y1) {
-  std::vector<std::pair<int, int>> lines;
-  bool in_line = false;
-  for (int y = y0; y < y1; ++y) {
-    int text = 0;
-    for (int x = x0; x < x1; ++x) text += isText(pixel(png, x, y)) ? 1 : 0;
-    if (text > 0 && !in_line) lines.push_back({y, y});
-    if (text > 0) lines.back().second = y;
-    in_line = text > 0;
-  }
-  return lines;
-}
-
-// Whether the white text of rows [first, last] is the same in both pictures.
-bool sameText(const DecodedPng& a, const DecodedPng& b, std::pair<int, int> rows) {
-  for (int y = rows.first; y <= rows.second; ++y)
-    for (int x = 0; x < a.width; ++x)
-      if (isText(pixel(a, x, y)) != isText(pixel(b, x, y))) return false;
-  return true;
-}
-
 class ViewerAntiAliasing : public ViewerWindow {
  protected:
-  // Starts the viewer with `args` and points at its window; false if there is no X to run on.
-  bool open(const std::vector<std::string>& args, int width, int height) {
-    std::string why;
-    if (!startX(why)) {
-      skip_reason_ = why;
-      return false;
-    }
-    std::vector<std::string> all{
-        "-w", std::to_string(width), "-h", std::to_string(height), "-workers", "2"};
-    all.insert(all.end(), args.begin(), args.end());
-    startViewer(all);
-    EXPECT_TRUE(viewer_->waitForLine("tessera view: showing cube"))
-        << viewer_->output() << slurp(dir_ / "viewer.err");
-    window_ = findWindow();
-    EXPECT_FALSE(window_.empty()) << "no visible 'tessera view' window";
-    // Keys go to the window under the pointer (there is no window manager to give focus).
-    xdotool(
-        {"mousemove", "--window", window_, std::to_string(width / 2), std::to_string(height / 2)});
-    return !window_.empty();
-  }
-
   // Screenshots until two in a row are the same: the image has stopped changing.
   DecodedPng steadyScreenshot() {
     DecodedPng last = screenshot();
@@ -106,18 +59,10 @@ class ViewerAntiAliasing : public ViewerWindow {
     ADD_FAILURE() << "the image kept changing";
     return last;
   }
-
-  void quit() {
-    xdotool({"key", "Escape"});
-    EXPECT_EQ(viewer_->waitExit(), 0) << viewer_->output() << slurp(dir_ / "viewer.err");
-  }
-
-  std::string window_;
-  std::string skip_reason_;
 };
 
 TEST_F(ViewerAntiAliasing, ShiftF3CyclesMsaaOnTheEdgesAndThroughTheOverlay) {
-  if (!open({"-msaa", "1"}, 320, 240)) GTEST_SKIP() << skip_reason_;
+  if (!openCube({"-msaa", "1"}, 320, 240)) GTEST_SKIP() << skip_reason_;
   // -msaa 1: the flat-shaded cube in its face colours and the background, nothing between.
   const DecodedPng one = screenshot();
   ASSERT_EQ(one.width, 320);
@@ -151,14 +96,14 @@ TEST_F(ViewerAntiAliasing, ShiftF3CyclesMsaaOnTheEdgesAndThroughTheOverlay) {
 }
 
 TEST_F(ViewerAntiAliasing, HListsEveryKeyAndHidesAgain) {
-  if (!open({}, 480, 400)) GTEST_SKIP() << skip_reason_;
+  if (!openCube({}, 480, 400)) GTEST_SKIP() << skip_reason_;
   const DecodedPng plain = screenshot();
   xdotool({"key", "h"});
   const DecodedPng listed = screenshot();
   ASSERT_EQ(listed.width, 480);
-  // A line for each entry of the key map (13), the mode line below them, in a box in the middle.
+  // A line for each entry of the key map (14), the mode line below them, in a box in the middle.
   const std::vector<std::pair<int, int>> lines = textLines(listed, 0, 0, 480, 400);
-  EXPECT_EQ(lines.size(), 14u);
+  EXPECT_EQ(lines.size(), 15u);
   EXPECT_GT(countDifferent(plain, listed, 40, 40, 440, 360), 400 * 320 / 2);
   xdotool({"key", "h"});
   const DecodedPng hidden = screenshot();
@@ -168,7 +113,7 @@ TEST_F(ViewerAntiAliasing, HListsEveryKeyAndHidesAgain) {
 }
 
 TEST_F(ViewerAntiAliasing, JitterWithTemporalReprojectionSmoothsAStillImageOnTheEdgesOnly) {
-  if (!open({"-msaa", "1"}, 240, 180)) GTEST_SKIP() << skip_reason_;
+  if (!openCube({"-msaa", "1"}, 240, 180)) GTEST_SKIP() << skip_reason_;
   const DecodedPng plain = screenshot();
   ASSERT_EQ(plain.width, 240);
   // F10 (temporal reprojection is on by default): the still camera converges to the average of

@@ -307,6 +307,40 @@ TEST(ViewerErrors, AnMsaaCountOtherThan1248IsAUsageErrorNamingThem) {
   }
 }
 
+TEST(ViewerErrors, ABadProjectionOrViewAngleIsAUsageErrorNamingTheChoicesOrTheRange) {
+  const std::map<std::string, std::string> no_display{
+      {"DISPLAY", ""}, {"WAYLAND_DISPLAY", ""}, {"SDL_VIDEODRIVER", ""}};
+  for (const char* flag : {"-projection", "--projection"}) {
+    auto [status, err] = runWithoutWindow({flag, "spherial"}, no_display);
+    EXPECT_EQ(status, 2) << flag;
+    EXPECT_NE(err.find("perspective|cylindrical|spherical|stereographic|fisheye, got 'spherial'"),
+              std::string::npos)
+        << err;
+  }
+  // Out of the start mode's range on this window: a sphere is at most 180 high and 360 around.
+  const std::pair<std::vector<std::string>, std::string> bad[] = {
+      {{"-projection", "spherical", "-fov", "200"}, "at most 180 degrees"},
+      {{"-projection", "spherical", "-fov", "120", "-w", "800", "-h", "200"},
+       "at most 360 / aspect = 90 here"},
+      {{"-projection", "fisheye", "-fov", "400"}, "at most 360 degrees"},
+      {{"-fov", "175"}, "between 1 and 170 in perspective"},
+      {{"-fov", "0"}, "above 0"},
+  };
+  for (const auto& [args, message] : bad) {
+    auto [status, err] = runWithoutWindow(args, no_display);
+    EXPECT_EQ(status, 2) << args[1];
+    EXPECT_NE(err.find(message), std::string::npos) << err;
+  }
+  // Within range: accepted, and then it is the missing display that stops it (status 1).
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"--projection", "fisheye", "-fov", "270"},
+        std::vector<std::string>{"-projection", "cylindrical", "-fov", "170"}}) {
+    auto [status, err] = runWithoutWindow(args, no_display);
+    EXPECT_EQ(status, 1) << args[1] << ": " << err;
+    EXPECT_NE(err.find("cannot open a window"), std::string::npos) << err;
+  }
+}
+
 TEST(ViewerErrors, BadFlagsAreAUsageErrorWithStatus2) {
   auto [status, err] = runWithoutWindow({"-fps", "0"}, {});
   EXPECT_EQ(status, 2);

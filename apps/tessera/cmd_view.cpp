@@ -9,6 +9,7 @@
 
 #include <tessera/io/image_loader.h>
 #include <tessera/io/model_loader.h>
+#include <tessera/render/projection.h>
 #include <tessera/render/sampling.h>
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
@@ -31,6 +32,8 @@ struct ViewSettings {
   int height = 600;
   int fps = 60;
   float fov = 50.0f;
+  bool has_fov = false;
+  std::string projection = "perspective";
   bool stats = false;
   bool axes = false;
   bool fullscreen = false;
@@ -40,6 +43,18 @@ struct ViewSettings {
   int device = -1;
   int msaa = 4;  // what `tessera render` makes by default
 };
+
+bool isPerspectiveFov(float fov) {
+  return fov >= 1.0f && fov <= 170.0f;
+}
+
+// -fov's check for the start mode on a window of this aspect: "" or the valid range.
+std::string checkFov(const ViewSettings& s, Projection mode, float aspect) {
+  if (!s.has_fov) return "";
+  if (mode != Projection::kPerspective) return checkViewAngle(mode, s.fov, aspect);
+  if (isPerspectiveFov(s.fov)) return "";
+  return "must be between 1 and 170 in perspective (other projections take wider angles)";
+}
 
 // The built-in model: the demo's orange cube, flat-shaded.
 io::Model cubeModel() {
@@ -57,12 +72,25 @@ int runView(const std::vector<std::string>& args) {
   ViewSettings s;
   FlagSet flags(
       "tessera view [MODEL] [-w 800] [-h 600] [-fps 60] [-fov 50] [-stats] [-axes] "
-      "[-fullscreen] [-workers 0] [-texture PATH] [-backend cpu] [-msaa 4]",
+      "[-fullscreen] [-workers 0] [-texture PATH] [-backend cpu] [-msaa 4] "
+      "[-projection perspective]",
       /*single_dash=*/true);
   flags.addInt("w|width", &s.width, "window width (default 800)", 1, 16384);
   flags.addInt("h|height", &s.height, "window height (default 600)", 1, 16384);
   flags.addInt("fps", &s.fps, "most frames a second while anything moves (default 60)", 1, 1000);
-  flags.addFloat("fov", &s.fov, "vertical field of view in degrees (default 50)", 1, 170);
+  flags.addCustom("fov", "DEG",
+                  "vertical view angle in degrees (default 50; 1 to 170 in perspective; another "
+                  "projection takes it where it fits, else its default: docs/usage.md)",
+                  [&s](const std::string& v) -> std::string {
+                    if (!parseFloatStrict(v, s.fov) || !(s.fov > 0.0f))
+                      return "needs a number of degrees above 0, got '" + v + "'";
+                    s.has_fov = true;
+                    return "";
+                  });
+  std::vector<std::string> modes;
+  for (Projection p : kProjections) modes.push_back(projectionName(p));
+  flags.addChoice("projection", &s.projection, modes,
+                  "projection at start (default perspective; F4 cycles them)");
   flags.addSwitch("stats", &s.stats, "show the stats overlay at start (F1 toggles it)");
   flags.addSwitch("axes", &s.axes, "show the world axes at start (F2 toggles them)");
   flags.addSwitch("fullscreen", &s.fullscreen, "fill the screen");
@@ -85,7 +113,9 @@ int runView(const std::vector<std::string>& args) {
     std::cout << flags.usage()
               << "\nMouse: left drag orbits, wheel zooms, middle or shift + left drag pans.\n"
                  "Keys: 1 front, 3 right, 7 top, 9 isometric, Enter resets the camera,\n"
-                 "F1 stats, F2 world axes, F3 object axes, F10 sub-pixel jitter, F12 screenshot,\n"
+                 "F1 stats, F2 world axes, F3 object axes, F4 cycles the projection\n"
+                 "(perspective, cylindrical, spherical, stereographic, fisheye),\n"
+                 "F10 sub-pixel jitter, F12 screenshot,\n"
                  "Shift+F3 cycles MSAA 1/2/4/8, Shift+F12 temporal reprojection (on with\n"
                  "jitter), H lists the keys in the window, Escape quits.\n"
                  "Drop a model file on the window to load it.\n";
@@ -98,6 +128,10 @@ int runView(const std::vector<std::string>& args) {
   };
   if (!positional) return usageError(positional.error().message);
   if (positional->size() > 1) return usageError("more than one model given");
+  const Projection projection = parseProjection(s.projection).value_or(Projection::kPerspective);
+  if (std::string range = checkFov(s, projection, static_cast<float>(s.width) / s.height);
+      !range.empty())
+    return usageError("-fov: " + range);
 #ifndef TESSERA_HAS_VIEWER
   printError("view",
              "this tessera was built without the viewer (it needs SDL2 and SDL2_ttf: install "
@@ -162,7 +196,10 @@ int runView(const std::vector<std::string>& args) {
   options.width = s.width;
   options.height = s.height;
   options.fps = s.fps;
-  options.fov_y_degrees = s.fov;
+  // Perspective takes -fov when it is a perspective angle; every mode takes it where it fits.
+  if (s.has_fov && isPerspectiveFov(s.fov)) options.fov_y_degrees = s.fov;
+  if (s.has_fov) options.view_angle = s.fov;
+  options.projection = projection;
   options.stats = s.stats;
   options.world_axes = s.axes;
   options.fullscreen = s.fullscreen;

@@ -20,6 +20,25 @@ float3 offsetDirection(float yaw_degrees, float pitch_degrees) {
   return {std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw)};
 }
 
+// The world distance, at `distance` from the eye on the view axis, that a drag across the whole
+// viewport height spans horizontally (x) and vertically (y): the image scale at the middle of
+// the view, from the mode's ray formula (ARCHITECTURE.md, "Projections") with s = half the angle.
+float2 panSpan(Projection mode, float view_angle_degrees, float distance) {
+  const float s = radians(view_angle_degrees) * 0.5f;
+  switch (mode) {
+    case Projection::kPerspective:
+      return float2{2.0f * std::tan(s), 2.0f * std::tan(s)} * distance;
+    case Projection::kCylindrical:  // longitude u s across, perspective v tan s up
+      return float2{2.0f * s, 2.0f * std::tan(s)} * distance;
+    case Projection::kSpherical:
+    case Projection::kFisheye:  // angle proportional to the distance from the middle
+      return float2{2.0f * s, 2.0f * s} * distance;
+    case Projection::kStereographic:  // d(2 atan(r tan(s/2)))/dr = 2 tan(s/2) at r = 0
+      return float2{4.0f * std::tan(s * 0.5f), 4.0f * std::tan(s * 0.5f)} * distance;
+  }
+  return {distance, distance};
+}
+
 }  // namespace
 
 void OrbitCamera::frame(const Bounds& bounds, float3 direction, float fov_y_degrees, float aspect) {
@@ -42,9 +61,10 @@ void OrbitCamera::orbit(float dx, float dy) {
 }
 
 void OrbitCamera::pan(float dx, float dy) {
-  // The world height that the viewport spans at the target's depth.
-  const float span = 2.0f * pose_.distance * std::tan(radians(fov_y_degrees_) * 0.5f);
-  pose_.target = pose_.target - right() * (dx * span) + up() * (dy * span);
+  const float angle =
+      projection_ == Projection::kPerspective ? fov_y_degrees_ : view_angle_degrees_;
+  const float2 span = panSpan(projection_, angle, pose_.distance);
+  pose_.target = pose_.target - right() * (dx * span.x) + up() * (dy * span.y);
 }
 
 void OrbitCamera::zoom(float steps) {
@@ -94,17 +114,26 @@ float3 OrbitCamera::up() const {
   return cross(right(), forward());
 }
 
+void OrbitCamera::setProjection(Projection mode, float view_angle_degrees) {
+  projection_ = mode;
+  view_angle_degrees_ = view_angle_degrees;
+}
+
 Camera OrbitCamera::camera() const {
   Camera c;
   c.position = position();
   c.target = pose_.target;
   c.up = up();
-  c.fov_y_degrees = fov_y_degrees_;
-  // Near and far bracket the bounding sphere along the view direction, wherever panning and
-  // zooming have put the camera; near stays a sane fraction of far for depth precision.
+  const bool perspective = projection_ == Projection::kPerspective;
+  c.fov_y_degrees = perspective ? fov_y_degrees_ : view_angle_degrees_;
+  // Near and far bracket the bounding sphere, wherever panning and zooming have put the camera:
+  // along the view direction in perspective, as distances from the eye otherwise (the rule of
+  // the CLI's fitDistanceRange: a wide mode sees the sphere's sides too). Near stays a sane
+  // fraction of far for depth precision.
   const float radius = bounds_.empty() ? 1.0f : std::max(bounds_.radius(), 1e-6f);
   const float3 center = bounds_.empty() ? pose_.target : bounds_.center();
-  const float depth = dot(center - c.position, forward());
+  const float depth =
+      perspective ? dot(center - c.position, forward()) : length(center - c.position);
   c.far_z = std::max(depth + radius * 1.01f, radius * 1e-3f);
   c.near_z = std::max(depth - radius * 1.01f, c.far_z * 1e-4f);
   return c;

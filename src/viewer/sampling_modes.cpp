@@ -26,20 +26,26 @@ void SamplingModes::toggleTemporal() {
   reset();
 }
 
+void SamplingModes::setProjection(Projection projection) {
+  if (projection == projection_) return;
+  projection_ = projection;
+  reset();
+}
+
 void SamplingModes::prepare(RenderOptions& options) {
   options.msaa = msaa_;
   jitter_offset_ = jitter_ ? jitterOffset(jitter_index_) : Jitter{};
   if (jitter_) jitter_index_ = (jitter_index_ + 1) % kJitterCycle;
   options.jitter = jitter_offset_;
-  options.depth = jitter_ && temporal_;
+  options.depth = blending();
 }
 
 void SamplingModes::finish(Frame& frame, const float4x4& view_projection) {
-  if (jitter_ && temporal_) temporal_pass_.resolve(frame, view_projection, jitter_offset_);
+  if (blending()) temporal_pass_.resolve(frame, view_projection, jitter_offset_);
 }
 
 bool SamplingModes::wantsAnotherFrame() const {
-  return jitter_ && !(temporal_ && temporal_pass_.converged());
+  return jitter_ && !(blending() && temporal_pass_.converged());
 }
 
 std::string SamplingModes::describe() const {
@@ -48,6 +54,7 @@ std::string SamplingModes::describe() const {
   text += "x";
   if (jitter_) text += ", jitter";
   if (!temporal_) return text;
+  if (projection_ != Projection::kPerspective) return text + ", TAA: perspective only";
   if (!jitter_) return text + ", TAA (F10)";
   text += ", TAA";
   if (!temporal_pass_.converged()) {

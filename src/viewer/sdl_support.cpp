@@ -68,6 +68,8 @@ Key toKey(SDL_Keycode code) {
       return Key::kF2;
     case SDLK_F3:
       return Key::kF3;
+    case SDLK_F4:
+      return Key::kF4;
     case SDLK_F10:
       return Key::kF10;
     case SDLK_F12:

@@ -14,9 +14,9 @@
 
 #include <tessera/io/image_writer.h>
 #include <tessera/render/frame.h>
+#include <tessera/viewer/frame_renderer.h>
 #include <tessera/viewer/input_state.h>
 #include <tessera/viewer/orbit_camera.h>
-#include <tessera/viewer/sampling_modes.h>
 #include <tessera/viewer/scene_loader.h>
 
 #include "overlay.h"
@@ -51,12 +51,10 @@ class Viewer {
       : options_(options),
         backend_(backend),
         hooks_(hooks),
-        sampling_(options.msaa, options.jitter, options.temporal) {
+        frames_(options.projection, ViewAngles{options.fov_y_degrees, options.view_angle},
+                SamplingModes(options.msaa, options.jitter, options.temporal)) {
     stats_ = options.stats;
     world_axes_ = options.world_axes;
-    render_options_.depth = false;
-    render_options_.ids = false;
-    render_options_.lines = true;
   }
 
   Expected<void> open(const fs::path& font_path);
@@ -76,7 +74,9 @@ class Viewer {
   float pixelAspect() const;
   // Frames keep coming without input: the stats measure them, a load shows its progress, the
   // jitter cycles or the temporal pass converges.
-  bool animating() const { return stats_ || loader_.busy() || sampling_.wantsAnotherFrame(); }
+  bool animating() const { return stats_ || loader_.busy() || sampling().wantsAnotherFrame(); }
+  SamplingModes& sampling() { return frames_.sampling(); }
+  const SamplingModes& sampling() const { return frames_.sampling(); }
 
   ViewerOptions options_;
   Backend& backend_;
@@ -96,8 +96,7 @@ class Viewer {
   bool announce_scene_ = false;  // print "showing ..." after the scene's first frame
   OrbitCamera camera_;
   InputState input_;
-  RenderOptions render_options_;
-  SamplingModes sampling_;
+  FrameRenderer frames_;
   Frame frame_;
 
   bool stats_ = false;
@@ -112,8 +111,6 @@ class Viewer {
   fs::path loading_path_;
   Clock::time_point load_started_;
 
-  double render_ms_ = 0.0;
-  double temporal_ms_ = 0.0;
   double fps_ = 0.0;
   int frames_in_window_ = 0;
   Clock::time_point fps_window_start_ = Clock::now();
@@ -162,7 +159,7 @@ void Viewer::showScene(Scene scene, const std::string& name) {
   for (Object& object : scene_.objects)
     if (object.mesh) object.axes_length = axesLength(object.mesh->bounds()) * 0.75f;
   SDL_SetWindowTitle(window_.get(), ("tessera view: " + name).c_str());
-  sampling_.reset();
+  sampling().reset();
   dirty_ = view_changed_ = true;
 }
 
@@ -203,27 +200,31 @@ void Viewer::handleAction(const Action& action) {
       break;
     case Action::Type::kToggleWorldAxes:
       world_axes_ = !world_axes_;
-      sampling_.reset();
+      sampling().reset();
       view_changed_ = true;
       break;
     case Action::Type::kToggleObjectAxes:
       object_axes_ = !object_axes_;
-      sampling_.reset();
+      sampling().reset();
+      view_changed_ = true;
+      break;
+    case Action::Type::kCycleProjection:
+      frames_.cycleProjection();
       view_changed_ = true;
       break;
     case Action::Type::kScreenshot:
       screenshot_requested_ = true;
       break;
     case Action::Type::kCycleMsaa:
-      sampling_.cycleMsaa();
+      sampling().cycleMsaa();
       view_changed_ = true;
       break;
     case Action::Type::kToggleJitter:
-      sampling_.toggleJitter();
+      sampling().toggleJitter();
       view_changed_ = true;
       break;
     case Action::Type::kToggleTemporal:
-      sampling_.toggleTemporal();
+      sampling().toggleTemporal();
       view_changed_ = true;
       break;
     case Action::Type::kToggleKeyList:
@@ -266,7 +267,7 @@ void Viewer::drawKeyList(int pixel_width, int pixel_height) {
   std::vector<std::pair<std::string, std::string>> rows;
   for (const KeyHelp& help : keyList()) rows.emplace_back(help.keys, help.action);
   rows.emplace_back("", "");
-  rows.emplace_back("now", sampling_.describe());
+  rows.emplace_back("now", frames_.describeProjection() + ", " + sampling().describe());
   text_.drawTable(renderer_.get(), rows, pixel_width, pixel_height);
 }
 
@@ -279,15 +280,15 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
     char fps[32] = "-- fps";
     if (fps_ > 0.0) std::snprintf(fps, sizeof fps, "%.1f fps", fps_);
     char text[256];
-    std::snprintf(text, sizeof text, "%s\nrender %.2f ms", fps, render_ms_);
+    std::snprintf(text, sizeof text, "%s\nrender %.2f ms", fps, frames_.renderMs());
     std::string lines = text;
-    if (sampling_.jitter() && sampling_.temporal()) {
-      std::snprintf(text, sizeof text, " + TAA %.2f ms", temporal_ms_);
+    if (sampling().blending()) {
+      std::snprintf(text, sizeof text, " + TAA %.2f ms", frames_.temporalMs());
       lines += text;
     }
     std::snprintf(text, sizeof text, "\n%d x %d, %zu triangles, %s\n", pixel_width, pixel_height,
                   scene_.triangleCount(), backend_.name());
-    lines += text + sampling_.describe();
+    lines += text + frames_.describeProjection() + "\n" + sampling().describe();
     text_.drawTextBox(renderer_.get(), lines, margin, margin, false, SDL_Color{255, 255, 255, 255},
                       wrap);
   }
@@ -298,8 +299,9 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
     char elapsed[32];
     std::snprintf(elapsed, sizeof elapsed, " (%.1f s)", seconds);
     status = "loading " + loader_.name() + "..." + elapsed;
-  } else if (!error_.empty()) {
-    status = "error: " + error_;
+  } else if (!error_.empty() || !frames_.error().empty()) {
+    const char* between = error_.empty() || frames_.error().empty() ? "" : "\n";
+    status = "error: " + error_ + between + frames_.error();
     color = SDL_Color{255, 120, 110, 255};
   }
   text_.drawTextBox(renderer_.get(), status, margin, pixel_height - margin, true, color, wrap);
@@ -326,28 +328,17 @@ void Viewer::saveScreenshot(int pixel_width, int pixel_height) {
 }
 
 void Viewer::renderScene(int pixel_width, int pixel_height) {
-  scene_.camera = camera_.camera();
+  scene_.camera = frames_.camera(camera_, pixel_width, pixel_height);
   scene_.show_world_axes = world_axes_;
   for (Object& object : scene_.objects) object.show_axes = object_axes_;
   if (hooks_.place_lights) hooks_.place_lights(scene_);
-  render_options_.width = pixel_width;
-  render_options_.height = pixel_height;
-  sampling_.prepare(render_options_);
-  const Clock::time_point start = Clock::now();
-  backend_.render(scene_, render_options_, frame_);
-  const Clock::time_point rendered_at = Clock::now();
-  render_ms_ = std::chrono::duration<double, std::milli>(rendered_at - start).count();
-  // A backend that could not draw the frame (a Vulkan device lost, a fence timeout) says why
-  // in the window rather than showing an empty frame silently.
-  if (Expected<void> rendered = backend_.lastResult(); !rendered) {
-    error_ = rendered.error().message;
-    sampling_.reset();
-  } else {
-    // The view-projection the backend used, as the CPU renderer builds it, without the jitter.
-    const float aspect = static_cast<float>(pixel_width) / static_cast<float>(pixel_height);
-    sampling_.finish(frame_, scene_.camera.projection(aspect) * scene_.camera.view());
-    temporal_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - rendered_at).count();
-  }
+  // A backend that could not draw the frame (a Vulkan device lost, a fence timeout, a projection
+  // it does not draw) says why in the window, once on stderr, rather than showing an empty frame
+  // silently; the window stays usable, and the message goes with the next frame it draws.
+  const std::string previous_error = frames_.error();
+  if (!frames_.render(backend_, scene_, pixel_width, pixel_height, frame_) &&
+      frames_.error() != previous_error)
+    std::cerr << "tessera view: error: " << frames_.error() << std::endl;
   if (texture_) SDL_UpdateTexture(texture_.get(), nullptr, frame_.color.data(), pixel_width * 4);
 }
 
@@ -368,7 +359,7 @@ void Viewer::drawFrame() {
   // The scene is rendered again only when it would look different, or continuously while the
   // stats are shown (they measure it) or the jittered samples change it; an overlay-only update
   // reuses the last frame.
-  if (view_changed_ || stats_ || sampling_.wantsAnotherFrame() || frame_.width != pixel_w ||
+  if (view_changed_ || stats_ || sampling().wantsAnotherFrame() || frame_.width != pixel_w ||
       frame_.height != pixel_h) {
     view_changed_ = false;
     renderScene(pixel_w, pixel_h);
@@ -413,7 +404,7 @@ void Viewer::run(const std::optional<fs::path>& model) {
   const auto loading_interval =
       std::max<Clock::duration>(frame_interval, std::chrono::milliseconds(100));
   auto nextDraw = [&](Clock::time_point last_draw) {
-    const bool moving = dirty_ || stats_ || sampling_.wantsAnotherFrame();
+    const bool moving = dirty_ || stats_ || sampling().wantsAnotherFrame();
     return last_draw + (moving ? frame_interval : loading_interval);
   };
   Clock::time_point last_draw = Clock::now() - loading_interval;

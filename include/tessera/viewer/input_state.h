@@ -24,6 +24,7 @@ enum class Key {
   kF1,
   kF2,
   kF3,
+  kF4,
   kF10,
   kF12,
   kOther
@@ -49,6 +50,7 @@ struct Action {
     kToggleStats,
     kToggleWorldAxes,
     kToggleObjectAxes,
+    kCycleProjection,  // perspective, cylindrical, spherical, stereographic, fisheye
     kScreenshot,
     kCycleMsaa,       // 1, 2, 4, 8 samples per pixel
     kToggleJitter,    // sub-pixel jitter, a new offset each frame

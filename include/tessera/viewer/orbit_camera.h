@@ -2,6 +2,7 @@
 // driven by drags and wheel steps. Knows nothing of windows or SDL.
 #pragma once
 
+#include <tessera/render/projection.h>
 #include <tessera/scene/mesh.h>
 #include <tessera/scene/scene.h>
 
@@ -21,7 +22,8 @@ class OrbitCamera {
   // dragging down tips its top towards the viewer. Elevation stops at straight above and below.
   void orbit(float dx, float dy);
   // Moves the camera and target in the view plane so that the point at the target's depth
-  // follows the pointer; dx, dy in fractions of the viewport height, y down.
+  // follows the pointer (at the middle of the view, in the nonlinear modes); dx, dy in fractions
+  // of the viewport height, y down.
   void pan(float dx, float dy);
   // Positive steps move closer (the wheel pushed away from the user); each step is 10%.
   void zoom(float steps);
@@ -30,7 +32,14 @@ class OrbitCamera {
   // Back to the framing of the last frame().
   void reset();
 
-  // The scene camera, with near and far fitted to the framed bounds.
+  // The projection camera() is for: perspective (the default) draws with frame()'s angle; another
+  // mode with `view_angle_degrees`, and takes near and far as distances from the eye.
+  void setProjection(Projection mode, float view_angle_degrees);
+  Projection projection() const { return projection_; }
+
+  // The scene camera, with near and far fitted to the framed bounds: along the view axis in
+  // perspective, as distances from the eye in the nonlinear modes (where depth is the distance
+  // along the ray).
   Camera camera() const;
 
   float3 target() const { return pose_.target; }
@@ -54,7 +63,9 @@ class OrbitCamera {
   Pose pose_;
   Pose home_;
   float fov_y_degrees_ = 50.0f;
-  Bounds bounds_;  // what near and far must enclose
+  Projection projection_ = Projection::kPerspective;
+  float view_angle_degrees_ = 50.0f;  // the nonlinear mode's
+  Bounds bounds_;                     // what near and far must enclose
 };
 
 }  // namespace tessera::viewer

@@ -25,6 +25,10 @@ class SamplingModes {
   // Something other than the camera changed what is drawn (a model, axes, the size): the
   // history no longer shows it.
   void reset() { temporal_pass_.reset(); }
+  // The projection the frames are drawn in (F4); a change starts the history afresh. The temporal
+  // pass reprojects through a perspective view-projection, so it rests in the other modes (jitter
+  // then shows each offset in turn, as without it).
+  void setProjection(Projection projection);
 
   // The sample count and this frame's jitter offset (the next of the cycle, while jitter is on;
   // none otherwise) into `options`, and the depth AOV when the temporal pass needs it.
@@ -37,13 +41,17 @@ class SamplingModes {
   bool wantsAnotherFrame() const;
   // For the stats overlay: "MSAA 4x", "MSAA 4x, jitter", "MSAA 4x, jitter, TAA 5/16" (frames
   // accumulated at a still camera), "MSAA 4x, jitter, TAA"
-  // once converged; temporal reprojection without jitter has nothing to blend: "TAA (F10)".
+  // once converged; temporal reprojection without jitter has nothing to blend: "TAA (F10)"; in a
+  // nonlinear projection it rests: "TAA: perspective only".
   std::string describe() const;
+  // Temporal reprojection acts on the frames: on, with jitter, in perspective.
+  bool blending() const { return jitter_ && temporal_ && projection_ == Projection::kPerspective; }
 
  private:
   int msaa_;
   bool jitter_;
   bool temporal_;
+  Projection projection_ = Projection::kPerspective;
   uint32_t jitter_index_ = 0;
   Jitter jitter_offset_;  // the offset of the frame prepare() set up
   TemporalResolver temporal_pass_;

@@ -10,6 +10,7 @@
 
 #include <tessera/base/expected.h>
 #include <tessera/render/backend.h>
+#include <tessera/render/projection.h>
 #include <tessera/scene/scene.h>
 
 namespace tessera::viewer {
@@ -18,9 +19,13 @@ struct ViewerOptions {
   int width = 800;  // window size in points (the framebuffer follows its size in pixels)
   int height = 600;
   int fps = 60;                 // the most frames a second drawn while anything moves
-  float fov_y_degrees = 50.0f;  // vertical field of view
-  bool stats = false;           // the stats overlay (F1) at start
-  bool world_axes = false;      // the world axes (F2) at start
+  float fov_y_degrees = 50.0f;  // perspective's vertical field of view (it frames the model)
+  Projection projection = Projection::kPerspective;  // at start (F4 cycles)
+  // The view angle asked for (-fov), in degrees: a nonlinear mode takes it where checkViewAngle
+  // accepts it for that mode and the window's aspect, and its own default otherwise.
+  std::optional<float> view_angle;
+  bool stats = false;       // the stats overlay (F1) at start
+  bool world_axes = false;  // the world axes (F2) at start
   bool fullscreen = false;
   int msaa = 4;          // samples per pixel at start (Shift+F3 cycles 1, 2, 4, 8)
   bool jitter = false;   // sub-pixel jitter at start (F10)
