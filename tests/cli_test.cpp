@@ -484,7 +484,8 @@ TEST_F(Cli, ProjectionsRenderAndRefuseViewAnglesOutOfTheirRange) {
                     "--resolution 400,150"),
         std::string("render quad.obj -o out.png --projection hyperbolic"),
         std::string("cube -out out.gif -projection fisheye -fov 361"),
-        std::string("bench cube --projection spherical --vs llvmpipe --frames 1")}) {
+        std::string("bench cube --projection spherical --vs llvmpipe --frames 1"),
+        std::string("bench bunny --projection fisheye --camera-view-angle 400 --frames 1")}) {
     SCOPED_TRACE(args);
     RunResult r = run(args);
     EXPECT_EQ(r.exit_code, 2) << r.err;

@@ -401,6 +401,12 @@ int runBench(const std::vector<std::string>& args) {
     return kExitFailure;
   };
   if (s.resolutions.empty()) s.resolutions = kStandardResolutions;
+  // The view angle against the projection's range, at every size: a usage error before any work.
+  for (const Resolution& r : s.resolutions)
+    if (Expected<float> angle = viewAngle(
+            s.camera, static_cast<float>(r.width) / static_cast<float>(r.height));
+        !angle)
+      return usageError(angle.error().message);
   const CullMode cull = s.backface == "visible" ? CullMode::kNone : CullMode::kBack;
   const int workers = s.workers > 0
                           ? s.workers
