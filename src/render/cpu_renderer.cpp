@@ -156,11 +156,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
   chunk.clipped = 0;
 
   const size_t begin = chunk.first_triangle, end = begin + chunk.triangle_count;
-  // The object holding `begin`: the last one whose triangle_base is <= begin.
-  size_t object_index =
-      std::upper_bound(objects.begin(), objects.end(), begin,
-                       [](size_t t, const ObjectTransforms& o) { return t < o.triangle_base; }) -
-      objects.begin() - 1;
+  size_t object_index = objectHolding(objects, begin);
 
   TriangleOrientation orientation;
   // The record slot of the next visible triangle: setup writes in place, and the slot counts
@@ -202,17 +198,8 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
     const bool has_color = mesh.colors.size() == vertex_count;
     const bool has_materials = mesh.triangle_materials.size() == mesh.triangleCount();
 
-    SetupContext ctx;
-    ctx.width = grid.width;
-    ctx.height = grid.height;
-    ctx.cull = object.cull;
-    ctx.shading = object.shading;
-    ctx.scene = &scene;
-    ctx.object = &object;
-    ctx.has_uv = has_uv;
-    ctx.has_color = has_color;
-    ctx.want_normals = want_normals;
-    ctx.sample_reach = sample_reach;
+    const SetupContext ctx =
+        objectSetupContext(scene, object, grid.width, grid.height, want_normals, sample_reach);
     // Flat shading lights the face; so do vertices of a mesh without normals.
     const bool needs_face_normal =
         object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;

@@ -124,10 +124,13 @@ TESSERA_LANES_INLINE Vec3x8 shadeSampleFragments(const MsaaShading& m, int s, I3
 
 // Replaces the linear colours of row ty's mixed pixels by their resolve, eight pixels at a time:
 // the uncovered samples' background, then each distinct triangle in the order of its first
-// sample, weighted by the samples it holds, over the sample count.
-void resolveMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
-                     const std::vector<TriangleChunk>& chunks, const Scene& scene, bool plain,
-                     float linear[3][kTileSize]) {
+// sample, weighted by the samples it holds, over the sample count. shade(s, keys, first, x, y)
+// gives the linear colours of the lanes of `first`: the pixels x .. x + 7 of row y whose sample s
+// holds a triangle (keys) that no earlier sample holds.
+template <typename ShadeFragments>
+TESSERA_LANES_INLINE void resolveMixedRowWith(const MsaaShading& m, const TileVisibility& tile,
+                                              int ty, float linear[3][kTileSize],
+                                              ShadeFragments shade) {
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const I32x8 zero = splat(int32_t{0});
   const F32x8 inv_samples = splat(1.0f / static_cast<float>(m.samples));
@@ -151,8 +154,7 @@ void resolveMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
       if (!any(first)) continue;
       I32x8 held = zero;
       for (int r = s; r < m.samples; ++r) held = held - equal(keys[r], keys[s]);
-      const Vec3x8 c =
-          shadeSampleFragments(m, s, keys[s], first, tile.x0 + tx, y, chunks, scene, plain);
+      const Vec3x8 c = shade(s, keys[s], first, tile.x0 + tx, y);
       // Lanes outside `first` may hold anything (a borrowed record off its triangle): not added.
       const F32x8 weight = toFloat(held);
       sum = {select(first, sum.x + c.x * weight, sum.x), select(first, sum.y + c.y * weight, sum.y),
@@ -162,6 +164,18 @@ void resolveMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
     store(linear[1] + tx, select(mixed, sum.y * inv_samples, load<F32x8>(linear[1] + tx)));
     store(linear[2] + tx, select(mixed, sum.z * inv_samples, load<F32x8>(linear[2] + tx)));
   }
+}
+
+// The resolve of the perspective path: fragments shaded from the screen-space planes.
+void resolveMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
+                     const std::vector<TriangleChunk>& chunks, const Scene& scene, bool plain,
+                     float linear[3][kTileSize]) {
+  resolveMixedRowWith(m, tile, ty, linear,
+                      [&](int s, I32x8 keys, I32x8 first, int x, int y)
+                          __attribute__((always_inline)) {
+                            return shadeSampleFragments(m, s, keys, first, x, y, chunks, scene,
+                                                        plain);
+                          });
 }
 
 }  // namespace

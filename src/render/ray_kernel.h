@@ -11,6 +11,7 @@
 
 #include "render/bin.h"
 #include "render/msaa.h"
+#include "render/msaa_kernel.h"
 #include "render/ray_setup.h"
 #include "render/shade_lanes.h"
 
@@ -149,43 +150,6 @@ Vec3x8 shadeRayFragments(const RayShading& rs, int s, I32x8 keys, I32x8 first, i
   return color;
 }
 
-// resolveMixedRow (msaa_kernel.h) with the fragments shaded from rays.
-void resolveMixedRayRow(const RayShading& rs, const MsaaShading& m, const TileVisibility& tile,
-                        int ty, float linear[3][kTileSize]) {
-  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
-  const I32x8 zero = splat(int32_t{0});
-  const F32x8 inv_samples = splat(1.0f / static_cast<float>(m.samples));
-  const int y = tile.y0 + ty;
-  for (int tx = 0; tx < tile.width; tx += 8) {
-    const int i = ty * kTileSize + tx;
-    const I32x8 mixed = load<I32x8>(m.tiles->mixed + i);
-    if (!any(mixed)) continue;
-    I32x8 keys[kMaxSamples];
-    I32x8 background = zero;
-    for (int s = 0; s < m.samples; ++s) {
-      keys[s] = load<I32x8>(m.tiles->layers[static_cast<size_t>(s)]->key + i);
-      background = background - equal(keys[s], empty);
-    }
-    const F32x8 bg_weight = toFloat(background);
-    Vec3x8 sum{splat(m.background.x) * bg_weight, splat(m.background.y) * bg_weight,
-               splat(m.background.z) * bg_weight};
-    for (int s = 0; s < m.samples; ++s) {
-      I32x8 first = mixed & ~equal(keys[s], empty);
-      for (int r = 0; r < s; ++r) first = first & ~equal(keys[s], keys[r]);
-      if (!any(first)) continue;
-      I32x8 held = zero;
-      for (int r = s; r < m.samples; ++r) held = held - equal(keys[r], keys[s]);
-      const Vec3x8 c = shadeRayFragments(rs, s, keys[s], first, tile.x0 + tx, y);
-      const F32x8 weight = toFloat(held);
-      sum = {select(first, sum.x + c.x * weight, sum.x), select(first, sum.y + c.y * weight, sum.y),
-             select(first, sum.z + c.z * weight, sum.z)};
-    }
-    store(linear[0] + tx, select(mixed, sum.x * inv_samples, load<F32x8>(linear[0] + tx)));
-    store(linear[1] + tx, select(mixed, sum.y * inv_samples, load<F32x8>(linear[1] + tx)));
-    store(linear[2] + tx, select(mixed, sum.z * inv_samples, load<F32x8>(linear[2] + tx)));
-  }
-}
-
 void rasterRayTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
                    const RayLayer& layer, int width, RayDepth depth, TileVisibility& tile) {
   for (size_t c = 0; c < chunk_count; ++c) {
@@ -233,7 +197,12 @@ void shadeRayTileKernel(const TileVisibility& tile, const std::vector<TriangleCh
         store(out.normal_z + i, normal.z);
       }
     }
-    if (msaa) resolveMixedRayRow(rs, *msaa, tile, ty, linear);
+    if (msaa)
+      resolveMixedRowWith(*msaa, tile, ty, linear,
+                          [&](int s, I32x8 keys, I32x8 first, int x, int y)
+                              __attribute__((always_inline)) {
+                                return shadeRayFragments(rs, s, keys, first, x, y);
+                              });
     encodeShadedRow(tile, ty, linear, background, out);
   }
 }

@@ -82,10 +82,7 @@ void RayRenderer::setupChunk(const Scene& scene, const RenderOptions& options, i
   chunk.culled = 0;
   chunk.clipped = 0;
   const size_t begin = chunk.first_triangle, end = begin + chunk.triangle_count;
-  size_t object_index =
-      std::upper_bound(objects_.begin(), objects_.end(), begin,
-                       [](size_t t, const ObjectTransforms& o) { return t < o.triangle_base; }) -
-      objects_.begin() - 1;
+  size_t object_index = objectHolding(objects_, begin);
   RaySetupContext rctx;
   rctx.projection = options.projection;
   rctx.width = options.width;
@@ -101,16 +98,8 @@ void RayRenderer::setupChunk(const Scene& scene, const RenderOptions& options, i
     if (!object.mesh || t >= object_end) continue;
     const Mesh& mesh = *object.mesh;
     const size_t vertex_count = mesh.vertexCount();
-    SetupContext ctx;
-    ctx.width = options.width;
-    ctx.height = options.height;
-    ctx.cull = object.cull;
-    ctx.shading = object.shading;
-    ctx.scene = &scene;
-    ctx.object = &object;
-    ctx.has_uv = mesh.uvs.size() == vertex_count;
-    ctx.has_color = mesh.colors.size() == vertex_count;
-    ctx.want_normals = options.normals;
+    const SetupContext ctx =
+        objectSetupContext(scene, object, options.width, options.height, options.normals, 0);
     rctx.cull = object.cull;
     const bool has_materials = mesh.triangle_materials.size() == mesh.triangleCount();
     const bool needs_face_normal =

@@ -104,6 +104,26 @@ struct SetupContext {
   int32_t sample_reach = 0;
 };
 
+// The setup context of one object of `scene` on a width x height viewport.
+inline SetupContext objectSetupContext(const Scene& scene, const Object& object, int width,
+                                       int height, bool want_normals, int32_t sample_reach) {
+  SetupContext ctx;
+  ctx.width = width;
+  ctx.height = height;
+  ctx.cull = object.cull;
+  ctx.shading = object.shading;
+  ctx.scene = &scene;
+  ctx.object = &object;
+  if (object.mesh) {
+    const size_t vertex_count = object.mesh->vertexCount();
+    ctx.has_uv = object.mesh->uvs.size() == vertex_count;
+    ctx.has_color = object.mesh->colors.size() == vertex_count;
+  }
+  ctx.want_normals = want_normals;
+  ctx.sample_reach = sample_reach;
+  return ctx;
+}
+
 // With MSAA, samples lie strictly within half a pixel of the centre (sampling.h).
 constexpr int32_t kSampleReach = kSubpixelHalf;
 

@@ -2,6 +2,9 @@
 // vertex of every object, into structure-of-arrays buffers.
 #pragma once
 
+#include <algorithm>
+#include <vector>
+
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -26,6 +29,15 @@ struct ObjectTransforms {
 };
 
 ObjectTransforms makeObjectTransforms(const Object& object, const float4x4& view_projection);
+
+// The index of the object holding scene triangle `triangle`: the last whose triangle_base is at
+// most `triangle` (objects are in triangle order).
+inline size_t objectHolding(const std::vector<ObjectTransforms>& objects, size_t triangle) {
+  return static_cast<size_t>(
+      std::upper_bound(objects.begin(), objects.end(), triangle,
+                       [](size_t t, const ObjectTransforms& o) { return t < o.triangle_base; }) -
+      objects.begin() - 1);
+}
 
 // Gouraud objects with vertex normals are lit per vertex in the vertex stage (VertexBuffer::lit).
 inline bool litPerVertex(const Object& object) {
