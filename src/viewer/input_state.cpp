@@ -90,7 +90,7 @@ const std::vector<KeyHelp>& keyList() {
       {"F1", "stats overlay", {{Key::kF1}}},
       {"F2 / F3", "world axes / object axes", {{Key::kF2}, {Key::kF3}}},
       {"F4", "cycle the projection", {{Key::kF4}}},
-      {"F5 / F6", "store the frame's CRC / compare the frame with it", {{Key::kF5}, {Key::kF6}}},
+      {"F5 / F6", "store / compare the frame's CRC", {{Key::kF5}, {Key::kF6}}},
       {"F10", "sub-pixel jitter", {{Key::kF10}}},
       {"F12", "screenshot", {{Key::kF12}}},
       {"Shift+F3", "MSAA 1, 2, 4, 8 samples", {{Key::kF3, true}}},
