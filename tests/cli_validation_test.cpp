@@ -162,6 +162,12 @@ TEST_F(CliValidation, RenderCrcIsZlibsCrcOfTheWrittenPngAndTheSameForAnyWorkerCo
   ASSERT_TRUE(tessera::test::decodePng((dir_ / "one.png").string(), png));
   ASSERT_EQ(png.bit_depth, 8);
   EXPECT_EQ(crcs[0], tessera::io::crc32Hex(zlibCrcOfPng(png)));
+  // And Python's zlib.crc32 through the documented script (standard library only).
+  RunResult python = tessera::test::runInFolder(
+      dir_, "python3",
+      std::string("'") + TESSERA_TEST_DATA_DIR + "/../../scripts/png_crc32.py' one.png");
+  ASSERT_EQ(python.exit_code, 0) << python.err;
+  EXPECT_EQ(python.out, crcs[0] + "\n");
   RunResult three = run("render tri.obj -o three.png --resolution 50,30 --crc --workers 3");
   ASSERT_EQ(three.exit_code, 0) << three.err;
   EXPECT_EQ(frameCrcs(three.out), crcs);
