@@ -170,6 +170,7 @@ void Viewer::showScene(Scene scene, const std::string& name) {
     if (object.mesh) object.axes_length = axesLength(object.mesh->bounds()) * 0.75f;
   SDL_SetWindowTitle(window_.get(), ("tessera view: " + name).c_str());
   sampling().reset();
+  crc_message_.clear();  // it was about the previous scene
   dirty_ = view_changed_ = true;
 }
 
