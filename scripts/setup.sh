@@ -8,7 +8,7 @@ packages=(
   build-essential cmake pkg-config
   libgtest-dev libgmock-dev libbenchmark-dev
   libtinyobjloader-dev libstb-dev libtinygltf-dev nlohmann-json3-dev
-  libspng-dev libpng-dev libgif-dev libimagequant-dev
+  libspng-dev libpng-dev zlib1g-dev libgif-dev libimagequant-dev
   ffmpeg glmark2-data libosmesa6-dev
   libsdl2-dev libsdl2-ttf-dev fonts-dejavu-core xvfb xauth xdotool
   libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers

@@ -262,7 +262,8 @@ TEST(InputState, WheelZoomsAndKeysMapAsInF3d) {
       {Key::kF1, Action::Type::kToggleStats},      {Key::kF2, Action::Type::kToggleWorldAxes},
       {Key::kF3, Action::Type::kToggleObjectAxes}, {Key::kF12, Action::Type::kScreenshot},
       {Key::kF10, Action::Type::kToggleJitter},    {Key::kH, Action::Type::kToggleKeyList},
-      {Key::kF4, Action::Type::kCycleProjection},
+      {Key::kF4, Action::Type::kCycleProjection},  {Key::kF5, Action::Type::kStoreCrc},
+      {Key::kF6, Action::Type::kCompareCrc},
   };
   for (const auto& [k, type] : commands) {
     a = input.handle(key(k), 100.0f);
@@ -280,9 +281,9 @@ TEST(InputState, ShiftPicksTheSecondRowOfFunctionKeysAndNothingElse) {
   a = input.handle(key(Key::kF12, true), 100.0f);
   ASSERT_TRUE(a);
   EXPECT_EQ(a->type, Action::Type::kToggleTemporal);
-  // Shift+F1, Shift+F2 (another backend's keys), Shift+F4 and Shift+F10 do not fall back to F1,
-  // F2, F4, F10.
-  for (Key k : {Key::kF1, Key::kF2, Key::kF4, Key::kF10})
+  // Shift+F1, Shift+F2 (another backend's keys), Shift+F4, F5, F6 and F10 do not fall back to
+  // F1, F2, F4, F5, F6, F10.
+  for (Key k : {Key::kF1, Key::kF2, Key::kF4, Key::kF5, Key::kF6, Key::kF10})
     EXPECT_FALSE(input.handle(key(k, true), 100.0f));
   // Keys with no second row ignore Shift.
   a = input.handle(key(Key::kSeven, true), 100.0f);
@@ -314,7 +315,9 @@ TEST(InputState, TheKeyListNamesEveryMappedKeyAndOnlyThose) {
           << "key " << i << (shift ? " with shift" : "") << " is unlisted";
     }
   }
-  EXPECT_EQ(mapped, 15);  // 1 3 7 9 Enter Escape H F1 F2 F3 F4 F10 F12, Shift+F3, Shift+F12
+  EXPECT_EQ(mapped, 17);  // 1 3 7 9 Enter Escape H F1-F6 F10 F12, Shift+F3, Shift+F12
+  EXPECT_TRUE(listed(Key::kF5, false));
+  EXPECT_TRUE(listed(Key::kF6, false));
   EXPECT_TRUE(listed(Key::kF4, false));
   EXPECT_FALSE(listed(Key::kF4, true));
   for (const KeyHelp& help : keyList()) {

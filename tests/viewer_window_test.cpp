@@ -10,6 +10,7 @@
 
 #include <fstream>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -255,6 +256,59 @@ TEST_F(ViewerWindow, FullscreenFillsTheScreenAndTextureIsTheAlbedo) {
   }
   xdotool({"key", "Escape"});
   EXPECT_EQ(viewer_->waitExit(), 0);
+}
+
+// Pixels of the overlay's MATCH (green) or MISMATCH (red) text: far greener, or far redder, than
+// anything in the cube scene (grey background, an orange cube whose red leads green by < 110).
+int countTinted(const DecodedPng& png, bool green) {
+  int count = 0;
+  for (int y = 0; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x) {
+      const Rgb p = pixel(png, x, y);
+      count += green ? p.g > p.r + 60 && p.g > p.b + 60 : p.r > p.g + 130 && p.r > p.b + 130;
+    }
+  return count;
+}
+
+TEST_F(ViewerWindow, F5StoresTheFramesCrcAndF6ShowsMatchOrMismatch) {
+  if (!openCube({}, 320, 240)) GTEST_SKIP() << skip_reason_;
+  xdotool({"key", "F6"});
+  EXPECT_TRUE(viewer_->waitForLine("tessera view: crc32 nothing stored")) << viewer_->output();
+
+  xdotool({"key", "F5"});
+  std::optional<std::string> stored = viewer_->waitForLine("tessera view: crc32 stored ");
+  ASSERT_TRUE(stored) << viewer_->output() << slurp(dir_ / "viewer.err");
+  const std::string crc = stored->substr(std::string("tessera view: crc32 stored ").size());
+  ASSERT_EQ(crc.size(), 8u) << *stored;
+  EXPECT_EQ(crc.find_first_not_of("0123456789abcdef"), std::string::npos) << crc;
+  const DecodedPng plain = screenshot();
+  EXPECT_EQ(countTinted(plain, true) + countTinted(plain, false), 0);
+
+  // The same frame: MATCH, in green in the overlay.
+  xdotool({"key", "F6"});
+  EXPECT_TRUE(viewer_->waitForLine("tessera view: crc32 MATCH " + crc)) << viewer_->output();
+  const DecodedPng match = screenshot();
+  EXPECT_GT(countTinted(match, true), 30);
+  EXPECT_EQ(countTinted(match, false), 0);
+
+  // Orbited: MISMATCH with both CRCs, in red.
+  xdotool({"mousemove", "--window", window_, "120", "120", "mousedown", "1", "mousemove",
+           "--window", window_, "160", "130", "mouseup", "1"});
+  xdotool({"key", "F6"});
+  std::optional<std::string> mismatch = viewer_->waitForLine("tessera view: crc32 MISMATCH ");
+  ASSERT_TRUE(mismatch) << viewer_->output();
+  EXPECT_EQ(mismatch->rfind("tessera view: crc32 MISMATCH stored " + crc + " current ", 0), 0u)
+      << *mismatch;
+  EXPECT_EQ(mismatch->find(crc + " current " + crc), std::string::npos) << *mismatch;
+  const DecodedPng different = screenshot();
+  EXPECT_GT(countTinted(different, false), 30);
+  EXPECT_EQ(countTinted(different, true), 0);
+
+  // Enter puts the camera back: the very same frame again, so the same CRC.
+  xdotool({"key", "Return"});
+  xdotool({"key", "F6"});
+  EXPECT_TRUE(viewer_->waitForLine("tessera view: crc32 MATCH " + crc)) << viewer_->output();
+  quit();
 }
 
 // Runs `tessera view` without X and returns its exit status and stderr.

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include <tessera/io/validation.h>
 #include <tessera/render/sampling.h>
 
 #include "backends.h"
@@ -44,6 +45,7 @@ struct BenchSettings {
   int device = -1;
   bool json = false;
   bool all = false;
+  bool crc = false;
   std::string versus;  // "" or "llvmpipe"
 };
 
@@ -217,6 +219,9 @@ void addBenchFlags(FlagSet& flags, BenchSettings& s, bool& resolution_given) {
   flags.addSwitch("json", &s.json,
                   "print one JSON object per line: scene, resolution, width, height, triangles, "
                   "frames, msaa, median_ms... and llvmpipe_median_ms, ratio with --vs");
+  flags.addSwitch("crc", &s.crc,
+                  "print the CRC-32 of the last timed frame's RGBA8 pixels for each scene and "
+                  "resolution (crc32 SCENE WxH HEX; a crc32 field with --json)");
   flags.addSwitch("all", &s.all, "every built-in scene at every standard resolution (the default)");
 }
 
@@ -263,6 +268,7 @@ struct BenchRun {
 
 struct Measured {
   Timing tessera, llvmpipe;  // llvmpipe: zero without a reference
+  uint32_t crc32 = 0;        // of tessera's last timed frame, with --crc
 };
 
 // Times tessera, and the reference in turns with it, on one scene at one resolution.
@@ -298,6 +304,9 @@ Expected<Measured> measure(BenchRun& run, bench::BenchScene& b, Resolution resol
   // A backend that failed (e.g. a device without the sample count) says why.
   if (Expected<void> rendered = run.renderer.lastResult(); !rendered) return rendered.error();
   measured.tessera = summarize(tessera_ms);
+  // The last frame drawn by tessera is the last timed one (frame FRAMES-1), in either order.
+  if (s.crc)
+    measured.crc32 = io::crc32Rgba8(run.frame.color.data(), run.frame.width, run.frame.height);
   return measured;
 }
 
@@ -330,6 +339,7 @@ void printMeasured(const BenchRun& run, const bench::BenchScene& b, Resolution r
                 << ", \"ratio\": " << fixed(ratio, 4)
                 << ", \"reference\": " << jsonString(run.reference->renderer())
                 << ", \"reference_version\": " << jsonString(run.reference->version());
+    if (s.crc) std::cout << ", \"crc32\": \"" << io::crc32Hex(m.crc32) << "\"";
     std::cout << "}\n";
   } else {
     char line[512];
@@ -343,6 +353,8 @@ void printMeasured(const BenchRun& run, const bench::BenchScene& b, Resolution r
       std::cout << line;
     }
     std::cout << "\n";
+    if (s.crc)
+      std::cout << "crc32 " << b.name << " " << size << " " << io::crc32Hex(m.crc32) << "\n";
   }
   std::cout << std::flush;
 }

@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "flags.h"
 #include "sampling_flags.h"
+#include "validation.h"
 
 namespace tessera::cli {
 
@@ -29,6 +30,7 @@ struct CubeSettings {
   std::string backend = "cpu";
   int device = -1;
   bool axes = false;
+  bool crc = false;
   SamplingSettings sampling;
 };
 
@@ -65,7 +67,7 @@ int runCube(const std::vector<std::string>& args) {
   CubeSettings s;
   FlagSet flags(
       "tessera cube [-w 480] [-h 480] [-fps 30] [-dur 4s] [-fov 50] [-out cube.gif] "
-      "[-workers 0] [-axes] [-msaa 1] [-samples 1] [-projection perspective]",
+      "[-workers 0] [-axes] [-msaa 1] [-samples 1] [-projection perspective] [-crc]",
       /*single_dash=*/true);
   flags.addInt("w|width", &s.width, "image width in pixels (default 480)", 1, 16384);
   flags.addInt("h|height", &s.height, "image height in pixels (default 480)", 1, 16384);
@@ -85,6 +87,8 @@ int runCube(const std::vector<std::string>& args) {
   flags.addSwitch("axes", &s.axes, "draw the world axes and the cube's own axes");
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
+  flags.addSwitch("crc", &s.crc,
+                  "print the CRC-32 of each frame's RGBA8 colour pixels: crc32 frame N HEX");
   addSamplingFlags(flags, s.sampling);  // the demo keeps its look: one sample unless asked
 
   Expected<std::vector<std::string>> positional = flags.parse(args);
@@ -153,6 +157,7 @@ int runCube(const std::vector<std::string>& args) {
       printError("cube", added.error().message);
       return kExitFailure;
     }
+    if (s.crc) printFrameCrc(static_cast<int>(i), frame);
     progress.update(static_cast<int>(i + 1));
   }
   if (Expected<void> done = (*sink)->finish(); !done) {

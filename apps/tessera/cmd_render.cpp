@@ -18,6 +18,7 @@
 #include "flags.h"
 #include "model_scene.h"
 #include "sampling_flags.h"
+#include "validation.h"
 #include "view_setup.h"
 
 namespace tessera::cli {
@@ -40,6 +41,8 @@ struct RenderSettings {
   bool axes = false;
   bool info = false;
   std::string texture;
+  bool crc = false;
+  ReferenceSettings reference;
   SamplingSettings sampling{.msaa = 4};  // the image a user expects: anti-aliased
 };
 
@@ -108,6 +111,9 @@ int runRender(const std::vector<std::string>& args) {
   flags.addString("texture", &s.texture,
                   "an albedo texture (PNG, JPEG, BMP, TGA) for every material");
   flags.addSwitch("info", &s.info, "print the model's counts, bounds and warnings; do not render");
+  flags.addSwitch("crc", &s.crc,
+                  "print the CRC-32 of each frame's RGBA8 colour pixels: crc32 frame N HEX");
+  addReferenceFlags(flags, s.reference);
 
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {
@@ -142,6 +148,12 @@ int runRender(const std::vector<std::string>& args) {
     return usageError("--turntable writes several frames: use a .gif, .mp4 or {frame} .png output");
   if (kind == OutputKind::kVideo && s.aov != "color")
     return usageError("--aov " + s.aov + " needs PNG output (a .png or a {frame} template)");
+  if ((s.crc || !s.reference.path.empty()) && s.aov != "color")
+    return usageError("--crc and --reference check the colour image: leave out --aov " + s.aov);
+  if (!s.reference.path.empty() && kind != OutputKind::kPng)
+    return usageError("--reference compares one image: use a .png output without --turntable");
+  if (s.reference.update && s.reference.path.empty())
+    return usageError("--reference-update needs --reference PATH, the file to write");
 
   // Load.
   Expected<io::Model> model = io::loadModel(model_path);
@@ -258,6 +270,7 @@ int runRender(const std::vector<std::string>& args) {
       printError("render", written.error().message);
       return kExitFailure;
     }
+    if (s.crc) printFrameCrc(i, frame);
     if (frame_count > 1) progress.update(i + 1);
   }
   if (sink) {
@@ -271,6 +284,7 @@ int runRender(const std::vector<std::string>& args) {
             << scene.triangleCount() << " triangles";
   if (frame_count > 1) std::cout << ", " << frame_count << " frames";
   std::cout << ")\n";
+  if (!s.reference.path.empty()) return checkReference(s.reference, s.output, frame);
   return kExitOk;
 }
 

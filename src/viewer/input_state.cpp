@@ -26,7 +26,7 @@ std::optional<Action> shiftedFunctionKey(Key key) {
     case Key::kF12:
       return act(Action::Type::kToggleTemporal);
     default:
-      return std::nullopt;  // Shift+F1, Shift+F2, Shift+F4, Shift+F10: not in this viewer
+      return std::nullopt;  // Shift+F1, F2, F4, F5, F6, F10: not in this viewer
   }
 }
 
@@ -34,7 +34,8 @@ std::optional<Action> shiftedFunctionKey(Key key) {
 
 std::optional<Action> keyAction(Key key, bool shift) {
   const bool function_key = key == Key::kF1 || key == Key::kF2 || key == Key::kF3 ||
-                            key == Key::kF4 || key == Key::kF10 || key == Key::kF12;
+                            key == Key::kF4 || key == Key::kF5 || key == Key::kF6 ||
+                            key == Key::kF10 || key == Key::kF12;
   if (shift && function_key) return shiftedFunctionKey(key);
   switch (key) {
     case Key::kOne:
@@ -59,6 +60,10 @@ std::optional<Action> keyAction(Key key, bool shift) {
       return act(Action::Type::kToggleObjectAxes);
     case Key::kF4:
       return act(Action::Type::kCycleProjection);
+    case Key::kF5:
+      return act(Action::Type::kStoreCrc);
+    case Key::kF6:
+      return act(Action::Type::kCompareCrc);
     case Key::kF10:
       return act(Action::Type::kToggleJitter);
     case Key::kF12:
@@ -85,6 +90,7 @@ const std::vector<KeyHelp>& keyList() {
       {"F1", "stats overlay", {{Key::kF1}}},
       {"F2 / F3", "world axes / object axes", {{Key::kF2}, {Key::kF3}}},
       {"F4", "cycle the projection", {{Key::kF4}}},
+      {"F5 / F6", "store / compare the frame's CRC", {{Key::kF5}, {Key::kF6}}},
       {"F10", "sub-pixel jitter", {{Key::kF10}}},
       {"F12", "screenshot", {{Key::kF12}}},
       {"Shift+F3", "MSAA 1, 2, 4, 8 samples", {{Key::kF3, true}}},

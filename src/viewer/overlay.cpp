@@ -43,15 +43,16 @@ void TextOverlay::drawBox(SDL_Renderer* renderer, SDL_Surface* surface, int x, i
   SDL_RenderCopy(renderer, texture.get(), nullptr, &dst);
 }
 
-void TextOverlay::drawTextBox(SDL_Renderer* renderer, const std::string& text, int x, int y,
-                              bool from_bottom, SDL_Color color, int wrap_width) {
+int TextOverlay::drawTextBox(SDL_Renderer* renderer, const std::string& text, int x, int y,
+                             bool from_bottom, SDL_Color color, int wrap_width) {
   TTF_Font* f = font(base_size_);
-  if (text.empty() || f == nullptr) return;
+  if (text.empty() || f == nullptr) return 0;
   SdlPtr<SDL_Surface> surface(TTF_RenderUTF8_Blended_Wrapped(
       f, text.c_str(), color, static_cast<Uint32>(std::max(wrap_width, 16))));
-  if (!surface) return;
+  if (!surface) return 0;
   const int pad = std::max(4, base_size_ / 3);
   drawBox(renderer, surface.get(), x, from_bottom ? y - surface->h - 2 * pad : y);
+  return surface->h + 2 * pad;
 }
 
 void TextOverlay::drawTable(SDL_Renderer* renderer,

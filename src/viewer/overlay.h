@@ -20,8 +20,8 @@ class TextOverlay {
   int fontSize() const { return base_size_; }
 
   // `text` (lines, wrapped at wrap_width) in a translucent box whose top left (or bottom left,
-  // from_bottom) is at (x, y).
-  void drawTextBox(SDL_Renderer* renderer, const std::string& text, int x, int y, bool from_bottom,
+  // from_bottom) is at (x, y). Returns the box's height (0 when nothing was drawn).
+  int drawTextBox(SDL_Renderer* renderer, const std::string& text, int x, int y, bool from_bottom,
                    SDL_Color color, int wrap_width);
   // The lines in two aligned columns, in a box centred on a width x height framebuffer, in the
   // largest size up to fontSize() at which they fit.

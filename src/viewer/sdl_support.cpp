@@ -70,6 +70,10 @@ Key toKey(SDL_Keycode code) {
       return Key::kF3;
     case SDLK_F4:
       return Key::kF4;
+    case SDLK_F5:
+      return Key::kF5;
+    case SDLK_F6:
+      return Key::kF6;
     case SDLK_F10:
       return Key::kF10;
     case SDLK_F12:

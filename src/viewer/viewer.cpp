@@ -8,11 +8,14 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include <tessera/io/image_writer.h>
+#include <tessera/io/validation.h>
 #include <tessera/render/frame.h>
 #include <tessera/viewer/frame_renderer.h>
 #include <tessera/viewer/input_state.h>
@@ -71,6 +74,7 @@ class Viewer {
   void drawKeyList(int pixel_width, int pixel_height);
   void renderScene(int pixel_width, int pixel_height);
   void saveScreenshot(int pixel_width, int pixel_height);
+  void checkCrc();
   float pixelAspect() const;
   // Frames keep coming without input: the stats measure them, a load shows its progress, the
   // jitter cycles or the temporal pass converges.
@@ -107,6 +111,12 @@ class Viewer {
   bool dirty_ = true;         // the window needs presenting again
   bool view_changed_ = true;  // ...and the scene rendering again (camera, scene or axes changed)
   bool screenshot_requested_ = false;
+  // F5 / F6, done on the next frame drawn: the frame the window is about to show.
+  enum class CrcRequest { kNone, kStore, kCompare };
+  CrcRequest crc_request_ = CrcRequest::kNone;
+  std::optional<uint32_t> stored_crc_;
+  std::string crc_message_;  // the overlay line, until an action changes the picture
+  SDL_Color crc_color_{255, 255, 255, 255};
   std::string error_;  // the last load error, shown until the next load
   fs::path loading_path_;
   Clock::time_point load_started_;
@@ -160,6 +170,7 @@ void Viewer::showScene(Scene scene, const std::string& name) {
     if (object.mesh) object.axes_length = axesLength(object.mesh->bounds()) * 0.75f;
   SDL_SetWindowTitle(window_.get(), ("tessera view: " + name).c_str());
   sampling().reset();
+  crc_message_.clear();  // it was about the previous scene
   dirty_ = view_changed_ = true;
 }
 
@@ -189,6 +200,12 @@ void Viewer::takeLoadResult() {
 }
 
 void Viewer::handleAction(const Action& action) {
+  // A CRC result describes the picture it was taken of: gone once the picture changes.
+  using T = Action::Type;
+  if (action.type != T::kStoreCrc && action.type != T::kCompareCrc &&
+      action.type != T::kScreenshot && action.type != T::kToggleKeyList &&
+      action.type != T::kToggleStats)
+    crc_message_.clear();
   if (applyCameraAction(action, camera_)) {
     dirty_ = view_changed_ = true;
     return;
@@ -214,6 +231,12 @@ void Viewer::handleAction(const Action& action) {
       break;
     case Action::Type::kScreenshot:
       screenshot_requested_ = true;
+      break;
+    case Action::Type::kStoreCrc:
+      crc_request_ = CrcRequest::kStore;
+      break;
+    case Action::Type::kCompareCrc:
+      crc_request_ = CrcRequest::kCompare;
       break;
     case Action::Type::kCycleMsaa:
       sampling().cycleMsaa();
@@ -304,7 +327,11 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
     status = "error: " + error_ + between + frames_.error();
     color = SDL_Color{255, 120, 110, 255};
   }
-  text_.drawTextBox(renderer_.get(), status, margin, pixel_height - margin, true, color, wrap);
+  const int status_height =
+      text_.drawTextBox(renderer_.get(), status, margin, pixel_height - margin, true, color, wrap);
+  text_.drawTextBox(renderer_.get(), crc_message_, margin,
+                    pixel_height - margin - (status_height > 0 ? status_height + margin / 2 : 0),
+                    true, crc_color_, wrap);
   if (key_list_) drawKeyList(pixel_width, pixel_height);
 }
 
@@ -325,6 +352,34 @@ void Viewer::saveScreenshot(int pixel_width, int pixel_height) {
     return;
   }
   std::cout << "saved " << path.string() << std::endl;
+}
+
+// The CRC-32 of the rendered frame's RGBA8 pixels (as `tessera render --crc`), without the
+// overlay; printed on stdout too, for scripts and tests.
+void Viewer::checkCrc() {
+  const CrcRequest request = std::exchange(crc_request_, CrcRequest::kNone);
+  const uint32_t crc = io::crc32Rgba8(frame_.color.data(), frame_.width, frame_.height);
+  const std::string hex = io::crc32Hex(crc);
+  if (request == CrcRequest::kStore) {
+    stored_crc_ = crc;
+    crc_message_ = "CRC " + hex + " stored (F6 compares)";
+    crc_color_ = SDL_Color{255, 255, 255, 255};
+    std::cout << "tessera view: crc32 stored " << hex << std::endl;
+  } else if (!stored_crc_) {
+    crc_message_ = "no CRC stored: press F5 first";
+    crc_color_ = SDL_Color{255, 255, 255, 255};
+    std::cout << "tessera view: crc32 nothing stored" << std::endl;
+  } else if (*stored_crc_ == crc) {
+    crc_message_ = "MATCH " + hex;
+    crc_color_ = SDL_Color{90, 230, 90, 255};
+    std::cout << "tessera view: crc32 MATCH " << hex << std::endl;
+  } else {
+    const std::string stored = io::crc32Hex(*stored_crc_);
+    crc_message_ = "MISMATCH: stored " + stored + ", now " + hex;
+    crc_color_ = SDL_Color{255, 90, 80, 255};
+    std::cout << "tessera view: crc32 MISMATCH stored " << stored << " current " << hex
+              << std::endl;
+  }
 }
 
 void Viewer::renderScene(int pixel_width, int pixel_height) {
@@ -364,6 +419,7 @@ void Viewer::drawFrame() {
     view_changed_ = false;
     renderScene(pixel_w, pixel_h);
   }
+  if (crc_request_ != CrcRequest::kNone) checkCrc();
 
   SDL_SetRenderDrawColor(renderer_.get(), 0, 0, 0, 255);
   SDL_RenderClear(renderer_.get());

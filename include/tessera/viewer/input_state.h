@@ -25,6 +25,8 @@ enum class Key {
   kF2,
   kF3,
   kF4,
+  kF5,
+  kF6,
   kF10,
   kF12,
   kOther
@@ -52,6 +54,8 @@ struct Action {
     kToggleObjectAxes,
     kCycleProjection,  // perspective, cylindrical, spherical, stereographic, fisheye
     kScreenshot,
+    kStoreCrc,    // remember the CRC-32 of the frame shown
+    kCompareCrc,  // compare the frame shown with it: MATCH / MISMATCH
     kCycleMsaa,       // 1, 2, 4, 8 samples per pixel
     kToggleJitter,    // sub-pixel jitter, a new offset each frame
     kToggleTemporal,  // temporal reprojection of the jittered frames
