@@ -42,6 +42,13 @@ class CliDiagnostics : public ::testing::Test {
     EXPECT_TRUE(tessera::test::decodePng((dir_ / name).string(), out)) << name;
     return out;
   }
+  // Renders the quads with `args` (and the camera) into `name`, decoded; an empty image when the
+  // run fails (the failure reported).
+  DecodedPng renderPng(const std::string& args, const std::string& name) {
+    RunResult r = run("render quads.obj -o " + name + " " + args + kCamera);
+    EXPECT_EQ(r.exit_code, 0) << args << ": " << r.err;
+    return r.exit_code == 0 ? png(name) : DecodedPng{};
+  }
   nlohmann::json json(const std::string& name) {
     return nlohmann::json::parse(slurp(dir_ / name), nullptr, /*allow_exceptions=*/false);
   }
@@ -51,10 +58,7 @@ class CliDiagnostics : public ::testing::Test {
 }  // namespace
 
 TEST_F(CliDiagnostics, OverdrawOfStackedQuadsIsTheirCountAtEveryPixel) {
-  RunResult r = run("render quads.obj --resolution 100,70 --aov overdraw -o o.png" +
-                    std::string(kCamera));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const DecodedPng o = png("o.png");
+  const DecodedPng o = renderPng("--resolution 100,70 --aov overdraw", "o.png");
   ASSERT_EQ(o.channels, 1);
   ASSERT_EQ(o.bit_depth, 16);
   for (int y = 0; y < o.height; ++y)
@@ -63,10 +67,7 @@ TEST_F(CliDiagnostics, OverdrawOfStackedQuadsIsTheirCountAtEveryPixel) {
 
 TEST_F(CliDiagnostics, OccupancyMaterialAndTileAovs) {
   for (const char* aov : {"occupancy", "material", "density", "tile-occlusion", "tile-edges"}) {
-    RunResult r = run(std::string("render quads.obj --resolution 100,70 -o a.png --aov ") + aov +
-                      kCamera);
-    ASSERT_EQ(r.exit_code, 0) << aov << ": " << r.err;
-    const DecodedPng a = png("a.png");
+    const DecodedPng a = renderPng(std::string("--resolution 100,70 --aov ") + aov, "a.png");
     ASSERT_EQ(a.width, 100);
     const std::string name = aov;
     if (name == "occupancy") {
@@ -86,10 +87,7 @@ TEST_F(CliDiagnostics, OccupancyMaterialAndTileAovs) {
 }
 
 TEST_F(CliDiagnostics, HeatmapHasTheRampAndALegend) {
-  RunResult r = run("render quads.obj --resolution 200,160 --aov overdraw-heatmap -o h.png" +
-                    std::string(kCamera));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const DecodedPng h = png("h.png");
+  const DecodedPng h = renderPng("--resolution 200,160 --aov overdraw-heatmap", "h.png");
   ASSERT_EQ(h.channels, 3);
   EXPECT_EQ(h.rgb(100, 10), (std::array<int, 3>{252, 255, 164}));  // the maximum: the ramp's top
   EXPECT_EQ(h.rgb(0, 159), (std::array<int, 3>{0, 0, 0}));         // the legend strip

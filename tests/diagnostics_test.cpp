@@ -63,27 +63,30 @@ void expectCountersAddUp(const PipelineCounters& c) {
 }  // namespace
 
 TEST(Diagnostics, OverdrawOfStackedFullScreenQuadsIsTheirCount) {
-  constexpr int kW = 150, kH = 100, kQuads = 5;
-  Scene scene = clipSpaceScene();
-  Mesh m;
-  // Back to front and front to back: tests count whether they pass or not.
-  for (int i = 0; i < kQuads; ++i)
-    addRect(m, 0, 0, kW, kH, (i % 2 ? 0.5f : -0.5f) + 0.01f * static_cast<float>(i), kW, kH);
-  scene.objects.push_back(objectOf(m));
-  for (int msaa : {1, 4}) {
-    const Frame f = render(scene, kW, kH, 2, msaa);
-    ASSERT_TRUE(f.diagnostics.valid);
-    ASSERT_EQ(f.diagnostics.overdraw.size(), f.pixelCount());
-    for (size_t p = 0; p < f.pixelCount(); ++p)
-      ASSERT_EQ(f.diagnostics.overdraw[p], static_cast<uint32_t>(kQuads)) << "pixel " << p;
-    const PipelineCounters& c = f.diagnostics.counters;
-    EXPECT_EQ(c.pixels_tested, f.pixelCount() * kQuads);
-    // Passes: quad 0 (z -0.5), quad 1 (0.51) fails, quad 2 (-0.48) fails, ... only the first.
-    EXPECT_EQ(c.pixels_passed, f.pixelCount());
-    EXPECT_EQ(c.pixels_shaded, f.pixelCount());
-    EXPECT_EQ(c.tiles_full, c.tiles);
-    EXPECT_EQ(c.tiles_empty, 0u);
-    expectCountersAddUp(c);
+  constexpr int kQuads = 5;
+  // 96x96: the quads' diagonals pass through pixel centres, where the top-left rule decides.
+  for (const auto [kW, kH] : {std::pair{150, 100}, std::pair{96, 96}}) {
+    Scene scene = clipSpaceScene();
+    Mesh m;
+    // Back to front and front to back: tests count whether they pass or not.
+    for (int i = 0; i < kQuads; ++i)
+      addRect(m, 0, 0, kW, kH, (i % 2 ? 0.5f : -0.5f) + 0.01f * static_cast<float>(i), kW, kH);
+    scene.objects.push_back(objectOf(m));
+    for (int msaa : {1, 4}) {
+      const Frame f = render(scene, kW, kH, 2, msaa);
+      ASSERT_TRUE(f.diagnostics.valid);
+      ASSERT_EQ(f.diagnostics.overdraw.size(), f.pixelCount());
+      for (size_t p = 0; p < f.pixelCount(); ++p)
+        ASSERT_EQ(f.diagnostics.overdraw[p], static_cast<uint32_t>(kQuads)) << "pixel " << p;
+      const PipelineCounters& c = f.diagnostics.counters;
+      EXPECT_EQ(c.pixels_tested, f.pixelCount() * kQuads);
+      // Quad 0 (z -0.5) is the nearest: every later test fails.
+      EXPECT_EQ(c.pixels_passed, f.pixelCount());
+      EXPECT_EQ(c.pixels_shaded, f.pixelCount());
+      EXPECT_EQ(c.tiles_full, c.tiles);
+      EXPECT_EQ(c.tiles_empty, 0u);
+      expectCountersAddUp(c);
+    }
   }
 }
 
@@ -235,6 +238,10 @@ TEST(Diagnostics, TheSameForOneAndThreeWorkers) {
   EXPECT_EQ(a.counters.culled.facing + a.counters.culled.no_pixel,
             b.counters.culled.facing + b.counters.culled.no_pixel);
   EXPECT_GT(a.counters.pixels_tested, a.counters.pixels_passed);  // the spheres overlap
+  // The replayed coverage is the raster kernel's: a pixel showing a triangle was tested at
+  // least once, a background pixel never.
+  for (size_t p = 0; p < one.pixelCount(); ++p)
+    ASSERT_EQ(a.overdraw[p] > 0, one.triangle_id[p] != kNoTriangle) << "pixel " << p;
   expectCountersAddUp(a.counters);
 }
 

@@ -2,7 +2,6 @@
 // (docs/usage.md has the encodings, docs/stats.md the JSON schema).
 #pragma once
 
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
