@@ -38,4 +38,6 @@ room=(--camera-position 0.5,1.7,1.5 --camera-focal-point 0,1.2,-2 --background-c
   -o "$tmp/fisheye.png"
 ffmpeg -loglevel error -y -i "$tmp/panorama.png" -i "$tmp/fisheye.png" \
   -filter_complex hstack=inputs=2 "$out/projections.png"
+# Diagnostics: the bunny's overdraw (depth tests per pixel) as a heatmap with its legend.
+"$tessera" render "$bunny" --resolution 480,360 --aov overdraw-heatmap -o "$out/overdraw_heatmap.png"
 ls -la "$out"

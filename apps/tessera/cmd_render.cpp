@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
+#include <tessera/io/atomic_file.h>
 #include <tessera/io/frame_sink.h>
 #include <tessera/io/image_loader.h>
 #include <tessera/io/image_writer.h>
@@ -15,6 +17,7 @@
 
 #include "backends.h"
 #include "commands.h"
+#include "diagnostics_output.h"
 #include "flags.h"
 #include "model_scene.h"
 #include "sampling_flags.h"
@@ -43,6 +46,7 @@ struct RenderSettings {
   std::string texture;
   bool crc = false;
   ReferenceSettings reference;
+  std::string stats;  // --stats PATH.json: the frames' diagnostics (docs/stats.md)
   SamplingSettings sampling{.msaa = 4};  // the image a user expects: anti-aliased
 };
 
@@ -60,6 +64,7 @@ Expected<void> writeStill(const std::filesystem::path& path, const Frame& frame,
   if (aov == "depth") return io::writeDepthPng(path, frame);
   if (aov == "normal") return io::writeNormalPng(path, frame);
   if (aov == "coverage") return io::writeCoveragePng(path, frame);
+  if (isDiagnosticAov(aov)) return writeDiagnosticAov(path, frame, aov);
   return io::writePngRgba8(path, frame.width, frame.height, frame.color.data());
 }
 
@@ -98,9 +103,16 @@ int runRender(const std::vector<std::string>& args) {
                   "flat, smooth (per-pixel), gouraud (per-vertex) or unlit (default smooth)");
   flags.addChoice("backface-type", &s.backface, {"visible", "hidden"},
                   "draw or cull back faces (default: glTF materials say, else visible)");
-  flags.addChoice("aov", &s.aov, {"color", "id", "depth", "normal", "coverage"},
+  std::vector<std::string> aovs = {"color", "id", "depth", "normal", "coverage"};
+  aovs.insert(aovs.end(), diagnosticAovNames().begin(), diagnosticAovNames().end());
+  flags.addChoice("aov", &s.aov, aovs,
                   "what to write: colour, triangle id, window depth, world normal (all three at "
-                  "the pixel centre, whatever --msaa says) or coverage (covered samples)");
+                  "the pixel centre, whatever --msaa says), coverage (covered samples) or a "
+                  "diagnostic (docs/usage.md: overdraw, occupancy, material, density, "
+                  "tile-occlusion, tile-edges; overdraw-heatmap and occupancy-heatmap for people)");
+  flags.addString("stats", &s.stats,
+                  "write each frame's pipeline counters, stage times and per-tile diagnostics "
+                  "to this JSON file (docs/stats.md)");
   addSamplingFlags(flags, s.sampling);
   flags.addInt("turntable", &s.turntable, "frames of one full turn about the up axis", 1, 100000);
   flags.addInt("fps", &s.fps, "frames per second of a turntable (default 30)", 1, 100);
@@ -154,6 +166,29 @@ int runRender(const std::vector<std::string>& args) {
     return usageError("--reference compares one image: use a .png output without --turntable");
   if (s.reference.update && s.reference.path.empty())
     return usageError("--reference-update needs --reference PATH, the file to write");
+
+  const bool diagnostics = isDiagnosticAov(s.aov) || !s.stats.empty();
+  if (diagnostics && s.backend != "cpu") {
+    printError("render", (isDiagnosticAov(s.aov) ? "--aov " + s.aov : std::string("--stats")) +
+                             " is not yet on the " + s.backend + " backend (use --backend cpu)");
+    return kExitFailure;
+  }
+  if (needsPixelTests(s.aov) && s.camera.projectionMode() != Projection::kPerspective) {
+    printError("render", "--aov " + s.aov + " is measured for the perspective projection only");
+    return kExitFailure;
+  }
+  // The stats file's temporary is made now: a path that cannot be written fails before any
+  // work, and the temporary goes away with any failure below.
+  std::optional<io::AtomicFile> stats_file;
+  std::vector<std::string> stats_frames;
+  if (!s.stats.empty()) {
+    Expected<io::AtomicFile> created = io::AtomicFile::create(s.stats);
+    if (!created) {
+      printError("render", created.error().message);
+      return kExitFailure;
+    }
+    stats_file.emplace(std::move(*created));
+  }
 
   // Load.
   Expected<io::Model> model = io::loadModel(model_path);
@@ -225,12 +260,14 @@ int runRender(const std::vector<std::string>& args) {
   options.normals = s.aov == "normal";
   options.lines = s.aov == "color";
   options.coverage = s.aov == "coverage";
+  options.diagnostics = diagnostics;
   options.projection = s.camera.projectionMode();
   // The id, depth and normal AOVs are the pixel centre's: one sample, no jitter. Coverage is
   // frame 0's (not jittered) at the --msaa count.
   SamplingSettings sampling = s.sampling;
   if (s.aov != "color") sampling.samples = 1;
-  if (s.aov == "id" || s.aov == "depth" || s.aov == "normal") sampling.msaa = 1;
+  if (s.aov == "id" || s.aov == "depth" || s.aov == "normal" || isDiagnosticAov(s.aov))
+    sampling.msaa = 1;
   Accumulator accumulator;
   Frame frame;
   const int frame_count = std::max(s.turntable, 1);
@@ -258,6 +295,7 @@ int runRender(const std::vector<std::string>& args) {
       printError("render", rendered.error().message);
       return kExitFailure;
     }
+    if (stats_file) stats_frames.push_back(statsFrameJson(frame, i, s.backend));
     Expected<void> written;
     if (sink) {
       written = sink->addFrame(frame.color.data());
@@ -280,6 +318,15 @@ int runRender(const std::vector<std::string>& args) {
     }
   }
   if (frame_count > 1) progress.finish();
+  if (stats_file) {
+    const std::string json = statsFileJson(stats_frames);
+    Expected<void> done = stats_file->write(json.data(), json.size());
+    if (done) done = stats_file->commit();
+    if (!done) {
+      printError("render", done.error().message);
+      return kExitFailure;
+    }
+  }
   std::cout << "wrote " << s.output << " (" << s.width << "x" << s.height << ", "
             << scene.triangleCount() << " triangles";
   if (frame_count > 1) std::cout << ", " << frame_count << " frames";

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <tessera/render/diagnostics.h>
+
 #include "render/fixed_point.h"
 #include "render/page_pool.h"
 #include "render/ray_setup.h"
@@ -99,6 +101,11 @@ struct alignas(128) TriangleChunk {
   ChunkBins bins;
   size_t culled = 0;
   size_t clipped = 0;
+  // Diagnostics: why `culled` were culled (the cull kernel's drops only when count_reasons is
+  // set: classifying them costs the setup stage) and the extra pieces of clipped triangles.
+  bool count_reasons = false;
+  CullCounts cull_reasons;
+  size_t clip_splits = 0;
 };
 
 }  // namespace tessera::render

@@ -25,6 +25,7 @@
 #include "render/bin.h"
 #include "render/chunk_layout.h"
 #include "render/clip.h"
+#include "render/diagnostics.h"
 #include "render/fixed_point.h"
 #include "render/kernels.h"
 #include "render/lines.h"
@@ -103,6 +104,7 @@ struct CpuRenderer::State {
   LineList lines;
   PipelineStats stats;
   RayRenderer rays;  // the nonlinear projections
+  DiagnosticsPass diagnostics;  // RenderOptions::diagnostics
 
   void setupChunk(const Scene& scene, const VertexBuffer& vertices, const TileGrid& grid,
                   const GuardBand& guard, bool want_normals, int32_t sample_reach,
@@ -154,6 +156,8 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
   chunk.bins.reset(grid.tileCount(), pool.size() > 1);
   chunk.culled = 0;
   chunk.clipped = 0;
+  chunk.cull_reasons = {};
+  chunk.clip_splits = 0;
 
   const size_t begin = chunk.first_triangle, end = begin + chunk.triangle_count;
   size_t object_index = objectHolding(objects, begin);
@@ -254,7 +258,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
       }
       ClipVertex polygon[kMaxClippedVertices];
       const int n = clipTriangle(in, cut, guard, polygon);
-      bool any = false;
+      size_t pieces = 0;
       for (int k = 1; k + 1 < n; ++k) {
         const ClipVertex* fan[3] = {&polygon[0], &polygon[k], &polygon[k + 1]};
         ScreenVertex sv[3];
@@ -269,9 +273,14 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
         setupShade(ctx, sv, a, orientation, raster, face_normal(idx), id, material(local),
                    chunk.shade[record], chunk.extras[record]);
         chunk.bins.add(grid, raster, record);
-        any = true;
+        ++pieces;
       }
-      if (!any) ++chunk.culled;
+      if (pieces == 0) {
+        ++chunk.culled;
+        ++chunk.cull_reasons.clipped_away;
+      } else {
+        chunk.clip_splits += pieces - 1;
+      }
     };
 
     // One triangle through the same checks as the cull kernel.
@@ -281,26 +290,29 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
                                mesh.indices[local * 3 + 2]};
       if (idx[0] >= vertex_count || idx[1] >= vertex_count || idx[2] >= vertex_count) {
         ++chunk.culled;
+        ++chunk.cull_reasons.invalid;
         return;
       }
       const uint32_t c0 = outcodes[idx[0]], c1 = outcodes[idx[1]], c2 = outcodes[idx[2]];
       // Non-finite vertices drop their triangle; so does one wholly outside a frustum plane.
+      const ScreenVertex& v0 = mesh_vertices.screen[idx[0]];
+      const ScreenVertex& v1 = mesh_vertices.screen[idx[1]];
+      const ScreenVertex& v2 = mesh_vertices.screen[idx[2]];
       if (((c0 | c1 | c2) & kNonFinite) || (c0 & c1 & c2 & kRejectPlanes)) {
         ++chunk.culled;
+        countCullReason(ctx, c0, c1, c2, v0, v1, v2, chunk.cull_reasons);
         return;
       }
       if (const uint32_t cut = (c0 | c1 | c2) & kCutPlanes) {
         drawClipped(t, idx, cut);
         return;
       }
-      const ScreenVertex& v0 = mesh_vertices.screen[idx[0]];
-      const ScreenVertex& v1 = mesh_vertices.screen[idx[1]];
-      const ScreenVertex& v2 = mesh_vertices.screen[idx[2]];
       const int64_t area = signedArea(v0, v1, v2);
       const PixelBox box =
           cullsArea(ctx, area) ? PixelBox{0, 0, -1, -1} : pixelBox(ctx, v0, v1, v2);
       if (box.empty()) {
         ++chunk.culled;
+        countCullReason(ctx, c0, c1, c2, v0, v1, v2, chunk.cull_reasons);
         return;
       }
       drawWhole(t, idx, area, box);
@@ -322,6 +334,12 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
       for (size_t l = 0; l < kGroup; ++l) {
         if (group.kind[l] == CullGroup::kCulled) {
           ++chunk.culled;
+          if (chunk.count_reasons) {
+            const uint32_t* idx = &mesh.indices[(local + l) * 3];
+            countCullReason(ctx, outcodes[idx[0]], outcodes[idx[1]], outcodes[idx[2]],
+                            mesh_vertices.screen[idx[0]], mesh_vertices.screen[idx[1]],
+                            mesh_vertices.screen[idx[2]], chunk.cull_reasons);
+          }
           continue;
         }
         const uint32_t* idx = &mesh.indices[(local + l) * 3];
@@ -376,8 +394,18 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   TESSERA_CHECK(isSampleCount(options.msaa))
       << options.msaa << " samples per pixel: not 1, 2, 4 or 8";
   State& s = *state_;
+  if (options.diagnostics && !(options.depth && options.ids)) {
+    RenderOptions measured = options;  // the diagnostics pass reads the centre depths and ids
+    measured.depth = measured.ids = true;
+    render(scene, measured, frame);
+    return;
+  }
+  frame.diagnostics.valid = false;
   if (options.projection != Projection::kPerspective) {
     s.rays.render(scene, options, frame, s.pool, s.kernels, s.stats);
+    if (options.diagnostics)
+      s.diagnostics.run(s.pool, {}, 0, scene, TileGrid::forViewport(options.width, options.height),
+                        false, s.stats, frame);
     return;
   }
   const bool draws_lines =
@@ -475,6 +503,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       s.transformed[w].done = true;
       s.transformed[w].ms = elapsed_ms(start, Clock::now());
     }
+    s.chunks[c].count_reasons = options.diagnostics;
     s.setupChunk(scene, s.vertex_buffers[replicate ? w : 0], grid, guard, options.normals,
                  sample_reach, s.chunks[c]);
   });
@@ -554,6 +583,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     s.stats.triangles_clipped += s.chunks[c].clipped;
     s.stats.triangles_setup += s.chunks[c].size;
   }
+  if (options.diagnostics)
+    s.diagnostics.run(s.pool, s.chunks, s.chunk_count, scene, grid, true, s.stats, frame);
 }
 
 }  // namespace tessera

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <tessera/math/vec.h>
+#include <tessera/render/diagnostics.h>
 
 namespace tessera {
 
@@ -21,6 +22,9 @@ struct Frame {
   // Samples covered / samples, as 0..255 (round to nearest): an alpha matte. 255 everywhere a
   // triangle covers the whole pixel; with one sample, 255 where the centre is covered.
   std::vector<uint8_t> coverage;
+  // Overdraw, occupancy, material, density, tile occlusion and edges, counters and stage times:
+  // valid only when RenderOptions::diagnostics asked for them.
+  FrameDiagnostics diagnostics;
 
   // Sizes the colour buffer and the AOVs asked for to w x h and empties the others; keeps the
   // memory of a buffer whose size is unchanged (no allocation).

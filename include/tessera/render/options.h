@@ -15,6 +15,9 @@ struct RenderOptions {
   bool lines = true;      // draw Scene::lines and the axes the scene asks for (needs depth: a frame
                           // that draws lines has a depth buffer whatever `depth` says)
   bool coverage = false;  // fill Frame::coverage (samples covered / samples, 0..255)
+  // Fill Frame::diagnostics (diagnostics.h) in a pass of its own after the tile stage; the
+  // frame then also has the depth and id AOVs, which that pass reads.
+  bool diagnostics = false;
   // Samples per pixel: 1, 2, 4 or 8 (isSampleCount), at the standard positions (sampling.h).
   // Colour is resolved from every sample; depth, ids and normals stay those of the pixel centre,
   // the same as with one sample.

@@ -19,6 +19,9 @@ struct Material {
   // Both faces are meant to be seen (glTF `doubleSided`). The renderer culls per Object
   // (Object::cull); a caller chooses that from its materials (io::Model::cull_back_faces).
   bool double_sided = false;
+  // A simulation's property of the material (the density diagnostic, `--aov density`); the
+  // renderer's shading does not read it.
+  float density = 1.0f;
 };
 
 enum class Shading : uint8_t {

@@ -1,0 +1,228 @@
+#include "diagnostics_output.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+
+#include <tessera/io/image_writer.h>
+
+namespace tessera::cli {
+
+namespace {
+
+uint16_t clampTo16(double v) {
+  return static_cast<uint16_t>(std::clamp(std::lround(v), 0l, 65535l));
+}
+
+uint32_t packRgb(uint32_t r, uint32_t g, uint32_t b) {
+  return r | (g << 8) | (b << 16) | 0xff000000u;
+}
+
+uint8_t unitByte(float v) {
+  return std::isnan(v) ? 0 : static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
+
+// Every pixel of the frame from `value(pixel index, tile index)`.
+template <typename T>
+std::vector<T> perPixel(const Frame& frame, const std::function<T(size_t, size_t)>& value) {
+  const FrameDiagnostics& d = frame.diagnostics;
+  std::vector<T> out(frame.pixelCount());
+  for (int y = 0; y < frame.height; ++y)
+    for (int x = 0; x < frame.width; ++x) {
+      const size_t tile = static_cast<size_t>(y / d.tile_size) * d.tile_columns + x / d.tile_size;
+      const size_t p = static_cast<size_t>(y) * frame.width + x;
+      out[p] = value(p, tile);
+    }
+  return out;
+}
+
+// Inferno (matplotlib), five stops, linear between them.
+uint32_t inferno(float t) {
+  static constexpr float kStops[5][3] = {
+      {0, 0, 4}, {87, 16, 110}, {188, 55, 84}, {249, 142, 9}, {252, 255, 164}};
+  const float s = std::clamp(t, 0.0f, 1.0f) * 4.0f;
+  const int i = std::min(static_cast<int>(s), 3);
+  const float f = s - static_cast<float>(i);
+  uint32_t c[3];
+  for (int k = 0; k < 3; ++k)
+    c[k] = static_cast<uint32_t>(std::lround(kStops[i][k] + (kStops[i + 1][k] - kStops[i][k]) * f));
+  return packRgb(c[0], c[1], c[2]);
+}
+
+// 3x5 digits, a row per 3 bits (top row first, high bit left).
+constexpr uint16_t kDigits[10] = {075557, 026227, 071747, 071717, 055711,
+                                  074717, 074757, 071111, 075757, 075717};
+
+void drawNumber(std::vector<uint32_t>& image, int width, int x, int y, int scale, uint64_t n,
+                bool align_right) {
+  const std::string text = std::to_string(n);
+  const int advance = 4 * scale;
+  int left = align_right ? x - static_cast<int>(text.size()) * advance + scale : x;
+  for (char ch : text) {
+    const uint16_t glyph = kDigits[ch - '0'];
+    for (int row = 0; row < 5; ++row)
+      for (int col = 0; col < 3; ++col) {
+        if (!((glyph >> (12 - 3 * row + (2 - col))) & 1)) continue;
+        for (int sy = 0; sy < scale; ++sy)
+          for (int sx = 0; sx < scale; ++sx) {
+            const int px = left + col * scale + sx, py = y + row * scale + sy;
+            if (px >= 0 && px < width)
+              image[static_cast<size_t>(py) * width + px] = packRgb(255, 255, 255);
+          }
+      }
+    left += advance;
+  }
+}
+
+void appendArray(std::string& out, const char* name, size_t n,
+                 const std::function<std::string(size_t)>& item) {
+  out += "\"";
+  out += name;
+  out += "\": [";
+  for (size_t i = 0; i < n; ++i) {
+    if (i) out += ",";
+    out += item(i);
+  }
+  out += "]";
+}
+
+std::string number(double v) {
+  if (!std::isfinite(v)) return "null";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", v);
+  return text;
+}
+
+}  // namespace
+
+const std::vector<std::string>& diagnosticAovNames() {
+  static const std::vector<std::string> kNames = {
+      "overdraw", "overdraw-heatmap", "occupancy",      "occupancy-heatmap",
+      "material", "density",          "tile-occlusion", "tile-edges"};
+  return kNames;
+}
+
+bool isDiagnosticAov(const std::string& aov) {
+  const auto& names = diagnosticAovNames();
+  return std::find(names.begin(), names.end(), aov) != names.end();
+}
+
+bool needsPixelTests(const std::string& aov) {
+  return aov.rfind("overdraw", 0) == 0 || aov.rfind("occupancy", 0) == 0;
+}
+
+std::vector<uint32_t> heatmapImage(int width, int height, const std::vector<uint32_t>& counts) {
+  const uint32_t top = counts.empty() ? 0 : *std::max_element(counts.begin(), counts.end());
+  std::vector<uint32_t> image(counts.size());
+  for (size_t i = 0; i < counts.size(); ++i)
+    image[i] = inferno(top ? static_cast<float>(counts[i]) / static_cast<float>(top) : 0.0f);
+  // The legend: a strip along the bottom, the ramp between the labels 0 and the largest count.
+  const int scale = std::clamp(height / 160, 1, 4);
+  const int strip = 9 * scale;
+  if (height < 2 * strip || width < 40 * scale) return image;  // too small to label
+  const int y0 = height - strip;
+  for (int y = y0; y < height; ++y)
+    std::fill_n(&image[static_cast<size_t>(y) * width], width, packRgb(0, 0, 0));
+  const int label = 4 * scale * (static_cast<int>(std::to_string(top).size()) + 1);
+  const int bar_left = 6 * scale, bar_right = width - label - 2 * scale;
+  for (int y = y0 + 2 * scale; y < height - 2 * scale; ++y)
+    for (int x = bar_left; x < bar_right; ++x)
+      image[static_cast<size_t>(y) * width + x] =
+          inferno(static_cast<float>(x - bar_left) / static_cast<float>(bar_right - bar_left - 1));
+  drawNumber(image, width, scale, y0 + 2 * scale, scale, 0, false);
+  drawNumber(image, width, width - scale, y0 + 2 * scale, scale, top, true);
+  return image;
+}
+
+Expected<void> writeDiagnosticAov(const std::filesystem::path& path, const Frame& frame,
+                                  const std::string& aov) {
+  const FrameDiagnostics& d = frame.diagnostics;
+  const int w = frame.width, h = frame.height;
+  if (aov == "overdraw-heatmap" || aov == "occupancy-heatmap") {
+    const std::vector<uint32_t> counts =
+        aov == "overdraw-heatmap"
+            ? d.overdraw
+            : perPixel<uint32_t>(frame, [&](size_t, size_t t) { return d.tile_triangles[t]; });
+    return io::writePngRgba8(path, w, h, heatmapImage(w, h, counts).data());
+  }
+  if (aov == "material" || aov == "tile-occlusion") {
+    const std::vector<uint32_t> rgb =
+        aov == "material"
+            ? perPixel<uint32_t>(frame,
+                                 [&](size_t p, size_t) { return d.material[p] | 0xff000000u; })
+            : perPixel<uint32_t>(frame, [&](size_t, size_t t) {
+                return packRgb(unitByte(d.tile_covered[t]), unitByte(d.tile_depth_min[t]),
+                               unitByte(d.tile_depth_max[t]));
+              });
+    return io::writePngRgba8(path, w, h, rgb.data());
+  }
+  std::function<uint16_t(size_t, size_t)> grey;
+  if (aov == "overdraw") grey = [&](size_t p, size_t) { return clampTo16(d.overdraw[p]); };
+  if (aov == "occupancy") grey = [&](size_t, size_t t) { return clampTo16(d.tile_triangles[t]); };
+  if (aov == "density") grey = [&](size_t p, size_t) { return clampTo16(d.density[p] * 1000.0); };
+  if (aov == "tile-edges") grey = [&](size_t, size_t t) { return clampTo16(d.tile_edges[t]); };
+  return io::writePngGray16(path, w, h, perPixel<uint16_t>(frame, grey).data());
+}
+
+std::string statsFrameJson(const Frame& frame, int index, const std::string& backend) {
+  const FrameDiagnostics& d = frame.diagnostics;
+  const PipelineCounters& c = d.counters;
+  const bool tests = d.has_pixel_tests;
+  auto measured = [&](uint64_t v) { return tests ? std::to_string(v) : std::string("null"); };
+  std::string out = "{\"frame\": " + std::to_string(index) + ", \"backend\": \"" + backend +
+                    "\", \"width\": " + std::to_string(frame.width) +
+                    ", \"height\": " + std::to_string(frame.height) + ",\n";
+  out += "  \"times_ms\": {\"vertex\": " + number(d.times.vertex_ms) +
+         ", \"setup\": " + number(d.times.setup_ms) + ", \"tiles\": " + number(d.times.tiles_ms) +
+         ", \"lines\": " + number(d.times.lines_ms) +
+         ", \"diagnostics\": " + number(d.times.diagnostics_ms) + "},\n";
+  const CullCounts& k = c.culled;
+  out += "  \"counters\": {\"triangles_in\": " + std::to_string(c.triangles_in) +
+         ", \"culled\": {\"invalid\": " + std::to_string(k.invalid) +
+         ", \"non_finite\": " + std::to_string(k.non_finite) +
+         ", \"frustum\": " + std::to_string(k.frustum) +
+         ", \"degenerate\": " + std::to_string(k.degenerate) +
+         ", \"facing\": " + std::to_string(k.facing) +
+         ", \"no_pixel\": " + std::to_string(k.no_pixel) +
+         ", \"clipped_away\": " + std::to_string(k.clipped_away) +
+         ", \"total\": " + std::to_string(k.total()) + "}" +
+         ", \"triangles_clipped\": " + std::to_string(c.triangles_clipped) +
+         ", \"clip_splits\": " + std::to_string(c.clip_splits) +
+         ", \"triangles_setup\": " + std::to_string(c.triangles_setup) +
+         ", \"triangles_binned\": " + measured(c.triangles_binned) +
+         ", \"bin_overflow\": " + measured(c.bin_overflow) +
+         ", \"pixels_tested\": " + measured(c.pixels_tested) +
+         ", \"pixels_passed\": " + measured(c.pixels_passed) +
+         ", \"pixels_shaded\": " + std::to_string(c.pixels_shaded) +
+         ", \"tiles\": " + std::to_string(c.tiles) +
+         ", \"tiles_empty\": " + std::to_string(c.tiles_empty) +
+         ", \"tiles_full\": " + std::to_string(c.tiles_full) + "},\n";
+  const size_t n = d.tileCount();
+  out += "  \"tiles\": {\"size\": " + std::to_string(d.tile_size) +
+         ", \"columns\": " + std::to_string(d.tile_columns) +
+         ", \"rows\": " + std::to_string(d.tile_rows) + ",\n    ";
+  if (tests)
+    appendArray(out, "occupancy", n, [&](size_t t) { return std::to_string(d.tile_triangles[t]); });
+  else
+    out += "\"occupancy\": null";
+  out += ",\n    ";
+  appendArray(out, "covered", n, [&](size_t t) { return number(d.tile_covered[t]); });
+  out += ",\n    ";
+  appendArray(out, "depth_min", n, [&](size_t t) { return number(d.tile_depth_min[t]); });
+  out += ",\n    ";
+  appendArray(out, "depth_max", n, [&](size_t t) { return number(d.tile_depth_max[t]); });
+  out += ",\n    ";
+  appendArray(out, "edges", n, [&](size_t t) { return std::to_string(d.tile_edges[t]); });
+  out += "}}";
+  return out;
+}
+
+std::string statsFileJson(const std::vector<std::string>& frames) {
+  std::string out = "{\"schema\": \"tessera-stats-1\", \"frames\": [\n";
+  for (size_t i = 0; i < frames.size(); ++i) out += (i ? ",\n" : "") + frames[i];
+  out += "\n]}\n";
+  return out;
+}
+
+}  // namespace tessera::cli
