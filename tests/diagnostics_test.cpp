@@ -65,7 +65,7 @@ void expectCountersAddUp(const PipelineCounters& c) {
 TEST(Diagnostics, OverdrawOfStackedFullScreenQuadsIsTheirCount) {
   constexpr int kQuads = 5;
   // 96x96: the quads' diagonals pass through pixel centres, where the top-left rule decides.
-  for (const auto [kW, kH] : {std::pair{150, 100}, std::pair{96, 96}}) {
+  for (const auto& [kW, kH] : {std::pair{150, 100}, std::pair{96, 96}}) {
     Scene scene = clipSpaceScene();
     Mesh m;
     // Back to front and front to back: tests count whether they pass or not.

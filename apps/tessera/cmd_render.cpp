@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -68,11 +69,7 @@ Expected<void> writeStill(const std::filesystem::path& path, const Frame& frame,
   return io::writePngRgba8(path, frame.width, frame.height, frame.color.data());
 }
 
-}  // namespace
-
-int runRender(const std::vector<std::string>& args) {
-  RenderSettings s;
-  FlagSet flags("tessera render MODEL [-o OUTPUT] [flags]");
+void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   flags.addString("o|output", &s.output,
                   "output: .png; .gif, .mp4 or a {frame} PNG template for a turntable "
                   "(default MODEL's name with .png, in the current folder)");
@@ -127,70 +124,37 @@ int runRender(const std::vector<std::string>& args) {
                   "print the CRC-32 of each frame's RGBA8 colour pixels: crc32 frame N HEX");
   addReferenceFlags(flags, s.reference);
 
-  Expected<std::vector<std::string>> positional = flags.parse(args);
-  if (flags.helpRequested()) {
-    std::cout << flags.usage();
-    return kExitOk;
-  }
-  auto usageError = [&](const std::string& message) {
-    printError("render", message);
-    std::cerr << flags.usage();
-    return kExitUsage;
-  };
-  if (!positional) return usageError(positional.error().message);
-  if (positional->size() != 1)
-    return usageError(positional->empty() ? "no model given" : "more than one model given");
-  const std::filesystem::path model_path = positional->front();
-  if (s.output.empty()) s.output = model_path.stem().string() + ".png";
+}
 
-  OutputKind kind;
+// What the output path asks for, and the flags that cannot go with it: "" or a usage error.
+std::string checkOutput(const RenderSettings& s, OutputKind& kind) {
   if (s.output.find("{frame}") != std::string::npos) {
-    if (!endsWithIgnoringCase(s.output, ".png"))
-      return usageError("a {frame} output must end in .png");
+    if (!endsWithIgnoringCase(s.output, ".png")) return "a {frame} output must end in .png";
     kind = OutputKind::kSequence;
   } else if (endsWithIgnoringCase(s.output, ".gif") || endsWithIgnoringCase(s.output, ".mp4")) {
     kind = OutputKind::kVideo;
   } else if (endsWithIgnoringCase(s.output, ".png")) {
     kind = OutputKind::kPng;
   } else {
-    return usageError("output '" + s.output +
-                      "' must end in .png, .gif or .mp4, or be a {frame} .png template");
+    return "output '" + s.output + "' must end in .png, .gif or .mp4, or be a {frame} .png template";
   }
   if (kind == OutputKind::kPng && s.turntable > 1)
-    return usageError("--turntable writes several frames: use a .gif, .mp4 or {frame} .png output");
+    return "--turntable writes several frames: use a .gif, .mp4 or {frame} .png output";
   if (kind == OutputKind::kVideo && s.aov != "color")
-    return usageError("--aov " + s.aov + " needs PNG output (a .png or a {frame} template)");
+    return "--aov " + s.aov + " needs PNG output (a .png or a {frame} template)";
   if ((s.crc || !s.reference.path.empty()) && s.aov != "color")
-    return usageError("--crc and --reference check the colour image: leave out --aov " + s.aov);
+    return "--crc and --reference check the colour image: leave out --aov " + s.aov;
   if (!s.reference.path.empty() && kind != OutputKind::kPng)
-    return usageError("--reference compares one image: use a .png output without --turntable");
+    return "--reference compares one image: use a .png output without --turntable";
   if (s.reference.update && s.reference.path.empty())
-    return usageError("--reference-update needs --reference PATH, the file to write");
+    return "--reference-update needs --reference PATH, the file to write";
+  return "";
+}
 
-  const bool diagnostics = isDiagnosticAov(s.aov) || !s.stats.empty();
-  if (diagnostics && s.backend != "cpu") {
-    printError("render", (isDiagnosticAov(s.aov) ? "--aov " + s.aov : std::string("--stats")) +
-                             " is not yet on the " + s.backend + " backend (use --backend cpu)");
-    return kExitFailure;
-  }
-  if (needsPixelTests(s.aov) && s.camera.projectionMode() != Projection::kPerspective) {
-    printError("render", "--aov " + s.aov + " is measured for the perspective projection only");
-    return kExitFailure;
-  }
-  // The stats file's temporary is made now: a path that cannot be written fails before any
-  // work, and the temporary goes away with any failure below.
-  std::optional<io::AtomicFile> stats_file;
-  std::vector<std::string> stats_frames;
-  if (!s.stats.empty()) {
-    Expected<io::AtomicFile> created = io::AtomicFile::create(s.stats);
-    if (!created) {
-      printError("render", created.error().message);
-      return kExitFailure;
-    }
-    stats_file.emplace(std::move(*created));
-  }
-
-  // Load.
+// The model as a scene with its camera, lights and axes, and the model's bounds. An exit status
+// other than kExitOk when something fails (printed); kExitOk after --info's listing too.
+int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, Scene& scene,
+              Bounds& bounds, const std::function<int(const std::string&)>& usage_error) {
   Expected<io::Model> model = io::loadModel(model_path);
   if (!model) {
     printError("render", model.error().message);
@@ -214,13 +178,12 @@ int runRender(const std::vector<std::string>& args) {
                 << " has no texture coordinates: --texture has no effect\n";
     scene_settings.albedo = std::make_shared<const Texture>(std::move(*texture));
   }
-  const Bounds bounds = model->mesh.bounds();
+  bounds = model->mesh.bounds();
   if (bounds.empty()) {
     printError("render", model_path.string() + ": the model has no finite vertices");
     return kExitFailure;
   }
 
-  // Scene.
   scene_settings.shading = shadingFromName(s.shading);
   // Without the flag a glTF model's materials decide (doubleSided); other formats draw back faces.
   const bool cull_back =
@@ -232,12 +195,11 @@ int runRender(const std::vector<std::string>& args) {
     printError("render", made.error().message);
     return kExitFailure;
   }
-  Scene scene = std::move(*made);
+  scene = std::move(*made);
 
-  const float3 up = s.camera.upAxis();
   const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
   Expected<Camera> camera = makeCamera(s.camera, bounds, aspect);
-  if (!camera) return usageError(camera.error().message);
+  if (!camera) return usage_error(camera.error().message);
   scene.camera = *camera;
   addViewLights(scene);
   if (s.axes) {
@@ -245,13 +207,11 @@ int runRender(const std::vector<std::string>& args) {
     scene.world_axes_length = std::max(bounds.radius(), 1e-6f);
   }
 
-  // Render.
-  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
-  if (!backend) {
-    printError("render", backend.error().message);
-    return kExitFailure;
-  }
-  Backend& renderer = **backend;
+  return kExitOk;
+}
+
+// The options and the sampling of every frame for these settings.
+RenderOptions renderOptions(const RenderSettings& s, bool diagnostics, SamplingSettings& sampling) {
   RenderOptions options;
   options.width = s.width;
   options.height = s.height;
@@ -264,10 +224,25 @@ int runRender(const std::vector<std::string>& args) {
   options.projection = s.camera.projectionMode();
   // The id, depth and normal AOVs are the pixel centre's: one sample, no jitter. Coverage is
   // frame 0's (not jittered) at the --msaa count.
-  SamplingSettings sampling = s.sampling;
+  sampling = s.sampling;
   if (s.aov != "color") sampling.samples = 1;
   if (s.aov == "id" || s.aov == "depth" || s.aov == "normal" || isDiagnosticAov(s.aov))
     sampling.msaa = 1;
+  return options;
+}
+
+// Renders the frames of `scene` and writes them (and the stats file, when open); the exit status.
+int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const Bounds& bounds,
+                 bool diagnostics, std::optional<io::AtomicFile>& stats_file) {
+  std::vector<std::string> stats_frames;
+  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
+  if (!backend) {
+    printError("render", backend.error().message);
+    return kExitFailure;
+  }
+  Backend& renderer = **backend;
+  SamplingSettings sampling;
+  const RenderOptions options = renderOptions(s, diagnostics, sampling);
   Accumulator accumulator;
   Frame frame;
   const int frame_count = std::max(s.turntable, 1);
@@ -282,6 +257,7 @@ int runRender(const std::vector<std::string>& args) {
     sink = std::move(*opened);
   }
   const float3 center = bounds.center();
+  const float3 up = s.camera.upAxis();
   Progress progress("render: frame", frame_count);
   for (int i = 0; i < frame_count; ++i) {
     // The turntable turns the model about the up axis through its centre.
@@ -333,6 +309,61 @@ int runRender(const std::vector<std::string>& args) {
   std::cout << ")\n";
   if (!s.reference.path.empty()) return checkReference(s.reference, s.output, frame);
   return kExitOk;
+}
+
+}  // namespace
+
+int runRender(const std::vector<std::string>& args) {
+  RenderSettings s;
+  FlagSet flags("tessera render MODEL [-o OUTPUT] [flags]");
+  addRenderFlags(flags, s);
+  Expected<std::vector<std::string>> positional = flags.parse(args);
+  if (flags.helpRequested()) {
+    std::cout << flags.usage();
+    return kExitOk;
+  }
+  auto usageError = [&](const std::string& message) {
+    printError("render", message);
+    std::cerr << flags.usage();
+    return kExitUsage;
+  };
+  if (!positional) return usageError(positional.error().message);
+  if (positional->size() != 1)
+    return usageError(positional->empty() ? "no model given" : "more than one model given");
+  const std::filesystem::path model_path = positional->front();
+  if (s.output.empty()) s.output = model_path.stem().string() + ".png";
+
+  OutputKind kind = OutputKind::kPng;
+  if (std::string wrong = checkOutput(s, kind); !wrong.empty()) return usageError(wrong);
+  const bool diagnostics = isDiagnosticAov(s.aov) || !s.stats.empty();
+  if (diagnostics && s.backend != "cpu") {
+    printError("render", (isDiagnosticAov(s.aov) ? "--aov " + s.aov : std::string("--stats")) +
+                             " is not yet on the " + s.backend + " backend (use --backend cpu)");
+    return kExitFailure;
+  }
+  if (needsPixelTests(s.aov) && s.camera.projectionMode() != Projection::kPerspective) {
+    printError("render", "--aov " + s.aov + " is measured for the perspective projection only");
+    return kExitFailure;
+  }
+  // The stats file's temporary is made now: a path that cannot be written fails before any
+  // work, and the temporary goes away with any failure below.
+  std::optional<io::AtomicFile> stats_file;
+  if (!s.stats.empty()) {
+    Expected<io::AtomicFile> created = io::AtomicFile::create(s.stats);
+    if (!created) {
+      printError("render", created.error().message);
+      return kExitFailure;
+    }
+    stats_file.emplace(std::move(*created));
+  }
+
+  Scene scene;
+  Bounds bounds;
+  if (int status = loadScene(s, model_path, scene, bounds, usageError); status != kExitOk)
+    return status;
+  if (s.info) return kExitOk;
+
+  return renderFrames(s, kind, scene, bounds, diagnostics, stats_file);
 }
 
 }  // namespace tessera::cli
