@@ -14,6 +14,7 @@
 #include <tessera/scene/color.h>
 
 #include "backends.h"
+#include "budget_flags.h"
 #include "commands.h"
 #include "flags.h"
 #include "model_scene.h"
@@ -108,6 +109,8 @@ int runRender(const std::vector<std::string>& args) {
   flags.addString("texture", &s.texture,
                   "an albedo texture (PNG, JPEG, BMP, TGA) for every material");
   flags.addSwitch("info", &s.info, "print the model's counts, bounds and warnings; do not render");
+  io::LoadBudget budget;
+  addBudgetFlags(flags, budget);
 
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {
@@ -144,7 +147,7 @@ int runRender(const std::vector<std::string>& args) {
     return usageError("--aov " + s.aov + " needs PNG output (a .png or a {frame} template)");
 
   // Load.
-  Expected<io::Model> model = io::loadModel(model_path);
+  Expected<io::Model> model = io::loadModel(model_path, budget);
   if (!model) {
     printError("render", model.error().message);
     return kExitFailure;
@@ -153,11 +156,14 @@ int runRender(const std::vector<std::string>& args) {
     printModelInfo(model_path.string(), *model, std::cout);
     return kExitOk;
   }
+  if (std::string warning = fitModelScale(*model, model_path, s.camera.explicitCamera());
+      !warning.empty())
+    model->warnings.push_back(warning);
   for (const std::string& warning : model->warnings)
     std::cerr << "tessera render: warning: " << warning << "\n";
   ModelSceneSettings scene_settings;
   if (!s.texture.empty()) {
-    Expected<Texture> texture = io::loadTexture(s.texture);
+    Expected<Texture> texture = io::loadTexture(s.texture, /*srgb=*/true, budget.texturePixels());
     if (!texture) {
       printError("render", texture.error().message);
       return kExitFailure;
