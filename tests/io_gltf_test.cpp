@@ -864,7 +864,16 @@ TEST_F(GltfFiles, ObjectsWorthGigabytesOfParserStructuresAreRefused) {
 
 TEST_F(GltfFiles, InvalidJsonNamesTheLine) {
   expectErrorContains(loadJson("{\"asset\":{\"version\":\"2.0\"},\n\"nodes\":[{]\n}"),
-                      "model.gltf: not valid JSON: parse error at line 2");
+                      "model.gltf: not valid JSON at line 2, column 11: unexpected ']'");
+}
+
+TEST_F(GltfFiles, LibraryMessagesAreInTesserasWords) {
+  const std::string asset = "{\"asset\":{\"version\":\"2.0\"},";
+  expectErrorContains(loadJson(asset + "\"bufferViews\":[{\"byteLength\":4}]}"),
+                      "a BufferView lacks its required property 'buffer'");
+  expectErrorContains(loadJson("{\"asset\":{}}"), "the required \"asset\" object is missing");
+  expectErrorContains(loadJson("[1,2"), "not valid JSON at line 1, column 5: unexpected end of "
+                                        "input; expected ']'");
 }
 
 TEST_F(GltfFiles, RequiredExtensionsThatAreNotSupportedAreAnError) {

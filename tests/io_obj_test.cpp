@@ -761,6 +761,20 @@ TEST_F(ObjFiles, TextureOverThePixelBudgetFailsTheModel) {
   EXPECT_NE(model->materials[0].albedo, nullptr);
 }
 
+TEST_F(ObjFiles, LibraryWarningsAreInTesserasWords) {
+  write(at("m.mtl"), "newmtl a\nd 0.5\nTr 0.5\n");
+  Expected<Model> model = loadObj(writeModel(
+      "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl missing\nf 1 2 3\nusemtl a\nf 1 2 3\n"));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_TRUE(anyWarningContains(
+      *model, "usemtl 'missing': no such material in the MTL files; the default is used"));
+  EXPECT_TRUE(anyWarningContains(*model, "material 'a' sets both d and Tr; d is used"));
+  for (const std::string& warning : model->warnings) {
+    EXPECT_EQ(warning.find("not found in .mtl"), std::string::npos) << warning;
+    EXPECT_EQ(warning.find("Use the value of"), std::string::npos) << warning;
+  }
+}
+
 TEST_F(ObjFiles, PngClaimingAHugeSizeIsOverTheBudgetNotUnreadable) {
   // Only a signature and an IHDR claiming 100000 x 100000: stb's header scan gives up on it
   // ("unknown image type").

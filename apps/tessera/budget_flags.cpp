@@ -50,26 +50,20 @@ void addBudgetFlags(FlagSet& flags, io::LoadBudget& budget) {
                     budget.memory_bytes = bytes;
                     return "";
                   });
-  flags.addCustom("max-triangles", "N",
-                  "the most triangles a model may draw, after instancing (default: memory limit "
-                  "/ 512, 2097152)",
-                  [&budget](const std::string& v) -> std::string {
-                    long long n = 0;
-                    if (!parseIntStrict(v, n) || n < 1)
-                      return "expected a positive count, got '" + v + "'";
-                    budget.max_triangles = static_cast<uint64_t>(n);
-                    return "";
-                  });
-  flags.addCustom("max-texture-pixels", "N",
-                  "the most pixels one decoded texture may have (default: memory limit / 16, "
-                  "67108864 = 8192x8192)",
-                  [&budget](const std::string& v) -> std::string {
-                    long long n = 0;
-                    if (!parseIntStrict(v, n) || n < 1)
-                      return "expected a positive count, got '" + v + "'";
-                    budget.max_texture_pixels = static_cast<uint64_t>(n);
-                    return "";
-                  });
+  auto addCount = [&flags](const std::string& name, uint64_t* out, const std::string& help) {
+    flags.addCustom(name, "N", help, [out](const std::string& v) -> std::string {
+      long long n = 0;
+      if (!parseIntStrict(v, n) || n < 1) return "expected a positive count, got '" + v + "'";
+      *out = static_cast<uint64_t>(n);
+      return "";
+    });
+  };
+  addCount("max-triangles", &budget.max_triangles,
+           "the most triangles a model may draw, after instancing (default: memory limit / 512, "
+           "2097152)");
+  addCount("max-texture-pixels", &budget.max_texture_pixels,
+           "the most pixels one decoded texture may have (default: memory limit / 16, "
+           "67108864 = 8192x8192)");
 }
 
 }  // namespace tessera::cli

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model_paths.h"
 #include "tinygltf_include.h"
 
 namespace tessera::io::gltf {
@@ -257,11 +258,18 @@ Expected<void> checkJsonShape(std::string_view text, const std::string& name) {
   } catch (const JsonShapeError& error) {
     return makeError(name + ": " + error.message);
   } catch (const Json::parse_error& error) {
-    // "[json.exception.parse_error.101] parse error at line 3, column 7: ..."
+    // "[json.exception.parse_error.101] parse error at line 3, column 7: syntax error while
+    // parsing array - unexpected end of input; expected ']'": where, and what was found.
     std::string what = error.what();
-    size_t at = what.find("] ");
-    return makeError(name +
-                     ": not valid JSON: " + (at == std::string::npos ? what : what.substr(at + 2)));
+    std::string where = "at byte " + std::to_string(error.byte);
+    size_t colon = what.find("] ");
+    if (size_t at = what.find("at line "); at != std::string::npos) {
+      colon = what.find(':', at);
+      where = what.substr(at, colon - at);
+    }
+    std::string why = colon == std::string::npos ? what : what.substr(colon + 1);
+    if (size_t dash = why.find(" - "); dash != std::string::npos) why = why.substr(dash + 3);
+    return makeError(name + ": not valid JSON " + where + ": " + trimmed(why));
   }
   if (!root.is_object()) return makeError(name + ": the JSON is not an object: not glTF");
   auto arrayOf = [&](const char* key) -> const Json* {

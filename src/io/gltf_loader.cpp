@@ -50,8 +50,7 @@ using namespace gltf;
 
 // tinygltf takes lengths as unsigned int; 2 GiB keeps every offset well inside that.
 constexpr uintmax_t kMaxGltfBytes = uintmax_t{2} << 30;
-// The flattened scene. Instancing can multiply a small file into a huge mesh; past this many
-// triangles or vertices the file is refused rather than eating the machine.
+// Distinct warnings listed per file; the rest are counted.
 constexpr size_t kMaxWarnings = 20;
 
 // ---- The flattening ----
@@ -603,7 +602,27 @@ std::string inOwnWords(std::string line) {
              " bytes, but the buffer's byteLength is " + wanted;
     }
   }
+  // "'buffer' property is missing in BufferView."
+  if (const size_t missing = line.find("' property is missing in ");
+      line.starts_with("'") && missing != std::string::npos) {
+    std::string object = line.substr(missing + 25);
+    while (!object.empty() && (object.back() == '.' || object.back() == ' ')) object.pop_back();
+    return "a " + elided(object) + " lacks its required property '" +
+           elided(line.substr(1, missing - 1)) + "'";
+  }
+  if (line.starts_with("Unsupported `type` for accessor object"))
+    return "an accessor's type is not a glTF type (" + elided(line.substr(line.find("Got") + 3)) +
+           ")";
+  if (line.starts_with("Failed to decode 'uri' for image["))
+    return "image " + numberAfter(line, "image[") + ": its URI cannot be decoded";
   // "Failed to decode 'uri' : data:... in Buffer": the URI can be megabytes long.
+  if (line.starts_with("Failed to decode 'uri' : ")) {
+    std::string uri = line.substr(25);
+    if (uri.ends_with(" in Buffer")) uri.resize(uri.size() - 10);
+    return "a buffer's URI cannot be decoded: '" + elided(uri) + "'";
+  }
+  if (line.starts_with("\"asset\" object not found"))
+    return "the required \"asset\" object is missing";
   std::string out;
   size_t begin = 0;
   while (begin < line.size()) {

@@ -31,6 +31,15 @@ bool equalsIgnoreCase(std::string_view a, std::string_view b) {
          });
 }
 
+std::string numberAfter(std::string_view text, std::string_view marker) {
+  std::string number;
+  const size_t at = text.rfind(marker);
+  if (at == std::string_view::npos) return number;
+  for (size_t i = at + marker.size(); i < text.size() && text[i] >= '0' && text[i] <= '9'; ++i)
+    number += text[i];
+  return number;
+}
+
 std::string elided(std::string_view text) {
   constexpr size_t kMaxShown = 80;
   if (text.starts_with("data:")) {

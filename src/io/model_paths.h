@@ -18,6 +18,9 @@ std::string trimmed(std::string_view text);
 
 bool equalsIgnoreCase(std::string_view a, std::string_view b);
 
+// The digits after the last `marker` in a library's message ("... line 12.)" -> "12"), or empty.
+std::string numberAfter(std::string_view text, std::string_view marker);
+
 // A value from a file, short enough for a message: a data: URI as "data:image/png;base64,iVBO..."
 // and any other text over 80 characters cut with "...".
 std::string elided(std::string_view text);

@@ -59,6 +59,34 @@ constexpr uint64_t kEarClipBudget = 1'000'000'000;
 // Distinct tinyobjloader warnings passed on per file; the rest are counted.
 constexpr size_t kMaxLibraryWarnings = 10;
 
+// The text between the first two `quote`s, or empty.
+std::string_view between(std::string_view text, char quote) {
+  const size_t begin = text.find(quote);
+  const size_t end = begin == std::string_view::npos ? begin : text.find(quote, begin + 1);
+  if (end == std::string_view::npos) return {};
+  return text.substr(begin + 1, end - begin - 1);
+}
+
+// One of tinyobjloader's warnings in tessera's words (the ones a file can reach); any other is
+// passed on with its values elided.
+std::string inOwnWords(const std::string& line) {
+  const std::string at_line = numberAfter(line, "line ");
+  const std::string where = at_line.empty() ? "" : "line " + at_line + ": ";
+  if (line.starts_with("material [")) {
+    std::string name(between(line, '\''));
+    if (name.empty()) name = trimmed(std::string_view(line).substr(10, line.find(']') - 10));
+    return "usemtl '" + elided(name) + "': no such material in the MTL files; the default is used";
+  }
+  if (line.starts_with("Both `d` and `Tr`"))
+    return "material '" + elided(between(line, '"')) + "' sets both d and Tr; d is used";
+  if (line.starts_with("Empty group name")) return where + "a group without a name";
+  if (line.starts_with("Looks like empty filename for mtllib"))
+    return where + "an mtllib line names no file";
+  if (line.starts_with("Failed parse `l'") || line.starts_with("Failed parse `p'"))
+    return where + "a line or point element with a zero or unreadable index is skipped";
+  return elided(line);
+}
+
 // Passes tinyobjloader's warnings on, except those this loader reports better itself.
 void forwardLibraryWarnings(const std::string& file, const std::string& text,
                             std::vector<std::string>& warnings) {
@@ -83,7 +111,7 @@ void forwardLibraryWarnings(const std::string& file, const std::string& text,
       ++skipped;
       continue;
     }
-    warnings.push_back(file + ": " + line);
+    warnings.push_back(file + ": " + inOwnWords(line));
   }
   if (skipped > 0)
     warnings.push_back(file + ": " + std::to_string(skipped) + " more warnings like these");
@@ -449,19 +477,18 @@ class FaceLocator {
 
 // tinyobjloader's own failures (a zero or unreadable index) end in "... line N.)".
 Error libraryError(const std::string& file, const std::string& message) {
-  std::string text = trimmed(message);
-  size_t at = text.rfind("line ");
-  std::string line;
-  if (at != std::string::npos)
-    for (size_t i = at + 5; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]));
-         ++i)
-      line += text[i];
-  std::string where = line.empty() ? file + ": " : file + ":" + line + ": ";
+  const std::string text = trimmed(message);
+  const std::string line = numberAfter(text, "line ");
+  const std::string where = line.empty() ? file + ": " : file + ":" + line + ": ";
   if (text.find("`f'") != std::string::npos)
     return makeError(where +
                      "cannot read the face: an index is 0, not a number, or followed by "
                      "other text");
-  return makeError(where + text);
+  if (text.find("`vw'") != std::string::npos)
+    return makeError(where + "a vertex weight with a negative joint index");
+  if (text.find("`l'") != std::string::npos || text.find("`p'") != std::string::npos)
+    return makeError(where + "cannot read a line or point element: an index is 0 or not a number");
+  return makeError(where + "cannot read the file (" + elided(text) + ")");
 }
 
 std::string pastEnd(const char* what, int index, size_t count, const char* counted) {
@@ -480,7 +507,8 @@ Expected<void> checkScan(const std::string& name, const ObjLineIndex& lines,
                                       "--max-triangles");
       !ok)
     return ok;
-  return checkBudget(name, "vertex positions", lines.positions, budget.vertices(), "");
+  return checkBudget(name, "vertex positions", lines.positions, budget.vertices(),
+                     "--max-triangles");
 }
 
 Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {

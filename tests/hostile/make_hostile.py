@@ -178,45 +178,38 @@ def glb(doc, binary):
 
 # ---- The cases ----
 
-def hangs(root):
-    # A texture named by an MTL that is a FIFO nobody writes: drawn without it, at once.
-    d = os.path.join(root, "fifo_obj_texture")
-    obj, mtl = textured_obj("map_Kd tex.png")
-    write(d, "model.obj", obj)
-    write(d, "m.mtl", mtl)
-    os.mkfifo(os.path.join(d, "tex.png"))
-    case("fifo_obj_texture", "model.obj", 0, err_has=["tex.png: is a FIFO"])
-
-    d = os.path.join(root, "fifo_mtl")
-    write(d, "model.obj", obj)
-    os.mkfifo(os.path.join(d, "m.mtl"))
-    case("fifo_mtl", "model.obj", 0, err_has=["m.mtl: is a FIFO"])
-
-    d = os.path.join(root, "directory_obj_texture")
-    write(d, "model.obj", obj)
-    write(d, "m.mtl", mtl)
-    os.makedirs(os.path.join(d, "tex.png"))
-    case("directory_obj_texture", "model.obj", 0, err_has=["tex.png: is a directory"],
-         err_lacks=["no such file"])
-
-    d = os.path.join(root, "fifo_gltf_buffer")
-    doc, _ = gltf_triangle(buffer_uri="b.bin")
-    write(d, "model.gltf", json.dumps(doc))
-    os.mkfifo(os.path.join(d, "b.bin"))
-    case("fifo_gltf_buffer", "model.gltf", 1, err_has=["b.bin: is a FIFO"],
-         err_lacks=["no such file"])
-
-    d = os.path.join(root, "directory_gltf_image")
-    doc, _ = gltf_triangle(image="img.png")
-    write(d, "model.gltf", json.dumps(doc))
-    os.makedirs(os.path.join(d, "img.png"))
-    case("directory_gltf_image", "model.gltf", 0, err_has=["img.png: is a directory"],
-         err_lacks=["not found"])
-
-    d = os.path.join(root, "fifo_model")
+def not_a_file(root, name, files, special, kind, exit, message):
+    """A case whose model folder holds `files` ({name: content}) and `special`, a FIFO nobody
+    writes to or a folder (`kind`) where a file is expected. The model is the first of `files`,
+    or `special` itself when `files` is empty."""
+    d = os.path.join(root, name)
     os.makedirs(d)
-    os.mkfifo(os.path.join(d, "model.stl"))
-    case("fifo_model", "model.stl", 1, err_has=["model.stl: is a FIFO"])
+    for file_name, content in files.items():
+        write(d, file_name, content)
+    if kind == "fifo":
+        os.mkfifo(os.path.join(d, special))
+    else:
+        os.makedirs(os.path.join(d, special))
+    model = next(iter(files), special)
+    case(name, model, exit, err_has=[special + ": " + message],
+         err_lacks=["no such file", "not found"])
+
+
+def hangs(root):
+    # Each named where a file is expected; a FIFO must never block render or info.
+    obj, mtl = textured_obj("map_Kd tex.png")
+    buffer_doc, _ = gltf_triangle(buffer_uri="b.bin")
+    image_doc, _ = gltf_triangle(image="img.png")
+    not_a_file(root, "fifo_obj_texture", {"model.obj": obj, "m.mtl": mtl}, "tex.png", "fifo", 0,
+               "is a FIFO")
+    not_a_file(root, "fifo_mtl", {"model.obj": obj}, "m.mtl", "fifo", 0, "is a FIFO")
+    not_a_file(root, "directory_obj_texture", {"model.obj": obj, "m.mtl": mtl}, "tex.png", "dir",
+               0, "is a directory")
+    not_a_file(root, "fifo_gltf_buffer", {"model.gltf": json.dumps(buffer_doc)}, "b.bin", "fifo",
+               1, "is a FIFO")
+    not_a_file(root, "directory_gltf_image", {"model.gltf": json.dumps(image_doc)}, "img.png",
+               "dir", 0, "is a directory")
+    not_a_file(root, "fifo_model", {}, "model.stl", "fifo", 1, "is a FIFO")
 
 
 def bombs(root):
