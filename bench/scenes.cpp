@@ -139,8 +139,9 @@ Expected<BenchScene> makeBuiltinScene(const std::string& name, Shading shading) 
   return makeError("unknown scene '" + name + "' (built-in scenes: " + known + ")");
 }
 
-Expected<BenchScene> loadModelScene(const std::filesystem::path& path, Shading shading) {
-  Expected<io::Model> model = io::loadModel(path);
+Expected<BenchScene> loadModelScene(const std::filesystem::path& path, Shading shading,
+                                    const io::LoadBudget& budget) {
+  Expected<io::Model> model = io::loadModel(path, budget);
   if (!model) return model.error();
   if (model->mesh.bounds().empty())
     return makeError(path.string() + ": the model has no finite vertices");

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <tessera/base/expected.h>
+#include <tessera/io/model_loader.h>
 #include <tessera/scene/scene.h>
 
 namespace tessera::bench {
@@ -55,7 +56,8 @@ bool isBuiltinScene(const std::string& name);
 Expected<BenchScene> makeBuiltinScene(const std::string& name, Shading shading);
 
 // A model file through io::loadModel, as one object with `shading` and back faces culled.
-Expected<BenchScene> loadModelScene(const std::filesystem::path& path, Shading shading);
+Expected<BenchScene> loadModelScene(const std::filesystem::path& path, Shading shading,
+                                    const io::LoadBudget& budget = {});
 
 // Poses the scene for frame `frame`: every object turned by frame * kTurnDegreesPerFrame about
 // the spin axis through the pivot.

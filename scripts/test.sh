@@ -7,5 +7,12 @@ cd "$root"
 # The loaders' fuzzers (OBJ, MTL, STL, glTF), 20 s each with ASan and UBSan: about two and a half
 # minutes on 2 cores, most of it the clang build.
 "$root/fuzz/run_all.sh" 20
+# The unit suite (with the hostile corpus) under ASan+UBSan and the threaded render tests under
+# TSan: two lean -O1 builds of only what they run (scripts/sanitize.sh). About 14 CPU-minutes,
+# so about 7 to 8 minutes on 2 idle cores; measured 17m52s on a shared, loaded 2-core machine.
+"$root/scripts/sanitize.sh"
+# The unit suite under ASan+UBSan and the threaded render tests under TSan, each a lean clang build
+# of only what it runs (scripts/sanitize.sh; about N minutes on 2 cores).
+"$root/scripts/sanitize.sh"
 # Last, so that its summary closes the output.
 ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600

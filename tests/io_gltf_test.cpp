@@ -2,6 +2,8 @@
 // data: URI, a GLB assembled here, or a JSON file beside a .bin.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -160,6 +162,15 @@ class GltfFiles : public ::testing::Test {
   }
   Expected<Model> loadJson(const std::string& json, const std::string& name = "model.gltf") {
     return loadGltf(write(at(name), json));
+  }
+  Expected<Model> loadJson(const std::string& json, const LoadBudget& budget) {
+    return loadGltf(write(at("model.gltf"), json), budget);
+  }
+  // A budget no count in these tests reaches, to test the checks behind it.
+  static LoadBudget unlimited() {
+    LoadBudget budget;
+    budget.max_triangles = uint64_t{1} << 40;
+    return budget;
   }
 
   fs::path root_;
@@ -752,12 +763,16 @@ TEST_F(GltfFiles, CountClaimingGigabytesIsRefusedBeforeAllocating) {
   b.positions(kTriangle);
   const int huge = b.rawAccessor(
       "{\"bufferView\":0,\"componentType\":5126,\"type\":\"VEC3\",\"count\":1000000000}");
+  // The triangle budget refuses it first, from the count alone.
   expectErrorContains(loadJson(b.json(kOneNodeScene + "," + oneMesh(huge))),
+                      "333333333 triangles (after instancing), over the budget");
+  // Past the budget's reach, the range check against the buffer view does.
+  expectErrorContains(loadJson(b.json(kOneNodeScene + "," + oneMesh(huge)), unlimited()),
                       "1000000000 elements of 12 bytes");
   // Without a bufferView an accessor is zeros: its count is bounded by the file's size.
   const int zeros =
       b.rawAccessor("{\"componentType\":5126,\"type\":\"VEC3\",\"count\":1000000000}");
-  expectErrorContains(loadJson(b.json(kOneNodeScene + "," + oneMesh(zeros))),
+  expectErrorContains(loadJson(b.json(kOneNodeScene + "," + oneMesh(zeros)), unlimited()),
                       "more than the file's size can justify");
 }
 
@@ -849,7 +864,16 @@ TEST_F(GltfFiles, ObjectsWorthGigabytesOfParserStructuresAreRefused) {
 
 TEST_F(GltfFiles, InvalidJsonNamesTheLine) {
   expectErrorContains(loadJson("{\"asset\":{\"version\":\"2.0\"},\n\"nodes\":[{]\n}"),
-                      "model.gltf: not valid JSON: parse error at line 2");
+                      "model.gltf: not valid JSON at line 2, column 11: unexpected ']'");
+}
+
+TEST_F(GltfFiles, LibraryMessagesAreInTesserasWords) {
+  const std::string asset = "{\"asset\":{\"version\":\"2.0\"},";
+  expectErrorContains(loadJson(asset + "\"bufferViews\":[{\"byteLength\":4}]}"),
+                      "a BufferView lacks its required property 'buffer'");
+  expectErrorContains(loadJson("{\"asset\":{}}"), "the required \"asset\" object is missing");
+  expectErrorContains(loadJson("[1,2"), "not valid JSON at line 1, column 5: unexpected end of "
+                                        "input; expected ']'");
 }
 
 TEST_F(GltfFiles, RequiredExtensionsThatAreNotSupportedAreAnError) {
@@ -865,6 +889,74 @@ TEST_F(GltfFiles, MissingFileAndNotGltfAreErrors) {
   expectErrorContains(loadGltf(at("absent.gltf")), "absent.gltf: no such file");
   expectErrorContains(loadJson("[1, 2, 3]"), "not an object");
   expectErrorContains(loadJson("{\"nodes\":[]}"), "model.gltf: not a readable glTF file");
+}
+
+// ---- Hostile input, round two (issue 22) ----
+
+TEST_F(GltfFiles, IndicesPast32BitsAreErrorsNamingTheElement) {
+  // tinygltf reads these into an int: 2^32 would be node 0, 2^31 a negative count.
+  const std::string scene = "\"asset\":{\"version\":\"2.0\"},";
+  expectErrorContains(loadJson("{" + scene + "\"nodes\":[{\"mesh\":4294967296}]}"),
+                      "model.gltf: nodes[0].mesh is 4294967296, out of range (at most 2147483647)");
+  expectErrorContains(loadJson("{" + scene + "\"scenes\":[{\"nodes\":[1,4294967296]}]}"),
+                      "scenes[0].nodes[1] is 4294967296");
+  expectErrorContains(
+      loadJson("{" + scene + "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":-4294967295}}]}]}"),
+      "meshes[0].primitives[0].attributes.POSITION is -4294967295, out of range (at least "
+      "-2147483648)");
+  expectErrorContains(
+      loadJson("{" + scene + "\"accessors\":[{\"sparse\":{\"count\":2147483648}}]}"),
+      "accessors[0].sparse.count is 2147483648");
+  // Numbers tessera does not read as integers may be as large as they like.
+  GltfBuilder b;
+  const int p = b.positions(kTriangle);
+  EXPECT_TRUE(loadJson(b.json(kOneNodeScene + "," + oneMesh(p) +
+                              ",\"extras\":{\"mesh\":99999999999}"))
+                  .ok());
+}
+
+TEST_F(GltfFiles, InstancingOverTheTriangleBudgetIsRefusedBeforeFlattening) {
+  GltfBuilder b;
+  const int p = b.positions(kTriangle);
+  std::string nodes = "\"scene\":0,\"scenes\":[{\"nodes\":[0,1,2,3]}],\"nodes\":[";
+  for (int i = 0; i < 4; ++i) nodes += std::string(i ? "," : "") + "{\"mesh\":0}";
+  nodes += "]";
+  LoadBudget budget;
+  budget.max_triangles = 3;
+  expectErrorContains(loadJson(b.json(nodes + "," + oneMesh(p)), budget),
+                      "4 triangles (after instancing), over the budget of 3; raise it with "
+                      "--max-triangles or --memory-limit");
+  budget.max_triangles = 4;
+  Expected<Model> model = loadJson(b.json(nodes + "," + oneMesh(p)), budget);
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_EQ(model->mesh.triangleCount(), 4u);
+}
+
+TEST_F(GltfFiles, BufferFileThatIsAFifoIsRefusedWithoutBlocking) {
+  ASSERT_EQ(::mkfifo(at("b.bin").c_str(), 0600), 0);
+  const std::string json =
+      "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"uri\":\"b.bin\",\"byteLength\":36}]}";
+  expectErrorContains(loadJson(json), "b.bin: is a FIFO, not a regular file");
+}
+
+TEST_F(GltfFiles, ShortBufferFileIsReportedInTesserasWords) {
+  write(at("c.bin"), std::string(20, '\0'));
+  const std::string json =
+      "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"uri\":\"c.bin\",\"byteLength\":168}]}";
+  Expected<Model> model = loadJson(json);
+  expectErrorContains(model, "buffer file 'c.bin' is 20 bytes, but the buffer's byteLength is 168");
+  EXPECT_EQ(model.error().message.find("tessera-model-folder"), std::string::npos);
+}
+
+TEST_F(GltfFiles, MalformedDataUriIsElidedInTheMessage) {
+  const std::string uri = "data:application/octet-stream;base64," + std::string(1 << 20, '!');
+  Expected<Model> model = loadJson("{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"uri\":\"" +
+                                   uri + "\",\"byteLength\":36}]}");
+  ASSERT_FALSE(model.ok());
+  EXPECT_LT(model.error().message.size(), 400u) << model.error().message.substr(0, 400);
+  EXPECT_NE(model.error().message.find("data:application/octet-stream;base64,!!!!..."),
+            std::string::npos)
+      << model.error().message.substr(0, 400);
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 // a fresh folder.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -676,6 +678,115 @@ TEST_F(ObjFiles, DecodesATextureFromMemory) {
       decodeTexture(reinterpret_cast<const unsigned char*>("nonsense"), 8, "buffer 1");
   ASSERT_FALSE(garbage.ok());
   EXPECT_NE(garbage.error().message.find("buffer 1"), std::string::npos);
+}
+
+// ---- Hostile input, round two (issue 22) ----
+
+std::string errorOf(const Expected<Model>& model) {
+  return model ? std::string("(loaded)") : model.error().message;
+}
+
+TEST_F(ObjFiles, FaceIndexPast32BitsIsAnErrorNotAWrap) {
+  // tinyobjloader reads 4294967299 as 3 and 99999999999999999999 as -1 (the last vertex).
+  for (const std::string index : {"4294967299", "99999999999999999999", "-2147483649"}) {
+    Expected<Model> model = loadObj(writeModel("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 " + index + "\n"));
+    ASSERT_FALSE(model.ok()) << index;
+    EXPECT_NE(errorOf(model).find("model.obj:5: face index " + index + " is out of range"),
+              std::string::npos)
+        << errorOf(model);
+  }
+  // The largest index that fits is only past the end.
+  EXPECT_NE(errorOf(loadObj(writeModel("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2147483647\n")))
+                .find("past the end"),
+            std::string::npos);
+}
+
+TEST_F(ObjFiles, NanAndInfPositionsDropTheirTriangles) {
+  Expected<Model> model = loadObj(writeModel(
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 0 0\nv 0 -Inf 0\nf 1 2 3\nf 1 2 4\nf 1 5 3\n"));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_EQ(model->mesh.triangleCount(), 3u);
+  EXPECT_EQ(model->nonfinite_triangles, 2u);  // read as 0, they would have been drawn
+  EXPECT_FALSE(isFinite(trianglePositions(model->mesh, 1)[2]));
+  EXPECT_FALSE(isFinite(trianglePositions(model->mesh, 2)[1]));
+  EXPECT_TRUE(anyWarningContains(*model, "2 triangles have a NaN or infinite vertex"));
+}
+
+TEST_F(ObjFiles, TextureThatIsAFifoIsSkippedWithoutBlocking) {
+  writeModel("mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+  write(at("m.mtl"), "newmtl a\nmap_Kd fifo.png\n");
+  ASSERT_EQ(::mkfifo(at("fifo.png").c_str(), 0600), 0);
+  // Opening a FIFO for reading blocks until a writer comes: this would hang before the fix.
+  Expected<Model> model = loadObj(at("model.obj"));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_EQ(model->materials[0].albedo, nullptr);
+  EXPECT_TRUE(anyWarningContains(*model, "fifo.png: is a FIFO"));
+}
+
+TEST_F(ObjFiles, AFolderNamedAsATextureIsSaidToBeAFolder) {
+  writeModel("mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+  write(at("m.mtl"), "newmtl a\nmap_Kd tex\n");
+  fs::create_directories(at("tex"));
+  Expected<Model> model = loadObj(at("model.obj"));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_TRUE(anyWarningContains(*model, "tex: is a directory"));
+}
+
+TEST_F(ObjFiles, TrianglesOverTheBudgetAreRefusedBeforeParsing) {
+  LoadBudget budget;
+  budget.max_triangles = 2;
+  Expected<Model> model = loadObj(
+      writeModel("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 2 3\n"), budget);
+  EXPECT_NE(errorOf(model).find("3 triangles, over the budget of 2; raise it with "
+                                "--max-triangles or --memory-limit"),
+            std::string::npos)
+      << errorOf(model);
+  budget.max_triangles = 3;
+  EXPECT_TRUE(loadObj(at("model.obj"), budget).ok());
+}
+
+TEST_F(ObjFiles, TextureOverThePixelBudgetFailsTheModel) {
+  writeModel("mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+  write(at("m.mtl"), "newmtl a\nmap_Kd t.png\n");
+  writePng(at("t.png"), 4, 4, std::vector<uint32_t>(16, 0xffffffffu));
+  LoadBudget budget;
+  budget.max_texture_pixels = 15;
+  EXPECT_NE(errorOf(loadObj(at("model.obj"), budget))
+                .find("t.png: image is 4x4 (16 pixels), over the budget of 15 pixels per texture; "
+                      "raise it with --max-texture-pixels"),
+            std::string::npos);
+  budget.max_texture_pixels = 16;
+  Expected<Model> model = loadObj(at("model.obj"), budget);
+  ASSERT_TRUE(model.ok());
+  EXPECT_NE(model->materials[0].albedo, nullptr);
+}
+
+TEST_F(ObjFiles, LibraryWarningsAreInTesserasWords) {
+  write(at("m.mtl"), "newmtl a\nd 0.5\nTr 0.5\n");
+  Expected<Model> model = loadObj(writeModel(
+      "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl missing\nf 1 2 3\nusemtl a\nf 1 2 3\n"));
+  ASSERT_TRUE(model.ok()) << model.error().message;
+  EXPECT_TRUE(anyWarningContains(
+      *model, "usemtl 'missing': no such material in the MTL files; the default is used"));
+  EXPECT_TRUE(anyWarningContains(*model, "material 'a' sets both d and Tr; d is used"));
+  for (const std::string& warning : model->warnings) {
+    EXPECT_EQ(warning.find("not found in .mtl"), std::string::npos) << warning;
+    EXPECT_EQ(warning.find("Use the value of"), std::string::npos) << warning;
+  }
+}
+
+TEST_F(ObjFiles, PngClaimingAHugeSizeIsOverTheBudgetNotUnreadable) {
+  // Only a signature and an IHDR claiming 100000 x 100000: stb's header scan gives up on it
+  // ("unknown image type").
+  std::string png = "\x89PNG\r\n\x1a\n";
+  png += std::string("\0\0\0\x0dIHDR", 8);
+  png += std::string("\x00\x01\x86\xa0\x00\x01\x86\xa0\x08\x00\x00\x00\x00", 13);
+  png += std::string(4, '\0');
+  Expected<Texture> texture = loadTexture(write(at("huge.png"), png));
+  ASSERT_FALSE(texture.ok());
+  EXPECT_NE(texture.error().message.find("huge.png: image is 100000x100000"), std::string::npos)
+      << texture.error().message;
+  EXPECT_EQ(texture.error().message.find("unknown image type"), std::string::npos);
 }
 
 }  // namespace

@@ -76,6 +76,34 @@ TEST(Mesh, SmoothNormalsSurviveDegenerateAndNonFiniteFaces) {
   }
 }
 
+TEST(Mesh, SmoothNormalsOfHugeAndTinyModelsAreUnitLength) {
+  // In float, the cross products of a 3e38 model overflow and those of a 1e-42 one vanish.
+  for (float scale : {1e10f, 1e20f, 3e38f, 1e-20f, 1e-42f}) {
+    Mesh mesh = makeUvSphere(12, 6);
+    for (float3& p : mesh.positions) p = p * scale;
+    generateSmoothNormals(mesh);
+    const Mesh unit = makeUvSphere(12, 6);
+    Mesh reference = unit;
+    generateSmoothNormals(reference);
+    for (size_t v = 0; v < mesh.normals.size(); ++v) {
+      EXPECT_NEAR(length(mesh.normals[v]), 1.0f, 1e-5f) << scale << " vertex " << v;
+      // 1e-42 is a denormal: its positions keep few bits, so only the length is held to.
+      if (scale >= 1e-20f) {
+        EXPECT_GT(dot(mesh.normals[v], reference.normals[v]), 0.999f) << scale << " vertex " << v;
+      }
+    }
+  }
+}
+
+TEST(Mesh, BoundsOfAHugeModelAreItsTrueBounds) {
+  Mesh mesh;
+  mesh.positions = {{-3e38f, 0, 0}, {3e38f, 1e-42f, 0}};
+  const Bounds bounds = mesh.bounds();
+  EXPECT_EQ(bounds.min.x, -3e38f);
+  EXPECT_EQ(bounds.max.x, 3e38f);
+  EXPECT_EQ(bounds.max.y, 1e-42f);
+}
+
 TEST(Color, SrgbRoundTripsEvery8BitCode) {
   for (int code = 0; code < 256; ++code) {
     float linear = decodeSrgb8(static_cast<uint8_t>(code));

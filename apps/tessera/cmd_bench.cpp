@@ -15,6 +15,7 @@
 #include <tessera/render/sampling.h>
 
 #include "backends.h"
+#include "budget_flags.h"
 #include "bench/llvmpipe_reference.h"
 #include "bench/scenes.h"
 #include "commands.h"
@@ -47,6 +48,7 @@ struct BenchSettings {
   bool all = false;
   bool crc = false;
   std::string versus;  // "" or "llvmpipe"
+  io::LoadBudget budget;
 };
 
 struct Timing {
@@ -123,7 +125,8 @@ std::string fixed(double value, int decimals) {
 }
 
 // A built-in scene by name, or else a model file; an error names the argument.
-Expected<bench::BenchScene> openScene(const std::string& arg, Shading shading) {
+Expected<bench::BenchScene> openScene(const std::string& arg, Shading shading,
+                                      const io::LoadBudget& budget) {
   if (bench::isBuiltinScene(arg)) return bench::makeBuiltinScene(arg, shading);
   std::error_code error;
   if (!std::filesystem::exists(arg, error)) {
@@ -132,7 +135,7 @@ Expected<bench::BenchScene> openScene(const std::string& arg, Shading shading) {
       known += (known.empty() ? "" : ", ") + n;
     return makeError("'" + arg + "' is neither a built-in scene (" + known + ") nor a model file");
   }
-  Expected<bench::BenchScene> scene = bench::loadModelScene(arg, shading);
+  Expected<bench::BenchScene> scene = bench::loadModelScene(arg, shading, budget);
   if (scene) scene->name = arg;  // the argument as given names the scene in the output
   return scene;
 }
@@ -223,14 +226,16 @@ void addBenchFlags(FlagSet& flags, BenchSettings& s, bool& resolution_given) {
                   "print the CRC-32 of the last timed frame's RGBA8 pixels for each scene and "
                   "resolution (crc32 SCENE WxH HEX; a crc32 field with --json)");
   flags.addSwitch("all", &s.all, "every built-in scene at every standard resolution (the default)");
+  addBudgetFlags(flags, s.budget);
 }
 
 // Every scene is built or loaded before anything is timed, so a bad argument fails at once.
 Expected<std::vector<bench::BenchScene>> openScenes(const std::vector<std::string>& args,
-                                                    Shading shading, CullMode cull) {
+                                                    Shading shading, CullMode cull,
+                                                    const io::LoadBudget& budget) {
   std::vector<bench::BenchScene> scenes;
   for (const std::string& arg : args) {
-    Expected<bench::BenchScene> scene = openScene(arg, shading);
+    Expected<bench::BenchScene> scene = openScene(arg, shading, budget);
     if (!scene) return scene.error();
     for (const std::string& warning : scene->warnings)
       std::cerr << "tessera bench: warning: " << warning << "\n";
@@ -425,7 +430,7 @@ int runBench(const std::vector<std::string>& args) {
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   Expected<std::vector<bench::BenchScene>> scenes =
       openScenes(positional->empty() ? bench::builtinSceneNames() : *positional,
-                 shadingFromName(s.shading), cull);
+                 shadingFromName(s.shading), cull, s.budget);
   if (!scenes) return failure(scenes.error());
   std::unique_ptr<bench::LlvmpipeReference> reference;
   if (s.versus == "llvmpipe") {

@@ -4,6 +4,7 @@
 
 #include <tessera/io/model_loader.h>
 
+#include "budget_flags.h"
 #include "commands.h"
 #include "flags.h"
 
@@ -25,10 +26,12 @@ void printModelInfo(const std::string& path, const io::Model& model, std::ostrea
   if (bounds.empty()) {
     out << "bounds:     empty\n";
   } else {
-    const float3 e = bounds.extent();
+    // The size in double: a model from -3e38 to 3e38 is 6e38 across, past float.
+    const double e[3] = {double(bounds.max.x) - bounds.min.x, double(bounds.max.y) - bounds.min.y,
+                         double(bounds.max.z) - bounds.min.z};
     out << "bounds:     min " << bounds.min.x << "," << bounds.min.y << "," << bounds.min.z
         << "  max " << bounds.max.x << "," << bounds.max.y << "," << bounds.max.z << "  size "
-        << e.x << "," << e.y << "," << e.z << "\n";
+        << e[0] << "," << e[1] << "," << e[2] << "\n";
   }
   out << "warnings:   " << model.warnings.size() << "\n";
   for (const std::string& w : model.warnings) out << "  " << w << "\n";
@@ -36,6 +39,8 @@ void printModelInfo(const std::string& path, const io::Model& model, std::ostrea
 
 int runInfo(const std::vector<std::string>& args) {
   FlagSet flags("tessera info MODEL");
+  io::LoadBudget budget;
+  addBudgetFlags(flags, budget);
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {
     std::cout << flags.usage();
@@ -46,7 +51,7 @@ int runInfo(const std::vector<std::string>& args) {
     std::cerr << flags.usage();
     return kExitUsage;
   }
-  Expected<io::Model> model = io::loadModel(positional->front());
+  Expected<io::Model> model = io::loadModel(positional->front(), budget);
   if (!model) {
     printError("info", model.error().message);
     return kExitFailure;

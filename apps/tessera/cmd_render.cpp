@@ -17,6 +17,7 @@
 #include <tessera/scene/color.h>
 
 #include "backends.h"
+#include "budget_flags.h"
 #include "commands.h"
 #include "diagnostics_output.h"
 #include "flags.h"
@@ -48,6 +49,7 @@ struct RenderSettings {
   bool crc = false;
   ReferenceSettings reference;
   std::string stats;  // --stats PATH.json: the frames' diagnostics (docs/stats.md)
+  io::LoadBudget budget;  // --memory-limit, --max-triangles, --max-texture-pixels
   SamplingSettings sampling{.msaa = 4};  // the image a user expects: anti-aliased
 };
 
@@ -123,6 +125,7 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   flags.addSwitch("crc", &s.crc,
                   "print the CRC-32 of each frame's RGBA8 colour pixels: crc32 frame N HEX");
   addReferenceFlags(flags, s.reference);
+  addBudgetFlags(flags, s.budget);
 
 }
 
@@ -155,7 +158,7 @@ std::string checkOutput(const RenderSettings& s, OutputKind& kind) {
 // other than kExitOk when something fails (printed); kExitOk after --info's listing too.
 int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, Scene& scene,
               Bounds& bounds, const std::function<int(const std::string&)>& usage_error) {
-  Expected<io::Model> model = io::loadModel(model_path);
+  Expected<io::Model> model = io::loadModel(model_path, s.budget);
   if (!model) {
     printError("render", model.error().message);
     return kExitFailure;
@@ -164,11 +167,14 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
     printModelInfo(model_path.string(), *model, std::cout);
     return kExitOk;
   }
+  if (std::string warning = fitModelScale(*model, model_path, s.camera.explicitCamera());
+      !warning.empty())
+    model->warnings.push_back(warning);
   for (const std::string& warning : model->warnings)
     std::cerr << "tessera render: warning: " << warning << "\n";
   ModelSceneSettings scene_settings;
   if (!s.texture.empty()) {
-    Expected<Texture> texture = io::loadTexture(s.texture);
+    Expected<Texture> texture = io::loadTexture(s.texture, /*srgb=*/true, s.budget.texturePixels());
     if (!texture) {
       printError("render", texture.error().message);
       return kExitFailure;

@@ -15,6 +15,7 @@
 #include <tessera/scene/primitives.h>
 
 #include "backends.h"
+#include "budget_flags.h"
 #include "commands.h"
 #include "flags.h"
 #include "model_scene.h"
@@ -42,6 +43,7 @@ struct ViewSettings {
   std::string backend = "cpu";
   int device = -1;
   int msaa = 4;  // what `tessera render` makes by default
+  io::LoadBudget budget;
 };
 
 bool isPerspectiveFov(float fov) {
@@ -96,6 +98,7 @@ int runView(const std::vector<std::string>& args) {
   flags.addSwitch("fullscreen", &s.fullscreen, "fill the screen");
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
   flags.addString("texture", &s.texture, "an image used as the albedo of every material");
+  addBudgetFlags(flags, s.budget);
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
   flags.addCustom(
@@ -150,7 +153,8 @@ int runView(const std::vector<std::string>& args) {
 
   ModelSceneSettings scene_settings;
   if (!s.texture.empty()) {
-    Expected<Texture> texture = io::loadTexture(s.texture);
+    Expected<Texture> texture =
+        io::loadTexture(s.texture, /*srgb=*/true, s.budget.texturePixels());
     if (!texture) {
       printError("view", texture.error().message);
       return kExitFailure;
@@ -170,16 +174,18 @@ int runView(const std::vector<std::string>& args) {
   std::string hold_file;
   if (const char* hold = std::getenv("TESSERA_VIEW_TEST_HOLD_LOADS")) hold_file = hold;
   // Runs on the loading thread: it owns its copy of the settings.
-  hooks.load_file = [scene_settings,
-                     hold_file](const std::filesystem::path& path) -> Expected<Scene> {
+  hooks.load_file = [scene_settings, hold_file,
+                     budget = s.budget](const std::filesystem::path& path) -> Expected<Scene> {
     if (!hold_file.empty()) {
       const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(1);
       std::error_code ec;
       while (std::filesystem::exists(hold_file, ec) && std::chrono::steady_clock::now() < until)
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
-    Expected<io::Model> model = io::loadModel(path);
+    Expected<io::Model> model = io::loadModel(path, budget);
     if (!model) return model.error();
+    // The viewer frames every model: any scale is drawn.
+    fitModelScale(*model, path, /*keep_coordinates=*/false);
     for (const std::string& warning : model->warnings)
       std::cerr << "tessera view: warning: " << warning << "\n";
     return makeModelScene(std::move(*model), path, scene_settings);

@@ -1,6 +1,8 @@
 #include "model_scene.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 #include <tessera/scene/color.h>
 
@@ -35,6 +37,67 @@ Expected<Scene> makeModelScene(io::Model model, const std::filesystem::path& pat
   const float3 bg = settings.background_srgb;
   scene.background = {srgbToLinear(bg.x), srgbToLinear(bg.y), srgbToLinear(bg.z), 1.0f};
   return scene;
+}
+
+namespace {
+
+struct DoubleBounds {
+  double lo[3] = {INFINITY, INFINITY, INFINITY};
+  double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+
+  bool empty() const { return lo[0] > hi[0]; }
+  double extent() const { return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}); }
+  double center(int i) const { return lo[i] * 0.5 + hi[i] * 0.5; }  // no overflow at 3e38
+  double farthest() const {
+    return std::max({-lo[0], -lo[1], -lo[2], hi[0], hi[1], hi[2]});
+  }
+};
+
+DoubleBounds doubleBounds(const Mesh& mesh) {
+  DoubleBounds b;
+  for (const float3& p : mesh.positions) {
+    if (!isFinite(p)) continue;
+    for (int i = 0; i < 3; ++i) {
+      b.lo[i] = std::min(b.lo[i], double(p[i]));
+      b.hi[i] = std::max(b.hi[i], double(p[i]));
+    }
+  }
+  return b;
+}
+
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+}  // namespace
+
+std::string fitModelScale(io::Model& model, const std::filesystem::path& path,
+                          bool keep_coordinates) {
+  const DoubleBounds b = doubleBounds(model.mesh);
+  if (b.empty()) return {};
+  const double extent = b.extent(), farthest = b.farthest();
+  const double kComfort = std::exp2(20.0);
+  const bool comfortable = extent <= kComfort && extent >= 1 / kComfort && farthest <= kComfort;
+  if (comfortable || extent == 0) return {};
+  if (keep_coordinates) {
+    // Camera flags are floats too: a model this far out cannot be placed in front of them.
+    const double kFloatLimit = std::exp2(40.0);
+    if (extent <= kFloatLimit && extent >= 1 / kFloatLimit && farthest <= kFloatLimit) return {};
+    return path.string() + ": the model spans " + shortNumber(extent) + " units, up to " +
+           shortNumber(farthest) +
+           " from the origin: at that scale the camera flags' single-precision view cannot "
+           "draw it reliably; without camera flags it is framed at any scale";
+  }
+  const double scale = std::exp2(std::round(std::log2(extent)));
+  const double center[3] = {b.center(0), b.center(1), b.center(2)};
+  for (float3& p : model.mesh.positions)
+    if (isFinite(p))
+      p = {static_cast<float>((double(p.x) - center[0]) / scale),
+           static_cast<float>((double(p.y) - center[1]) / scale),
+           static_cast<float>((double(p.z) - center[2]) / scale)};
+  return {};
 }
 
 float3 threeQuarterDirection(float3 up) {

@@ -28,6 +28,15 @@ Shading shadingFromName(const std::string& name);
 Expected<Scene> makeModelScene(io::Model model, const std::filesystem::path& path,
                                const ModelSceneSettings& settings);
 
+// Float frames, clips and lights a model well between about 2^-20 and 2^20 units, near the
+// origin. Past that (a model 1e10 or 3e38 across, or 1e-42), with the framing camera
+// (`keep_coordinates` false), the model is moved and scaled in double, by a power of two, to
+// about unit size at the origin: the picture is the one its own scale would give. With camera
+// flags it stays as it is, and when it is far outside float's comfort the returned warning says
+// why it may not be drawn. Empty when there is nothing to say.
+std::string fitModelScale(io::Model& model, const std::filesystem::path& path,
+                          bool keep_coordinates);
+
 // The direction, from the model towards the camera, of the default view: from the front, right
 // and above. `up` is +Y or +Z.
 float3 threeQuarterDirection(float3 up);

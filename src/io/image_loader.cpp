@@ -5,7 +5,11 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
+
+#include "model_paths.h"
 
 // stb_image is compiled here only, with static linkage, so another translation unit (a glTF
 // loader bundling its own copy) cannot collide with it. Only the formats textures come in are
@@ -16,8 +20,9 @@
 #define STBI_ONLY_JPEG
 #define STBI_ONLY_BMP
 #define STBI_ONLY_TGA
-// A second line of defence behind the explicit stbi_info check below.
-#define STBI_MAX_DIMENSIONS 16384
+// stb's own limit stays far above any budget, so that its header scan reports an image's true
+// size and the budget check below is what refuses it, with its own message.
+#define STBI_MAX_DIMENSIONS (1 << 24)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
@@ -33,56 +38,64 @@ namespace tessera::io {
 
 namespace {
 
-constexpr int kMaxTextureSide = STBI_MAX_DIMENSIONS;
-
 struct StbiFree {
   void operator()(stbi_uc* pixels) const { stbi_image_free(pixels); }
 };
 using StbiPixels = std::unique_ptr<stbi_uc, StbiFree>;
 
-struct FileClose {
-  void operator()(FILE* file) const { std::fclose(file); }
-};
-
+// stb_image's failure reasons in tessera's words.
 std::string failureReason() {
   const char* reason = stbi_failure_reason();
-  return reason ? reason : "unknown error";
+  const std::string text = reason ? reason : "";
+  if (text == "unknown image type") return "not a PNG, JPEG, BMP or TGA file";
+  if (text == "outofmem") return "out of memory";
+  if (text == "too large") return "its size is out of range";
+  if (text.empty()) return "the data is corrupt";
+  return "corrupt data (" + text + ")";
 }
 
-Expected<void> checkDimensions(int width, int height, const std::string& name) {
-  if (width <= 0 || height <= 0)
-    return makeError(name + ": image has no pixels (" + std::to_string(width) + "x" +
-                     std::to_string(height) + ")");
-  if (width > kMaxTextureSide || height > kMaxTextureSide)
-    return makeError(name + ": image is " + std::to_string(width) + "x" + std::to_string(height) +
-                     ", over the limit of " + std::to_string(kMaxTextureSide) +
-                     " pixels on a side");
+// A PNG's size from its IHDR chunk. stb_image's header scan refuses a PNG whose size it would not
+// decode and then says "unknown image type"; this says how big it claims to be.
+std::optional<ImageSize> pngHeaderSize(const unsigned char* data, size_t size) {
+  static const unsigned char kSignature[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (size < 24 || std::memcmp(data, kSignature, 8) != 0 || std::memcmp(data + 12, "IHDR", 4) != 0)
+    return std::nullopt;
+  auto big_endian = [&](size_t at) {
+    return uint32_t{data[at]} << 24 | uint32_t{data[at + 1]} << 16 | uint32_t{data[at + 2]} << 8 |
+           uint32_t{data[at + 3]};
+  };
+  const uint32_t width = big_endian(16), height = big_endian(20);
+  if (width == 0 || height == 0 || width > INT_MAX || height > INT_MAX) return std::nullopt;
+  return ImageSize{static_cast<int>(width), static_cast<int>(height)};
+}
+
+std::string pixelCount(uint64_t pixels) {
+  if (pixels >= 10'000'000) return std::to_string(pixels / 1'000'000) + " million pixels";
+  return std::to_string(pixels) + " pixels";
+}
+
+Expected<void> checkSize(ImageSize size, uint64_t max_pixels, const std::string& name) {
+  if (size.width <= 0 || size.height <= 0)
+    return makeError(name + ": image has no pixels (" + std::to_string(size.width) + "x" +
+                     std::to_string(size.height) + ")");
+  if (size.pixels() > max_pixels) return makeError(texturePixelsOverBudget(name, size, max_pixels));
   return {};
 }
 
-// stb's header scan fails with "too large" when STBI_MAX_DIMENSIONS trips inside it (PNG does).
-Error headerError(const std::string& name) {
-  std::string reason = failureReason();
-  if (reason == "too large")
-    return makeError(name + ": image is over the limit of " + std::to_string(kMaxTextureSide) +
-                     " pixels on a side");
-  return makeError(name + ": not a readable PNG, JPEG, BMP or TGA image (" + reason + ")");
-}
-
-Expected<Texture> toTexture(StbiPixels pixels, int width, int height, bool srgb,
+Expected<Texture> toTexture(StbiPixels pixels, ImageSize size, bool srgb,
                             const std::string& name) {
-  if (!pixels) return makeError(name + ": cannot decode the image (" + failureReason() + ")");
-  if (Expected<void> dims = checkDimensions(width, height, name); !dims) return dims.error();
+  if (!pixels) return makeError(name + ": cannot decode the image: " + failureReason());
   Texture texture;
-  texture.width = width;
-  texture.height = height;
+  texture.width = size.width;
+  texture.height = size.height;
   texture.srgb = srgb;
-  const size_t count = static_cast<size_t>(width) * static_cast<size_t>(height);
+  const size_t count = static_cast<size_t>(size.pixels());
   texture.texels.resize(count);
   const stbi_uc* p = pixels.get();
   for (size_t i = 0; i < count; ++i, p += 4)
     texture.texels[i] = static_cast<uint32_t>(p[0]) | static_cast<uint32_t>(p[1]) << 8 |
                         static_cast<uint32_t>(p[2]) << 16 | static_cast<uint32_t>(p[3]) << 24;
+  pixels.reset();
   // Every loaded texture gets its mip chain, for trilinear filtering (a third more memory).
   generateMipmaps(texture);
   return texture;
@@ -90,29 +103,43 @@ Expected<Texture> toTexture(StbiPixels pixels, int width, int height, bool srgb,
 
 }  // namespace
 
-Expected<Texture> loadTexture(const std::filesystem::path& path, bool srgb) {
-  const std::string name = path.string();
-  std::unique_ptr<FILE, FileClose> file(std::fopen(name.c_str(), "rb"));
-  if (!file) return makeError(name + ": cannot open: " + std::strerror(errno));
-  int width = 0, height = 0, channels = 0;
-  // The header alone: a huge image is refused before anything is allocated for it.
-  if (!stbi_info_from_file(file.get(), &width, &height, &channels)) return headerError(name);
-  if (Expected<void> dims = checkDimensions(width, height, name); !dims) return dims.error();
-  StbiPixels pixels(stbi_load_from_file(file.get(), &width, &height, &channels, 4));
-  return toTexture(std::move(pixels), width, height, srgb, name);
+std::string texturePixelsOverBudget(const std::string& name, ImageSize size, uint64_t max_pixels) {
+  return name + ": image is " + std::to_string(size.width) + "x" + std::to_string(size.height) +
+         " (" + pixelCount(size.pixels()) + "), over the budget of " + pixelCount(max_pixels) +
+         " per texture; raise it with --max-texture-pixels or --memory-limit";
 }
 
-Expected<Texture> decodeTexture(const unsigned char* data, size_t size, const std::string& name,
-                                bool srgb) {
+Expected<ImageSize> readImageSize(const unsigned char* data, size_t size, const std::string& name) {
   if (data == nullptr || size == 0) return makeError(name + ": empty image");
   if (size > static_cast<size_t>(INT_MAX))
     return makeError(name + ": image data is " + std::to_string(size) + " bytes, over 2 GiB");
-  const int length = static_cast<int>(size);
-  int width = 0, height = 0, channels = 0;
-  if (!stbi_info_from_memory(data, length, &width, &height, &channels)) return headerError(name);
-  if (Expected<void> dims = checkDimensions(width, height, name); !dims) return dims.error();
-  StbiPixels pixels(stbi_load_from_memory(data, length, &width, &height, &channels, 4));
-  return toTexture(std::move(pixels), width, height, srgb, name);
+  ImageSize image;
+  int channels = 0;
+  if (stbi_info_from_memory(data, static_cast<int>(size), &image.width, &image.height, &channels))
+    return image;
+  if (std::optional<ImageSize> png = pngHeaderSize(data, size)) return *png;
+  return makeError(name + ": not a readable PNG, JPEG, BMP or TGA image: " + failureReason());
+}
+
+Expected<Texture> loadTexture(const std::filesystem::path& path, bool srgb, uint64_t max_pixels) {
+  Expected<std::vector<unsigned char>> bytes = readRegularFile(path, kMaxImageFileBytes, "image");
+  if (!bytes) return bytes.error();
+  return decodeTexture(bytes->data(), bytes->size(), path.string(), srgb, max_pixels);
+}
+
+Expected<Texture> decodeTexture(const unsigned char* data, size_t size, const std::string& name,
+                                bool srgb, uint64_t max_pixels) {
+  // The header alone first: an image over the budget is refused before anything is allocated.
+  Expected<ImageSize> header = readImageSize(data, size, name);
+  if (!header) return header.error();
+  if (Expected<void> ok = checkSize(*header, max_pixels, name); !ok) return ok.error();
+  ImageSize decoded;
+  int channels = 0;
+  StbiPixels pixels(stbi_load_from_memory(data, static_cast<int>(size), &decoded.width,
+                                          &decoded.height, &channels, 4));
+  if (pixels && (decoded.width != header->width || decoded.height != header->height))
+    return makeError(name + ": the image's header and data disagree about its size");
+  return toTexture(std::move(pixels), decoded, srgb, name);
 }
 
 }  // namespace tessera::io

@@ -2,7 +2,13 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
+#include <cerrno>
+#include <cstring>
+#include <utility>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <string>
 #include <system_error>
 
@@ -25,6 +31,27 @@ bool equalsIgnoreCase(std::string_view a, std::string_view b) {
          });
 }
 
+std::string numberAfter(std::string_view text, std::string_view marker) {
+  std::string number;
+  const size_t at = text.rfind(marker);
+  if (at == std::string_view::npos) return number;
+  for (size_t i = at + marker.size(); i < text.size() && text[i] >= '0' && text[i] <= '9'; ++i)
+    number += text[i];
+  return number;
+}
+
+std::string elided(std::string_view text) {
+  constexpr size_t kMaxShown = 80;
+  if (text.starts_with("data:")) {
+    // The media type and the first bytes say what it is; the rest says nothing a user can use.
+    const size_t comma = text.find(',');
+    const size_t keep = comma == std::string_view::npos ? 24 : std::min(comma + 5, kMaxShown);
+    return text.size() <= keep ? std::string(text) : std::string(text.substr(0, keep)) + "...";
+  }
+  if (text.size() <= kMaxShown) return std::string(text);
+  return std::string(text.substr(0, kMaxShown - 3)) + "...";
+}
+
 namespace {
 
 // "2 GiB", "64 MiB" or a byte count.
@@ -38,34 +65,75 @@ std::string sizeText(uintmax_t bytes) {
 
 }  // namespace
 
-Expected<uintmax_t> checkModelFile(const fs::path& path, uintmax_t max_bytes,
-                                   const std::string& format) {
-  const std::string name = path.string();
-  std::error_code error;
-  fs::file_status status = fs::status(path, error);
-  if (error || !fs::exists(status)) return makeError(name + ": no such file");
-  if (!fs::is_regular_file(status)) return makeError(name + ": not a regular file");
-  const uintmax_t size = fs::file_size(path, error);
-  if (error) return makeError(name + ": cannot read the file size: " + error.message());
-  if (size > max_bytes)
-    return makeError(name + ": the file is " + std::to_string(size) + " bytes; " + format +
-                     " files over " + sizeText(max_bytes) + " are refused");
-  if (size == 0) return makeError(name + ": the file is empty: no triangles");
-  return size;
+namespace {
+
+// What a non-regular file is, for messages.
+std::string fileKind(mode_t mode) {
+  if (S_ISFIFO(mode)) return "is a FIFO";
+  if (S_ISDIR(mode)) return "is a directory";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "is a device";
+  if (S_ISSOCK(mode)) return "is a socket";
+  return "is not a regular file";
 }
 
-Expected<std::vector<unsigned char>> readModelFile(const fs::path& path, uintmax_t max_bytes,
-                                                   const std::string& format) {
-  Expected<uintmax_t> size = checkModelFile(path, max_bytes, format);
-  if (!size) return size.error();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return makeError(path.string() + ": cannot open the file");
-  std::vector<unsigned char> bytes(static_cast<size_t>(*size));
-  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  // A file that shrank while being read is read as far as it goes.
-  bytes.resize(static_cast<size_t>(in.gcount()));
-  if (in.bad()) return makeError(path.string() + ": read error");
-  if (bytes.empty()) return makeError(path.string() + ": the file is empty: no triangles");
+}  // namespace
+
+RegularFile::~RegularFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+RegularFile::RegularFile(RegularFile&& other) noexcept
+    : fd_(std::exchange(other.fd_, -1)), size_(other.size_) {}
+
+int RegularFile::release() {
+  return std::exchange(fd_, -1);
+}
+
+Expected<RegularFile> openRegularFile(const fs::path& path, uintmax_t max_bytes,
+                                      const std::string& format) {
+  const std::string name = path.string();
+  // O_NONBLOCK: opening a FIFO nobody writes to returns at once instead of waiting for a writer.
+  // The type is then checked on the descriptor, so nothing can be swapped in after the check.
+  const int fd = ::open(name.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) {
+    const int error = errno;
+    if (error == ENOENT || error == ENOTDIR) return makeError(name + ": no such file");
+    return makeError(name + ": cannot open: " + std::strerror(error));
+  }
+  RegularFile file;
+  file.fd_ = fd;
+  struct stat info {};
+  if (::fstat(fd, &info) != 0)
+    return makeError(name + ": cannot read the file's status: " + std::strerror(errno));
+  if (!S_ISREG(info.st_mode))
+    return makeError(name + ": " + fileKind(info.st_mode) + ", not a regular file");
+  // Reads from here on may wait for the disk, as any read does.
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags < 0 || ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) != 0)
+    return makeError(name + ": cannot open: " + std::strerror(errno));
+  file.size_ = static_cast<uintmax_t>(info.st_size);
+  if (file.size_ > max_bytes)
+    return makeError(name + ": the file is " + std::to_string(file.size_) + " bytes; " + format +
+                     " files over " + sizeText(max_bytes) + " are refused");
+  if (file.size_ == 0) return makeError(name + ": the file is empty");
+  return file;
+}
+
+Expected<std::vector<unsigned char>> readRegularFile(const fs::path& path, uintmax_t max_bytes,
+                                                     const std::string& format) {
+  Expected<RegularFile> file = openRegularFile(path, max_bytes, format);
+  if (!file) return file.error();
+  std::vector<unsigned char> bytes(static_cast<size_t>(file->size()));
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t got = ::read(file->fd(), bytes.data() + done, bytes.size() - done);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) return makeError(path.string() + ": read error: " + std::strerror(errno));
+    if (got == 0) break;  // a file that shrank while being read is read as far as it goes
+    done += static_cast<size_t>(got);
+  }
+  bytes.resize(done);
+  if (bytes.empty()) return makeError(path.string() + ": the file is empty");
   return bytes;
 }
 

@@ -14,6 +14,7 @@
 #include <memory>
 #include <new>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <span>
 #include <sstream>
@@ -24,8 +25,12 @@
 #include <utility>
 #include <vector>
 
+#include <ext/stdio_filebuf.h>
+
 #include <tessera/io/image_loader.h>
 
+#include "load_budget.h"
+#include "obj_scan.h"
 #include "model_paths.h"
 
 #pragma GCC diagnostic push
@@ -46,20 +51,40 @@ static_assert(std::is_same_v<tinyobj::real_t, float>,
 constexpr uintmax_t kMaxObjBytes = uintmax_t{2} << 30;
 // MTL files are a few kilobytes of text; one this big is not a material library.
 constexpr uintmax_t kMaxMtlBytes = uintmax_t{64} << 20;
-// tinyobjloader stores a face's corner count in an unsigned char.
-constexpr size_t kMaxFaceCorners = 255;
 // Mesh::triangle_materials holds uint16_t.
 constexpr size_t kMaxMaterials = size_t{1} << 16;
-// 2 GiB of RGBA8 over all of a model's textures (a single texture is at most 16384^2 = 1 GiB).
-constexpr size_t kMaxTotalTexels = size_t{1} << 29;
 // Reflex-vertex tests the ear clipper may make for one file: a few seconds of work. Real models
 // use a tiny fraction; a file of huge concave polygons built to be slow is refused instead.
 constexpr uint64_t kEarClipBudget = 1'000'000'000;
 // Distinct tinyobjloader warnings passed on per file; the rest are counted.
 constexpr size_t kMaxLibraryWarnings = 10;
 
-bool isBlank(char c) {
-  return c == ' ' || c == '\t';
+// The text between the first two `quote`s, or empty.
+std::string_view between(std::string_view text, char quote) {
+  const size_t begin = text.find(quote);
+  const size_t end = begin == std::string_view::npos ? begin : text.find(quote, begin + 1);
+  if (end == std::string_view::npos) return {};
+  return text.substr(begin + 1, end - begin - 1);
+}
+
+// One of tinyobjloader's warnings in tessera's words (the ones a file can reach); any other is
+// passed on with its values elided.
+std::string inOwnWords(const std::string& line) {
+  const std::string at_line = numberAfter(line, "line ");
+  const std::string where = at_line.empty() ? "" : "line " + at_line + ": ";
+  if (line.starts_with("material [")) {
+    std::string name(between(line, '\''));
+    if (name.empty()) name = trimmed(std::string_view(line).substr(10, line.find(']') - 10));
+    return "usemtl '" + elided(name) + "': no such material in the MTL files; the default is used";
+  }
+  if (line.starts_with("Both `d` and `Tr`"))
+    return "material '" + elided(between(line, '"')) + "' sets both d and Tr; d is used";
+  if (line.starts_with("Empty group name")) return where + "a group without a name";
+  if (line.starts_with("Looks like empty filename for mtllib"))
+    return where + "an mtllib line names no file";
+  if (line.starts_with("Failed parse `l'") || line.starts_with("Failed parse `p'"))
+    return where + "a line or point element with a zero or unreadable index is skipped";
+  return elided(line);
 }
 
 // Passes tinyobjloader's warnings on, except those this loader reports better itself.
@@ -86,107 +111,10 @@ void forwardLibraryWarnings(const std::string& file, const std::string& text,
       ++skipped;
       continue;
     }
-    warnings.push_back(file + ": " + line);
+    warnings.push_back(file + ": " + inOwnWords(line));
   }
   if (skipped > 0)
     warnings.push_back(file + ": " + std::to_string(skipped) + " more warnings like these");
-}
-
-// ---- Line scans ----
-
-// Calls `visit(line, number)` for each line, split as tinyobjloader splits them (\n, \r\n and a
-// lone \r) and cut at a NUL, since tinyobjloader reads each line as a C string.
-template <typename Visit>
-void forEachLine(std::istream& in, Visit visit) {
-  uint32_t number = 0;
-  std::string raw;
-  while (std::getline(in, raw)) {
-    if (!raw.empty() && raw.back() == '\r') raw.pop_back();
-    size_t begin = 0;
-    while (true) {
-      size_t end = raw.find('\r', begin);
-      std::string_view line = std::string_view(raw).substr(
-          begin, (end == std::string::npos ? raw.size() : end) - begin);
-      visit(line.substr(0, line.find('\0')), ++number);
-      if (end == std::string::npos) break;
-      begin = end + 1;
-    }
-  }
-}
-
-std::string_view skipBlanks(std::string_view line) {
-  size_t start = 0;
-  while (start < line.size() && isBlank(line[start])) ++start;
-  return line.substr(start);
-}
-
-// `keyword` followed by a blank, as tinyobjloader matches its keywords.
-bool startsWithKeyword(std::string_view line, std::string_view keyword) {
-  return line.size() > keyword.size() && line.starts_with(keyword) && isBlank(line[keyword.size()]);
-}
-
-// What a light pass over the OBJ's lines finds, splitting lines as tinyobjloader does (\n, \r\n
-// and a lone \r) and spotting `f` and `mtllib` lines as it does. tinyobjloader does not report
-// which line a face came from; this does, for error messages.
-struct ObjLineIndex {
-  std::vector<uint32_t> face_lines;   // line of every face tinyobjloader keeps (3+ corners)
-  size_t short_faces = 0;             // faces with fewer than 3 corners (tinyobjloader drops them)
-  uint32_t first_long_face_line = 0;  // first face with more corners than tinyobjloader records
-  size_t first_long_face_corners = 0;
-  std::vector<std::string> material_libraries;  // the text after each `mtllib`, as written
-};
-
-void scanObjLine(std::string_view line, uint32_t line_number, ObjLineIndex& index) {
-  line = skipBlanks(line);
-  if (startsWithKeyword(line, "f")) {
-    size_t corners = 0;
-    bool in_token = false;
-    for (char c : line.substr(2)) {
-      if (isBlank(c)) {
-        in_token = false;
-      } else if (!in_token) {
-        in_token = true;
-        ++corners;
-      }
-    }
-    if (corners < 3) {
-      ++index.short_faces;
-      return;
-    }
-    index.face_lines.push_back(line_number);
-    if (corners > kMaxFaceCorners && index.first_long_face_line == 0) {
-      index.first_long_face_line = line_number;
-      index.first_long_face_corners = corners;
-    }
-  } else if (startsWithKeyword(line, "mtllib")) {
-    index.material_libraries.emplace_back(line.substr(7));
-  }
-}
-
-ObjLineIndex scanObjLines(std::istream& in) {
-  ObjLineIndex index;
-  forEachLine(in,
-              [&](std::string_view line, uint32_t number) { scanObjLine(line, number, index); });
-  return index;
-}
-
-// Names of the materials in an MTL text that set Kd. tinyobjloader does not say whether Kd was
-// given: it puts 0.6 in its place for a textured material, or 0 once any earlier material had a
-// Kd (its flag is never reset). Either would darken the texture; without Kd, the texture is
-// meant as it is.
-std::set<std::string> materialsWithKd(std::istream& in) {
-  std::set<std::string> names;
-  std::string current;
-  forEachLine(in, [&](std::string_view line, uint32_t) {
-    line = skipBlanks(line);
-    if (startsWithKeyword(line, "newmtl")) {
-      std::string rest(line.substr(7));
-      current = rest.substr(0, rest.find_last_not_of(" \t") + 1);  // as tinyobjloader trims
-    } else if (startsWithKeyword(line, "Kd")) {
-      names.insert(current);
-    }
-  });
-  return names;
 }
 
 // ---- Material libraries ----
@@ -259,23 +187,12 @@ class FolderMaterialReader : public tinyobj::MaterialReader {
     }
     if (!seen.insert(*path).second) return;
     const std::string path_name = path->string();
-    std::error_code error;
-    if (!fs::is_regular_file(*path, error)) {
-      warnings_.push_back(path_name + ": material file not found" + fallback);
+    Expected<std::vector<unsigned char>> bytes = readRegularFile(*path, kMaxMtlBytes, "MTL");
+    if (!bytes) {
+      warnings_.push_back(bytes.error().message + fallback);
       return;
     }
-    uintmax_t size = fs::file_size(*path, error);
-    if (error || size > kMaxMtlBytes) {
-      warnings_.push_back(path_name + ": material file is too large (over " +
-                          std::to_string(kMaxMtlBytes >> 20) + " MiB)" + fallback);
-      return;
-    }
-    std::ifstream file(*path, std::ios::binary);
-    std::stringstream stream;
-    if (!(file && stream << file.rdbuf())) {
-      warnings_.push_back(path_name + ": cannot read the material file" + fallback);
-      return;
-    }
+    std::stringstream stream(std::string(bytes->begin(), bytes->end()));
     const std::set<std::string> with_kd = materialsWithKd(stream);
     stream.clear();
     stream.seekg(0);
@@ -298,8 +215,15 @@ class FolderMaterialReader : public tinyobj::MaterialReader {
 // Turns MTL materials into tessera materials, loading each texture once.
 class MaterialBuilder {
  public:
-  MaterialBuilder(fs::path folder, std::string obj_name, std::vector<std::string>& warnings)
-      : folder_(std::move(folder)), obj_name_(std::move(obj_name)), warnings_(warnings) {}
+  MaterialBuilder(fs::path folder, std::string obj_name, std::vector<std::string>& warnings,
+                  const LoadBudget& budget)
+      : folder_(std::move(folder)),
+        obj_name_(std::move(obj_name)),
+        warnings_(warnings),
+        textures_(budget) {}
+
+  // A texture over the budget: the model cannot be loaded.
+  const std::optional<Error>& fatal() const { return fatal_; }
 
   Material build(const tinyobj::material_t& source, bool has_kd) {
     Material material;
@@ -341,23 +265,13 @@ class MaterialBuilder {
     auto key = std::make_pair(path->string(), srgb);
     if (auto cached = cache_.find(key); cached != cache_.end()) return cached->second;
     std::shared_ptr<const Texture>& slot = cache_[key];
-    std::error_code error;
-    if (!fs::exists(*path, error)) {
-      warnings_.push_back(path->string() + ": texture not found" + dropped);
-      return nullptr;
-    }
-    Expected<Texture> loaded = loadTexture(*path, srgb);
+    Expected<MaterialTexture> loaded = textures_.load(*path, srgb);
     if (!loaded) {
-      warnings_.push_back(loaded.error().message + dropped);
+      if (!fatal_) fatal_ = loaded.error();
       return nullptr;
     }
-    if (loaded->texels.size() > kMaxTotalTexels - total_texels_) {
-      warnings_.push_back(path->string() + ": skipped: the model's textures exceed " +
-                          std::to_string(kMaxTotalTexels) + " texels in all" + dropped);
-      return nullptr;
-    }
-    total_texels_ += loaded->texels.size();
-    slot = std::make_shared<const Texture>(std::move(loaded).value());
+    if (!loaded->texture) warnings_.push_back(loaded->warning + dropped);
+    slot = loaded->texture;
     return slot;
   }
 
@@ -365,7 +279,8 @@ class MaterialBuilder {
   std::string obj_name_;
   std::vector<std::string>& warnings_;
   std::map<std::pair<std::string, bool>, std::shared_ptr<const Texture>> cache_;
-  size_t total_texels_ = 0;
+  TextureBudget textures_;
+  std::optional<Error> fatal_;
 };
 
 // ---- Polygons to triangles ----
@@ -562,19 +477,18 @@ class FaceLocator {
 
 // tinyobjloader's own failures (a zero or unreadable index) end in "... line N.)".
 Error libraryError(const std::string& file, const std::string& message) {
-  std::string text = trimmed(message);
-  size_t at = text.rfind("line ");
-  std::string line;
-  if (at != std::string::npos)
-    for (size_t i = at + 5; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]));
-         ++i)
-      line += text[i];
-  std::string where = line.empty() ? file + ": " : file + ":" + line + ": ";
+  const std::string text = trimmed(message);
+  const std::string line = numberAfter(text, "line ");
+  const std::string where = line.empty() ? file + ": " : file + ":" + line + ": ";
   if (text.find("`f'") != std::string::npos)
     return makeError(where +
                      "cannot read the face: an index is 0, not a number, or followed by "
                      "other text");
-  return makeError(where + text);
+  if (text.find("`vw'") != std::string::npos)
+    return makeError(where + "a vertex weight with a negative joint index");
+  if (text.find("`l'") != std::string::npos || text.find("`p'") != std::string::npos)
+    return makeError(where + "cannot read a line or point element: an index is 0 or not a number");
+  return makeError(where + "cannot read the file (" + elided(text) + ")");
 }
 
 std::string pastEnd(const char* what, int index, size_t count, const char* counted) {
@@ -582,15 +496,32 @@ std::string pastEnd(const char* what, int index, size_t count, const char* count
          std::to_string(count) + " " + counted + ")";
 }
 
-Expected<Model> loadObjChecked(const fs::path& path) {
+// What the line scan finds that tinyobjloader would misread, and the budget, checked before
+// tinyobjloader allocates anything.
+Expected<void> checkScan(const std::string& name, const ObjLineIndex& lines,
+                         const LoadBudget& budget) {
+  if (!lines.bad_index.empty())
+    return makeError(name + ":" + std::to_string(lines.bad_index_line) + ": face index " +
+                     lines.bad_index + " is out of range (indices are at most 2147483647)");
+  if (Expected<void> ok = checkBudget(name, "triangles", lines.triangles, budget.triangles(),
+                                      "--max-triangles");
+      !ok)
+    return ok;
+  return checkBudget(name, "vertex positions", lines.positions, budget.vertices(),
+                     "--max-triangles");
+}
+
+Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
   const std::string name = path.string();
-  if (Expected<uintmax_t> size = checkModelFile(path, kMaxObjBytes, "OBJ"); !size)
-    return size.error();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return makeError(name + ": cannot open the file");
+  Expected<RegularFile> file = openRegularFile(path, kMaxObjBytes, "OBJ");
+  if (!file) return file.error();
+  // The stream owns the descriptor from here on.
+  __gnu_cxx::stdio_filebuf<char> buffer(file->release(), std::ios::in | std::ios::binary);
+  std::istream in(&buffer);
 
   const ObjLineIndex lines = scanObjLines(in);
   if (in.bad()) return makeError(name + ": read error");
+  if (Expected<void> ok = checkScan(name, lines, budget); !ok) return ok.error();
   in.clear();
   in.seekg(0);
 
@@ -608,6 +539,11 @@ Expected<Model> loadObjChecked(const fs::path& path) {
       tinyobj::LoadObj(&attrib, &shapes, &library_materials, &library_warnings, &library_errors,
                        &in, &reader, /*triangulate=*/false, /*default_vcols_fallback=*/false);
   if (!parsed) return libraryError(name, library_errors);
+  // tinyobjloader reads nan and inf as 0; they are made what they say, so that their triangles
+  // are dropped like any other non-finite one.
+  for (uint64_t position : lines.nonfinite_positions)
+    if (3 * position + 2 < attrib.vertices.size())
+      attrib.vertices[3 * position] = std::numeric_limits<float>::quiet_NaN();
   forwardLibraryWarnings(name, library_warnings, model.warnings);
   if (lines.short_faces > 0)
     model.warnings.push_back(name + ": " + std::to_string(lines.short_faces) +
@@ -710,7 +646,7 @@ Expected<Model> loadObjChecked(const fs::path& path) {
   // Model material per tinyobjloader material; slot 0 is "no material". Materials are added in
   // the order triangles first use them, so unused ones (and their textures) cost nothing.
   std::vector<int32_t> model_material(library_materials.size() + 1, -1);
-  MaterialBuilder materials(folder, name, model.warnings);
+  MaterialBuilder materials(folder, name, model.warnings, budget);
   PolygonSplitter splitter;
   std::vector<float3> polygon;
   std::vector<uint32_t> polygon_vertices, local_triangles;
@@ -766,6 +702,7 @@ Expected<Model> loadObjChecked(const fs::path& path) {
                                       : materials.build(library_materials[material_slot - 1],
                                                         reader.hasKd(material_slot - 1)));
       }
+      if (materials.fatal()) return *materials.fatal();
       const auto material = static_cast<uint16_t>(model_material[material_slot]);
 
       local_triangles.clear();
@@ -809,9 +746,9 @@ Expected<Model> loadObjChecked(const fs::path& path) {
 
 }  // namespace
 
-Expected<Model> loadObj(const std::filesystem::path& path) {
+Expected<Model> loadObj(const std::filesystem::path& path, const LoadBudget& budget) {
   try {
-    return loadObjChecked(path);
+    return loadObjChecked(path, budget);
   } catch (const std::bad_alloc&) {
     return makeError(path.string() + ": out of memory while loading");
   } catch (const std::length_error&) {

@@ -3,6 +3,7 @@
 // exporters often leave them zero or stale, and the winding says the same thing.
 #include <tessera/io/model_loader.h>
 
+#include <algorithm>
 #include <bit>
 #include <cctype>
 #include <charconv>
@@ -18,6 +19,7 @@
 #include <system_error>
 #include <vector>
 
+#include "load_budget.h"
 #include "model_paths.h"
 
 namespace tessera::io {
@@ -117,7 +119,12 @@ float floatAt(const uint8_t* p) {
 }
 
 Expected<Model> parseBinary(std::span<const uint8_t> bytes, uint32_t facet_count,
+                            const LoadBudget& budget,
                             const std::string& name) {
+  if (Expected<void> ok =
+          checkBudget(name, "facets", facet_count, budget.triangles(), "--max-triangles");
+      !ok)
+    return ok.error();
   std::vector<float3> corners(size_t{facet_count} * 3);
   std::string first_nonfinite;
   const uint8_t* facet = bytes.data() + kBinaryHeaderBytes;
@@ -211,7 +218,7 @@ bool keywordIs(std::string_view word, std::string_view keyword) {
   return equalsIgnoreCase(word, keyword);
 }
 
-Expected<Model> parseAscii(std::string_view text, const std::string& name) {
+Expected<Model> parseAscii(std::string_view text, const std::string& name, const LoadBudget& budget) {
   Words words(text);
   std::vector<float3> corners;
   std::string first_nonfinite;
@@ -284,6 +291,10 @@ Expected<Model> parseAscii(std::string_view text, const std::string& name) {
       return makeError(at(facet_line) + "a facet with " + std::to_string(vertices) +
                        " vertices; STL facets are triangles");
     if (Expected<void> ok = expect("endfacet"); !ok) return ok.error();
+    if (Expected<void> ok = checkBudget(name, "facets", corners.size() / 3, budget.triangles(),
+                                        "--max-triangles");
+        !ok)
+      return ok.error();
   }
   if (corners.empty()) return makeError(name + ": no triangles (the file has no facets)");
   if (corners.size() > std::numeric_limits<uint32_t>::max())
@@ -310,7 +321,8 @@ bool hasControlBytes(std::span<const uint8_t> bytes) {
   return false;
 }
 
-Expected<Model> parseStl(std::span<const uint8_t> bytes, const std::string& name) {
+Expected<Model> parseStl(std::span<const uint8_t> bytes, const std::string& name,
+                         const LoadBudget& budget) {
   if (bytes.empty()) return makeError(name + ": the file is empty: no triangles");
   if (bytes.size() > kMaxStlBytes)
     return makeError(name + ": the file is " + std::to_string(bytes.size()) +
@@ -324,7 +336,7 @@ Expected<Model> parseStl(std::span<const uint8_t> bytes, const std::string& name
     // Exporters write "solid" into binary headers too: the exact size decides.
     if (binary_size == bytes.size()) {
       if (facet_count == 0) return makeError(name + ": no triangles (the binary STL has 0 facets)");
-      return parseBinary(bytes, facet_count, name);
+      return parseBinary(bytes, facet_count, budget, name);
     }
     if (!ascii_start) {
       if (binary_size > bytes.size())
@@ -332,7 +344,7 @@ Expected<Model> parseStl(std::span<const uint8_t> bytes, const std::string& name
                          std::to_string(facet_count) + " facets (" + std::to_string(binary_size) +
                          " bytes), the file has " + std::to_string(bytes.size()) + " bytes");
       if (facet_count == 0) return makeError(name + ": no triangles (the binary STL has 0 facets)");
-      Expected<Model> model = parseBinary(bytes, facet_count, name);
+      Expected<Model> model = parseBinary(bytes, facet_count, budget, name);
       if (model)
         model->warnings.push_back(name + ": " + std::to_string(bytes.size() - binary_size) +
                                   " bytes after the last facet ignored");
@@ -343,7 +355,8 @@ Expected<Model> parseStl(std::span<const uint8_t> bytes, const std::string& name
                      " bytes, shorter than the 84-byte header");
   }
   Expected<Model> model =
-      parseAscii(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), name);
+      parseAscii(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), name,
+                 budget);
   if (model || bytes.size() < kBinaryHeaderBytes || !hasControlBytes(bytes)) return model;
   // A binary file whose header starts with "solid" and whose size is off: say so, rather than
   // only how its bytes fail as text.
@@ -370,16 +383,17 @@ Expected<Model> guarded(const std::string& name, Load load) {
 
 }  // namespace
 
-Expected<Model> loadStlFromMemory(std::span<const uint8_t> bytes, const std::string& name) {
-  return guarded(name, [&] { return parseStl(bytes, name); });
+Expected<Model> loadStlFromMemory(std::span<const uint8_t> bytes, const std::string& name,
+                                  const LoadBudget& budget) {
+  return guarded(name, [&] { return parseStl(bytes, name, budget); });
 }
 
-Expected<Model> loadStl(const std::filesystem::path& path) {
+Expected<Model> loadStl(const std::filesystem::path& path, const LoadBudget& budget) {
   const std::string name = path.string();
   return guarded(name, [&]() -> Expected<Model> {
-    Expected<std::vector<unsigned char>> bytes = readModelFile(path, kMaxStlBytes, "STL");
+    Expected<std::vector<unsigned char>> bytes = readRegularFile(path, std::min<uint64_t>(kMaxStlBytes, budget.fileBytes()), "STL");
     if (!bytes) return bytes.error();
-    return parseStl(*bytes, name);
+    return parseStl(*bytes, name, budget);
   });
 }
 

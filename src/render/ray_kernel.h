@@ -53,9 +53,11 @@ TESSERA_LANES_INLINE void rasterRayBox(const RayTriangle& t, const int16_t box[4
   const I32x8 key_lanes = splat(static_cast<int32_t>(key));
   for (int y = y_begin; y <= y_end; ++y) {
     const size_t row = static_cast<size_t>(y) * static_cast<size_t>(width);
-    float* depth = tile.depth + (y - tile.y0) * kTileSize - tile.x0;
-    uint32_t* keys = tile.key + (y - tile.y0) * kTileSize - tile.x0;
+    // Row starts inside the arrays, pixels from the tile's first column (no pointer before them).
+    float* depth = tile.depth + (y - tile.y0) * kTileSize;
+    uint32_t* keys = tile.key + (y - tile.y0) * kTileSize;
     for (int x = x_begin; x <= x_end; x += 8) {
+      const int at = x - tile.x0;
       const Ray8 d = loadRays(layer, row + static_cast<size_t>(x));
       I32x8 covered = lessOrEqual(splat(x) + iota(), last);
       F32x8 e[3];
@@ -66,10 +68,10 @@ TESSERA_LANES_INLINE void rasterRayBox(const RayTriangle& t, const int16_t box[4
       const F32x8 sum = (e[0] + e[1]) + e[2];
       const F32x8 z = (det / sum - near) * inv_range;
       covered = covered & lessThan(zero, sum) & lessOrEqualF(zero, z) & lessOrEqualF(z, one);
-      const F32x8 stored = load<F32x8>(depth + x);
+      const F32x8 stored = load<F32x8>(depth + at);
       const I32x8 pass = covered & lessThan(z, stored);
-      store(depth + x, select(pass, z, stored));
-      store(keys + x, select(pass, key_lanes, load<I32x8>(keys + x)));
+      store(depth + at, select(pass, z, stored));
+      store(keys + at, select(pass, key_lanes, load<I32x8>(keys + at)));
     }
   }
 }

@@ -3,6 +3,7 @@
 // allocation.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -14,6 +15,32 @@
 #include <tessera/scene/scene.h>
 
 namespace tessera::io {
+
+// What a model may cost, checked before anything is allocated for it: every limit derives from
+// one memory limit unless given itself. Over budget is an error naming the budget and the flag
+// that raises it (`tessera render --memory-limit`, `--max-triangles`, `--max-texture-pixels`).
+struct LoadBudget {
+  static constexpr uint64_t kDefaultMemoryBytes = uint64_t{1} << 30;
+
+  uint64_t memory_bytes = kDefaultMemoryBytes;  // --memory-limit
+  uint64_t max_triangles = 0;       // --max-triangles; 0: memory_bytes / 512
+  uint64_t max_texture_pixels = 0;  // --max-texture-pixels, per texture; 0: memory_bytes / 16
+
+  // Triangles drawn, after glTF instancing: loading and rendering take about 400 bytes each
+  // (the mesh, the renderer's clipped and set-up triangles and its bins), so 2,097,152 for 1 GiB.
+  uint64_t triangles() const { return max_triangles ? max_triangles : memory_bytes / 512; }
+  // Mesh vertices (positions, normals, uvs, colours and the renderer's transformed copies).
+  uint64_t vertices() const { return std::max(triangles(), memory_bytes / 256); }
+  // Decoded pixels of one texture (4 bytes each, a third more for mipmaps, twice that while
+  // decoding): 8192 x 8192 for 1 GiB.
+  uint64_t texturePixels() const {
+    return max_texture_pixels ? max_texture_pixels : memory_bytes / 16;
+  }
+  // Decoded pixels of all of a model's textures together.
+  uint64_t totalTexturePixels() const { return std::max(texturePixels(), memory_bytes / 12); }
+  // Bytes of the model's files (the model, MTL libraries, glTF buffers and images) read.
+  uint64_t fileBytes() const { return memory_bytes; }
+};
 
 struct Model {
   Mesh mesh;                          // triangles in the contract's load order
@@ -32,14 +59,14 @@ struct Model {
 };
 
 // By extension (case-insensitive): .obj, .gltf, .glb, .stl.
-Expected<Model> loadModel(const std::filesystem::path& path);
+Expected<Model> loadModel(const std::filesystem::path& path, const LoadBudget& budget = {});
 
 // Wavefront OBJ with its MTL files (tinyobjloader). Faces in file order; convex polygons are
 // fan-split from their first vertex, concave ones ear-clipped. Missing normals are generated
 // (smooth, area-weighted). Materials are listed in the order triangles first use them; faces
 // without one get a default Material (0.8 grey). MTL files and textures are read only from
 // beneath the OBJ's folder; anything else is skipped with a warning.
-Expected<Model> loadObj(const std::filesystem::path& path);
+Expected<Model> loadObj(const std::filesystem::path& path, const LoadBudget& budget = {});
 
 // glTF 2.0, as JSON (.gltf) or binary (.glb; chosen by the file's magic, not its name), through
 // tinygltf. The default scene (else scene 0, else every root node) is flattened into one mesh:
@@ -53,20 +80,22 @@ Expected<Model> loadObj(const std::filesystem::path& path);
 // linear vertex colour. Missing normals are generated (smooth, area-weighted). Sparse accessors
 // are supported. Buffers and images come from `data:` URIs, the GLB binary chunk, or files
 // beneath the model's folder; nothing else is opened.
-Expected<Model> loadGltf(const std::filesystem::path& path);
+Expected<Model> loadGltf(const std::filesystem::path& path, const LoadBudget& budget = {});
 
 // The same from bytes in memory. `name` is used in messages; external buffers and images are
 // looked up beneath `folder`, or refused when `folder` is empty.
 Expected<Model> loadGltfFromMemory(std::span<const uint8_t> bytes, const std::string& name,
-                                   const std::filesystem::path& folder = {});
+                                   const std::filesystem::path& folder = {},
+                                   const LoadBudget& budget = {});
 
 // STL, binary or ASCII. Binary when the size is exactly 84 + 50 * the facet count in the header
 // (so a binary file whose header starts with "solid" is still binary), ASCII when the text
 // starts with "solid". Triangles are the facets in file order; identical positions are welded
 // and smooth normals generated (the facet normals are ignored). One default material.
-Expected<Model> loadStl(const std::filesystem::path& path);
+Expected<Model> loadStl(const std::filesystem::path& path, const LoadBudget& budget = {});
 
 // The same from bytes in memory; `name` is used in messages.
-Expected<Model> loadStlFromMemory(std::span<const uint8_t> bytes, const std::string& name);
+Expected<Model> loadStlFromMemory(std::span<const uint8_t> bytes, const std::string& name,
+                                  const LoadBudget& budget = {});
 
 }  // namespace tessera::io

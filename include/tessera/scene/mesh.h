@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <tessera/math/vec.h>
@@ -9,8 +10,9 @@
 namespace tessera {
 
 struct Bounds {
-  float3 min{1e30f, 1e30f, 1e30f};
-  float3 max{-1e30f, -1e30f, -1e30f};
+  // Empty: min above max. Infinite, so that any finite position, however large, sets them.
+  float3 min{std::numeric_limits<float>::infinity()};
+  float3 max{-std::numeric_limits<float>::infinity()};
 
   bool empty() const { return min.x > max.x; }
   void add(float3 p) {
@@ -37,6 +39,10 @@ struct Mesh {
   // Bounds of the finite positions.
   Bounds bounds() const;
 };
+
+// `v` at unit length, also when its length overflows or underflows float (a huge or tiny
+// model's cross products); (0, 0, 0) for a zero or non-finite `v`.
+float3 safeNormalize(float3 v);
 
 // Smooth, area-weighted vertex normals (each face adds its unnormalized cross product).
 // Vertices that no finite, non-degenerate face touches get (0, 0, 1).

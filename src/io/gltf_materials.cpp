@@ -1,0 +1,153 @@
+#include "gltf_materials.h"
+
+#include <algorithm>
+#include <cmath>
+#include <system_error>
+
+#include <tessera/io/image_loader.h>
+
+#include "gltf_accessors.h"
+#include "load_budget.h"
+#include "gltf_transforms.h"
+#include "model_paths.h"
+#include "tinygltf_include.h"
+
+namespace tessera::io::gltf {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Mesh::triangle_materials holds uint16_t.
+constexpr size_t kMaxMaterials = size_t{1} << 16;
+
+}  // namespace
+
+Expected<uint16_t> MaterialTable::materialFor(int gltf_material, std::vector<Material>& materials) {
+  if (gltf_material >= 0 && static_cast<size_t>(gltf_material) >= gltf_.materials.size()) {
+    warn_("a primitive refers to material " + std::to_string(gltf_material) +
+         ", which does not exist; the default material is used");
+    gltf_material = -1;
+  }
+  auto found = material_index_.find(gltf_material);
+  if (found != material_index_.end()) return found->second;
+  if (materials.size() == kMaxMaterials)
+    return makeError(name_ + ": more than " + std::to_string(kMaxMaterials) +
+                     " materials in use");
+  const auto index = static_cast<uint16_t>(materials.size());
+  Material material =
+      gltf_material < 0 ? Material{} : buildMaterial(static_cast<size_t>(gltf_material));
+  if (fatal_) return *fatal_;
+  materials.push_back(std::move(material));
+  material_index_.emplace(gltf_material, index);
+  return index;
+}
+
+Material MaterialTable::buildMaterial(size_t index) {
+  const tinygltf::Material& source = gltf_.materials[index];
+  const std::string label =
+      "material " + std::to_string(index) + (source.name.empty() ? "" : " '" + source.name + "'");
+  Material material;
+  material.double_sided = source.doubleSided;
+  const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
+  material.base_color = float4{1, 1, 1, 1};
+  if (factor.size() == 4) {
+    for (int i = 0; i < 4; ++i) {
+      const double value = factor[static_cast<size_t>(i)];
+      material.base_color[i] = std::isfinite(value) ? toFloat(std::clamp(value, 0.0, 1.0)) : 1.0f;
+    }
+  } else {
+    warn_(label + ": a baseColorFactor that is not 4 numbers is ignored");
+  }
+  const tinygltf::TextureInfo& info = source.pbrMetallicRoughness.baseColorTexture;
+  if (info.index >= 0) {
+    const std::string dropped = "; " + label + " is drawn without its texture";
+    if (static_cast<size_t>(info.index) >= gltf_.textures.size()) {
+      warn_(label + " uses texture " + std::to_string(info.index) + ", which does not exist" +
+           dropped);
+      return material;
+    }
+    const tinygltf::Texture& texture = gltf_.textures[static_cast<size_t>(info.index)];
+    if (texture.source < 0 || static_cast<size_t>(texture.source) >= gltf_.images.size()) {
+      warn_("texture " + std::to_string(info.index) + " has no usable image" + dropped);
+      return material;
+    }
+    material.albedo = image(static_cast<size_t>(texture.source), dropped);
+    if (texture.sampler >= 0 && static_cast<size_t>(texture.sampler) < gltf_.samplers.size())
+      material.sampler = sampler(static_cast<size_t>(texture.sampler));
+    else if (texture.sampler >= 0)
+      warn_("texture " + std::to_string(info.index) + " refers to sampler " +
+           std::to_string(texture.sampler) + ", which does not exist; the default is used");
+  }
+  return material;
+}
+
+Sampler MaterialTable::sampler(size_t index) {
+  const tinygltf::Sampler& source = gltf_.samplers[index];
+  Sampler sampler;
+  // tessera samples without mipmaps: the magnification filter says nearest or linear; without
+  // one, the minification filter's base does.
+  int filter = source.magFilter;
+  if (filter < 0 && source.minFilter >= 0)
+    filter = (source.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ||
+              source.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+              source.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR)
+                 ? TINYGLTF_TEXTURE_FILTER_NEAREST
+                 : TINYGLTF_TEXTURE_FILTER_LINEAR;
+  sampler.filter = filter == TINYGLTF_TEXTURE_FILTER_NEAREST ? TextureFilter::kNearest
+                                                             : TextureFilter::kBilinear;
+  auto wrap = [&](int mode) {
+    if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return TextureWrap::kClamp;
+    if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT)
+      warn_("sampler " + std::to_string(index) + ": MIRRORED_REPEAT is drawn as REPEAT");
+    return TextureWrap::kRepeat;
+  };
+  const TextureWrap s = wrap(source.wrapS), t = wrap(source.wrapT);
+  if (s != t)
+    warn_("sampler " + std::to_string(index) +
+         ": different wrap modes along s and t; tessera uses one, s's");
+  sampler.wrap = s;
+  return sampler;
+}
+
+std::shared_ptr<const Texture> MaterialTable::image(size_t index, const std::string& dropped) {
+  auto cached = images_.find(index);
+  if (cached != images_.end()) return cached->second;
+  std::shared_ptr<const Texture>& slot = images_[index];
+  const tinygltf::Image& source = gltf_.images[index];
+  const std::string label = name_ + " image " + std::to_string(index);
+  Expected<MaterialTexture> decoded = MaterialTexture{nullptr, label + ": no image data"};
+  if (source.bufferView >= 0) {
+    Expected<std::span<const uint8_t>> bytes = viewBytes(gltf_, source.bufferView, label);
+    if (!bytes) {
+      warn_(bytes.error().message.substr(name_.size() + 1) + dropped);
+      return nullptr;
+    }
+    decoded = textures_.decode(bytes->data(), bytes->size(), label, /*srgb=*/true);
+  } else if (!source.image.empty()) {
+    decoded = textures_.decode(source.image.data(), source.image.size(), label, /*srgb=*/true);
+  } else if (!source.uri.empty()) {
+    const std::string reference = percentDecoded(source.uri);
+    if (folder_.empty()) {
+      warn_("image " + std::to_string(index) + ": '" + elided(reference) +
+            "' is an external file, and this model was given in memory" + dropped);
+      return nullptr;
+    }
+    Expected<fs::path> path = resolveReferencedFile(folder_, reference);
+    if (!path) {
+      warn_("image " + std::to_string(index) + ": '" + elided(reference) +
+            "' refused: " + path.error().message + dropped);
+      return nullptr;
+    }
+    decoded = textures_.load(*path, /*srgb=*/true);
+  }
+  if (!decoded) {
+    if (!fatal_) fatal_ = decoded.error();
+    return nullptr;
+  }
+  if (!decoded->texture) warn_about_(decoded->warning + dropped);
+  slot = decoded->texture;
+  return slot;
+}
+
+}  // namespace tessera::io::gltf

@@ -1,0 +1,57 @@
+// glTF materials, samplers and images as tessera materials, each built (and each image decoded)
+// once, on first use. Private to tessera_io.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <tessera/base/expected.h>
+#include <tessera/scene/scene.h>
+
+#include "gltf_nodes.h"
+#include "load_budget.h"
+
+namespace tinygltf {
+class Model;
+}
+
+namespace tessera::io::gltf {
+
+class MaterialTable {
+ public:
+  // `warn` takes warnings about the model file, `warn_about` those that name their own file.
+  MaterialTable(const tinygltf::Model& gltf, std::string name, std::filesystem::path folder,
+                const LoadBudget& budget, Warn warn, Warn warn_about)
+      : gltf_(gltf),
+        name_(std::move(name)),
+        folder_(std::move(folder)),
+        warn_(std::move(warn)),
+        warn_about_(std::move(warn_about)),
+        textures_(budget) {}
+
+  // The index in `materials` of a glTF material (-1: none), added there on first use. An error
+  // when its texture is over the budget.
+  Expected<uint16_t> materialFor(int gltf_material, std::vector<Material>& materials);
+
+ private:
+  Material buildMaterial(size_t index);
+  Sampler sampler(size_t index);
+  std::shared_ptr<const Texture> image(size_t index, const std::string& dropped);
+
+  const tinygltf::Model& gltf_;
+  const std::string name_;
+  const std::filesystem::path folder_;
+  Warn warn_, warn_about_;
+  std::map<int, uint16_t> material_index_;
+  std::map<size_t, std::shared_ptr<const Texture>> images_;
+  TextureBudget textures_;
+  std::optional<Error> fatal_;  // a texture over the budget
+};
+
+}  // namespace tessera::io::gltf
