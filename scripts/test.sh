@@ -11,8 +11,5 @@ cd "$root"
 # TSan: two lean -O1 builds of only what they run (scripts/sanitize.sh). About 14 CPU-minutes,
 # so about 7 to 8 minutes on 2 idle cores; measured 17m52s on a shared, loaded 2-core machine.
 "$root/scripts/sanitize.sh"
-# The unit suite under ASan+UBSan and the threaded render tests under TSan, each a lean clang build
-# of only what it runs (scripts/sanitize.sh; about N minutes on 2 cores).
-"$root/scripts/sanitize.sh"
 # Last, so that its summary closes the output.
 ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600
