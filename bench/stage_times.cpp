@@ -13,8 +13,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <string>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <tessera/render/cpu_renderer.h>
@@ -50,8 +50,7 @@ int main(int argc, char** argv) {
   const int height = argc > 5 ? std::atoi(argv[5]) : 1080;
   const SimdLevel simd = parseSimd(argc > 6 ? argv[6] : "auto");
   const int msaa = argc > 7 ? std::atoi(argv[7]) : 1;
-  const std::optional<Projection> projection =
-      parseProjection(argc > 8 ? argv[8] : "perspective");
+  const std::optional<Projection> projection = parseProjection(argc > 8 ? argv[8] : "perspective");
   if (!projection) {
     std::fprintf(stderr, "tessera_stagetimes: projection must be %s\n",
                  projectionChoices().c_str());

@@ -15,9 +15,9 @@
 #include <tessera/render/sampling.h>
 
 #include "backends.h"
-#include "budget_flags.h"
 #include "bench/llvmpipe_reference.h"
 #include "bench/scenes.h"
+#include "budget_flags.h"
 #include "commands.h"
 #include "flags.h"
 #include "model_scene.h"
@@ -147,8 +147,8 @@ Expected<void> placeView(bench::BenchScene& b, const CameraSettings& camera_sett
   const float aspect = static_cast<float>(resolution.width) / static_cast<float>(resolution.height);
   if (b.fixed_view && !camera_settings.explicitCamera()) {
     // The scene's own camera and view angle, drawn in the mode asked for.
-    if (std::string range = checkViewAngle(camera_settings.projectionMode(),
-                                           b.scene.camera.fov_y_degrees, aspect);
+    if (std::string range =
+            checkViewAngle(camera_settings.projectionMode(), b.scene.camera.fov_y_degrees, aspect);
         !range.empty())
       return makeError(b.name + ": " + range);
     if (camera_settings.projectionMode() != Projection::kPerspective)
@@ -405,8 +405,9 @@ int runBench(const std::vector<std::string>& args) {
   if (s.all && (!positional->empty() || resolution_given))
     return usageError("--all runs the full matrix: give no scene and no --resolution with it");
   if (s.camera.projectionMode() != Projection::kPerspective && s.versus == "llvmpipe")
-    return usageError("--vs llvmpipe draws the perspective projection only; leave it out for --projection " +
-                      s.camera.projection);
+    return usageError(
+        "--vs llvmpipe draws the perspective projection only; leave it out for --projection " +
+        s.camera.projection);
   if (s.camera.explicitCamera()) {
     // The camera flags fail alike for every model: check them before any work.
     const Bounds unit{{-1, -1, -1}, {1, 1, 1}};
@@ -420,8 +421,8 @@ int runBench(const std::vector<std::string>& args) {
   if (s.resolutions.empty()) s.resolutions = kStandardResolutions;
   // The view angle against the projection's range, at every size: a usage error before any work.
   for (const Resolution& r : s.resolutions)
-    if (Expected<float> angle = viewAngle(
-            s.camera, static_cast<float>(r.width) / static_cast<float>(r.height));
+    if (Expected<float> angle =
+            viewAngle(s.camera, static_cast<float>(r.width) / static_cast<float>(r.height));
         !angle)
       return usageError(angle.error().message);
   const CullMode cull = s.backface == "visible" ? CullMode::kNone : CullMode::kBack;

@@ -107,8 +107,8 @@ int runCube(const std::vector<std::string>& args) {
     return kExitUsage;
   }
   const Projection projection = parseProjection(s.projection).value_or(Projection::kPerspective);
-  if (std::string range = checkViewAngle(projection, s.fov,
-                                         static_cast<float>(s.width) / static_cast<float>(s.height));
+  if (std::string range = checkViewAngle(
+          projection, s.fov, static_cast<float>(s.width) / static_cast<float>(s.height));
       !range.empty()) {
     printError("cube", "-fov: " + range);
     return kExitUsage;

@@ -48,7 +48,7 @@ struct RenderSettings {
   std::string texture;
   bool crc = false;
   ReferenceSettings reference;
-  std::string stats;  // --stats PATH.json: the frames' diagnostics (docs/stats.md)
+  std::string stats;      // --stats PATH.json: the frames' diagnostics (docs/stats.md)
   io::LoadBudget budget;  // --memory-limit, --max-triangles, --max-texture-pixels
   SamplingSettings sampling{.msaa = 4};  // the image a user expects: anti-aliased
 };
@@ -126,7 +126,6 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
                   "print the CRC-32 of each frame's RGBA8 colour pixels: crc32 frame N HEX");
   addReferenceFlags(flags, s.reference);
   addBudgetFlags(flags, s.budget);
-
 }
 
 // What the output path asks for, and the flags that cannot go with it: "" or a usage error.
@@ -139,7 +138,8 @@ std::string checkOutput(const RenderSettings& s, OutputKind& kind) {
   } else if (endsWithIgnoringCase(s.output, ".png")) {
     kind = OutputKind::kPng;
   } else {
-    return "output '" + s.output + "' must end in .png, .gif or .mp4, or be a {frame} .png template";
+    return "output '" + s.output +
+           "' must end in .png, .gif or .mp4, or be a {frame} .png template";
   }
   if (kind == OutputKind::kPng && s.turntable > 1)
     return "--turntable writes several frames: use a .gif, .mp4 or {frame} .png output";

@@ -153,8 +153,7 @@ int runView(const std::vector<std::string>& args) {
 
   ModelSceneSettings scene_settings;
   if (!s.texture.empty()) {
-    Expected<Texture> texture =
-        io::loadTexture(s.texture, /*srgb=*/true, s.budget.texturePixels());
+    Expected<Texture> texture = io::loadTexture(s.texture, /*srgb=*/true, s.budget.texturePixels());
     if (!texture) {
       printError("view", texture.error().message);
       return kExitFailure;

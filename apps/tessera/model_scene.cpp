@@ -48,9 +48,7 @@ struct DoubleBounds {
   bool empty() const { return lo[0] > hi[0]; }
   double extent() const { return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}); }
   double center(int i) const { return lo[i] * 0.5 + hi[i] * 0.5; }  // no overflow at 3e38
-  double farthest() const {
-    return std::max({-lo[0], -lo[1], -lo[2], hi[0], hi[1], hi[2]});
-  }
+  double farthest() const { return std::max({-lo[0], -lo[1], -lo[2], hi[0], hi[1], hi[2]}); }
 };
 
 DoubleBounds doubleBounds(const Mesh& mesh) {

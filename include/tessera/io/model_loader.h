@@ -23,7 +23,7 @@ struct LoadBudget {
   static constexpr uint64_t kDefaultMemoryBytes = uint64_t{1} << 30;
 
   uint64_t memory_bytes = kDefaultMemoryBytes;  // --memory-limit
-  uint64_t max_triangles = 0;       // --max-triangles; 0: memory_bytes / 512
+  uint64_t max_triangles = 0;                   // --max-triangles; 0: memory_bytes / 512
   uint64_t max_texture_pixels = 0;  // --max-texture-pixels, per texture; 0: memory_bytes / 16
 
   // Triangles drawn, after glTF instancing: loading and rendering take about 400 bytes each

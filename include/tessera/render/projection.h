@@ -51,8 +51,8 @@ bool rayDirection(Projection p, double sx, double sy, int width, int height, dou
 
 // The window point (sx, sy) a camera-space direction maps to (the inverse of rayDirection), for
 // the line pass; false where no pixel of the mode looks that way.
-bool projectDirection(Projection p, const double d[3], int width, int height,
-                      double fov_y_radians, double& sx, double& sy);
+bool projectDirection(Projection p, const double d[3], int width, int height, double fov_y_radians,
+                      double& sx, double& sy);
 
 // The rays of one sample of every pixel, rounded to float, as three planes (x, y, z), row-major
 // from the top row: the ray of pixel (x, y) is at index y * width + x. The sample lies at
