@@ -21,6 +21,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <set>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -540,6 +541,50 @@ TEST(IoGifSink, SolidFramesKeepTheirColours) {
       }
     }
   }
+}
+
+// A frame of at most 256 colours keeps every pixel exactly (its own colours are the palette, no
+// dithering); one colour more goes through the quantizer, which cannot keep them all.
+TEST(IoGifSink, FrameOfAtMost256ColoursIsExact) {
+  TempDir dir;
+  const fs::path path = dir / "exact.gif";
+  const int width = 17;
+  const int height = 16;  // 272 pixels: 256 distinct colours, then 16 repeats
+  auto colourOf = [](int i) {
+    return packRgba((i * 37) & 255, (i * 11 + 5) & 255, (i >> 3) * 31 & 255);
+  };
+  std::vector<uint32_t> exact(static_cast<size_t>(width) * height);
+  std::vector<uint32_t> over(exact.size());
+  for (size_t i = 0; i < exact.size(); ++i) {
+    exact[i] = colourOf(static_cast<int>(i % 256));
+    over[i] = colourOf(static_cast<int>(i % 257));
+  }
+  ASSERT_EQ(std::set<uint32_t>(exact.begin(), exact.end()).size(), 256u);
+  ASSERT_EQ(std::set<uint32_t>(over.begin(), over.end()).size(), 257u);
+  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(width, height));
+  ASSERT_TRUE(sink.ok()) << sink.error().message;
+  ASSERT_TRUE((*sink)->addFrame(exact.data()).ok());
+  ASSERT_TRUE((*sink)->addFrame(over.data()).ok());
+  ASSERT_TRUE((*sink)->finish().ok());
+
+  DecodedGif gif = decodeGif(path);
+  ASSERT_TRUE(gif);
+  ASSERT_EQ(gif->ImageCount, 2);
+  int inexact_over = 0;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const size_t i = static_cast<size_t>(y) * width + x;
+      auto channels = [](uint32_t c) {
+        return std::array<int, 3>{static_cast<int>(c & 255), static_cast<int>((c >> 8) & 255),
+                                  static_cast<int>((c >> 16) & 255)};
+      };
+      EXPECT_EQ(maxChannelDifference(gifPixel(gif.get(), 0, x, y), channels(exact[i])), 0)
+          << "pixel " << x << "," << y;
+      if (maxChannelDifference(gifPixel(gif.get(), 1, x, y), channels(over[i])) != 0)
+        ++inexact_over;
+    }
+  }
+  EXPECT_GT(inexact_over, 0);  // 257 colours cannot all be in a 256-entry palette
 }
 
 TEST(IoGifSink, ManyColouredFrameKeepsLocalAverages) {
