@@ -27,26 +27,42 @@ for f in "${formats[@]}"; do targets+=("tessera_fuzz_$f"); done
 cmake --build "$build" -j"${JOBS:-$(nproc)}" --target "${targets[@]}"
 
 mkdir -p "$build/artifacts"
-status=0
-for f in "${formats[@]}"; do
+# One fuzzer: its execution count on success; the end of its log and a failure otherwise.
+fuzz_one() {  # format
+  local f="$1"
   # New inputs go to a scratch corpus: the seeds in the repository stay as they are.
-  work="$build/corpus/$f"
+  local work="$build/corpus/$f"
   mkdir -p "$work"
-  log="$build/fuzz_$f.log"
+  local log="$build/fuzz_$f.log"
   # -timeout: an input taking 10 s counts as a hang; -rss_limit_mb: libFuzzer's 2 GiB default,
   # stated; -max_len: room for small glTF files with embedded buffers.
   # A dictionary of the format's keywords helps the fuzzer past its syntax.
-  dict=()
+  local dict=()
   [ -f "$root/fuzz/dict/$f.dict" ] && dict=(-dict="$root/fuzz/dict/$f.dict")
   if "$build/fuzz/tessera_fuzz_$f" "$work" "$root/fuzz/corpus/$f" "${dict[@]}" \
       -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=16384 \
       -print_final_stats=1 -artifact_prefix="$build/artifacts/$f-" >"$log" 2>&1; then
+    local runs
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
     echo "fuzz $f: ${runs:-?} executions in ${seconds} s"
   else
     echo "fuzz $f: FAILED (log: $log)" >&2
     tail -40 "$log" >&2
-    status=1
+    return 1
+  fi
+}
+
+# Each fuzzer is one process on one core: as many at a time as there are cores.
+status=0
+parallel="${JOBS:-$(nproc)}"
+pids=()
+for f in "${formats[@]}"; do
+  fuzz_one "$f" &
+  pids+=($!)
+  if [ "${#pids[@]}" -ge "$parallel" ]; then
+    wait "${pids[0]}" || status=1
+    pids=("${pids[@]:1}")
   fi
 done
+for pid in "${pids[@]}"; do wait "$pid" || status=1; done
 exit $status

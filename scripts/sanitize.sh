@@ -51,7 +51,9 @@ run_tests() {  # build folder, gtest filter, binaries...
 
 start=$SECONDS
 # No window and no llvmpipe reference in `tessera` itself: the tests here use neither.
-configure "$root/build-asan" clang++ -DTESSERA_SANITIZE=ON -DTESSERA_VIEWER=OFF -DTESSERA_OSMESA=OFF
+# The test sources at -O0 (TESSERA_TEST_COMPILE_OPTIONS): half their compile time.
+configure "$root/build-asan" clang++ -DTESSERA_SANITIZE=ON -DTESSERA_VIEWER=OFF -DTESSERA_OSMESA=OFF \
+  -DTESSERA_TEST_COMPILE_OPTIONS=-O0
 cmake --build "$root/build-asan" -j"$jobs" --target "${asan_tests[@]}" tessera
 run_tests "$root/build-asan" '*' "${asan_tests[@]}"
 
