@@ -1,6 +1,7 @@
 // End-to-end tests of the tessera executable: real processes, real files, decoded back.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -123,16 +124,69 @@ TEST_F(Cli, CubeFramesAreIdenticalForAnyWorkerCount) {
   }
 }
 
-TEST_F(Cli, BadFlagsPrintUsageAndExitTwo) {
+TEST_F(Cli, BadFlagsPointToHelpAndExitTwo) {
   for (const char* args :
        {"cube -w abc", "cube --bogus", "cube -w", "cube -fps 0", "cube -dur -3s", "cube extra",
         "render", "render a.obj b.obj", "render m.obj --resolution 10", "render m.obj --aov rgb",
         "render m.obj --camera-position 1,2", "render m.obj -o out.bmp", "frobnicate"}) {
     RunResult r = run(args);
     EXPECT_EQ(r.exit_code, 2) << args;
-    EXPECT_NE(r.err.find("usage"), std::string::npos) << args << ": " << r.err;
+    // The error and one line pointing to --help, not a screenful of usage.
+    EXPECT_NE(r.err.find("--help"), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(r.err.find("usage"), std::string::npos) << args << ": " << r.err;
+    EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 2) << args << ": " << r.err;
   }
   EXPECT_TRUE(filesInDir().empty());
+}
+
+// The traps of issue 20: -h is help (a number after it is the seed demo's height), --version
+// everywhere, WxH sizes, a typo gets a suggestion, missing output folders are made.
+TEST_F(Cli, OneGrammarForEveryCommand) {
+  for (const char* args : {"cube -h", "view -h", "render -h", "bench -h", "info -h", "cube --help"}) {
+    RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 0) << args << ": " << r.err;
+    EXPECT_NE(r.out.find("usage: tessera"), std::string::npos) << args;
+  }
+  for (const char* args : {"--version", "render --version", "cube --version", "view --version"}) {
+    RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 0) << args;
+    EXPECT_EQ(r.out.rfind("tessera ", 0), 0u) << args << ": " << r.out;
+  }
+  RunResult r = run("render quad.obj --resoltion 640x480");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("did you mean '--resolution'?"), std::string::npos) << r.err;
+  r = run("rendr quad.obj");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("did you mean 'render'?"), std::string::npos) << r.err;
+
+  writeQuadObj("quad.obj");
+  r = run("render quad.obj --resolution 24x16 -o sizes/wxh.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  DecodedPng png;
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "sizes" / "wxh.png").string(), png));
+  EXPECT_EQ(png.width, 24);
+  EXPECT_EQ(png.height, 16);
+  // -h followed by a number is the cube's height; --name=value works as well.
+  r = run("cube -w 20 -h 12 --duration=0.1s --output=deep/er/one_{frame}.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "deep/er/one_0000.png").string(), png));
+  EXPECT_EQ(png.height, 12);
+  // A single .png is the turn's first frame.
+  r = run("cube -w 20 -h 12 -out still.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "still.png").string(), png));
+  EXPECT_EQ(png.width, 20);
+}
+
+// README's own commands, exactly as written there.
+TEST_F(Cli, ReadmeCubeCommandsRun) {
+  RunResult r = run("cube -out frames/cube_{frame}.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "frames" / "cube_0000.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "frames" / "cube_0119.png"));
+  r = run("cube -w 320 -h 240 -fps 25 -dur 2s -axes -out small.gif");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "small.gif"));
 }
 
 TEST_F(Cli, HelpExitsZeroAndListsTheFlags) {
@@ -146,10 +200,12 @@ TEST_F(Cli, HelpExitsZeroAndListsTheFlags) {
 }
 
 TEST_F(Cli, UnwritableOutputFailsCleanly) {
-  RunResult r = run("cube -w 32 -h 32 -dur 0.2s -out /nonexistent_dir/x/cube.gif");
+  // A missing folder is made; one that cannot be (a file in the way) is named.
+  writeFile("blocker", "a file, not a folder");
+  RunResult r = run("cube -w 32 -h 32 -dur 0.2s -out blocker/x/cube.gif");
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("/nonexistent_dir/x/cube.gif"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists("/nonexistent_dir"));
+  EXPECT_NE(r.err.find("cannot create the folder 'blocker/x'"), std::string::npos) << r.err;
+  EXPECT_EQ(filesInDir(), std::set<std::string>{"blocker"});
   writeQuadObj("quad.obj");
   fs::create_directories(dir_ / "locked");
   fs::permissions(dir_ / "locked", fs::perms::owner_read | fs::perms::owner_exec);

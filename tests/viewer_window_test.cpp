@@ -398,7 +398,7 @@ TEST(ViewerErrors, ABadProjectionOrViewAngleIsAUsageErrorNamingTheChoicesOrTheRa
 TEST(ViewerErrors, BadFlagsAreAUsageErrorWithStatus2) {
   auto [status, err] = runWithoutWindow({"-fps", "0"}, {});
   EXPECT_EQ(status, 2);
-  EXPECT_NE(err.find("usage"), std::string::npos) << err;
+  EXPECT_NE(err.find("tessera view --help"), std::string::npos) << err;
 }
 
 }  // namespace

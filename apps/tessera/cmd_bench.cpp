@@ -398,7 +398,7 @@ int runBench(const std::vector<std::string>& args) {
   }
   auto usageError = [&](const std::string& message) {
     printError("bench", message);
-    std::cerr << flags.usage();
+    std::cerr << flags.hint();
     return kExitUsage;
   };
   if (!positional) return usageError(positional.error().message);

@@ -1,8 +1,11 @@
 // tessera cube: one full turn of a flat-shaded cube, written as an animated GIF.
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
+#include <tessera/io/atomic_file.h>
 #include <tessera/io/frame_sink.h>
 #include <tessera/io/image_writer.h>
 #include <tessera/scene/color.h>
@@ -66,8 +69,8 @@ float4 demoCubeColor() {
 int runCube(const std::vector<std::string>& args) {
   CubeSettings s;
   FlagSet flags(
-      "tessera cube [-w 480] [-h 480] [-fps 30] [-dur 4s] [-fov 50] [-out cube.gif] "
-      "[-workers 0] [-axes] [-msaa 1] [-samples 1] [-projection perspective] [-crc]",
+      "tessera cube [--width 480] [--height 480] [--fps 30] [--duration 4s] [--fov 50] "
+      "[--output cube.gif] [flags]",
       /*single_dash=*/true);
   flags.addInt("w|width", &s.width, "image width in pixels (default 480)", 1, 16384);
   flags.addInt("h|height", &s.height, "image height in pixels (default 480)", 1, 16384);
@@ -98,12 +101,12 @@ int runCube(const std::vector<std::string>& args) {
   }
   if (!positional) {
     printError("cube", positional.error().message);
-    std::cerr << flags.usage();
+    std::cerr << flags.hint();
     return kExitUsage;
   }
   if (!positional->empty()) {
     printError("cube", "unexpected argument '" + positional->front() + "'");
-    std::cerr << flags.usage();
+    std::cerr << flags.hint();
     return kExitUsage;
   }
   const Projection projection = parseProjection(s.projection).value_or(Projection::kPerspective);
@@ -113,13 +116,24 @@ int runCube(const std::vector<std::string>& args) {
     printError("cube", "-fov: " + range);
     return kExitUsage;
   }
-  const long long frame_count = std::llround(static_cast<double>(s.duration) * s.fps);
+  long long frame_count = std::llround(static_cast<double>(s.duration) * s.fps);
   if (frame_count < 1 || frame_count > 100000) {
     printError("cube", "-dur times -fps must give between 1 and 100000 frames");
     return kExitUsage;
   }
 
+  // A single .png (no {frame}) is one picture: the turn's first frame.
+  const bool sequence = s.output.find("{frame}") != std::string::npos;
+  std::string extension = std::filesystem::path(s.output).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (!sequence && extension == ".png") frame_count = 1;
   io::AnimationSettings animation{s.width, s.height, s.fps, true};
+  const std::filesystem::path first_output =
+      sequence ? io::formatFramePath(s.output, 0) : std::filesystem::path(s.output);
+  if (Expected<void> folder = io::createParentFolders(first_output); !folder) {
+    printError("cube", folder.error().message);
+    return kExitFailure;
+  }
   Expected<std::unique_ptr<io::FrameSink>> sink = io::openFrameSink(s.output, animation);
   if (!sink) {
     printError("cube", sink.error().message);
@@ -165,8 +179,8 @@ int runCube(const std::vector<std::string>& args) {
     return kExitFailure;
   }
   progress.finish();
-  std::cout << "wrote " << s.output << " (" << frame_count << " frames, " << s.width << "x"
-            << s.height << ")\n";
+  std::cout << "wrote " << s.output << " (" << frame_count
+            << (frame_count == 1 ? " frame, " : " frames, ") << s.width << "x" << s.height << ")\n";
   return kExitOk;
 }
 

@@ -20,7 +20,7 @@ int runDevices(const std::vector<std::string>& args) {
   if (!positional || !positional->empty()) {
     printError("devices", positional ? "unexpected argument '" + positional->front() + "'"
                                      : positional.error().message);
-    std::cerr << flags.usage();
+    std::cerr << flags.hint();
     return kExitUsage;
   }
 #ifdef TESSERA_HAVE_VULKAN

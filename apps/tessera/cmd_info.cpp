@@ -48,7 +48,7 @@ int runInfo(const std::vector<std::string>& args) {
   }
   if (!positional || positional->size() != 1) {
     printError("info", !positional ? positional.error().message : "expected one model");
-    std::cerr << flags.usage();
+    std::cerr << flags.hint();
     return kExitUsage;
   }
   Expected<io::Model> model = io::loadModel(positional->front(), budget);

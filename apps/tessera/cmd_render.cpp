@@ -75,19 +75,8 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   flags.addString("o|output", &s.output,
                   "output: .png; .gif, .mp4 or a {frame} PNG template for a turntable "
                   "(default MODEL's name with .png, in the current folder)");
-  flags.addCustom("resolution", "W,H", "image size in pixels (default 1000,600)",
-                  [&](const std::string& v) -> std::string {
-                    size_t comma = v.find(',');
-                    long long w, h;
-                    if (comma == std::string::npos || !parseIntStrict(v.substr(0, comma), w) ||
-                        !parseIntStrict(v.substr(comma + 1), h))
-                      return "expected W,H, got '" + v + "'";
-                    if (w < 1 || h < 1 || w > 16384 || h > 16384)
-                      return "each side must be between 1 and 16384";
-                    s.width = static_cast<int>(w);
-                    s.height = static_cast<int>(h);
-                    return "";
-                  });
+  flags.addCustom("resolution", "W,H", "image size in pixels, W,H or WxH (default 1000,600)",
+                  [&](const std::string& v) { return parseSize(v, s.width, s.height); });
   flags.addCustom("background-color", "R,G,B", "background, sRGB 0..1 (default 0.2,0.2,0.2)",
                   [&](const std::string& v) -> std::string {
                     Expected<float3> c = parseFloat3(v);
@@ -252,6 +241,14 @@ int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const B
   Accumulator accumulator;
   Frame frame;
   const int frame_count = std::max(s.turntable, 1);
+  // The output's folder, made when missing (for a sequence, frame 0's: the template's folder).
+  const std::filesystem::path first_output =
+      kind == OutputKind::kSequence ? io::formatFramePath(s.output, 0)
+                                    : std::filesystem::path(s.output);
+  if (Expected<void> folder = io::createParentFolders(first_output); !folder) {
+    printError("render", folder.error().message);
+    return kExitFailure;
+  }
   std::unique_ptr<io::FrameSink> sink;
   if (kind == OutputKind::kVideo) {
     Expected<std::unique_ptr<io::FrameSink>> opened =
@@ -330,7 +327,7 @@ int runRender(const std::vector<std::string>& args) {
   }
   auto usageError = [&](const std::string& message) {
     printError("render", message);
-    std::cerr << flags.usage();
+    std::cerr << flags.hint();
     return kExitUsage;
   };
   if (!positional) return usageError(positional.error().message);
@@ -355,6 +352,11 @@ int runRender(const std::vector<std::string>& args) {
   // work, and the temporary goes away with any failure below.
   std::optional<io::AtomicFile> stats_file;
   if (!s.stats.empty()) {
+    Expected<void> folder = io::createParentFolders(s.stats);
+    if (!folder) {
+      printError("render", folder.error().message);
+      return kExitFailure;
+    }
     Expected<io::AtomicFile> created = io::AtomicFile::create(s.stats);
     if (!created) {
       printError("render", created.error().message);

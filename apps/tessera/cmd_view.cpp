@@ -73,9 +73,7 @@ io::Model cubeModel() {
 int runView(const std::vector<std::string>& args) {
   ViewSettings s;
   FlagSet flags(
-      "tessera view [MODEL] [-w 800] [-h 600] [-fps 60] [-fov 50] [-stats] [-axes] "
-      "[-fullscreen] [-workers 0] [-texture PATH] [-backend cpu] [-msaa 4] "
-      "[-projection perspective]",
+      "tessera view [MODEL] [--width 800] [--height 600] [--fps 60] [--fov 50] [flags]",
       /*single_dash=*/true);
   flags.addInt("w|width", &s.width, "window width (default 800)", 1, 16384);
   flags.addInt("h|height", &s.height, "window height (default 600)", 1, 16384);
@@ -126,7 +124,7 @@ int runView(const std::vector<std::string>& args) {
   }
   auto usageError = [&](const std::string& message) {
     printError("view", message);
-    std::cerr << flags.usage();
+    std::cerr << flags.hint();
     return kExitUsage;
   };
   if (!positional) return usageError(positional.error().message);

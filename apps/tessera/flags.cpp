@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <algorithm>
 #include <sstream>
 
 namespace tessera::cli {
@@ -33,6 +34,35 @@ bool parseFloatStrict(const std::string& text, float& out) {
   char* end = nullptr;
   out = std::strtof(text.c_str(), &end);
   return errno == 0 && end && *end == '\0' && std::isfinite(out);
+}
+
+std::string parseSize(const std::string& text, int& width, int& height) {
+  size_t split = text.find(',');
+  if (split == std::string::npos) split = text.find_first_of("xX");
+  long long w = 0, h = 0;
+  if (split == std::string::npos || !parseIntStrict(text.substr(0, split), w) ||
+      !parseIntStrict(text.substr(split + 1), h))
+    return "expected W,H or WxH (such as 1920,1080 or 1920x1080), got '" + text + "'";
+  if (w < 1 || h < 1 || w > 16384 || h > 16384) return "each side must be between 1 and 16384";
+  width = static_cast<int>(w);
+  height = static_cast<int>(h);
+  return "";
+}
+
+size_t editDistance(const std::string& a, const std::string& b) {
+  // Optimal string alignment: Levenshtein plus the swap of two neighbours ("resoltion").
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  }
+  return d[a.size()][b.size()];
 }
 
 Expected<float3> parseFloat3(const std::string& text) {
@@ -175,8 +205,18 @@ Expected<std::vector<std::string>> FlagSet::parse(const std::vector<std::string>
       help_ = true;
       continue;
     }
+    // -h: help, or the height when a number follows and the command has -h|height.
+    if (body == "h" && !has_value) {
+      long long number = 0;
+      const bool height = find("h") != nullptr && i + 1 < args.size() &&
+                          parseIntStrict(args[i + 1], number);
+      if (!height) {
+        help_ = true;
+        continue;
+      }
+    }
     const Flag* flag = find(body);
-    if (!flag) return makeError("unknown flag '" + arg + "'");
+    if (!flag) return makeError(unknownFlag(arg, body));
     if (!flag->value_name.empty() && !has_value) {
       if (i + 1 >= args.size()) return makeError("flag '" + arg + "' needs a value");
       value = args[++i];
@@ -187,14 +227,45 @@ Expected<std::vector<std::string>> FlagSet::parse(const std::vector<std::string>
   return positional;
 }
 
+std::string FlagSet::unknownFlag(const std::string& arg, const std::string& name) const {
+  std::string message = "unknown flag '" + arg + "'";
+  // The nearest name, when it is a few edits away (a third of its length, at least one), or
+  // when the flag given is the start of exactly that name.
+  const Flag* best = nullptr;
+  std::string best_name;
+  size_t best_distance = std::string::npos;
+  for (const Flag& f : flags_) {
+    for (const std::string& n : f.names) {
+      if (n.size() == 1) continue;
+      size_t distance = editDistance(name, n);
+      if (name.size() >= 3 && n.compare(0, name.size(), name) == 0) distance = 1;
+      if (distance < best_distance) {
+        best = &f;
+        best_name = n;
+        best_distance = distance;
+      }
+    }
+  }
+  if (best && best_distance <= std::max<size_t>(1, best_name.size() / 3))
+    message += "; did you mean '--" + best_name + "'?";
+  return message;
+}
+
+std::string FlagSet::hint() const {
+  // The synopsis starts with the command: "tessera render MODEL ..." -> "tessera render".
+  std::string command = synopsis_.substr(0, synopsis_.find(' ', synopsis_.find(' ') + 1));
+  return "Run '" + command + " --help' for the flags.\n";
+}
+
 std::string FlagSet::usage() const {
   std::ostringstream out;
   out << "usage: " << synopsis_ << "\n\nflags:\n";
+  if (single_dash_) out << "  (one dash works as well: -fps 30 is --fps 30, as in the first demo)\n";
   for (const Flag& f : flags_) {
     std::string line = "  ";
     for (size_t i = 0; i < f.names.size(); ++i) {
       if (i) line += ", ";
-      line += (f.names[i].size() == 1 || single_dash_ ? "-" : "--") + f.names[i];
+      line += (f.names[i].size() == 1 ? "-" : "--") + f.names[i];
     }
     if (!f.value_name.empty()) line += " " + f.value_name;
     if (line.size() < 34)
@@ -203,7 +274,8 @@ std::string FlagSet::usage() const {
       line += "  ";
     out << line << f.help << "\n";
   }
-  out << "  --help                          show this message\n";
+  out << "  -h, --help                      show this message\n";
+  out << "  --version                       print tessera's version\n";
   return out.str();
 }
 

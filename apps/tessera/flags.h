@@ -1,5 +1,9 @@
-// Command-line flags: `--name=value`, `--name value`, and the single-dash forms (`-w 480`) that
-// the cube demo keeps. Bad input is a returned error (the caller prints usage and exits 2).
+// Command-line flags, one grammar for every subcommand: `--name value` and `--name=value`, with
+// one dash accepted too (the cube demo's `-w 480`, kept as aliases). `-h` and `--help` ask for
+// help, except that `-h` followed by a number is the height where a command has `-h|height` (the
+// seed demo's flag). Bad input is a returned error: the caller prints it and hint(), one line
+// pointing to --help (not the whole usage), and exits 2. An unknown flag's error suggests the
+// nearest known name.
 #pragma once
 
 #include <functional>
@@ -39,6 +43,8 @@ class FlagSet {
   Expected<std::vector<std::string>> parse(const std::vector<std::string>& args);
   bool helpRequested() const { return help_; }
   std::string usage() const;
+  // "Run 'tessera render --help' for the flags.\n": what follows a usage error.
+  std::string hint() const;
 
  private:
   struct Flag {
@@ -48,6 +54,8 @@ class FlagSet {
     std::function<std::string(const std::string&)> parse;
   };
   const Flag* find(const std::string& name) const;
+  // "unknown flag '--resoltion'; did you mean '--resolution'?" (when a name is near enough).
+  std::string unknownFlag(const std::string& arg, const std::string& name) const;
 
   std::string synopsis_;
   bool single_dash_ = false;
@@ -59,5 +67,9 @@ class FlagSet {
 Expected<float3> parseFloat3(const std::string& text);
 bool parseIntStrict(const std::string& text, long long& out);
 bool parseFloatStrict(const std::string& text, float& out);
+// An image size "W,H" or "WxH", each side 1..16384: "" or what is wrong.
+std::string parseSize(const std::string& text, int& width, int& height);
+// The number of single-character edits (insert, delete, replace, swap of neighbours) from a to b.
+size_t editDistance(const std::string& a, const std::string& b);
 
 }  // namespace tessera::cli

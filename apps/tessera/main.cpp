@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "commands.h"
+#include "flags.h"
 
 namespace tessera::cli {
 
@@ -43,7 +44,8 @@ constexpr const char* kUsage =
     "  view [MODEL]    look at a model (or the cube) in a window: orbit, zoom, pan, screenshots\n"
     "  devices         list the Vulkan devices and the backends each can run\n"
     "\n"
-    "Run 'tessera <command> --help' for the flags of a command.\n";
+    "Run 'tessera <command> --help' for the flags of a command, 'tessera --version' for the\n"
+    "version.\n";
 
 }  // namespace
 
@@ -53,6 +55,14 @@ int main(int argc, char** argv) {
   if (args.empty()) {
     std::cerr << kUsage;
     return kExitUsage;
+  }
+  // --version anywhere before "--", on its own or after a command: the one answer.
+  for (const std::string& arg : args) {
+    if (arg == "--") break;
+    if (arg == "--version") {
+      std::cout << "tessera " << TESSERA_VERSION << "\n";
+      return kExitOk;
+    }
   }
   const std::string command = args.front();
   args.erase(args.begin());
@@ -66,6 +76,11 @@ int main(int argc, char** argv) {
     std::cout << kUsage;
     return kExitOk;
   }
-  std::cerr << "tessera: unknown command '" << command << "'\n\n" << kUsage;
+  std::string suggestion;
+  for (const char* known : {"cube", "render", "bench", "info", "view", "devices"})
+    if (editDistance(command, known) <= 2) suggestion = known;
+  std::cerr << "tessera: unknown command '" << command << "'"
+            << (suggestion.empty() ? "" : "; did you mean '" + suggestion + "'?")
+            << "\nRun 'tessera --help' for the commands.\n";
   return kExitUsage;
 }

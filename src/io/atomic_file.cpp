@@ -33,6 +33,19 @@ std::filesystem::path temporaryName(const std::filesystem::path& target, std::mt
 
 }  // namespace
 
+Expected<void> createParentFolders(const std::filesystem::path& target) {
+  const std::filesystem::path folder = target.parent_path();
+  if (folder.empty()) return {};
+  std::error_code error;
+  if (std::filesystem::is_directory(folder, error)) return {};
+  std::filesystem::create_directories(folder, error);
+  if (error || !std::filesystem::is_directory(folder))
+    return makeError("cannot create the folder '" + folder.string() + "' for '" +
+                     target.string() + "': " +
+                     (error ? error.message() : std::string("a file is in the way")));
+  return {};
+}
+
 Expected<AtomicFile> AtomicFile::create(const std::filesystem::path& target) {
   if (!target.has_filename()) return makeError(cannotWrite(target, "not a file name"));
 

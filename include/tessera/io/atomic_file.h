@@ -52,4 +52,9 @@ class AtomicFile {
   std::filesystem::path temporary_;
 };
 
+// Creates the folders above `target` that do not exist yet (an output's folder, for the CLI:
+// `-o renders/a.png` makes renders/). An error naming the folder that could not be made, and
+// why (a file in the way, no permission).
+Expected<void> createParentFolders(const std::filesystem::path& target);
+
 }  // namespace tessera::io
