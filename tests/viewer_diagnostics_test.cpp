@@ -156,8 +156,8 @@ TEST(DiagnosticView, EachViewColoursItsOwnField) {
   EXPECT_NE(density.caption.find("0 to 2.500"), std::string::npos) << density.caption;
 }
 
-TEST(DiagnosticView, TheCpuRenderersHalfCoveredTilesAndDensityShowAsExpected) {
-  // 128 x 64 at 64-pixel tiles: the left half covers the first tile column; the density 2 of the
+TEST(DiagnosticView, TheCpuRenderersCoveredTilesAndDensityShowAsExpected) {
+  // 128 x 64 at 64-pixel tiles: the left half covers the first tile; the density 2 of the
   // model is the top, the empty right half density 0 (black).
   Scene scene = clipSpaceScene();
   scene.objects.push_back(leftHalf(2.0f));
