@@ -124,8 +124,8 @@ TEST(DiagnosticView, WithoutDiagnosticsTheCaptionSaysSoAndTheFrameIsShown) {
   frame = diagnosedFrame(8, 8, 4);
   frame.diagnostics.tile_triangles.clear();
   EXPECT_TRUE(diagnosticPicture(frame, DiagnosticView::kTileHeatmap, "cpu").pixels.empty());
-  EXPECT_NE(diagnosticPicture(frame, DiagnosticView::kTileHeatmap, "cpu").caption.find(
-                "perspective only"),
+  EXPECT_NE(diagnosticPicture(frame, DiagnosticView::kTileHeatmap, "cpu")
+                .caption.find("perspective only"),
             std::string::npos);
   EXPECT_EQ(diagnosticPicture(frame, DiagnosticView::kTileField, "cpu").pixels.size(), 64u);
   EXPECT_TRUE(diagnosticPicture(frame, DiagnosticView::kOff, "cpu").pixels.empty());

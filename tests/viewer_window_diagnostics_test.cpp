@@ -13,9 +13,9 @@ namespace {
 using namespace tessera::test;
 
 constexpr Rgb kBackground{51, 51, 51};
-constexpr Rgb kRampBottom{0, 0, 4};   // inferno(0): nothing in the tile or pixel
+constexpr Rgb kRampBottom{0, 0, 4};     // inferno(0): nothing in the tile or pixel
 constexpr Rgb kRampTop{252, 255, 164};  // inferno(1): the top of the legend
-constexpr int kTile = 64;             // the CPU renderer's tiles
+constexpr int kTile = 64;               // the CPU renderer's tiles
 // The bottom rows hold the legend and the overlay's lines: left out of the checks.
 constexpr int kBottomRows = 90;
 

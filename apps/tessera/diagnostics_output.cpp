@@ -81,9 +81,7 @@ Expected<void> writeDiagnosticAov(const std::filesystem::path& path, const Frame
   const int w = frame.width, h = frame.height;
   if (aov == "overdraw-heatmap" || aov == "occupancy-heatmap") {
     const std::vector<uint32_t> counts =
-        aov == "overdraw-heatmap"
-            ? d.overdraw
-            : spreadTiles(d, d.tile_triangles, w, h);
+        aov == "overdraw-heatmap" ? d.overdraw : spreadTiles(d, d.tile_triangles, w, h);
     return io::writePngRgba8(path, w, h, heatmapImage(w, h, counts).data());
   }
   if (aov == "material" || aov == "tile-occlusion") {

@@ -69,7 +69,7 @@ int heatmapLegendHeight(int width, int height) {
 
 std::vector<uint32_t> heatmapImage(int width, int height, const std::vector<uint32_t>& counts,
                                    std::optional<uint32_t> top_count) {
-  const uint32_t top = top_count ? *top_count
+  const uint32_t top = top_count        ? *top_count
                        : counts.empty() ? 0
                                         : *std::max_element(counts.begin(), counts.end());
   std::vector<uint32_t> image(counts.size());

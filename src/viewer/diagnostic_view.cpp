@@ -10,8 +10,7 @@
 namespace tessera::viewer {
 
 DiagnosticView toggleTileHeatmap(DiagnosticView view) {
-  return view == DiagnosticView::kTileHeatmap ? DiagnosticView::kOff
-                                              : DiagnosticView::kTileHeatmap;
+  return view == DiagnosticView::kTileHeatmap ? DiagnosticView::kOff : DiagnosticView::kTileHeatmap;
 }
 
 DiagnosticView nextAnalysisView(DiagnosticView view) {
@@ -81,8 +80,8 @@ DiagnosticPicture diagnosticPicture(const Frame& frame, DiagnosticView view,
     const uint32_t most = counts.empty() ? 0 : *std::max_element(counts.begin(), counts.end());
     char range[32];
     std::snprintf(range, sizeof range, "%.3f", most / 1000.0);
-    picture.caption = name + ": Material::density per pixel, 0 to " + range +
-                      " (legend in thousandths)";
+    picture.caption =
+        name + ": Material::density per pixel, 0 to " + range + " (legend in thousandths)";
   }
   picture.pixels = heatmapImage(w, h, counts, top);
   return picture;

@@ -127,7 +127,7 @@ class Viewer {
   DiagnosticView diagnostic_view_ = DiagnosticView::kOff;
   DiagnosticPicture diagnostic_picture_;
   std::string commit_message_;  // Shift+F2's line: the commit path, or that it does not apply
-  std::string error_;  // the last load error, shown until the next load
+  std::string error_;           // the last load error, shown until the next load
   fs::path loading_path_;
   Clock::time_point load_started_;
 
@@ -354,8 +354,8 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
   int bottom = pixel_height - margin;
   if (!diagnostic_picture_.pixels.empty()) bottom -= heatmapLegendHeight(pixel_width, pixel_height);
   auto stack = [&](const std::string& text, SDL_Color line_color) {
-    const int height = text_.drawTextBox(renderer_.get(), text, margin, bottom, true, line_color,
-                                         wrap);
+    const int height =
+        text_.drawTextBox(renderer_.get(), text, margin, bottom, true, line_color, wrap);
     if (height > 0) bottom -= height + margin / 2;
   };
   const SDL_Color white{255, 255, 255, 255};
@@ -448,8 +448,8 @@ void Viewer::setDiagnosticView(DiagnosticView view) {
 void Viewer::toggleCommitPath() {
   commit_message_ = hooks_.commit_path ? hooks_.commit_path(backend_, true) : "";
   if (commit_message_.empty())
-    commit_message_ = std::string("32-bit commit path: does not apply to the ") +
-                      backend_.name() + " backend (vulkan only)";
+    commit_message_ = std::string("32-bit commit path: does not apply to the ") + backend_.name() +
+                      " backend (vulkan only)";
   std::cout << "tessera view: " << commit_message_ << std::endl;
   sampling().reset();
   view_changed_ = true;

@@ -24,7 +24,9 @@ DiagnosticView toggleTileHeatmap(DiagnosticView view);
 // F11: off -> tile field -> density -> off; from the tile heatmap, the tile field.
 DiagnosticView nextAnalysisView(DiagnosticView view);
 // Whether the frame needs RenderOptions::diagnostics for the view (off: nothing is measured).
-inline bool needsDiagnostics(DiagnosticView view) { return view != DiagnosticView::kOff; }
+inline bool needsDiagnostics(DiagnosticView view) {
+  return view != DiagnosticView::kOff;
+}
 
 struct DiagnosticPicture {
   // RGBA8, the frame's size, row 0 at the top; empty: show the rendered frame (view off, or

@@ -55,15 +55,15 @@ struct Action {
     kToggleObjectAxes,
     kCycleProjection,  // perspective, cylindrical, spherical, stereographic, fisheye
     kScreenshot,
-    kStoreCrc,    // remember the CRC-32 of the frame shown
-    kCompareCrc,  // compare the frame shown with it: MATCH / MISMATCH
+    kStoreCrc,           // remember the CRC-32 of the frame shown
+    kCompareCrc,         // compare the frame shown with it: MATCH / MISMATCH
     kToggleTileHeatmap,  // the per-tile occupancy heatmap instead of the frame
     kCycleAnalysisView,  // off, tile field (covered fraction), per-pixel density
     kToggleCommitPath,   // the vulkan compute backend's 32-bit visibility commit path
-    kCycleMsaa,       // 1, 2, 4, 8 samples per pixel
-    kToggleJitter,    // sub-pixel jitter, a new offset each frame
-    kToggleTemporal,  // temporal reprojection of the jittered frames
-    kToggleKeyList,   // the in-window list of keys
+    kCycleMsaa,          // 1, 2, 4, 8 samples per pixel
+    kToggleJitter,       // sub-pixel jitter, a new offset each frame
+    kToggleTemporal,     // temporal reprojection of the jittered frames
+    kToggleKeyList,      // the in-window list of keys
     kQuit,
   };
   Type type = Type::kOrbit;
