@@ -263,7 +263,7 @@ TEST(InputState, WheelZoomsAndKeysMapAsInF3d) {
       {Key::kF3, Action::Type::kToggleObjectAxes}, {Key::kF12, Action::Type::kScreenshot},
       {Key::kF10, Action::Type::kToggleJitter},    {Key::kH, Action::Type::kToggleKeyList},
       {Key::kF4, Action::Type::kCycleProjection},  {Key::kF5, Action::Type::kStoreCrc},
-      {Key::kF6, Action::Type::kCompareCrc},
+      {Key::kF6, Action::Type::kCompareCrc},       {Key::kF11, Action::Type::kCycleAnalysisView},
   };
   for (const auto& [k, type] : commands) {
     a = input.handle(key(k), 100.0f);
@@ -281,9 +281,14 @@ TEST(InputState, ShiftPicksTheSecondRowOfFunctionKeysAndNothingElse) {
   a = input.handle(key(Key::kF12, true), 100.0f);
   ASSERT_TRUE(a);
   EXPECT_EQ(a->type, Action::Type::kToggleTemporal);
-  // Shift+F1, Shift+F2 (another backend's keys), Shift+F4, F5, F6 and F10 do not fall back to
-  // F1, F2, F4, F5, F6, F10.
-  for (Key k : {Key::kF1, Key::kF2, Key::kF4, Key::kF5, Key::kF6, Key::kF10})
+  a = input.handle(key(Key::kF1, true), 100.0f);
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a->type, Action::Type::kToggleTileHeatmap);
+  a = input.handle(key(Key::kF2, true), 100.0f);
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a->type, Action::Type::kToggleCommitPath);
+  // Shift+F4, F5, F6, F10 and F11 do not fall back to F4, F5, F6, F10, F11.
+  for (Key k : {Key::kF4, Key::kF5, Key::kF6, Key::kF10, Key::kF11})
     EXPECT_FALSE(input.handle(key(k, true), 100.0f));
   // Keys with no second row ignore Shift.
   a = input.handle(key(Key::kSeven, true), 100.0f);
@@ -315,11 +320,15 @@ TEST(InputState, TheKeyListNamesEveryMappedKeyAndOnlyThose) {
           << "key " << i << (shift ? " with shift" : "") << " is unlisted";
     }
   }
-  EXPECT_EQ(mapped, 17);  // 1 3 7 9 Enter Escape H F1-F6 F10 F12, Shift+F3, Shift+F12
+  // 1 3 7 9 Enter Escape H F1-F6 F10-F12, Shift+F1, Shift+F2, Shift+F3, Shift+F12
+  EXPECT_EQ(mapped, 20);
   EXPECT_TRUE(listed(Key::kF5, false));
   EXPECT_TRUE(listed(Key::kF6, false));
   EXPECT_TRUE(listed(Key::kF4, false));
   EXPECT_FALSE(listed(Key::kF4, true));
+  EXPECT_TRUE(listed(Key::kF11, false));
+  EXPECT_TRUE(listed(Key::kF1, true));
+  EXPECT_TRUE(listed(Key::kF2, true));
   for (const KeyHelp& help : keyList()) {
     EXPECT_FALSE(help.keys.empty());
     EXPECT_FALSE(help.action.empty());

@@ -145,6 +145,29 @@ TEST(VulkanCompute, DeviceWithoutInt64AtomicsTakesThe32BitPath) {
   EXPECT_FALSE(gpu->lastStats().int64_atomics);
 }
 
+// The viewer's Shift+F2: the same backend object switches its commit path, and the image stays.
+TEST(VulkanCompute, TheCommitPathSwitchesAtRunTimeAndDrawsTheSameImage) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  if (!gpu->device().int64_atomics) GTEST_SKIP() << "the device has no 64-bit atomics";
+  const Scene scene = denseScene();
+  const RenderOptions o = options();
+  EXPECT_TRUE(gpu->uses64BitCommits());
+  const Frame atomic64 = renderWith(*gpu, scene, o);
+  ASSERT_TRUE(gpu->setForce32BitAtomics(true).ok());
+  EXPECT_FALSE(gpu->uses64BitCommits());
+  const Frame atomic32 = renderWith(*gpu, scene, o);
+  EXPECT_FALSE(gpu->lastStats().int64_atomics);
+  EXPECT_EQ(atomic32.color, atomic64.color);
+  EXPECT_EQ(atomic32.triangle_id, atomic64.triangle_id);
+  ASSERT_TRUE(gpu->setForce32BitAtomics(false).ok());
+  EXPECT_TRUE(gpu->uses64BitCommits());
+  const Frame again = renderWith(*gpu, scene, o);
+  EXPECT_TRUE(gpu->lastStats().int64_atomics);
+  EXPECT_EQ(again.color, atomic64.color);
+}
+
 TEST(VulkanCompute, FloatSetupKeepsCoverageExact) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   VulkanOptions vk;

@@ -41,4 +41,23 @@ Expected<std::unique_ptr<Backend>> makeBackend(const std::string& name, int work
   return makeError("unknown backend '" + name + "'");
 }
 
+std::string vulkanCommitPath(Backend& backend, bool toggle) {
+#ifdef TESSERA_HAVE_VULKAN
+  auto* compute = dynamic_cast<vulkan::ComputeBackend*>(&backend);
+  if (compute == nullptr) return "";
+  if (!compute->device().int64_atomics)
+    return "commit path: 32-bit (the device has no 64-bit atomics)";
+  std::string failed;
+  if (toggle) {
+    if (Expected<void> set = compute->setForce32BitAtomics(compute->uses64BitCommits()); !set)
+      failed = " (cannot switch: " + set.error().message + ")";
+  }
+  return std::string("commit path: ") +
+         (compute->uses64BitCommits() ? "64-bit atomics" : "32-bit, two passes") + failed;
+#else
+  (void)backend, (void)toggle;
+  return "";
+#endif
+}
+
 }  // namespace tessera::cli

@@ -16,4 +16,9 @@ std::vector<std::string> backendNames();
 // workers: CPU threads (0 = all cores); device: the Vulkan device index (-1 = the first suitable).
 Expected<std::unique_ptr<Backend>> makeBackend(const std::string& name, int workers, int device);
 
+// The viewer's Shift+F2 (ViewerHooks::commit_path): on the `vulkan` backend, switches its
+// visibility commit path first when `toggle`, and returns the line saying which path is active;
+// "" on any other backend.
+std::string vulkanCommitPath(Backend& backend, bool toggle);
+
 }  // namespace tessera::cli

@@ -116,7 +116,9 @@ int runView(const std::vector<std::string>& args) {
                  "Keys: 1 front, 3 right, 7 top, 9 isometric, Enter resets the camera,\n"
                  "F1 stats, F2 world axes, F3 object axes, F4 cycles the projection\n"
                  "(perspective, cylindrical, spherical, stereographic, fisheye),\n"
-                 "F10 sub-pixel jitter, F12 screenshot,\n"
+                 "F5 / F6 store / compare the frame's CRC, F10 sub-pixel jitter,\n"
+                 "F11 cycles the analysis view (off, tile field, density), F12 screenshot,\n"
+                 "Shift+F1 tile heatmap, Shift+F2 32-bit commit path (vulkan),\n"
                  "Shift+F3 cycles MSAA 1/2/4/8, Shift+F12 temporal reprojection (on with\n"
                  "jitter), H lists the keys in the window, Escape quits.\n"
                  "Drop a model file on the window to load it.\n";
@@ -194,6 +196,7 @@ int runView(const std::vector<std::string>& args) {
     return makeModelScene(cubeModel(), "cube", cube_settings).value();
   };
   hooks.place_lights = addViewLights;
+  hooks.commit_path = vulkanCommitPath;
 
   viewer::ViewerOptions options;
   options.width = s.width;

@@ -21,10 +21,6 @@ bool needsPixelTests(const std::string& aov);
 Expected<void> writeDiagnosticAov(const std::filesystem::path& path, const Frame& frame,
                                   const std::string& aov);
 
-// The heatmap picture of per-pixel counts: an inferno colour ramp from 0 (black) to the largest
-// count, with a legend bar along the bottom labelled 0 and the largest count. RGBA8 pixels.
-std::vector<uint32_t> heatmapImage(int width, int height, const std::vector<uint32_t>& counts);
-
 // One frame of the --stats file (a JSON object, docs/stats.md).
 std::string statsFrameJson(const Frame& frame, int index, const std::string& backend);
 // The whole file around the frames' objects.

@@ -34,6 +34,8 @@ bool FrameRenderer::render(Backend& backend, const Scene& scene, int width, int 
   options_.height = height;
   options_.projection = projection_;
   sampling_.prepare(options_);
+  // A backend that does not fill the diagnostics must not leave an earlier frame's behind.
+  frame.diagnostics.valid = false;
   const Clock::time_point start = Clock::now();
   backend.render(scene, options_, frame);
   const Clock::time_point rendered_at = Clock::now();

@@ -21,12 +21,16 @@ std::optional<Action> view(ViewPreset preset) {
 // Shift + a function key: the second row of the map.
 std::optional<Action> shiftedFunctionKey(Key key) {
   switch (key) {
+    case Key::kF1:
+      return act(Action::Type::kToggleTileHeatmap);
+    case Key::kF2:
+      return act(Action::Type::kToggleCommitPath);
     case Key::kF3:
       return act(Action::Type::kCycleMsaa);
     case Key::kF12:
       return act(Action::Type::kToggleTemporal);
     default:
-      return std::nullopt;  // Shift+F1, F2, F4, F5, F6, F10: not in this viewer
+      return std::nullopt;  // Shift+F4, F5, F6, F10, F11: not in this viewer
   }
 }
 
@@ -35,7 +39,7 @@ std::optional<Action> shiftedFunctionKey(Key key) {
 std::optional<Action> keyAction(Key key, bool shift) {
   const bool function_key = key == Key::kF1 || key == Key::kF2 || key == Key::kF3 ||
                             key == Key::kF4 || key == Key::kF5 || key == Key::kF6 ||
-                            key == Key::kF10 || key == Key::kF12;
+                            key == Key::kF10 || key == Key::kF11 || key == Key::kF12;
   if (shift && function_key) return shiftedFunctionKey(key);
   switch (key) {
     case Key::kOne:
@@ -66,6 +70,8 @@ std::optional<Action> keyAction(Key key, bool shift) {
       return act(Action::Type::kCompareCrc);
     case Key::kF10:
       return act(Action::Type::kToggleJitter);
+    case Key::kF11:
+      return act(Action::Type::kCycleAnalysisView);
     case Key::kF12:
       return act(Action::Type::kScreenshot);
     case Key::kOther:
@@ -92,7 +98,10 @@ const std::vector<KeyHelp>& keyList() {
       {"F4", "cycle the projection", {{Key::kF4}}},
       {"F5 / F6", "store / compare the frame's CRC", {{Key::kF5}, {Key::kF6}}},
       {"F10", "sub-pixel jitter", {{Key::kF10}}},
+      {"F11", "analysis view: off, tile field, density", {{Key::kF11}}},
       {"F12", "screenshot", {{Key::kF12}}},
+      {"Shift+F1", "tile heatmap", {{Key::kF1, true}}},
+      {"Shift+F2", "32-bit commit path (vulkan)", {{Key::kF2, true}}},
       {"Shift+F3", "MSAA 1, 2, 4, 8 samples", {{Key::kF3, true}}},
       {"Shift+F12", "temporal reprojection", {{Key::kF12, true}}},
       {"H", "this list", {{Key::kH}}},

@@ -1,8 +1,15 @@
 #include "overlay.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <string>
+#include <system_error>
+
+#include <tessera/viewer/viewer.h>
 
 namespace tessera::viewer {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -90,6 +97,30 @@ void TextOverlay::drawTable(SDL_Renderer* renderer,
   const int pad = std::max(4, base_size_ / 3);
   drawBox(renderer, surface.get(), std::max(0, (width - surface->w) / 2 - pad),
           std::max(0, (height - surface->h) / 2 - pad));
+}
+
+Expected<fs::path> findOverlayFont() {
+  if (const char* forced = std::getenv("TESSERA_FONT"); forced != nullptr && *forced != '\0') {
+    std::error_code ec;
+    if (fs::is_regular_file(forced, ec)) return fs::path(forced);
+    return makeError(std::string("TESSERA_FONT names no font file: ") + forced);
+  }
+  const char* folders[] = {"/usr/share/fonts/truetype/dejavu", "/usr/share/fonts/dejavu",
+                           "/usr/share/fonts/TTF", "/usr/local/share/fonts",
+                           "/usr/share/fonts/truetype"};
+  const char* names[] = {"DejaVuSansMono.ttf", "DejaVuSans.ttf"};
+  std::string looked;
+  for (const char* name : names) {
+    for (const char* folder : folders) {
+      const fs::path candidate = fs::path(folder) / name;
+      std::error_code ec;
+      if (fs::is_regular_file(candidate, ec)) return candidate;
+    }
+  }
+  for (const char* folder : folders) looked += std::string(looked.empty() ? "" : ", ") + folder;
+  return makeError(
+      "no DejaVu font for the overlay (looked for DejaVuSansMono.ttf and DejaVuSans.ttf in " +
+      looked + "); install fonts-dejavu-core or set TESSERA_FONT to a .ttf file");
 }
 
 }  // namespace tessera::viewer

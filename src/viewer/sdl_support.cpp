@@ -76,6 +76,8 @@ Key toKey(SDL_Keycode code) {
       return Key::kF6;
     case SDLK_F10:
       return Key::kF10;
+    case SDLK_F11:
+      return Key::kF11;
     case SDLK_F12:
       return Key::kF12;
     default:

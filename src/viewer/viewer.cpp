@@ -17,6 +17,8 @@
 #include <tessera/io/image_writer.h>
 #include <tessera/io/validation.h>
 #include <tessera/render/frame.h>
+#include <tessera/render/heatmap.h>
+#include <tessera/viewer/diagnostic_view.h>
 #include <tessera/viewer/frame_renderer.h>
 #include <tessera/viewer/input_state.h>
 #include <tessera/viewer/orbit_camera.h>
@@ -75,6 +77,10 @@ class Viewer {
   void renderScene(int pixel_width, int pixel_height);
   void saveScreenshot(int pixel_width, int pixel_height);
   void checkCrc();
+  void setDiagnosticView(DiagnosticView view);
+  void toggleCommitPath();
+  // What the window shows of the rendered frame: the frame, or the diagnostic view's picture.
+  const std::vector<uint32_t>& shownPixels();
   float pixelAspect() const;
   // Frames keep coming without input: the stats measure them, a load shows its progress, the
   // jitter cycles or the temporal pass converges.
@@ -117,7 +123,11 @@ class Viewer {
   std::optional<uint32_t> stored_crc_;
   std::string crc_message_;  // the overlay line, until an action changes the picture
   SDL_Color crc_color_{255, 255, 255, 255};
-  std::string error_;  // the last load error, shown until the next load
+  // Shift+F1 / F11: the picture shown instead of the frame, and its overlay line.
+  DiagnosticView diagnostic_view_ = DiagnosticView::kOff;
+  DiagnosticPicture diagnostic_picture_;
+  std::string commit_message_;  // Shift+F2's line: the commit path, or that it does not apply
+  std::string error_;           // the last load error, shown until the next load
   fs::path loading_path_;
   Clock::time_point load_started_;
 
@@ -238,6 +248,15 @@ void Viewer::handleAction(const Action& action) {
     case Action::Type::kCompareCrc:
       crc_request_ = CrcRequest::kCompare;
       break;
+    case Action::Type::kToggleTileHeatmap:
+      setDiagnosticView(toggleTileHeatmap(diagnostic_view_));
+      break;
+    case Action::Type::kCycleAnalysisView:
+      setDiagnosticView(nextAnalysisView(diagnostic_view_));
+      break;
+    case Action::Type::kToggleCommitPath:
+      toggleCommitPath();
+      break;
     case Action::Type::kCycleMsaa:
       sampling().cycleMsaa();
       view_changed_ = true;
@@ -312,6 +331,10 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
     std::snprintf(text, sizeof text, "\n%d x %d, %zu triangles, %s\n", pixel_width, pixel_height,
                   scene_.triangleCount(), backend_.name());
     lines += text + frames_.describeProjection() + "\n" + sampling().describe();
+    if (hooks_.commit_path) {
+      if (const std::string path = hooks_.commit_path(backend_, false); !path.empty())
+        lines += "\n" + path;
+    }
     text_.drawTextBox(renderer_.get(), lines, margin, margin, false, SDL_Color{255, 255, 255, 255},
                       wrap);
   }
@@ -327,11 +350,19 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
     status = "error: " + error_ + between + frames_.error();
     color = SDL_Color{255, 120, 110, 255};
   }
-  const int status_height =
-      text_.drawTextBox(renderer_.get(), status, margin, pixel_height - margin, true, color, wrap);
-  text_.drawTextBox(renderer_.get(), crc_message_, margin,
-                    pixel_height - margin - (status_height > 0 ? status_height + margin / 2 : 0),
-                    true, crc_color_, wrap);
+  // Lines stack up from the bottom, above a diagnostic picture's legend.
+  int bottom = pixel_height - margin;
+  if (!diagnostic_picture_.pixels.empty()) bottom -= heatmapLegendHeight(pixel_width, pixel_height);
+  auto stack = [&](const std::string& text, SDL_Color line_color) {
+    const int height =
+        text_.drawTextBox(renderer_.get(), text, margin, bottom, true, line_color, wrap);
+    if (height > 0) bottom -= height + margin / 2;
+  };
+  const SDL_Color white{255, 255, 255, 255};
+  stack(status, color);
+  stack(crc_message_, crc_color_);
+  stack(commit_message_, white);
+  stack(diagnostic_picture_.caption, white);
   if (key_list_) drawKeyList(pixel_width, pixel_height);
 }
 
@@ -394,7 +425,34 @@ void Viewer::renderScene(int pixel_width, int pixel_height) {
   if (!frames_.render(backend_, scene_, pixel_width, pixel_height, frame_) &&
       frames_.error() != previous_error)
     std::cerr << "tessera view: error: " << frames_.error() << std::endl;
-  if (texture_) SDL_UpdateTexture(texture_.get(), nullptr, frame_.color.data(), pixel_width * 4);
+  if (texture_) SDL_UpdateTexture(texture_.get(), nullptr, shownPixels().data(), pixel_width * 4);
+}
+
+const std::vector<uint32_t>& Viewer::shownPixels() {
+  // A frame that did not draw says why in red; the view's line would only repeat it.
+  diagnostic_picture_ = frames_.error().empty()
+                            ? diagnosticPicture(frame_, diagnostic_view_, backend_.name())
+                            : DiagnosticPicture{};
+  return diagnostic_picture_.pixels.empty() ? frame_.color : diagnostic_picture_.pixels;
+}
+
+// Shift+F1 / F11. Frames measure their diagnostics only while a view is shown.
+void Viewer::setDiagnosticView(DiagnosticView view) {
+  diagnostic_view_ = view;
+  frames_.setDiagnostics(needsDiagnostics(view));
+  if (!needsDiagnostics(view)) diagnostic_picture_ = {};
+  view_changed_ = true;
+}
+
+// Shift+F2: the line goes to the overlay and to stdout (for scripts and tests).
+void Viewer::toggleCommitPath() {
+  commit_message_ = hooks_.commit_path ? hooks_.commit_path(backend_, true) : "";
+  if (commit_message_.empty())
+    commit_message_ = std::string("32-bit commit path: does not apply to the ") + backend_.name() +
+                      " backend (vulkan only)";
+  std::cout << "tessera view: " << commit_message_ << std::endl;
+  sampling().reset();
+  view_changed_ = true;
 }
 
 void Viewer::drawFrame() {
@@ -490,30 +548,6 @@ void Viewer::run(const std::optional<fs::path>& model) {
 }
 
 }  // namespace
-
-Expected<fs::path> findOverlayFont() {
-  if (const char* forced = std::getenv("TESSERA_FONT"); forced != nullptr && *forced != '\0') {
-    std::error_code ec;
-    if (fs::is_regular_file(forced, ec)) return fs::path(forced);
-    return makeError(std::string("TESSERA_FONT names no font file: ") + forced);
-  }
-  const char* folders[] = {"/usr/share/fonts/truetype/dejavu", "/usr/share/fonts/dejavu",
-                           "/usr/share/fonts/TTF", "/usr/local/share/fonts",
-                           "/usr/share/fonts/truetype"};
-  const char* names[] = {"DejaVuSansMono.ttf", "DejaVuSans.ttf"};
-  std::string looked;
-  for (const char* name : names) {
-    for (const char* folder : folders) {
-      const fs::path candidate = fs::path(folder) / name;
-      std::error_code ec;
-      if (fs::is_regular_file(candidate, ec)) return candidate;
-    }
-  }
-  for (const char* folder : folders) looked += std::string(looked.empty() ? "" : ", ") + folder;
-  return makeError(
-      "no DejaVu font for the overlay (looked for DejaVuSansMono.ttf and DejaVuSans.ttf in " +
-      looked + "); install fonts-dejavu-core or set TESSERA_FONT to a .ttf file");
-}
 
 Expected<void> runViewer(const ViewerOptions& options, Backend& backend, const ViewerHooks& hooks,
                          const std::optional<fs::path>& model) {

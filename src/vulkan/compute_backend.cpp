@@ -476,6 +476,21 @@ std::vector<std::string> ComputeBackend::validationErrors() const {
 void ComputeBackend::setFenceTimeout(uint32_t milliseconds) {
   state_->context->fence_timeout_ms = milliseconds;
 }
+bool ComputeBackend::uses64BitCommits() const {
+  return state_->atomic64;
+}
+Expected<void> ComputeBackend::setForce32BitAtomics(bool force) {
+  if (force == state_->vulkan_options.force_32bit_atomics) return {};
+  VulkanOptions options = state_->vulkan_options;
+  options.device = state_->context->info.index;
+  options.force_32bit_atomics = force;
+  options.fence_timeout_ms = state_->context->fence_timeout_ms;
+  // A new context and pipelines, made before the old ones go: a failure keeps the working state.
+  Expected<std::unique_ptr<ComputeBackend>> fresh = create(options);
+  if (!fresh) return fresh.error();
+  state_ = std::move((*fresh)->state_);
+  return {};
+}
 
 Expected<std::unique_ptr<Backend>> makeComputeBackend(const VulkanOptions& options) {
   Expected<std::unique_ptr<ComputeBackend>> backend = ComputeBackend::create(options);

@@ -19,6 +19,10 @@ class FrameRenderer {
   Projection projection() const { return projection_; }
   // F4: the next projection; the temporal history starts afresh.
   void cycleProjection();
+  // Whether frames fill Frame::diagnostics (a diagnostic view is shown); off by default, so
+  // that a frame without a view measures nothing.
+  void setDiagnostics(bool on) { options_.diagnostics = on; }
+  bool diagnostics() const { return options_.diagnostics; }
   SamplingModes& sampling() { return sampling_; }
   const SamplingModes& sampling() const { return sampling_; }
 
@@ -28,7 +32,8 @@ class FrameRenderer {
   // Renders `scene` (its camera from camera() for this size) into `frame` with the anti-aliasing
   // modes' options and the projection, then the temporal pass. A frame the backend could not draw
   // (a device lost, a projection it does not draw) drops the history, and error() says why until
-  // a frame draws again. True when the frame drew.
+  // a frame draws again. frame.diagnostics is valid only when the backend filled it for this
+  // frame. True when the frame drew.
   bool render(Backend& backend, const Scene& scene, int width, int height, Frame& frame);
 
   const std::string& error() const { return error_; }

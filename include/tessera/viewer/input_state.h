@@ -28,6 +28,7 @@ enum class Key {
   kF5,
   kF6,
   kF10,
+  kF11,
   kF12,
   kOther
 };
@@ -54,12 +55,15 @@ struct Action {
     kToggleObjectAxes,
     kCycleProjection,  // perspective, cylindrical, spherical, stereographic, fisheye
     kScreenshot,
-    kStoreCrc,    // remember the CRC-32 of the frame shown
-    kCompareCrc,  // compare the frame shown with it: MATCH / MISMATCH
-    kCycleMsaa,       // 1, 2, 4, 8 samples per pixel
-    kToggleJitter,    // sub-pixel jitter, a new offset each frame
-    kToggleTemporal,  // temporal reprojection of the jittered frames
-    kToggleKeyList,   // the in-window list of keys
+    kStoreCrc,           // remember the CRC-32 of the frame shown
+    kCompareCrc,         // compare the frame shown with it: MATCH / MISMATCH
+    kToggleTileHeatmap,  // the per-tile occupancy heatmap instead of the frame
+    kCycleAnalysisView,  // off, tile field (covered fraction), per-pixel density
+    kToggleCommitPath,   // the vulkan compute backend's 32-bit visibility commit path
+    kCycleMsaa,          // 1, 2, 4, 8 samples per pixel
+    kToggleJitter,       // sub-pixel jitter, a new offset each frame
+    kToggleTemporal,     // temporal reprojection of the jittered frames
+    kToggleKeyList,      // the in-window list of keys
     kQuit,
   };
   Type type = Type::kOrbit;

@@ -41,6 +41,10 @@ struct ViewerHooks {
   std::function<Scene()> default_scene;
   // Places the lights for the scene's current camera (called whenever the camera moves).
   std::function<void(Scene&)> place_lights;
+  // Shift+F2: with `toggle`, switches the backend's 32-bit visibility commit path; returns the
+  // overlay's line naming the path now active, or "" where the key does not apply (a backend
+  // other than `vulkan`; unset: on every backend).
+  std::function<std::string(Backend&, bool toggle)> commit_path;
 };
 
 // Opens the window and runs until Escape or the close button. `model`: loaded in the background

@@ -132,6 +132,13 @@ class ComputeBackend final : public Backend {
   // Validation-layer errors since creation (empty without validation).
   std::vector<std::string> validationErrors() const;
   void setFenceTimeout(uint32_t milliseconds);
+  // The visibility commit the next frame takes: true for the 64-bit atomic one, false for the
+  // two-pass 32-bit one (a device without shaderBufferInt64Atomics, or force_32bit_atomics).
+  bool uses64BitCommits() const;
+  // VulkanOptions::force_32bit_atomics at run time (the viewer's Shift+F2): the backend is set up
+  // again on the same device with the option changed. Both paths draw the same image. On an
+  // Error the backend is unchanged.
+  Expected<void> setForce32BitAtomics(bool force);
 
   struct State;
 
