@@ -79,6 +79,17 @@ inline Scene occupancyScene() {
   return scene;
 }
 
+// The diagnostics of occupancyScene() that a backend binning on the 64x64 grid gives.
+inline void expectOccupancySceneCounts(const FrameDiagnostics& d) {
+  ASSERT_EQ(d.tile_columns, 3);
+  ASSERT_EQ(d.tile_rows, 2);
+  EXPECT_EQ(d.tile_triangles, (std::vector<uint32_t>{4, 2, 0, 0, 0, 2}));
+  EXPECT_EQ(d.counters.triangles_binned, 8u);
+  EXPECT_EQ(d.counters.tiles_empty, 3u);
+  EXPECT_EQ(d.counters.culled.facing, 1u);
+  expectCountersAddUp(d.counters);
+}
+
 // One triangle for each cull reason (but invalid and clipped away), one clipped into two pieces
 // and one drawn, in a 64x64 frame, the object culling back faces.
 inline Mesh cullReasonMesh() {

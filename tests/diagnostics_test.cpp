@@ -61,13 +61,7 @@ TEST(Diagnostics, OccupancyIsTheTrianglesBinnedIntoEachTile) {
   const Scene scene = occupancyScene();  // 3 x 2 tiles
   const Frame f = render(scene, kOccupancyWidth, kOccupancyHeight);
   const FrameDiagnostics& d = f.diagnostics;
-  ASSERT_EQ(d.tile_columns, 3);
-  ASSERT_EQ(d.tile_rows, 2);
-  EXPECT_EQ(d.tile_triangles, (std::vector<uint32_t>{4, 2, 0, 0, 0, 2}));
-  EXPECT_EQ(d.counters.triangles_binned, 8u);
-  EXPECT_EQ(d.counters.tiles_empty, 3u);
-  EXPECT_EQ(d.counters.culled.facing, 1u);
-  expectCountersAddUp(d.counters);
+  expectOccupancySceneCounts(d);
 }
 
 TEST(Diagnostics, TileOcclusionOfAHalfCoveredTile) {

@@ -215,7 +215,7 @@ Expected<void> ComputeBackend::State::ensureWorkingBuffers(const RenderOptions& 
        "output image"},
       {&diagnostics,
        (options.diagnostics ? GpuDiagnosticsLayout::of(options.width, options.height).words
-                            : kDiagHeaderWords) *
+                            : size_t{kDiagHeaderWords}) *
            sizeof(uint32_t),
        kStorage, MemoryKind::kHost, "diagnostics"},
   };
@@ -536,13 +536,8 @@ Expected<std::unique_ptr<ComputeBackend>> ComputeBackend::create(const VulkanOpt
 ComputeBackend::ComputeBackend(std::unique_ptr<State> state) : state_(std::move(state)) {}
 ComputeBackend::~ComputeBackend() = default;
 
-void ComputeBackend::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
-  if (options.diagnostics && !(options.depth && options.ids)) {
-    RenderOptions measured = options;  // the diagnostics read the centre depths and ids back
-    measured.depth = measured.ids = true;
-    render(scene, measured, frame);
-    return;
-  }
+void ComputeBackend::render(const Scene& scene, const RenderOptions& requested, Frame& frame) {
+  const RenderOptions options = withDiagnosticInputs(requested);
   frame.diagnostics.valid = false;
   state_->last_result = renderIntoFrame(scene, options, frame,
                                         [&] { return state_->renderFrame(scene, options, frame); });

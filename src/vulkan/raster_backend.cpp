@@ -417,13 +417,8 @@ Expected<std::unique_ptr<RasterBackend>> RasterBackend::create(const VulkanOptio
 RasterBackend::RasterBackend(std::unique_ptr<State> state) : state_(std::move(state)) {}
 RasterBackend::~RasterBackend() = default;
 
-void RasterBackend::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
-  if (options.diagnostics && !(options.depth && options.ids)) {
-    RenderOptions measured = options;  // the diagnostics read the centre depths and ids back
-    measured.depth = measured.ids = true;
-    render(scene, measured, frame);
-    return;
-  }
+void RasterBackend::render(const Scene& scene, const RenderOptions& requested, Frame& frame) {
+  const RenderOptions options = withDiagnosticInputs(requested);
   frame.diagnostics.valid = false;
   state_->last_result = renderIntoFrame(scene, options, frame,
                                         [&] { return state_->renderFrame(scene, options, frame); });
