@@ -130,6 +130,11 @@ struct ComputeBackend::State {
   // The fine raster, shading and (`diagnostic_passes`) the diagnostics passes.
   void recordTilePasses(const PassRecorder& recorder, const RenderOptions& options,
                         const ProjectionPasses& passes, bool diagnostic_passes);
+  // Records and runs the frame until its bins and clip records fit (growing them), adding the
+  // bin entries that did not fit to `entries_dropped`.
+  Expected<void> runRounds(const RenderOptions& options, uint64_t& entries_dropped);
+  void fillDiagnostics(const Scene& scene, bool diagnostic_passes, uint64_t entries_dropped,
+                       double lines_ms, Frame& frame);
   Expected<void> renderFrame(const Scene& scene, const RenderOptions& options, Frame& frame);
   void readTimings(bool diagnostic_passes);
 };
@@ -405,6 +410,50 @@ void ComputeBackend::State::readTimings(bool diagnostic_passes) {
   t.valid = true;
 }
 
+Expected<void> ComputeBackend::State::runRounds(const RenderOptions& options,
+                                                uint64_t& entries_dropped) {
+  for (int round = 0;; ++round) {
+    if (Expected<void> r = ensureWorkingBuffers(options); !r) return r;
+    // The diagnostics passes add into a zeroed buffer (host-coherent: the submit makes the
+    // zeros visible to the device).
+    if (options.diagnostics) std::memset(diagnostics.mapped, 0, diagnostics.size);
+    if (Expected<void> r = recordAndRun(options); !r) return r;
+    const GpuCounters* counted = static_cast<const GpuCounters*>(counters.mapped);
+    const bool extra_overflow = counted->extra > extra_capacity;
+    const bool bin_overflow = counted->bin_entries > bin_capacity;
+    if (!extra_overflow && !bin_overflow) return {};
+    ++stats.bin_overflows;
+    if (bin_overflow) entries_dropped += counted->bin_entries - bin_capacity;
+    if (round + 1 >= kMaxRounds)
+      return makeError("the vulkan backend's bins kept overflowing after " +
+                       std::to_string(kMaxRounds) + " rounds");
+    // Grow to what was asked for, with headroom for the next frames.
+    auto grown = [](uint64_t asked) {
+      return static_cast<uint32_t>(std::min<uint64_t>(asked + asked / 4 + 64, 0xffffffffull));
+    };
+    if (extra_overflow) extra_capacity = grown(counted->extra);
+    if (bin_overflow) bin_capacity = grown(counted->bin_entries);
+  }
+}
+
+void ComputeBackend::State::fillDiagnostics(const Scene& scene, bool diagnostic_passes,
+                                            uint64_t entries_dropped, double lines_ms,
+                                            Frame& frame) {
+  const PassTimings& t = stats.timings;
+  ComputeDiagnosticsInput in;
+  in.words = static_cast<const uint32_t*>(diagnostics.mapped);
+  in.counters = static_cast<const GpuCounters*>(counters.mapped);
+  in.gpu_tile_columns = packed.frame.tile_columns;
+  in.gpu_tile_rows = packed.frame.tile_rows;
+  in.pixel_tests = diagnostic_passes;
+  in.triangles_in = packed.triangle_count;
+  in.bin_overflow = entries_dropped;
+  // The CPU's stages: setup includes binning; the tile stage clears, rasterizes and shades.
+  in.times = {t.transform, t.setup + t.bin, t.clear + t.raster + t.shade, lines_ms,
+              t.diagnostics};
+  fillComputeDiagnostics(scene, in, triangle_bases, frame);
+}
+
 Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const RenderOptions& options,
                                                   Frame& frame) {
   // Nothing the GPU may still read (an earlier frame abandoned after a timeout) is touched
@@ -440,30 +489,9 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   if (extra_capacity == 0) extra_capacity = 1024;
 
   stats = ComputeStats{};
-  const GpuCounters* counted = nullptr;
   uint64_t entries_dropped = 0;  // bin entries that did not fit, over the rounds
-  for (int round = 0;; ++round) {
-    if (Expected<void> r = ensureWorkingBuffers(options); !r) return r;
-    // The diagnostics passes add into a zeroed buffer (host-coherent: the submit makes the
-    // zeros visible to the device).
-    if (options.diagnostics) std::memset(diagnostics.mapped, 0, diagnostics.size);
-    if (Expected<void> r = recordAndRun(options); !r) return r;
-    counted = static_cast<const GpuCounters*>(counters.mapped);
-    const bool extra_overflow = counted->extra > extra_capacity;
-    const bool bin_overflow = counted->bin_entries > bin_capacity;
-    if (!extra_overflow && !bin_overflow) break;
-    ++stats.bin_overflows;
-    if (bin_overflow) entries_dropped += counted->bin_entries - bin_capacity;
-    if (round + 1 >= kMaxRounds)
-      return makeError("the vulkan backend's bins kept overflowing after " +
-                       std::to_string(kMaxRounds) + " rounds");
-    // Grow to what was asked for, with headroom for the next frames.
-    auto grown = [](uint64_t asked) {
-      return static_cast<uint32_t>(std::min<uint64_t>(asked + asked / 4 + 64, 0xffffffffull));
-    };
-    if (extra_overflow) extra_capacity = grown(counted->extra);
-    if (bin_overflow) bin_capacity = grown(counted->bin_entries);
-  }
+  if (Expected<void> r = runRounds(options, entries_dropped); !r) return r;
+  const GpuCounters* counted = static_cast<const GpuCounters*>(counters.mapped);
 
   // Results.
   const size_t n = frame.pixelCount();
@@ -494,21 +522,8 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   stats.int64_atomics = atomic64;
   stats.fp64_setup = fp64;
   readTimings(diagnostic_passes);
-  if (options.diagnostics) {
-    const PassTimings& t = stats.timings;
-    ComputeDiagnosticsInput in;
-    in.words = static_cast<const uint32_t*>(diagnostics.mapped);
-    in.counters = counted;
-    in.gpu_tile_columns = packed.frame.tile_columns;
-    in.gpu_tile_rows = packed.frame.tile_rows;
-    in.pixel_tests = diagnostic_passes;
-    in.triangles_in = packed.triangle_count;
-    in.bin_overflow = entries_dropped;
-    // The CPU's stages: setup includes binning; the tile stage clears, rasterizes and shades.
-    in.times = {t.transform, t.setup + t.bin, t.clear + t.raster + t.shade, lines_ms,
-                t.diagnostics};
-    fillComputeDiagnostics(scene, in, triangle_bases, frame);
-  }
+  if (options.diagnostics)
+    fillDiagnostics(scene, diagnostic_passes, entries_dropped, lines_ms, frame);
 
   occupancy.columns = packed.frame.tile_columns;
   occupancy.rows = packed.frame.tile_rows;
