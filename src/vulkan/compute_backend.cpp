@@ -374,6 +374,9 @@ void ComputeBackend::State::recordTilePasses(const PassRecorder& r, const Render
     // 7. Diagnostics: they read the records, visible list and bins the barriers above made
     // visible to every later compute pass, and write only the diagnostics buffer.
     r.dispatchIndirect(pipelines.diag_occupancy, kBinDispatchOffset);
+    // Orders the occupancy's atomics before the depth-test pass writes the same buffer (other
+    // words of it, but one binding: the passes must not overlap on it).
+    r.computeToCompute();
     r.dispatch(pipelines.diag_tests,
                static_cast<uint64_t>(packed.frame.tile_columns) * packed.frame.tile_rows);
     // Orders the diagnostics buffer's counts before the host reads them (after the fence).
