@@ -10,38 +10,13 @@
 #include <tessera/scene/primitives.h>
 #include <tessera/scene/scene.h>
 
+#include "diagnostics_scenes.h"
+
 using namespace tessera;
 
 namespace {
 
-// A camera that maps object coordinates straight to clip space (x, y, z in NDC, w = 1).
-Scene clipSpaceScene() {
-  Scene scene;
-  scene.camera.view_override = float4x4::identity();
-  scene.camera.projection_override = float4x4::identity();
-  scene.ambient = float3(1.0f);
-  return scene;
-}
-
-// An axis-aligned rectangle in window pixels (y down) at NDC depth z, as two triangles.
-void addRect(Mesh& m, float x0, float y0, float x1, float y1, float z, int width, int height,
-             uint16_t material = 0) {
-  const uint32_t base = static_cast<uint32_t>(m.positions.size());
-  auto ndc = [&](float x, float y) {
-    return float3{2.0f * x / width - 1.0f, 1.0f - 2.0f * y / height, z};
-  };
-  m.positions.insert(m.positions.end(), {ndc(x0, y0), ndc(x1, y0), ndc(x1, y1), ndc(x0, y1)});
-  m.indices.insert(m.indices.end(), {base, base + 2, base + 1, base, base + 3, base + 2});
-  m.triangle_materials.insert(m.triangle_materials.end(), {material, material});
-}
-
-Object objectOf(Mesh mesh, CullMode cull = CullMode::kNone) {
-  Object o;
-  o.mesh = std::make_shared<Mesh>(std::move(mesh));
-  o.shading = Shading::kUnlit;
-  o.cull = cull;
-  return o;
-}
+using namespace tessera::diagnostics_test;
 
 Frame render(const Scene& scene, int width, int height, int workers = 1, int msaa = 1,
              bool diagnostics = true) {
@@ -56,22 +31,14 @@ Frame render(const Scene& scene, int width, int height, int workers = 1, int msa
   return frame;
 }
 
-void expectCountersAddUp(const PipelineCounters& c) {
-  EXPECT_EQ(c.triangles_in, c.culled.total() + c.triangles_setup - c.clip_splits);
-}
-
 }  // namespace
 
 TEST(Diagnostics, OverdrawOfStackedFullScreenQuadsIsTheirCount) {
   constexpr int kQuads = 5;
   // 96x96: the quads' diagonals pass through pixel centres, where the top-left rule decides.
   for (const auto& [kW, kH] : {std::pair{150, 100}, std::pair{96, 96}}) {
-    Scene scene = clipSpaceScene();
-    Mesh m;
     // Back to front and front to back: tests count whether they pass or not.
-    for (int i = 0; i < kQuads; ++i)
-      addRect(m, 0, 0, kW, kH, (i % 2 ? 0.5f : -0.5f) + 0.01f * static_cast<float>(i), kW, kH);
-    scene.objects.push_back(objectOf(m));
+    const Scene scene = stackedQuads(kQuads, kW, kH);
     for (int msaa : {1, 4}) {
       const Frame f = render(scene, kW, kH, 2, msaa);
       ASSERT_TRUE(f.diagnostics.valid);
@@ -91,29 +58,10 @@ TEST(Diagnostics, OverdrawOfStackedFullScreenQuadsIsTheirCount) {
 }
 
 TEST(Diagnostics, OccupancyIsTheTrianglesBinnedIntoEachTile) {
-  constexpr int kW = 192, kH = 128;  // 3 x 2 tiles
-  Scene scene = clipSpaceScene();
-  Mesh m;
-  addRect(m, 4, 4, 20, 20, 0, kW, kH);     // tile 0: 2 triangles
-  addRect(m, 50, 10, 80, 30, 0, kW, kH);   // tiles 0 and 1: 2 triangles each
-  addRect(m, 140, 70, 150, 90, 0, kW, kH); // tile 5: 2 triangles
-  scene.objects.push_back(objectOf(m));
-  // A back-facing triangle in tile 3, culled: binned nowhere.
-  Mesh back;
-  addRect(back, 10, 70, 30, 90, 0, kW, kH);
-  std::swap(back.indices[1], back.indices[2]);
-  back.indices.resize(3);
-  back.triangle_materials.resize(1);
-  scene.objects.push_back(objectOf(back, CullMode::kBack));
-  const Frame f = render(scene, kW, kH);
+  const Scene scene = occupancyScene();  // 3 x 2 tiles
+  const Frame f = render(scene, kOccupancyWidth, kOccupancyHeight);
   const FrameDiagnostics& d = f.diagnostics;
-  ASSERT_EQ(d.tile_columns, 3);
-  ASSERT_EQ(d.tile_rows, 2);
-  EXPECT_EQ(d.tile_triangles, (std::vector<uint32_t>{4, 2, 0, 0, 0, 2}));
-  EXPECT_EQ(d.counters.triangles_binned, 8u);
-  EXPECT_EQ(d.counters.tiles_empty, 3u);
-  EXPECT_EQ(d.counters.culled.facing, 1u);
-  expectCountersAddUp(d.counters);
+  expectOccupancySceneCounts(d);
 }
 
 TEST(Diagnostics, TileOcclusionOfAHalfCoveredTile) {
@@ -175,20 +123,7 @@ TEST(Diagnostics, MaterialAndDensityOfTheVisibleTriangle) {
 
 TEST(Diagnostics, CountersAddUpWithEveryCullReasonAndClipping) {
   constexpr int kW = 64, kH = 64;
-  Mesh m;
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {nan, 0, 0},
-                 {3, 0, 0}, {4, 1, 0}, {3, 1, 0},              // beyond the right plane
-                 {-1, -1, -3}, {1, -1, 0.5f}, {0, 1, 0.5f},    // crosses the near plane
-                 // window x 35.10..35.39, y 28.51..28.80: no pixel centre in its box
-                 {0.097f, 0.1f, 0}, {0.106f, 0.1f, 0}, {0.097f, 0.109f, 0}};
-  m.indices = {0, 1, 3,     // non-finite
-               4, 5, 6,     // frustum
-               0, 0, 1,     // degenerate
-               0, 2, 1,     // back-facing, culled
-               7, 8, 9,     // clipped into two pieces
-               10, 11, 12,  // no pixel centre
-               0, 1, 2};    // drawn
+  const Mesh m = cullReasonMesh();
   // One at a time (a group holding an index past the mesh goes triangle by triangle), and in
   // groups of eight through the cull kernel (every index valid): 7 x 8 triangles.
   Mesh single = m, grouped = m;

@@ -16,6 +16,8 @@
 #include <tessera/scene/primitives.h>
 #include <tessera/vulkan/vulkan_backend.h>
 
+#include "diagnostics_scenes.h"
+
 namespace tessera::vulkan_test {
 
 using tessera::vulkan::ComputeBackend;
@@ -256,13 +258,7 @@ inline Scene nearPlaneScene() {
 }
 
 // A scene whose camera maps object coordinates straight to clip space.
-inline Scene clipSpaceScene() {
-  Scene scene;
-  scene.camera.view_override = float4x4::identity();
-  scene.camera.projection_override = float4x4::identity();
-  scene.ambient = float3(1.0f);
-  return scene;
-}
+using diagnostics_test::clipSpaceScene;
 
 inline float3 windowToNdc(float x, float y, float z, int width, int height) {
   return {2.0f * x / width - 1.0f, 1.0f - 2.0f * y / height, z};

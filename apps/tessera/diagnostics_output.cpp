@@ -116,18 +116,23 @@ std::string statsFrameJson(const Frame& frame, int index, const std::string& bac
          ", \"lines\": " + number(d.times.lines_ms) +
          ", \"diagnostics\": " + number(d.times.diagnostics_ms) + "},\n";
   const CullCounts& k = c.culled;
+  const bool setup = d.has_setup_counters;
+  auto counted = [&](uint64_t v) { return setup ? std::to_string(v) : std::string("null"); };
+  const std::string culled =
+      !setup ? std::string("null")
+             : "{\"invalid\": " + std::to_string(k.invalid) +
+                   ", \"non_finite\": " + std::to_string(k.non_finite) +
+                   ", \"frustum\": " + std::to_string(k.frustum) +
+                   ", \"degenerate\": " + std::to_string(k.degenerate) +
+                   ", \"facing\": " + std::to_string(k.facing) +
+                   ", \"no_pixel\": " + std::to_string(k.no_pixel) +
+                   ", \"clipped_away\": " + std::to_string(k.clipped_away) +
+                   ", \"total\": " + std::to_string(k.total()) + "}";
   out += "  \"counters\": {\"triangles_in\": " + std::to_string(c.triangles_in) +
-         ", \"culled\": {\"invalid\": " + std::to_string(k.invalid) +
-         ", \"non_finite\": " + std::to_string(k.non_finite) +
-         ", \"frustum\": " + std::to_string(k.frustum) +
-         ", \"degenerate\": " + std::to_string(k.degenerate) +
-         ", \"facing\": " + std::to_string(k.facing) +
-         ", \"no_pixel\": " + std::to_string(k.no_pixel) +
-         ", \"clipped_away\": " + std::to_string(k.clipped_away) +
-         ", \"total\": " + std::to_string(k.total()) + "}" +
-         ", \"triangles_clipped\": " + std::to_string(c.triangles_clipped) +
-         ", \"clip_splits\": " + std::to_string(c.clip_splits) +
-         ", \"triangles_setup\": " + std::to_string(c.triangles_setup) +
+         ", \"culled\": " + culled +
+         ", \"triangles_clipped\": " + counted(c.triangles_clipped) +
+         ", \"clip_splits\": " + counted(c.clip_splits) +
+         ", \"triangles_setup\": " + counted(c.triangles_setup) +
          ", \"triangles_binned\": " + measured(c.triangles_binned) +
          ", \"bin_overflow\": " + measured(c.bin_overflow) +
          ", \"pixels_tested\": " + measured(c.pixels_tested) +

@@ -395,9 +395,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       << options.msaa << " samples per pixel: not 1, 2, 4 or 8";
   State& s = *state_;
   if (options.diagnostics && !(options.depth && options.ids)) {
-    RenderOptions measured = options;  // the diagnostics pass reads the centre depths and ids
-    measured.depth = measured.ids = true;
-    render(scene, measured, frame);
+    render(scene, withDiagnosticInputs(options), frame);
     return;
   }
   frame.diagnostics.valid = false;

@@ -57,6 +57,7 @@ void prepareDiagnostics(Frame& frame, bool with_pixel_tests) {
   d.tile_edges.resize(tiles);
   d.counters = {};
   d.has_pixel_tests = with_pixel_tests;
+  d.has_setup_counters = true;
   d.valid = true;
 }
 
@@ -150,6 +151,22 @@ void measureTile(const Scene& scene, const std::vector<size_t>& triangle_bases, 
   d.tile_edges[t] = edges;
 }
 
+size_t triangleBases(const Scene& scene, std::vector<size_t>& bases) {
+  bases.clear();
+  size_t triangles = 0;
+  for (const Object& object : scene.objects) {
+    bases.push_back(triangles);
+    triangles += object.mesh ? object.mesh->triangleCount() : 0;
+  }
+  return triangles;
+}
+
+void measureFrameTiles(const Scene& scene, std::vector<size_t>& triangle_bases, Frame& frame) {
+  triangleBases(scene, triangle_bases);
+  const int tiles = static_cast<int>(frame.diagnostics.tileCount());
+  for (int tile = 0; tile < tiles; ++tile) measureTile(scene, triangle_bases, tile, frame);
+}
+
 void addSetupCounters(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
                       uint64_t triangles_in, Frame& frame) {
   PipelineCounters& c = frame.diagnostics.counters;
@@ -193,12 +210,7 @@ void DiagnosticsPass::run(WorkerPool& pool, const std::vector<TriangleChunk>& ch
                           bool pixel_tests, const PipelineStats& stats, Frame& frame) {
   const auto start = std::chrono::steady_clock::now();
   prepareDiagnostics(frame, pixel_tests);
-  triangle_bases_.clear();
-  size_t triangles = 0;
-  for (const Object& object : scene.objects) {
-    triangle_bases_.push_back(triangles);
-    triangles += object.mesh ? object.mesh->triangleCount() : 0;
-  }
+  const size_t triangles = triangleBases(scene, triangle_bases_);
   tile_tests_.assign(static_cast<size_t>(grid.tileCount()), {});
   while (overdraw_.size() < static_cast<size_t>(pool.size()))
     overdraw_.push_back(std::make_unique<OverdrawScratch>());

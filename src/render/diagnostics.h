@@ -50,6 +50,14 @@ TileTests countTileTests(const std::vector<TriangleChunk>& chunks, size_t chunk_
 void measureTile(const Scene& scene, const std::vector<size_t>& triangle_bases, int tile,
                  Frame& frame);
 
+// Each object's first scene triangle index into `bases` (keeping its memory); the scene's
+// triangle count.
+size_t triangleBases(const Scene& scene, std::vector<size_t>& bases);
+
+// measureTile over every tile, one after another: for a backend that reads its frame's ids and
+// depths back (the Vulkan backends), the same measures from the same code as the CPU's.
+void measureFrameTiles(const Scene& scene, std::vector<size_t>& triangle_bases, Frame& frame);
+
 // Counts a triangle that setup culled with outcodes c0..c2 and snapped corners v0..v2 under its
 // reason, by the cull checks in their order: non-finite, outside the frustum, zero area, facing
 // away, no pixel centre in its box.

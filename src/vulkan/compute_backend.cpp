@@ -16,6 +16,7 @@
 #include <tessera/vulkan/vulkan_backend.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -23,6 +24,7 @@
 #include <tessera/base/check.h>
 
 #include "render/fixed_point.h"
+#include "vulkan/backend_diagnostics.h"
 #include "vulkan/compute_pipelines.h"
 #include "vulkan/context.h"
 #include "vulkan/descriptor_sets.h"
@@ -31,9 +33,59 @@
 
 namespace tessera::vulkan {
 
+// One frame's command buffer as it is recorded: binds, pushes and dispatches, the barriers
+// between passes and the timestamps.
+struct PassRecorder {
+  const VulkanFunctions& vk;
+  VkCommandBuffer cmd;
+  VkPipelineLayout layout;
+  VkBuffer counters;
+  VkQueryPool timestamps;
+
+  void timestamp(uint32_t index) const {
+    if (timestamps)
+      vk.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, index);
+  }
+  void bind(VkPipeline pipeline, uint32_t mode) const {
+    vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    const GpuPassConstants constants{mode, 0, 0, 0};
+    vk.vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
+                          &constants);
+  }
+  void dispatch(VkPipeline pipeline, uint64_t groups, uint32_t mode = 0) const {
+    bind(pipeline, mode);
+    const DispatchGrid grid = dispatchGrid(groups);
+    if (grid.x) vk.vkCmdDispatch(cmd, grid.x, grid.y, 1);
+  }
+  void dispatchIndirect(VkPipeline pipeline, VkDeviceSize offset, uint32_t mode = 0) const {
+    bind(pipeline, mode);
+    vk.vkCmdDispatchIndirect(cmd, counters, offset);
+  }
+  // Shader writes of one pass made visible to the shader reads and writes of the next.
+  void computeToCompute() const {
+    memoryBarrier(vk, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  }
+  // Shader writes of dispatch sizes made visible to the indirect dispatch that reads them (and
+  // to the shaders that read the counters).
+  void computeToIndirect() const {
+    memoryBarrier(vk, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT |
+                      VK_ACCESS_SHADER_WRITE_BIT);
+  }
+  // Shader writes made visible to the host's reads after the fence.
+  void computeToHost() const {
+    memoryBarrier(vk, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+  }
+};
+
 namespace {
 
-constexpr uint32_t kTimestampCount = 7;  // before clear, then after each of the six passes
+// Before clear, then after each of the six passes and (with diagnostics) the diagnostics passes.
+constexpr uint32_t kTimestampCount = 8;
 constexpr int kMaxRounds = 4;
 
 }  // namespace
@@ -53,6 +105,10 @@ struct ComputeBackend::State {
   SceneBuffers scene_buffers;
   Buffer transformed, raster_records, shade_records, extra_base, counters, visible_list, tiles,
       bin_entries, segments, visibility, output;
+  // RenderOptions::diagnostics: the diagnostics passes' counts (GpuDiagnosticsLayout); a
+  // placeholder of one header otherwise, since binding 20 must hold a buffer.
+  Buffer diagnostics;
+  std::vector<size_t> triangle_bases;  // fillComputeDiagnostics' scratch
   // The nonlinear projections' rays: the RayTable's layers as the shaders read them (rays.glsl),
   // rewritten only when the table is rebuilt (or the buffer was reallocated).
   RayTable ray_table;
@@ -71,8 +127,16 @@ struct ComputeBackend::State {
   Expected<void> uploadRays(const Scene& scene, const RenderOptions& options);
   void writeDescriptors();
   Expected<void> recordAndRun(const RenderOptions& options);
+  // The fine raster, shading and (`diagnostic_passes`) the diagnostics passes.
+  void recordTilePasses(const PassRecorder& recorder, const RenderOptions& options,
+                        const ProjectionPasses& passes, bool diagnostic_passes);
+  // Records and runs the frame until its bins and clip records fit (growing them), adding the
+  // bin entries that did not fit to `entries_dropped`.
+  Expected<void> runRounds(const RenderOptions& options, uint64_t& entries_dropped);
+  void fillDiagnostics(const Scene& scene, bool diagnostic_passes, uint64_t entries_dropped,
+                       double lines_ms, Frame& frame);
   Expected<void> renderFrame(const Scene& scene, const RenderOptions& options, Frame& frame);
-  void readTimings();
+  void readTimings(bool diagnostic_passes);
 };
 
 ComputeBackend::State::~State() {
@@ -88,7 +152,8 @@ ComputeBackend::State::~State() {
   if (timestamps) c.vk.vkDestroyQueryPool(device, timestamps, nullptr);
   destroySceneBuffers(c, scene_buffers);
   for (Buffer* b : {&transformed, &raster_records, &shade_records, &extra_base, &counters,
-                    &visible_list, &tiles, &bin_entries, &segments, &visibility, &output, &rays})
+                    &visible_list, &tiles, &bin_entries, &segments, &visibility, &output, &rays,
+                    &diagnostics})
     c.destroyBuffer(*b);
 }
 
@@ -153,6 +218,11 @@ Expected<void> ComputeBackend::State::ensureWorkingBuffers(const RenderOptions& 
        "visibility"},
       {&output, pixels * output_words_per_pixel * sizeof(uint32_t), kStorage, MemoryKind::kHost,
        "output image"},
+      {&diagnostics,
+       (options.diagnostics ? GpuDiagnosticsLayout::of(options.width, options.height).words
+                            : size_t{kDiagHeaderWords}) *
+           sizeof(uint32_t),
+       kStorage, MemoryKind::kHost, "diagnostics"},
   };
   for (const Need& need : needs)
     if (Expected<void> r =
@@ -196,7 +266,7 @@ void ComputeBackend::State::writeDescriptors() {
   appendSceneDescriptors(scene_buffers, infos);
   for (const Buffer* b :
        {&transformed, &raster_records, &shade_records, &extra_base, &counters, &visible_list,
-        &tiles, &bin_entries, &segments, &visibility, &output, &rays})
+        &tiles, &bin_entries, &segments, &visibility, &output, &rays, &diagnostics})
     infos.push_back(VkDescriptorBufferInfo{b->buffer, 0, VK_WHOLE_SIZE});
   TESSERA_CHECK(infos.size() == kComputeBindingCount);
   std::vector<VkWriteDescriptorSet> writes(infos.size());
@@ -212,6 +282,7 @@ void ComputeBackend::State::writeDescriptors() {
                               nullptr);
 }
 
+
 Expected<void> ComputeBackend::State::recordAndRun(const RenderOptions& options) {
   Context& c = *context;
   const VulkanFunctions& vk = c.vk;
@@ -222,93 +293,73 @@ Expected<void> ComputeBackend::State::recordAndRun(const RenderOptions& options)
   Expected<VkCommandBuffer> begun = c.beginCommands();
   if (!begun) return begun.error();
   VkCommandBuffer cmd = *begun;
-  auto timestamp = [&](uint32_t index) {
-    if (timestamps)
-      vk.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, index);
-  };
-  auto dispatch = [&](VkPipeline pipeline, uint64_t groups, uint32_t mode = 0) {
-    vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    const GpuPassConstants constants{mode, 0, 0, 0};
-    vk.vkCmdPushConstants(cmd, pipelines.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
-                          &constants);
-    const DispatchGrid grid = dispatchGrid(groups);
-    if (grid.x) vk.vkCmdDispatch(cmd, grid.x, grid.y, 1);
-  };
-  auto dispatchIndirect = [&](VkPipeline pipeline, VkDeviceSize offset, uint32_t mode = 0) {
-    vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    const GpuPassConstants constants{mode, 0, 0, 0};
-    vk.vkCmdPushConstants(cmd, pipelines.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
-                          &constants);
-    vk.vkCmdDispatchIndirect(cmd, counters.buffer, offset);
-  };
-  // Shader writes of one pass made visible to the shader reads and writes of the next.
-  auto computeToCompute = [&] {
-    memoryBarrier(vk, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-  };
-  // Shader writes of dispatch sizes made visible to the indirect dispatch that reads them (and
-  // to the shaders that read the counters).
-  auto computeToIndirect = [&] {
-    memoryBarrier(vk, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT |
-                      VK_ACCESS_SHADER_WRITE_BIT);
-  };
+  const PassRecorder r{vk, cmd, pipelines.layout, counters.buffer, timestamps};
 
   if (timestamps) vk.vkCmdResetQueryPool(cmd, timestamps, 0, kTimestampCount);
   vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines.layout, 0, 1,
                              &descriptor_set, 0, nullptr);
   const uint64_t pixels = static_cast<uint64_t>(options.width) * options.height;
-  const ProjectionPasses& passes =
-      options.projection == Projection::kPerspective ? pipelines.perspective : pipelines.ray;
-  timestamp(0);
+  const bool perspective = options.projection == Projection::kPerspective;
+  const ProjectionPasses& passes = perspective ? pipelines.perspective : pipelines.ray;
+  // Diagnostics take setup's variant that counts the cull reasons, and passes of their own
+  // after shading; the frame is the same.
+  const bool diagnostic_passes = options.diagnostics && perspective;
+  r.timestamp(0);
 
   // 1. Clear.
-  dispatch(pipelines.clear, (pixels * packed.frame.layers + 255) / 256);
+  r.dispatch(pipelines.clear, (pixels * packed.frame.layers + 255) / 256);
   // Orders the cleared visibility buffer, tile bins and counters before setup's counter
   // atomics, binning and the fine raster's commits.
-  computeToCompute();
-  timestamp(1);
+  r.computeToCompute();
+  r.timestamp(1);
 
   // 2. Transform.
-  dispatch(pipelines.transform, (packed.vertex_count + 255) / 256);
+  r.dispatch(pipelines.transform, (packed.vertex_count + 255) / 256);
   // Orders the clip-space vertices before setup reads them.
-  computeToCompute();
-  timestamp(2);
+  r.computeToCompute();
+  r.timestamp(2);
 
   // 3. Setup and cull.
-  dispatch(passes.setup, (packed.triangle_count + 63) / 64);
+  r.dispatch(diagnostic_passes ? pipelines.setup_diagnostics : passes.setup,
+             (packed.triangle_count + 63) / 64);
   // Orders setup's records, visible list and counters before the bin-args pass reads the count.
-  computeToCompute();
-  dispatch(pipelines.bin_args, 1);
+  r.computeToCompute();
+  r.dispatch(pipelines.bin_args, 1);
   // Orders the bin passes' dispatch size before the indirect dispatch reads it.
-  computeToIndirect();
-  timestamp(3);
+  r.computeToIndirect();
+  r.timestamp(3);
 
   // 4. Bin: count, scan, fill.
-  dispatchIndirect(passes.bin, kBinDispatchOffset, 0);
+  r.dispatchIndirect(passes.bin, kBinDispatchOffset, 0);
   // Orders the per-tile counts before the scan reads them.
-  computeToCompute();
-  dispatch(pipelines.scan, 1);
+  r.computeToCompute();
+  r.dispatch(pipelines.scan, 1);
   // Orders the tile offsets, the segments and the raster's dispatch size before the fill reads
   // the offsets and the raster's indirect dispatch reads its size.
-  computeToIndirect();
-  dispatchIndirect(passes.bin, kBinDispatchOffset, 1);
-  // Orders the filled bins before the fine raster reads them.
-  computeToCompute();
-  timestamp(4);
+  r.computeToIndirect();
+  r.dispatchIndirect(passes.bin, kBinDispatchOffset, 1);
+  // Orders the filled bins before the fine raster (and the diagnostics passes) read them.
+  r.computeToCompute();
+  r.timestamp(4);
+  recordTilePasses(r, options, passes, diagnostic_passes);
+  return c.submitAndWait();
+}
 
+void ComputeBackend::State::recordTilePasses(const PassRecorder& r, const RenderOptions& options,
+                                             const ProjectionPasses& passes,
+                                             bool diagnostic_passes) {
+  const VulkanFunctions& vk = r.vk;
+  VkCommandBuffer cmd = r.cmd;
   // 5. Fine raster.
-  dispatchIndirect(passes.raster[packed.frame.layers], kRasterDispatchOffset);
+  r.dispatchIndirect(passes.raster[packed.frame.layers], kRasterDispatchOffset);
   if (!atomic64) {
     // Orders the committed depths (pass 1 of the 32-bit path) before pass 2 compares with them.
-    computeToCompute();
-    dispatchIndirect(passes.raster_id[packed.frame.layers], kRasterDispatchOffset);
+    r.computeToCompute();
+    r.dispatchIndirect(passes.raster_id[packed.frame.layers], kRasterDispatchOffset);
   }
   // Orders the visibility buffer's commits before the shade pass reads it.
-  computeToCompute();
-  timestamp(5);
+  r.computeToCompute();
+  r.timestamp(5);
 
   // 6. Shade and resolve.
   vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, passes.shade);
@@ -316,21 +367,33 @@ Expected<void> ComputeBackend::State::recordAndRun(const RenderOptions& options)
                    (static_cast<uint32_t>(options.height) + 7) / 8, 1);
   // Orders the output image, the counters and the tile counts before the host reads them
   // (after the fence).
-  memoryBarrier(vk, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-  timestamp(6);
+  r.computeToHost();
+  r.timestamp(6);
 
-  return c.submitAndWait();
+  if (diagnostic_passes) {
+    // 7. Diagnostics: they read the records, visible list and bins the barriers above made
+    // visible to every later compute pass, and write only the diagnostics buffer.
+    r.dispatchIndirect(pipelines.diag_occupancy, kBinDispatchOffset);
+    // Orders the occupancy's atomics before the depth-test pass writes the same buffer (other
+    // words of it, but one binding: the passes must not overlap on it).
+    r.computeToCompute();
+    r.dispatch(pipelines.diag_tests,
+               static_cast<uint64_t>(packed.frame.tile_columns) * packed.frame.tile_rows);
+    // Orders the diagnostics buffer's counts before the host reads them (after the fence).
+    r.computeToHost();
+    r.timestamp(7);
+  }
 }
 
-void ComputeBackend::State::readTimings() {
+void ComputeBackend::State::readTimings(bool diagnostic_passes) {
   PassTimings& t = stats.timings;
   t = PassTimings{};
   if (!timestamps) return;
   Context& c = *context;
   uint64_t ticks[kTimestampCount] = {};
+  const uint32_t written = diagnostic_passes ? kTimestampCount : kTimestampCount - 1;
   const VkResult got = c.vk.vkGetQueryPoolResults(
-      c.device, timestamps, 0, kTimestampCount, sizeof(ticks), ticks, sizeof(uint64_t),
+      c.device, timestamps, 0, written, sizeof(ticks), ticks, sizeof(uint64_t),
       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
   if (got != VK_SUCCESS) return;  // timings are diagnostics: a frame never fails over them
   const uint32_t bits = c.caps.timestamp_valid_bits;
@@ -346,7 +409,52 @@ void ComputeBackend::State::readTimings() {
   t.raster = span(4, 5);
   t.shade = span(5, 6);
   t.total = span(0, 6);
+  if (diagnostic_passes) t.diagnostics = span(6, 7);
   t.valid = true;
+}
+
+Expected<void> ComputeBackend::State::runRounds(const RenderOptions& options,
+                                                uint64_t& entries_dropped) {
+  for (int round = 0;; ++round) {
+    if (Expected<void> r = ensureWorkingBuffers(options); !r) return r;
+    // The diagnostics passes add into a zeroed buffer (host-coherent: the submit makes the
+    // zeros visible to the device).
+    if (options.diagnostics) std::memset(diagnostics.mapped, 0, diagnostics.size);
+    if (Expected<void> r = recordAndRun(options); !r) return r;
+    const GpuCounters* counted = static_cast<const GpuCounters*>(counters.mapped);
+    const bool extra_overflow = counted->extra > extra_capacity;
+    const bool bin_overflow = counted->bin_entries > bin_capacity;
+    if (!extra_overflow && !bin_overflow) return {};
+    ++stats.bin_overflows;
+    if (bin_overflow) entries_dropped += counted->bin_entries - bin_capacity;
+    if (round + 1 >= kMaxRounds)
+      return makeError("the vulkan backend's bins kept overflowing after " +
+                       std::to_string(kMaxRounds) + " rounds");
+    // Grow to what was asked for, with headroom for the next frames.
+    auto grown = [](uint64_t asked) {
+      return static_cast<uint32_t>(std::min<uint64_t>(asked + asked / 4 + 64, 0xffffffffull));
+    };
+    if (extra_overflow) extra_capacity = grown(counted->extra);
+    if (bin_overflow) bin_capacity = grown(counted->bin_entries);
+  }
+}
+
+void ComputeBackend::State::fillDiagnostics(const Scene& scene, bool diagnostic_passes,
+                                            uint64_t entries_dropped, double lines_ms,
+                                            Frame& frame) {
+  const PassTimings& t = stats.timings;
+  ComputeDiagnosticsInput in;
+  in.words = static_cast<const uint32_t*>(diagnostics.mapped);
+  in.counters = static_cast<const GpuCounters*>(counters.mapped);
+  in.gpu_tile_columns = packed.frame.tile_columns;
+  in.gpu_tile_rows = packed.frame.tile_rows;
+  in.pixel_tests = diagnostic_passes;
+  in.triangles_in = packed.triangle_count;
+  in.bin_overflow = entries_dropped;
+  // The CPU's stages: setup includes binning; the tile stage clears, rasterizes and shades.
+  in.times = {t.transform, t.setup + t.bin, t.clear + t.raster + t.shade, lines_ms,
+              t.diagnostics};
+  fillComputeDiagnostics(scene, in, triangle_bases, frame);
 }
 
 Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const RenderOptions& options,
@@ -371,6 +479,9 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   if (Expected<void> r = pipelines.ensureRaster(*context, packed.frame.layers, ray_passes); !r)
     return r;
   if (Expected<void> r = uploadRays(scene, options); !r) return r;
+  const bool diagnostic_passes = options.diagnostics && !ray_passes;
+  if (diagnostic_passes)
+    if (Expected<void> r = pipelines.ensureDiagnostics(*context); !r) return r;
 
   // First-frame capacities: every visible triangle in a few tiles, a few clipped triangles.
   if (bin_capacity == 0)
@@ -381,25 +492,9 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   if (extra_capacity == 0) extra_capacity = 1024;
 
   stats = ComputeStats{};
-  const GpuCounters* counted = nullptr;
-  for (int round = 0;; ++round) {
-    if (Expected<void> r = ensureWorkingBuffers(options); !r) return r;
-    if (Expected<void> r = recordAndRun(options); !r) return r;
-    counted = static_cast<const GpuCounters*>(counters.mapped);
-    const bool extra_overflow = counted->extra > extra_capacity;
-    const bool bin_overflow = counted->bin_entries > bin_capacity;
-    if (!extra_overflow && !bin_overflow) break;
-    ++stats.bin_overflows;
-    if (round + 1 >= kMaxRounds)
-      return makeError("the vulkan backend's bins kept overflowing after " +
-                       std::to_string(kMaxRounds) + " rounds");
-    // Grow to what was asked for, with headroom for the next frames.
-    auto grown = [](uint64_t asked) {
-      return static_cast<uint32_t>(std::min<uint64_t>(asked + asked / 4 + 64, 0xffffffffull));
-    };
-    if (extra_overflow) extra_capacity = grown(counted->extra);
-    if (bin_overflow) bin_capacity = grown(counted->bin_entries);
-  }
+  uint64_t entries_dropped = 0;  // bin entries that did not fit, over the rounds
+  if (Expected<void> r = runRounds(options, entries_dropped); !r) return r;
+  const GpuCounters* counted = static_cast<const GpuCounters*>(counters.mapped);
 
   // Results.
   const size_t n = frame.pixelCount();
@@ -410,7 +505,11 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
     const uint32_t* coverage = words + (options.normals ? 6 : 3) * n;
     for (size_t p = 0; p < n; ++p) frame.coverage[p] = static_cast<uint8_t>(coverage[p]);
   }
+  const auto lines_start = std::chrono::steady_clock::now();
   drawSceneLines(scene, options, packed, frame);
+  const double lines_ms = std::chrono::duration<double, std::milli>(
+                              std::chrono::steady_clock::now() - lines_start)
+                              .count();
 
   stats.triangles_in = packed.triangle_count;
   stats.triangles_culled = counted->culled;
@@ -425,7 +524,9 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   stats.raster_workgroups = counted->segments;
   stats.int64_atomics = atomic64;
   stats.fp64_setup = fp64;
-  readTimings();
+  readTimings(diagnostic_passes);
+  if (options.diagnostics)
+    fillDiagnostics(scene, diagnostic_passes, entries_dropped, lines_ms, frame);
 
   occupancy.columns = packed.frame.tile_columns;
   occupancy.rows = packed.frame.tile_rows;
@@ -453,7 +554,9 @@ Expected<std::unique_ptr<ComputeBackend>> ComputeBackend::create(const VulkanOpt
 ComputeBackend::ComputeBackend(std::unique_ptr<State> state) : state_(std::move(state)) {}
 ComputeBackend::~ComputeBackend() = default;
 
-void ComputeBackend::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
+void ComputeBackend::render(const Scene& scene, const RenderOptions& requested, Frame& frame) {
+  const RenderOptions options = withDiagnosticInputs(requested);
+  frame.diagnostics.valid = false;
   state_->last_result = renderIntoFrame(scene, options, frame,
                                         [&] { return state_->renderFrame(scene, options, frame); });
 }

@@ -7,6 +7,8 @@
 #include "shaders/Bin.spv.h"
 #include "shaders/BinArgs.spv.h"
 #include "shaders/Clear.spv.h"
+#include "shaders/DiagOccupancy.spv.h"
+#include "shaders/DiagTests.spv.h"
 #include "shaders/RasterAtomic64.spv.h"
 #include "shaders/RasterDepth32.spv.h"
 #include "shaders/RasterId32.spv.h"
@@ -20,6 +22,8 @@
 #include "shaders/RaySetup.spv.h"
 #include "shaders/RayShade.spv.h"
 #include "shaders/Scan.spv.h"
+#include "shaders/SetupDiagnosticsFp32.spv.h"
+#include "shaders/SetupDiagnosticsFp64.spv.h"
 #include "shaders/SetupFp32.spv.h"
 #include "shaders/SetupFp64.spv.h"
 #include "shaders/Shade.spv.h"
@@ -130,9 +134,31 @@ Expected<void> ComputePipelines::ensureRaster(Context& c, uint32_t layers, bool 
   return {};
 }
 
+Expected<void> ComputePipelines::ensureDiagnostics(Context& c) {
+  if (diag_tests) return {};
+  struct Entry {
+    VkPipeline* pipeline;
+    Spirv spirv;
+  };
+  const Entry entries[] = {
+      {&setup_diagnostics,
+       fp64 ? Spirv(spirv::kSetupDiagnosticsFp64) : Spirv(spirv::kSetupDiagnosticsFp32)},
+      {&diag_occupancy, spirv::kDiagOccupancy},
+      {&diag_tests, spirv::kDiagTests},
+  };
+  for (const Entry& e : entries) {
+    if (*e.pipeline) continue;
+    Expected<VkPipeline> pipeline = createPipeline(c, e.spirv);
+    if (!pipeline) return pipeline.error();
+    *e.pipeline = *pipeline;
+  }
+  return {};
+}
+
 void ComputePipelines::destroy(Context& c) {
   VkDevice device = c.device;
-  for (VkPipeline p : {clear, transform, bin_args, scan}) {
+  for (VkPipeline p : {clear, transform, bin_args, scan, setup_diagnostics, diag_occupancy,
+                       diag_tests}) {
     if (p) c.vk.vkDestroyPipeline(device, p, nullptr);
   }
   for (ProjectionPasses* passes : {&perspective, &ray}) {

@@ -29,6 +29,10 @@ struct ComputePipelines {
   VkPipeline clear = VK_NULL_HANDLE, transform = VK_NULL_HANDLE, bin_args = VK_NULL_HANDLE,
              scan = VK_NULL_HANDLE;
   ProjectionPasses perspective, ray;
+  // RenderOptions::diagnostics (perspective frames): setup counting its cull reasons, then the
+  // occupancy and depth-test passes. Made on the first frame that asks for diagnostics.
+  VkPipeline setup_diagnostics = VK_NULL_HANDLE, diag_occupancy = VK_NULL_HANDLE,
+             diag_tests = VK_NULL_HANDLE;
   bool atomic64 = false;  // 64-bit atomic commits, else the two 32-bit passes
   bool fp64 = false;      // divisions in double
 
@@ -36,6 +40,7 @@ struct ComputePipelines {
   Expected<void> create(Context& context, bool with_atomic64, bool with_fp64);
   // The fine raster's pipelines for `layers` visibility layers, of the ray passes or not.
   Expected<void> ensureRaster(Context& context, uint32_t layers, bool ray);
+  Expected<void> ensureDiagnostics(Context& context);
   void destroy(Context& context);
 
  private:

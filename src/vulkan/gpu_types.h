@@ -32,7 +32,8 @@ enum Binding : uint32_t {
   kBindingVisibility = 17,   // uint64 per pixel: ordered depth << 32 | triangle key
   kBindingOutput = 18,       // colour, depth, id, normal words
   kBindingRays = 19,         // float[]: the nonlinear projections' rays (RayTable), xyz per pixel
-  kComputeBindingCount = 20,
+  kBindingDiagnostics = 20,  // uint[]: the diagnostics passes' counts (GpuDiagnosticsLayout)
+  kComputeBindingCount = 21,
 };
 
 // GpuFrameConstants::flags
@@ -190,6 +191,45 @@ struct GpuTileBin {
   uint32_t count, offset, cursor, segment_offset;
 };
 static_assert(sizeof(GpuTileBin) == 16);
+
+// The diagnostics buffer (RenderOptions::diagnostics; shaders/diagnostics.glsl), in 32-bit words:
+// the cull reasons and clip splits setup's diagnostics variant counts, then per pixel the depth
+// tests at its centre (the overdraw), per 16x16 tile the tests and the passes, and per tile of
+// the CPU's grid (kDiagnosticsTileSize) the records binned into it (the occupancy).
+enum GpuDiagnosticsWord : uint32_t {
+  kDiagInvalid = 0,
+  kDiagNonFinite,
+  kDiagFrustum,
+  kDiagDegenerate,
+  kDiagFacing,
+  kDiagNoPixel,
+  kDiagClippedAway,
+  kDiagClipSplits,
+  kDiagHeaderWords = 16,
+};
+// The occupancy's tiles: the CPU's (render::kTileSize), so that the two backends' per-tile
+// arrays describe the same tiles; shaders/diagnostics.glsl has the same constant.
+constexpr int kDiagnosticsTileSizeLog2 = 6;
+
+struct GpuDiagnosticsLayout {
+  size_t overdraw = 0, tile_tested = 0, tile_passed = 0, occupancy = 0, words = 0;
+
+  static GpuDiagnosticsLayout of(int width, int height) {
+    const size_t pixels = static_cast<size_t>(width) * height;
+    const size_t gpu_tiles = static_cast<size_t>((width + kGpuTileSize - 1) / kGpuTileSize) *
+                             ((height + kGpuTileSize - 1) / kGpuTileSize);
+    constexpr int kCpuTile = 1 << kDiagnosticsTileSizeLog2;
+    const size_t cpu_tiles = static_cast<size_t>((width + kCpuTile - 1) / kCpuTile) *
+                             ((height + kCpuTile - 1) / kCpuTile);
+    GpuDiagnosticsLayout l;
+    l.overdraw = kDiagHeaderWords;
+    l.tile_tested = l.overdraw + pixels;
+    l.tile_passed = l.tile_tested + gpu_tiles;
+    l.occupancy = l.tile_passed + gpu_tiles;
+    l.words = l.occupancy + cpu_tiles;
+    return l;
+  }
+};
 
 // Push constants of every compute pass.
 struct GpuPassConstants {

@@ -13,6 +13,7 @@
 #include <tessera/vulkan/vulkan_backend.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -22,6 +23,7 @@
 
 #include "shaders/MeshFrag.spv.h"
 #include "shaders/MeshFragMsaa.spv.h"
+#include "vulkan/backend_diagnostics.h"
 #include "vulkan/context.h"
 #include "vulkan/descriptor_sets.h"
 #include "vulkan/gpu_types.h"
@@ -75,6 +77,7 @@ struct RasterBackend::State {
   PassTargets aov_targets, ms_targets;
   Buffer readback;
   std::vector<uint32_t> resolved_colors;  // the multisample pass's colour, encoded
+  std::vector<size_t> triangle_bases;     // fillRasterDiagnostics' scratch
 
   PackedScene packed;
   SceneBuffers scene_buffers;
@@ -353,8 +356,17 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
   if (Expected<void> r = c.submitAndWait(); !r) return r;
 
   readResults(samples, aov_pass_needed, frame);
+  const auto lines_start = std::chrono::steady_clock::now();
   drawSceneLines(scene, options, packed, frame);
+  const double lines_ms = std::chrono::duration<double, std::milli>(
+                              std::chrono::steady_clock::now() - lines_start)
+                              .count();
   readTimings();
+  if (options.diagnostics) {
+    // The render pass (vertex, raster, fragment) and its copies are one span: the tile stage's.
+    const StageTimes times{0, 0, stats.gpu_ms, lines_ms, 0};
+    fillRasterDiagnostics(scene, packed.triangle_count, times, triangle_bases, frame);
+  }
   return {};
 }
 
@@ -405,7 +417,9 @@ Expected<std::unique_ptr<RasterBackend>> RasterBackend::create(const VulkanOptio
 RasterBackend::RasterBackend(std::unique_ptr<State> state) : state_(std::move(state)) {}
 RasterBackend::~RasterBackend() = default;
 
-void RasterBackend::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
+void RasterBackend::render(const Scene& scene, const RenderOptions& requested, Frame& frame) {
+  const RenderOptions options = withDiagnosticInputs(requested);
+  frame.diagnostics.valid = false;
   state_->last_result = renderIntoFrame(scene, options, frame,
                                         [&] { return state_->renderFrame(scene, options, frame); });
 }

@@ -65,6 +65,9 @@ struct FrameDiagnostics {
   PipelineCounters counters;
   StageTimes times;
   bool has_pixel_tests = false;  // overdraw, occupancy and the pixel/bin counters were measured
+  // The cull reasons, the clip counts and the setup records were measured (not by the
+  // vulkan-raster backend, whose setup is the driver's: docs/stats.md).
+  bool has_setup_counters = false;
 
   size_t tileCount() const { return static_cast<size_t>(tile_columns) * tile_rows; }
 };

@@ -30,4 +30,12 @@ struct RenderOptions {
   Projection projection = Projection::kPerspective;
 };
 
+// The options a backend renders `options` with: the diagnostics read the frame's centre depths
+// and ids, so a frame that asks for them has those AOVs too.
+inline RenderOptions withDiagnosticInputs(const RenderOptions& options) {
+  RenderOptions measured = options;
+  if (measured.diagnostics) measured.depth = measured.ids = true;
+  return measured;
+}
+
 }  // namespace tessera

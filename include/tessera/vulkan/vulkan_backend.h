@@ -78,6 +78,7 @@ struct VulkanOptions {
 // when the device's queue has no timestamps.
 struct PassTimings {
   double clear = 0, transform = 0, setup = 0, bin = 0, raster = 0, shade = 0;
+  double diagnostics = 0;  // the diagnostics passes (compute backend, RenderOptions::diagnostics)
   double total = 0;  // first timestamp to last, on the GPU
   bool valid = false;
 };

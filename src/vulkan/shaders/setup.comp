@@ -16,12 +16,26 @@
 // TESSERA_FP64 = 1: divisions and the area's reciprocal in double, rounded once to float, as the
 // CPU; = 0: in float, for devices without shaderFloat64 (coverage of unclipped triangles is
 // still exact; depth and the clipped vertices may differ in the last bit).
+//
+// TESSERA_DIAGNOSTICS = 1 (RenderOptions::diagnostics): the same setup, and each culled triangle
+// counted under its reason (the CPU's countCullReason order) and the clip splits counted, in the
+// diagnostics buffer. The variant without it has none of these atomics.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "common.glsl"
 #include "records.glsl"
 #include "screen.glsl"
 #include "shading.glsl"
 #include "setup_common.glsl"
+
+#ifndef TESSERA_DIAGNOSTICS
+#define TESSERA_DIAGNOSTICS 0
+#endif
+#if TESSERA_DIAGNOSTICS
+#include "diagnostics.glsl"
+#define COUNT_DIAGNOSTIC(word, n) atomicAdd(diagnostics_words[word], n)
+#else
+#define COUNT_DIAGNOSTIC(word, n)
+#endif
 
 layout(local_size_x = 64) in;
 
@@ -175,6 +189,20 @@ bool setupTriangle(ScreenVertex sv[3], ClipVertex v[3], TriangleContext ctx,
   return true;
 }
 
+#if TESSERA_DIAGNOSTICS
+// Why setupTriangle dropped a triangle, by its checks in their order: zero area on the snapped
+// grid, facing the culled way, else a bounding box without a pixel centre.
+uint cullReason(ScreenVertex sv[3], TriangleContext ctx) {
+  const int64_t area = int64_t(sv[1].x - sv[0].x) * int64_t(sv[2].y - sv[0].y) -
+                       int64_t(sv[1].y - sv[0].y) * int64_t(sv[2].x - sv[0].x);
+  if (area == 0l) return kDiagDegenerate;
+  const bool back_facing = area > 0l;
+  if ((back_facing && ctx.cull == kCullBack) || (!back_facing && ctx.cull == kCullFront))
+    return kDiagFacing;
+  return kDiagNoPixel;
+}
+#endif
+
 void emit(uint slot, RasterRecord raster, ShadeRecord shade) {
   raster_records[slot] = raster;
   shade_records[slot] = shade;
@@ -190,6 +218,7 @@ void main() {
   if (idx[0] >= object.vertex_count || idx[1] >= object.vertex_count ||
       idx[2] >= object.vertex_count) {
     atomicAdd(counters.culled, 1u);
+    COUNT_DIAGNOSTIC(kDiagInvalid, 1u);
     return;
   }
 
@@ -207,6 +236,9 @@ void main() {
   if (((codes[0] | codes[1] | codes[2]) & kNonFinite) != 0u ||
       (codes[0] & codes[1] & codes[2] & kRejectPlanes) != 0u) {
     atomicAdd(counters.culled, 1u);
+    COUNT_DIAGNOSTIC(((codes[0] | codes[1] | codes[2]) & kNonFinite) != 0u ? kDiagNonFinite
+                                                                            : kDiagFrustum,
+                     1u);
     return;
   }
 
@@ -221,6 +253,7 @@ void main() {
       emit(t, raster, shade);
     } else {
       atomicAdd(counters.culled, 1u);
+      COUNT_DIAGNOSTIC(cullReason(sv, ctx), 1u);
     }
     return;
   }
@@ -235,6 +268,7 @@ void main() {
   const uint src = clipped & 1u;
   if (count < 3) {
     atomicAdd(counters.culled, 1u);
+    COUNT_DIAGNOSTIC(kDiagClippedAway, 1u);
     return;
   }
   // Pieces 1..count-3 take extra slots. When they do not fit, the counter still records how many
@@ -244,6 +278,9 @@ void main() {
   if (extra_needed > 0u) base = atomicAdd(counters.extra, extra_needed);
   extra_base[t] = base;
   bool any_visible = false;
+#if TESSERA_DIAGNOSTICS
+  uint pieces = 0u;
+#endif
   for (int k = 1; k + 1 < count; ++k) {
     const uint piece = uint(k - 1);
     if (piece > 0u && base + piece - 1u >= frame.extra_capacity) continue;
@@ -255,7 +292,12 @@ void main() {
       raster.key = (t << 3) | piece;
       emit(piece == 0u ? t : frame.triangle_count + base + piece - 1u, raster, shade);
       any_visible = true;
+#if TESSERA_DIAGNOSTICS
+      ++pieces;
+#endif
     }
   }
   if (!any_visible) atomicAdd(counters.culled, 1u);
+  COUNT_DIAGNOSTIC(any_visible ? kDiagClipSplits : kDiagClippedAway,
+                   any_visible ? pieces - 1u : 1u);
 }

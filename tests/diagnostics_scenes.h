@@ -1,0 +1,113 @@
+// Scenes small enough to count diagnostics by hand, shared by the CPU's and the Vulkan
+// backends' diagnostics tests (so both backends are held to the same numbers).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+
+#include <tessera/render/diagnostics.h>
+#include <tessera/scene/scene.h>
+
+namespace tessera::diagnostics_test {
+
+// A camera that maps object coordinates straight to clip space (x, y, z in NDC, w = 1).
+inline Scene clipSpaceScene() {
+  Scene scene;
+  scene.camera.view_override = float4x4::identity();
+  scene.camera.projection_override = float4x4::identity();
+  scene.ambient = float3(1.0f);
+  return scene;
+}
+
+// An axis-aligned rectangle in window pixels (y down) at NDC depth z, as two triangles.
+inline void addRect(Mesh& m, float x0, float y0, float x1, float y1, float z, int width,
+                    int height, uint16_t material = 0) {
+  const uint32_t base = static_cast<uint32_t>(m.positions.size());
+  auto ndc = [&](float x, float y) {
+    return float3{2.0f * x / width - 1.0f, 1.0f - 2.0f * y / height, z};
+  };
+  m.positions.insert(m.positions.end(), {ndc(x0, y0), ndc(x1, y0), ndc(x1, y1), ndc(x0, y1)});
+  m.indices.insert(m.indices.end(), {base, base + 2, base + 1, base, base + 3, base + 2});
+  m.triangle_materials.insert(m.triangle_materials.end(), {material, material});
+}
+
+inline Object objectOf(Mesh mesh, CullMode cull = CullMode::kNone) {
+  Object o;
+  o.mesh = std::make_shared<Mesh>(std::move(mesh));
+  o.shading = Shading::kUnlit;
+  o.cull = cull;
+  return o;
+}
+
+inline void expectCountersAddUp(const PipelineCounters& c) {
+  EXPECT_EQ(c.triangles_in, c.culled.total() + c.triangles_setup - c.clip_splits);
+}
+
+// `count` full-screen quads of a width x height frame, alternately near and far (so later tests
+// both pass and fail), quad i at NDC z (i odd ? 0.5 : -0.5) + 0.01 i.
+inline Scene stackedQuads(int count, int width, int height) {
+  Scene scene = clipSpaceScene();
+  Mesh m;
+  for (int i = 0; i < count; ++i)
+    addRect(m, 0, 0, static_cast<float>(width), static_cast<float>(height),
+            (i % 2 ? 0.5f : -0.5f) + 0.01f * static_cast<float>(i), width, height);
+  scene.objects.push_back(objectOf(m));
+  return scene;
+}
+
+// Three rectangles and a culled back face in a 192x128 frame (3 x 2 tiles of 64): the
+// occupancy is {4, 2, 0, 0, 0, 2}.
+constexpr int kOccupancyWidth = 192, kOccupancyHeight = 128;
+inline Scene occupancyScene() {
+  constexpr int kW = kOccupancyWidth, kH = kOccupancyHeight;
+  Scene scene = clipSpaceScene();
+  Mesh m;
+  addRect(m, 4, 4, 20, 20, 0, kW, kH);      // tile 0: 2 triangles
+  addRect(m, 50, 10, 80, 30, 0, kW, kH);    // tiles 0 and 1: 2 triangles each
+  addRect(m, 140, 70, 150, 90, 0, kW, kH);  // tile 5: 2 triangles
+  scene.objects.push_back(objectOf(m));
+  // A back-facing triangle in tile 3, culled: binned nowhere.
+  Mesh back;
+  addRect(back, 10, 70, 30, 90, 0, kW, kH);
+  std::swap(back.indices[1], back.indices[2]);
+  back.indices.resize(3);
+  back.triangle_materials.resize(1);
+  scene.objects.push_back(objectOf(back, CullMode::kBack));
+  return scene;
+}
+
+// The diagnostics of occupancyScene() that a backend binning on the 64x64 grid gives.
+inline void expectOccupancySceneCounts(const FrameDiagnostics& d) {
+  ASSERT_EQ(d.tile_columns, 3);
+  ASSERT_EQ(d.tile_rows, 2);
+  EXPECT_EQ(d.tile_triangles, (std::vector<uint32_t>{4, 2, 0, 0, 0, 2}));
+  EXPECT_EQ(d.counters.triangles_binned, 8u);
+  EXPECT_EQ(d.counters.tiles_empty, 3u);
+  EXPECT_EQ(d.counters.culled.facing, 1u);
+  expectCountersAddUp(d.counters);
+}
+
+// One triangle for each cull reason (but invalid and clipped away), one clipped into two pieces
+// and one drawn, in a 64x64 frame, the object culling back faces.
+inline Mesh cullReasonMesh() {
+  Mesh m;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {nan, 0, 0},
+                 {3, 0, 0}, {4, 1, 0}, {3, 1, 0},            // beyond the right plane
+                 {-1, -1, -3}, {1, -1, 0.5f}, {0, 1, 0.5f},  // crosses the near plane
+                 // window x 35.10..35.39, y 28.51..28.80: no pixel centre in its box
+                 {0.097f, 0.1f, 0}, {0.106f, 0.1f, 0}, {0.097f, 0.109f, 0}};
+  m.indices = {0, 1, 3,     // non-finite
+               4, 5, 6,     // frustum
+               0, 0, 1,     // degenerate
+               0, 2, 1,     // back-facing, culled
+               7, 8, 9,     // clipped into two pieces
+               10, 11, 12,  // no pixel centre
+               0, 1, 2};    // drawn
+  return m;
+}
+
+}  // namespace tessera::diagnostics_test
