@@ -123,13 +123,16 @@ TEST_F(CliDiagnostics, StatsJsonAddsUpAndIsTheSameForAnyWorkerCount) {
 }
 
 TEST_F(CliDiagnostics, AnUnwritableStatsPathFailsBeforeRendering) {
-  RunResult r = run("render quads.obj --resolution 40,30 -o out.png --stats missing/s.json" +
+  // A missing folder would be made (issue 20); a file in the way of one cannot be.
+  tessera::test::writeFile(dir_ / "blocker", "a file");
+  RunResult r = run("render quads.obj --resolution 40,30 -o out.png --stats blocker/s.json" +
                     std::string(kCamera));
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("missing"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("blocker"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "out.png"));
   size_t files = 0;
-  for (const auto& e : fs::directory_iterator(dir_)) files += e.path().filename() != "quads.obj";
+  for (const auto& e : fs::directory_iterator(dir_))
+    files += e.path().filename() != "quads.obj" && e.path().filename() != "blocker";
   EXPECT_EQ(files, 0u);
 }
 
