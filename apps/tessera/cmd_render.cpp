@@ -51,6 +51,10 @@ struct RenderSettings {
   std::string stats;      // --stats PATH.json: the frames' diagnostics (docs/stats.md)
   io::LoadBudget budget;  // --memory-limit, --max-triangles, --max-texture-pixels
   SamplingSettings sampling{.msaa = 4};  // the image a user expects: anti-aliased
+  std::string visibility = "z-buffer";
+  bool edges = false;
+  float3 edge_color{0, 0, 0};  // sRGB
+  float line_width = 1.0f;
 };
 
 enum class OutputKind { kPng, kVideo, kSequence };  // kVideo: .gif or .mp4
@@ -71,6 +75,36 @@ Expected<void> writeStill(const std::filesystem::path& path, const Frame& frame,
   return io::writePngRgba8(path, frame.width, frame.height, frame.color.data());
 }
 
+// An sRGB colour flag's value, each channel in 0..1: "" or what is wrong.
+std::string parseSrgbColor(const std::string& v, float3& out) {
+  Expected<float3> c = parseFloat3(v);
+  if (!c) return c.error().message;
+  for (int i = 0; i < 3; ++i)
+    if ((*c)[i] < 0.0f || (*c)[i] > 1.0f) return "each channel must be in 0..1";
+  out = *c;
+  return "";
+}
+
+// --visibility, --edges, --edge-color, --line-width (docs/usage.md).
+void addVisibilityFlags(FlagSet& flags, RenderSettings& s) {
+  flags.addChoice("visibility", &s.visibility, {"z-buffer", "painter"},
+                  "z-buffer, or painter: no depth test, triangles drawn back to front by their "
+                  "average depth (default z-buffer; cpu backend, perspective projection)");
+  flags.addSwitch("edges", &s.edges,
+                  "draw every polygon's outline (cpu backend, perspective projection)");
+  flags.addCustom("edge-color", "R,G,B", "the edges' colour, sRGB 0..1 (default 0,0,0)",
+                  [&](const std::string& v) { return parseSrgbColor(v, s.edge_color); });
+  flags.addCustom("line-width", "PIXELS", "the edges' width in pixels, up to 64 (default 1)",
+                  [&](const std::string& v) -> std::string {
+                    float w;
+                    if (!parseFloatStrict(v, w) || !(w > 0.0f && w <= 64.0f))
+                      return "the width must be a number of pixels above 0 and up to 64, not '" +
+                             v + "'";
+                    s.line_width = w;
+                    return "";
+                  });
+}
+
 void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   flags.addString("o|output", &s.output,
                   "output: .png; .gif, .mp4 or a {frame} PNG template for a turntable "
@@ -89,14 +123,7 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
                     return "";
                   });
   flags.addCustom("background-color", "R,G,B", "background, sRGB 0..1 (default 0.2,0.2,0.2)",
-                  [&](const std::string& v) -> std::string {
-                    Expected<float3> c = parseFloat3(v);
-                    if (!c) return c.error().message;
-                    for (int i = 0; i < 3; ++i)
-                      if ((*c)[i] < 0.0f || (*c)[i] > 1.0f) return "each channel must be in 0..1";
-                    s.background = *c;
-                    return "";
-                  });
+                  [&](const std::string& v) { return parseSrgbColor(v, s.background); });
   addCameraFlags(flags, s.camera);
   flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit"},
                   "flat, smooth (per-pixel), gouraud (per-vertex) or unlit (default smooth)");
@@ -113,6 +140,7 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
                   "write each frame's pipeline counters, stage times and per-tile diagnostics "
                   "to this JSON file (docs/stats.md)");
   addSamplingFlags(flags, s.sampling);
+  addVisibilityFlags(flags, s);
   flags.addInt("turntable", &s.turntable, "frames of one full turn about the up axis", 1, 100000);
   flags.addInt("fps", &s.fps, "frames per second of a turntable (default 30)", 1, 100);
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
@@ -228,6 +256,10 @@ RenderOptions renderOptions(const RenderSettings& s, bool diagnostics, SamplingS
   options.coverage = s.aov == "coverage";
   options.diagnostics = diagnostics;
   options.projection = s.camera.projectionMode();
+  if (s.visibility == "painter") options.visibility = Visibility::kPainter;
+  options.edges.show = s.edges;
+  for (int i = 0; i < 3; ++i) options.edges.color[i] = srgbToLinear(s.edge_color[i]);
+  options.edges.width = s.line_width;
   // The id, depth and normal AOVs are the pixel centre's: one sample, no jitter. Coverage is
   // frame 0's (not jittered) at the --msaa count.
   sampling = s.sampling;
@@ -346,6 +378,17 @@ int runRender(const std::vector<std::string>& args) {
     printError("render", (isDiagnosticAov(s.aov) ? "--aov " + s.aov : std::string("--stats")) +
                              " is not yet on the " + s.backend + " backend (use --backend cpu)");
     return kExitFailure;
+  }
+  if (s.visibility == "painter" || s.edges) {
+    const std::string what = s.visibility == "painter" ? "--visibility painter" : "--edges";
+    if (s.backend != "cpu") {
+      printError("render", what + " is drawn by the cpu backend only (use --backend cpu)");
+      return kExitFailure;
+    }
+    if (s.camera.projectionMode() != Projection::kPerspective) {
+      printError("render", what + " is drawn for the perspective projection only");
+      return kExitFailure;
+    }
   }
   if (needsPixelTests(s.aov) && s.camera.projectionMode() != Projection::kPerspective) {
     printError("render", "--aov " + s.aov + " is measured for the perspective projection only");

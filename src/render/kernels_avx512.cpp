@@ -1,5 +1,6 @@
 // The kernels compiled for avx512 (CMakeLists.txt gives this file its flags).
 #include "render/kernels.h"
+#include "render/painter_kernel.h"
 #include "render/raster_kernel.h"
 #include "render/ray_kernel.h"
 #include "render/setup_kernel.h"
@@ -10,6 +11,7 @@ namespace tessera::render {
 
 const Kernels kKernelsAvx512 = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
                                 rasterTileKernel,        shadeTileKernel, rasterTileSamplesKernel,
-                                combineSamplesKernel, rasterRayTileKernel, shadeRayTileKernel};
+                                combineSamplesKernel, rasterRayTileKernel, shadeRayTileKernel,
+    rasterPainterTileKernel, rasterPainterTileSamplesKernel};
 
 }  // namespace tessera::render
