@@ -55,8 +55,8 @@ def main():
     folder.mkdir(parents=True, exist_ok=True)
     lines = []
     n = sphere(lines, 1, 0, 0, 0, 1)
-    # The blade: a quad through the sphere's centre, tilted towards the viewer on the right.
-    blade = [(-1.8, -0.35, -0.9), (1.8, -0.35, 0.9), (1.8, 0.35, 0.9), (-1.8, 0.35, -0.9)]
+    # The blade: a quad through the sphere's centre at 45 degrees, out of its front on the right.
+    blade = [(-2, -0.3, -2), (2, -0.3, 2), (2, 0.3, 2), (-2, 0.3, -2)]
     for x, y, z in blade:
         lines.append(f"v {x} {y} {z}")
     lines.append(f"f {n} {n + 1} {n + 2} {n + 3}")
