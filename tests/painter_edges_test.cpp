@@ -25,6 +25,8 @@
 using namespace tessera;
 namespace fs = std::filesystem;
 
+#include "allocation_counter.h"  // g_count_allocations, g_allocations
+
 namespace {
 
 constexpr int kCubes = 5;
@@ -47,7 +49,7 @@ Scene clipSpaceScene() {
 }
 
 Frame renderFrame(const Scene& scene, RenderOptions options, int workers = 1,
-             SimdLevel simd = SimdLevel::kAuto) {
+                  SimdLevel simd = SimdLevel::kAuto) {
   CpuRenderer renderer(workers, simd);
   Frame frame;
   renderer.render(scene, options, frame);
@@ -66,8 +68,7 @@ void expectSameFrames(const Frame& a, const Frame& b, const std::string& what) {
   EXPECT_EQ(a.color, b.color) << what;
   EXPECT_EQ(a.triangle_id, b.triangle_id) << what;
   ASSERT_EQ(a.depth.size(), b.depth.size()) << what;
-  EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)))
-      << what;
+  EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float))) << what;
 }
 
 // The cube demo's look, several times over: cubes one behind another along the view ray, each
@@ -200,6 +201,29 @@ TEST(Painter, SameImageForAnyWorkerCountAndSimdLevel) {
   }
 }
 
+TEST(Painter, AllocatesNothingPerFrameAfterWarmUpWithEdges) {
+  Scene scene = scatteredScene();
+  CpuRenderer renderer(3);
+  RenderOptions options = sized(160, 120, Visibility::kPainter);
+  options.edges.show = true;
+  options.edges.width = 2.0f;
+  Frame frame;
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      g_allocations = 0;
+      g_count_allocations = true;
+    }
+    for (int i = 0; i < 3; ++i) {
+      scene.objects[0].transform.rotation = quat::fromAxisAngle({0, 1, 0}, 0.1f * i);
+      options.msaa = i == 2 ? 4 : 1;
+      renderer.render(scene, options, frame);
+    }
+  }
+  g_count_allocations = false;
+  EXPECT_GT(renderer.lastStats().triangles_setup, 1000u);
+  EXPECT_EQ(g_allocations.load(), 0u);
+}
+
 TEST(Painter, TiesKeepSubmissionOrder) {
   // Two coplanar triangles over the same pixels: equal keys, so the one submitted later is
   // painted later and wins (the z-buffer keeps the first: z < stored fails on equal depths).
@@ -220,7 +244,7 @@ TEST(Painter, TiesAcrossChunksAndWorkersKeepSubmissionOrder) {
   constexpr int kW = 48, kH = 48, kCopies = 30000;
   Scene scene = clipSpaceScene();
   Mesh m;
-  m.positions = {{-0.9f, -0.9f, 0.2f}, {0.9f, -0.9f, 0.2f}, {0, 0.9f, 0.2f},
+  m.positions = {{-0.9f, -0.9f, 0.2f},  {0.9f, -0.9f, 0.2f},  {0, 0.9f, 0.2f},
                  {-0.2f, -0.2f, -0.5f}, {0.2f, -0.2f, -0.5f}, {0, 0.2f, -0.5f}};
   for (int i = 0; i < kCopies; ++i) {
     const uint32_t base = i == kCopies / 2 ? 3 : 0;
@@ -244,7 +268,7 @@ TEST(Painter, ClippedPiecesTakeTheWholeTrianglesPlace) {
   Scene scene = clipSpaceScene();
   Mesh m;
   m.positions = {{-1.5f, -1.5f, -2.0f}, {1.5f, -1.5f, 0.9f}, {0, 1.5f, 0.9f},
-                 {-0.3f, -0.3f, 0.2f},   {0.3f, -0.3f, 0.2f}, {0, 0.3f, 0.2f}};
+                 {-0.3f, -0.3f, 0.2f},  {0.3f, -0.3f, 0.2f}, {0, 0.3f, 0.2f}};
   m.indices = {3, 4, 5, 0, 1, 2};
   scene.objects.push_back(unlitObject(m));
   CpuRenderer renderer(1);
@@ -478,9 +502,8 @@ TEST_F(PainterEdgesCli, PainterAndEdgesRender) {
   EXPECT_FALSE(red(30, 14) || red(30, 18));
   EXPECT_FALSE(red(32, 31));  // the diagonal is no outline
   // The default edge colour is black.
-  ASSERT_EQ(run(common + "--camera-position 0,0,2 --camera-view-angle 90 --edges -o k.png")
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      run(common + "--camera-position 0,0,2 --camera-view-angle 90 --edges -o k.png").exit_code, 0);
   const std::optional<test::DecodedPng> black = test::decodePng((dir_ / "k.png").string());
   ASSERT_TRUE(black);
   EXPECT_EQ(black->rgb(30, 16), (std::array<int, 3>{0, 0, 0}));
@@ -504,4 +527,5 @@ TEST_F(PainterEdgesCli, RefusesWhatItCannotDraw) {
   expectRefused("render quad.obj --edges --projection fisheye", 1, "perspective projection");
   expectRefused("render quad.obj --visibility painter --backend vulkan", 1, "cpu backend");
   expectRefused("render quad.obj --edges --backend vulkan-raster", 1, "cpu backend");
+  expectRefused("render quad.obj --visibility painter --aov overdraw", 1, "z-buffer's work");
 }

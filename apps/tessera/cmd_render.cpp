@@ -182,6 +182,19 @@ std::string checkOutput(const RenderSettings& s, OutputKind& kind) {
   return "";
 }
 
+// What --visibility painter and --edges cannot go with, or "".
+std::string refuseVisibility(const RenderSettings& s, bool diagnostics) {
+  if (s.visibility != "painter" && !s.edges) return "";
+  const std::string what = s.visibility == "painter" ? "--visibility painter" : "--edges";
+  if (s.backend != "cpu") return what + " is drawn by the cpu backend only (use --backend cpu)";
+  if (s.camera.projectionMode() != Projection::kPerspective)
+    return what + " is drawn for the perspective projection only";
+  if (s.visibility == "painter" && diagnostics)
+    return "--stats and the diagnostic AOVs measure the z-buffer's work: leave out --visibility "
+           "painter";
+  return "";
+}
+
 // The model as a scene with its camera, lights and axes, and the model's bounds. An exit status
 // other than kExitOk when something fails (printed); kExitOk after --info's listing too.
 int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, Scene& scene,
@@ -379,16 +392,9 @@ int runRender(const std::vector<std::string>& args) {
                              " is not yet on the " + s.backend + " backend (use --backend cpu)");
     return kExitFailure;
   }
-  if (s.visibility == "painter" || s.edges) {
-    const std::string what = s.visibility == "painter" ? "--visibility painter" : "--edges";
-    if (s.backend != "cpu") {
-      printError("render", what + " is drawn by the cpu backend only (use --backend cpu)");
-      return kExitFailure;
-    }
-    if (s.camera.projectionMode() != Projection::kPerspective) {
-      printError("render", what + " is drawn for the perspective projection only");
-      return kExitFailure;
-    }
+  if (std::string refused = refuseVisibility(s, diagnostics); !refused.empty()) {
+    printError("render", refused);
+    return kExitFailure;
   }
   if (needsPixelTests(s.aov) && s.camera.projectionMode() != Projection::kPerspective) {
     printError("render", "--aov " + s.aov + " is measured for the perspective projection only");

@@ -27,6 +27,7 @@ class PolygonSplitter {
   // Which edges of the triangle of corners[0..2] of an n-gon are polygon sides (corners next
   // to each other, first and last included): Mesh::triangle_edges' bits.
   static uint8_t outlineEdges(const uint32_t corners[3], size_t n) {
+    if (n == 3) return 0b111;  // most files: no division
     auto side = [&](int k) {
       const size_t p = corners[k], q = corners[(k + 1) % 3];
       return (p + 1) % n == q || (q + 1) % n == p;

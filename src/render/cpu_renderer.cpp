@@ -102,10 +102,10 @@ struct CpuRenderer::State {
   std::vector<std::unique_ptr<SampleTiles>> sampled;   // one per worker, made for MSAA
   std::vector<SampleShift> shifts;                     // this frame's sample layers
   std::vector<uint8_t> tile_empty;                     // this frame's: no triangle binned
-  PainterOrder painter;  // RenderOptions::visibility kPainter
+  PainterOrder painter;                                // RenderOptions::visibility kPainter
   LinePass line_pass;
   PipelineStats stats;
-  RayRenderer rays;  // the nonlinear projections
+  RayRenderer rays;             // the nonlinear projections
   DiagnosticsPass diagnostics;  // RenderOptions::diagnostics
 
   void setupChunk(const Scene& scene, const VertexBuffer& vertices, const TileGrid& grid,

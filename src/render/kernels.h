@@ -62,8 +62,8 @@ using RasterPainterTileFn = void (*)(const std::vector<TriangleChunk>& chunks,
                                      const std::vector<PainterSlice>& slices, int tile_index,
                                      TileVisibility& tile);
 using RasterPainterTileSamplesFn = void (*)(const std::vector<TriangleChunk>& chunks,
-                                            const std::vector<PainterSlice>& slices,
-                                            int tile_index, TileVisibility* const* layers,
+                                            const std::vector<PainterSlice>& slices, int tile_index,
+                                            TileVisibility* const* layers,
                                             const SampleShift* shifts, int layer_count);
 
 // Every kernel compiled for one instruction set.
@@ -82,6 +82,15 @@ struct Kernels {
 };
 
 Kernels kernelsFor(Isa isa);
+
+// The table of the kernels compiled in this translation unit (kernels_<isa>.cpp, which includes
+// every *_kernel.h), in Kernels' order: one list for the four instruction sets.
+#define TESSERA_KERNELS_OF_THIS_ISA                                                                \
+  Kernels {                                                                                        \
+    transformVerticesKernel, cullGroupKernel, setupBatchKernel, rasterTileKernel, shadeTileKernel, \
+        rasterTileSamplesKernel, combineSamplesKernel, rasterRayTileKernel, shadeRayTileKernel,    \
+        rasterPainterTileKernel, rasterPainterTileSamplesKernel                                    \
+  }
 
 // One table per instruction set, defined in kernels_<isa>.cpp.
 extern const Kernels kKernelsScalar;

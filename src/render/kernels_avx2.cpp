@@ -9,9 +9,6 @@
 
 namespace tessera::render {
 
-const Kernels kKernelsAvx2 = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
-                              rasterTileKernel,        shadeTileKernel, rasterTileSamplesKernel,
-                              combineSamplesKernel, rasterRayTileKernel, shadeRayTileKernel,
-    rasterPainterTileKernel, rasterPainterTileSamplesKernel};
+const Kernels kKernelsAvx2 = TESSERA_KERNELS_OF_THIS_ISA;
 
 }  // namespace tessera::render

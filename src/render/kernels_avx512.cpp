@@ -9,9 +9,6 @@
 
 namespace tessera::render {
 
-const Kernels kKernelsAvx512 = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
-                                rasterTileKernel,        shadeTileKernel, rasterTileSamplesKernel,
-                                combineSamplesKernel, rasterRayTileKernel, shadeRayTileKernel,
-    rasterPainterTileKernel, rasterPainterTileSamplesKernel};
+const Kernels kKernelsAvx512 = TESSERA_KERNELS_OF_THIS_ISA;
 
 }  // namespace tessera::render

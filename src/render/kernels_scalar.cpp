@@ -10,9 +10,6 @@
 
 namespace tessera::render {
 
-const Kernels kKernelsScalar = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
-                                rasterTileKernel,        shadeTileKernel, rasterTileSamplesKernel,
-                                combineSamplesKernel, rasterRayTileKernel, shadeRayTileKernel,
-    rasterPainterTileKernel, rasterPainterTileSamplesKernel};
+const Kernels kKernelsScalar = TESSERA_KERNELS_OF_THIS_ISA;
 
 }  // namespace tessera::render

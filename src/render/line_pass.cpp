@@ -74,8 +74,8 @@ bool LinePass::wanted(const Scene& scene, const RenderOptions& options) {
 }
 
 void LinePass::draw(const Scene& scene, const std::vector<ObjectTransforms>& objects,
-                    const RenderOptions& options, const float4x4& view_projection,
-                    bool antialiased, Frame& frame) {
+                    const RenderOptions& options, const float4x4& view_projection, bool antialiased,
+                    Frame& frame) {
   lines_.points.assign(scene.lines.points.begin(), scene.lines.points.end());
   lines_.colors.assign(scene.lines.colors.begin(), scene.lines.colors.end());
   if (scene.show_world_axes) appendAxes(lines_, float4x4::identity(), scene.world_axes_length);

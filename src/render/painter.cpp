@@ -27,8 +27,8 @@ float painterDepth(const VertexBuffer& vertices, size_t v0, size_t v1, size_t v2
 
 void PainterOrder::build(WorkerPool& pool, const std::vector<TriangleChunk>& chunks,
                          size_t chunk_count, const Scene& scene,
-                         const std::vector<ObjectTransforms>& objects,
-                         const VertexBuffer& vertices, const TileGrid& grid) {
+                         const std::vector<ObjectTransforms>& objects, const VertexBuffer& vertices,
+                         const TileGrid& grid) {
   first_.resize(chunk_count);
   size_t total = 0;
   for (size_t c = 0; c < chunk_count; ++c) {
@@ -47,11 +47,11 @@ void PainterOrder::build(WorkerPool& pool, const std::vector<TriangleChunk>& chu
       const ObjectTransforms& xf = objects[object];
       const uint32_t* idx = &scene.objects[object].mesh->indices[(id - xf.triangle_base) * 3];
       // Depths are not negative: their bits order as they do, and ~bits puts the largest first.
-      const float depth = painterDepth(vertices, xf.vertex_base + idx[0],
-                                       xf.vertex_base + idx[1], xf.vertex_base + idx[2]);
+      const float depth = painterDepth(vertices, xf.vertex_base + idx[0], xf.vertex_base + idx[1],
+                                       xf.vertex_base + idx[2]);
       const uint32_t bits = std::bit_cast<uint32_t>(depth + 0.0f);
-      order_[first_[c] + local] = uint64_t{~bits} << 32 |
-                                  makeKey(static_cast<uint32_t>(c), static_cast<uint32_t>(local));
+      order_[first_[c] + local] =
+          uint64_t{~bits} << 32 | makeKey(static_cast<uint32_t>(c), static_cast<uint32_t>(local));
     }
   });
   sort(pool);
@@ -72,7 +72,8 @@ void PainterOrder::build(WorkerPool& pool, const std::vector<TriangleChunk>& chu
 
 void PainterOrder::sort(WorkerPool& pool) {
   const size_t total = order_.size();
-  const size_t parts = std::min<size_t>(static_cast<size_t>(pool.size()), std::max<size_t>(total, 1));
+  const size_t parts =
+      std::min<size_t>(static_cast<size_t>(pool.size()), std::max<size_t>(total, 1));
   bounds_.resize(parts + 1);
   for (size_t i = 0; i <= parts; ++i) bounds_[i] = total * i / parts;
   pool.parallelFor(parts, [&](size_t i, int) {

@@ -51,10 +51,10 @@ class PainterOrder {
   // buffer of each round).
   void sort(WorkerPool& pool);
 
-  std::vector<size_t> first_;      // per chunk: the place of its first record in order_
-  std::vector<uint64_t> order_;    // per record: ~depth bits << 32 | key
+  std::vector<size_t> first_;    // per chunk: the place of its first record in order_
+  std::vector<uint64_t> order_;  // per record: ~depth bits << 32 | key
   std::vector<uint64_t> merged_;
-  std::vector<size_t> bounds_;     // the sorted runs, [bounds_[i], bounds_[i + 1])
+  std::vector<size_t> bounds_;  // the sorted runs, [bounds_[i], bounds_[i + 1])
   std::vector<PainterSlice> slices_;
 };
 

@@ -128,7 +128,7 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
             // saved (docs/perf.md, round 5).
             const F32x8 across = x == x_begin ? first_across : depthAcross8(t, x);
             depthTestRow8<kRule>(key, rowDepth(t, y), across, x, covered, tile.depth + row_offset,
-                          tile.key + row_offset);
+                                 tile.key + row_offset);
           });
 }
 
@@ -229,8 +229,8 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide
                              keyRow(tile, y));
       }
       // A block now wholly written by this triangle gets a tighter bound.
-      if (kRule == DepthRule::kNearest && inside && x0 == bx && x1 == bx + kBlock - 1 &&
-          y0 == by && y1 == by + kBlock - 1) {
+      if (kRule == DepthRule::kNearest && inside && x0 == bx && x1 == bx + kBlock - 1 && y0 == by &&
+          y1 == by + kBlock - 1) {
         F32x8 highest = load<F32x8>(depthRow(tile, by) + bx);
         for (int y = by + 1; y < by + kBlock; ++y)
           highest = maximum(highest, load<F32x8>(depthRow(tile, y) + bx));
@@ -464,7 +464,7 @@ TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t k
               // rowDepth and depthAcross8 of the moved triangle (rasterSample).
               const float z_row = t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - y0[i]);
               depthTestRow8<kRule>(key, z_row, dzdx * (centre - splat(x0[i])), x, covered,
-                            layers[i]->depth + row_offset, layers[i]->key + row_offset);
+                                   layers[i]->depth + row_offset, layers[i]->key + row_offset);
             }
           });
 }
@@ -485,11 +485,10 @@ TESSERA_LANES_INLINE void rasterTriangleSamples(const RasterTriangle& t, const R
 void rasterTileSamplesKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
                              int tile_index, TileVisibility* const* layers,
                              const SampleShift* shifts, int layer_count) {
-  walkTileBins(chunks, chunk_count, tile_index,
-               [&](const RasterTriangle& t, const RasterWide& w, uint32_t key)
-                   __attribute__((always_inline)) {
-                     rasterTriangleSamples(t, w, key, layers, shifts, layer_count);
-                   });
+  walkTileBins(
+      chunks, chunk_count, tile_index,
+      [&](const RasterTriangle& t, const RasterWide& w, uint32_t key) __attribute__((
+          always_inline)) { rasterTriangleSamples(t, w, key, layers, shifts, layer_count); });
 }
 
 }  // namespace
