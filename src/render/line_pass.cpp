@@ -66,6 +66,15 @@ void EdgeLines::build(const Scene& scene, const std::vector<ObjectTransforms>& o
   }
 }
 
+void sceneLines(const Scene& scene, const std::vector<ObjectTransforms>& objects, LineList& lines) {
+  lines.points.assign(scene.lines.points.begin(), scene.lines.points.end());
+  lines.colors.assign(scene.lines.colors.begin(), scene.lines.colors.end());
+  if (scene.show_world_axes) appendAxes(lines, float4x4::identity(), scene.world_axes_length);
+  for (size_t i = 0; i < scene.objects.size(); ++i)
+    if (scene.objects[i].show_axes)
+      appendAxes(lines, objects[i].model, scene.objects[i].axes_length);
+}
+
 bool LinePass::wanted(const Scene& scene, const RenderOptions& options) {
   return options.lines &&
          (!scene.lines.points.empty() || scene.show_world_axes || options.edges.show ||
@@ -76,12 +85,7 @@ bool LinePass::wanted(const Scene& scene, const RenderOptions& options) {
 void LinePass::draw(const Scene& scene, const std::vector<ObjectTransforms>& objects,
                     const RenderOptions& options, const float4x4& view_projection, bool antialiased,
                     Frame& frame) {
-  lines_.points.assign(scene.lines.points.begin(), scene.lines.points.end());
-  lines_.colors.assign(scene.lines.colors.begin(), scene.lines.colors.end());
-  if (scene.show_world_axes) appendAxes(lines_, float4x4::identity(), scene.world_axes_length);
-  for (size_t i = 0; i < scene.objects.size(); ++i)
-    if (scene.objects[i].show_axes)
-      appendAxes(lines_, objects[i].model, scene.objects[i].axes_length);
+  sceneLines(scene, objects, lines_);
   drawLines(lines_, view_projection, frame, antialiased);
   if (!options.edges.show) return;
   edges_.build(scene, objects, options.edges.color, edge_lines_);

@@ -39,6 +39,10 @@ class EdgeLines {
   std::vector<uint64_t> edges_;
 };
 
+// Replaces `lines` with the scene's line lists, then the world axes and the axes of the objects
+// that ask for them (objects[i].model: object i's frame).
+void sceneLines(const Scene& scene, const std::vector<ObjectTransforms>& objects, LineList& lines);
+
 class LinePass {
  public:
   // Whether the frame has lines to draw (and so needs a depth buffer).
