@@ -41,3 +41,16 @@ ffmpeg -loglevel error -y -i "$tmp/panorama.png" -i "$tmp/fisheye.png" \
 # Diagnostics: the bunny's overdraw (depth tests per pixel) as a heatmap with its legend.
 "$tessera" render "$bunny" --resolution 480,360 --aov overdraw-heatmap -o "$out/overdraw_heatmap.png"
 ls -la "$out"
+# The painter's algorithm against the z-buffer (a sphere pierced by a blade), and --edges on a
+# quad-faced sphere and a cube (docs/painter_scene.py writes both scenes).
+python3 "$root/docs/painter_scene.py" "$tmp/painter"
+painter=(--resolution 240,180 --camera-position 0,1.5,6 --camera-focal-point 0,0,0
+  --background-color 0.9,0.9,0.9)
+"$tessera" render "$tmp/painter/blade.obj" "${painter[@]}" -o "$tmp/zbuffer.png"
+"$tessera" render "$tmp/painter/blade.obj" "${painter[@]}" --visibility painter -o "$tmp/painter.png"
+ffmpeg -loglevel error -y -i "$tmp/zbuffer.png" -i "$tmp/painter.png" \
+  -filter_complex hstack=inputs=2 "$out/painter.png"
+"$tessera" render "$tmp/painter/shapes.obj" --resolution 360,200 --camera-position 0.5,2,6.5 \
+  --camera-focal-point 0,0,0 --shading flat --background-color 0.9,0.9,0.9 --edges \
+  --edge-color 0.1,0.1,0.1 \
+  -o "$out/edges.png"

@@ -51,6 +51,10 @@ struct RenderSettings {
   std::string stats;      // --stats PATH.json: the frames' diagnostics (docs/stats.md)
   io::LoadBudget budget;  // --memory-limit, --max-triangles, --max-texture-pixels
   SamplingSettings sampling{.msaa = 4};  // the image a user expects: anti-aliased
+  std::string visibility = "z-buffer";
+  bool edges = false;
+  float3 edge_color{0, 0, 0};  // sRGB
+  float line_width = 1.0f;
 };
 
 enum class OutputKind { kPng, kVideo, kSequence };  // kVideo: .gif or .mp4
@@ -71,6 +75,36 @@ Expected<void> writeStill(const std::filesystem::path& path, const Frame& frame,
   return io::writePngRgba8(path, frame.width, frame.height, frame.color.data());
 }
 
+// An sRGB colour flag's value, each channel in 0..1: "" or what is wrong.
+std::string parseSrgbColor(const std::string& v, float3& out) {
+  Expected<float3> c = parseFloat3(v);
+  if (!c) return c.error().message;
+  for (int i = 0; i < 3; ++i)
+    if ((*c)[i] < 0.0f || (*c)[i] > 1.0f) return "each channel must be in 0..1";
+  out = *c;
+  return "";
+}
+
+// --visibility, --edges, --edge-color, --line-width (docs/usage.md).
+void addVisibilityFlags(FlagSet& flags, RenderSettings& s) {
+  flags.addChoice("visibility", &s.visibility, {"z-buffer", "painter"},
+                  "z-buffer, or painter: no depth test, triangles drawn back to front by their "
+                  "average depth (default z-buffer; cpu backend, perspective projection)");
+  flags.addSwitch("edges", &s.edges,
+                  "draw every polygon's outline (cpu backend, perspective projection)");
+  flags.addCustom("edge-color", "R,G,B", "the edges' colour, sRGB 0..1 (default 0,0,0)",
+                  [&](const std::string& v) { return parseSrgbColor(v, s.edge_color); });
+  flags.addCustom("line-width", "PIXELS", "the edges' width in pixels, up to 64 (default 1)",
+                  [&](const std::string& v) -> std::string {
+                    float w;
+                    if (!parseFloatStrict(v, w) || !(w > 0.0f && w <= 64.0f))
+                      return "the width must be a number of pixels above 0 and up to 64, not '" +
+                             v + "'";
+                    s.line_width = w;
+                    return "";
+                  });
+}
+
 void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   flags.addString("o|output", &s.output,
                   "output: .png; .gif, .mp4 or a {frame} PNG template for a turntable "
@@ -78,14 +112,7 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   flags.addCustom("resolution", "W,H", "image size in pixels, W,H or WxH (default 1000,600)",
                   [&](const std::string& v) { return parseSize(v, s.width, s.height); });
   flags.addCustom("background-color", "R,G,B", "background, sRGB 0..1 (default 0.2,0.2,0.2)",
-                  [&](const std::string& v) -> std::string {
-                    Expected<float3> c = parseFloat3(v);
-                    if (!c) return c.error().message;
-                    for (int i = 0; i < 3; ++i)
-                      if ((*c)[i] < 0.0f || (*c)[i] > 1.0f) return "each channel must be in 0..1";
-                    s.background = *c;
-                    return "";
-                  });
+                  [&](const std::string& v) { return parseSrgbColor(v, s.background); });
   addCameraFlags(flags, s.camera);
   flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit"},
                   "flat, smooth (per-pixel), gouraud (per-vertex) or unlit (default smooth)");
@@ -102,6 +129,7 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
                   "write each frame's pipeline counters, stage times and per-tile diagnostics "
                   "to this JSON file (docs/stats.md)");
   addSamplingFlags(flags, s.sampling);
+  addVisibilityFlags(flags, s);
   flags.addInt("turntable", &s.turntable, "frames of one full turn about the up axis", 1, 100000);
   flags.addInt("fps", &s.fps, "frames per second of a turntable (default 30)", 1, 100);
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
@@ -140,6 +168,19 @@ std::string checkOutput(const RenderSettings& s, OutputKind& kind) {
     return "--reference compares one image: use a .png output without --turntable";
   if (s.reference.update && s.reference.path.empty())
     return "--reference-update needs --reference PATH, the file to write";
+  return "";
+}
+
+// What --visibility painter and --edges cannot go with, or "".
+std::string refuseVisibility(const RenderSettings& s, bool diagnostics) {
+  if (s.visibility != "painter" && !s.edges) return "";
+  const std::string what = s.visibility == "painter" ? "--visibility painter" : "--edges";
+  if (s.backend != "cpu") return what + " is drawn by the cpu backend only (use --backend cpu)";
+  if (s.camera.projectionMode() != Projection::kPerspective)
+    return what + " is drawn for the perspective projection only";
+  if (s.visibility == "painter" && diagnostics)
+    return "--stats and the diagnostic AOVs measure the z-buffer's work: leave out --visibility "
+           "painter";
   return "";
 }
 
@@ -217,6 +258,10 @@ RenderOptions renderOptions(const RenderSettings& s, bool diagnostics, SamplingS
   options.coverage = s.aov == "coverage";
   options.diagnostics = diagnostics;
   options.projection = s.camera.projectionMode();
+  if (s.visibility == "painter") options.visibility = Visibility::kPainter;
+  options.edges.show = s.edges;
+  for (int i = 0; i < 3; ++i) options.edges.color[i] = srgbToLinear(s.edge_color[i]);
+  options.edges.width = s.line_width;
   // The id, depth and normal AOVs are the pixel centre's: one sample, no jitter. Coverage is
   // frame 0's (not jittered) at the --msaa count.
   sampling = s.sampling;
@@ -345,6 +390,10 @@ int runRender(const std::vector<std::string>& args) {
     printError("render", "--aov " + s.aov +
                              " is not measured on the vulkan-raster backend (use --backend cpu "
                              "or vulkan)");
+    return kExitFailure;
+  }
+  if (std::string refused = refuseVisibility(s, diagnostics); !refused.empty()) {
+    printError("render", refused);
     return kExitFailure;
   }
   if (needsPixelTests(s.aov) && s.camera.projectionMode() != Projection::kPerspective) {

@@ -557,11 +557,14 @@ Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
           finite &= isFinite(mesh.positions[vertex]);
         }
         mesh.triangle_materials.push_back(material);
+        mesh.triangle_edges.push_back(PolygonSplitter::outlineEdges(&local_triangles[t], n));
         if (!finite) ++model.nonfinite_triangles;
       }
     }
   }
 
+  if (std::ranges::all_of(mesh.triangle_edges, [](uint8_t e) { return e == kAllTriangleEdges; }))
+    mesh.triangle_edges.clear();  // triangles only: every edge an outline
   if (!use_file_normals) {
     // Per OBJ position, so a seam in the texture coordinates does not show as a crease.
     Mesh by_position;

@@ -24,6 +24,17 @@ constexpr uint64_t kEarClipBudget = 1'000'000'000;
 // reflex corners can lie inside an ear, and clipping an ear changes only its two neighbours.
 class PolygonSplitter {
  public:
+  // Which edges of the triangle of corners[0..2] of an n-gon are polygon sides (corners next
+  // to each other, first and last included): Mesh::triangle_edges' bits.
+  static uint8_t outlineEdges(const uint32_t corners[3], size_t n) {
+    if (n == 3) return 0b111;  // most files: no division
+    auto side = [&](int k) {
+      const size_t p = corners[k], q = corners[(k + 1) % 3];
+      return (p + 1) % n == q || (q + 1) % n == p;
+    };
+    return static_cast<uint8_t>(side(0) | side(1) << 1 | side(2) << 2);
+  }
+
   // Appends n - 2 triangles (corner numbers, the polygon's winding) to `triangles`. False when
   // the file's ear-clipping budget has run out.
   bool split(std::span<const float3> corners, std::vector<uint32_t>& triangles) {

@@ -28,8 +28,9 @@
 #include "render/diagnostics.h"
 #include "render/fixed_point.h"
 #include "render/kernels.h"
-#include "render/lines.h"
+#include "render/line_pass.h"
 #include "render/msaa.h"
+#include "render/painter.h"
 #include "render/raster.h"
 #include "render/ray_renderer.h"
 #include "render/replication.h"
@@ -101,9 +102,10 @@ struct CpuRenderer::State {
   std::vector<std::unique_ptr<SampleTiles>> sampled;   // one per worker, made for MSAA
   std::vector<SampleShift> shifts;                     // this frame's sample layers
   std::vector<uint8_t> tile_empty;                     // this frame's: no triangle binned
-  LineList lines;
+  PainterOrder painter;                                // RenderOptions::visibility kPainter
+  LinePass line_pass;
   PipelineStats stats;
-  RayRenderer rays;  // the nonlinear projections
+  RayRenderer rays;             // the nonlinear projections
   DiagnosticsPass diagnostics;  // RenderOptions::diagnostics
 
   void setupChunk(const Scene& scene, const VertexBuffer& vertices, const TileGrid& grid,
@@ -375,7 +377,11 @@ void CpuRenderer::State::renderSampledTile(const Scene& scene, const RenderOptio
     layers[i] = &st.layer(i);
     layers[i]->clear(x0, y0, width, height);
   }
-  kernels.raster_tile_samples(chunks, chunk_count, tile, layers, shifts.data(), layer_count);
+  if (options.visibility == Visibility::kPainter)
+    kernels.raster_painter_tile_samples(chunks, painter.slices(), tile, layers, shifts.data(),
+                                        layer_count);
+  else
+    kernels.raster_tile_samples(chunks, chunk_count, tile, layers, shifts.data(), layer_count);
   kernels.combine_samples(st, options.msaa, with_centre);
   const MsaaShading msaa{&st, options.msaa, samplePattern(options.msaa).data(),
                          scene.background.xyz()};
@@ -399,17 +405,16 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     return;
   }
   frame.diagnostics.valid = false;
+  const bool painter = options.visibility == Visibility::kPainter;
   if (options.projection != Projection::kPerspective) {
+    TESSERA_CHECK(!painter) << "the painter's algorithm draws the perspective projection only";
     s.rays.render(scene, options, frame, s.pool, s.kernels, s.stats);
     if (options.diagnostics)
       s.diagnostics.run(s.pool, {}, 0, scene, TileGrid::forViewport(options.width, options.height),
                         false, s.stats, frame);
     return;
   }
-  const bool draws_lines =
-      options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
-                        std::any_of(scene.objects.begin(), scene.objects.end(),
-                                    [](const Object& o) { return o.show_axes; }));
+  const bool draws_lines = LinePass::wanted(scene, options);
   frame.resize(options.width, options.height, options.depth || draws_lines, options.ids,
                options.normals, options.coverage);
 
@@ -466,7 +471,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const GuardBand guard = makeGuardBand(options.width, options.height);
   const ViewportTransform viewport{static_cast<float>(options.width),
                                    static_cast<float>(options.height), guard};
-  const bool replicable = mayReplicate(vertex_total, s.pool.size());
+  // The painter's sort reads one whole copy of the vertices (painter.h).
+  const bool replicable = !painter && mayReplicate(vertex_total, s.pool.size());
   const bool replicate = replicable && s.replication.next(vertex_total, triangle_total);
   const size_t copies = replicate ? static_cast<size_t>(s.pool.size()) : 1;
   if (s.vertex_buffers.size() < copies) s.vertex_buffers.resize(copies);
@@ -505,6 +511,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     s.setupChunk(scene, s.vertex_buffers[replicate ? w : 0], grid, guard, options.normals,
                  sample_reach, s.chunks[c]);
   });
+  if (painter)
+    s.painter.build(s.pool, s.chunks, s.chunk_count, scene, s.objects, s.vertex_buffers[0], grid);
 
   const Clock::time_point t_setup = Clock::now();
 
@@ -538,7 +546,10 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     }
     TileVisibility& visibility = *s.tiles[static_cast<size_t>(worker)];
     visibility.clear(x0, y0, width, height);
-    s.kernels.raster_tile(s.chunks, s.chunk_count, tile, visibility);
+    if (painter)
+      s.kernels.raster_painter_tile(s.chunks, s.painter.slices(), tile, visibility);
+    else
+      s.kernels.raster_tile(s.chunks, s.chunk_count, tile, visibility);
     ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
     s.kernels.shade_tile(visibility, s.chunks, s.chunk_count, scene, options.normals, plain,
                          background, nullptr, shaded);
@@ -550,15 +561,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   if (replicable) s.replication.record(replicate, elapsed_ms(t_start, t_tiles));
 
   // Lines.
-  if (draws_lines) {
-    s.lines.points.assign(scene.lines.points.begin(), scene.lines.points.end());
-    s.lines.colors.assign(scene.lines.colors.begin(), scene.lines.colors.end());
-    if (scene.show_world_axes) appendAxes(s.lines, float4x4::identity(), scene.world_axes_length);
-    for (size_t i = 0; i < scene.objects.size(); ++i)
-      if (scene.objects[i].show_axes)
-        appendAxes(s.lines, s.objects[i].model, scene.objects[i].axes_length);
-    drawLines(s.lines, view_projection, frame, sampled);
-  }
+  if (draws_lines) s.line_pass.draw(scene, s.objects, options, view_projection, sampled, frame);
 
   const Clock::time_point t_lines = Clock::now();
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "render/msaa.h"
+#include "render/painter.h"
 #include "render/raster.h"
 #include "render/ray_setup.h"
 #include "render/setup.h"
@@ -55,6 +56,16 @@ using ShadeRayTileFn = void (*)(const TileVisibility& tile,
                                 const Scene& scene, bool want_normals, uint32_t background,
                                 const RayTable& rays, const MsaaShading* msaa, ShadedTile& out);
 
+// The painter's raster (painter_kernel.h): the records binned to the tile in `slices`, slice
+// after slice, each drawn over what is there; into one layer or several, as the two above.
+using RasterPainterTileFn = void (*)(const std::vector<TriangleChunk>& chunks,
+                                     const std::vector<PainterSlice>& slices, int tile_index,
+                                     TileVisibility& tile);
+using RasterPainterTileSamplesFn = void (*)(const std::vector<TriangleChunk>& chunks,
+                                            const std::vector<PainterSlice>& slices, int tile_index,
+                                            TileVisibility* const* layers,
+                                            const SampleShift* shifts, int layer_count);
+
 // Every kernel compiled for one instruction set.
 struct Kernels {
   TransformVerticesFn transform_vertices;   // vertex_kernel.h
@@ -66,9 +77,20 @@ struct Kernels {
   CombineSamplesFn combine_samples;         // msaa_kernel.h
   RasterRayTileFn raster_ray_tile;          // ray_kernel.h
   ShadeRayTileFn shade_ray_tile;            // ray_kernel.h
+  RasterPainterTileFn raster_painter_tile;  // painter_kernel.h
+  RasterPainterTileSamplesFn raster_painter_tile_samples;
 };
 
 Kernels kernelsFor(Isa isa);
+
+// The table of the kernels compiled in this translation unit (kernels_<isa>.cpp, which includes
+// every *_kernel.h), in Kernels' order: one list for the four instruction sets.
+#define TESSERA_KERNELS_OF_THIS_ISA                                                                \
+  Kernels {                                                                                        \
+    transformVerticesKernel, cullGroupKernel, setupBatchKernel, rasterTileKernel, shadeTileKernel, \
+        rasterTileSamplesKernel, combineSamplesKernel, rasterRayTileKernel, shadeRayTileKernel,    \
+        rasterPainterTileKernel, rasterPainterTileSamplesKernel                                    \
+  }
 
 // One table per instruction set, defined in kernels_<isa>.cpp.
 extern const Kernels kKernelsScalar;

@@ -1,6 +1,7 @@
 // The kernels compiled for scalar (CMakeLists.txt gives this file its flags).
 #define TESSERA_SIMD_SCALAR 1  // the lanes are plain arrays
 #include "render/kernels.h"
+#include "render/painter_kernel.h"
 #include "render/raster_kernel.h"
 #include "render/ray_kernel.h"
 #include "render/setup_kernel.h"
@@ -9,8 +10,6 @@
 
 namespace tessera::render {
 
-const Kernels kKernelsScalar = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
-                                rasterTileKernel,        shadeTileKernel, rasterTileSamplesKernel,
-                                combineSamplesKernel, rasterRayTileKernel, shadeRayTileKernel};
+const Kernels kKernelsScalar = TESSERA_KERNELS_OF_THIS_ISA;
 
 }  // namespace tessera::render

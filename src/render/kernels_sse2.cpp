@@ -1,5 +1,6 @@
 // The kernels compiled for sse2 (CMakeLists.txt gives this file its flags).
 #include "render/kernels.h"
+#include "render/painter_kernel.h"
 #include "render/raster_kernel.h"
 #include "render/ray_kernel.h"
 #include "render/setup_kernel.h"
@@ -8,8 +9,6 @@
 
 namespace tessera::render {
 
-const Kernels kKernelsSse2 = {transformVerticesKernel, cullGroupKernel, setupBatchKernel,
-                              rasterTileKernel,        shadeTileKernel, rasterTileSamplesKernel,
-                              combineSamplesKernel, rasterRayTileKernel, shadeRayTileKernel};
+const Kernels kKernelsSse2 = TESSERA_KERNELS_OF_THIS_ISA;
 
 }  // namespace tessera::render

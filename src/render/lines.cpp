@@ -66,8 +66,38 @@ void blendPixel(Frame& frame, int x, int y, float z, float3 color, float a) {
 
 namespace {
 
+// The pixels across a wide line at a step: those whose row (or column) overlaps the line's
+// `width` about `across`, with that overlap as their weight when anti-aliased.
+void drawAcross(Frame& frame, bool x_major, int along, float across, float z, float3 linear,
+                uint32_t color, bool antialiased, float width) {
+  const float low = across - 0.5f * width, high = across + 0.5f * width;
+  auto put = [&](int k, float weight) {
+    const int x = x_major ? along : k, y = x_major ? k : along;
+    if (antialiased) {
+      blendPixel(frame, x, y, z, linear, weight);
+      return;
+    }
+    if (x < 0 || y < 0 || x >= frame.width || y >= frame.height) return;
+    const size_t index = static_cast<size_t>(y) * frame.width + x;
+    if (z < frame.depth[index]) frame.color[index] = color;
+  };
+  if (!antialiased) {
+    // The pixels whose centres are within the width (one pixel wide: the one holding `across`).
+    const int first = static_cast<int>(std::floor(across - 0.5f * (width - 1.0f)));
+    const int last = static_cast<int>(std::floor(across + 0.5f * (width - 1.0f)));
+    for (int k = first; k <= last; ++k) put(k, 1.0f);
+    return;
+  }
+  const int first = static_cast<int>(std::floor(low)), last = static_cast<int>(std::floor(high));
+  for (int k = first; k <= last; ++k) {
+    const float kf = static_cast<float>(k);
+    put(k, std::min(high, kf + 1.0f) - std::max(low, kf));
+  }
+}
+
 // Steps along the window-space segment sa-sb (z: window depth) a pixel at a time.
-void drawWindowSegment(Frame& frame, float3 sa, float3 sb, float3 linear, bool antialiased) {
+void drawWindowSegment(Frame& frame, float3 sa, float3 sb, float3 linear, bool antialiased,
+                       float width = 1.0f) {
   const float w = static_cast<float>(frame.width), h = static_cast<float>(frame.height);
   const uint32_t color = packSrgba8(float4{linear, 1.0f});
   const bool x_major = std::fabs(sb.x - sa.x) >= std::fabs(sb.y - sa.y);
@@ -76,6 +106,12 @@ void drawWindowSegment(Frame& frame, float3 sa, float3 sb, float3 linear, bool a
   for (int s = 0; s <= n; ++s) {
     const float t = n > 0 ? static_cast<float>(s) / n : 0.0f;
     const float3 p = lerp(sa, sb, t);
+    if (width != 1.0f) {
+      const int along = static_cast<int>(std::floor(x_major ? p.x : p.y));
+      drawAcross(frame, x_major, along, x_major ? p.y : p.x, p.z, linear, color, antialiased,
+                 width);
+      continue;
+    }
     if (antialiased) {
       // The two pixel centres across the line nearest p, by their distance from it.
       const float across = (x_major ? p.y : p.x) - 0.5f;
@@ -101,11 +137,17 @@ void drawWindowSegment(Frame& frame, float3 sa, float3 sb, float3 linear, bool a
 }  // namespace
 
 void drawLines(const LineList& lines, const float4x4& view_projection, Frame& frame,
-               bool antialiased) {
+               bool antialiased, const LineStyle& style) {
   const float w = static_cast<float>(frame.width), h = static_cast<float>(frame.height);
+  // Pulled towards the eye in clip space: the clip position is linear in the world position.
+  const float4 eye = view_projection * float4{style.eye, 1.0f};
   for (size_t i = 0; i + 1 < lines.points.size(); i += 2) {
     float4 a = view_projection * float4{lines.points[i], 1.0f};
     float4 b = view_projection * float4{lines.points[i + 1], 1.0f};
+    if (style.pull != 0.0f) {
+      a = lerp(a, eye, style.pull);
+      b = lerp(b, eye, style.pull);
+    }
     if (!clipSegment(a, b)) continue;
     auto window = [&](float4 p) {
       return float3{(p.x / p.w * 0.5f + 0.5f) * w, (0.5f - p.y / p.w * 0.5f) * h,
@@ -113,7 +155,7 @@ void drawLines(const LineList& lines, const float4x4& view_projection, Frame& fr
     };
     const float3 sa = window(a), sb = window(b);
     if (!isFinite(sa) || !isFinite(sb)) continue;
-    drawWindowSegment(frame, sa, sb, lines.colors[i / 2], antialiased);
+    drawWindowSegment(frame, sa, sb, lines.colors[i / 2], antialiased, style.width);
   }
 }
 

@@ -13,11 +13,22 @@ namespace tessera::render {
 // `length` long in the frame's own units.
 void appendAxes(LineList& lines, const float4x4& frame_matrix, float length);
 
-// Draws each segment (one pixel wide, clipped to the view frustum) where it is nearer than the
-// frame's depth. Antialiased (with MSAA), each step along the line's major axis covers the two
-// pixels nearest it across, weighted by distance and blended in linear light.
+// How drawLines draws its segments.
+struct LineStyle {
+  // In pixels, across the line's major axis. Above one the pixels whose centres are within
+  // width / 2 of the line (anti-aliased: every pixel the width overlaps, by how much).
+  float width = 1.0f;
+  // A depth bias that scales with distance: each point is moved this fraction of the way to
+  // `eye` (world space) before projection, so it lands on the same pixel at a nearer depth.
+  float pull = 0.0f;
+  float3 eye{};
+};
+
+// Draws each segment (clipped to the view frustum) where it is nearer than the frame's depth.
+// Antialiased (with MSAA), each step along the line's major axis covers the two pixels nearest
+// it across, weighted by distance and blended in linear light.
 void drawLines(const LineList& lines, const float4x4& view_projection, Frame& frame,
-               bool antialiased = false);
+               bool antialiased = false, const LineStyle& style = {});
 
 // The nonlinear projections' lines: camera-space points through the mode's mapping, depth as the
 // distance from near (0) to far (1), as the ray path writes it.

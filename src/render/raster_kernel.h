@@ -24,6 +24,11 @@ namespace {  // one private copy per translation unit, each compiled for its ins
 constexpr int kLanes = 8;
 constexpr int kBlock = 8;
 
+// A covered pixel's test: the z-buffer's (nearer than the stored depth wins; Hi-Z skips what
+// cannot win) or the painter's (painter.h: every covered pixel is written, so the later triangle
+// wins, and Hi-Z is off). A template argument, so the z-buffer's kernels stay as they were.
+enum class DepthRule { kNearest, kLatest };
+
 // The z plane's change from the row's value at the centres of pixels x .. x + 7.
 TESSERA_LANES_INLINE F32x8 depthAcross8(const RasterTriangle& t, int x) {
   const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
@@ -34,18 +39,20 @@ TESSERA_LANES_INLINE F32x8 depthAcross8(const RasterTriangle& t, int x) {
 // the key; the others write back what they read (the tile rows are padded, so the eight slots
 // always exist). z is the plane at the pixel centre, the row's depth plus depthAcross8 at x,
 // computed exactly as everywhere else.
+template <DepthRule kRule = DepthRule::kNearest>
 TESSERA_LANES_INLINE void depthTestRow8(uint32_t key, float z_row, F32x8 across, int x,
                                         I32x8 covered, float* depth, uint32_t* keys) {
   const F32x8 z = splat(z_row) + across;
   const F32x8 stored = load<F32x8>(depth + x);
-  const I32x8 pass = covered & lessThan(z, stored);
+  const I32x8 pass = kRule == DepthRule::kLatest ? covered : covered & lessThan(z, stored);
   store(depth + x, select(pass, z, stored));
   store(keys + x, select(pass, splat(static_cast<int32_t>(key)), load<I32x8>(keys + x)));
 }
 
+template <DepthRule kRule = DepthRule::kNearest>
 TESSERA_LANES_INLINE void depthTestRow8(const RasterTriangle& t, uint32_t key, float z_row, int x,
                                         I32x8 covered, float* depth, uint32_t* keys) {
-  depthTestRow8(key, z_row, depthAcross8(t, x), x, covered, depth, keys);
+  depthTestRow8<kRule>(key, z_row, depthAcross8(t, x), x, covered, depth, keys);
 }
 
 TESSERA_LANES_INLINE float rowDepth(const RasterTriangle& t, int y) {
@@ -106,6 +113,7 @@ TESSERA_LANES_INLINE void walkSmallBox(const RasterTriangle& t, const TileVisibi
   }
 }
 
+template <DepthRule kRule>
 TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
                                       int x_begin, int x_end, int y_begin, int y_end) {
   const F32x8 first_across = depthAcross8(t, x_begin);  // most boxes are one chunk wide
@@ -119,14 +127,15 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
             // either way and mispredicted often enough to cost more than the work it
             // saved (docs/perf.md, round 5).
             const F32x8 across = x == x_begin ? first_across : depthAcross8(t, x);
-            depthTestRow8(key, rowDepth(t, y), across, x, covered, tile.depth + row_offset,
-                          tile.key + row_offset);
+            depthTestRow8<kRule>(key, rowDepth(t, y), across, x, covered, tile.depth + row_offset,
+                                 tile.key + row_offset);
           });
 }
 
 // Triangles at most four pixels wide (most of a dense mesh): two rows per step, lanes 0-3 on row
 // y and lanes 4-7 on row y + 1, so a step does the work of two rows of rasterSmall. The same
 // values per pixel as rasterSmall (edge values, z), hence the same bits.
+template <DepthRule kRule>
 TESSERA_LANES_INLINE void rasterNarrow(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
                                        int x_begin, int x_end, int y_begin, int y_end) {
   const I32x8 column = iota() & splat(int32_t{3});
@@ -161,7 +170,7 @@ TESSERA_LANES_INLINE void rasterNarrow(const RasterTriangle& t, uint32_t key, Ti
     // No branch on an empty group, as in rasterSmall.
     const F32x8 z = (z0 + dzdy * (centre_y - y0)) + dz;
     const F32x8 stored = load2x4<F32x8>(depth, depth + kTileSize);
-    const I32x8 pass = covered & lessThan(z, stored);
+    const I32x8 pass = kRule == DepthRule::kLatest ? covered : covered & lessThan(z, stored);
     store2x4(depth, depth + kTileSize, select(pass, z, stored));
     store2x4(
         keys, keys + kTileSize,
@@ -175,6 +184,7 @@ TESSERA_LANES_INLINE int64_t edgeAt(const RasterTriangle& t, const RasterWide& w
          t.b[k] * (static_cast<int64_t>(y) * kSubpixelOne + kSubpixelHalf) + w.c[k];
 }
 
+template <DepthRule kRule>
 TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide& w, uint32_t key,
                                        TileVisibility& tile, int x_begin, int x_end, int y_begin,
                                        int y_end) {
@@ -202,7 +212,8 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide
       float& block_max =
           tile.block_max_depth[((by - tile.y0) / kBlock) * TileVisibility::kHiZBlocksPerRow +
                                (bx - tile.x0) / kBlock];
-      if (w.z_min >= block_max) continue;  // Hi-Z: every stored depth here is nearer
+      // Hi-Z: every stored depth here is nearer.
+      if (kRule == DepthRule::kNearest && w.z_min >= block_max) continue;
       const I32x8 columns = splat(bx) + lanes;
       const I32x8 in_range = lessOrEqual(splat(x0), columns) & lessOrEqual(columns, splat(x1));
       for (int y = y0; y <= y1; ++y) {
@@ -214,10 +225,12 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide
                    lanes64 * splat(static_cast<int64_t>(t.a[k]) * kSubpixelOne);
           covered = covered & nonNegative(e[0] | e[1] | e[2]);
         }
-        depthTestRow8(t, key, rowDepth(t, y), bx, covered, depthRow(tile, y), keyRow(tile, y));
+        depthTestRow8<kRule>(t, key, rowDepth(t, y), bx, covered, depthRow(tile, y),
+                             keyRow(tile, y));
       }
       // A block now wholly written by this triangle gets a tighter bound.
-      if (inside && x0 == bx && x1 == bx + kBlock - 1 && y0 == by && y1 == by + kBlock - 1) {
+      if (kRule == DepthRule::kNearest && inside && x0 == bx && x1 == bx + kBlock - 1 && y0 == by &&
+          y1 == by + kBlock - 1) {
         F32x8 highest = load<F32x8>(depthRow(tile, by) + bx);
         for (int y = by + 1; y < by + kBlock; ++y)
           highest = maximum(highest, load<F32x8>(depthRow(tile, y) + bx));
@@ -252,6 +265,7 @@ TESSERA_LANES_INLINE bool hiddenByHiZ(const RasterTriangle& t, const TileVisibil
 }
 
 // `wide` is read only for a large triangle.
+template <DepthRule kRule = DepthRule::kNearest>
 TESSERA_LANES_INLINE void rasterTriangle(const RasterTriangle& t, const RasterWide& wide,
                                          uint32_t key, TileVisibility& tile) {
   const int x_begin = std::max<int>(t.min_x, tile.x0);
@@ -260,15 +274,17 @@ TESSERA_LANES_INLINE void rasterTriangle(const RasterTriangle& t, const RasterWi
   const int y_end = std::min(t.maxY(), tile.y0 + tile.height - 1);
   if (x_begin > x_end || y_begin > y_end) return;
   if (t.small()) {
-    if (tile.hiz_bounded && hiddenByHiZ(t, tile, x_begin, x_end, y_begin, y_end)) return;
+    if (kRule == DepthRule::kNearest && tile.hiz_bounded &&
+        hiddenByHiZ(t, tile, x_begin, x_end, y_begin, y_end))
+      return;
     // Two rows or more: the box is then at least a pixel tall, so |b| * 2 pixels < 2^30 (from
     // RasterTriangle::small) and the row after y_end that rasterNarrow forms still fits in int32.
     if (x_end - x_begin < 4 && y_end > y_begin)
-      rasterNarrow(t, key, tile, x_begin, x_end, y_begin, y_end);
+      rasterNarrow<kRule>(t, key, tile, x_begin, x_end, y_begin, y_end);
     else
-      rasterSmall(t, key, tile, x_begin, x_end, y_begin, y_end);
+      rasterSmall<kRule>(t, key, tile, x_begin, x_end, y_begin, y_end);
   } else {
-    rasterBlocks(t, wide, key, tile, x_begin, x_end, y_begin, y_end);
+    rasterBlocks<kRule>(t, wide, key, tile, x_begin, x_end, y_begin, y_end);
   }
 }
 
@@ -358,6 +374,7 @@ void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_cou
 // y0 give back exactly), is narrower by up to a pixel on each side: most of a dense mesh's
 // triangles are a few pixels across, so that is a large share of their pixels. A small
 // triangle's moved values fit in int32 (smallBox with the sample reach).
+template <DepthRule kRule>
 TESSERA_LANES_INLINE void rasterSample(const RasterTriangle& t, const RasterWide& w, uint32_t key,
                                        const SampleShift& shift, TileVisibility& tile) {
   // The snapped vertices in 1/256 pixel (edge 2 runs v0 -> v1, edge 1 v2 -> v0; setup.cpp).
@@ -390,19 +407,20 @@ TESSERA_LANES_INLINE void rasterSample(const RasterTriangle& t, const RasterWide
     for (int k = 0; k < 3; ++k)
       moved.corner[k] =
           static_cast<int32_t>(t.corner[k] + int64_t{t.a[k]} * step_x + int64_t{t.b[k]} * step_y);
-    rasterTriangle(moved, w, key, tile);  // a small triangle's wide record is not read
+    rasterTriangle<kRule>(moved, w, key, tile);  // a small triangle's wide record is not read
     return;
   }
   RasterWide moved_wide;
   for (int k = 0; k < 3; ++k)
     moved_wide.c[k] = w.c[k] + int64_t{t.a[k]} * shift.dx + int64_t{t.b[k]} * shift.dy;
   moved_wide.z_min = w.z_min;
-  rasterTriangle(moved, moved_wide, key, tile);
+  rasterTriangle<kRule>(moved, moved_wide, key, tile);
 }
 
 // A small triangle into every layer at once: rasterSmall's walk over its box, eight pixels at a
 // time, with each layer's edge values the centre's plus that sample's a * dx + b * dy (within
 // int32: smallBox with the sample reach) and its depth as rasterSample forms it (the same bits).
+template <DepthRule kRule>
 TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t key,
                                              TileVisibility* const* layers,
                                              const SampleShift* shifts, int layer_count) {
@@ -422,7 +440,7 @@ TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t k
     x0[i] = t.x0 - shifts[i].pixels_x;
     y0[i] = t.y0 - shifts[i].pixels_y;
     drawn[i] = true;
-    if (layers[i]->hiz_bounded) {
+    if (kRule == DepthRule::kNearest && layers[i]->hiz_bounded) {
       RasterTriangle moved = t;
       moved.x0 = x0[i];
       moved.y0 = y0[i];
@@ -445,10 +463,22 @@ TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t k
               if (!any(covered)) continue;
               // rowDepth and depthAcross8 of the moved triangle (rasterSample).
               const float z_row = t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - y0[i]);
-              depthTestRow8(key, z_row, dzdx * (centre - splat(x0[i])), x, covered,
-                            layers[i]->depth + row_offset, layers[i]->key + row_offset);
+              depthTestRow8<kRule>(key, z_row, dzdx * (centre - splat(x0[i])), x, covered,
+                                   layers[i]->depth + row_offset, layers[i]->key + row_offset);
             }
           });
+}
+
+// One triangle into each layer of `layers`, layer i at shifts[i].
+template <DepthRule kRule = DepthRule::kNearest>
+TESSERA_LANES_INLINE void rasterTriangleSamples(const RasterTriangle& t, const RasterWide& w,
+                                                uint32_t key, TileVisibility* const* layers,
+                                                const SampleShift* shifts, int layer_count) {
+  if (t.small()) {
+    rasterSmallSamples<kRule>(t, key, layers, shifts, layer_count);
+    return;
+  }
+  for (int i = 0; i < layer_count; ++i) rasterSample<kRule>(t, w, key, shifts[i], *layers[i]);
 }
 
 // Every triangle of the tile into each layer of `layers`, layer i at shifts[i].
@@ -457,14 +487,8 @@ void rasterTileSamplesKernel(const std::vector<TriangleChunk>& chunks, size_t ch
                              const SampleShift* shifts, int layer_count) {
   walkTileBins(
       chunks, chunk_count, tile_index,
-      [&](const RasterTriangle& t, const RasterWide& w, uint32_t key)
-          __attribute__((always_inline)) {
-            if (t.small()) {
-              rasterSmallSamples(t, key, layers, shifts, layer_count);
-              return;
-            }
-            for (int i = 0; i < layer_count; ++i) rasterSample(t, w, key, shifts[i], *layers[i]);
-          });
+      [&](const RasterTriangle& t, const RasterWide& w, uint32_t key) __attribute__((
+          always_inline)) { rasterTriangleSamples(t, w, key, layers, shifts, layer_count); });
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "render/chunk_layout.h"
 #include "render/clip.h"
+#include "render/line_pass.h"
 #include "render/lines.h"
 #include "render/ray_setup.h"
 #include "render/resolve.h"
@@ -241,12 +242,7 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const Clock::time_point t_tiles = Clock::now();
 
   if (draws_lines) {
-    lines_.points.assign(scene.lines.points.begin(), scene.lines.points.end());
-    lines_.colors.assign(scene.lines.colors.begin(), scene.lines.colors.end());
-    if (scene.show_world_axes) appendAxes(lines_, float4x4::identity(), scene.world_axes_length);
-    for (size_t i = 0; i < scene.objects.size(); ++i)
-      if (scene.objects[i].show_axes)
-        appendAxes(lines_, objects_[i].model, scene.objects[i].axes_length);
+    sceneLines(scene, objects_, lines_);
     const RayLines mode{options.projection,
                         static_cast<double>(scene.camera.fov_y_degrees) * std::numbers::pi / 180.0,
                         scene.camera.near_z, scene.camera.far_z};

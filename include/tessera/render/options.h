@@ -6,6 +6,22 @@
 
 namespace tessera {
 
+// How a pixel's triangle is chosen. kDepthBuffer: the nearest (the z-buffer). kPainter: the
+// painter's algorithm, without a depth test: triangles sorted back to front by the average of
+// their three window depths (ties in submission order) and drawn in that order, the last to
+// cover a pixel keeping it; the depth AOV is then that triangle's depth. CPU backend and
+// perspective projection only.
+enum class Visibility { kDepthBuffer, kPainter };
+
+// Every polygon's outline (Mesh::triangle_edges), drawn in the line pass over the image,
+// depth-tested with a bias (render/line_pass.h) and anti-aliased with MSAA as lines are.
+// CPU backend and perspective projection only.
+struct EdgeOptions {
+  bool show = false;
+  float3 color{0.0f, 0.0f, 0.0f};  // linear RGB
+  float width = 1.0f;              // pixels, above 0
+};
+
 struct RenderOptions {
   int width = 480;
   int height = 480;
@@ -28,6 +44,8 @@ struct RenderOptions {
   // other modes test each pixel's ray against the triangles (render/ray_setup.h), with the
   // camera's fov_y_degrees as the mode's view angle.
   Projection projection = Projection::kPerspective;
+  Visibility visibility = Visibility::kDepthBuffer;
+  EdgeOptions edges;  // drawn when `lines` is set too
 };
 
 // The options a backend renders `options` with: the diagnostics read the frame's centre depths

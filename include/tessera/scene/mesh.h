@@ -9,6 +9,10 @@
 
 namespace tessera {
 
+// Mesh::triangle_edges: bit k set when the triangle's edge from corner k to corner (k + 1) % 3
+// is a side of the polygon it came from (not a diagonal of its triangulation).
+constexpr uint8_t kAllTriangleEdges = 0b111;
+
 struct Bounds {
   // Empty: min above max. Infinite, so that any finite position, however large, sets them.
   float3 min{std::numeric_limits<float>::infinity()};
@@ -32,6 +36,9 @@ struct Mesh {
   std::vector<uint32_t> indices;  // three per triangle
   std::vector<uint16_t> triangle_materials;  // one per triangle, index into Object::materials;
                                              // empty: material 0 everywhere
+  // One per triangle: which of its edges are polygon outline (kAllTriangleEdges' bits), for
+  // RenderOptions::edges. Empty: every edge of every triangle.
+  std::vector<uint8_t> triangle_edges;
 
   size_t vertexCount() const { return positions.size(); }
   size_t triangleCount() const { return indices.size() / 3; }

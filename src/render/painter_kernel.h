@@ -1,0 +1,48 @@
+// The painter's tile raster (painter.h), compiled per instruction set beside raster_kernel.h:
+// the records binned to the tile, slice after slice (back to front), each drawn over what is
+// there (DepthRule::kLatest), into one visibility buffer or every sample layer.
+#pragma once
+
+#include <vector>
+
+#include "render/painter.h"
+#include "render/raster_kernel.h"
+
+namespace tessera::render {
+namespace {  // one private copy per translation unit, as raster_kernel.h
+
+// Calls draw(raster, wide, key) for every record binned to the tile, in the painter's order.
+template <typename Draw>
+TESSERA_LANES_INLINE void walkPainterBins(const std::vector<TriangleChunk>& chunks,
+                                          const std::vector<PainterSlice>& slices, int tile_index,
+                                          Draw draw) {
+  for (const PainterSlice& slice : slices) {
+    const uint32_t* end = slice.bins.end(tile_index);
+    for (const uint32_t* it = slice.bins.begin(tile_index); it != end; ++it) {
+      const TriangleChunk& chunk = chunks[keyChunk(*it)];
+      draw(chunk.raster[keyLocal(*it)], chunk.wide[keyLocal(*it)], *it);
+    }
+  }
+}
+
+void rasterPainterTileKernel(const std::vector<TriangleChunk>& chunks,
+                             const std::vector<PainterSlice>& slices, int tile_index,
+                             TileVisibility& tile) {
+  walkPainterBins(chunks, slices, tile_index,
+                  [&](const RasterTriangle& t, const RasterWide& w, uint32_t key) {
+                    rasterTriangle<DepthRule::kLatest>(t, w, key, tile);
+                  });
+}
+
+void rasterPainterTileSamplesKernel(const std::vector<TriangleChunk>& chunks,
+                                    const std::vector<PainterSlice>& slices, int tile_index,
+                                    TileVisibility* const* layers, const SampleShift* shifts,
+                                    int layer_count) {
+  walkPainterBins(
+      chunks, slices, tile_index, [&](const RasterTriangle& t, const RasterWide& w, uint32_t key) {
+        rasterTriangleSamples<DepthRule::kLatest>(t, w, key, layers, shifts, layer_count);
+      });
+}
+
+}  // namespace
+}  // namespace tessera::render
