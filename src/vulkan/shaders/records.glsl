@@ -27,6 +27,7 @@ struct RasterRecord {
 struct ShadeRecord {
   vec4 normal[3];  // world shading normals, facing the viewer for drawn back faces
   vec4 color[3];   // base colour x vertex colour, already lit for flat and Gouraud
+  vec4 world[3];   // world positions (Phong with point and spot lights)
   vec2 uv[3];
   float inv_w0, p1dx, p1dy, p2dx, p2dy, sdx, sdy;
   uint triangle_id;

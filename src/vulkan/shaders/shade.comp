@@ -130,7 +130,10 @@ vec3 shadeAt(uint slot, ivec2 pixel, uint layer) {
   const vec3 b = pointBarycentrics(slot, s, pixel, layer);
   precise vec3 color = s.color[0].xyz * b.x + s.color[1].xyz * b.y + s.color[2].xyz * b.z;
   if ((s.shading & kShadeHasUv) != 0u) color = color * sampleAlbedo(slot, s, b, pixel, layer);
-  if ((s.shading & 255u) == kShadingPhong) color = color * irradiance(normalAt(s, b));
+  if ((s.shading & 255u) == kShadingPhong) {
+    precise vec3 p = s.world[0].xyz * b.x + s.world[1].xyz * b.y + s.world[2].xyz * b.z;
+    color = color * irradiance(normalAt(s, b), p);
+  }
   return color;
 }
 
