@@ -4,23 +4,17 @@ namespace tessera::bench {
 
 namespace {
 
-// The lighting of tessera's shading stage (src/render/setup.cpp and shade.cpp) in GLSL 1.20:
-// Lambert from directional, point and spot lights plus ambient, on the world normal (point and
-// spot lights, LOCAL_LIGHTS, at the world position). Flat and Gouraud light the vertices (flat ones
-// carry the face normal, and are lit at each corner where tessera lights the centroid) and interpolate albedo times light; smooth (Phong)
-// interpolates albedo and normal and lights each fragment; the texture multiplies per fragment;
-// back faces that are drawn are lit from the viewer's side; sRGB encoding comes once, last: in the
-// fragment shader, or (multisampled) in the sRGB framebuffer, after the resolve has averaged.
-constexpr const char* kVertexShader = R"(
-attribute vec3 a_position;
-attribute vec3 a_normal;
-attribute vec2 a_uv;
-attribute vec4 a_color;
-uniform mat4 u_model_view_projection;
-uniform mat4 u_model;
-uniform mat3 u_normal_matrix;
-uniform float u_normal_sign;
-uniform vec3 u_base_color;
+// The lighting of tessera's shading stage (src/render/lights.h, setup.cpp and shade.cpp) in
+// GLSL 1.20: Lambert from directional, point and spot lights plus ambient, on the world normal
+// (point and spot lights, LOCAL_LIGHTS, at the interpolated world position). Flat and Gouraud
+// light the vertices (flat ones carry the face normal, and are lit at each corner where tessera
+// lights the centroid) and interpolate albedo times light; smooth (Phong) interpolates albedo and
+// normal and lights each fragment; the texture multiplies per fragment; back faces that are drawn
+// are lit from the viewer's side; sRGB encoding comes once, last: in the fragment shader, or
+// (multisampled) in the sRGB framebuffer, after the resolve has averaged.
+//
+// The lights and irradiance(), in both stages (each compiles its own copy).
+constexpr const char* kLighting = R"(
 uniform vec3 u_ambient;
 #if LIGHT_COUNT > 0
 uniform vec3 u_light_direction[LIGHT_COUNT];
@@ -33,11 +27,6 @@ varying vec3 v_world;
 #else
 #define v_world vec3(0.0)
 #endif
-varying vec2 v_uv;
-varying vec3 v_front;  // albedo, times the lighting when it is per vertex
-varying vec3 v_back;   // the same for a back face (two-sided lighting)
-varying vec3 v_normal;
-
 vec3 irradiance(vec3 n, vec3 p) {
   vec3 e = u_ambient;
 #if LIGHT_COUNT > 0
@@ -60,6 +49,22 @@ vec3 irradiance(vec3 n, vec3 p) {
 #endif
   return e;
 }
+)";
+
+constexpr const char* kVertexShader = R"(
+attribute vec3 a_position;
+attribute vec3 a_normal;
+attribute vec2 a_uv;
+attribute vec4 a_color;
+uniform mat4 u_model_view_projection;
+uniform mat4 u_model;
+uniform mat3 u_normal_matrix;
+uniform float u_normal_sign;
+uniform vec3 u_base_color;
+varying vec2 v_uv;
+varying vec3 v_front;  // albedo, times the lighting when it is per vertex
+varying vec3 v_back;   // the same for a back face (two-sided lighting)
+varying vec3 v_normal;
 
 void main() {
   gl_Position = u_model_view_projection * vec4(a_position, 1.0);
@@ -93,45 +98,10 @@ void main() {
 
 constexpr const char* kFragmentShader = R"(
 uniform sampler2D u_albedo;
-uniform vec3 u_ambient;
-#if LIGHT_COUNT > 0
-uniform vec3 u_light_direction[LIGHT_COUNT];
-uniform vec3 u_light_color[LIGHT_COUNT];  // radiance: colour x intensity
-#endif
-#if defined(LOCAL_LIGHTS) && LIGHT_COUNT > 0
-uniform vec4 u_light_position[LIGHT_COUNT];  // w: tessera::LightType
-uniform vec4 u_light_params[LIGHT_COUNT];
-varying vec3 v_world;
-#else
-#define v_world vec3(0.0)
-#endif
 varying vec2 v_uv;
 varying vec3 v_front;
 varying vec3 v_back;
 varying vec3 v_normal;
-
-vec3 irradiance(vec3 n, vec3 p) {
-  vec3 e = u_ambient;
-#if LIGHT_COUNT > 0
-  for (int i = 0; i < LIGHT_COUNT; ++i) {
-#ifdef LOCAL_LIGHTS
-    // Point and spot (w = 1, 2): 1/d^2, the range window, the cone (src/render/lights.h).
-    if (u_light_position[i].w > 0.5) {
-      vec3 l = u_light_position[i].xyz - p;
-      float d2 = dot(l, l);
-      vec3 u = l * inversesqrt(d2);
-      vec4 k = u_light_params[i];  // 1 / range^4, the spot's scale and offset
-      float window = clamp(1.0 - d2 * d2 * k.x, 0.0, 1.0);
-      float t = clamp(-dot(u_light_direction[i], u) * k.y + k.z, 0.0, 1.0);
-      e += u_light_color[i] * max(dot(n, u) * window * t * t / d2, 0.0);
-      continue;
-    }
-#endif
-    e += u_light_color[i] * max(-dot(n, u_light_direction[i]), 0.0);
-  }
-#endif
-  return e;
-}
 
 // IEC 61966-2-1.
 vec3 encodeSrgb(vec3 c) {
@@ -217,9 +187,9 @@ Expected<const Program*> ProgramCache::get(const ProgramKey& key) {
   if (key.two_sided) defines += "#define TWO_SIDED\n";
   if (key.framebuffer_encodes_srgb) defines += "#define FRAMEBUFFER_ENCODES_SRGB\n";
   if (key.local_lights) defines += "#define LOCAL_LIGHTS\n";
-  Expected<GLuint> vs = compileShader(GL_VERTEX_SHADER, defines + kVertexShader);
+  Expected<GLuint> vs = compileShader(GL_VERTEX_SHADER, defines + kLighting + kVertexShader);
   if (!vs) return vs.error();
-  Expected<GLuint> fs = compileShader(GL_FRAGMENT_SHADER, defines + kFragmentShader);
+  Expected<GLuint> fs = compileShader(GL_FRAGMENT_SHADER, defines + kLighting + kFragmentShader);
   if (!fs) {
     glDeleteShader(*vs);
     return fs.error();
