@@ -17,6 +17,8 @@
 
 using namespace tessera;
 
+#include "allocation_counter.h"  // g_count_allocations, g_allocations
+
 namespace {
 
 constexpr int kSize = 129;     // pixels a side; odd, so a pixel centre sits on the axis
@@ -219,6 +221,32 @@ TEST(Lights, SameBitsForEveryInstructionSetAndWorkerCount) {
             << "shading " << static_cast<int>(shading) << ", simd " << static_cast<int>(simd)
             << ", workers " << workers;
   }
+}
+
+TEST(Lights, FramesWithPointAndSpotLightsAllocateNothing) {
+  Scene scene = planeScene(Shading::kPhong, 6);
+  scene.objects.push_back(scene.objects[0]);
+  scene.objects[1].shading = Shading::kGouraud;
+  scene.objects[1].transform.translation = {0, 0, -0.5f};
+  scene.lights = {Light::point({-1.5f, 0.5f, 1.5f}, float3(1.0f), 1.2f, 6.0f),
+                  Light::spot({1.0f, -1.0f, 2.0f}, {0, 0, -1}, float3(1.0f), 2.5f, 0.3f, 0.6f)};
+  CpuRenderer renderer(2);
+  RenderOptions options;
+  options.width = options.height = kSize;
+  Frame frame;
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      g_allocations = 0;
+      g_count_allocations = true;
+    }
+    for (int i = 0; i < 3; ++i) {
+      scene.lights[0].position.x = -1.5f + 0.5f * static_cast<float>(i);
+      options.msaa = i == 2 ? 4 : 1;
+      renderer.render(scene, options, frame);
+    }
+  }
+  g_count_allocations = false;
+  EXPECT_EQ(g_allocations.load(), 0u);
 }
 
 // ---- KHR_lights_punctual ----
