@@ -249,6 +249,37 @@ TEST(Lights, FramesWithPointAndSpotLightsAllocateNothing) {
   EXPECT_EQ(g_allocations.load(), 0u);
 }
 
+TEST(Lights, NonlinearProjectionsLightTheSameOnEveryInstructionSet) {
+  // The ray path (spherical) shades Phong pixels from the same world positions.
+  Scene scene = planeScene(Shading::kPhong, 4);
+  scene.camera.view_override.reset();
+  scene.camera.projection_override.reset();
+  scene.camera.position = {0, -1.0f, 3.0f};
+  scene.camera.target = {0, 0, 0};
+  scene.camera.fov_y_degrees = 90.0f;
+  scene.lights = {Light::point({-1.0f, 0.5f, 1.0f}, {1.0f, 0.6f, 0.3f}, 1.2f),
+                  Light::spot({1.0f, -1.0f, 2.0f}, {0, 0, -1}, {0.3f, 0.5f, 1.0f}, 2.5f, 0.3f, 0.6f)};
+  RenderOptions options;
+  options.width = 2 * kSize;
+  options.height = kSize;
+  options.projection = Projection::kSpherical;
+  auto renderAt = [&](SimdLevel simd) {
+    CpuRenderer renderer(2, simd);
+    Frame frame;
+    renderer.render(scene, options, frame);
+    return frame;
+  };
+  const Frame reference = renderAt(SimdLevel::kScalar);
+  Scene unlit = scene;
+  unlit.lights.clear();
+  std::swap(scene, unlit);
+  const Frame dark = renderAt(SimdLevel::kScalar);
+  std::swap(scene, unlit);
+  EXPECT_NE(reference.color, dark.color) << "the lights show";
+  for (SimdLevel simd : {SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512})
+    EXPECT_EQ(renderAt(simd).color, reference.color) << "simd " << static_cast<int>(simd);
+}
+
 // ---- KHR_lights_punctual ----
 
 namespace {
