@@ -63,7 +63,9 @@ Frame renderPlane(const Scene& scene, int workers = 1, SimdLevel simd = SimdLeve
 }
 
 // The world x of pixel column px (and y of row py, flipped).
-float worldX(int px) { return ((px + 0.5f) / kSize * 2 - 1) * kHalf; }
+float worldX(int px) {
+  return ((px + 0.5f) / kSize * 2 - 1) * kHalf;
+}
 
 // The red channel of pixel (x, y) in linear light.
 float linearRed(const Frame& f, int x, int y) {
@@ -90,7 +92,8 @@ TEST(Lights, PointIrradianceFallsWithInverseSquare) {
 
 TEST(Lights, SpotConeEdgesLandWhereTheAnglesSay) {
   const float height = 2.0f;
-  const float inner = 20.0f * std::numbers::pi_v<float> / 180, outer = 35.0f * std::numbers::pi_v<float> / 180;
+  const float inner = 20.0f * std::numbers::pi_v<float> / 180,
+              outer = 35.0f * std::numbers::pi_v<float> / 180;
   Scene scene = planeScene();
   scene.lights.push_back(Light::spot({0, 0, height}, {0, 0, -1}, float3(1.0f), 4.0f, inner, outer));
   Scene point = planeScene();
@@ -161,8 +164,8 @@ TEST(Lights, TwoLightsAreTheSumOfEach) {
       const float lab = decodeSrgb8(static_cast<uint8_t>(fab.color[i] >> c));
       if (la + lb >= 1.0f) continue;  // clipped at white
       // Three 8-bit roundings: a relative 1% each, and a step near black.
-      worst = std::max(worst, std::fabs(static_cast<double>(lab - (la + lb))) /
-                                  (0.03 * (la + lb) + 0.003));
+      worst = std::max(
+          worst, std::fabs(static_cast<double>(lab - (la + lb))) / (0.03 * (la + lb) + 0.003));
       summed += la > 0.01f && lb > 0.01f;
     }
   EXPECT_LE(worst, 1.0);
@@ -257,8 +260,9 @@ TEST(Lights, NonlinearProjectionsLightTheSameOnEveryInstructionSet) {
   scene.camera.position = {0, -1.0f, 3.0f};
   scene.camera.target = {0, 0, 0};
   scene.camera.fov_y_degrees = 90.0f;
-  scene.lights = {Light::point({-1.0f, 0.5f, 1.0f}, {1.0f, 0.6f, 0.3f}, 1.2f),
-                  Light::spot({1.0f, -1.0f, 2.0f}, {0, 0, -1}, {0.3f, 0.5f, 1.0f}, 2.5f, 0.3f, 0.6f)};
+  scene.lights = {
+      Light::point({-1.0f, 0.5f, 1.0f}, {1.0f, 0.6f, 0.3f}, 1.2f),
+      Light::spot({1.0f, -1.0f, 2.0f}, {0, 0, -1}, {0.3f, 0.5f, 1.0f}, 2.5f, 0.3f, 0.6f)};
   RenderOptions options;
   options.width = 2 * kSize;
   options.height = kSize;
@@ -290,15 +294,19 @@ std::string gltfWithLights(const std::string& lights, const std::string& light_n
   // Three float positions: (0,0,0), (1,0,0), (0,1,0).
   const std::string positions = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA";
   return R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_lights_punctual"],
-    "extensions":{"KHR_lights_punctual":{"lights":[)" + lights + R"(]}},
-    "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" + positions +
+    "extensions":{"KHR_lights_punctual":{"lights":[)" +
+         lights + R"(]}},
+    "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
+         positions +
          R"("}],
     "bufferViews":[{"buffer":0,"byteLength":36}],
     "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",
                   "min":[0,0,0],"max":[1,1,0]}],
     "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
-    "nodes":[{"mesh":0})" + light_nodes + R"(],
-    "scenes":[{"nodes":[)" + roots + "]}]}";
+    "nodes":[{"mesh":0})" +
+         light_nodes + R"(],
+    "scenes":[{"nodes":[)" +
+         roots + "]}]}";
 }
 
 io::Model loadLights(const std::string& json) {

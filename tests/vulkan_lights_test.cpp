@@ -66,3 +66,18 @@ TEST(VulkanLights, RasterMatchesCpuWithPointAndSpotLights) {
   expectRasterParity("point + spot, raster", p);
   EXPECT_GE(p.colorRatio(), 0.99) << "colours within 2/255";
 }
+
+TEST(VulkanLights, ClippedTrianglesAreLitAtTheirOwnCorners) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr compute = makeCompute();
+  ASSERT_TRUE(compute);
+  // The near plane cuts the floor and the nearest spheres: clipped pieces take their corners'
+  // world positions from the clipper (CPU) and from the corner weights (GPU).
+  Scene scene = pointAndSpotScene();
+  scene.camera.near_z = 3.9f;
+  PipelineStats stats;
+  const Frame cpu = renderCpu(scene, options(), &stats);
+  EXPECT_GT(stats.triangles_clipped, 0u);
+  expectComputeParity("point + spot, clipped, compute",
+                      compare(cpu, renderWith(*compute, scene, options())));
+}

@@ -47,7 +47,8 @@ std::optional<Light> lightFields(const tinygltf::Light& in, const std::string& w
   }
   if (!in.color.empty()) {
     if (in.color.size() != 3) {
-      warn(where + ": color has " + std::to_string(in.color.size()) + " components, not 3; it is skipped");
+      warn(where + ": color has " + std::to_string(in.color.size()) +
+           " components, not 3; it is skipped");
       return std::nullopt;
     }
     for (int k = 0; k < 3; ++k) {
@@ -104,7 +105,8 @@ void addNodeLight(const tinygltf::Model& gltf, const tinygltf::Node& node, size_
   const bool placed = std::isfinite(position.x) && std::isfinite(position.y) &&
                       std::isfinite(position.z) && dot(direction, direction) > 0.0f;
   if (!placed) {
-    warn(what + " (at " + where + "): the node's transform is degenerate or not finite; it is "
+    warn(what + " (at " + where +
+         "): the node's transform is degenerate or not finite; it is "
          "skipped");
     return;
   }

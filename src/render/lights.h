@@ -32,8 +32,8 @@ inline void spotConstants(float inner_cone, float outer_cone, float& scale, floa
 }
 
 inline ShadeLight shadeLight(const Light& light) {
-  ShadeLight s{light.type, light.direction, light.color * light.intensity, light.position, 0.0f,
-               0.0f, 1.0f};
+  ShadeLight s{
+      light.type, light.direction, light.color * light.intensity, light.position, 0.0f, 0.0f, 1.0f};
   if (light.type != LightType::kDirectional && light.range > 0.0f) {
     const float r2 = light.range * light.range;
     s.inv_range4 = 1.0f / (r2 * r2);

@@ -13,7 +13,8 @@
 //             where the outcode has no kCutPlanes bit.
 //   normal  = normalize(normal_matrix * n) (vec.h): v * (1 / |v|), zero unless |v| > 0; zero for
 //             a mesh without normals.
-//   lit     = irradiance(rig, normal, -) (lights.h; directional lights only), NaN where the normal is zero; only
+//   lit     = irradiance(rig, normal, -) (lights.h; directional lights only), NaN where the normal
+//   is zero; only
 //             when lighting is given (Gouraud objects lit per vertex).
 // The Vulkan transform pass (src/vulkan/shaders/transform.comp) mirrors this.
 #pragma once

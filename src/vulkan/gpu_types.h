@@ -163,17 +163,20 @@ static_assert(sizeof(GpuRayRecord) == 80 && sizeof(GpuRayRecord) <= sizeof(GpuRa
 
 // Setup's output for shading (the CPU's ShadeTriangle).
 struct GpuShadeRecord {
+  // The corners' world positions (Phong with point and spot lights) ride in the spare floats:
+  // normal[k][3], color[k][3] and world_z[k].
   float normal[3][4];  // xyz
   float color[3][4];   // xyz: base x vertex colour, lit for flat and Gouraud
-  float world[3][4];   // xyz: world positions (Phong with point and spot lights)
   float uv[3][2];
   float inv_w0, p1dx, p1dy, p2dx, p2dy, sdx, sdy;
   uint32_t triangle_id;
   uint32_t material;  // index into the material buffer
   uint32_t shading;   // Shading | kShadeHasUv
+  float world_z[3];
+  uint32_t pad;  // std430 rounds the struct to 16 bytes
 };
 constexpr uint32_t kShadeHasUv = 1u << 8;
-static_assert(sizeof(GpuShadeRecord) == 208);
+static_assert(sizeof(GpuShadeRecord) == 176);
 
 struct GpuCounters {
   uint32_t visible;  // records in the visible list

@@ -244,11 +244,11 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
 
   for (const Light& light : scene.lights) {
     const render::ShadeLight s = render::shadeLight(light);
-    out.lights.push_back(GpuLight{
-        {s.direction.x, s.direction.y, s.direction.z, static_cast<float>(s.type)},
-        {s.radiance.x, s.radiance.y, s.radiance.z, s.inv_range4},
-        {s.position.x, s.position.y, s.position.z, s.spot_scale},
-        {s.spot_offset, 0, 0, 0}});
+    out.lights.push_back(
+        GpuLight{{s.direction.x, s.direction.y, s.direction.z, static_cast<float>(s.type)},
+                 {s.radiance.x, s.radiance.y, s.radiance.z, s.inv_range4},
+                 {s.position.x, s.position.y, s.position.z, s.spot_scale},
+                 {s.spot_offset, 0, 0, 0}});
   }
 
   GpuFrameConstants& f = out.frame;

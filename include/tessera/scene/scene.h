@@ -75,10 +75,10 @@ struct Light {
   float3 direction{0, 0, -1};
   float3 color{1, 1, 1};  // linear RGB, multiplied by intensity
   LightType type = LightType::kDirectional;
-  float3 position{0, 0, 0};  // point and spot: world position
-  float intensity = 1.0f;    // lux (directional) or candela (point, spot)
-  float range = 0.0f;        // point and spot: 0 = infinite
-  float inner_cone = 0.0f;   // spot: radians, 0 <= inner < outer <= pi / 2
+  float3 position{0, 0, 0};       // point and spot: world position
+  float intensity = 1.0f;         // lux (directional) or candela (point, spot)
+  float range = 0.0f;             // point and spot: 0 = infinite
+  float inner_cone = 0.0f;        // spot: radians, 0 <= inner < outer <= pi / 2
   float outer_cone = 0.7853982f;  // spot: radians (the extension's default, pi / 4)
 
   static Light directional(float3 direction, float3 color, float intensity = 1.0f) {
@@ -89,8 +89,7 @@ struct Light {
   }
   static Light spot(float3 position, float3 direction, float3 color, float intensity,
                     float inner_cone, float outer_cone, float range = 0.0f) {
-    return {direction, color, LightType::kSpot, position, intensity, range, inner_cone,
-            outer_cone};
+    return {direction, color, LightType::kSpot, position, intensity, range, inner_cone, outer_cone};
   }
 };
 

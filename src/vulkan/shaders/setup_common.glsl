@@ -101,7 +101,6 @@ void setupShadeCorners(TriangleContext ctx, ClipVertex v[3], int order[3], bool 
     vec3 vertex_normal = ctx.normal[source];
     vec2 uv = ctx.uv[source];
     vec4 color = ctx.color[source];
-    shade.world[k] = vec4(world[source], 0.0);
     if (ctx.clipped) {
       vertex_normal = weighted3(ctx.normal, v[source].weights);
       uv = weighted2(ctx.uv, v[source].weights);
@@ -110,12 +109,13 @@ void setupShadeCorners(TriangleContext ctx, ClipVertex v[3], int order[3], bool 
     precise vec3 n = ctx.shading == kShadingFlat ? flat_normal
                                                  : normalizeAsCpu(vertex_normal) * flip;
     if (n.x == 0.0 && n.y == 0.0 && n.z == 0.0) n = flat_normal;
-    shade.normal[k] = vec4(n, 0.0);
+    shade.normal[k] = vec4(n, world[source].x);
     shade.uv[k] = uv;
     precise vec3 albedo = ctx.has_color ? base * color.xyz : base;
     precise vec3 lit =
         albedo * (ctx.shading == kShadingGouraud ? irradiance(n, world[source]) : flat_irradiance);
-    shade.color[k] = vec4(lit, 0.0);
+    shade.color[k] = vec4(lit, world[source].y);
+    shade.world_z[k] = world[source].z;
   }
   shade.triangle_id = ctx.triangle;
   shade.material = ctx.material;
