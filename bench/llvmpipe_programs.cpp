@@ -4,41 +4,73 @@ namespace tessera::bench {
 
 namespace {
 
-// The lighting of tessera's shading stage (src/render/setup.cpp and shade.cpp) in GLSL 1.20:
-// Lambert from directional lights plus ambient, on the world normal. Flat and Gouraud light the
-// vertices (flat ones carry the face normal) and interpolate albedo times light; smooth (Phong)
-// interpolates albedo and normal and lights each fragment; the texture multiplies per fragment;
-// back faces that are drawn are lit from the viewer's side; sRGB encoding comes once, last: in the
-// fragment shader, or (multisampled) in the sRGB framebuffer, after the resolve has averaged.
+// The lighting of tessera's shading stage (src/render/lights.h, setup.cpp and shade.cpp) in
+// GLSL 1.20: Lambert from directional, point and spot lights plus ambient, on the world normal
+// (point and spot lights, LOCAL_LIGHTS, at the interpolated world position). Flat and Gouraud
+// light the vertices (flat ones carry the face normal, and are lit at each corner where tessera
+// lights the centroid) and interpolate albedo times light; smooth (Phong) interpolates albedo and
+// normal and lights each fragment; the texture multiplies per fragment; back faces that are drawn
+// are lit from the viewer's side; sRGB encoding comes once, last: in the fragment shader, or
+// (multisampled) in the sRGB framebuffer, after the resolve has averaged.
+//
+// The lights and irradiance(), in both stages (each compiles its own copy).
+constexpr const char* kLighting = R"(
+uniform vec3 u_ambient;
+#if LIGHT_COUNT > 0
+uniform vec3 u_light_direction[LIGHT_COUNT];
+uniform vec3 u_light_color[LIGHT_COUNT];  // radiance: colour x intensity
+#endif
+#if defined(LOCAL_LIGHTS) && LIGHT_COUNT > 0
+uniform vec4 u_light_position[LIGHT_COUNT];  // w: tessera::LightType
+uniform vec4 u_light_params[LIGHT_COUNT];
+varying vec3 v_world;
+#else
+#define v_world vec3(0.0)
+#endif
+vec3 irradiance(vec3 n, vec3 p) {
+  vec3 e = u_ambient;
+#if LIGHT_COUNT > 0
+  for (int i = 0; i < LIGHT_COUNT; ++i) {
+#ifdef LOCAL_LIGHTS
+    // Point and spot (w = 1, 2): 1/d^2, the range window, the cone (src/render/lights.h).
+    if (u_light_position[i].w > 0.5) {
+      vec3 l = u_light_position[i].xyz - p;
+      float d2 = dot(l, l);
+      vec3 u = l * inversesqrt(d2);
+      vec4 k = u_light_params[i];  // 1 / range^4, the spot's scale and offset
+      float window = clamp(1.0 - d2 * d2 * k.x, 0.0, 1.0);
+      float t = clamp(-dot(u_light_direction[i], u) * k.y + k.z, 0.0, 1.0);
+      e += u_light_color[i] * max(dot(n, u) * window * t * t / d2, 0.0);
+      continue;
+    }
+#endif
+    e += u_light_color[i] * max(-dot(n, u_light_direction[i]), 0.0);
+  }
+#endif
+  return e;
+}
+)";
+
 constexpr const char* kVertexShader = R"(
 attribute vec3 a_position;
 attribute vec3 a_normal;
 attribute vec2 a_uv;
 attribute vec4 a_color;
 uniform mat4 u_model_view_projection;
+uniform mat4 u_model;
 uniform mat3 u_normal_matrix;
 uniform float u_normal_sign;
 uniform vec3 u_base_color;
-uniform vec3 u_ambient;
-#if LIGHT_COUNT > 0
-uniform vec3 u_light_direction[LIGHT_COUNT];
-uniform vec3 u_light_color[LIGHT_COUNT];
-#endif
 varying vec2 v_uv;
 varying vec3 v_front;  // albedo, times the lighting when it is per vertex
 varying vec3 v_back;   // the same for a back face (two-sided lighting)
 varying vec3 v_normal;
 
-vec3 irradiance(vec3 n) {
-  vec3 e = u_ambient;
-#if LIGHT_COUNT > 0
-  for (int i = 0; i < LIGHT_COUNT; ++i) e += u_light_color[i] * max(-dot(n, u_light_direction[i]), 0.0);
-#endif
-  return e;
-}
-
 void main() {
   gl_Position = u_model_view_projection * vec4(a_position, 1.0);
+#if defined(LOCAL_LIGHTS) && LIGHT_COUNT > 0
+  v_world = (u_model * vec4(a_position, 1.0)).xyz;
+#endif
 #ifdef HAS_UV
   v_uv = a_uv;
 #endif
@@ -50,9 +82,9 @@ void main() {
   vec3 n = normalize(u_normal_matrix * a_normal) * u_normal_sign;
 #endif
 #ifdef LIT_PER_VERTEX
-  v_front = albedo * irradiance(n);
+  v_front = albedo * irradiance(n, v_world);
 #ifdef TWO_SIDED
-  v_back = albedo * irradiance(-n);
+  v_back = albedo * irradiance(-n, v_world);
 #endif
 #else
   v_front = albedo;
@@ -66,23 +98,10 @@ void main() {
 
 constexpr const char* kFragmentShader = R"(
 uniform sampler2D u_albedo;
-uniform vec3 u_ambient;
-#if LIGHT_COUNT > 0
-uniform vec3 u_light_direction[LIGHT_COUNT];
-uniform vec3 u_light_color[LIGHT_COUNT];
-#endif
 varying vec2 v_uv;
 varying vec3 v_front;
 varying vec3 v_back;
 varying vec3 v_normal;
-
-vec3 irradiance(vec3 n) {
-  vec3 e = u_ambient;
-#if LIGHT_COUNT > 0
-  for (int i = 0; i < LIGHT_COUNT; ++i) e += u_light_color[i] * max(-dot(n, u_light_direction[i]), 0.0);
-#endif
-  return e;
-}
 
 // IEC 61966-2-1.
 vec3 encodeSrgb(vec3 c) {
@@ -104,7 +123,7 @@ void main() {
 #ifdef TWO_SIDED
   if (!gl_FrontFacing) n = -n;
 #endif
-  color *= irradiance(n);
+  color *= irradiance(n, v_world);
 #endif
 #ifdef FRAMEBUFFER_ENCODES_SRGB
   gl_FragColor = vec4(color, 1.0);  // the sRGB colour buffer clamps and encodes
@@ -167,9 +186,10 @@ Expected<const Program*> ProgramCache::get(const ProgramKey& key) {
   if (key.has_color) defines += "#define HAS_COLOR\n";
   if (key.two_sided) defines += "#define TWO_SIDED\n";
   if (key.framebuffer_encodes_srgb) defines += "#define FRAMEBUFFER_ENCODES_SRGB\n";
-  Expected<GLuint> vs = compileShader(GL_VERTEX_SHADER, defines + kVertexShader);
+  if (key.local_lights) defines += "#define LOCAL_LIGHTS\n";
+  Expected<GLuint> vs = compileShader(GL_VERTEX_SHADER, defines + kLighting + kVertexShader);
   if (!vs) return vs.error();
-  Expected<GLuint> fs = compileShader(GL_FRAGMENT_SHADER, defines + kFragmentShader);
+  Expected<GLuint> fs = compileShader(GL_FRAGMENT_SHADER, defines + kLighting + kFragmentShader);
   if (!fs) {
     glDeleteShader(*vs);
     return fs.error();
@@ -199,6 +219,9 @@ Expected<const Program*> ProgramCache::get(const ProgramKey& key) {
   p.ambient = glGetUniformLocation(p.id, "u_ambient");
   p.light_direction = glGetUniformLocation(p.id, "u_light_direction");
   p.light_color = glGetUniformLocation(p.id, "u_light_color");
+  p.light_position = glGetUniformLocation(p.id, "u_light_position");
+  p.light_params = glGetUniformLocation(p.id, "u_light_params");
+  p.model = glGetUniformLocation(p.id, "u_model");
   p.base_color = glGetUniformLocation(p.id, "u_base_color");
   p.albedo = glGetUniformLocation(p.id, "u_albedo");
   return &programs_.emplace(key, p).first->second;

@@ -27,8 +27,10 @@ struct ProgramKey {
   // true: the fragment shader writes linear colour and an sRGB framebuffer encodes it (so that a
   // multisample resolve averages in linear light); false: the shader encodes sRGB itself.
   bool framebuffer_encodes_srgb = false;
+  bool local_lights = false;  // a point or spot light: world positions are interpolated
   auto tie() const {
-    return std::tie(shading, has_uv, has_color, two_sided, light_count, framebuffer_encodes_srgb);
+    return std::tie(shading, has_uv, has_color, two_sided, light_count, framebuffer_encodes_srgb,
+                    local_lights);
   }
   bool operator<(const ProgramKey& o) const { return tie() < o.tie(); }
 };
@@ -36,7 +38,7 @@ struct ProgramKey {
 struct Program {
   GLuint id = 0;
   GLint model_view_projection, normal_matrix, normal_sign, ambient, light_direction, light_color,
-      base_color, albedo;
+      base_color, albedo, light_position = -1, light_params = -1, model = -1;
 };
 
 // The programs of one context, compiled on first use and kept until release().

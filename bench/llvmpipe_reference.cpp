@@ -10,6 +10,7 @@
 // First: it defines GL_GLEXT_PROTOTYPES before anything includes GL/gl.h.
 #include "llvmpipe_multisample.h"
 #include "llvmpipe_programs.h"
+#include "render/lights.h"
 
 #include <GL/osmesa.h>
 
@@ -225,11 +226,22 @@ struct LlvmpipeReference::State {
     const float normal_sign = !g.indexed && determinant(upper3x3(model)) < 0.0f ? -1.0f : 1.0f;
     const int light_count = static_cast<int>(scene.lights.size());
     float light_direction[3 * kMaxLights], light_color[3 * kMaxLights];
-    for (int i = 0; i < light_count; ++i)
+    float light_position[4 * kMaxLights], light_params[4 * kMaxLights];
+    for (int i = 0; i < light_count; ++i) {
+      const render::ShadeLight l = render::shadeLight(scene.lights[i]);
       for (int k = 0; k < 3; ++k) {
-        light_direction[3 * i + k] = scene.lights[i].direction[k];
-        light_color[3 * i + k] = scene.lights[i].color[k];
+        light_direction[3 * i + k] = l.direction[k];
+        light_color[3 * i + k] = l.radiance[k];
+        light_position[4 * i + k] = l.position[k];
       }
+      light_position[4 * i + 3] = static_cast<float>(l.type);
+      light_params[4 * i + 0] = l.inv_range4;
+      light_params[4 * i + 1] = l.spot_scale;
+      light_params[4 * i + 2] = l.spot_offset;
+      light_params[4 * i + 3] = 0.0f;
+    }
+    float model_matrix[16];
+    toGl(model, model_matrix);
 
     glBindBuffer(GL_ARRAY_BUFFER, g.vertex_buffer);
     glEnableVertexAttribArray(kPosition);
@@ -265,6 +277,11 @@ struct LlvmpipeReference::State {
       if (light_count > 0) {
         glUniform3fv(p.light_direction, light_count, light_direction);
         glUniform3fv(p.light_color, light_count, light_color);
+        if (p.light_position >= 0) {
+          glUniform4fv(p.light_position, light_count, light_position);
+          glUniform4fv(p.light_params, light_count, light_params);
+          glUniformMatrix4fv(p.model, 1, GL_FALSE, model_matrix);
+        }
       }
       glUniform3f(p.base_color, material.base_color.x, material.base_color.y,
                   material.base_color.z);
@@ -399,6 +416,9 @@ Expected<void> LlvmpipeReference::setScene(const Scene& scene) {
   s.releaseScene();
   s.light_count = scene.lights.size();
   const int light_count = static_cast<int>(scene.lights.size());
+  const bool local_lights =
+      std::any_of(scene.lights.begin(), scene.lights.end(),
+                  [](const Light& l) { return l.type != LightType::kDirectional; });
   for (const Object& object : scene.objects) {
     TESSERA_CHECK(object.mesh) << "an object without a mesh";
     if (Expected<void> uploaded = s.upload(object); !uploaded) return uploaded;
@@ -408,6 +428,7 @@ Expected<void> LlvmpipeReference::setScene(const Scene& scene) {
       range.texture = g.has_uv ? g.textures[m] : 0;
       range.key = {object.shading, range.texture != 0, g.has_color, object.cull != CullMode::kBack,
                    light_count};
+      range.key.local_lights = local_lights;
     }
   }
   if (Expected<void> linked = s.linkPrograms(); !linked) return linked;

@@ -139,6 +139,7 @@ struct StageInput {
   render::ViewportTransform viewport;
   render::VertexBuffer vertices;
   render::SetupContext context;
+  render::LightRig lights;
   render::TileGrid grid;
   std::vector<render::TriangleOrientation> orientation;
   std::vector<size_t> triangle;               // the mesh triangle of each record
@@ -168,7 +169,9 @@ const StageInput* stageInput() {
     in->context.height = height;
     in->context.cull = object.cull;
     in->context.shading = object.shading;
-    in->context.scene = &in->scene.scene;
+    in->lights.prepare(in->scene.scene);
+    in->context.lights = &in->lights;
+    in->context.model = &in->transforms.model;
     in->context.object = &in->scene.scene.objects[0];
     in->grid = render::TileGrid::forViewport(width, height);
     render::TriangleChunk& chunk = in->chunks.emplace_back();
@@ -403,9 +406,11 @@ void BM_TileShade(benchmark::State& state) {
   const Scene& scene = in.scene.scene;
   const uint32_t background = packSrgba8(scene.background);
   auto shaded = std::make_unique<render::ShadedTile>();
+  render::LightRig lights;
+  lights.prepare(scene);
   for (auto _ : state) {
     for (int t = 0; t < in.grid.tileCount(); ++t)
-      kernels.shade_tile(*tiles[t], in.chunks, in.chunks.size(), scene, false,
+      kernels.shade_tile(*tiles[t], in.chunks, in.chunks.size(), lights, false,
                          render::plainShading(scene, false), background, nullptr, *shaded);
     benchmark::DoNotOptimize(shaded->rgba);
   }

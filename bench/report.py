@@ -400,7 +400,7 @@ def main():
     w("- tessera renders colour only (no depth, id or normal AOVs, no lines): clear, vertex, "
       "clip, setup, bin, raster, shade and the sRGB resolve into `Frame::color`.")
     w("- llvmpipe draws with GLSL 1.20 shaders that implement tessera's lighting (Lambert from "
-      "directional lights plus ambient; Gouraud per vertex, smooth per fragment, flat from face "
+      "directional, point and spot lights plus ambient; Gouraud per vertex, smooth per fragment, flat from face "
       "normals in a de-indexed copy of the mesh) and encode sRGB in the fragment shader; indexed "
       "meshes use `glDrawElements` from VBOs; each frame ends with `glFinish()` before the clock "
       "stops. `tests/bench_test.cpp` checks that the two images agree (coverage and colour).")

@@ -29,3 +29,15 @@ void operator delete(void* p, size_t) noexcept {
   std::free(p);
 }
 #pragma GCC diagnostic pop
+
+// Runs `frames` twice and returns the heap allocations of the second run: buffers grow to the
+// largest frame in the first, then must stay.
+template <typename Frames>
+size_t allocationsAfterWarmUp(Frames&& frames) {
+  frames();
+  g_allocations = 0;
+  g_count_allocations = true;
+  frames();
+  g_count_allocations = false;
+  return g_allocations.load();
+}

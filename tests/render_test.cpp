@@ -528,8 +528,9 @@ TEST(Vertex, EveryInstructionSetTransformsToTheSameBits) {
   transforms.vertex_base = 5;
   const ViewportTransform viewport{static_cast<float>(width), static_cast<float>(height),
                                    makeGuardBand(width, height)};
-  const DirectionalLight lights[] = {{normalize(float3{-1, -2, -1}), float3{0.9f, 0.8f, 0.7f}},
-                                     {normalize(float3{1, 0.5f, -1}), float3{0.2f, 0.3f, 0.4f}}};
+  const ShadeLight lights[] = {
+      shadeLight(Light::directional(normalize(float3{-1, -2, -1}), float3{0.9f, 0.8f, 0.7f})),
+      shadeLight(Light::directional(normalize(float3{1, 0.5f, -1}), float3{0.2f, 0.3f, 0.4f}))};
   const VertexLighting lighting{float3{0.05f, 0.06f, 0.07f}, lights};
   Mesh without_normals = mesh;
   without_normals.normals.clear();
@@ -643,7 +644,9 @@ TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
   ctx.height = height;
   ctx.cull = CullMode::kNone;
   ctx.shading = Shading::kFlat;
-  ctx.scene = &scene;
+  LightRig lights;
+  lights.prepare(scene);
+  ctx.lights = &lights;
   ctx.object = &object;
   std::uniform_int_distribution<int32_t> centre(-100 * kSubpixelOne, 700 * kSubpixelOne);
   std::uniform_real_distribution<float> depth(0.0f, 1.0f), inv_w(0.1f, 2.0f);

@@ -20,6 +20,7 @@
 #include "budget_flags.h"
 #include "commands.h"
 #include "flags.h"
+#include "light_flags.h"
 #include "model_scene.h"
 #include "view_setup.h"
 
@@ -49,6 +50,7 @@ struct BenchSettings {
   bool crc = false;
   std::string versus;  // "" or "llvmpipe"
   io::LoadBudget budget;
+  LightSettings lights;  // --light, --ambient: in place of every scene's own lights
 };
 
 struct Timing {
@@ -227,6 +229,7 @@ void addBenchFlags(FlagSet& flags, BenchSettings& s, bool& resolution_given) {
                   "resolution (crc32 SCENE WxH HEX; a crc32 field with --json)");
   flags.addSwitch("all", &s.all, "every built-in scene at every standard resolution (the default)");
   addBudgetFlags(flags, s.budget);
+  addLightFlags(flags, s.lights);
 }
 
 // Every scene is built or loaded before anything is timed, so a bad argument fails at once.
@@ -282,6 +285,7 @@ Expected<Measured> measure(BenchRun& run, bench::BenchScene& b, Resolution resol
                            bool& reference_loaded) {
   const BenchSettings& s = run.settings;
   if (Expected<void> placed = placeView(b, s.camera, resolution); !placed) return placed.error();
+  applyLights(b.scene, s.lights.lights, s.lights);
   run.options.width = resolution.width;
   run.options.height = resolution.height;
   auto drawTessera = [&] { run.renderer.render(b.scene, run.options, run.frame); };

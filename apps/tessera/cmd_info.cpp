@@ -22,7 +22,8 @@ void printModelInfo(const std::string& path, const io::Model& model, std::ostrea
       << "textures:   " << textures.size() << "\n"
       << "normals:    " << (model.mesh.normals.empty() ? "none" : "per vertex") << "\n"
       << "uvs:        " << (model.mesh.uvs.empty() ? "none" : "per vertex") << "\n"
-      << "colours:    " << (model.mesh.colors.empty() ? "none" : "per vertex") << "\n";
+      << "colours:    " << (model.mesh.colors.empty() ? "none" : "per vertex") << "\n"
+      << "lights:     " << model.lights.size() << "\n";
   if (bounds.empty()) {
     out << "bounds:     empty\n";
   } else {

@@ -21,6 +21,7 @@
 #include "commands.h"
 #include "diagnostics_output.h"
 #include "flags.h"
+#include "light_flags.h"
 #include "model_scene.h"
 #include "sampling_flags.h"
 #include "validation.h"
@@ -55,6 +56,7 @@ struct RenderSettings {
   bool edges = false;
   float3 edge_color{0, 0, 0};  // sRGB
   float line_width = 1.0f;
+  LightSettings lights;                  // --light, --ambient
 };
 
 enum class OutputKind { kPng, kVideo, kSequence };  // kVideo: .gif or .mp4
@@ -130,6 +132,7 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
                   "to this JSON file (docs/stats.md)");
   addSamplingFlags(flags, s.sampling);
   addVisibilityFlags(flags, s);
+  addLightFlags(flags, s.lights);
   flags.addInt("turntable", &s.turntable, "frames of one full turn about the up axis", 1, 100000);
   flags.addInt("fps", &s.fps, "frames per second of a turntable (default 30)", 1, 100);
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
@@ -197,6 +200,8 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
     printModelInfo(model_path.string(), *model, std::cout);
     return kExitOk;
   }
+  // The file's lights, then the --light ones: in the model's coordinates, fitted with it.
+  model->lights.insert(model->lights.end(), s.lights.lights.begin(), s.lights.lights.end());
   if (std::string warning = fitModelScale(*model, model_path, s.camera.explicitCamera());
       !warning.empty())
     model->warnings.push_back(warning);
@@ -226,6 +231,7 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
       s.backface.empty() ? model->cull_back_faces.value_or(false) : s.backface == "hidden";
   scene_settings.cull = cull_back ? CullMode::kBack : CullMode::kNone;
   scene_settings.background_srgb = s.background;
+  const std::vector<Light> lights = model->lights;
   Expected<Scene> made = makeModelScene(std::move(*model), model_path, scene_settings);
   if (!made) {
     printError("render", made.error().message);
@@ -238,6 +244,7 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
   if (!camera) return usage_error(camera.error().message);
   scene.camera = *camera;
   addViewLights(scene);
+  applyLights(scene, lights, s.lights);
   if (s.axes) {
     scene.show_world_axes = true;
     scene.world_axes_length = std::max(bounds.radius(), 1e-6f);

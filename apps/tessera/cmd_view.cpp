@@ -1,5 +1,6 @@
 // tessera view [MODEL]: the interactive viewer (an SDL2 window). Built only with TESSERA_VIEWER;
 // otherwise the command says so.
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
@@ -18,6 +19,7 @@
 #include "budget_flags.h"
 #include "commands.h"
 #include "flags.h"
+#include "light_flags.h"
 #include "model_scene.h"
 
 #ifdef TESSERA_HAS_VIEWER
@@ -44,6 +46,7 @@ struct ViewSettings {
   int device = -1;
   int msaa = 4;  // what `tessera render` makes by default
   io::LoadBudget budget;
+  LightSettings lights;  // --light, --ambient
 };
 
 bool isPerspectiveFov(float fov) {
@@ -97,6 +100,7 @@ int runView(const std::vector<std::string>& args) {
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
   flags.addString("texture", &s.texture, "an image used as the albedo of every material");
   addBudgetFlags(flags, s.budget);
+  addLightFlags(flags, s.lights);
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
   flags.addCustom(
@@ -173,8 +177,12 @@ int runView(const std::vector<std::string>& args) {
   std::string hold_file;
   if (const char* hold = std::getenv("TESSERA_VIEW_TEST_HOLD_LOADS")) hold_file = hold;
   // Runs on the loading thread: it owns its copy of the settings.
-  hooks.load_file = [scene_settings, hold_file,
-                     budget = s.budget](const std::filesystem::path& path) -> Expected<Scene> {
+  // Whether the model last loaded brings its own lights (its file's or --light's): the default
+  // rig, fixed to the view, is placed only when it does not. Between a load and the scene's swap a
+  // frame may place (or keep) the previous model's lights: the next frame is right.
+  auto own_lights = std::make_shared<std::atomic<bool>>(false);
+  hooks.load_file = [scene_settings, hold_file, budget = s.budget, light_settings = s.lights,
+                     own_lights](const std::filesystem::path& path) -> Expected<Scene> {
     if (!hold_file.empty()) {
       const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(1);
       std::error_code ec;
@@ -183,11 +191,20 @@ int runView(const std::vector<std::string>& args) {
     }
     Expected<io::Model> model = io::loadModel(path, budget);
     if (!model) return model.error();
+    model->lights.insert(model->lights.end(), light_settings.lights.begin(),
+                         light_settings.lights.end());
     // The viewer frames every model: any scale is drawn.
     fitModelScale(*model, path, /*keep_coordinates=*/false);
     for (const std::string& warning : model->warnings)
       std::cerr << "tessera view: warning: " << warning << "\n";
-    return makeModelScene(std::move(*model), path, scene_settings);
+    const std::vector<Light> lights = model->lights;
+    Expected<Scene> scene = makeModelScene(std::move(*model), path, scene_settings);
+    if (scene) {
+      addViewLights(*scene);
+      applyLights(*scene, lights, light_settings);
+      own_lights->store(!lights.empty());
+    }
+    return scene;
   };
   hooks.default_scene = [scene_settings] {
     ModelSceneSettings cube_settings = scene_settings;
@@ -195,7 +212,11 @@ int runView(const std::vector<std::string>& args) {
     cube_settings.cull = CullMode::kBack;
     return makeModelScene(cubeModel(), "cube", cube_settings).value();
   };
-  hooks.place_lights = addViewLights;
+  hooks.place_lights = [own_lights, light_settings = s.lights](Scene& scene) {
+    if (own_lights->load()) return;
+    addViewLights(scene);
+    if (light_settings.ambient_given) scene.ambient = light_settings.ambient;
+  };
   hooks.commit_path = vulkanCommitPath;
 
   viewer::ViewerOptions options;

@@ -90,11 +90,20 @@ std::string fitModelScale(io::Model& model, const std::filesystem::path& path,
   }
   const double scale = std::exp2(std::round(std::log2(extent)));
   const double center[3] = {b.center(0), b.center(1), b.center(2)};
+  auto fit = [&](float3 p) {
+    return float3{static_cast<float>((double(p.x) - center[0]) / scale),
+                  static_cast<float>((double(p.y) - center[1]) / scale),
+                  static_cast<float>((double(p.z) - center[2]) / scale)};
+  };
   for (float3& p : model.mesh.positions)
-    if (isFinite(p))
-      p = {static_cast<float>((double(p.x) - center[0]) / scale),
-           static_cast<float>((double(p.y) - center[1]) / scale),
-           static_cast<float>((double(p.z) - center[2]) / scale)};
+    if (isFinite(p)) p = fit(p);
+  // Lights move with the model; 1/d^2 keeps their irradiance when candela scale by 1/scale^2.
+  for (Light& light : model.lights) {
+    if (light.type == LightType::kDirectional) continue;
+    light.position = fit(light.position);
+    light.range = static_cast<float>(light.range / scale);
+    light.intensity = static_cast<float>(light.intensity / (scale * scale));
+  }
   return {};
 }
 

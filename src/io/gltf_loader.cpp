@@ -31,6 +31,7 @@
 #include "gltf_accessors.h"
 #include "gltf_container.h"
 #include "gltf_files.h"
+#include "gltf_lights.h"
 #include "gltf_materials.h"
 #include "gltf_nodes.h"
 #include "gltf_transforms.h"
@@ -96,6 +97,7 @@ class Flattener {
       drawn[index] = 1;
       const tinygltf::Node& node = gltf_.nodes[index];
       Matrix global = parent * localMatrix(node, index, warner());
+      addNodeLight(gltf_, node, index, global, warner(), model_.lights);
       if (node.mesh >= 0) {
         if (static_cast<size_t>(node.mesh) >= gltf_.meshes.size())
           return makeError(name_ + ": node " + std::to_string(index) + " refers to mesh " +
@@ -161,6 +163,7 @@ class Flattener {
   Expected<void> checkExtensions() {
     for (const std::string& extension : gltf_.extensionsRequired) {
       if (extension == "KHR_mesh_quantization") continue;  // read like any other accessor
+      if (extension == "KHR_lights_punctual") continue;    // gltf_lights.cpp
       if (extension == "KHR_texture_transform" || extension.starts_with("KHR_materials_")) {
         warn("extension " + extension + " is not applied");
         continue;

@@ -37,6 +37,7 @@ ClipVertex interpolate(const ClipVertex& inside, const ClipVertex& outside, floa
   v.normal = lerp(inside.normal, outside.normal, t);
   v.uv = inside.uv + (outside.uv - inside.uv) * t;
   v.color = lerp(inside.color, outside.color, t);
+  v.world = lerp(inside.world, outside.world, t);
   return v;
 }
 

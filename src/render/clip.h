@@ -16,6 +16,7 @@ struct ClipVertex {
   float3 normal;
   float2 uv;
   float4 color;
+  float3 world;  // world position: point and spot lights
 };
 
 enum ClipPlaneBit : uint32_t {

@@ -107,6 +107,7 @@ struct CpuRenderer::State {
   PipelineStats stats;
   RayRenderer rays;             // the nonlinear projections
   DiagnosticsPass diagnostics;  // RenderOptions::diagnostics
+  LightRig lights;              // this frame's
 
   void setupChunk(const Scene& scene, const VertexBuffer& vertices, const TileGrid& grid,
                   const GuardBand& guard, bool want_normals, int32_t sample_reach,
@@ -205,14 +206,16 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
     const bool has_materials = mesh.triangle_materials.size() == mesh.triangleCount();
 
     const SetupContext ctx =
-        objectSetupContext(scene, object, grid.width, grid.height, want_normals, sample_reach);
+        objectSetupContext(lights, object, xf.model, grid.width, grid.height, want_normals,
+                           sample_reach);
     // Flat shading lights the face; so do vertices of a mesh without normals.
     const bool needs_face_normal =
         object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;
     const MeshVertices mesh_vertices{
         vertices.screen.data() + xf.vertex_base, vertices.normal.data() + xf.vertex_base,
-        litPerVertex(object) ? vertices.lit.data() + xf.vertex_base : nullptr,
-        has_uv ? mesh.uvs.data() : nullptr, has_color ? mesh.colors.data() : nullptr};
+        litPerVertex(object, lights) ? vertices.lit.data() + xf.vertex_base : nullptr,
+        has_uv ? mesh.uvs.data() : nullptr, has_color ? mesh.colors.data() : nullptr,
+        mesh.positions.data()};
     const uint16_t* outcodes = vertices.outcode.data() + xf.vertex_base;
     const PlainGouraud plain_gouraud = plainGouraudFor(ctx, mesh_vertices, has_materials);
 
@@ -256,7 +259,8 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
       for (int k = 0; k < 3; ++k) {
         in[k] = {vertices.clip(xf.vertex_base + idx[k]), vertices.normal[xf.vertex_base + idx[k]],
                  has_uv ? mesh.uvs[idx[k]] : float2{},
-                 has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1}};
+                 has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1},
+                 lights.local ? (xf.model * float4(mesh.positions[idx[k]], 1.0f)).xyz() : float3{}};
       }
       ClipVertex polygon[kMaxClippedVertices];
       const int n = clipTriangle(in, cut, guard, polygon);
@@ -269,9 +273,9 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
         RasterTriangle& raster = chunk.raster[record];
         if (!setupRaster(ctx, sv, raster, chunk.wide[record], orientation)) continue;
         ++chunk.size;
-        const VertexAttributes a[3] = {{fan[0]->normal, fan[0]->uv, fan[0]->color, false},
-                                       {fan[1]->normal, fan[1]->uv, fan[1]->color, false},
-                                       {fan[2]->normal, fan[2]->uv, fan[2]->color, false}};
+        VertexAttributes a[3];
+        for (int i = 0; i < 3; ++i)
+          a[i] = {fan[i]->normal, fan[i]->uv, fan[i]->color, false, fan[i]->world};
         setupShade(ctx, sv, a, orientation, raster, face_normal(idx), id, material(local),
                    chunk.shade[record], chunk.extras[record]);
         chunk.bins.add(grid, raster, record);
@@ -386,7 +390,7 @@ void CpuRenderer::State::renderSampledTile(const Scene& scene, const RenderOptio
   const MsaaShading msaa{&st, options.msaa, samplePattern(options.msaa).data(),
                          scene.background.xyz()};
   ShadedTile& out = *shaded[static_cast<size_t>(worker)];
-  kernels.shade_tile(*st.primary, chunks, chunk_count, scene, options.normals, plain,
+  kernels.shade_tile(*st.primary, chunks, chunk_count, lights, options.normals, plain,
                      packSrgba8(scene.background), &msaa, out);
   // The AOVs are the centre layer's: the same as one sample gives.
   resolveTile(with_centre ? *layers[options.msaa] : *st.primary, out, chunks, frame);
@@ -477,13 +481,14 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const size_t copies = replicate ? static_cast<size_t>(s.pool.size()) : 1;
   if (s.vertex_buffers.size() < copies) s.vertex_buffers.resize(copies);
   for (size_t i = 0; i < copies; ++i) s.vertex_buffers[i].resize(vertex_total);
-  const VertexLighting lighting{scene.ambient, scene.lights};
+  s.lights.prepare(scene);
+  const VertexLighting lighting{s.lights.ambient, s.lights.lights};
   auto transformJob = [&](size_t j, VertexBuffer& out) {
     const VertexJob& job = s.vertex_jobs[j];
     const Object& object = scene.objects[job.object];
     s.kernels.transform_vertices(*object.mesh, s.objects[job.object], viewport,
-                                 litPerVertex(object) ? &lighting : nullptr, job.first, job.count,
-                                 out);
+                                 litPerVertex(object, s.lights) ? &lighting : nullptr, job.first,
+                                 job.count, out);
   };
   // Replicated, each worker transforms its copy in the setup stage, before its first chunk (no
   // barrier between the two: a worker reads no copy but its own). Every copy holds the same
@@ -551,7 +556,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     else
       s.kernels.raster_tile(s.chunks, s.chunk_count, tile, visibility);
     ShadedTile& shaded = *s.shaded[static_cast<size_t>(worker)];
-    s.kernels.shade_tile(visibility, s.chunks, s.chunk_count, scene, options.normals, plain,
+    s.kernels.shade_tile(visibility, s.chunks, s.chunk_count, s.lights, options.normals, plain,
                          background, nullptr, shaded);
     resolveTile(visibility, shaded, s.chunks, frame);
     if (options.coverage) resolveCoverage(visibility, nullptr, 1, frame);

@@ -53,7 +53,7 @@ using RasterRayTileFn = void (*)(const std::vector<TriangleChunk>& chunks, size_
 // sample rays when `msaa` is given, then the sRGB encode (ray_kernel.h).
 using ShadeRayTileFn = void (*)(const TileVisibility& tile,
                                 const std::vector<TriangleChunk>& chunks, size_t chunk_count,
-                                const Scene& scene, bool want_normals, uint32_t background,
+                                const LightRig& lights, bool want_normals, uint32_t background,
                                 const RayTable& rays, const MsaaShading* msaa, ShadedTile& out);
 
 // The painter's raster (painter_kernel.h): the records binned to the tile in `slices`, slice

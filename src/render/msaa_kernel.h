@@ -70,7 +70,7 @@ TESSERA_LANES_INLINE bool coversCentre(const RasterTriangle& t, const RasterWide
 TESSERA_LANES_INLINE Vec3x8 shadeSampleFragments(const MsaaShading& m, int s, I32x8 keys,
                                                  I32x8 first, int x, int y,
                                                  const std::vector<TriangleChunk>& chunks,
-                                                 const Scene& scene, bool plain) {
+                                                 const LightRig& lights, bool plain) {
   alignas(32) uint32_t key[8];
   alignas(32) int32_t valid[8];
   store(key, keys);
@@ -113,9 +113,9 @@ TESSERA_LANES_INLINE Vec3x8 shadeSampleFragments(const MsaaShading& m, int s, I3
     const ShadeTriangle& t = chunk.shade[keyLocal(k)];
     const ShadeExtras& e = chunk.extras[keyLocal(k)];
     if (any(mine & centre_lanes))
-      shadeLanes(t, e, scene, false, load<F32x8>(px), centre_y, mine & centre_lanes, color, normal);
+      shadeLanes(t, e, lights, false, load<F32x8>(px), centre_y, mine & centre_lanes, color, normal);
     if (any(mine & ~centre_lanes))
-      shadeLanes(t, e, scene, false, load<F32x8>(px), sample_y, mine & ~centre_lanes, color,
+      shadeLanes(t, e, lights, false, load<F32x8>(px), sample_y, mine & ~centre_lanes, color,
                  normal);
     todo = todo & ~mine;
   }
@@ -168,12 +168,12 @@ TESSERA_LANES_INLINE void resolveMixedRowWith(const MsaaShading& m, const TileVi
 
 // The resolve of the perspective path: fragments shaded from the screen-space planes.
 void resolveMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
-                     const std::vector<TriangleChunk>& chunks, const Scene& scene, bool plain,
+                     const std::vector<TriangleChunk>& chunks, const LightRig& lights, bool plain,
                      float linear[3][kTileSize]) {
   resolveMixedRowWith(m, tile, ty, linear,
                       [&](int s, I32x8 keys, I32x8 first, int x, int y)
                           __attribute__((always_inline)) {
-                            return shadeSampleFragments(m, s, keys, first, x, y, chunks, scene,
+                            return shadeSampleFragments(m, s, keys, first, x, y, chunks, lights,
                                                         plain);
                           });
 }

@@ -92,7 +92,7 @@ float3 rayAt(const RayLayer& layer, size_t at) {
 
 // What shading a tile reads of the frame's rays.
 struct RayShading {
-  const Scene& scene;
+  const LightRig& lights;
   const std::vector<TriangleChunk>& chunks;
   const RayTable& rays;
   int width, height;
@@ -108,7 +108,7 @@ struct RayShading {
     const RayTriangle& r = chunk.ray[keyLocal(key)];
     F32x8 b0, b1, b2;
     rayBarycentrics8(r, d, b0, b1, b2);
-    shadeLanesAt(t, e, scene, want_normals, b0, b1, b2, mask, color, normal,
+    shadeLanesAt(t, e, lights, want_normals, b0, b1, b2, mask, color, normal,
                  [&](int l, const Barycentrics& b) {
                    const int px = x + l;
                    // A one-pixel-wide (or tall) image has no neighbour: the pixel itself.
@@ -167,9 +167,9 @@ void rasterRayTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_
 }
 
 void shadeRayTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk>& chunks,
-                  size_t, const Scene& scene, bool want_normals, uint32_t background,
+                  size_t, const LightRig& lights, bool want_normals, uint32_t background,
                   const RayTable& rays, const MsaaShading* msaa, ShadedTile& out) {
-  const RayShading rs{scene, chunks, rays, rays.width(), rays.height()};
+  const RayShading rs{lights, chunks, rays, rays.width(), rays.height()};
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const F32x8 zero = splat(0.0f);
   alignas(32) float linear[3][kTileSize];

@@ -63,12 +63,13 @@ void RayRenderer::transform(const Scene& scene, const RenderOptions& options, Wo
   const ViewportTransform viewport{static_cast<float>(options.width),
                                    static_cast<float>(options.height),
                                    makeGuardBand(options.width, options.height)};
-  const VertexLighting lighting{scene.ambient, scene.lights};
+  lights_.prepare(scene);
+  const VertexLighting lighting{lights_.ambient, lights_.lights};
   pool.parallelFor(vertex_jobs_.size(), [&](size_t j, int) {
     const VertexJob& job = vertex_jobs_[j];
     const Object& object = scene.objects[job.object];
     kernels.transform_vertices(*object.mesh, objects_[job.object], viewport,
-                               litPerVertex(object) ? &lighting : nullptr, job.first, job.count,
+                               litPerVertex(object, lights_) ? &lighting : nullptr, job.first, job.count,
                                vertices_);
   });
   const size_t chunk_size =
@@ -100,15 +101,17 @@ void RayRenderer::setupChunk(const Scene& scene, const RenderOptions& options, i
     const Mesh& mesh = *object.mesh;
     const size_t vertex_count = mesh.vertexCount();
     const SetupContext ctx =
-        objectSetupContext(scene, object, options.width, options.height, options.normals, 0);
+        objectSetupContext(lights_, object, xf.model, options.width, options.height,
+                           options.normals, 0);
     rctx.cull = object.cull;
     const bool has_materials = mesh.triangle_materials.size() == mesh.triangleCount();
     const bool needs_face_normal =
         object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;
     const MeshVertices corners{
         nullptr, vertices_.normal.data() + xf.vertex_base,
-        litPerVertex(object) ? vertices_.lit.data() + xf.vertex_base : nullptr,
-        ctx.has_uv ? mesh.uvs.data() : nullptr, ctx.has_color ? mesh.colors.data() : nullptr};
+        litPerVertex(object, lights_) ? vertices_.lit.data() + xf.vertex_base : nullptr,
+        ctx.has_uv ? mesh.uvs.data() : nullptr, ctx.has_color ? mesh.colors.data() : nullptr,
+        mesh.positions.data()};
     for (const size_t stop = std::min(end, object_end); t < stop; ++t) {
       const size_t local = t - xf.triangle_base;
       const uint32_t* idx = &mesh.indices[local * 3];
@@ -159,7 +162,7 @@ void RayRenderer::renderTile(const Scene& scene, const RenderOptions& options, i
     visibility.clear(x0, y0, width, height);
     kernels_->raster_ray_tile(chunks_, chunk_count_, tile, rays_.centre(), options.width, depth,
                               visibility);
-    kernels_->shade_ray_tile(visibility, chunks_, chunk_count_, scene, options.normals, background, rays_,
+    kernels_->shade_ray_tile(visibility, chunks_, chunk_count_, lights_, options.normals, background, rays_,
                  nullptr, out);
     resolveTile(visibility, out, chunks_, frame);
     if (options.coverage) resolveCoverage(visibility, nullptr, 1, frame);
@@ -176,7 +179,7 @@ void RayRenderer::renderTile(const Scene& scene, const RenderOptions& options, i
   }
   kernels_->combine_samples(st, samples, with_centre);
   const MsaaShading msaa{&st, samples, samplePattern(samples).data(), scene.background.xyz()};
-  kernels_->shade_ray_tile(*st.primary, chunks_, chunk_count_, scene, options.normals, background, rays_,
+  kernels_->shade_ray_tile(*st.primary, chunks_, chunk_count_, lights_, options.normals, background, rays_,
                &msaa, out);
   resolveTile(with_centre ? st.layer(samples) : *st.primary, out, chunks_, frame);
   if (options.coverage) resolveCoverage(*st.primary, st.covered, samples, frame);

@@ -63,6 +63,7 @@ class RayRenderer {
   std::vector<std::unique_ptr<ShadedTile>> shaded_;     // one per worker
   std::vector<std::unique_ptr<SampleTiles>> sampled_;   // one per worker, made for MSAA
   LineList lines_;
+  LightRig lights_;  // this frame's
 };
 
 }  // namespace tessera::render

@@ -88,6 +88,9 @@ struct MeshCorners {
   float2 uv(int k) const { return vertices.uv[index[k]]; }
   float3 color(int k) const { return vertices.color[index[k]].xyz(); }
   const float3* lit(int k) const { return vertices.lit ? &vertices.lit[index[k]] : nullptr; }
+  float3 world(int k, const float4x4& model) const {
+    return (model * float4(vertices.position[index[k]], 1.0f)).xyz();
+  }
 };
 
 // A clipped triangle's corners: the clipper's output.
@@ -101,6 +104,7 @@ struct ClippedCorners {
   float2 uv(int k) const { return a[k].uv; }
   float3 color(int k) const { return a[k].color.xyz(); }
   const float3* lit(int) const { return nullptr; }
+  float3 world(int k, const float4x4&) const { return a[k].world; }
 };
 
 bool isZero(float3 n) {
@@ -150,10 +154,16 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
   };
   // Only what the shading mode reads is written (shade_kernel.h): normals for Phong and the
   // normal AOV, UVs for textured meshes.
+  const LightRig& lights = *ctx.lights;
+  // World positions matter only to point and spot lights.
+  const auto world = [&](int i) { return lights.local ? corners.world(i, *ctx.model) : float3{}; };
   switch (ctx.shading) {
     case Shading::kFlat: {
       const float3 n = flatNormal();
-      const float3 e = irradiance(*ctx.scene, n);
+      // The face is lit at its centroid.
+      const float3 centre =
+          lights.local ? (world(0) + world(1) + world(2)) * (1.0f / 3.0f) : float3{};
+      const float3 e = irradiance(lights, n, centre);
       for (int k = 0; k < 3; ++k) {
         if (ctx.want_normals) extras.normal[k] = n;
         shade.color[k] = albedo(o.order[k]) * e;
@@ -172,7 +182,7 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
         } else {
           const float3 n = vertexNormal(i);
           if (ctx.want_normals) extras.normal[k] = n;
-          shade.color[k] = albedo(i) * irradiance(*ctx.scene, n);
+          shade.color[k] = albedo(i) * irradiance(lights, n, world(i));
         }
       }
       break;
@@ -182,6 +192,7 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
       for (int k = 0; k < 3; ++k) {
         const int i = o.order[k];
         if (ctx.shading == Shading::kPhong || ctx.want_normals) extras.normal[k] = vertexNormal(i);
+        if (ctx.shading == Shading::kPhong && lights.local) extras.world[k] = world(i);
         shade.color[k] = albedo(i);
       }
       break;

@@ -16,6 +16,7 @@
 
 #include "render/clip.h"
 #include "render/fixed_point.h"
+#include "render/lights.h"
 
 namespace tessera::render {
 
@@ -88,14 +89,16 @@ struct ShadeTriangle {
 struct ShadeExtras {
   float3 normal[3];  // world shading normals, facing the viewer for drawn back faces
   float2 uv[3];
+  float3 world[3];  // world positions: Phong pixels lit by point and spot lights
 };
 
 struct SetupContext {
   int width = 0, height = 0;
   CullMode cull = CullMode::kBack;
   Shading shading = Shading::kFlat;
-  const Scene* scene = nullptr;
+  const LightRig* lights = nullptr;  // the frame's (LightRig::prepare)
   const Object* object = nullptr;
+  const float4x4* model = nullptr;  // the object's: world positions for point and spot lights
   bool has_uv = false;
   bool has_color = false;
   bool want_normals = false;  // the normal AOV is asked for
@@ -105,15 +108,17 @@ struct SetupContext {
 };
 
 // The setup context of one object of `scene` on a width x height viewport.
-inline SetupContext objectSetupContext(const Scene& scene, const Object& object, int width,
-                                       int height, bool want_normals, int32_t sample_reach) {
+inline SetupContext objectSetupContext(const LightRig& lights, const Object& object,
+                                       const float4x4& model, int width, int height,
+                                       bool want_normals, int32_t sample_reach) {
   SetupContext ctx;
   ctx.width = width;
   ctx.height = height;
   ctx.cull = object.cull;
   ctx.shading = object.shading;
-  ctx.scene = &scene;
+  ctx.lights = &lights;
   ctx.object = &object;
+  ctx.model = &model;
   if (object.mesh) {
     const size_t vertex_count = object.mesh->vertexCount();
     ctx.has_uv = object.mesh->uvs.size() == vertex_count;
@@ -219,6 +224,7 @@ struct VertexAttributes {
   float2 uv;
   float4 color;
   bool unit_normal;  // `normal` is unit length or zero already (not interpolated by clipping)
+  float3 world;      // world position (read only with point or spot lights)
 };
 
 // An object's vertices, indexed by mesh vertex: an unclipped triangle's corners are read from
@@ -229,6 +235,7 @@ struct MeshVertices {
   const float3* lit;    // VertexBuffer::lit for objects lit in the vertex stage, otherwise null
   const float2* uv;     // read only when ctx.has_uv
   const float4* color;  // read only when ctx.has_color
+  const float3* position = nullptr;  // the mesh's (object space); read only with local lights
 };
 
 // `face_normal` is the world-space geometric normal (flat shading, and vertices without a normal);
@@ -344,19 +351,5 @@ struct CullGroup {
   double area[kLanes];  // kVisible: signedArea (exact: below 2^49)
   int32_t min_x[kLanes], min_y[kLanes], max_x[kLanes], max_y[kLanes];  // kVisible: pixelBox
 };
-
-// Lambert irradiance: ambient plus every directional light, for unit normal n. The vertex kernel
-// (vertex_kernel.h) lights Gouraud vertices with the same operations, eight at a time.
-inline float3 irradiance(float3 ambient, std::span<const DirectionalLight> lights, float3 n) {
-  float3 e = ambient;
-  for (const DirectionalLight& light : lights) {
-    float cos_theta = -dot(n, light.direction);
-    if (cos_theta > 0.0f) e += light.color * cos_theta;
-  }
-  return e;
-}
-inline float3 irradiance(const Scene& scene, float3 n) {
-  return irradiance(scene.ambient, scene.lights, n);
-}
 
 }  // namespace tessera::render

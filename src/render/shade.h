@@ -50,8 +50,9 @@ bool plainShading(const Scene& scene, bool want_normals);
 // `msaa`: null with one sample; otherwise the tile's sample layers, whose mixed pixels are
 // resolved sample by sample (msaa.h) where `tile` (SampleTiles::primary) is shaded at centres.
 using ShadeTileFn = void (*)(const TileVisibility& tile, const std::vector<TriangleChunk>& chunks,
-                             size_t chunk_count, const Scene& scene, bool want_normals, bool plain,
-                             uint32_t background, const struct MsaaShading* msaa, ShadedTile& out);
+                             size_t chunk_count, const LightRig& lights, bool want_normals,
+                             bool plain, uint32_t background, const struct MsaaShading* msaa,
+                             ShadedTile& out);
 
 // shade_kernel.h; one variant per instruction set (kernels.h). Shades every pixel of the tile that
 // has a triangle and encodes it to sRGB; the background where no triangle is.

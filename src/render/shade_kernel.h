@@ -16,7 +16,7 @@ namespace {  // one private copy per translation unit, each compiled for its ins
 // triangle is plain (`plain`: untextured, not Phong, no normal AOV), else each triangle is
 // evaluated once for the eight and the results merged in registers.
 void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk>& chunks,
-                     size_t chunk_count, const Scene& scene, bool want_normals, bool plain,
+                     size_t chunk_count, const LightRig& lights, bool want_normals, bool plain,
                      uint32_t background, const MsaaShading* msaa, ShadedTile& out) {
   const ShadeTriangle* records[kMaxChunks];
   const ShadeExtras* extras[kMaxChunks];
@@ -61,7 +61,7 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
           const I32x8 mask = equal(keys, splat(static_cast<int32_t>(key)));
           const ShadeTriangle& t = records[keyChunk(key)][keyLocal(key)];
           const ShadeExtras& e = extras[keyChunk(key)][keyLocal(key)];
-          shadeLanes(t, e, scene, want_normals, px, py, mask, color, normal);
+          shadeLanes(t, e, lights, want_normals, px, py, mask, color, normal);
           todo = todo & ~mask;
         } while (any(todo));
       }
@@ -74,7 +74,7 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
         store(out.normal_z + i, normal.z);
       }
     }
-    if (msaa) resolveMixedRow(*msaa, tile, ty, chunks, scene, plain, linear);
+    if (msaa) resolveMixedRow(*msaa, tile, ty, chunks, lights, plain, linear);
     encodeShadedRow(tile, ty, linear, background, out);
   }
 }

@@ -37,18 +37,43 @@ TESSERA_LANES_INLINE Vec3x8 normalize8(Vec3x8 v) {
           select(nonzero, v.z * inv, zero)};
 }
 
-// As render::irradiance: ambient plus every directional light.
-TESSERA_LANES_INLINE Vec3x8 irradiance8(const Scene& scene, const Vec3x8& n) {
-  Vec3x8 e{splat(scene.ambient.x), splat(scene.ambient.y), splat(scene.ambient.z)};
+// As clamp(v, 0, 1) (std::clamp's comparisons: NaN stays NaN).
+TESSERA_LANES_INLINE F32x8 clamp01(F32x8 v) {
+  const F32x8 zero = splat(0.0f), one = splat(1.0f);
+  return select(lessThan(v, zero), zero, select(lessThan(one, v), one, v));
+}
+
+// As render::localFactor (lights.h), lane by lane.
+TESSERA_LANES_INLINE F32x8 localFactor8(const ShadeLight& light, const Vec3x8& n, const Vec3x8& p) {
+  const Vec3x8 l{splat(light.position.x) - p.x, splat(light.position.y) - p.y,
+                 splat(light.position.z) - p.z};
+  const F32x8 d2 = (l.x * l.x + l.y * l.y) + l.z * l.z;
+  const F32x8 inv_d = splat(1.0f) / squareRoot(d2);
+  const Vec3x8 u{l.x * inv_d, l.y * inv_d, l.z * inv_d};
+  const F32x8 cos_theta = (n.x * u.x + n.y * u.y) + n.z * u.z;
+  const F32x8 window = clamp01(splat(1.0f) - d2 * d2 * splat(light.inv_range4));
+  const F32x8 cd = splat(0.0f) - ((splat(light.direction.x) * u.x + splat(light.direction.y) * u.y) +
+                                  splat(light.direction.z) * u.z);
+  const F32x8 t = clamp01(cd * splat(light.spot_scale) + splat(light.spot_offset));
+  return cos_theta * ((window * (t * t)) / d2);
+}
+
+// As render::irradiance: ambient plus every light, at world points p (read only when the rig has
+// a point or spot light).
+TESSERA_LANES_INLINE Vec3x8 irradiance8(const LightRig& rig, const Vec3x8& n, const Vec3x8& p) {
+  Vec3x8 e{splat(rig.ambient.x), splat(rig.ambient.y), splat(rig.ambient.z)};
   const F32x8 zero = splat(0.0f);
-  for (const DirectionalLight& light : scene.lights) {
-    const F32x8 cos_theta =
-        zero - (n.x * splat(light.direction.x) + n.y * splat(light.direction.y) +
-                n.z * splat(light.direction.z));
-    const I32x8 lit = positive(cos_theta);
-    e.x = e.x + select(lit, splat(light.color.x) * cos_theta, zero);
-    e.y = e.y + select(lit, splat(light.color.y) * cos_theta, zero);
-    e.z = e.z + select(lit, splat(light.color.z) * cos_theta, zero);
+  for (const ShadeLight& light : rig.lights) {
+    F32x8 f;
+    if (light.type == LightType::kDirectional)
+      f = zero - (n.x * splat(light.direction.x) + n.y * splat(light.direction.y) +
+                  n.z * splat(light.direction.z));
+    else
+      f = localFactor8(light, n, p);
+    const I32x8 lit = positive(f);
+    e.x = e.x + select(lit, splat(light.radiance.x) * f, zero);
+    e.y = e.y + select(lit, splat(light.radiance.y) * f, zero);
+    e.z = e.z + select(lit, splat(light.radiance.z) * f, zero);
   }
   return e;
 }
@@ -177,7 +202,7 @@ TESSERA_LANES_INLINE bool sampleBilinear8(const ShadeTriangle& t, const ShadeExt
 // not take get their albedo from albedo_lane(l, Barycentrics) one at a time.
 template <typename AlbedoLane>
 TESSERA_LANES_INLINE void shadeLanesAt(const ShadeTriangle& t, const ShadeExtras& e,
-                                       const Scene& scene, bool want_normals, F32x8 b0, F32x8 b1,
+                                       const LightRig& lights, bool want_normals, F32x8 b0, F32x8 b1,
                                        F32x8 b2, I32x8 mask, Vec3x8& color, Vec3x8& normal,
                                        AlbedoLane albedo_lane) {
   Vec3x8 c = interpolate(t.color, b0, b1, b2);
@@ -196,7 +221,8 @@ TESSERA_LANES_INLINE void shadeLanesAt(const ShadeTriangle& t, const ShadeExtras
   if (t.shading == Shading::kPhong || (want_normals && t.shading != Shading::kFlat)) {
     const Vec3x8 n = normalize8(interpolate(e.normal, b0, b1, b2));
     if (t.shading == Shading::kPhong) {
-      const Vec3x8 e = irradiance8(scene, n);
+      const Vec3x8 p = lights.local ? interpolate(e.world, b0, b1, b2) : Vec3x8{};
+      const Vec3x8 e = irradiance8(lights, n, p);
       c = {c.x * e.x, c.y * e.y, c.z * e.z};
     }
     if (want_normals)
@@ -213,7 +239,7 @@ TESSERA_LANES_INLINE void shadeLanesAt(const ShadeTriangle& t, const ShadeExtras
 // Shades the lanes of `mask` (pixel centres px, py) from triangle t, into `color` and, when
 // asked, `normal`; the other lanes keep what they hold.
 TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const ShadeExtras& e,
-                                     const Scene& scene, bool want_normals, F32x8 px, float py,
+                                     const LightRig& lights, bool want_normals, F32x8 px, float py,
                                      I32x8 mask, Vec3x8& color, Vec3x8& normal) {
   // Barycentrics exactly as barycentricsAt.
   const F32x8 dx = px - splat(t.x0);
@@ -222,7 +248,7 @@ TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const ShadeExtras& 
   const F32x8 b1 = (splat(t.p1dx) * dx + splat(t.p1dy * dy)) * inv_s;
   const F32x8 b2 = (splat(t.p2dx) * dx + splat(t.p2dy * dy)) * inv_s;
   const F32x8 b0 = splat(1.0f) - b1 - b2;
-  shadeLanesAt(t, e, scene, want_normals, b0, b1, b2, mask, color, normal,
+  shadeLanesAt(t, e, lights, want_normals, b0, b1, b2, mask, color, normal,
                [&](int l, const Barycentrics& b) { return sampleAlbedo(t, e, b, lane(px, l), py); });
 }
 

@@ -40,8 +40,9 @@ inline size_t objectHolding(const std::vector<ObjectTransforms>& objects, size_t
 }
 
 // Gouraud objects with vertex normals are lit per vertex in the vertex stage (VertexBuffer::lit).
-inline bool litPerVertex(const Object& object) {
-  return object.shading == Shading::kGouraud && object.mesh &&
+// With a point or spot light setup lights every corner itself (it needs world positions).
+inline bool litPerVertex(const Object& object, const LightRig& lights) {
+  return !lights.local && object.shading == Shading::kGouraud && object.mesh &&
          object.mesh->normals.size() == object.mesh->vertexCount();
 }
 
@@ -68,10 +69,10 @@ struct ViewportTransform {
   GuardBand guard;
 };
 
-// The scene's lights, for objects lit in the vertex stage (VertexBuffer::lit).
+// The scene's lights, for objects lit in the vertex stage (VertexBuffer::lit): directional only.
 struct VertexLighting {
   float3 ambient;
-  std::span<const DirectionalLight> lights;
+  std::span<const ShadeLight> lights;
 };
 
 // Transforms mesh vertices [first, first + count) into the buffer at transforms.vertex_base:

@@ -13,7 +13,8 @@
 //             where the outcode has no kCutPlanes bit.
 //   normal  = normalize(normal_matrix * n) (vec.h): v * (1 / |v|), zero unless |v| > 0; zero for
 //             a mesh without normals.
-//   lit     = irradiance(ambient, lights, normal) (setup.h), NaN where the normal is zero; only
+//   lit     = irradiance(rig, normal, -) (lights.h; directional lights only), NaN where the normal
+//   is zero; only
 //             when lighting is given (Gouraud objects lit per vertex).
 // The Vulkan transform pass (src/vulkan/shaders/transform.comp) mirrors this.
 #pragma once
@@ -144,13 +145,13 @@ TESSERA_LANES_INLINE void transformVertexBlock(const float3* positions, const fl
   // Irradiance (setup.h). A light adds only where it faces the vertex: selecting e itself
   // elsewhere, not e + 0, keeps an ambient of -0 as the scalar loop does.
   Float3x8 e{splat(lighting->ambient.x), splat(lighting->ambient.y), splat(lighting->ambient.z)};
-  for (const DirectionalLight& light : lighting->lights) {
+  for (const ShadeLight& light : lighting->lights) {
     const F32x8 cos_theta = negate(n.x * splat(light.direction.x) + n.y * splat(light.direction.y) +
                                    n.z * splat(light.direction.z));
     const I32x8 facing = maskPositive(cos_theta);
-    e.x = blend(facing, e.x + splat(light.color.x) * cos_theta, e.x);
-    e.y = blend(facing, e.y + splat(light.color.y) * cos_theta, e.y);
-    e.z = blend(facing, e.z + splat(light.color.z) * cos_theta, e.z);
+    e.x = blend(facing, e.x + splat(light.radiance.x) * cos_theta, e.x);
+    e.y = blend(facing, e.y + splat(light.radiance.y) * cos_theta, e.y);
+    e.z = blend(facing, e.z + splat(light.radiance.z) * cos_theta, e.z);
   }
   const I32x8 zero_normal = maskEqual(n.x, zero) & maskEqual(n.y, zero) & maskEqual(n.z, zero);
   const F32x8 nan = splat(std::numeric_limits<float>::quiet_NaN());
@@ -280,13 +281,13 @@ TESSERA_LANES_INLINE void transformVertexBlock16(const float3* positions, const 
   if (!lighting) return;
   Float3x16 e{splat16(lighting->ambient.x), splat16(lighting->ambient.y),
               splat16(lighting->ambient.z)};
-  for (const DirectionalLight& light : lighting->lights) {
+  for (const ShadeLight& light : lighting->lights) {
     const F32x16 cos_theta = -(n.x * splat16(light.direction.x) + n.y * splat16(light.direction.y) +
                                n.z * splat16(light.direction.z));
     const I32x16 facing = zero < cos_theta;
-    e.x = facing ? e.x + splat16(light.color.x) * cos_theta : e.x;
-    e.y = facing ? e.y + splat16(light.color.y) * cos_theta : e.y;
-    e.z = facing ? e.z + splat16(light.color.z) * cos_theta : e.z;
+    e.x = facing ? e.x + splat16(light.radiance.x) * cos_theta : e.x;
+    e.y = facing ? e.y + splat16(light.radiance.y) * cos_theta : e.y;
+    e.z = facing ? e.z + splat16(light.radiance.z) * cos_theta : e.z;
   }
   const I32x16 zero_normal = (n.x == zero) & (n.y == zero) & (n.z == zero);
   const F32x16 nan = splat16(std::numeric_limits<float>::quiet_NaN());

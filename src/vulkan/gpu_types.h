@@ -92,11 +92,14 @@ struct GpuFrameConstants {
 };
 static_assert(sizeof(GpuFrameConstants) == 208);
 
+// The CPU's render::ShadeLight (src/render/lights.h).
 struct GpuLight {
-  float direction[4];
-  float color[4];
+  float direction[4];  // xyz: the way the light travels; w: tessera::LightType
+  float color[4];      // xyz: radiance (colour x intensity); w: 1 / range^4 (0: no range)
+  float position[4];   // xyz: point and spot; w: the spot's scale
+  float spot[4];       // x: the spot's offset
 };
-static_assert(sizeof(GpuLight) == 32);
+static_assert(sizeof(GpuLight) == 64);
 
 struct GpuObject {
   float model_view_projection[16];     // column-major, OpenGL clip space (compute backend)
@@ -106,8 +109,9 @@ struct GpuObject {
   uint32_t material_base, material_count, flags, pad0;
   float winding_sign;
   uint32_t cull, shading, pad1;
+  float model[16];  // column-major: world positions for point and spot lights
 };
-static_assert(sizeof(GpuObject) == 224);
+static_assert(sizeof(GpuObject) == 288);
 
 struct GpuMaterial {
   float base_color[4];
@@ -160,6 +164,8 @@ static_assert(sizeof(GpuRayRecord) == 80 && sizeof(GpuRayRecord) <= sizeof(GpuRa
 
 // Setup's output for shading (the CPU's ShadeTriangle).
 struct GpuShadeRecord {
+  // The corners' world positions (Phong with point and spot lights) ride in the spare floats:
+  // normal[k][3], color[k][3] and world_z[k].
   float normal[3][4];  // xyz
   float color[3][4];   // xyz: base x vertex colour, lit for flat and Gouraud
   float uv[3][2];
@@ -167,9 +173,11 @@ struct GpuShadeRecord {
   uint32_t triangle_id;
   uint32_t material;  // index into the material buffer
   uint32_t shading;   // Shading | kShadeHasUv
+  float world_z[3];
+  uint32_t pad;  // std430 rounds the struct to 16 bytes
 };
 constexpr uint32_t kShadeHasUv = 1u << 8;
-static_assert(sizeof(GpuShadeRecord) == 160);
+static_assert(sizeof(GpuShadeRecord) == 176);
 
 struct GpuCounters {
   uint32_t visible;  // records in the visible list

@@ -153,6 +153,7 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
       gpu.normal_matrix[c][2] = xf.normal_matrix.col[c].z;
     }
     gpu.winding_sign = xf.winding_sign;
+    storeMatrix(xf.model, gpu.model);
     gpu.vertex_base = static_cast<uint32_t>(vertex_base);
     gpu.triangle_base = static_cast<uint32_t>(triangle_base);
     gpu.material_base = static_cast<uint32_t>(out.materials.size());
@@ -241,9 +242,14 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
   out.triangle_count = triangle_base;
   out.vertex_count = vertex_base;
 
-  for (const DirectionalLight& light : scene.lights)
-    out.lights.push_back(GpuLight{{light.direction.x, light.direction.y, light.direction.z, 0},
-                                  {light.color.x, light.color.y, light.color.z, 0}});
+  for (const Light& light : scene.lights) {
+    const render::ShadeLight s = render::shadeLight(light);
+    out.lights.push_back(
+        GpuLight{{s.direction.x, s.direction.y, s.direction.z, static_cast<float>(s.type)},
+                 {s.radiance.x, s.radiance.y, s.radiance.z, s.inv_range4},
+                 {s.position.x, s.position.y, s.position.z, s.spot_scale},
+                 {s.spot_offset, 0, 0, 0}});
+  }
 
   GpuFrameConstants& f = out.frame;
   f = GpuFrameConstants{};

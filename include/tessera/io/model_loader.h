@@ -56,6 +56,9 @@ struct Model {
   // CullMode::kBack when it is true, CullMode::kNone when it is false, and its own default when
   // it is empty. Material::double_sided keeps the per-material answer.
   std::optional<bool> cull_back_faces;
+  // glTF KHR_lights_punctual: the file's lights in world space (gltf_lights.cpp), in node order;
+  // empty for other formats. A caller lights the model with these instead of its default rig.
+  std::vector<Light> lights;
 };
 
 // By extension (case-insensitive): .obj, .gltf, .glb, .stl.

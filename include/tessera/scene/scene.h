@@ -54,10 +54,43 @@ struct Object {
   float axes_length = 1.0f;  // their length, in the object's own units
 };
 
-// Light travelling along `direction` (world space, from the light towards the scene).
-struct DirectionalLight {
+// A punctual light, as glTF's KHR_lights_punctual defines it, in world space.
+//
+// Units (the extension's): `intensity` is in lux for a directional light and in candela for point
+// and spot lights. tessera's exposure is fixed: a surface's linear colour is albedo x irradiance,
+// where irradiance is in lux with no 1/pi, so a white directional light of intensity 1 shining
+// straight onto a surface gives the surface its albedo. A point or spot light at distance d gives
+// color * intensity / d^2 (the inverse-square law), times the range window and the cone:
+//   range > 0:  clamp(1 - (d / range)^4, 0, 1)  (the extension's recommended window); 0: none
+//   spot:       t = clamp((cos(angle to the axis) - cos(outer)) / max(0.001, cos(inner) -
+//               cos(outer)), 0, 1), times t (the extension's smooth angular falloff, squared)
+// Every light contributes color * intensity * attenuation * max(0, cos(incidence)), summed, plus
+// Scene::ambient. Lights are the same on every backend and every shading mode: flat lights the
+// face at its centroid, Gouraud each vertex, Phong each pixel.
+enum class LightType : uint8_t { kDirectional, kPoint, kSpot };
+
+struct Light {
+  // Directional and spot: the direction the light travels (from the light towards the scene; for
+  // glTF, the node's -Z). Ignored for point lights. Unit length.
   float3 direction{0, 0, -1};
-  float3 color{1, 1, 1};  // linear radiance
+  float3 color{1, 1, 1};  // linear RGB, multiplied by intensity
+  LightType type = LightType::kDirectional;
+  float3 position{0, 0, 0};       // point and spot: world position
+  float intensity = 1.0f;         // lux (directional) or candela (point, spot)
+  float range = 0.0f;             // point and spot: 0 = infinite
+  float inner_cone = 0.0f;        // spot: radians, 0 <= inner < outer <= pi / 2
+  float outer_cone = 0.7853982f;  // spot: radians (the extension's default, pi / 4)
+
+  static Light directional(float3 direction, float3 color, float intensity = 1.0f) {
+    return {direction, color, LightType::kDirectional, {}, intensity};
+  }
+  static Light point(float3 position, float3 color, float intensity, float range = 0.0f) {
+    return {{0, 0, -1}, color, LightType::kPoint, position, intensity, range};
+  }
+  static Light spot(float3 position, float3 direction, float3 color, float intensity,
+                    float inner_cone, float outer_cone, float range = 0.0f) {
+    return {direction, color, LightType::kSpot, position, intensity, range, inner_cone, outer_cone};
+  }
 };
 
 struct Camera {
@@ -94,8 +127,8 @@ struct LineList {
 
 struct Scene {
   std::vector<Object> objects;
-  std::vector<DirectionalLight> lights;
-  float3 ambient{0.15f, 0.15f, 0.15f};
+  std::vector<Light> lights;
+  float3 ambient{0.15f, 0.15f, 0.15f};  // linear irradiance added to every light (see Light)
   Camera camera;
   float4 background{0.0f, 0.0f, 0.0f, 1.0f};  // linear RGBA
   LineList lines;

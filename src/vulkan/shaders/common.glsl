@@ -47,9 +47,12 @@ struct FrameConstants {
   float ray_near, ray_inv_range;  // the ray passes' depth: (distance - near) * inv_range
 };
 
+// gpu_types.h's GpuLight (the CPU's render::ShadeLight).
 struct Light {
-  vec4 direction;  // travelling from the light into the scene
-  vec4 color;
+  vec4 direction;  // travelling from the light into the scene; w: tessera::LightType
+  vec4 color;      // radiance; w: 1 / range^4
+  vec4 position;   // w: the spot's scale
+  vec4 spot;       // x: the spot's offset
 };
 
 struct GpuObject {
@@ -60,6 +63,7 @@ struct GpuObject {
   uint material_base, material_count, flags, pad0;
   float winding_sign;
   uint cull, shading, pad1;
+  mat4 model;
 };
 
 struct GpuMaterial {

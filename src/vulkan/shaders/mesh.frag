@@ -22,6 +22,7 @@ layout(location = 0) TESSERA_INTERPOLATION in vec3 in_normal;
 layout(location = 1) TESSERA_INTERPOLATION in vec2 in_uv;
 layout(location = 2) TESSERA_INTERPOLATION in vec3 in_color_front;
 layout(location = 3) TESSERA_INTERPOLATION in vec3 in_color_back;
+layout(location = 5) TESSERA_INTERPOLATION in vec3 in_world;
 #if TESSERA_MSAA
 // The UV at the pixel centre: its differences across the quad give the level of detail.
 layout(location = 4) in vec2 in_uv_centre;
@@ -80,7 +81,11 @@ void main() {
     normal = normalizeAsCpu(in_normal) * flip;
     if (dot(normal, normal) == 0.0) normal = face_normal;
   }
-  if (shading == kShadingFlat || shading == kShadingPhong) color *= irradiance(normal);
+  // Flat faces are lit at their centroid, as the CPU does.
+  precise vec3 centre = (worldPosition(object.model, p0) + worldPosition(object.model, p1) +
+                         worldPosition(object.model, p2)) * (1.0 / 3.0);
+  if (shading == kShadingFlat) color *= irradiance(normal, centre);
+  if (shading == kShadingPhong) color *= irradiance(normal, in_world);
 
 #if TESSERA_MSAA
   out_linear = vec4(color, 1.0);

@@ -22,6 +22,7 @@ layout(location = 3) out vec3 out_color_back;
 // The UV again, for the multisample pass's derivatives: its copy at location 1 is interpolated at
 // the centroid, whose screen-space differences do not give the footprint.
 layout(location = 4) out vec2 out_uv_centre;
+layout(location = 5) out vec3 out_world;  // world position: point and spot lights
 
 void main() {
   const GpuObject object = objects[draw.object];
@@ -42,6 +43,8 @@ void main() {
   const vec3 color = (object.flags & kObjectHasColor) != 0u ? in_color.xyz : vec3(1.0);
   const bool gouraud =
       object.shading == kShadingGouraud && (object.flags & kObjectHasNormals) != 0u;
-  out_color_front = gouraud ? color * irradiance(normal) : color;
-  out_color_back = gouraud ? color * irradiance(-normal) : color;
+  const vec3 world = worldPosition(object.model, p);
+  out_world = world;
+  out_color_front = gouraud ? color * irradiance(normal, world) : color;
+  out_color_back = gouraud ? color * irradiance(-normal, world) : color;
 }

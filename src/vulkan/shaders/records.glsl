@@ -25,13 +25,15 @@ struct RasterRecord {
 
 // The CPU's ShadeTriangle.
 struct ShadeRecord {
-  vec4 normal[3];  // world shading normals, facing the viewer for drawn back faces
-  vec4 color[3];   // base colour x vertex colour, already lit for flat and Gouraud
+  // xyz: world shading normals, facing the viewer for drawn back faces; w: the corners' world x
+  vec4 normal[3];
+  vec4 color[3];  // xyz: base colour x vertex colour, already lit for flat and Gouraud; w: world y
   vec2 uv[3];
   float inv_w0, p1dx, p1dy, p2dx, p2dy, sdx, sdy;
   uint triangle_id;
   uint material;  // index into the material buffer
   uint shading;   // Shading | kShadeHasUv
+  float world_z[3];  // the corners' world z (world positions: Phong with point and spot lights)
 };
 
 struct Counters {

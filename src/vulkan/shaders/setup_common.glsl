@@ -22,6 +22,7 @@ struct TriangleContext {
   bool clipped;
   vec3 face_normal;  // world space, unnormalized
   vec3 normal[3];    // the source vertices' attributes
+  vec3 world[3];     // their world positions
   vec2 uv[3];
   vec4 color[3];
 };
@@ -67,6 +68,7 @@ TriangleContext triangleContext(uint t, GpuObject object, uint idx[3]) {
     ctx.uv[k] = ctx.has_uv ? vertexUv(g) : vec2(0.0);
     ctx.color[k] = ctx.has_color ? vertexColor(g) : vec4(1.0);
     p[k] = vertexPosition(g);
+    ctx.world[k] = worldPosition(object.model, p[k]);
   }
   precise vec3 e1 = p[1] - p[0];
   precise vec3 e2 = p[2] - p[0];
@@ -86,7 +88,14 @@ void setupShadeCorners(TriangleContext ctx, ClipVertex v[3], int order[3], bool 
   // Back faces that are drawn are lit from the viewer's side (two-sided lighting).
   const float flip = back_facing ? -1.0 : 1.0;
   precise vec3 flat_normal = normalizeAsCpu(ctx.face_normal) * flip;
-  const vec3 flat_irradiance = ctx.shading == kShadingFlat ? irradiance(flat_normal) : vec3(1.0);
+  // The corners' world positions (a clipped piece's own corners); flat faces are lit at the
+  // centroid, as the CPU does.
+  vec3 world[3];
+  for (int k = 0; k < 3; ++k)
+    world[k] = ctx.clipped ? weighted3(ctx.world, v[k].weights) : ctx.world[k];
+  precise vec3 centre = (world[0] + world[1] + world[2]) * (1.0 / 3.0);
+  const vec3 flat_irradiance =
+      ctx.shading == kShadingFlat ? irradiance(flat_normal, centre) : vec3(1.0);
   for (int k = 0; k < 3; ++k) {
     const int source = order[k];
     vec3 vertex_normal = ctx.normal[source];
@@ -100,12 +109,13 @@ void setupShadeCorners(TriangleContext ctx, ClipVertex v[3], int order[3], bool 
     precise vec3 n = ctx.shading == kShadingFlat ? flat_normal
                                                  : normalizeAsCpu(vertex_normal) * flip;
     if (n.x == 0.0 && n.y == 0.0 && n.z == 0.0) n = flat_normal;
-    shade.normal[k] = vec4(n, 0.0);
+    shade.normal[k] = vec4(n, world[source].x);
     shade.uv[k] = uv;
     precise vec3 albedo = ctx.has_color ? base * color.xyz : base;
     precise vec3 lit =
-        albedo * (ctx.shading == kShadingGouraud ? irradiance(n) : flat_irradiance);
-    shade.color[k] = vec4(lit, 0.0);
+        albedo * (ctx.shading == kShadingGouraud ? irradiance(n, world[source]) : flat_irradiance);
+    shade.color[k] = vec4(lit, world[source].y);
+    shade.world_z[k] = world[source].z;
   }
   shade.triangle_id = ctx.triangle;
   shade.material = ctx.material;

@@ -130,7 +130,13 @@ vec3 shadeAt(uint slot, ivec2 pixel, uint layer) {
   const vec3 b = pointBarycentrics(slot, s, pixel, layer);
   precise vec3 color = s.color[0].xyz * b.x + s.color[1].xyz * b.y + s.color[2].xyz * b.z;
   if ((s.shading & kShadeHasUv) != 0u) color = color * sampleAlbedo(slot, s, b, pixel, layer);
-  if ((s.shading & 255u) == kShadingPhong) color = color * irradiance(normalAt(s, b));
+  if ((s.shading & 255u) == kShadingPhong) {
+    const vec3 w0 = vec3(s.normal[0].w, s.color[0].w, s.world_z[0]);
+    const vec3 w1 = vec3(s.normal[1].w, s.color[1].w, s.world_z[1]);
+    const vec3 w2 = vec3(s.normal[2].w, s.color[2].w, s.world_z[2]);
+    precise vec3 p = w0 * b.x + w1 * b.y + w2 * b.z;
+    color = color * irradiance(normalAt(s, b), p);
+  }
   return color;
 }
 

@@ -4,15 +4,40 @@
 // two backends' colours differ only where a GPU's division or square root rounds differently.
 // Needs common.glsl.
 
-// Lambert irradiance: ambient plus every directional light, for unit normal n.
-vec3 irradiance(vec3 n) {
+// What a point or spot light gives a surface at p with unit normal n, per unit radiance
+// (src/render/lights.h: localFactor, the same operations in the same order).
+float localFactor(Light light, vec3 n, vec3 p) {
+  precise vec3 l = light.position.xyz - p;
+  precise float d2 = (l.x * l.x + l.y * l.y) + l.z * l.z;
+  precise float inv_d = 1.0 / sqrt(d2);
+  precise vec3 u = l * inv_d;
+  precise float cos_theta = (n.x * u.x + n.y * u.y) + n.z * u.z;
+  precise float window = clamp(1.0 - d2 * d2 * light.color.w, 0.0, 1.0);
+  const vec3 d = light.direction.xyz;
+  precise float cd = -((d.x * u.x + d.y * u.y) + d.z * u.z);
+  precise float t = clamp(cd * light.position.w + light.spot.x, 0.0, 1.0);
+  precise float f = cos_theta * ((window * (t * t)) / d2);
+  return f;
+}
+
+// Lambert irradiance: ambient plus every light, for unit normal n at world point p
+// (src/render/lights.h: irradiance).
+vec3 irradiance(vec3 n, vec3 p) {
   precise vec3 e = frame.ambient.xyz;
   for (uint i = 0u; i < frame.light_count; ++i) {
-    const vec3 d = lights[i].direction.xyz;
-    precise float cos_theta = -(n.x * d.x + n.y * d.y + n.z * d.z);
-    if (cos_theta > 0.0) e = e + lights[i].color.xyz * cos_theta;
+    const Light light = lights[i];
+    const vec3 d = light.direction.xyz;
+    precise float f = light.direction.w == 0.0 ? -(n.x * d.x + n.y * d.y + n.z * d.z)
+                                               : localFactor(light, n, p);
+    if (f > 0.0) e = e + light.color.xyz * f;
   }
   return e;
+}
+
+// An object-space point in world space (the CPU's float4x4 * float4 with w = 1).
+vec3 worldPosition(mat4 model, vec3 p) {
+  precise vec3 w = model[0].xyz * p.x + model[1].xyz * p.y + model[2].xyz * p.z + model[3].xyz;
+  return w;
 }
 
 // The material buffer index of triangle-material index m of an object (the CPU falls back to
