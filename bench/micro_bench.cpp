@@ -185,7 +185,7 @@ const StageInput* stageInput() {
         const uint32_t i = mesh.indices[t * 3 + k];
         inside = inside && !(in->vertices.outcode[i] & (render::kCutPlanes | render::kNonFinite));
         v[k] = in->vertices.screen[i];
-        a[k] = {in->vertices.normal[i], {}, {1, 1, 1, 1}, true};
+        a[k] = {in->vertices.normal[i], {}, {1, 1, 1, 1}, true, {}};
         p[k] = mesh.positions[i];
       }
       if (!inside) continue;  // the clipper's work: not part of these benchmarks
@@ -262,7 +262,7 @@ void BM_SetupShade(benchmark::State& state) {
       for (int k = 0; k < 3; ++k) {
         const uint32_t vi = mesh.indices[t * 3 + k];
         v[k] = in.vertices.screen[vi];
-        a[k] = {in.vertices.normal[vi], {}, {1, 1, 1, 1}, true};
+        a[k] = {in.vertices.normal[vi], {}, {1, 1, 1, 1}, true, {}};
         p[k] = mesh.positions[vi];
       }
       const float3 face = in.transforms.normal_matrix * cross(p[1] - p[0], p[2] - p[0]);
