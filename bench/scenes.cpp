@@ -143,11 +143,15 @@ Expected<BenchScene> loadModelScene(const std::filesystem::path& path, Shading s
                                     const io::LoadBudget& budget) {
   Expected<io::Model> model = io::loadModel(path, budget);
   if (!model) return model.error();
-  if (model->mesh.bounds().empty())
+  // A glTF scene graph is drawn flattened: one object that the bench turns.
+  Mesh mesh = model->graph.nodes.empty() ? std::move(model->mesh) : io::flattenedMesh(*model);
+  if (mesh.bounds().empty())
     return makeError(path.string() + ": the model has no finite vertices");
-  BenchScene b =
-      singleObjectScene(path.stem().string(), std::move(model->mesh), Material{}, shading);
-  if (!model->materials.empty()) b.scene.objects[0].materials = model->materials;
+  std::vector<Material> materials = model->graph.meshes.empty()
+                                        ? model->materials
+                                        : model->graph.meshes.front().materials.vector();
+  BenchScene b = singleObjectScene(path.stem().string(), std::move(mesh), Material{}, shading);
+  if (!materials.empty()) b.scene.objects[0].materials = materials;
   b.warnings = model->warnings;
   return b;
 }

@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
+#include <tessera/model/model_scene.h>
 #include <tessera/render/cpu_renderer.h>
 
 #include "bench/scenes.h"
-#include "model_scene.h"
-#include "view_setup.h"
+#include <tessera/model/camera_setup.h>
 
 using namespace tessera;
 
@@ -68,14 +68,14 @@ int main(int argc, char** argv) {
   }
   bench::BenchScene& b = *made;
   if (!b.fixed_view) {
-    Expected<Camera> camera = cli::makeCamera(
-        cli::CameraSettings{}, b.bounds, static_cast<float>(width) / static_cast<float>(height));
+    Expected<Camera> camera = model::makeCamera(
+        model::CameraSettings{}, b.bounds, static_cast<float>(width) / static_cast<float>(height));
     if (!camera) {
       std::fprintf(stderr, "tessera_stagetimes: %s\n", camera.error().message.c_str());
       return 1;
     }
     b.scene.camera = *camera;
-    cli::addViewLights(b.scene);
+    model::addViewLights(b.scene);
   }
   RenderOptions options;
   options.width = width;
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
   options.msaa = msaa;
   options.projection = *projection;
   if (*projection != Projection::kPerspective) {
-    cli::fitDistanceRange(b.scene.camera, b.bounds);
+    model::fitDistanceRange(b.scene.camera, b.bounds);
   }
 
   CpuRenderer renderer(workers, simd);

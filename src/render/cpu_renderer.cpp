@@ -25,6 +25,7 @@
 #include "render/bin.h"
 #include "render/chunk_layout.h"
 #include "render/clip.h"
+#include "render/cull.h"
 #include "render/diagnostics.h"
 #include "render/fixed_point.h"
 #include "render/kernels.h"
@@ -84,6 +85,7 @@ struct CpuRenderer::State {
   Isa isa;
   Kernels kernels;
   std::vector<ObjectTransforms> objects;
+  FrustumCull cull;  // what each object draws this frame
   std::vector<VertexJob> vertex_jobs;
   // The vertex stage's output: one buffer, or one per worker (mayReplicate).
   std::vector<VertexBuffer> vertex_buffers;
@@ -196,6 +198,10 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
     const ObjectTransforms& xf = objects[object_index];
     const size_t object_end = xf.triangle_base + (object.mesh ? object.mesh->triangleCount() : 0);
     if (!object.mesh || t >= object_end) continue;
+    if (!cull.drawsTriangles(object_index)) {
+      t = std::min(end, object_end);
+      continue;
+    }
     const Mesh& mesh = *object.mesh;
     const size_t vertex_count = mesh.vertexCount();
     const bool has_uv = mesh.uvs.size() == vertex_count;
@@ -322,10 +328,27 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
     // outside the mesh) one at a time.
     constexpr size_t kGroup = CullGroup::kLanes;
     const size_t stop = std::min(end, object_end);
+    // Only the triangle ranges that frustum culling kept (cull.h): the rest would be dropped.
+    const IndexRange* range = cull.trianglesBegin(object_index);
+    const IndexRange* const ranges_end = cull.trianglesEnd(object_index);
+    while (range != ranges_end && range->end <= t) ++range;
     while (t < stop) {
+      if (range == ranges_end) {
+        t = stop;
+        break;
+      }
+      if (t < range->first) {
+        t = std::min(range->first, stop);
+        continue;
+      }
+      const size_t run_end = std::min(range->end, stop);
+      if (t >= run_end) {
+        ++range;
+        continue;
+      }
       const size_t local = t - xf.triangle_base;
       CullGroup group;
-      if (stop - t < kGroup ||
+      if (run_end - t < kGroup ||
           !cull_group(&mesh.indices[local * 3], vertex_count, mesh_vertices.screen, outcodes,
                       grid.width, grid.height, object.cull, sample_reach, group)) {
         drawOne(t++);
@@ -416,10 +439,9 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
                options.normals, options.coverage);
 
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
-  const float4x4 view_projection =
-      jitteredProjection(scene.camera.projection(aspect), options.jitter, options.width,
-                         options.height) *
-      scene.camera.view();
+  const float4x4 projection = jitteredProjection(scene.camera.projection(aspect), options.jitter,
+                                                 options.width, options.height);
+  const float4x4 view_projection = projection * scene.camera.view();
   // With MSAA the pixel centres are a layer of their own, rasterized only for what reads them.
   const bool sampled = options.msaa > 1;
   const bool with_centre =
@@ -438,23 +460,28 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       for (int i = 0; i < s.pool.size(); ++i) s.sampled.push_back(std::make_unique<SampleTiles>());
   }
 
-  // Per-object constants, vertex and triangle bases.
+  // Per-object constants and triangle bases (the ids: every object's, drawn or not); then what
+  // frustum culling keeps, and vertex bases for the objects that draw.
   s.objects.resize(scene.objects.size());
-  s.vertex_jobs.clear();
-  size_t vertex_total = 0, triangle_total = 0;
+  size_t triangle_total = 0;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const Object& object = scene.objects[i];
     TESSERA_CHECK(!object.materials.empty()) << "object " << i << " has no material";
     s.objects[i] = makeObjectTransforms(object, view_projection);
-    s.objects[i].vertex_base = vertex_total;
     s.objects[i].triangle_base = triangle_total;
-    if (!object.mesh) continue;
-    const size_t count = object.mesh->vertexCount();
-    for (size_t first = 0; first < count; first += kVerticesPerJob)
-      s.vertex_jobs.push_back(
-          {static_cast<uint32_t>(i), first, std::min(kVerticesPerJob, count - first)});
-    vertex_total += count;
-    triangle_total += object.mesh->triangleCount();
+    if (object.mesh) triangle_total += object.mesh->triangleCount();
+  }
+  s.cull.run(scene, scene.camera.view(), projection, options.frustum_cull, s.objects);
+  s.vertex_jobs.clear();
+  size_t vertex_total = 0;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    s.objects[i].vertex_base = vertex_total;
+    if (!scene.objects[i].mesh || !s.cull.drawsTriangles(i)) continue;
+    for (const IndexRange* r = s.cull.verticesBegin(i); r != s.cull.verticesEnd(i); ++r)
+      for (size_t first = r->first; first < r->end; first += kVerticesPerJob)
+        s.vertex_jobs.push_back(
+            {static_cast<uint32_t>(i), first, std::min(kVerticesPerJob, r->end - first)});
+    vertex_total += scene.objects[i].mesh->vertexCount();
   }
 
   using Clock = std::chrono::steady_clock;
@@ -583,6 +610,12 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     s.stats.triangles_clipped += s.chunks[c].clipped;
     s.stats.triangles_setup += s.chunks[c].size;
   }
+  const CullCounters& culled = s.cull.counters();
+  s.stats.instances_culled = culled.instances_culled;
+  s.stats.clusters_culled = culled.clusters_culled;
+  s.stats.clusters_facing = culled.clusters_facing;
+  s.stats.triangles_skipped =
+      culled.triangles_in_culled_instances + culled.triangles_in_culled_clusters;
   if (options.diagnostics)
     s.diagnostics.run(s.pool, s.chunks, s.chunk_count, scene, grid, true, s.stats, frame);
 }

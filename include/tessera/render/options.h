@@ -28,6 +28,10 @@ struct RenderOptions {
   // other modes test each pixel's ray against the triangles (render/ray_setup.h), with the
   // camera's fov_y_degrees as the mode's view angle.
   Projection projection = Projection::kPerspective;
+  // Test objects with clusters (Object::clusters) and their clusters against the frustum (and
+  // back faces by normal cones) before their vertices are transformed (perspective only). Never
+  // changes the image; off for tests that compare with and without.
+  bool frustum_cull = true;
 };
 
 }  // namespace tessera
