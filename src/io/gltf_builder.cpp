@@ -202,8 +202,7 @@ Expected<void> GraphBuilder::finish() {
   // Every mesh indexes the one list of the file's materials in first-use order: shared, not
   // copied.
   if (model_.materials.empty()) model_.materials.push_back(Material{});
-  const MaterialList shared(std::move(model_.materials));
-  model_.materials.clear();
+  const MaterialList shared(model_.materials);
   for (GraphMesh& mesh : graph.meshes) mesh.materials = shared;
   if (model_.nonfinite_triangles > 0)
     model_.warnings.push_back(

@@ -48,7 +48,8 @@ struct Model {
   Mesh mesh;                          // triangles in the contract's load order
   std::vector<Material> materials;    // at least one; Mesh::triangle_materials indexes these
   // glTF: the scene graph (graph.h), each mesh stored once and drawn by every node that refers
-  // to it; `mesh` and `materials` are then empty. The instances' triangles, depth-first over the
+  // to it; `mesh` is then empty and `materials` lists the file's materials, the list every graph
+  // mesh shares (GraphMesh::materials). The instances' triangles, depth-first over the
   // nodes, are the contract's load order (flattenedMesh).
   SceneGraph graph;
   std::vector<std::string> warnings;  // things skipped or replaced (missing MTL, NaN vertices...)

@@ -1,0 +1,136 @@
+// Frustum and cluster culling before the vertex stage never changes the image: randomized
+// cameras over a field of instances, every image (colour and triangle ids) compared byte for byte
+// with culling off, and the counters showing that culling did happen.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include <tessera/render/cpu_renderer.h>
+#include <tessera/render/frame.h>
+#include <tessera/scene/clusters.h>
+#include <tessera/scene/graph.h>
+#include <tessera/scene/primitives.h>
+
+namespace tessera {
+namespace {
+
+// 60 instances of a 2,240-triangle sphere (9 clusters) scattered in a 20-unit box, some scaled
+// non-uniformly, some mirrored, half culling back faces.
+Scene instanceField(std::mt19937& rng) {
+  SceneGraph graph;
+  GraphMesh sphere;
+  sphere.mesh = std::make_shared<const Mesh>(makeUvSphere(40, 29));
+  sphere.materials = {Material{}};
+  graph.meshes.push_back(sphere);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  for (int i = 0; i < 60; ++i) {
+    GraphNode node;
+    node.mesh = 0;
+    node.local.translation = {unit(rng) * 10, unit(rng) * 10, unit(rng) * 10};
+    node.local.rotation = quat::fromAxisAngle(normalize(float3{unit(rng), 1, unit(rng)}), unit(rng) * 3);
+    node.local.scale = {1 + 0.5f * unit(rng), 1, i % 7 == 0 ? -1.0f : 1.0f};
+    graph.nodes.push_back(node);
+  }
+  graph.updateWorld();
+  graph.prepareMeshes();
+  Scene scene;
+  Object style;
+  style.shading = Shading::kPhong;
+  instantiate(graph, style, scene);
+  for (size_t i = 0; i < scene.objects.size(); ++i)
+    scene.objects[i].cull = i % 2 ? CullMode::kBack : (i % 4 ? CullMode::kNone : CullMode::kFront);
+  scene.lights.push_back({normalize(float3{-1, -2, -1}), float3(0.8f)});
+  return scene;
+}
+
+struct Totals {
+  size_t instances = 0, clusters = 0, facing = 0;
+};
+
+void expectSameWithAndWithoutCulling(const Scene& scene, RenderOptions options, Totals& totals,
+                                     const std::string& what) {
+  CpuRenderer renderer(2);
+  Frame culled, full;
+  options.frustum_cull = true;
+  renderer.render(scene, options, culled);
+  const PipelineStats stats = renderer.lastStats();
+  options.frustum_cull = false;
+  renderer.render(scene, options, full);
+  EXPECT_EQ(renderer.lastStats().instances_culled, 0u);
+  ASSERT_EQ(culled.color.size(), full.color.size());
+  EXPECT_TRUE(culled.color == full.color) << what;
+  EXPECT_TRUE(culled.triangle_id == full.triangle_id) << what;
+  EXPECT_TRUE(culled.depth == full.depth) << what;
+  totals.instances += stats.instances_culled;
+  totals.clusters += stats.clusters_culled;
+  totals.facing += stats.clusters_facing;
+}
+
+TEST(Culling, RandomCamerasGiveTheSameImageWithCullingOff) {
+  std::mt19937 rng(18);
+  const Scene field = instanceField(rng);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  Totals totals;
+  for (int i = 0; i < 24; ++i) {
+    Scene scene = field;
+    Camera& c = scene.camera;
+    c.position = {unit(rng) * 14, unit(rng) * 14, unit(rng) * 14};
+    c.target = {unit(rng) * 4, unit(rng) * 4, unit(rng) * 4};
+    c.fov_y_degrees = 30 + 40 * std::fabs(unit(rng));
+    c.near_z = 0.05f + std::fabs(unit(rng));
+    c.far_z = 10 + 20 * std::fabs(unit(rng));
+    c.orthographic = i % 5 == 4;
+    c.ortho_half_height = 4 + 3 * unit(rng);
+    RenderOptions options;
+    options.width = 120;
+    options.height = 90;
+    options.msaa = i % 3 == 2 ? 4 : 1;
+    options.jitter = {0.25f * unit(rng), 0.25f * unit(rng)};
+    expectSameWithAndWithoutCulling(scene, options, totals, "camera " + std::to_string(i));
+  }
+  // The test is only worth something if culling took place at every level.
+  EXPECT_GT(totals.instances, 0u);
+  EXPECT_GT(totals.clusters, 0u);
+  EXPECT_GT(totals.facing, 0u);
+}
+
+TEST(Culling, ClusterConeHoldsEveryFaceNormal) {
+  const Mesh sphere = makeUvSphere(40, 29);
+  const std::shared_ptr<const MeshClusters> clusters = buildClusters(sphere);
+  ASSERT_TRUE(clusters->describes(sphere));
+  size_t covered = 0;
+  for (const MeshCluster& c : clusters->clusters) {
+    for (uint32_t t = c.first_triangle; t < c.first_triangle + c.triangle_count; ++t) {
+      const float3 a = sphere.positions[sphere.indices[t * 3]],
+                   b = sphere.positions[sphere.indices[t * 3 + 1]],
+                   d = sphere.positions[sphere.indices[t * 3 + 2]];
+      const float3 n = normalize(cross(b - a, d - a));
+      if (c.cone_cos > 0) EXPECT_GE(dot(n, c.cone_axis), c.cone_cos - 1e-5f);
+      for (float3 p : {a, b, d}) {
+        EXPECT_TRUE(p.x >= c.bounds.min.x && p.y >= c.bounds.min.y && p.z >= c.bounds.min.z);
+        EXPECT_TRUE(p.x <= c.bounds.max.x && p.y <= c.bounds.max.y && p.z <= c.bounds.max.z);
+      }
+      ++covered;
+    }
+  }
+  EXPECT_EQ(covered, sphere.triangleCount());
+}
+
+TEST(Culling, AnObjectBehindTheCameraIsSkippedWhole) {
+  std::mt19937 rng(3);
+  Scene scene = instanceField(rng);
+  scene.camera.position = {0, 0, 40};
+  scene.camera.target = {0, 0, 60};  // looking away from every instance
+  CpuRenderer renderer(1);
+  RenderOptions options;
+  Frame frame;
+  renderer.render(scene, options, frame);
+  EXPECT_EQ(renderer.lastStats().instances_culled, scene.objects.size());
+  EXPECT_EQ(renderer.lastStats().triangles_setup, 0u);
+  EXPECT_EQ(renderer.lastStats().triangles_skipped, scene.triangleCount());
+}
+
+}  // namespace
+}  // namespace tessera
