@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include <tessera/io/model_loader.h>
+#include <tessera/scene/clusters.h>
 #include <tessera/scene/color.h>
 #include <tessera/scene/graph.h>
 #include <tessera/scene/primitives.h>
@@ -29,6 +30,7 @@ BenchScene singleObjectScene(std::string name, Mesh mesh, Material material, Sha
   b.name = std::move(name);
   Object object;
   object.mesh = std::make_shared<Mesh>(std::move(mesh));
+  object.clusters = buildClusters(*object.mesh);  // as a model the CLI loads has them
   object.materials = {std::move(material)};
   object.shading = shading;
   object.cull = CullMode::kBack;
@@ -169,6 +171,8 @@ Expected<BenchScene> makeBuiltinScene(const std::string& name, Shading shading) 
     return singleObjectScene(name, makeUvSphere(kDenseSegments, kDenseRings), Material{}, shading);
   if (name == "fill") return makeFillScene(shading);
   if (name == "instances") return makeInstancesScene(shading, /*flattened=*/false);
+  // Not in the list (10 million triangles a frame): for the comparison in docs/perf.md.
+  if (name == "instances-flat") return makeInstancesScene(shading, /*flattened=*/true);
   if (name == "textured") {
     Material material;
     material.base_color = {1, 1, 1, 1};

@@ -7,7 +7,8 @@
 //   simd: auto, scalar, sse2, avx2, avx512; msaa: 1, 2, 4, 8; projection: projection.h's names
 //   (the scene's camera and view angle in that mode). Defaults: bunny 2 40 1920 1080 auto 1
 //   perspective.
-//   TESSERA_NOHASH=1 leaves the hash out (and the gap it makes between frames).
+//   TESSERA_NOHASH=1 leaves the hash out (and the gap it makes between frames); TESSERA_NOCULL=1
+//   turns frustum and cluster culling off.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -83,6 +84,9 @@ int main(int argc, char** argv) {
   options.depth = options.ids = options.normals = options.lines = false;
   options.msaa = msaa;
   options.projection = *projection;
+  // TESSERA_NOCULL=1: no frustum or cluster culling before the vertex stage, to measure what it
+  // costs or saves in the same build.
+  options.frustum_cull = std::getenv("TESSERA_NOCULL") == nullptr;
   if (*projection != Projection::kPerspective) {
     model::fitDistanceRange(b.scene.camera, b.bounds);
   }
@@ -117,5 +121,10 @@ int main(int argc, char** argv) {
       name.c_str(), width, height, renderer.workerCount(), renderer.simdName(), msaa, frames,
       median(total), median(vertex), median(setup), median(tiles),
       static_cast<unsigned long long>(hash));
+  const PipelineStats& s = renderer.lastStats();
+  std::printf("last frame: %zu triangles set up; culled before the vertex stage: %zu instances, "
+              "%zu clusters outside, %zu clusters facing away, %zu triangles\n",
+              s.triangles_setup, s.instances_culled, s.clusters_culled, s.clusters_facing,
+              s.triangles_skipped);
   return 0;
 }

@@ -16,12 +16,14 @@
 namespace tessera {
 namespace {
 
-// 60 instances of a 2,240-triangle sphere (9 clusters) scattered in a 20-unit box, some scaled
-// non-uniformly, some mirrored, half culling back faces.
+// 60 instances of a 17,664-triangle sphere scattered in a 20-unit box, some scaled
+// non-uniformly, some mirrored, half culling back faces. 384 segments: a cluster (256 triangles
+// in the sphere's ring order) spans a third of a ring, so its normals fit a cone (a cluster of a
+// coarser sphere wraps the whole ring and has none).
 Scene instanceField(std::mt19937& rng) {
   SceneGraph graph;
   GraphMesh sphere;
-  sphere.mesh = std::make_shared<const Mesh>(makeUvSphere(40, 29));
+  sphere.mesh = std::make_shared<const Mesh>(makeUvSphere(384, 24));
   sphere.materials = {Material{}};
   graph.meshes.push_back(sphere);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
@@ -84,8 +86,8 @@ TEST(Culling, RandomCamerasGiveTheSameImageWithCullingOff) {
     c.orthographic = i % 5 == 4;
     c.ortho_half_height = 4 + 3 * unit(rng);
     RenderOptions options;
-    options.width = 120;
-    options.height = 90;
+    options.width = 160;
+    options.height = 120;
     options.msaa = i % 3 == 2 ? 4 : 1;
     options.jitter = {0.25f * unit(rng), 0.25f * unit(rng)};
     expectSameWithAndWithoutCulling(scene, options, totals, "camera " + std::to_string(i));

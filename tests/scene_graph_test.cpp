@@ -46,7 +46,9 @@ struct ThreeLevels {
 
 // root (mesh): scale (2, 1, 1), translate (0.25, 0, 0)
 //   child (mesh): a quarter turn about Z (a matrix), translate (0, 0.5, 0)
-//     grandchild (mesh): scale (-1, 0.5, 1) (mirrors), translate (0, 0, -0.5)
+//     grandchild (mesh): scale (-1, 0.5, 1) (mirrors), translate (1.25, 0, -0.5)
+// The child stands above the root and the grandchild above the child (world y in [1.25, 2.25]),
+// so that every instance shows.
 ThreeLevels threeLevels() {
   ThreeLevels t;
   GraphMesh mesh;
@@ -62,7 +64,7 @@ ThreeLevels threeLevels() {
   child.local.translation = {0, 0.5f, 0};
   grandchild.parent = 1;
   grandchild.local.scale = {-1, 0.5f, 1};
-  grandchild.local.translation = {0, 0, -0.5f};
+  grandchild.local.translation = {1.25f, 0, -0.5f};
   t.graph.nodes = {root, child, grandchild};
   return t;
 }
@@ -71,7 +73,7 @@ ThreeLevels threeLevels() {
 Mesh flattenedByHand(const Mesh& cube) {
   auto rootOf = [](float3 p) { return float3{2 * p.x + 0.25f, p.y, p.z}; };
   auto childOf = [&](float3 p) { return rootOf(float3{-p.y, p.x + 0.5f, p.z}); };
-  auto grandchildOf = [&](float3 p) { return childOf(float3{-p.x, 0.5f * p.y, p.z - 0.5f}); };
+  auto grandchildOf = [&](float3 p) { return childOf(float3{-p.x + 1.25f, 0.5f * p.y, p.z - 0.5f}); };
   Mesh out;
   auto add = [&](auto place, bool mirrored) {
     const auto base = static_cast<uint32_t>(out.positions.size());
@@ -102,10 +104,10 @@ TEST(SceneGraph, WorldTransformsComposeParentsFirst) {
   ThreeLevels t = threeLevels();
   ASSERT_TRUE(t.graph.validate());
   t.graph.updateWorld();
-  // The grandchild's origin: (0, 0, -0.5) -> child (0, 0.5, -0.5) -> root (0.25, 0.5, -0.5).
+  // The grandchild's origin: (1.25, 0, -0.5) -> child (0, 1.75, -0.5) -> root (0.25, 1.75, -0.5).
   const float4 origin = t.graph.world[2] * float4{0, 0, 0, 1};
   EXPECT_EQ(origin.x, 0.25f);
-  EXPECT_EQ(origin.y, 0.5f);
+  EXPECT_EQ(origin.y, 1.75f);
   EXPECT_EQ(origin.z, -0.5f);
   EXPECT_LT(determinant(upper3x3(t.graph.world[2])), 0.0f);
 }

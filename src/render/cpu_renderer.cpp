@@ -64,12 +64,6 @@ bool mayReplicate(size_t vertex_total, int workers) {
   return workers > 1 && vertex_total * static_cast<size_t>(workers) <= kMaxReplicatedVertexCopies;
 }
 
-struct VertexJob {
-  uint32_t object;
-  size_t first;
-  size_t count;
-};
-
 }  // namespace
 
 struct CpuRenderer::State {
@@ -329,51 +323,39 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
     constexpr size_t kGroup = CullGroup::kLanes;
     const size_t stop = std::min(end, object_end);
     // Only the triangle ranges that frustum culling kept (cull.h): the rest would be dropped.
-    const IndexRange* range = cull.trianglesBegin(object_index);
-    const IndexRange* const ranges_end = cull.trianglesEnd(object_index);
-    while (range != ranges_end && range->end <= t) ++range;
+    TriangleRuns runs(cull, object_index);
     while (t < stop) {
-      if (range == ranges_end) {
-        t = stop;
-        break;
-      }
-      if (t < range->first) {
-        t = std::min(range->first, stop);
-        continue;
-      }
-      const size_t run_end = std::min(range->end, stop);
-      if (t >= run_end) {
-        ++range;
-        continue;
-      }
-      const size_t local = t - xf.triangle_base;
-      CullGroup group;
-      if (run_end - t < kGroup ||
-          !cull_group(&mesh.indices[local * 3], vertex_count, mesh_vertices.screen, outcodes,
-                      grid.width, grid.height, object.cull, sample_reach, group)) {
-        drawOne(t++);
-        continue;
-      }
-      for (size_t l = 0; l < kGroup; ++l) {
-        if (group.kind[l] == CullGroup::kCulled) {
-          ++chunk.culled;
-          if (chunk.count_reasons) {
-            const uint32_t* idx = &mesh.indices[(local + l) * 3];
-            countCullReason(ctx, outcodes[idx[0]], outcodes[idx[1]], outcodes[idx[2]],
-                            mesh_vertices.screen[idx[0]], mesh_vertices.screen[idx[1]],
-                            mesh_vertices.screen[idx[2]], chunk.cull_reasons);
+      const size_t run_end = runs.next(t, stop);
+      while (t < run_end) {
+        const size_t local = t - xf.triangle_base;
+        CullGroup group;
+        if (run_end - t < kGroup ||
+            !cull_group(&mesh.indices[local * 3], vertex_count, mesh_vertices.screen, outcodes,
+                        grid.width, grid.height, object.cull, sample_reach, group)) {
+          drawOne(t++);
+          continue;
+        }
+        for (size_t l = 0; l < kGroup; ++l) {
+          if (group.kind[l] == CullGroup::kCulled) {
+            ++chunk.culled;
+            if (chunk.count_reasons) {
+              const uint32_t* idx = &mesh.indices[(local + l) * 3];
+              countCullReason(ctx, outcodes[idx[0]], outcodes[idx[1]], outcodes[idx[2]],
+                              mesh_vertices.screen[idx[0]], mesh_vertices.screen[idx[1]],
+                              mesh_vertices.screen[idx[2]], chunk.cull_reasons);
+            }
+            continue;
           }
-          continue;
+          const uint32_t* idx = &mesh.indices[(local + l) * 3];
+          if (group.kind[l] == CullGroup::kClip) {
+            drawClipped(t + l, idx, static_cast<uint32_t>(group.cut[l]));
+            continue;
+          }
+          drawWhole(t + l, idx, static_cast<int64_t>(group.area[l]),
+                    PixelBox{group.min_x[l], group.min_y[l], group.max_x[l], group.max_y[l]});
         }
-        const uint32_t* idx = &mesh.indices[(local + l) * 3];
-        if (group.kind[l] == CullGroup::kClip) {
-          drawClipped(t + l, idx, static_cast<uint32_t>(group.cut[l]));
-          continue;
-        }
-        drawWhole(t + l, idx, static_cast<int64_t>(group.area[l]),
-                  PixelBox{group.min_x[l], group.min_y[l], group.max_x[l], group.max_y[l]});
+        t += kGroup;
       }
-      t += kGroup;
     }
   }
   flush();
@@ -471,18 +453,9 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     s.objects[i].triangle_base = triangle_total;
     if (object.mesh) triangle_total += object.mesh->triangleCount();
   }
-  s.cull.run(scene, scene.camera.view(), projection, options.frustum_cull, s.objects);
-  s.vertex_jobs.clear();
-  size_t vertex_total = 0;
-  for (size_t i = 0; i < scene.objects.size(); ++i) {
-    s.objects[i].vertex_base = vertex_total;
-    if (!scene.objects[i].mesh || !s.cull.drawsTriangles(i)) continue;
-    for (const IndexRange* r = s.cull.verticesBegin(i); r != s.cull.verticesEnd(i); ++r)
-      for (size_t first = r->first; first < r->end; first += kVerticesPerJob)
-        s.vertex_jobs.push_back(
-            {static_cast<uint32_t>(i), first, std::min(kVerticesPerJob, r->end - first)});
-    vertex_total += scene.objects[i].mesh->vertexCount();
-  }
+  s.cull.run(scene, scene.camera.view(), projection, {options.width, options.height},
+             options.frustum_cull, s.objects);
+  const size_t vertex_total = s.cull.planVertices(scene, kVerticesPerJob, s.objects, s.vertex_jobs);
 
   using Clock = std::chrono::steady_clock;
   auto elapsed_ms = [](Clock::time_point a, Clock::time_point b) {
@@ -610,12 +583,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     s.stats.triangles_clipped += s.chunks[c].clipped;
     s.stats.triangles_setup += s.chunks[c].size;
   }
-  const CullCounters& culled = s.cull.counters();
-  s.stats.instances_culled = culled.instances_culled;
-  s.stats.clusters_culled = culled.clusters_culled;
-  s.stats.clusters_facing = culled.clusters_facing;
-  s.stats.triangles_skipped =
-      culled.triangles_in_culled_instances + culled.triangles_in_culled_clusters;
+  s.cull.addTo(s.stats);
   if (options.diagnostics)
     s.diagnostics.run(s.pool, s.chunks, s.chunk_count, scene, grid, true, s.stats, frame);
 }

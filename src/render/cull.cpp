@@ -5,6 +5,8 @@
 
 #include <tessera/scene/clusters.h>
 
+#include "render/fixed_point.h"
+
 namespace tessera::render {
 
 namespace {
@@ -12,18 +14,60 @@ namespace {
 // Relative margin of the plane tests: the vertex stage computes clip coordinates in float
 // (a few ulps of the products' magnitude); the boxes are tested in double with 20 times that.
 constexpr double kPlaneMargin = 1e-5;
-// Back-facing clusters are rejected only this far (in angle) past edge-on.
-constexpr double kConeMarginRadians = 2.0 * 3.14159265358979 / 180.0;
 
-// Whether every point of `box` (mesh space) is strictly outside one plane the outcodes test
-// (x < -w, x > w, y < -w, y > w, z < -w, z > w), with a margin for float rounding.
-bool outsideFrustum(const Bounds& box, const float4x4& mvp) {
-  if (box.empty()) return true;  // no vertex a triangle could draw with
-  // For each plane, the largest signed value over the corners (negative: outside) and the
-  // magnitude of the terms.
-  double worst[6], magnitude[6];
-  std::fill(worst, worst + 6, -INFINITY);
-  std::fill(magnitude, magnitude + 6, 0.0);
+enum class Side { kOutside, kInside, kCrossing };
+
+// kOutside when every point of `box` (mesh space) is outside one plane the outcodes test
+// (x < -w, x > w, y < -w, y > w, z < -w, z > w), kInside when every point is inside all six,
+// each with a margin for float rounding. A plane's value over the box is a linear function:
+// its value at the centre plus or minus the sum of |coefficient| * half-extent.
+Side sideOf(const Bounds& box, const float4x4& mvp) {
+  if (box.empty()) return Side::kOutside;  // no vertex a triangle could draw with
+  const double centre[3] = {0.5 * (double(box.min.x) + box.max.x),
+                            0.5 * (double(box.min.y) + box.max.y),
+                            0.5 * (double(box.min.z) + box.max.z)};
+  const double half[3] = {0.5 * (double(box.max.x) - box.min.x),
+                          0.5 * (double(box.max.y) - box.min.y),
+                          0.5 * (double(box.max.z) - box.min.z)};
+  // Plane i is row 3 + sign * row axis: w + x, w - x, w + y, w - y, w + z, w - z (inside: >= 0).
+  bool inside = true;
+  for (int i = 0; i < 6; ++i) {
+    const int axis = i / 2;
+    const double sign = i % 2 ? -1.0 : 1.0;
+    double value = double(mvp(3, 3)) + sign * mvp(axis, 3);
+    double spread = 0;
+    // The size of the terms the vertex stage adds in float, at the farthest corner.
+    double magnitude = std::fabs(double(mvp(3, 3))) + std::fabs(double(mvp(axis, 3)));
+    for (int j = 0; j < 3; ++j) {
+      const double a = double(mvp(3, j)) + sign * mvp(axis, j);
+      value += a * centre[j];
+      spread += std::fabs(a) * half[j];
+      magnitude += (std::fabs(double(mvp(3, j))) + std::fabs(double(mvp(axis, j)))) *
+                   (std::fabs(centre[j]) + half[j]);
+    }
+    if (!std::isfinite(value) || !std::isfinite(spread) || !std::isfinite(magnitude))
+      return Side::kCrossing;
+    if (value + spread < -kPlaneMargin * magnitude) return Side::kOutside;
+    inside = inside && value - spread > kPlaneMargin * magnitude;
+  }
+  return inside ? Side::kInside : Side::kCrossing;
+}
+
+// A cluster's box as the rasterizer will see it.
+struct ScreenBox {
+  bool unclipped = false;  // wholly inside near, far and the guard band: no triangle is clipped
+  double w_min = INFINITY, w_max = 0;  // the range of clip w over its points
+  double ndc_max[2] = {0, 0};          // the largest |x / w| and |y / w| of its points
+  double error = 0;  // how far a vertex's snapped position may be from the exact one, pixels
+};
+
+ScreenBox screenBoxOf(const Bounds& box, const float4x4& mvp, const CullViewport& viewport) {
+  ScreenBox out;
+  if (box.empty()) return out;
+  const double half_w = 0.5 * viewport.width, half_h = 0.5 * viewport.height;
+  const double guard_x = 1.0 + 2.0 * kGuardBandPixels / viewport.width;
+  const double guard_y = 1.0 + 2.0 * kGuardBandPixels / viewport.height;
+  double float_error = 0;
   for (int k = 0; k < 8; ++k) {
     const double p[3] = {k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y,
                          k & 4 ? box.max.z : box.min.z};
@@ -36,85 +80,132 @@ bool outsideFrustum(const Bounds& box, const float4x4& mvp) {
         m[r] += std::fabs(double(mvp(r, j)) * p[j]);
       }
     }
-    // Inside plane i when value >= 0: w + x, w - x, w + y, w - y, w + z, w - z.
-    const double value[6] = {c[3] + c[0], c[3] - c[0], c[3] + c[1],
-                             c[3] - c[1], c[3] + c[2], c[3] - c[2]};
-    const int axis[6] = {0, 0, 1, 1, 2, 2};
-    for (int i = 0; i < 6; ++i) {
-      worst[i] = std::max(worst[i], value[i]);
-      magnitude[i] = std::max(magnitude[i], m[3] + m[axis[i]]);
-    }
+    const double slack = kPlaneMargin * (m[3] + std::max({m[0], m[1], m[2]}));
+    const bool inside = c[3] > slack && c[3] + c[2] > slack && c[3] - c[2] > slack &&
+                        guard_x * c[3] - std::fabs(c[0]) > guard_x * slack &&
+                        guard_y * c[3] - std::fabs(c[1]) > guard_y * slack;
+    if (!inside || !std::isfinite(c[0] + c[1] + c[3] + m[0] + m[1] + m[3])) return out;
+    // The box's projection is the hull of its corners': the extremes are corners'.
+    const double x = (c[0] / c[3] + 1) * half_w, y = (1 - c[1] / c[3]) * half_h;
+    out.ndc_max[0] = std::max(out.ndc_max[0], std::fabs(c[0] / c[3]) * (1 + 1e-6));
+    out.ndc_max[1] = std::max(out.ndc_max[1], std::fabs(c[1] / c[3]) * (1 + 1e-6));
+    out.w_min = std::min(out.w_min, c[3] - kPlaneMargin * m[3]);
+    out.w_max = std::max(out.w_max, c[3] + kPlaneMargin * m[3]);
+    // The vertex stage's float rounding (clip coordinates, the division, the viewport) as a
+    // relative 1e-6 of every term, far above the few ulps it is.
+    float_error =
+        std::max({float_error,
+                  1e-6 * (std::fabs(x) + half_w * (m[0] + std::fabs(c[0] / c[3]) * m[3]) / c[3]),
+                  1e-6 * (std::fabs(y) + half_h * (m[1] + std::fabs(c[1] / c[3]) * m[3]) / c[3])});
   }
-  for (int i = 0; i < 6; ++i) {
-    if (!std::isfinite(worst[i]) || !std::isfinite(magnitude[i])) return false;
-    if (worst[i] < -kPlaneMargin * magnitude[i]) return true;
-  }
-  return false;
+  out.unclipped = out.w_min > 0;
+  out.error = 0.5 / kSubpixelOne + float_error;
+  return out;
 }
 
-// Where the faces are seen from, in a mesh's space: an eye point (perspective) or a view
-// direction (orthographic). `sign` folds in the mirroring of the model matrix and which faces
-// are culled.
+// Where the faces are seen from, in a mesh's space: the eye (perspective) or the direction the
+// camera looks along, L^-1 (0, 0, -1) (orthographic), with L the model-view's 3x3; and the
+// factors that turn a triangle's mesh-space double area into pixels squared.
 struct Viewpoint {
   bool valid = false;
   bool directional = false;
-  double p[3] = {0, 0, 0};  // the eye, or the direction the camera looks along
+  double p[3] = {0, 0, 0};
+  double sign = 1;        // folds in the mirroring of the model matrix and which faces cull
+  double area_scale = 0;  // (W/2)(H/2) |P00 P11| |det L|
 };
 
-// True when every triangle of the cluster faces away by the margin: for every point of its
-// bounding sphere the view vector is within 90 - alpha - margin degrees of the (signed) axis.
-bool facesAway(const MeshCluster& cluster, const Viewpoint& eye, double sign) {
-  if (!eye.valid || !(cluster.cone_cos > 0.0f) || cluster.bounds.empty()) return false;
+// True when every triangle of the cluster faces away (the side the renderer culls) by enough
+// that the snapped vertices cannot turn it. The rasterizer culls by the sign of the snapped
+// double area; each vertex moves by at most e = box.error per axis, which changes the double
+// area of a triangle with edges u, v by at most 2 e (|u|1 + |v|1) + 8 e^2. In pixels, an edge of
+// mesh length l is at most k l long (|u|1, |v|1 <= k L for the triangle's longest edge L), with
+//   k = ((W/2)(|row 0| + ndc_x |row 3|) + (H/2)(|row 1| + ndc_y |row 3|)) / w_min
+// (rows of the model-view-projection, ndc the box's largest |x/w|, |y/w|). The exact double area
+// is at least K h L, with h the triangle's altitude to that edge (mesh space), and
+//   perspective:  K = area_scale * min n.(p - eye) / w_max^3
+//   orthographic: K = area_scale * min n.d
+// (det[P0 P1 P2] / (w0 w1 w2) in camera space is det L (u x v).(p - eye) in mesh space). So the
+// sign holds, with a factor 2 to spare, when K h_min > 2 (4 e k + 8 e^2 / L_min).
+bool facesAway(const MeshCluster& cluster, const Viewpoint& eye, const float4x4& mvp,
+               const CullViewport& viewport) {
+  if (!eye.valid || !(cluster.cone_cos > 0.0f) || !(cluster.min_altitude > 0.0f) ||
+      !(cluster.min_edge > 0.0f) || cluster.bounds.empty())
+    return false;
   const double cos_a = cluster.cone_cos, sin_a = std::sqrt(std::max(0.0, 1 - cos_a * cos_a));
-  const double s = sin_a * std::cos(kConeMarginRadians) + cos_a * std::sin(kConeMarginRadians);
-  if (!(s < 1.0)) return false;
-  const double axis[3] = {sign * cluster.cone_axis.x, sign * cluster.cone_axis.y,
-                          sign * cluster.cone_axis.z};
-  if (eye.directional) {
-    const double len = std::sqrt(eye.p[0] * eye.p[0] + eye.p[1] * eye.p[1] + eye.p[2] * eye.p[2]);
-    const double d = eye.p[0] * axis[0] + eye.p[1] * axis[1] + eye.p[2] * axis[2];
-    return len > 0 && d >= s * len;
-  }
+  const double axis[3] = {eye.sign * cluster.cone_axis.x, eye.sign * cluster.cone_axis.y,
+                          eye.sign * cluster.cone_axis.z};
+  const double axis_len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+  if (!(axis_len > 0.5)) return false;
+  // v: from the eye to the cluster's centre (or the view direction); n.v >= |v| cos(b + a) - r
+  // for every face normal n within the cone and every point within r of the centre.
   const float3 c = cluster.bounds.center();
-  const double r = 0.5 * std::sqrt(double(cluster.bounds.extent().x) * cluster.bounds.extent().x +
-                                   double(cluster.bounds.extent().y) * cluster.bounds.extent().y +
-                                   double(cluster.bounds.extent().z) * cluster.bounds.extent().z);
-  const double v[3] = {c.x - eye.p[0], c.y - eye.p[1], c.z - eye.p[2]};
+  const double r = eye.directional ? 0.0 : double(cluster.bounds.radius()) * (1 + 1e-6);
+  const double v[3] = {eye.directional ? eye.p[0] : c.x - eye.p[0],
+                       eye.directional ? eye.p[1] : c.y - eye.p[1],
+                       eye.directional ? eye.p[2] : c.z - eye.p[2]};
   const double dist = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  const double along = v[0] * axis[0] + v[1] * axis[1] + v[2] * axis[2];
-  return std::isfinite(dist) && along - r > 0 && along - r >= (dist + r) * s;
+  if (!(dist > 0) || !std::isfinite(dist)) return false;
+  const double cos_b = (v[0] * axis[0] + v[1] * axis[1] + v[2] * axis[2]) / (dist * axis_len);
+  const double sin_b = std::sqrt(std::max(0.0, 1 - cos_b * cos_b));
+  // 1e-6: the axis is a float rounding of a unit vector.
+  const double facing = dist * (cos_b * cos_a - sin_b * sin_a - 1e-6) - r;
+  if (!(facing > 0)) return false;
+  const ScreenBox box = screenBoxOf(cluster.bounds, mvp, viewport);
+  if (!box.unclipped) return false;
+  double gain = eye.area_scale * facing;  // K
+  if (!eye.directional) gain /= box.w_max * box.w_max * box.w_max;
+  const auto rowLength = [&](int row) {
+    return std::sqrt(double(mvp(row, 0)) * mvp(row, 0) + double(mvp(row, 1)) * mvp(row, 1) +
+                     double(mvp(row, 2)) * mvp(row, 2));
+  };
+  const double w = rowLength(3);
+  const double stretch = (0.5 * viewport.width * (rowLength(0) + box.ndc_max[0] * w) +
+                          0.5 * viewport.height * (rowLength(1) + box.ndc_max[1] * w)) /
+                         box.w_min;  // k
+  const double e = box.error;
+  const double change = 4 * e * stretch + 8 * e * e / cluster.min_edge;
+  return std::isfinite(gain * stretch) && gain * cluster.min_altitude > 2 * change;
 }
 
-// The camera's eye (or direction) in the mesh's space, when the projection is one whose
-// screen-space winding the cone test predicts (a perspective or orthographic row 3).
-Viewpoint viewpointIn(const float4x4& inverse_model, const float4x4& inverse_view,
-                      const float4x4& projection) {
+// The viewpoint of an object, when the projection is one whose screen-space winding the test
+// predicts (a perspective or orthographic row 3).
+Viewpoint viewpointOf(const Object& object, const float4x4& model, const float4x4& view,
+                      const float4x4& projection, const CullViewport& viewport) {
   Viewpoint out;
   const bool perspective = projection(3, 0) == 0 && projection(3, 1) == 0 &&
                            projection(3, 2) == -1 && projection(3, 3) == 0;
   const bool orthographic = projection(3, 0) == 0 && projection(3, 1) == 0 &&
                             projection(3, 2) == 0 && projection(3, 3) == 1;
-  if (!perspective && !orthographic) return out;
-  const float4 world = orthographic ? inverse_view * float4{0, 0, -1, 0}
-                                    : inverse_view * float4{0, 0, 0, 1};
-  const float4 local = inverse_model * world;
-  if (!isFinite(local.xyz())) return out;
+  if (object.cull == CullMode::kNone || (!perspective && !orthographic)) return out;
+  const float4x4 inverse_model_view = inverse(view * model);
+  const float4 local = orthographic ? inverse_model_view * float4{0, 0, -1, 0}
+                                    : inverse_model_view * float4{0, 0, 0, 1};
+  const float3x3 l = upper3x3(view * model);
+  double det = 0;  // det L, in double
+  for (int j = 0; j < 3; ++j) {
+    const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+    det += double(l(0, j)) * (double(l(1, j1)) * l(2, j2) - double(l(1, j2)) * l(2, j1));
+  }
+  if (!isFinite(local.xyz()) || !std::isfinite(det) || det == 0) return out;
   out.valid = true;
   out.directional = orthographic;
   out.p[0] = local.x, out.p[1] = local.y, out.p[2] = local.z;
+  out.sign = (det < 0 ? -1.0 : 1.0) * (object.cull == CullMode::kFront ? -1.0 : 1.0);
+  out.area_scale = 0.25 * viewport.width * viewport.height *
+                   std::fabs(double(projection(0, 0)) * projection(1, 1)) * std::fabs(det);
   return out;
 }
 
 }  // namespace
 
 void FrustumCull::run(const Scene& scene, const float4x4& view, const float4x4& projection,
-                      bool enabled, const std::vector<ObjectTransforms>& objects) {
+                      const CullViewport& viewport, bool enabled,
+                      const std::vector<ObjectTransforms>& objects) {
   triangles_.clear();
   vertices_.clear();
   first_triangle_range_.assign(1, 0);
   first_vertex_range_.assign(1, 0);
   counters_ = {};
-  const float4x4 inverse_view = inverse(view);
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const Object& object = scene.objects[o];
     const size_t base = objects[o].triangle_base;
@@ -125,19 +216,16 @@ void FrustumCull::run(const Scene& scene, const float4x4& view, const float4x4& 
     if (!enabled || !clusters || !object.mesh || !clusters->describes(*object.mesh)) {
       if (triangle_count > 0) triangles_.push_back({base, base + triangle_count});
       if (vertex_count > 0) vertices_.push_back({0, vertex_count});
-    } else if (outsideFrustum(clusters->bounds, mvp)) {
+    } else if (const Side side = sideOf(clusters->bounds, mvp); side == Side::kOutside) {
       ++counters_.instances_culled;
       counters_.triangles_in_culled_instances += triangle_count;
     } else {
-      const bool culls = object.cull != CullMode::kNone;
-      const float det = determinant(upper3x3(objects[o].model));
-      const double sign = (det < 0 ? -1.0 : 1.0) * (object.cull == CullMode::kFront ? -1.0 : 1.0);
-      const Viewpoint eye =
-          culls ? viewpointIn(inverse(objects[o].model), inverse_view, projection) : Viewpoint{};
+      const Viewpoint eye = viewpointOf(object, objects[o].model, view, projection, viewport);
       const size_t vertex_start = vertices_.size();
       for (const MeshCluster& cluster : clusters->clusters) {
-        const bool outside = outsideFrustum(cluster.bounds, mvp);
-        const bool away = !outside && culls && facesAway(cluster, eye, sign);
+        // A mesh wholly inside the frustum has no cluster outside it.
+        const bool outside = side != Side::kInside && sideOf(cluster.bounds, mvp) == Side::kOutside;
+        const bool away = !outside && facesAway(cluster, eye, mvp, viewport);
         if (outside || away) {
           ++(outside ? counters_.clusters_culled : counters_.clusters_facing);
           counters_.triangles_in_culled_clusters += cluster.triangle_count;
@@ -167,6 +255,30 @@ void FrustumCull::run(const Scene& scene, const float4x4& view, const float4x4& 
     first_triangle_range_.push_back(triangles_.size());
     first_vertex_range_.push_back(vertices_.size());
   }
+}
+
+void FrustumCull::addTo(PipelineStats& stats) const {
+  stats.instances_culled = counters_.instances_culled;
+  stats.clusters_culled = counters_.clusters_culled;
+  stats.clusters_facing = counters_.clusters_facing;
+  stats.triangles_skipped =
+      counters_.triangles_in_culled_instances + counters_.triangles_in_culled_clusters;
+}
+
+size_t FrustumCull::planVertices(const Scene& scene, size_t per_job,
+                                 std::vector<ObjectTransforms>& objects,
+                                 std::vector<VertexJob>& jobs) const {
+  jobs.clear();
+  size_t total = 0;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    objects[i].vertex_base = total;
+    if (!scene.objects[i].mesh || !drawsTriangles(i)) continue;
+    for (const IndexRange* r = verticesBegin(i); r != verticesEnd(i); ++r)
+      for (size_t first = r->first; first < r->end; first += per_job)
+        jobs.push_back({static_cast<uint32_t>(i), first, std::min(per_job, r->end - first)});
+    total += scene.objects[i].mesh->vertexCount();
+  }
+  return total;
 }
 
 }  // namespace tessera::render

@@ -12,6 +12,7 @@ namespace {
 // widest normal's. Computed in double: the test must hold for every triangle, and the renderer
 // adds its own margin on top.
 void fitCone(const Mesh& mesh, MeshCluster& cluster) {
+  double min_altitude = INFINITY, min_edge = INFINITY;
   const auto normalOf = [&](uint32_t t, double n[3]) {
     const uint32_t* idx = &mesh.indices[size_t{t} * 3];
     const float3 a = mesh.positions[idx[0]], b = mesh.positions[idx[1]], c = mesh.positions[idx[2]];
@@ -22,6 +23,12 @@ void fitCone(const Mesh& mesh, MeshCluster& cluster) {
     n[2] = e1[0] * e2[1] - e1[1] * e2[0];
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (!(len > 0) || !std::isfinite(len)) return false;
+    const double e3[3] = {e2[0] - e1[0], e2[1] - e1[1], e2[2] - e1[2]};
+    const double l1 = std::sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+    const double l2 = std::sqrt(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]);
+    const double l3 = std::sqrt(e3[0] * e3[0] + e3[1] * e3[1] + e3[2] * e3[2]);
+    min_altitude = std::min(min_altitude, len / std::max({l1, l2, l3}));
+    min_edge = std::min({min_edge, l1, l2, l3});
     for (int i = 0; i < 3; ++i) n[i] /= len;
     return true;
   };
@@ -52,7 +59,12 @@ void fitCone(const Mesh& mesh, MeshCluster& cluster) {
   }
   cluster.cone_axis = {static_cast<float>(sum[0]), static_cast<float>(sum[1]),
                        static_cast<float>(sum[2])};
-  cluster.cone_cos = static_cast<float>(min_cos);
+  // Widened by more than the float rounding of the axis and the cosine.
+  cluster.cone_cos = static_cast<float>(min_cos - 1e-5);
+  // Rounded down, so that the renderer's bound stays a bound.
+  cluster.min_altitude = static_cast<float>(min_altitude * (1.0 - 1e-6));
+  cluster.min_edge = static_cast<float>(min_edge * (1.0 - 1e-6));
+  if (!(cluster.min_altitude > 0.0f) || !(cluster.min_edge > 0.0f)) cluster.cone_cos = -1.0f;
 }
 
 }  // namespace
@@ -92,7 +104,8 @@ std::shared_ptr<const MeshClusters> buildClusters(const Mesh& mesh) {
 
 Mesh reversedWinding(const Mesh& mesh) {
   Mesh out = mesh;
-  for (size_t i = 0; i + 2 < out.indices.size(); i += 3) std::swap(out.indices[i + 1], out.indices[i + 2]);
+  for (size_t i = 0; i + 2 < out.indices.size(); i += 3)
+    std::swap(out.indices[i + 1], out.indices[i + 2]);
   return out;
 }
 

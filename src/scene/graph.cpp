@@ -171,6 +171,7 @@ Expected<Camera> SceneGraph::camera(size_t index, float aspect, const Bounds& sc
 }
 
 void instantiate(const SceneGraph& graph, const Object& object, Scene& scene) {
+  scene.objects.reserve(scene.objects.size() + graph.instanceCount());
   for (size_t i = 0; i < graph.nodes.size(); ++i) {
     const GraphNode& node = graph.nodes[i];
     if (node.mesh == kNoIndex) continue;

@@ -22,12 +22,17 @@ struct MeshCluster {
   // vertex): no back-face test for the cluster.
   float3 cone_axis{0, 0, 1};
   float cone_cos = -1.0f;
+  // Over those triangles, rounded down: the smallest altitude to a triangle's longest edge
+  // (twice its area over that edge) and the shortest edge, mesh units. How far snapping may move
+  // a vertex before a back face could turn to the front follows from them (render/cull.cpp).
+  float min_altitude = 0.0f;
+  float min_edge = 0.0f;
 };
 
 struct MeshClusters {
   // What it was built for: a mesh with other counts is not described by it.
   size_t vertex_count = 0, triangle_count = 0;
-  Bounds bounds;  // of every finite vertex the triangles use
+  Bounds bounds;       // of every finite vertex the triangles use
   bool finite = true;  // every vertex a triangle uses is finite
   std::vector<MeshCluster> clusters;
 
