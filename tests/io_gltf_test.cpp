@@ -714,6 +714,99 @@ TEST_F(GltfFiles, LoadModelPicksGltfAndGlbByExtensionInAnyCase) {
 
 // ---- Hostile files ----
 
+// ---- The scene graph: cameras and depth ----
+
+TEST_F(GltfFiles, CamerasAreReadAndPlacedByTheNodesThatHoldThem) {
+  // Camera 0 (perspective) on a root node at z = 5; camera 1 (orthographic) on a child at
+  // (0, 2, 0) of a node at (1, 0, 0), turned a quarter about +y (so it looks down -x).
+  GltfBuilder b;
+  const int p = b.positions(kTriangle);
+  const std::string cameras =
+      "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.5,\"znear\":0.25,"
+      "\"zfar\":50}},{\"type\":\"orthographic\",\"orthographic\":{\"xmag\":3,\"ymag\":2,"
+      "\"znear\":0,\"zfar\":10}}]";
+  const std::string nodes =
+      "\"nodes\":[{\"mesh\":0},{\"camera\":0,\"translation\":[0,0,5]},"
+      "{\"translation\":[1,0,0],\"children\":[3]},"
+      "{\"camera\":1,\"translation\":[0,2,0],"
+      "\"rotation\":[0,0.7071067811865476,0,0.7071067811865476]}]";
+  Expected<Model> model =
+      loadJson(b.json("\"scenes\":[{\"nodes\":[0,1,2]}]," + nodes + "," + cameras + "," +
+                      oneMesh(p)));
+  ASSERT_TRUE(model) << model.error().message;
+  SceneGraph graph = model->graph;
+  ASSERT_EQ(graph.cameras.size(), 2u);
+  EXPECT_FALSE(graph.cameras[0].orthographic);
+  EXPECT_FLOAT_EQ(graph.cameras[0].yfov_radians, 0.5f);
+  EXPECT_FLOAT_EQ(graph.cameras[0].znear, 0.25f);
+  EXPECT_FLOAT_EQ(graph.cameras[0].zfar, 50.0f);
+  EXPECT_TRUE(graph.cameras[1].orthographic);
+  EXPECT_FLOAT_EQ(graph.cameras[1].ymag, 2.0f);
+  graph.updateWorld();
+  Expected<Camera> first = graph.camera(0, 1.0f, graph.bounds());
+  ASSERT_TRUE(first) << first.error().message;
+  expectNear3(first->position, {0, 0, 5});
+  expectNear3(first->target - first->position, {0, 0, -1});
+  EXPECT_NEAR(first->fov_y_degrees, 0.5f * 180.0f / 3.14159265f, 1e-4f);
+  EXPECT_FALSE(first->orthographic);
+  Expected<Camera> second = graph.camera(1, 1.0f, graph.bounds());
+  ASSERT_TRUE(second) << second.error().message;
+  expectNear3(second->position, {1, 2, 0});
+  // A quarter turn about +y takes the view direction -z to -x, and keeps +y up.
+  expectNear3(second->target - second->position, {-1, 0, 0});
+  expectNear3(second->up, {0, 1, 0});
+  EXPECT_TRUE(second->orthographic);
+  EXPECT_FLOAT_EQ(second->ortho_half_height, 2.0f);
+  // Past the end: the message counts the cameras.
+  Expected<Camera> third = graph.camera(2, 1.0f, graph.bounds());
+  ASSERT_FALSE(third);
+  EXPECT_NE(third.error().message.find("has 2 cameras"), std::string::npos)
+      << third.error().message;
+}
+
+TEST_F(GltfFiles, CameraWithAZeroOrNegativeFieldIsSkippedWithAWarning) {
+  GltfBuilder b;
+  const int p = b.positions(kTriangle);
+  const std::string cameras =
+      "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0,\"znear\":0.1}},"
+      "{\"type\":\"orthographic\",\"orthographic\":{\"xmag\":1,\"ymag\":-2,\"znear\":0,"
+      "\"zfar\":10}},"
+      "{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.7,\"znear\":0.1}}]";
+  Expected<Model> model = loadJson(b.json(
+      "\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":[{\"mesh\":0},{\"camera\":2}]," + cameras +
+      "," + oneMesh(p)));
+  ASSERT_TRUE(model) << model.error().message;
+  EXPECT_TRUE(anyWarningContains(*model, "camera 0 has yfov")) << allWarnings(*model);
+  EXPECT_TRUE(anyWarningContains(*model, "camera 1 has ymag")) << allWarnings(*model);
+  ASSERT_EQ(model->graph.cameras.size(), 1u);
+  EXPECT_FLOAT_EQ(model->graph.cameras[0].yfov_radians, 0.7f);
+  EXPECT_EQ(io::flattenedMesh(*model).triangleCount(), 1u);  // the rest of the file is drawn
+}
+
+TEST_F(GltfFiles, HierarchyAHundredThousandDeepLoadsWithoutRecursion) {
+  // A chain of 100,000 nodes, each 0.001 along x from its parent, the mesh on the last: a
+  // recursive walk would overflow the stack long before.
+  constexpr int kDepth = 100000;
+  GltfBuilder b;
+  const int p = b.positions(kTriangle);
+  std::string nodes = "\"nodes\":[";
+  for (int i = 0; i < kDepth; ++i) {
+    nodes += i ? "," : "";
+    nodes += i + 1 < kDepth ? "{\"translation\":[0.001,0,0],\"children\":[" +
+                                  std::to_string(i + 1) + "]}"
+                            : "{\"translation\":[0.001,0,0],\"mesh\":0}";
+  }
+  nodes += "]";
+  Expected<Model> model =
+      loadJson(b.json("\"scenes\":[{\"nodes\":[0]}]," + nodes + "," + oneMesh(p)));
+  ASSERT_TRUE(model) << model.error().message;
+  ASSERT_EQ(model->graph.nodes.size(), static_cast<size_t>(kDepth));
+  const Mesh mesh = io::flattenedMesh(*model);
+  ASSERT_EQ(mesh.triangleCount(), 1u);
+  // 100,000 float additions of 0.001 drift from 100 by far less than 0.1.
+  EXPECT_NEAR(trianglePositions(mesh, 0)[0].x, 100.0f, 0.1f);
+}
+
 TEST_F(GltfFiles, NodeThatIsItsOwnAncestorIsAnError) {
   GltfBuilder b;
   const int p = b.positions(kTriangle);

@@ -449,12 +449,19 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const Object& object = scene.objects[i];
     TESSERA_CHECK(!object.materials.empty()) << "object " << i << " has no material";
-    s.objects[i] = makeObjectTransforms(object, view_projection);
+    // What culling reads; the rest of makeObjectTransforms' constants only for what draws.
+    s.objects[i].model = object.transform.matrix();
+    s.objects[i].model_view_projection = view_projection * s.objects[i].model;
     s.objects[i].triangle_base = triangle_total;
     if (object.mesh) triangle_total += object.mesh->triangleCount();
   }
   s.cull.run(scene, scene.camera.view(), projection, {options.width, options.height},
              options.frustum_cull, s.objects);
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    if (!s.cull.drawsTriangles(i)) continue;
+    s.objects[i].normal_matrix = normalMatrix(s.objects[i].model);
+    s.objects[i].winding_sign = determinant(upper3x3(s.objects[i].model)) < 0.0f ? -1.0f : 1.0f;
+  }
   const size_t vertex_total = s.cull.planVertices(scene, kVerticesPerJob, s.objects, s.vertex_jobs);
 
   using Clock = std::chrono::steady_clock;

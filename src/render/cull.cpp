@@ -29,26 +29,31 @@ Side sideOf(const Bounds& box, const float4x4& mvp) {
   const double half[3] = {0.5 * (double(box.max.x) - box.min.x),
                           0.5 * (double(box.max.y) - box.min.y),
                           0.5 * (double(box.max.z) - box.min.z)};
+  const double reach[3] = {std::fabs(centre[0]) + half[0], std::fabs(centre[1]) + half[1],
+                           std::fabs(centre[2]) + half[2]};
+  // Per row of the matrix: its value at the centre, and the size of the terms the vertex stage
+  // adds in float at the farthest corner.
+  double m[4][4], at_centre[4], size[4];
+  for (int r = 0; r < 4; ++r) {
+    for (int j = 0; j < 4; ++j) m[r][j] = mvp(r, j);
+    at_centre[r] = m[r][3] + m[r][0] * centre[0] + m[r][1] * centre[1] + m[r][2] * centre[2];
+    size[r] = std::fabs(m[r][3]) + std::fabs(m[r][0]) * reach[0] + std::fabs(m[r][1]) * reach[1] +
+              std::fabs(m[r][2]) * reach[2];
+  }
   // Plane i is row 3 + sign * row axis: w + x, w - x, w + y, w - y, w + z, w - z (inside: >= 0).
   bool inside = true;
   for (int i = 0; i < 6; ++i) {
     const int axis = i / 2;
     const double sign = i % 2 ? -1.0 : 1.0;
-    double value = double(mvp(3, 3)) + sign * mvp(axis, 3);
-    double spread = 0;
-    // The size of the terms the vertex stage adds in float, at the farthest corner.
-    double magnitude = std::fabs(double(mvp(3, 3))) + std::fabs(double(mvp(axis, 3)));
-    for (int j = 0; j < 3; ++j) {
-      const double a = double(mvp(3, j)) + sign * mvp(axis, j);
-      value += a * centre[j];
-      spread += std::fabs(a) * half[j];
-      magnitude += (std::fabs(double(mvp(3, j))) + std::fabs(double(mvp(axis, j)))) *
-                   (std::fabs(centre[j]) + half[j]);
-    }
-    if (!std::isfinite(value) || !std::isfinite(spread) || !std::isfinite(magnitude))
+    const double value = at_centre[3] + sign * at_centre[axis];
+    const double spread = std::fabs(m[3][0] + sign * m[axis][0]) * half[0] +
+                          std::fabs(m[3][1] + sign * m[axis][1]) * half[1] +
+                          std::fabs(m[3][2] + sign * m[axis][2]) * half[2];
+    const double margin = kPlaneMargin * (size[3] + size[axis]);
+    if (!std::isfinite(value) || !std::isfinite(spread) || !std::isfinite(margin))
       return Side::kCrossing;
-    if (value + spread < -kPlaneMargin * magnitude) return Side::kOutside;
-    inside = inside && value - spread > kPlaneMargin * magnitude;
+    if (value + spread < -margin) return Side::kOutside;
+    inside = inside && value - spread > margin;
   }
   return inside ? Side::kInside : Side::kCrossing;
 }
