@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <fstream>  // tinygltf's implementation writes files (never called: TINYGLTF_NO_FS)
 #include <new>
 #include <span>
 #include <stdexcept>
