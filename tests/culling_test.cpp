@@ -31,7 +31,8 @@ Scene instanceField(std::mt19937& rng) {
     GraphNode node;
     node.mesh = 0;
     node.local.translation = {unit(rng) * 10, unit(rng) * 10, unit(rng) * 10};
-    node.local.rotation = quat::fromAxisAngle(normalize(float3{unit(rng), 1, unit(rng)}), unit(rng) * 3);
+    node.local.rotation =
+        quat::fromAxisAngle(normalize(float3{unit(rng), 1, unit(rng)}), unit(rng) * 3);
     node.local.scale = {1 + 0.5f * unit(rng), 1, i % 7 == 0 ? -1.0f : 1.0f};
     graph.nodes.push_back(node);
   }

@@ -712,9 +712,12 @@ TEST_F(GltfFiles, LoadModelPicksGltfAndGlbByExtensionInAnyCase) {
   EXPECT_EQ(io::flattenedMesh(*glb).triangleCount(), 1u);
 }
 
-// ---- Hostile files ----
-
 // ---- The scene graph: cameras and depth ----
+
+// A glTF camera object of `type` with the given fields.
+std::string cameraJson(const std::string& type, const std::string& fields) {
+  return "{\"type\":\"" + type + "\",\"" + type + "\":{" + fields + "}}";
+}
 
 TEST_F(GltfFiles, CamerasAreReadAndPlacedByTheNodesThatHoldThem) {
   // Camera 0 (perspective) on a root node at z = 5; camera 1 (orthographic) on a child at
@@ -722,17 +725,15 @@ TEST_F(GltfFiles, CamerasAreReadAndPlacedByTheNodesThatHoldThem) {
   GltfBuilder b;
   const int p = b.positions(kTriangle);
   const std::string cameras =
-      "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.5,\"znear\":0.25,"
-      "\"zfar\":50}},{\"type\":\"orthographic\",\"orthographic\":{\"xmag\":3,\"ymag\":2,"
-      "\"znear\":0,\"zfar\":10}}]";
+      "\"cameras\":[" + cameraJson("perspective", "\"yfov\":0.5,\"znear\":0.25,\"zfar\":50") + "," +
+      cameraJson("orthographic", "\"xmag\":3,\"ymag\":2,\"znear\":0,\"zfar\":10") + "]";
   const std::string nodes =
       "\"nodes\":[{\"mesh\":0},{\"camera\":0,\"translation\":[0,0,5]},"
       "{\"translation\":[1,0,0],\"children\":[3]},"
       "{\"camera\":1,\"translation\":[0,2,0],"
       "\"rotation\":[0,0.7071067811865476,0,0.7071067811865476]}]";
-  Expected<Model> model =
-      loadJson(b.json("\"scenes\":[{\"nodes\":[0,1,2]}]," + nodes + "," + cameras + "," +
-                      oneMesh(p)));
+  Expected<Model> model = loadJson(
+      b.json("\"scenes\":[{\"nodes\":[0,1,2]}]," + nodes + "," + cameras + "," + oneMesh(p)));
   ASSERT_TRUE(model) << model.error().message;
   SceneGraph graph = model->graph;
   ASSERT_EQ(graph.cameras.size(), 2u);
@@ -768,13 +769,12 @@ TEST_F(GltfFiles, CameraWithAZeroOrNegativeFieldIsSkippedWithAWarning) {
   GltfBuilder b;
   const int p = b.positions(kTriangle);
   const std::string cameras =
-      "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0,\"znear\":0.1}},"
-      "{\"type\":\"orthographic\",\"orthographic\":{\"xmag\":1,\"ymag\":-2,\"znear\":0,"
-      "\"zfar\":10}},"
-      "{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.7,\"znear\":0.1}}]";
-  Expected<Model> model = loadJson(b.json(
-      "\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":[{\"mesh\":0},{\"camera\":2}]," + cameras +
-      "," + oneMesh(p)));
+      "\"cameras\":[" + cameraJson("perspective", "\"yfov\":0,\"znear\":0.1") + "," +
+      cameraJson("orthographic", "\"xmag\":1,\"ymag\":-2,\"znear\":0,\"zfar\":10") + "," +
+      cameraJson("perspective", "\"yfov\":0.7,\"znear\":0.1") + "]";
+  Expected<Model> model =
+      loadJson(b.json("\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":[{\"mesh\":0},{\"camera\":2}]," +
+                      cameras + "," + oneMesh(p)));
   ASSERT_TRUE(model) << model.error().message;
   EXPECT_TRUE(anyWarningContains(*model, "camera 0 has yfov")) << allWarnings(*model);
   EXPECT_TRUE(anyWarningContains(*model, "camera 1 has ymag")) << allWarnings(*model);
@@ -792,9 +792,9 @@ TEST_F(GltfFiles, HierarchyAHundredThousandDeepLoadsWithoutRecursion) {
   std::string nodes = "\"nodes\":[";
   for (int i = 0; i < kDepth; ++i) {
     nodes += i ? "," : "";
-    nodes += i + 1 < kDepth ? "{\"translation\":[0.001,0,0],\"children\":[" +
-                                  std::to_string(i + 1) + "]}"
-                            : "{\"translation\":[0.001,0,0],\"mesh\":0}";
+    nodes += i + 1 < kDepth
+                 ? "{\"translation\":[0.001,0,0],\"children\":[" + std::to_string(i + 1) + "]}"
+                 : "{\"translation\":[0.001,0,0],\"mesh\":0}";
   }
   nodes += "]";
   Expected<Model> model =
@@ -806,6 +806,8 @@ TEST_F(GltfFiles, HierarchyAHundredThousandDeepLoadsWithoutRecursion) {
   // 100,000 float additions of 0.001 drift from 100 by far less than 0.1.
   EXPECT_NEAR(trianglePositions(mesh, 0)[0].x, 100.0f, 0.1f);
 }
+
+// ---- Hostile files ----
 
 TEST_F(GltfFiles, NodeThatIsItsOwnAncestorIsAnError) {
   GltfBuilder b;

@@ -73,7 +73,9 @@ ThreeLevels threeLevels() {
 Mesh flattenedByHand(const Mesh& cube) {
   auto rootOf = [](float3 p) { return float3{2 * p.x + 0.25f, p.y, p.z}; };
   auto childOf = [&](float3 p) { return rootOf(float3{-p.y, p.x + 0.5f, p.z}); };
-  auto grandchildOf = [&](float3 p) { return childOf(float3{-p.x + 1.25f, 0.5f * p.y, p.z - 0.5f}); };
+  auto grandchildOf = [&](float3 p) {
+    return childOf(float3{-p.x + 1.25f, 0.5f * p.y, p.z - 0.5f});
+  };
   Mesh out;
   auto add = [&](auto place, bool mirrored) {
     const auto base = static_cast<uint32_t>(out.positions.size());
@@ -185,10 +187,10 @@ TEST(SceneGraph, TenThousandInstancesCostOneMeshPlusTheirTransforms) {
   EXPECT_EQ(scene.triangleCount(), kInstances * 1000);
   // What the instances hold of their own: the objects, the nodes and their world matrices.
   const size_t per_instance = sizeof(Object) + sizeof(GraphNode) + sizeof(float4x4);
-  const size_t shared = meshBytes(*mesh.mesh) +
-                        graph.meshes[0].clusters->clusters.capacity() * sizeof(MeshCluster);
-  const size_t total = heapBytes(scene.objects) + heapBytes(graph.nodes) + heapBytes(graph.world) +
-                       shared;
+  const size_t shared =
+      meshBytes(*mesh.mesh) + graph.meshes[0].clusters->clusters.capacity() * sizeof(MeshCluster);
+  const size_t total =
+      heapBytes(scene.objects) + heapBytes(graph.nodes) + heapBytes(graph.world) + shared;
   // Flattened, the same scene holds 10,000 meshes: compare with the memory of one mesh plus a
   // transform's worth per instance.
   EXPECT_LE(total, meshBytes(*mesh.mesh) * 2 + kInstances * per_instance);
