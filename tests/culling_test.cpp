@@ -121,6 +121,50 @@ TEST(Culling, ClusterConeHoldsEveryFaceNormal) {
   EXPECT_EQ(covered, sphere.triangleCount());
 }
 
+// 256 triangles (one cluster) in z = 0 facing -z, seen from z = +5: a back-facing cluster. With
+// well-shaped triangles it is rejected whole; with one sliver among them (an altitude of 1e-6,
+// which snapping to the 1/256-pixel grid could turn) it is drawn, and culling still leaves the
+// image as it was.
+Scene backFacingGrid(bool with_sliver) {
+  Mesh mesh;
+  for (int y = 0; y <= 8; ++y)
+    for (int x = 0; x <= 16; ++x)
+      mesh.positions.push_back({-1.0f + x / 8.0f, -1.0f + y / 4.0f, 0.0f});
+  for (uint32_t y = 0; y < 8; ++y)
+    for (uint32_t x = 0; x < 16; ++x) {
+      const uint32_t a = y * 17 + x, b = a + 1, c = a + 17, d = c + 1;
+      mesh.indices.insert(mesh.indices.end(), {a, c, b, b, c, d});  // clockwise from +z
+    }
+  if (with_sliver) {
+    mesh.positions.push_back({1.0f, -1.0f + 1e-6f, 0.0f});
+    const uint32_t sliver = static_cast<uint32_t>(mesh.positions.size() - 1);
+    mesh.indices[0] = 0, mesh.indices[1] = sliver, mesh.indices[2] = 16;
+  }
+  Scene scene;
+  Object object;
+  object.mesh = std::make_shared<const Mesh>(std::move(mesh));
+  object.clusters = buildClusters(*object.mesh);
+  object.cull = CullMode::kBack;
+  object.shading = Shading::kUnlit;
+  scene.objects.push_back(object);
+  scene.camera.position = {0.1f, 0.2f, 5};
+  scene.camera.target = {0, 0, 0};
+  return scene;
+}
+
+TEST(Culling, BackFacingClusterIsRejectedOnlyWhenSnappingCannotTurnATriangle) {
+  for (bool with_sliver : {false, true}) {
+    const Scene scene = backFacingGrid(with_sliver);
+    ASSERT_EQ(scene.objects[0].clusters->clusters.size(), 1u);
+    RenderOptions options;
+    options.width = 200;
+    options.height = 150;
+    Totals totals;
+    expectSameWithAndWithoutCulling(scene, options, totals, with_sliver ? "sliver" : "fat");
+    EXPECT_EQ(totals.facing, with_sliver ? 0u : 1u) << (with_sliver ? "sliver" : "fat");
+  }
+}
+
 TEST(Culling, AnObjectBehindTheCameraIsSkippedWhole) {
   std::mt19937 rng(3);
   Scene scene = instanceField(rng);
