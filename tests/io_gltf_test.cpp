@@ -778,8 +778,18 @@ TEST_F(GltfFiles, CameraWithAZeroOrNegativeFieldIsSkippedWithAWarning) {
   ASSERT_TRUE(model) << model.error().message;
   EXPECT_TRUE(anyWarningContains(*model, "camera 0 has yfov")) << allWarnings(*model);
   EXPECT_TRUE(anyWarningContains(*model, "camera 1 has ymag")) << allWarnings(*model);
-  ASSERT_EQ(model->graph.cameras.size(), 1u);
-  EXPECT_FLOAT_EQ(model->graph.cameras[0].yfov_radians, 0.7f);
+  // The skipped cameras keep their indices: camera 2 is the file's camera 2.
+  SceneGraph graph = model->graph;
+  ASSERT_EQ(graph.cameras.size(), 3u);
+  graph.updateWorld();
+  Expected<Camera> skipped = graph.camera(0, 1.0f, graph.bounds());
+  ASSERT_FALSE(skipped);
+  EXPECT_NE(skipped.error().message.find("camera 0 was skipped: it has yfov"), std::string::npos)
+      << skipped.error().message;
+  EXPECT_FALSE(graph.camera(1, 1.0f, graph.bounds()));
+  Expected<Camera> usable = graph.camera(2, 1.0f, graph.bounds());
+  ASSERT_TRUE(usable) << usable.error().message;
+  EXPECT_NEAR(usable->fov_y_degrees, 0.7f * 180.0f / 3.14159265f, 1e-4f);
   EXPECT_EQ(io::flattenedMesh(*model).triangleCount(), 1u);  // the rest of the file is drawn
 }
 

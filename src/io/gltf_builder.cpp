@@ -89,7 +89,7 @@ Expected<void> GraphBuilder::addNode(size_t index, int32_t parent) {
 
 // Every camera of the file, in order; one with a field that is zero, negative or not finite
 // where glTF asks for a positive number is skipped with a warning naming it (the rest of the
-// file is sound).
+// file is sound), and keeps its index (GraphCamera::skipped).
 void GraphBuilder::readCameras() {
   graph_camera_.assign(gltf_.cameras.size(), kNoIndex);
   const auto positive = [](double v) { return v > 0 && std::isfinite(v); };
@@ -127,10 +127,8 @@ void GraphBuilder::readCameras() {
     } else {
       bad = "type '" + c.type + "'";
     }
-    if (!bad.empty()) {
-      warn(what + " has " + bad + ": the camera is skipped");
-      continue;
-    }
+    if (!bad.empty()) warn(what + " has " + bad + ": the camera is skipped");
+    out.skipped = bad;
     graph_camera_[i] = static_cast<int32_t>(model_.graph.cameras.size());
     model_.graph.cameras.push_back(std::move(out));
   }

@@ -137,6 +137,8 @@ Expected<Camera> SceneGraph::camera(size_t index, float aspect, const Bounds& sc
                      std::to_string(cameras.size()) + " camera" +
                      (cameras.size() == 1 ? "" : "s"));
   const GraphCamera& c = cameras[index];
+  if (!c.skipped.empty())
+    return makeError("camera " + std::to_string(index) + " was skipped: it has " + c.skipped);
   for (size_t i = 0; i < nodes.size() && i < world.size(); ++i) {
     if (nodes[i].camera != static_cast<int32_t>(index)) continue;
     const float4x4& m = world[i];

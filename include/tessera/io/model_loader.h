@@ -91,7 +91,8 @@ Expected<Model> loadObj(const std::filesystem::path& path, const LoadBudget& bud
 // refers to it. Triangle ids run over the instances in node order. An instance whose world matrix
 // mirrors (determinant < 0) is drawn with its winding reversed so front faces stay front
 // (SceneGraph::prepareMeshes). Cameras (perspective and orthographic) go to graph.cameras; a
-// camera with a zero or negative field is skipped with a warning naming it. TRIANGLES, TRIANGLE_STRIP and
+// camera with a zero or negative field is skipped with a warning naming it (and keeps its
+// index: GraphCamera::skipped). TRIANGLES, TRIANGLE_STRIP and
 // TRIANGLE_FAN are drawn; points and lines are skipped with a warning. Materials (first-use
 // order) take baseColorFactor, the baseColorTexture (sRGB) with its sampler, and doubleSided;
 // texture coordinates have v flipped to tessera's convention (v = 0 at the bottom). COLOR_0 is a

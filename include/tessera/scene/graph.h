@@ -59,6 +59,9 @@ struct GraphCamera {
   float xmag = 1.0f, ymag = 1.0f;  // orthographic: half the width and height of the view
   float znear = 0.1f;
   float zfar = 0.0f;  // 0: infinite (perspective only), near and far then fit the scene
+  // Why the file's camera cannot be used (a zero or negative field), or empty. A skipped camera
+  // keeps its place, so that indices are the file's (f3d's --camera-index).
+  std::string skipped;
 };
 
 struct SceneGraph {
