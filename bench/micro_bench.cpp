@@ -9,12 +9,12 @@
 #include <map>
 #include <memory>
 
+#include <tessera/model/model_scene.h>
 #include <tessera/render/cpu_renderer.h>
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
 
 #include "bench/scenes.h"
-#include "model_scene.h"
 #include "render/bin.h"
 #include "render/clip.h"
 #include "render/kernels.h"
@@ -22,7 +22,7 @@
 #include "render/setup.h"
 #include "render/shade.h"
 #include "render/vertex.h"
-#include "view_setup.h"
+#include <tessera/model/camera_setup.h>
 
 using namespace tessera;
 
@@ -73,11 +73,11 @@ Expected<bench::BenchScene> benchScene(const std::string& name, int width, int h
   if (!it->second) return it->second.error();
   bench::BenchScene b = *it->second;
   if (!b.fixed_view) {
-    Expected<Camera> camera = cli::makeCamera(
-        cli::CameraSettings{}, b.bounds, static_cast<float>(width) / static_cast<float>(height));
+    Expected<Camera> camera = model::makeCamera(
+        model::CameraSettings{}, b.bounds, static_cast<float>(width) / static_cast<float>(height));
     if (!camera) return camera.error();
     b.scene.camera = *camera;
-    cli::addViewLights(b.scene);
+    model::addViewLights(b.scene);
   }
   return b;
 }

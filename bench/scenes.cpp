@@ -6,7 +6,9 @@
 #include <system_error>
 
 #include <tessera/io/model_loader.h>
+#include <tessera/scene/clusters.h>
 #include <tessera/scene/color.h>
+#include <tessera/scene/graph.h>
 #include <tessera/scene/primitives.h>
 
 namespace tessera::bench {
@@ -28,6 +30,7 @@ BenchScene singleObjectScene(std::string name, Mesh mesh, Material material, Sha
   b.name = std::move(name);
   Object object;
   object.mesh = std::make_shared<Mesh>(std::move(mesh));
+  object.clusters = buildClusters(*object.mesh);  // as a model the CLI loads has them
   object.materials = {std::move(material)};
   object.shading = shading;
   object.cull = CullMode::kBack;
@@ -108,7 +111,48 @@ Texture makeCheckerTexture(int size, int cells) {
 }
 
 std::vector<std::string> builtinSceneNames() {
-  return {"cube", "bunny", "dense", "fill", "textured"};
+  return {"cube", "bunny", "dense", "fill", "textured", "instances"};
+}
+
+BenchScene makeInstancesScene(Shading shading, bool flattened) {
+  // 10,000 instances of a 1,000-triangle sphere on a 100 x 100 grid, 3 units apart; the camera
+  // looks at a corner of it from close by, so about 1% of them are in view.
+  SceneGraph graph;
+  GraphMesh sphere;
+  sphere.mesh = std::make_shared<const Mesh>(makeUvSphere(25, 21));
+  sphere.materials = {Material{srgbColor(0.8f, 0.6f, 0.3f)}};
+  graph.meshes.push_back(sphere);
+  for (int i = 0; i < 10000; ++i) {
+    GraphNode node;
+    node.mesh = 0;
+    node.local.translation = {3.0f * static_cast<float>(i % 100), 0.0f,
+                              -3.0f * static_cast<float>(i / 100)};
+    graph.nodes.push_back(node);
+  }
+  graph.updateWorld();
+  graph.prepareMeshes();
+  BenchScene b;
+  b.name = flattened ? "instances-flat" : "instances";
+  Object style;
+  style.shading = shading;
+  style.cull = CullMode::kBack;
+  if (flattened) {
+    style.mesh = std::make_shared<const Mesh>(graph.flatten());
+    style.materials = sphere.materials;
+    b.scene.objects.push_back(style);
+  } else {
+    instantiate(graph, style, b.scene);
+  }
+  b.scene.background = srgbColor(0.2f, 0.2f, 0.2f);
+  b.scene.camera.position = {-4, 6, 6};
+  b.scene.camera.target = {12, -2, -12};
+  b.scene.camera.fov_y_degrees = 40;
+  b.scene.camera.near_z = 0.5f;
+  b.scene.camera.far_z = 40;
+  b.scene.lights.push_back({normalize(float3{1, -2, -1}), float3(0.8f)});
+  b.bounds = graph.bounds();
+  b.fixed_view = true;
+  return b;
 }
 
 bool isBuiltinScene(const std::string& name) {
@@ -126,6 +170,9 @@ Expected<BenchScene> makeBuiltinScene(const std::string& name, Shading shading) 
   if (name == "dense")
     return singleObjectScene(name, makeUvSphere(kDenseSegments, kDenseRings), Material{}, shading);
   if (name == "fill") return makeFillScene(shading);
+  if (name == "instances") return makeInstancesScene(shading, /*flattened=*/false);
+  // Not in the list (10 million triangles a frame): for the comparison in docs/perf.md.
+  if (name == "instances-flat") return makeInstancesScene(shading, /*flattened=*/true);
   if (name == "textured") {
     Material material;
     material.base_color = {1, 1, 1, 1};
@@ -143,11 +190,15 @@ Expected<BenchScene> loadModelScene(const std::filesystem::path& path, Shading s
                                     const io::LoadBudget& budget) {
   Expected<io::Model> model = io::loadModel(path, budget);
   if (!model) return model.error();
-  if (model->mesh.bounds().empty())
+  // A glTF scene graph is drawn flattened: one object that the bench turns.
+  Mesh mesh = model->graph.nodes.empty() ? std::move(model->mesh) : io::flattenedMesh(*model);
+  if (mesh.bounds().empty())
     return makeError(path.string() + ": the model has no finite vertices");
-  BenchScene b =
-      singleObjectScene(path.stem().string(), std::move(model->mesh), Material{}, shading);
-  if (!model->materials.empty()) b.scene.objects[0].materials = model->materials;
+  std::vector<Material> materials = model->graph.meshes.empty()
+                                        ? model->materials
+                                        : model->graph.meshes.front().materials.vector();
+  BenchScene b = singleObjectScene(path.stem().string(), std::move(mesh), Material{}, shading);
+  if (!materials.empty()) b.scene.objects[0].materials = materials;
   b.warnings = model->warnings;
   return b;
 }

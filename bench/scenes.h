@@ -41,6 +41,10 @@ struct BenchScene {
   std::vector<std::string> warnings;  // from the model loader
 };
 
+// 10,000 instances of a 1,000-triangle sphere, about 1% of them in view (the frustum culling
+// scene), or (`flattened`) the same triangles as one mesh, for the comparison in docs/perf.md.
+BenchScene makeInstancesScene(Shading shading, bool flattened);
+
 // The names of the built-in scenes, in the order a full run takes them.
 std::vector<std::string> builtinSceneNames();
 bool isBuiltinScene(const std::string& name);

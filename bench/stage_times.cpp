@@ -7,7 +7,8 @@
 //   simd: auto, scalar, sse2, avx2, avx512; msaa: 1, 2, 4, 8; projection: projection.h's names
 //   (the scene's camera and view angle in that mode). Defaults: bunny 2 40 1920 1080 auto 1
 //   perspective.
-//   TESSERA_NOHASH=1 leaves the hash out (and the gap it makes between frames).
+//   TESSERA_NOHASH=1 leaves the hash out (and the gap it makes between frames); TESSERA_NOCULL=1
+//   turns frustum and cluster culling off.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -17,11 +18,11 @@
 #include <string>
 #include <vector>
 
+#include <tessera/model/model_scene.h>
 #include <tessera/render/cpu_renderer.h>
 
 #include "bench/scenes.h"
-#include "model_scene.h"
-#include "view_setup.h"
+#include <tessera/model/camera_setup.h>
 
 using namespace tessera;
 
@@ -68,14 +69,14 @@ int main(int argc, char** argv) {
   }
   bench::BenchScene& b = *made;
   if (!b.fixed_view) {
-    Expected<Camera> camera = cli::makeCamera(
-        cli::CameraSettings{}, b.bounds, static_cast<float>(width) / static_cast<float>(height));
+    Expected<Camera> camera = model::makeCamera(
+        model::CameraSettings{}, b.bounds, static_cast<float>(width) / static_cast<float>(height));
     if (!camera) {
       std::fprintf(stderr, "tessera_stagetimes: %s\n", camera.error().message.c_str());
       return 1;
     }
     b.scene.camera = *camera;
-    cli::addViewLights(b.scene);
+    model::addViewLights(b.scene);
   }
   RenderOptions options;
   options.width = width;
@@ -83,8 +84,11 @@ int main(int argc, char** argv) {
   options.depth = options.ids = options.normals = options.lines = false;
   options.msaa = msaa;
   options.projection = *projection;
+  // TESSERA_NOCULL=1: no frustum or cluster culling before the vertex stage, to measure what it
+  // costs or saves in the same build.
+  options.frustum_cull = std::getenv("TESSERA_NOCULL") == nullptr;
   if (*projection != Projection::kPerspective) {
-    cli::fitDistanceRange(b.scene.camera, b.bounds);
+    model::fitDistanceRange(b.scene.camera, b.bounds);
   }
 
   CpuRenderer renderer(workers, simd);
@@ -117,5 +121,10 @@ int main(int argc, char** argv) {
       name.c_str(), width, height, renderer.workerCount(), renderer.simdName(), msaa, frames,
       median(total), median(vertex), median(setup), median(tiles),
       static_cast<unsigned long long>(hash));
+  const PipelineStats& s = renderer.lastStats();
+  std::printf("last frame: %zu triangles set up; culled before the vertex stage: %zu instances, "
+              "%zu clusters outside, %zu clusters facing away, %zu triangles\n",
+              s.triangles_setup, s.instances_culled, s.clusters_culled, s.clusters_facing,
+              s.triangles_skipped);
   return 0;
 }

@@ -62,7 +62,8 @@ inline void checkModel(const Expected<io::Model>& loaded) {
     return;
   }
   const io::Model& model = *loaded;
-  const Mesh& mesh = model.mesh;
+  const Mesh flattened = tessera::io::flattenedMesh(model);
+  const Mesh& mesh = flattened;
   const size_t vertices = mesh.vertexCount();
   if (mesh.indices.size() % 3 != 0) broken("index count not a multiple of 3");
   if (mesh.triangleCount() == 0) broken("a model without triangles");

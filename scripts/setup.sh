@@ -13,6 +13,7 @@ packages=(
   libsdl2-dev libsdl2-ttf-dev fonts-dejavu-core xvfb xauth xdotool
   libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers
   clang libclang-rt-14-dev
+  assimp-testmodels
 )
 
 missing=()

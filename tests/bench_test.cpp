@@ -52,7 +52,30 @@ TEST(BenchScenes, EveryBuiltinNameMakesAScene) {
     if (name == "bunny" && !fs::exists(bench::kBunnyPath)) continue;
     EXPECT_TRUE(scene(name).ok()) << name;
   }
-  EXPECT_EQ(bench::builtinSceneNames().size(), 5u);
+  EXPECT_EQ(bench::builtinSceneNames().size(), 6u);
+}
+
+// 10,000 instances of one 1,000-triangle sphere, 99% of them outside the bench's view; the
+// flattened form (for docs/perf.md's comparison) holds the same triangles in one mesh.
+TEST(BenchScenes, InstancesSceneSharesOneMeshAndShowsAboutOnePercent) {
+  Expected<bench::BenchScene> s = scene("instances");
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  ASSERT_EQ(s->scene.objects.size(), 10'000u);
+  for (const Object& o : s->scene.objects) ASSERT_EQ(o.mesh, s->scene.objects[0].mesh);
+  const size_t mesh_triangles = s->scene.objects[0].mesh->triangleCount();
+  EXPECT_GE(mesh_triangles, 1'000u);
+  EXPECT_LE(mesh_triangles, 1'100u);
+  CpuRenderer renderer(1);
+  Frame frame;
+  renderer.render(s->scene, colorAndIds(96, 54), frame);
+  const PipelineStats& stats = renderer.lastStats();
+  EXPECT_GE(stats.instances_culled, 9'850u);  // at most 1.5% in view
+  EXPECT_LE(stats.instances_culled, 9'950u);  // and some of them
+  Expected<bench::BenchScene> flat = scene("instances-flat");
+  ASSERT_TRUE(flat.ok()) << flat.error().message;
+  ASSERT_EQ(flat->scene.objects.size(), 1u);
+  EXPECT_EQ(flat->scene.triangleCount(), s->scene.triangleCount());
+  EXPECT_FALSE(bench::isBuiltinScene("instances-flat"));  // not in a full bench run
 }
 
 TEST(BenchScenes, UnknownSceneIsAnErrorNamingIt) {

@@ -452,6 +452,93 @@ TEST_F(Cli, DataModelsMatchTheirReferenceImages) {
   }
 }
 
+// A glTF quad in z = 0 facing +z (single-sided), seen by camera 0 from z = 4 and by camera 1
+// from z = -4, turned half about +y to look at its back.
+TEST_F(Cli, CameraIndexDrawsFromTheFilesCameraAndCountsThemPastTheEnd) {
+  writeFile("cams.gltf",
+            R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0,1,2]}],)"
+            R"("nodes":[{"mesh":0},{"camera":0,"translation":[0,0,4]},)"
+            R"({"camera":1,"translation":[0,0,-4],"rotation":[0,1,0,0]}],)"
+            R"("cameras":[{"type":"perspective","perspective":{"yfov":1.0,"znear":0.5,"zfar":20}},)"
+            R"({"type":"perspective","perspective":{"yfov":1.0,"znear":0.5,"zfar":20}}],)"
+            R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+            R"("accessors":[{"bufferView":0,"componentType":5126,"type":"VEC3","count":4,)"
+            R"("min":[-1,-1,0],"max":[1,1,0]},)"
+            R"({"bufferView":1,"componentType":5123,"type":"SCALAR","count":6}],)"
+            R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},)"
+            R"({"buffer":0,"byteOffset":48,"byteLength":12}],)"
+            R"("buffers":[{"byteLength":60,"uri":"data:application/octet-stream;base64,)"
+            R"(AACAvwAAgL8AAAAAAACAPwAAgL8AAAAAAACAPwAAgD8AAAAA)"
+            R"(AACAvwAAgD8AAAAAAAABAAIAAAACAAMA"}]})");
+  const auto ids = [&](int index) {
+    std::set<int> seen;
+    RunResult r = run("render cams.gltf --resolution 40,40 --aov id --camera-index " +
+                      std::to_string(index) + " -o id.png");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    DecodedPng png;
+    if (!tessera::test::decodePng((dir_ / "id.png").string(), png)) return seen;
+    // The quad's centre is the image's; its corners are off the quad (it spans 46% of the
+    // height at yfov 1 from 4 units).
+    seen.insert(png.at(20, 20, 0));
+    seen.insert(png.at(0, 0, 0));
+    return seen;
+  };
+  // From the front: the corner is background (0), the centre one of the quad's triangles (1, 2).
+  const std::set<int> front = ids(0);
+  ASSERT_EQ(front.size(), 2u);
+  EXPECT_EQ(front.count(0), 1u);
+  EXPECT_TRUE(front.count(1) + front.count(2) == 1u);
+  EXPECT_EQ(ids(1), std::set<int>{0}) << "the back of a single-sided quad shows nothing";
+  RunResult past = run("render cams.gltf --camera-index 2 -o past.png");
+  EXPECT_EQ(past.exit_code, 1);
+  EXPECT_NE(past.err.find("the model has 2 cameras (0 to 1)"), std::string::npos) << past.err;
+  EXPECT_FALSE(fs::exists(dir_ / "past.png"));
+}
+
+// assimp-testmodels' glTF camera sample: a unit square tilted 45 degrees away about +x, seen by
+// a perspective camera (yfov 0.7) and an orthographic one (xmag = ymag = 1), both at
+// (0.5, 0.5, 3). Where its edges land follows from the file's numbers: perspective, bottom edge
+// (y 0, z 0) at row 150 + 150 tan(atan(0.5 / 3)) / tan(0.35) = 218.6, top edge (y 0.707,
+// z -0.707) at 150 - 150 (0.207 / 3.707) / tan(0.35) = 126.9, narrower than the bottom;
+// orthographic, 150 pixels a unit: columns 75 to 225, rows 118.9 to 225, as wide at the top.
+TEST_F(Cli, AssimpCameraSampleIsSeenFromItsCameras) {
+  const std::string model = "/usr/share/assimp/models/glTF2/cameras/Cameras.gltf";
+  if (!fs::exists(model)) GTEST_SKIP() << model << " is not installed (assimp-testmodels)";
+  struct Extent {
+    int top = 1 << 30, bottom = -1, top_width = 0, bottom_width = 0;
+  };
+  const auto extent = [&](int index) {
+    Extent e;
+    RunResult r = run("render '" + model + "' --resolution 300,300 --aov id --camera-index " +
+                      std::to_string(index) + " -o id.png");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    DecodedPng png;
+    if (!tessera::test::decodePng((dir_ / "id.png").string(), png)) return e;
+    std::vector<int> width(300, 0);
+    for (int y = 0; y < png.height; ++y)
+      for (int x = 0; x < png.width; ++x)
+        if (png.at(x, y, 0) != 0) {
+          ++width[static_cast<size_t>(y)];
+          e.top = std::min(e.top, y);
+          e.bottom = std::max(e.bottom, y);
+        }
+    if (e.bottom >= 0) {
+      e.top_width = width[static_cast<size_t>(e.top + 1)];
+      e.bottom_width = width[static_cast<size_t>(e.bottom - 1)];
+    }
+    return e;
+  };
+  const Extent perspective = extent(0);
+  EXPECT_NEAR(perspective.top, 127, 1);
+  EXPECT_NEAR(perspective.bottom, 218, 1);
+  EXPECT_LT(perspective.top_width + 10, perspective.bottom_width);
+  const Extent orthographic = extent(1);
+  EXPECT_NEAR(orthographic.top, 119, 1);
+  EXPECT_NEAR(orthographic.bottom, 224, 1);
+  EXPECT_NEAR(orthographic.top_width, 150, 1);
+  EXPECT_EQ(orthographic.top_width, orthographic.bottom_width);
+}
+
 TEST_F(Cli, SampleCountsOutsideTheAllowedOnesAreUsageErrors) {
   writeQuadObj("quad.obj");
   for (const std::string& args :

@@ -244,7 +244,7 @@ TEST_F(GltfFiles, LoadsAnIndexedTriangleWithItsNormals) {
       b.json(kOneNodeScene + "," +
              oneMesh(p, ",\"NORMAL\":" + std::to_string(n), ",\"indices\":" + std::to_string(i))));
   ASSERT_TRUE(model) << model.error().message;
-  const Mesh& mesh = model->mesh;
+  const Mesh& mesh = io::flattenedMesh(*model);
   ASSERT_EQ(mesh.triangleCount(), 1u);
   for (size_t c = 0; c < 3; ++c) expectNear3(trianglePositions(mesh, 0)[c], kTriangle[c]);
   ASSERT_EQ(mesh.normals.size(), 3u);
@@ -277,7 +277,7 @@ TEST_F(GltfFiles, NodesAreFlattenedDepthFirstWithComposedTransforms) {
   Expected<Model> model =
       loadJson(b.json("\"scene\":0,\"scenes\":[{\"nodes\":[0]}]," + nodes + "," + meshes));
   ASSERT_TRUE(model) << model.error().message;
-  const Mesh& mesh = model->mesh;
+  const Mesh& mesh = io::flattenedMesh(*model);
   ASSERT_EQ(mesh.triangleCount(), 4u);
   // Mesh 0: translated by 10.
   expectNear3(trianglePositions(mesh, 0)[1], {11, 0, 0});
@@ -302,7 +302,7 @@ TEST_F(GltfFiles, NegativeScaleKeepsFrontFacesFront) {
                       "{\"mesh\":0,\"scale\":[-1,1,1]}]," +
                       oneMesh(p, ",\"NORMAL\":" + std::to_string(n))));
   ASSERT_TRUE(model) << model.error().message;
-  const Mesh& mesh = model->mesh;
+  const Mesh& mesh = io::flattenedMesh(*model);
   ASSERT_EQ(mesh.triangleCount(), 2u);
   // The mirrored copy lies at negative x and still faces +z: counter-clockwise seen from +z.
   EXPECT_GT(faceNormal(mesh, 0).z, 0.0f);
@@ -326,7 +326,7 @@ TEST_F(GltfFiles, NonUniformScaleTransformsNormalsByTheInverseTranspose) {
                       oneMesh(p, ",\"NORMAL\":" + std::to_string(n))));
   ASSERT_TRUE(model) << model.error().message;
   const float s = 1.0f / std::sqrt(5.0f);
-  for (const float3& normal : model->mesh.normals) expectNear3(normal, {s, 2 * s, 0});
+  for (const float3& normal : io::flattenedMesh(*model).normals) expectNear3(normal, {s, 2 * s, 0});
 }
 
 TEST_F(GltfFiles, StripsAlternateWindingAndFansShareTheFirstVertex) {
@@ -342,7 +342,7 @@ TEST_F(GltfFiles, StripsAlternateWindingAndFansShareTheFirstVertex) {
       std::to_string(sp) + "},\"mode\":5},{\"attributes\":{\"POSITION\":" + std::to_string(fp) +
       "},\"indices\":" + std::to_string(fi) + ",\"mode\":6}]}]"));
   ASSERT_TRUE(model) << model.error().message;
-  const Mesh& mesh = model->mesh;
+  const Mesh& mesh = io::flattenedMesh(*model);
   ASSERT_EQ(mesh.triangleCount(), 5u);  // 3 from the strip, 2 from the fan
   const std::array<std::array<int, 3>, 3> strip_order = {{{0, 1, 2}, {1, 3, 2}, {2, 3, 4}}};
   for (size_t t = 0; t < 3; ++t) {
@@ -365,10 +365,10 @@ TEST_F(GltfFiles, NonIndexedTrianglesUseVerticesInOrder) {
   for (float3 q : kTriangle) points.push_back(q + float3{0, 0, 1});
   Expected<Model> model = loadJson(b.json(kOneNodeScene + "," + oneMesh(b.positions(points))));
   ASSERT_TRUE(model) << model.error().message;
-  ASSERT_EQ(model->mesh.triangleCount(), 2u);
-  expectNear3(trianglePositions(model->mesh, 1)[2], {0, 1, 1});
+  ASSERT_EQ(io::flattenedMesh(*model).triangleCount(), 2u);
+  expectNear3(trianglePositions(io::flattenedMesh(*model), 1)[2], {0, 1, 1});
   // Generated normals of the flat triangles face +z.
-  for (const float3& n : model->mesh.normals) expectNear3(n, {0, 0, 1});
+  for (const float3& n : io::flattenedMesh(*model).normals) expectNear3(n, {0, 0, 1});
 }
 
 TEST_F(GltfFiles, PointsAndLinesAreSkippedWithAWarning) {
@@ -379,7 +379,7 @@ TEST_F(GltfFiles, PointsAndLinesAreSkippedWithAWarning) {
       std::to_string(p) + "},\"mode\":0},{\"attributes\":{\"POSITION\":" + std::to_string(p) +
       "},\"mode\":1},{\"attributes\":{\"POSITION\":" + std::to_string(p) + "}}]}]"));
   ASSERT_TRUE(model) << model.error().message;
-  EXPECT_EQ(model->mesh.triangleCount(), 1u);
+  EXPECT_EQ(io::flattenedMesh(*model).triangleCount(), 1u);
   EXPECT_TRUE(anyWarningContains(*model, "1 primitive(s) of points skipped"))
       << allWarnings(*model);
   EXPECT_TRUE(anyWarningContains(*model, "1 primitive(s) of lines skipped")) << allWarnings(*model);
@@ -400,8 +400,8 @@ TEST_F(GltfFiles, DefaultSceneIsTheOneDrawn) {
              "{\"mesh\":0,\"translation\":[0,0,7]}]," +
              oneMesh(p)));
   ASSERT_TRUE(model) << model.error().message;
-  ASSERT_EQ(model->mesh.triangleCount(), 1u);
-  EXPECT_FLOAT_EQ(model->mesh.positions[0].z, 7.0f);
+  ASSERT_EQ(io::flattenedMesh(*model).triangleCount(), 1u);
+  EXPECT_FLOAT_EQ(io::flattenedMesh(*model).positions[0].z, 7.0f);
 }
 
 TEST_F(GltfFiles, WithoutScenesEveryRootNodeIsDrawn) {
@@ -413,10 +413,10 @@ TEST_F(GltfFiles, WithoutScenesEveryRootNodeIsDrawn) {
                       "{\"mesh\":0,\"translation\":[0,0,2],\"children\":[1]}]," +
                       oneMesh(p)));
   ASSERT_TRUE(model) << model.error().message;
-  ASSERT_EQ(model->mesh.triangleCount(), 3u);
-  EXPECT_FLOAT_EQ(trianglePositions(model->mesh, 0)[0].z, 0.0f);
-  EXPECT_FLOAT_EQ(trianglePositions(model->mesh, 1)[0].z, 2.0f);
-  EXPECT_FLOAT_EQ(trianglePositions(model->mesh, 2)[0].z, 3.0f);
+  ASSERT_EQ(io::flattenedMesh(*model).triangleCount(), 3u);
+  EXPECT_FLOAT_EQ(trianglePositions(io::flattenedMesh(*model), 0)[0].z, 0.0f);
+  EXPECT_FLOAT_EQ(trianglePositions(io::flattenedMesh(*model), 1)[0].z, 2.0f);
+  EXPECT_FLOAT_EQ(trianglePositions(io::flattenedMesh(*model), 2)[0].z, 3.0f);
 }
 
 TEST_F(GltfFiles, CountsTrianglesWithNonFinitePositions) {
@@ -426,7 +426,7 @@ TEST_F(GltfFiles, CountsTrianglesWithNonFinitePositions) {
   points[4].y = std::numeric_limits<float>::infinity();
   Expected<Model> model = loadJson(b.json(kOneNodeScene + "," + oneMesh(b.positions(points))));
   ASSERT_TRUE(model) << model.error().message;
-  EXPECT_EQ(model->mesh.triangleCount(), 2u);
+  EXPECT_EQ(io::flattenedMesh(*model).triangleCount(), 2u);
   EXPECT_EQ(model->nonfinite_triangles, 1u);
   EXPECT_TRUE(anyWarningContains(*model, "NaN or infinite")) << allWarnings(*model);
 }
@@ -448,7 +448,7 @@ TEST_F(GltfFiles, VertexColoursFromNormalizedBytesAndFloats) {
                       ",\"COLOR_0\":" + std::to_string(floats) + "}}," +
                       "{\"attributes\":{\"POSITION\":" + std::to_string(p) + "}}]}]"));
   ASSERT_TRUE(model) << model.error().message;
-  const std::vector<float4>& colors = model->mesh.colors;
+  const std::vector<float4>& colors = io::flattenedMesh(*model).colors;
   ASSERT_EQ(colors.size(), 9u);
   EXPECT_TRUE(colors[0] == (float4{1, 0, 0, 1}));
   EXPECT_NEAR(colors[1].w, 128 / 255.0f, 1e-6f);
@@ -464,7 +464,7 @@ TEST_F(GltfFiles, ColourOfAnUnusableTypeIsIgnoredWithAWarning) {
   Expected<Model> model =
       loadJson(b.json(kOneNodeScene + "," + oneMesh(p, ",\"COLOR_0\":" + std::to_string(bad))));
   ASSERT_TRUE(model) << model.error().message;
-  EXPECT_TRUE(model->mesh.colors.empty());
+  EXPECT_TRUE(io::flattenedMesh(*model).colors.empty());
   EXPECT_TRUE(anyWarningContains(*model, "COLOR_0 is ignored")) << allWarnings(*model);
 }
 
@@ -484,7 +484,7 @@ TEST_F(GltfFiles, BaseColorFactorAndDoubleSidedAreReadPerMaterial) {
   EXPECT_FALSE(model->materials[0].double_sided);
   EXPECT_TRUE(model->materials[1].base_color == (float4{1, 1, 1, 1}));
   EXPECT_TRUE(model->materials[1].double_sided);
-  EXPECT_EQ(model->mesh.triangle_materials, (std::vector<uint16_t>{0, 1, 0}));
+  EXPECT_EQ(io::flattenedMesh(*model).triangle_materials, (std::vector<uint16_t>{0, 1, 0}));
   EXPECT_EQ(model->cull_back_faces, std::optional<bool>(false));
   EXPECT_TRUE(anyWarningContains(*model, "some materials are double-sided")) << allWarnings(*model);
 }
@@ -512,7 +512,7 @@ TEST_F(GltfFiles, BaseColorTextureIsDecodedAsSrgbWithItsSamplerAndVFlipped) {
   EXPECT_TRUE(material.albedo->srgb);
   EXPECT_EQ(material.sampler.filter, TextureFilter::kNearest);
   EXPECT_EQ(material.sampler.wrap, TextureWrap::kClamp);
-  const std::vector<float2>& uvs = model->mesh.uvs;
+  const std::vector<float2>& uvs = io::flattenedMesh(*model).uvs;
   ASSERT_EQ(uvs.size(), 3u);
   EXPECT_FLOAT_EQ(uvs[0].x, 0.25f);
   EXPECT_FLOAT_EQ(uvs[0].y, 0.75f);
@@ -585,8 +585,8 @@ TEST_F(GltfFiles, SparseAccessorOverwritesTheListedElements) {
                               std::to_string(sparse_values) + "}}}");
   Expected<Model> model = loadJson(b.json(kOneNodeScene + "," + oneMesh(p)));
   ASSERT_TRUE(model) << model.error().message;
-  expectNear3(trianglePositions(model->mesh, 0)[1], {1, 0, 0});
-  expectNear3(trianglePositions(model->mesh, 0)[2], {0, 3, 0});
+  expectNear3(trianglePositions(io::flattenedMesh(*model), 0)[1], {1, 0, 0});
+  expectNear3(trianglePositions(io::flattenedMesh(*model), 0)[2], {0, 3, 0});
 }
 
 TEST_F(GltfFiles, SparseIndexPastTheCountIsAnError) {
@@ -618,13 +618,13 @@ TEST_F(GltfFiles, GlbWithABinaryChunkAndAnImageInABufferView) {
       std::to_string(image_view) + ",\"mimeType\":\"image/png\"}]");
   Expected<Model> model = loadGltf(write(at("model.glb"), glb));
   ASSERT_TRUE(model) << model.error().message;
-  EXPECT_EQ(model->mesh.triangleCount(), 1u);
+  EXPECT_EQ(io::flattenedMesh(*model).triangleCount(), 1u);
   ASSERT_TRUE(model->materials[0].albedo);
   EXPECT_EQ(model->materials[0].albedo->texels[0], 0xff0000ffu);
 
   Expected<Model> from_memory = loadGltfFromMemory(glb, "memory.glb");
   ASSERT_TRUE(from_memory) << from_memory.error().message;
-  EXPECT_EQ(from_memory->mesh.triangleCount(), 1u);
+  EXPECT_EQ(io::flattenedMesh(*from_memory).triangleCount(), 1u);
 }
 
 TEST_F(GltfFiles, TruncatedGlbIsAnError) {
@@ -667,7 +667,7 @@ TEST_F(GltfFiles, ExternalBufferBeneathTheFolderIsRead) {
   Expected<Model> model =
       loadJson(b.json(kOneNodeScene + "," + oneMesh(p), "data/triangle.bin"), "model.gltf");
   ASSERT_TRUE(model) << model.error().message;
-  EXPECT_EQ(model->mesh.triangleCount(), 1u);
+  EXPECT_EQ(io::flattenedMesh(*model).triangleCount(), 1u);
 }
 
 TEST_F(GltfFiles, BufferOutsideTheFolderIsRefused) {
@@ -708,8 +708,113 @@ TEST_F(GltfFiles, LoadModelPicksGltfAndGlbByExtensionInAnyCase) {
   ASSERT_TRUE(json) << json.error().message;
   Expected<Model> glb = loadModel(write(at("B.Glb"), b.glb(kOneNodeScene + "," + oneMesh(p))));
   ASSERT_TRUE(glb) << glb.error().message;
-  EXPECT_EQ(json->mesh.triangleCount(), 1u);
-  EXPECT_EQ(glb->mesh.triangleCount(), 1u);
+  EXPECT_EQ(io::flattenedMesh(*json).triangleCount(), 1u);
+  EXPECT_EQ(io::flattenedMesh(*glb).triangleCount(), 1u);
+}
+
+// ---- The scene graph: cameras and depth ----
+
+// A glTF camera object of `type` with the given fields.
+std::string cameraJson(const std::string& type, const std::string& fields) {
+  return "{\"type\":\"" + type + "\",\"" + type + "\":{" + fields + "}}";
+}
+
+TEST_F(GltfFiles, CamerasAreReadAndPlacedByTheNodesThatHoldThem) {
+  // Camera 0 (perspective) on a root node at z = 5; camera 1 (orthographic) on a child at
+  // (0, 2, 0) of a node at (1, 0, 0), turned a quarter about +y (so it looks down -x).
+  GltfBuilder b;
+  const int p = b.positions(kTriangle);
+  const std::string cameras =
+      "\"cameras\":[" + cameraJson("perspective", "\"yfov\":0.5,\"znear\":0.25,\"zfar\":50") + "," +
+      cameraJson("orthographic", "\"xmag\":3,\"ymag\":2,\"znear\":0,\"zfar\":10") + "]";
+  const std::string nodes =
+      "\"nodes\":[{\"mesh\":0},{\"camera\":0,\"translation\":[0,0,5]},"
+      "{\"translation\":[1,0,0],\"children\":[3]},"
+      "{\"camera\":1,\"translation\":[0,2,0],"
+      "\"rotation\":[0,0.7071067811865476,0,0.7071067811865476]}]";
+  Expected<Model> model = loadJson(
+      b.json("\"scenes\":[{\"nodes\":[0,1,2]}]," + nodes + "," + cameras + "," + oneMesh(p)));
+  ASSERT_TRUE(model) << model.error().message;
+  SceneGraph graph = model->graph;
+  ASSERT_EQ(graph.cameras.size(), 2u);
+  EXPECT_FALSE(graph.cameras[0].orthographic);
+  EXPECT_FLOAT_EQ(graph.cameras[0].yfov_radians, 0.5f);
+  EXPECT_FLOAT_EQ(graph.cameras[0].znear, 0.25f);
+  EXPECT_FLOAT_EQ(graph.cameras[0].zfar, 50.0f);
+  EXPECT_TRUE(graph.cameras[1].orthographic);
+  EXPECT_FLOAT_EQ(graph.cameras[1].ymag, 2.0f);
+  graph.updateWorld();
+  Expected<Camera> first = graph.camera(0, 1.0f, graph.bounds());
+  ASSERT_TRUE(first) << first.error().message;
+  expectNear3(first->position, {0, 0, 5});
+  expectNear3(first->target - first->position, {0, 0, -1});
+  EXPECT_NEAR(first->fov_y_degrees, 0.5f * 180.0f / 3.14159265f, 1e-4f);
+  EXPECT_FALSE(first->orthographic);
+  Expected<Camera> second = graph.camera(1, 1.0f, graph.bounds());
+  ASSERT_TRUE(second) << second.error().message;
+  expectNear3(second->position, {1, 2, 0});
+  // A quarter turn about +y takes the view direction -z to -x, and keeps +y up.
+  expectNear3(second->target - second->position, {-1, 0, 0});
+  expectNear3(second->up, {0, 1, 0});
+  EXPECT_TRUE(second->orthographic);
+  EXPECT_FLOAT_EQ(second->ortho_half_height, 2.0f);
+  // Past the end: the message counts the cameras.
+  Expected<Camera> third = graph.camera(2, 1.0f, graph.bounds());
+  ASSERT_FALSE(third);
+  EXPECT_NE(third.error().message.find("has 2 cameras"), std::string::npos)
+      << third.error().message;
+}
+
+TEST_F(GltfFiles, CameraWithAZeroOrNegativeFieldIsSkippedWithAWarning) {
+  GltfBuilder b;
+  const int p = b.positions(kTriangle);
+  const std::string cameras =
+      "\"cameras\":[" + cameraJson("perspective", "\"yfov\":0,\"znear\":0.1") + "," +
+      cameraJson("orthographic", "\"xmag\":1,\"ymag\":-2,\"znear\":0,\"zfar\":10") + "," +
+      cameraJson("perspective", "\"yfov\":0.7,\"znear\":0.1") + "]";
+  Expected<Model> model =
+      loadJson(b.json("\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":[{\"mesh\":0},{\"camera\":2}]," +
+                      cameras + "," + oneMesh(p)));
+  ASSERT_TRUE(model) << model.error().message;
+  EXPECT_TRUE(anyWarningContains(*model, "camera 0 has yfov")) << allWarnings(*model);
+  EXPECT_TRUE(anyWarningContains(*model, "camera 1 has ymag")) << allWarnings(*model);
+  // The skipped cameras keep their indices: camera 2 is the file's camera 2.
+  SceneGraph graph = model->graph;
+  ASSERT_EQ(graph.cameras.size(), 3u);
+  graph.updateWorld();
+  Expected<Camera> skipped = graph.camera(0, 1.0f, graph.bounds());
+  ASSERT_FALSE(skipped);
+  EXPECT_NE(skipped.error().message.find("camera 0 was skipped: it has yfov"), std::string::npos)
+      << skipped.error().message;
+  EXPECT_FALSE(graph.camera(1, 1.0f, graph.bounds()));
+  Expected<Camera> usable = graph.camera(2, 1.0f, graph.bounds());
+  ASSERT_TRUE(usable) << usable.error().message;
+  EXPECT_NEAR(usable->fov_y_degrees, 0.7f * 180.0f / 3.14159265f, 1e-4f);
+  EXPECT_EQ(io::flattenedMesh(*model).triangleCount(), 1u);  // the rest of the file is drawn
+}
+
+TEST_F(GltfFiles, HierarchyAHundredThousandDeepLoadsWithoutRecursion) {
+  // A chain of 100,000 nodes, each 0.001 along x from its parent, the mesh on the last: a
+  // recursive walk would overflow the stack long before.
+  constexpr int kDepth = 100000;
+  GltfBuilder b;
+  const int p = b.positions(kTriangle);
+  std::string nodes = "\"nodes\":[";
+  for (int i = 0; i < kDepth; ++i) {
+    nodes += i ? "," : "";
+    nodes += i + 1 < kDepth
+                 ? "{\"translation\":[0.001,0,0],\"children\":[" + std::to_string(i + 1) + "]}"
+                 : "{\"translation\":[0.001,0,0],\"mesh\":0}";
+  }
+  nodes += "]";
+  Expected<Model> model =
+      loadJson(b.json("\"scenes\":[{\"nodes\":[0]}]," + nodes + "," + oneMesh(p)));
+  ASSERT_TRUE(model) << model.error().message;
+  ASSERT_EQ(model->graph.nodes.size(), static_cast<size_t>(kDepth));
+  const Mesh mesh = io::flattenedMesh(*model);
+  ASSERT_EQ(mesh.triangleCount(), 1u);
+  // 100,000 float additions of 0.001 drift from 100 by far less than 0.1.
+  EXPECT_NEAR(trianglePositions(mesh, 0)[0].x, 100.0f, 0.1f);
 }
 
 // ---- Hostile files ----
@@ -799,8 +904,8 @@ TEST_F(GltfFiles, InterleavedAttributesFollowTheByteStride) {
   Expected<Model> model =
       loadJson(b.json(kOneNodeScene + "," + oneMesh(p, ",\"NORMAL\":" + std::to_string(n))));
   ASSERT_TRUE(model) << model.error().message;
-  for (size_t c = 0; c < 3; ++c) expectNear3(trianglePositions(model->mesh, 0)[c], kTriangle[c]);
-  for (const float3& normal : model->mesh.normals) expectNear3(normal, {0, 0, 1});
+  for (size_t c = 0; c < 3; ++c) expectNear3(trianglePositions(io::flattenedMesh(*model), 0)[c], kTriangle[c]);
+  for (const float3& normal : io::flattenedMesh(*model).normals) expectNear3(normal, {0, 0, 1});
 }
 
 TEST_F(GltfFiles, IndexPastTheVerticesIsAnError) {
@@ -929,7 +1034,7 @@ TEST_F(GltfFiles, InstancingOverTheTriangleBudgetIsRefusedBeforeFlattening) {
   budget.max_triangles = 4;
   Expected<Model> model = loadJson(b.json(nodes + "," + oneMesh(p)), budget);
   ASSERT_TRUE(model.ok()) << model.error().message;
-  EXPECT_EQ(model->mesh.triangleCount(), 4u);
+  EXPECT_EQ(io::flattenedMesh(*model).triangleCount(), 4u);
 }
 
 TEST_F(GltfFiles, BufferFileThatIsAFifoIsRefusedWithoutBlocking) {

@@ -86,7 +86,7 @@ inline Mesh poleMesh(int segments) {
 inline Object unlitObject(Mesh mesh, int materials = 1) {
   Object o;
   o.mesh = std::make_shared<Mesh>(std::move(mesh));
-  o.materials.assign(static_cast<size_t>(materials), Material{});
+  o.materials = std::vector<Material>(static_cast<size_t>(materials), Material{});
   for (int i = 0; i < materials; ++i)
     o.materials[static_cast<size_t>(i)].base_color = {0.1f + 0.15f * i, 0.9f - 0.1f * i, 0.5f, 1};
   o.shading = Shading::kUnlit;

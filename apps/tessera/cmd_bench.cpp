@@ -11,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include <tessera/model/model_scene.h>
 #include <tessera/io/validation.h>
 #include <tessera/render/sampling.h>
 
@@ -21,10 +22,11 @@
 #include "commands.h"
 #include "flags.h"
 #include "light_flags.h"
-#include "model_scene.h"
 #include "view_setup.h"
 
 namespace tessera::cli {
+
+using namespace tessera::model;
 
 namespace {
 

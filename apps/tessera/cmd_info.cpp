@@ -11,19 +11,46 @@
 namespace tessera::cli {
 
 void printModelInfo(const std::string& path, const io::Model& model, std::ostream& out) {
+  // A scene graph's meshes are stored once: counts are of the instances drawn.
+  SceneGraph graph = model.graph;
+  graph.updateWorld();
+  const bool has_graph = !graph.nodes.empty();
   std::set<const Texture*> textures;
+  size_t vertices = model.mesh.vertexCount(), triangles = model.mesh.triangleCount();
+  bool normals = !model.mesh.normals.empty(), uvs = !model.mesh.uvs.empty(),
+       colors = !model.mesh.colors.empty();
+  size_t materials = model.materials.size();
   for (const Material& m : model.materials)
     if (m.albedo) textures.insert(m.albedo.get());
-  const Bounds bounds = model.mesh.bounds();
+  if (has_graph) {
+    vertices = 0;
+    triangles = graph.drawnTriangleCount();
+    for (const GraphNode& node : graph.nodes)
+      if (node.mesh != kNoIndex)
+        vertices += graph.meshes[static_cast<size_t>(node.mesh)].mesh->vertexCount();
+    for (const GraphMesh& m : graph.meshes) {
+      normals |= !m.mesh->normals.empty();
+      uvs |= !m.mesh->uvs.empty();
+      colors |= !m.mesh->colors.empty();
+      materials = m.materials.size();  // one list, shared by every mesh
+      for (const Material& material : m.materials)
+        if (material.albedo) textures.insert(material.albedo.get());
+    }
+  }
+  const Bounds bounds = has_graph ? graph.bounds() : model.mesh.bounds();
   out << "model:      " << path << "\n"
-      << "vertices:   " << model.mesh.vertexCount() << "\n"
-      << "triangles:  " << model.mesh.triangleCount() << "\n"
-      << "materials:  " << model.materials.size() << "\n"
+      << "vertices:   " << vertices << "\n"
+      << "triangles:  " << triangles << "\n"
+      << "materials:  " << materials << "\n"
       << "textures:   " << textures.size() << "\n"
-      << "normals:    " << (model.mesh.normals.empty() ? "none" : "per vertex") << "\n"
-      << "uvs:        " << (model.mesh.uvs.empty() ? "none" : "per vertex") << "\n"
-      << "colours:    " << (model.mesh.colors.empty() ? "none" : "per vertex") << "\n"
+      << "normals:    " << (normals ? "per vertex" : "none") << "\n"
+      << "uvs:        " << (uvs ? "per vertex" : "none") << "\n"
+      << "colours:    " << (colors ? "per vertex" : "none") << "\n"
       << "lights:     " << model.lights.size() << "\n";
+  if (has_graph)
+    out << "nodes:      " << graph.nodes.size() << " (" << graph.instanceCount()
+        << " drawing a mesh, " << graph.meshes.size() << " meshes stored)\n"
+        << "cameras:    " << graph.cameras.size() << "\n";
   if (bounds.empty()) {
     out << "bounds:     empty\n";
   } else {

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 
+#include <tessera/model/model_scene.h>
 #include <tessera/io/atomic_file.h>
 #include <tessera/io/frame_sink.h>
 #include <tessera/io/image_loader.h>
@@ -22,12 +23,13 @@
 #include "diagnostics_output.h"
 #include "flags.h"
 #include "light_flags.h"
-#include "model_scene.h"
 #include "sampling_flags.h"
 #include "validation.h"
 #include "view_setup.h"
 
 namespace tessera::cli {
+
+using namespace tessera::model;
 
 namespace {
 
@@ -214,12 +216,12 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
       printError("render", texture.error().message);
       return kExitFailure;
     }
-    if (model->mesh.uvs.empty())
+    if (!modelHasUvs(*model))
       std::cerr << "tessera render: warning: " << model_path.string()
                 << " has no texture coordinates: --texture has no effect\n";
     scene_settings.albedo = std::make_shared<const Texture>(std::move(*texture));
   }
-  bounds = model->mesh.bounds();
+  bounds = modelBounds(*model);
   if (bounds.empty()) {
     printError("render", model_path.string() + ": the model has no finite vertices");
     return kExitFailure;
@@ -232,7 +234,8 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
   scene_settings.cull = cull_back ? CullMode::kBack : CullMode::kNone;
   scene_settings.background_srgb = s.background;
   const std::vector<Light> lights = model->lights;
-  Expected<Scene> made = makeModelScene(std::move(*model), model_path, scene_settings);
+  SceneGraph graph;
+  Expected<Scene> made = makeModelScene(std::move(*model), model_path, scene_settings, &graph);
   if (!made) {
     printError("render", made.error().message);
     return kExitFailure;
@@ -240,7 +243,11 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
   scene = std::move(*made);
 
   const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
-  Expected<Camera> camera = makeCamera(s.camera, bounds, aspect);
+  Expected<Camera> camera = makeCamera(s.camera, bounds, aspect, &graph);
+  if (!camera && cameraIndexError(camera.error().message)) {
+    printError("render", model_path.string() + ": " + camera.error().message);
+    return kExitFailure;
+  }
   if (!camera) return usage_error(camera.error().message);
   scene.camera = *camera;
   addViewLights(scene);
@@ -403,6 +410,11 @@ int runRender(const std::vector<std::string>& args) {
     printError("render", refused);
     return kExitFailure;
   }
+  if ((s.camera.orthographic || s.camera.camera_index >= 0) &&
+      s.camera.projectionMode() != Projection::kPerspective)
+    return usageError(std::string(s.camera.orthographic ? "--camera-orthographic"
+                                                        : "--camera-index") +
+                      " and --projection " + s.camera.projection + " do not go together");
   if (needsPixelTests(s.aov) && s.camera.projectionMode() != Projection::kPerspective) {
     printError("render", "--aov " + s.aov + " is measured for the perspective projection only");
     return kExitFailure;

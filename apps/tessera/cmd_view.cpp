@@ -8,6 +8,7 @@
 #include <optional>
 #include <thread>
 
+#include <tessera/model/model_scene.h>
 #include <tessera/io/image_loader.h>
 #include <tessera/io/model_loader.h>
 #include <tessera/render/projection.h>
@@ -20,13 +21,14 @@
 #include "commands.h"
 #include "flags.h"
 #include "light_flags.h"
-#include "model_scene.h"
 
 #ifdef TESSERA_HAS_VIEWER
 #include <tessera/viewer/viewer.h>
 #endif
 
 namespace tessera::cli {
+
+using namespace tessera::model;
 
 namespace {
 

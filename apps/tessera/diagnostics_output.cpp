@@ -127,6 +127,7 @@ std::string statsFrameJson(const Frame& frame, int index, const std::string& bac
                    ", \"facing\": " + std::to_string(k.facing) +
                    ", \"no_pixel\": " + std::to_string(k.no_pixel) +
                    ", \"clipped_away\": " + std::to_string(k.clipped_away) +
+                   ", \"skipped\": " + std::to_string(k.skipped) +
                    ", \"total\": " + std::to_string(k.total()) + "}";
   out += "  \"counters\": {\"triangles_in\": " + std::to_string(c.triangles_in) +
          ", \"culled\": " + culled +
@@ -140,7 +141,11 @@ std::string statsFrameJson(const Frame& frame, int index, const std::string& bac
          ", \"pixels_shaded\": " + std::to_string(c.pixels_shaded) +
          ", \"tiles\": " + std::to_string(c.tiles) +
          ", \"tiles_empty\": " + std::to_string(c.tiles_empty) +
-         ", \"tiles_full\": " + std::to_string(c.tiles_full) + "},\n";
+         ", \"tiles_full\": " + std::to_string(c.tiles_full) +
+         ", \"instances_culled\": " + std::to_string(c.instances_culled) +
+         ", \"clusters_culled\": " + std::to_string(c.clusters_culled) +
+         ", \"clusters_facing\": " + std::to_string(c.clusters_facing) +
+         ", \"triangles_skipped\": " + std::to_string(c.triangles_skipped) + "},\n";
   const size_t n = d.tileCount();
   out += "  \"tiles\": {\"size\": " + std::to_string(d.tile_size) +
          ", \"columns\": " + std::to_string(d.tile_columns) +

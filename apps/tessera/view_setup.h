@@ -6,6 +6,7 @@
 #include <string>
 
 #include <tessera/base/expected.h>
+#include <tessera/model/camera_setup.h>
 #include <tessera/render/projection.h>
 #include <tessera/scene/scene.h>
 
@@ -13,22 +14,8 @@
 
 namespace tessera::cli {
 
-// f3d's camera flags. With none of position, focal point or view up, the camera frames the model;
-// with any of them the model stays in its own coordinates and that camera is used exactly.
-struct CameraSettings {
-  float3 position, focal_point, view_up{0, 1, 0};
-  bool has_position = false, has_focal_point = false, has_view_up = false;
-  float view_angle = 30.0f;  // vertical, degrees
-  bool has_view_angle = false;
-  std::string up = "+Y";                   // the model's up axis: +Y or +Z
-  std::string projection = "perspective";  // projection.h's names
+using namespace tessera::model;  // CameraSettings and the rest of camera_setup.h
 
-  bool explicitCamera() const { return has_position || has_focal_point || has_view_up; }
-  float3 upAxis() const { return up == "+Z" ? float3{0, 0, 1} : float3{0, 1, 0}; }
-  Projection projectionMode() const {
-    return parseProjection(projection).value_or(Projection::kPerspective);
-  }
-};
 
 inline void addCameraFlags(FlagSet& flags, CameraSettings& c) {
   flags.addFloat3("camera-position", &c.position, &c.has_position, "camera position (model units)");
@@ -44,25 +31,15 @@ inline void addCameraFlags(FlagSet& flags, CameraSettings& c) {
                     c.has_view_angle = true;
                     return "";
                   });
+  flags.addSwitch("camera-orthographic", &c.orthographic,
+                "orthographic projection for the framing (or flag-given) camera");
+  flags.addInt("camera-index", &c.camera_index,
+                "draw from the file's camera N (glTF cameras, from 0)", 0, 1 << 30);
   flags.addChoice("up", &c.up, {"+Y", "+Z"}, "the model's up axis (default +Y)");
   std::vector<std::string> modes;
   for (Projection p : kProjections) modes.push_back(projectionName(p));
   flags.addChoice("projection", &c.projection, modes,
                   "how pixels map to view rays (default perspective; docs/usage.md)");
 }
-
-// Near and far as distances from the eye (the nonlinear projections' depth) around the bounds'
-// sphere, wherever the model turns about its centre: a range along the view axis may cut its
-// corners short.
-void fitDistanceRange(Camera& camera, const Bounds& bounds);
-
-// The view angle the settings give for an image of this aspect: the flag's, or the mode's
-// default. An error naming the mode's range when it is out of it (a usage error).
-Expected<float> viewAngle(const CameraSettings& settings, float aspect);
-
-// The camera for a model with these bounds: the three-quarter view from the front, right and
-// above that fits the whole model, or the camera the flags describe (near and far fitted to the
-// bounds). An error for a camera that cannot look anywhere (a usage error).
-Expected<Camera> makeCamera(const CameraSettings& settings, const Bounds& bounds, float aspect);
 
 }  // namespace tessera::cli

@@ -139,6 +139,33 @@ Matrix localMatrix(const tinygltf::Node& node, size_t index, const Warn& warn) {
   return t * r * s;  // glTF: T * R * S
 }
 
+Transform localTransform(const tinygltf::Node& node, size_t index, const Warn& warn) {
+  Transform local;
+  if (node.matrix.size() == 16) {
+    float4x4 m;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) m(r, c) = toFloat(node.matrix[static_cast<size_t>(c * 4 + r)]);
+    local.base = m;
+    return local;
+  }
+  // The warnings are localMatrix's.
+  const Matrix checked = localMatrix(node, index, warn);
+  (void)checked;
+  if (node.translation.size() == 3)
+    local.translation = {toFloat(node.translation[0]), toFloat(node.translation[1]),
+                         toFloat(node.translation[2])};
+  if (node.rotation.size() == 4) {
+    double x = node.rotation[0], y = node.rotation[1], z = node.rotation[2], w = node.rotation[3];
+    const double len = std::sqrt(x * x + y * y + z * z + w * w);
+    if (len > 0 && std::isfinite(len))
+      local.rotation = quat{static_cast<float>(x / len), static_cast<float>(y / len),
+                            static_cast<float>(z / len), static_cast<float>(w / len)};
+  }
+  if (node.scale.size() == 3)
+    local.scale = {toFloat(node.scale[0]), toFloat(node.scale[1]), toFloat(node.scale[2])};
+  return local;
+}
+
 }  // namespace tessera::io::gltf
 
 namespace tessera::io::gltf {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <tessera/base/expected.h>
+#include <tessera/scene/scene.h>
 
 #include "gltf_transforms.h"
 
@@ -34,6 +35,10 @@ Expected<void> checkNodeTree(const tinygltf::Model& gltf, const std::string& nam
 // The node's matrix, or T * R * S from its translation, rotation and scale; malformed parts are
 // ignored with a warning.
 Matrix localMatrix(const tinygltf::Node& node, size_t index, const Warn& warn);
+
+// The node's local transform for the scene graph: its translation, rotation and scale, or its
+// matrix as Transform::base; malformed parts are ignored with a warning (as localMatrix).
+Transform localTransform(const tinygltf::Node& node, size_t index, const Warn& warn);
 
 // What the scene draws from `roots`, each node once, counted from accessor counts before a byte
 // of a buffer is read: the triangles and vertices the flattened mesh will have (instancing

@@ -1,7 +1,9 @@
 #include <tessera/io/model_loader.h>
 
 #include <cctype>
+#include <memory>
 #include <string>
+#include <utility>
 
 namespace tessera::io {
 
@@ -15,6 +17,29 @@ Expected<Model> loadModel(const std::filesystem::path& path, const LoadBudget& b
       extension.empty() ? "has no file extension" : "has an unknown extension '" + extension + "'";
   return makeError(path.string() + ": " + what +
                    "; supported model formats: .obj, .gltf, .glb, .stl");
+}
+
+SceneGraph takeGraph(Model&& model) {
+  SceneGraph graph = std::move(model.graph);
+  if (graph.nodes.empty()) {
+    GraphMesh mesh;
+    mesh.mesh = std::make_shared<const Mesh>(std::move(model.mesh));
+    if (model.materials.empty()) model.materials.push_back(Material{});
+    mesh.materials = std::move(model.materials);
+    graph.meshes.push_back(std::move(mesh));
+    GraphNode node;
+    node.mesh = 0;
+    graph.nodes.push_back(std::move(node));
+  }
+  graph.updateWorld();
+  return graph;
+}
+
+Mesh flattenedMesh(const Model& model) {
+  if (model.graph.nodes.empty()) return model.mesh;
+  SceneGraph graph = model.graph;
+  graph.updateWorld();
+  return graph.flatten();
 }
 
 }  // namespace tessera::io

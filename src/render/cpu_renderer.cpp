@@ -25,6 +25,7 @@
 #include "render/bin.h"
 #include "render/chunk_layout.h"
 #include "render/clip.h"
+#include "render/cull.h"
 #include "render/diagnostics.h"
 #include "render/fixed_point.h"
 #include "render/kernels.h"
@@ -64,12 +65,6 @@ bool mayReplicate(size_t vertex_total, int workers) {
   return workers > 1 && vertex_total * static_cast<size_t>(workers) <= kMaxReplicatedVertexCopies;
 }
 
-struct VertexJob {
-  uint32_t object;
-  size_t first;
-  size_t count;
-};
-
 }  // namespace
 
 struct CpuRenderer::State {
@@ -85,6 +80,7 @@ struct CpuRenderer::State {
   Isa isa;
   Kernels kernels;
   std::vector<ObjectTransforms> objects;
+  FrustumCull cull;  // what each object draws this frame
   std::vector<VertexJob> vertex_jobs;
   // The vertex stage's output: one buffer, or one per worker (mayReplicate).
   std::vector<VertexBuffer> vertex_buffers;
@@ -199,6 +195,10 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
     const ObjectTransforms& xf = objects[object_index];
     const size_t object_end = xf.triangle_base + (object.mesh ? object.mesh->triangleCount() : 0);
     if (!object.mesh || t >= object_end) continue;
+    if (!cull.drawsTriangles(object_index)) {
+      t = std::min(end, object_end);
+      continue;
+    }
     const Mesh& mesh = *object.mesh;
     const size_t vertex_count = mesh.vertexCount();
     const bool has_uv = mesh.uvs.size() == vertex_count;
@@ -328,35 +328,40 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
     // outside the mesh) one at a time.
     constexpr size_t kGroup = CullGroup::kLanes;
     const size_t stop = std::min(end, object_end);
+    // Only the triangle ranges that frustum culling kept (cull.h): the rest would be dropped.
+    TriangleRuns runs(cull, object_index);
     while (t < stop) {
-      const size_t local = t - xf.triangle_base;
-      CullGroup group;
-      if (stop - t < kGroup ||
-          !cull_group(&mesh.indices[local * 3], vertex_count, mesh_vertices.screen, outcodes,
-                      grid.width, grid.height, object.cull, sample_reach, group)) {
-        drawOne(t++);
-        continue;
-      }
-      for (size_t l = 0; l < kGroup; ++l) {
-        if (group.kind[l] == CullGroup::kCulled) {
-          ++chunk.culled;
-          if (chunk.count_reasons) {
-            const uint32_t* idx = &mesh.indices[(local + l) * 3];
-            countCullReason(ctx, outcodes[idx[0]], outcodes[idx[1]], outcodes[idx[2]],
-                            mesh_vertices.screen[idx[0]], mesh_vertices.screen[idx[1]],
-                            mesh_vertices.screen[idx[2]], chunk.cull_reasons);
+      const size_t run_end = runs.next(t, stop);
+      while (t < run_end) {
+        const size_t local = t - xf.triangle_base;
+        CullGroup group;
+        if (run_end - t < kGroup ||
+            !cull_group(&mesh.indices[local * 3], vertex_count, mesh_vertices.screen, outcodes,
+                        grid.width, grid.height, object.cull, sample_reach, group)) {
+          drawOne(t++);
+          continue;
+        }
+        for (size_t l = 0; l < kGroup; ++l) {
+          if (group.kind[l] == CullGroup::kCulled) {
+            ++chunk.culled;
+            if (chunk.count_reasons) {
+              const uint32_t* idx = &mesh.indices[(local + l) * 3];
+              countCullReason(ctx, outcodes[idx[0]], outcodes[idx[1]], outcodes[idx[2]],
+                              mesh_vertices.screen[idx[0]], mesh_vertices.screen[idx[1]],
+                              mesh_vertices.screen[idx[2]], chunk.cull_reasons);
+            }
+            continue;
           }
-          continue;
+          const uint32_t* idx = &mesh.indices[(local + l) * 3];
+          if (group.kind[l] == CullGroup::kClip) {
+            drawClipped(t + l, idx, static_cast<uint32_t>(group.cut[l]));
+            continue;
+          }
+          drawWhole(t + l, idx, static_cast<int64_t>(group.area[l]),
+                    PixelBox{group.min_x[l], group.min_y[l], group.max_x[l], group.max_y[l]});
         }
-        const uint32_t* idx = &mesh.indices[(local + l) * 3];
-        if (group.kind[l] == CullGroup::kClip) {
-          drawClipped(t + l, idx, static_cast<uint32_t>(group.cut[l]));
-          continue;
-        }
-        drawWhole(t + l, idx, static_cast<int64_t>(group.area[l]),
-                  PixelBox{group.min_x[l], group.min_y[l], group.max_x[l], group.max_y[l]});
+        t += kGroup;
       }
-      t += kGroup;
     }
   }
   flush();
@@ -423,10 +428,9 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
                options.normals, options.coverage);
 
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
-  const float4x4 view_projection =
-      jitteredProjection(scene.camera.projection(aspect), options.jitter, options.width,
-                         options.height) *
-      scene.camera.view();
+  const float4x4 projection = jitteredProjection(scene.camera.projection(aspect), options.jitter,
+                                                 options.width, options.height);
+  const float4x4 view_projection = projection * scene.camera.view();
   // With MSAA the pixel centres are a layer of their own, rasterized only for what reads them.
   const bool sampled = options.msaa > 1;
   const bool with_centre =
@@ -445,24 +449,27 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       for (int i = 0; i < s.pool.size(); ++i) s.sampled.push_back(std::make_unique<SampleTiles>());
   }
 
-  // Per-object constants, vertex and triangle bases.
+  // Per-object constants and triangle bases (the ids: every object's, drawn or not); then what
+  // frustum culling keeps, and vertex bases for the objects that draw.
   s.objects.resize(scene.objects.size());
-  s.vertex_jobs.clear();
-  size_t vertex_total = 0, triangle_total = 0;
+  size_t triangle_total = 0;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const Object& object = scene.objects[i];
     TESSERA_CHECK(!object.materials.empty()) << "object " << i << " has no material";
-    s.objects[i] = makeObjectTransforms(object, view_projection);
-    s.objects[i].vertex_base = vertex_total;
+    // What culling reads; the rest of makeObjectTransforms' constants only for what draws.
+    s.objects[i].model = object.transform.matrix();
+    s.objects[i].model_view_projection = view_projection * s.objects[i].model;
     s.objects[i].triangle_base = triangle_total;
-    if (!object.mesh) continue;
-    const size_t count = object.mesh->vertexCount();
-    for (size_t first = 0; first < count; first += kVerticesPerJob)
-      s.vertex_jobs.push_back(
-          {static_cast<uint32_t>(i), first, std::min(kVerticesPerJob, count - first)});
-    vertex_total += count;
-    triangle_total += object.mesh->triangleCount();
+    if (object.mesh) triangle_total += object.mesh->triangleCount();
   }
+  s.cull.run(scene, scene.camera.view(), projection, {options.width, options.height},
+             options.frustum_cull, s.objects);
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    if (!s.cull.drawsTriangles(i)) continue;
+    s.objects[i].normal_matrix = normalMatrix(s.objects[i].model);
+    s.objects[i].winding_sign = determinant(upper3x3(s.objects[i].model)) < 0.0f ? -1.0f : 1.0f;
+  }
+  const size_t vertex_total = s.cull.planVertices(scene, kVerticesPerJob, s.objects, s.vertex_jobs);
 
   using Clock = std::chrono::steady_clock;
   auto elapsed_ms = [](Clock::time_point a, Clock::time_point b) {
@@ -589,6 +596,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     s.stats.triangles_clipped += s.chunks[c].clipped;
     s.stats.triangles_setup += s.chunks[c].size;
   }
+  s.cull.addTo(s.stats);
   if (options.diagnostics)
     s.diagnostics.run(s.pool, s.chunks, s.chunk_count, scene, grid, true, s.stats, frame);
 }

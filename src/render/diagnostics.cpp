@@ -222,6 +222,11 @@ void DiagnosticsPass::run(WorkerPool& pool, const std::vector<TriangleChunk>& ch
   });
   sumDiagnostics(tile_tests_, frame);
   PipelineCounters& c = frame.diagnostics.counters;
+  c.instances_culled = stats.instances_culled;
+  c.clusters_culled = stats.clusters_culled;
+  c.clusters_facing = stats.clusters_facing;
+  c.triangles_skipped = stats.triangles_skipped;
+  c.culled.skipped = stats.triangles_skipped;
   if (pixel_tests) {
     addSetupCounters(chunks, chunk_count, triangles, frame);
   } else {

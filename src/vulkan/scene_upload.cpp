@@ -25,14 +25,15 @@ void storeMatrix(const float4x4& m, float out[16]) {
 }
 
 // The zero-to-one projection for the raster backend: perspectiveZeroToOne for the usual camera;
-// a custom projection keeps its x, y and w and has z remapped from [-w, w] to [0, w].
+// a custom or orthographic projection keeps its x, y and w and has z remapped from [-w, w] to
+// [0, w].
 float4x4 zeroToOneProjection(const Camera& camera, float aspect) {
-  if (!camera.projection_override)
+  if (!camera.projection_override && !camera.orthographic)
     return perspectiveZeroToOne(radians(camera.fov_y_degrees), aspect, camera.near_z, camera.far_z);
   float4x4 remap;
   remap(2, 2) = 0.5f;
   remap(2, 3) = 0.5f;
-  return remap * *camera.projection_override;
+  return remap * camera.projection(aspect);
 }
 
 bool drawsLines(const Scene& scene, const RenderOptions& options) {

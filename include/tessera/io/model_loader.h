@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <tessera/base/expected.h>
+#include <tessera/scene/graph.h>
 #include <tessera/scene/scene.h>
 
 namespace tessera::io {
@@ -43,8 +44,14 @@ struct LoadBudget {
 };
 
 struct Model {
+  // OBJ, STL and models built by hand: one mesh, the scene's one node (takeGraph).
   Mesh mesh;                          // triangles in the contract's load order
   std::vector<Material> materials;    // at least one; Mesh::triangle_materials indexes these
+  // glTF: the scene graph (graph.h), each mesh stored once and drawn by every node that refers
+  // to it; `mesh` is then empty and `materials` lists the file's materials, the list every graph
+  // mesh shares (GraphMesh::materials). The instances' triangles, depth-first over the
+  // nodes, are the contract's load order (flattenedMesh).
+  SceneGraph graph;
   std::vector<std::string> warnings;  // things skipped or replaced (missing MTL, NaN vertices...)
   size_t nonfinite_triangles = 0;     // triangles with a NaN or infinite vertex (kept in the list
                                       // so ids stay in load order; the renderer drops them)
@@ -61,6 +68,14 @@ struct Model {
   std::vector<Light> lights;
 };
 
+// The model's scene graph, moved out of it: `graph` when the loader built one, else one node
+// drawing `mesh` with `materials` (world = identity). World matrices are up to date.
+SceneGraph takeGraph(Model&& model);
+
+// Every triangle drawn, in world space and in id order: `mesh` itself, or the graph's instances
+// flattened (SceneGraph::flatten). For tools and tests; a renderer instances the graph.
+Mesh flattenedMesh(const Model& model);
+
 // By extension (case-insensitive): .obj, .gltf, .glb, .stl.
 Expected<Model> loadModel(const std::filesystem::path& path, const LoadBudget& budget = {});
 
@@ -72,11 +87,15 @@ Expected<Model> loadModel(const std::filesystem::path& path, const LoadBudget& b
 Expected<Model> loadObj(const std::filesystem::path& path, const LoadBudget& budget = {});
 
 // glTF 2.0, as JSON (.gltf) or binary (.glb; chosen by the file's magic, not its name), through
-// tinygltf. The default scene (else scene 0, else every root node) is flattened into one mesh:
-// nodes depth-first from each root in order, a node's mesh before its children, primitives in
-// order, triangles in index order. Positions and normals are in world space (each node's global
-// matrix; normals by its inverse transpose); a node whose matrix mirrors (determinant < 0) has
-// its triangles' winding reversed so front faces stay front. TRIANGLES, TRIANGLE_STRIP and
+// tinygltf. The default scene (else scene 0, else every root node) becomes Model::graph: its
+// nodes depth-first from each root in order (a node before its children), each with its local
+// transform, name, mesh and camera; each glTF mesh is read once, in its own space, all its
+// primitives in order into one Mesh, triangles in index order, and drawn by every node that
+// refers to it. Triangle ids run over the instances in node order. An instance whose world matrix
+// mirrors (determinant < 0) is drawn with its winding reversed so front faces stay front
+// (SceneGraph::prepareMeshes). Cameras (perspective and orthographic) go to graph.cameras; a
+// camera with a zero or negative field is skipped with a warning naming it (and keeps its
+// index: GraphCamera::skipped). TRIANGLES, TRIANGLE_STRIP and
 // TRIANGLE_FAN are drawn; points and lines are skipped with a warning. Materials (first-use
 // order) take baseColorFactor, the baseColorTexture (sRGB) with its sampler, and doubleSided;
 // texture coordinates have v flipped to tessera's convention (v = 0 at the bottom). COLOR_0 is a

@@ -42,6 +42,18 @@ inline float4x4 perspective(float fov_y, float aspect, float near_z, float far_z
   return m;
 }
 
+// OpenGL orthographic projection, symmetric about the view axis: x in [-half_width, half_width]
+// and y in [-half_height, half_height] map to NDC [-1, 1], view z in [-near, -far] to [-1, 1];
+// w stays 1.
+inline float4x4 orthographic(float half_width, float half_height, float near_z, float far_z) {
+  float4x4 m;
+  m(0, 0) = 1.0f / half_width;
+  m(1, 1) = 1.0f / half_height;
+  m(2, 2) = 2.0f / (near_z - far_z);
+  m(2, 3) = (far_z + near_z) / (near_z - far_z);
+  return m;
+}
+
 // Zero-to-one perspective (Vulkan/D3D depth range): view z in [-near, -far] maps to NDC z in
 // [0, 1]. Y is not flipped: the viewport does that, as for the OpenGL form.
 inline float4x4 perspectiveZeroToOne(float fov_y, float aspect, float near_z, float far_z) {

@@ -15,6 +15,12 @@ struct PipelineStats {
   size_t triangles_culled = 0;   // back/front-face culled, degenerate, non-finite or off-screen
   size_t triangles_clipped = 0;  // triangles that crossed near/far or left the guard band
   size_t triangles_setup = 0;    // setup records (after clipping)
+  // Culled before the vertex stage (RenderOptions::frustum_cull): whole instances outside the
+  // frustum, clusters outside it, clusters wholly facing away, and the triangles they hold.
+  size_t instances_culled = 0;
+  size_t clusters_culled = 0;
+  size_t clusters_facing = 0;
+  size_t triangles_skipped = 0;
   // Wall-clock milliseconds of each stage of the last frame (all workers together).
   double vertex_ms = 0;  // vertex stage (scenes transformed once per worker: the longest copy)
   double setup_ms = 0;   // assembly, cull, clip, setup and binning

@@ -17,8 +17,12 @@ struct CullCounts {
   uint64_t facing = 0;        // back-facing (or front-facing) and culled by Object::cull
   uint64_t no_pixel = 0;      // a bounding box that holds no pixel centre of the viewport
   uint64_t clipped_away = 0;  // clipped, and no piece of it survived
+  // In an instance or a cluster culled before the vertex stage (RenderOptions::frustum_cull):
+  // wholly outside the frustum, or (clusters) wholly facing away.
+  uint64_t skipped = 0;
   uint64_t total() const {
-    return invalid + non_finite + frustum + degenerate + facing + no_pixel + clipped_away;
+    return invalid + non_finite + frustum + degenerate + facing + no_pixel + clipped_away +
+           skipped;
   }
 };
 
@@ -37,6 +41,13 @@ struct PipelineCounters {
   uint64_t tiles = 0;
   uint64_t tiles_empty = 0;  // no triangle binned
   uint64_t tiles_full = 0;   // every pixel centre inside the image covered
+  // Culled before the vertex stage (RenderOptions::frustum_cull), not in triangles_in's sum:
+  // instances wholly outside the frustum, clusters outside it, clusters wholly facing away, and
+  // the triangles those held.
+  uint64_t instances_culled = 0;
+  uint64_t clusters_culled = 0;
+  uint64_t clusters_facing = 0;
+  uint64_t triangles_skipped = 0;
 };
 
 // Wall-clock milliseconds of each stage of the frame.

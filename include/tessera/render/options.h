@@ -46,6 +46,10 @@ struct RenderOptions {
   Projection projection = Projection::kPerspective;
   Visibility visibility = Visibility::kDepthBuffer;
   EdgeOptions edges;  // drawn when `lines` is set too
+  // Test objects with clusters (Object::clusters) and their clusters against the frustum (and
+  // back faces by normal cones) before their vertices are transformed (perspective only). Never
+  // changes the image; off for tests that compare with and without.
+  bool frustum_cull = true;
 };
 
 // The options a backend renders `options` with: the diagnostics read the frame's centre depths

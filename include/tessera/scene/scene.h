@@ -7,22 +7,11 @@
 #include <vector>
 
 #include <tessera/math/math.h>
+#include <tessera/scene/material.h>
 #include <tessera/scene/mesh.h>
 #include <tessera/scene/texture.h>
 
 namespace tessera {
-
-struct Material {
-  float4 base_color{0.8f, 0.8f, 0.8f, 1.0f};  // linear RGBA
-  std::shared_ptr<const Texture> albedo;      // optional; multiplies base_color
-  Sampler sampler;
-  // Both faces are meant to be seen (glTF `doubleSided`). The renderer culls per Object
-  // (Object::cull); a caller chooses that from its materials (io::Model::cull_back_faces).
-  bool double_sided = false;
-  // A simulation's property of the material (the density diagnostic, `--aov density`); the
-  // renderer's shading does not read it.
-  float density = 1.0f;
-};
 
 enum class Shading : uint8_t {
   kFlat,     // one face normal per triangle
@@ -37,17 +26,27 @@ struct Transform {
   float3 translation{0, 0, 0};
   quat rotation{};
   float3 scale{1, 1, 1};
+  // Applied before T * R * S: an instance's world matrix from a scene graph (graph.h), which the
+  // TRS above then moves as a whole (a turntable). Unset: the identity.
+  std::optional<float4x4> base;
 
-  // T * R * S
+  // T * R * S * base
   float4x4 matrix() const {
-    return tessera::translation(translation) * toMatrix4(rotation) * scaling(scale);
+    const float4x4 trs = tessera::translation(translation) * toMatrix4(rotation) * scaling(scale);
+    return base ? trs * *base : trs;
   }
 };
 
+struct MeshClusters;  // clusters.h
+
 struct Object {
   std::shared_ptr<const Mesh> mesh;
-  std::vector<Material> materials{Material{}};  // at least one
+  MaterialList materials{Material{}};  // at least one; shared by the instances of a mesh
   Transform transform;
+  // The mesh's clusters (clusters.h) for frustum and back-face culling of parts of it; built once
+  // per mesh and shared by its instances. Unset, or built for other counts: the object is culled
+  // whole by the bounds of its vertices, or not at all.
+  std::shared_ptr<const MeshClusters> clusters;
   Shading shading = Shading::kFlat;
   CullMode cull = CullMode::kBack;
   bool show_axes = false;    // draw the object's local X/Y/Z axes (red, green, blue)
@@ -100,6 +99,11 @@ struct Camera {
   float fov_y_degrees = 50.0f;
   float near_z = 0.1f;
   float far_z = 100.0f;
+  // A parallel projection instead: `ortho_half_height` units above and below the view axis
+  // (glTF's ymag), as wide as the image's aspect makes it; fov_y_degrees is then unused. Near and
+  // far are as for the perspective camera (distances along the view axis; near may be 0).
+  bool orthographic = false;
+  float ortho_half_height = 1.0f;
 
   // When set, these replace the matrices built from the fields above (custom projections,
   // tests that place vertices directly in clip space).
@@ -108,8 +112,10 @@ struct Camera {
 
   float4x4 view() const { return view_override ? *view_override : lookAt(position, target, up); }
   float4x4 projection(float aspect) const {
-    return projection_override ? *projection_override
-                               : perspective(radians(fov_y_degrees), aspect, near_z, far_z);
+    if (projection_override) return *projection_override;
+    if (orthographic)
+      return tessera::orthographic(ortho_half_height * aspect, ortho_half_height, near_z, far_z);
+    return perspective(radians(fov_y_degrees), aspect, near_z, far_z);
   }
 };
 

@@ -1,5 +1,7 @@
-// How a loaded model becomes a scene, shared by `tessera render` and `tessera view`: one object
-// with the model's materials, the default three-quarter view and the lights fixed to the view.
+// How a loaded model becomes a scene, shared by `tessera render`, `tessera view` and the bench
+// (library tessera_model): one object per instance of the model's scene graph, the materials
+// shared by the instances of a mesh, the default three-quarter view and the lights fixed to the
+// view.
 #pragma once
 
 #include <filesystem>
@@ -10,7 +12,7 @@
 #include <tessera/io/model_loader.h>
 #include <tessera/scene/scene.h>
 
-namespace tessera::cli {
+namespace tessera::model {
 
 struct ModelSceneSettings {
   Shading shading = Shading::kPhong;
@@ -23,16 +25,23 @@ struct ModelSceneSettings {
 // "flat", "smooth" (per-pixel), "gouraud" (per-vertex) or "unlit".
 Shading shadingFromName(const std::string& name);
 
-// The model as the scene's one object, in its own coordinates. The camera is left as it is
-// and there are no lights yet (addViewLights). Fails when the model has no finite vertex.
+// The model's instances as the scene's objects (instantiate, graph.h), in its own coordinates:
+// one object for OBJ and STL. The camera is left as it is and there are no lights yet
+// (addViewLights). Fails when the model has no finite vertex. `graph`, when given, receives the
+// model's scene graph (its cameras, and the nodes an animation moves).
 Expected<Scene> makeModelScene(io::Model model, const std::filesystem::path& path,
-                               const ModelSceneSettings& settings);
+                               const ModelSceneSettings& settings, SceneGraph* graph = nullptr);
+
+// World bounds of what the model draws.
+Bounds modelBounds(const io::Model& model);
+// Whether any mesh the model draws has texture coordinates.
+bool modelHasUvs(const io::Model& model);
 
 // Float frames, clips and lights a model well between about 2^-20 and 2^20 units, near the
 // origin. Past that (a model 1e10 or 3e38 across, or 1e-42), with the framing camera
 // (`keep_coordinates` false), the model is moved and scaled in double, by a power of two, to
 // about unit size at the origin: the picture is the one its own scale would give. With camera
-// flags it stays as it is, and when it is far outside float's comfort the returned warning says
+// flags it stays as it is (a scene graph is moved by a new root node, the meshes untouched), and when it is far outside float's comfort the returned warning says
 // why it may not be drawn. Empty when there is nothing to say.
 std::string fitModelScale(io::Model& model, const std::filesystem::path& path,
                           bool keep_coordinates);
@@ -47,4 +56,4 @@ void fitNearFar(Camera& camera, const Bounds& bounds);
 // A key light from above-left of the camera and a fill from the right, fixed to the view.
 void addViewLights(Scene& scene);
 
-}  // namespace tessera::cli
+}  // namespace tessera::model

@@ -1,12 +1,14 @@
-#include "model_scene.h"
+#include <tessera/model/model_scene.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
+#include <vector>
 
 #include <tessera/scene/color.h>
 
-namespace tessera::cli {
+namespace tessera::model {
 
 Shading shadingFromName(const std::string& name) {
   if (name == "flat") return Shading::kFlat;
@@ -16,27 +18,55 @@ Shading shadingFromName(const std::string& name) {
 }
 
 Expected<Scene> makeModelScene(io::Model model, const std::filesystem::path& path,
-                               const ModelSceneSettings& settings) {
-  if (model.mesh.bounds().empty())
+                               const ModelSceneSettings& settings, SceneGraph* graph_out) {
+  SceneGraph graph = io::takeGraph(std::move(model));
+  if (Expected<void> ok = graph.validate(); !ok)
+    return makeError(path.string() + ": " + ok.error().message);
+  if (graph.bounds().empty())
     return makeError(path.string() + ": the model has no finite vertices");
-  Scene scene;
-  Object object;
-  object.mesh = std::make_shared<Mesh>(std::move(model.mesh));
-  object.materials = std::move(model.materials);
-  if (object.materials.empty()) object.materials.push_back(Material{});
-  // The texture is the albedo: a white base colour lets it show as it is (alpha is kept).
+  // The texture is the albedo: a white base colour lets it show as it is (alpha is kept). Each
+  // list is changed once (meshes that shared one list share the changed copy).
   if (settings.albedo) {
-    for (Material& material : object.materials) {
-      material.albedo = settings.albedo;
-      material.base_color = {1.0f, 1.0f, 1.0f, material.base_color.w};
+    std::vector<std::pair<MaterialList, MaterialList>> changed;  // before, after
+    for (GraphMesh& mesh : graph.meshes) {
+      auto same = std::find_if(changed.begin(), changed.end(), [&](const auto& c) {
+        return c.first.sharesWith(mesh.materials);
+      });
+      if (same != changed.end()) {
+        mesh.materials = same->second;
+        continue;
+      }
+      const MaterialList before = mesh.materials;
+      for (Material& material : mesh.materials) {
+        material.albedo = settings.albedo;
+        material.base_color = {1.0f, 1.0f, 1.0f, material.base_color.w};
+      }
+      changed.push_back({before, mesh.materials});
     }
   }
+  graph.prepareMeshes();
+  Scene scene;
+  Object object;
   object.shading = settings.shading;
   object.cull = settings.cull;
-  scene.objects.push_back(std::move(object));
+  instantiate(graph, object, scene);
   const float3 bg = settings.background_srgb;
   scene.background = {srgbToLinear(bg.x), srgbToLinear(bg.y), srgbToLinear(bg.z), 1.0f};
+  if (graph_out) *graph_out = std::move(graph);
   return scene;
+}
+
+Bounds modelBounds(const io::Model& model) {
+  if (model.graph.nodes.empty()) return model.mesh.bounds();
+  SceneGraph graph = model.graph;
+  graph.updateWorld();
+  return graph.bounds();
+}
+
+bool modelHasUvs(const io::Model& model) {
+  if (model.graph.nodes.empty()) return !model.mesh.uvs.empty();
+  return std::any_of(model.graph.meshes.begin(), model.graph.meshes.end(),
+                     [](const GraphMesh& m) { return !m.mesh->uvs.empty(); });
 }
 
 namespace {
@@ -51,16 +81,50 @@ struct DoubleBounds {
   double farthest() const { return std::max({-lo[0], -lo[1], -lo[2], hi[0], hi[1], hi[2]}); }
 };
 
-DoubleBounds doubleBounds(const Mesh& mesh) {
-  DoubleBounds b;
+// `m` (a float matrix) applied in double: a 3e38 model's world positions do not overflow.
+void addBounds(DoubleBounds& b, const Mesh& mesh, const float4x4* m) {
   for (const float3& p : mesh.positions) {
     if (!isFinite(p)) continue;
+    double w[3] = {p.x, p.y, p.z};
+    if (m) {
+      for (int r = 0; r < 3; ++r)
+        w[r] = double((*m)(r, 0)) * p.x + double((*m)(r, 1)) * p.y + double((*m)(r, 2)) * p.z +
+               double((*m)(r, 3));
+    }
     for (int i = 0; i < 3; ++i) {
-      b.lo[i] = std::min(b.lo[i], double(p[i]));
-      b.hi[i] = std::max(b.hi[i], double(p[i]));
+      b.lo[i] = std::min(b.lo[i], w[i]);
+      b.hi[i] = std::max(b.hi[i], w[i]);
     }
   }
+}
+
+DoubleBounds doubleBounds(const io::Model& model) {
+  DoubleBounds b;
+  if (model.graph.nodes.empty()) {
+    addBounds(b, model.mesh, nullptr);
+    return b;
+  }
+  SceneGraph graph = model.graph;
+  graph.updateWorld();
+  for (size_t i = 0; i < graph.nodes.size(); ++i)
+    if (graph.nodes[i].mesh != kNoIndex)
+      addBounds(b, *graph.meshes[static_cast<size_t>(graph.nodes[i].mesh)].mesh, &graph.world[i]);
   return b;
+}
+
+// A scene graph is moved and scaled by a new root above every node: (p - center) / scale.
+void refitGraph(SceneGraph& graph, const double center[3], double scale) {
+  GraphNode root;
+  root.name = "tessera fit";
+  float4x4 fit;
+  for (int i = 0; i < 3; ++i) {
+    fit(i, i) = static_cast<float>(1.0 / scale);
+    fit(i, 3) = static_cast<float>(-center[i] / scale);
+  }
+  root.local.base = fit;
+  for (GraphNode& node : graph.nodes) node.parent = node.parent == kNoIndex ? 0 : node.parent + 1;
+  graph.nodes.insert(graph.nodes.begin(), std::move(root));
+  graph.world.clear();
 }
 
 std::string shortNumber(double value) {
@@ -73,7 +137,7 @@ std::string shortNumber(double value) {
 
 std::string fitModelScale(io::Model& model, const std::filesystem::path& path,
                           bool keep_coordinates) {
-  const DoubleBounds b = doubleBounds(model.mesh);
+  const DoubleBounds b = doubleBounds(model);
   if (b.empty()) return {};
   const double extent = b.extent(), farthest = b.farthest();
   const double kComfort = std::exp2(20.0);
@@ -95,8 +159,6 @@ std::string fitModelScale(io::Model& model, const std::filesystem::path& path,
                   static_cast<float>((double(p.y) - center[1]) / scale),
                   static_cast<float>((double(p.z) - center[2]) / scale)};
   };
-  for (float3& p : model.mesh.positions)
-    if (isFinite(p)) p = fit(p);
   // Lights move with the model; 1/d^2 keeps their irradiance when candela scale by 1/scale^2.
   for (Light& light : model.lights) {
     if (light.type == LightType::kDirectional) continue;
@@ -104,6 +166,12 @@ std::string fitModelScale(io::Model& model, const std::filesystem::path& path,
     light.range = static_cast<float>(light.range / scale);
     light.intensity = static_cast<float>(light.intensity / (scale * scale));
   }
+  if (!model.graph.nodes.empty()) {
+    refitGraph(model.graph, center, scale);
+    return {};
+  }
+  for (float3& p : model.mesh.positions)
+    if (isFinite(p)) p = fit(p);
   return {};
 }
 
@@ -140,4 +208,4 @@ void addViewLights(Scene& scene) {
   scene.ambient = float3(0.08f);
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::model

@@ -1,10 +1,10 @@
-#include "view_setup.h"
+#include <tessera/model/camera_setup.h>
 
 #include <algorithm>
 
-#include "model_scene.h"
+#include <tessera/model/model_scene.h>
 
-namespace tessera::cli {
+namespace tessera::model {
 
 Expected<float> viewAngle(const CameraSettings& settings, float aspect) {
   const Projection mode = settings.projectionMode();
@@ -43,7 +43,39 @@ void fitDistanceRange(Camera& camera, const Bounds& bounds) {
   camera.near_z = std::max(distance - radius, camera.far_z * 1e-4f);
 }
 
-Expected<Camera> makeCamera(const CameraSettings& settings, const Bounds& bounds, float aspect) {
+bool cameraIndexError(const std::string& message) {
+  return message.starts_with("--camera-index");
+}
+
+namespace {
+
+// The orthographic form of a framing camera: as high as its view angle shows the bounds'
+// centre plane, looking the same way; near and far bracket the bounds.
+void makeOrthographic(Camera& camera, const Bounds& bounds) {
+  const float distance = length(bounds.center() - camera.position);
+  camera.orthographic = true;
+  camera.ortho_half_height =
+      std::max(distance * std::tan(radians(camera.fov_y_degrees) * 0.5f), 1e-6f);
+  fitNearFar(camera, bounds);
+  camera.near_z = std::max(0.0f, camera.near_z);
+}
+
+}  // namespace
+
+Expected<Camera> makeCamera(const CameraSettings& settings, const Bounds& bounds, float aspect,
+                            const SceneGraph* graph) {
+  if (settings.camera_index >= 0) {
+    const size_t count = graph ? graph->cameras.size() : 0;
+    if (static_cast<size_t>(settings.camera_index) >= count)
+      return makeError("--camera-index " + std::to_string(settings.camera_index) +
+                       ": the model has " + std::to_string(count) + " camera" +
+                       (count == 1 ? "" : "s") +
+                       (count ? " (0 to " + std::to_string(count - 1) + ")" : ""));
+    Expected<Camera> camera =
+        graph->camera(static_cast<size_t>(settings.camera_index), aspect, bounds);
+    if (!camera) return makeError("--camera-index: " + camera.error().message);
+    return camera;
+  }
   const float3 up = settings.upAxis();
   Expected<float> angle = viewAngle(settings, aspect);
   if (!angle) return makeError(angle.error().message);
@@ -53,7 +85,10 @@ Expected<Camera> makeCamera(const CameraSettings& settings, const Bounds& bounds
   Camera camera = frameBounds(bounds, threeQuarterDirection(up), up,
                               perspective ? *angle : std::min(*angle, 90.0f), aspect);
   camera.fov_y_degrees = *angle;
-  if (!settings.explicitCamera()) return camera;
+  if (!settings.explicitCamera()) {
+    if (settings.orthographic) makeOrthographic(camera, bounds);
+    return camera;
+  }
   if (settings.has_position) camera.position = settings.position;
   if (settings.has_focal_point) camera.target = settings.focal_point;
   camera.up = settings.has_view_up ? settings.view_up : up;
@@ -64,7 +99,8 @@ Expected<Camera> makeCamera(const CameraSettings& settings, const Bounds& bounds
     fitNearFar(camera, bounds);
   else
     fitNearFarDistance(camera, bounds);
+  if (settings.orthographic) makeOrthographic(camera, bounds);
   return camera;
 }
 
-}  // namespace tessera::cli
+}  // namespace tessera::model

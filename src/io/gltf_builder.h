@@ -1,0 +1,105 @@
+// The glTF loader's builder: from a parsed tinygltf::Model to io::Model's scene graph. Private to
+// tessera_io. Split by concern: gltf_builder.cpp (the node walk, cameras, warnings, the end),
+// gltf_reader.cpp (checked accessor reads), gltf_primitives.cpp (meshes and their primitives).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <initializer_list>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <tessera/io/model_loader.h>
+
+#include "gltf_accessors.h"
+#include "gltf_materials.h"
+#include "gltf_nodes.h"
+
+namespace tinygltf {
+class Model;
+struct Primitive;
+struct Accessor;
+}  // namespace tinygltf
+
+namespace tessera::io::gltf {
+
+// Distinct warnings listed per file; the rest are counted.
+constexpr size_t kMaxWarnings = 20;
+
+class GraphBuilder {
+ public:
+  GraphBuilder(const tinygltf::Model& gltf, std::string name, std::filesystem::path folder,
+               uintmax_t source_bytes, const LoadBudget& budget, Model& model)
+      : gltf_(gltf),
+        budget_(budget),
+        name_(std::move(name)),
+        folder_(std::move(folder)),
+        // Accessors without a buffer view are all zeros (before sparse values): their size is
+        // not backed by the file, so it is bounded by it.
+        implied_bytes_left_(16 * source_bytes + (uintmax_t{1} << 20)),
+        model_(model),
+        materials_(gltf, name_, folder_, budget, warner(),
+                   [this](const std::string& text) { warnAbout(text); }) {}
+
+  Expected<void> run();
+
+ private:
+  // gltf_builder.cpp
+  void warn(const std::string& text);
+  Warn warner();
+  void warnAbout(const std::string& text);
+  Expected<void> checkDrawnCounts(const std::vector<int>& roots);
+  Expected<void> checkExtensions();
+  Expected<void> addNode(size_t index, int32_t parent);
+  void readCameras();
+  void placeLights();
+  Expected<void> finish();
+
+  // gltf_reader.cpp
+  std::string accessorName(int accessor, const std::string& role) const;
+  Expected<ElementReader> reader(int accessor_index, const std::string& role,
+                                 std::initializer_list<int> allowed_types,
+                                 std::initializer_list<int> allowed_components);
+  Expected<std::vector<uint8_t>> densify(const tinygltf::Accessor& accessor,
+                                         const std::string& what, size_t element);
+  std::optional<ElementReader> optionalAttribute(const tinygltf::Primitive& primitive,
+                                                 const std::string& semantic,
+                                                 const std::string& where, size_t vertex_count,
+                                                 std::initializer_list<int> types,
+                                                 std::initializer_list<int> components,
+                                                 Expected<void>& fatal);
+
+  // gltf_primitives.cpp
+  // The graph mesh of glTF mesh `mesh_index`, read on first use.
+  Expected<int32_t> meshFor(size_t mesh_index);
+  Expected<void> drawMesh(size_t mesh_index, Mesh& out);
+  Expected<void> drawPrimitive(const tinygltf::Primitive& primitive, const std::string& where,
+                               Mesh& out);
+
+  const tinygltf::Model& gltf_;
+  const LoadBudget budget_;
+  const std::string name_;
+  const std::filesystem::path folder_;
+  uintmax_t implied_bytes_left_;
+  Model& model_;
+  MaterialTable materials_;
+
+  std::map<int, std::vector<uint8_t>> dense_;  // sparse or bufferView-less accessors
+  std::vector<uint32_t> remap_stamp_, remap_vertex_;
+  uint32_t stamp_ = 0;
+  std::vector<std::pair<size_t, size_t>> generated_normal_ranges_;  // of the mesh being read
+  std::map<int, size_t> skipped_by_mode_;
+  std::set<std::string> warned_;
+  size_t unlisted_warnings_ = 0;
+  std::vector<int32_t> graph_mesh_;    // per glTF mesh: its graph mesh, or kNoIndex
+  std::vector<int32_t> graph_camera_;  // per glTF camera: its graph camera, or kNoIndex
+  std::vector<size_t> mesh_nonfinite_;  // per graph mesh: triangles with a non-finite vertex
+  uint64_t stored_triangles_ = 0, stored_vertices_ = 0;
+};
+
+}  // namespace tessera::io::gltf

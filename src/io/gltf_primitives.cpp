@@ -1,0 +1,226 @@
+// The glTF builder's meshes: each glTF mesh read once, in its own space, its primitives in
+// order (TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN), each vertex emitted on first use.
+#include <algorithm>
+#include <array>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "gltf_builder.h"
+#include "gltf_transforms.h"
+#include "load_budget.h"
+#include "tinygltf_include.h"
+
+namespace tessera::io::gltf {
+
+namespace {
+
+// Normals in the mesh's own space: normalized as the file gives them.
+constexpr std::array<double, 9> kIdentity3 = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+
+}  // namespace
+
+// ---- Meshes ----
+
+Expected<int32_t> GraphBuilder::meshFor(size_t mesh_index) {
+  if (graph_mesh_.size() < gltf_.meshes.size()) graph_mesh_.resize(gltf_.meshes.size(), kNoIndex);
+  if (graph_mesh_[mesh_index] != kNoIndex) return graph_mesh_[mesh_index];
+  Mesh mesh;
+  const size_t nonfinite_before = model_.nonfinite_triangles;
+  if (Expected<void> ok = drawMesh(mesh_index, mesh); !ok) return ok.error();
+  SceneGraph& graph = model_.graph;
+  GraphMesh graph_mesh;
+  graph_mesh.name = gltf_.meshes[mesh_index].name;
+  graph_mesh.mesh = std::make_shared<const Mesh>(std::move(mesh));
+  graph_mesh_[mesh_index] = static_cast<int32_t>(graph.meshes.size());
+  graph.meshes.push_back(std::move(graph_mesh));
+  mesh_nonfinite_.push_back(model_.nonfinite_triangles - nonfinite_before);
+  model_.nonfinite_triangles = nonfinite_before;  // counted per instance (addNode)
+  return graph_mesh_[mesh_index];
+}
+
+// All primitives of one glTF mesh, in order, into `out`, in the mesh's own space.
+Expected<void> GraphBuilder::drawMesh(size_t mesh_index, Mesh& out) {
+  const tinygltf::Mesh& mesh = gltf_.meshes[mesh_index];
+  generated_normal_ranges_.clear();
+  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+    const std::string where =
+        "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
+    Expected<void> ok = drawPrimitive(mesh.primitives[p], where, out);
+    if (!ok) return ok;
+  }
+  // Vertices of different primitives are never shared, so smooth normals over the whole mesh
+  // equal each primitive's own; they are copied only where the file gave none.
+  if (!generated_normal_ranges_.empty()) {
+    Mesh shape;
+    shape.positions = out.positions;
+    shape.indices = out.indices;
+    generateSmoothNormals(shape);
+    for (auto [begin, end] : generated_normal_ranges_)
+      std::copy(shape.normals.begin() + static_cast<std::ptrdiff_t>(begin),
+                shape.normals.begin() + static_cast<std::ptrdiff_t>(end),
+                out.normals.begin() + static_cast<std::ptrdiff_t>(begin));
+  }
+  if (!out.uvs.empty()) out.uvs.resize(out.positions.size(), float2{0, 0});
+  if (!out.colors.empty()) out.colors.resize(out.positions.size(), float4{1, 1, 1, 1});
+  return {};
+}
+
+Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
+                                           const std::string& where, Mesh& out) {
+  const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+      mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    ++skipped_by_mode_[mode];
+    return {};
+  }
+  if (!primitive.targets.empty()) warn("morph targets are not applied");
+  auto position_it = primitive.attributes.find("POSITION");
+  if (position_it == primitive.attributes.end()) {
+    warn(where + " has no POSITION and is skipped");
+    return {};
+  }
+  // KHR_mesh_quantization allows integer positions, normals and texture coordinates.
+  Expected<ElementReader> positions =
+      reader(position_it->second, "POSITION of " + where, {3}, {});
+  if (!positions) return positions.error();
+  const size_t vertex_count = positions->count;
+
+  std::optional<ElementReader> indices;
+  size_t corner_count = vertex_count;
+  if (primitive.indices >= 0) {
+    Expected<ElementReader> read =
+        reader(primitive.indices, "indices of " + where, {1},
+               {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
+    if (!read) return read.error();
+    indices = *read;
+    corner_count = indices->count;
+  }
+  size_t triangle_count = 0;
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    triangle_count = corner_count / 3;
+    if (corner_count % 3 != 0)
+      warn(where + ": " + std::to_string(corner_count % 3) +
+           " indices after the last whole triangle are ignored");
+  } else if (corner_count >= 3) {
+    triangle_count = corner_count - 2;
+  }
+  if (triangle_count == 0) {
+    warn(where + " has fewer than 3 vertices and is skipped");
+    return {};
+  }
+  // countDrawn counted these in advance (with instancing); this holds the meshes stored to the
+  // same budget should the two ever disagree.
+  const size_t new_vertices = std::min(vertex_count, 3 * triangle_count);
+  if (triangle_count > budget_.triangles() - std::min<uint64_t>(budget_.triangles(),
+                                                                 stored_triangles_) ||
+      new_vertices > budget_.vertices() - std::min<uint64_t>(budget_.vertices(),
+                                                              stored_vertices_))
+    return makeError(name_ + ": the meshes hold more than the budget of " +
+                     std::to_string(budget_.triangles()) + " triangles or " +
+                     std::to_string(budget_.vertices()) +
+                     " vertices; raise it with --max-triangles or --memory-limit");
+
+  Expected<void> fatal;
+  const std::optional<ElementReader> normals =
+      optionalAttribute(primitive, "NORMAL", where, vertex_count, {3}, {}, fatal);
+  if (!fatal) return fatal;
+  Expected<uint16_t> material = materials_.materialFor(primitive.material, model_.materials);
+  if (!material) return material.error();
+  int uv_set = 0;
+  if (primitive.material >= 0 &&
+      static_cast<size_t>(primitive.material) < gltf_.materials.size()) {
+    const tinygltf::TextureInfo& info = gltf_.materials[static_cast<size_t>(primitive.material)]
+                                            .pbrMetallicRoughness.baseColorTexture;
+    if (info.index >= 0) uv_set = std::max(info.texCoord, 0);
+  }
+  const std::optional<ElementReader> uvs = optionalAttribute(
+      primitive, "TEXCOORD_" + std::to_string(uv_set), where, vertex_count, {2}, {}, fatal);
+  if (!fatal) return fatal;
+  if (!uvs && model_.materials[*material].albedo)
+    warn(where + ": its material has a texture but the primitive has no TEXCOORD_" +
+         std::to_string(uv_set));
+  const std::optional<ElementReader> colors =
+      optionalAttribute(primitive, "COLOR_0", where, vertex_count, {3, 4},
+                        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                        fatal);
+  if (!fatal) return fatal;
+
+  // Each vertex of this primitive is emitted once, on first use. The remap is stamped per
+  // primitive so it never needs clearing.
+  if (remap_stamp_.size() < vertex_count) {
+    remap_stamp_.resize(vertex_count, 0);
+    remap_vertex_.resize(vertex_count, 0);
+  }
+  ++stamp_;
+  const size_t first_vertex = out.positions.size();
+  if (uvs) out.uvs.resize(first_vertex, float2{0, 0});
+  if (colors) out.colors.resize(first_vertex, float4{1, 1, 1, 1});
+  bool normals_usable = normals.has_value();
+
+  auto vertexOf = [&](size_t corner) -> Expected<uint32_t> {
+    const size_t local = indices ? indices->index(corner) : corner;
+    if (local >= vertex_count)
+      return makeError(name_ + ": " + where + ": index " + std::to_string(local) +
+                       " is past the " + std::to_string(vertex_count) + " vertices");
+    if (remap_stamp_[local] == stamp_) return remap_vertex_[local];
+    const auto vertex = static_cast<uint32_t>(out.positions.size());
+    remap_stamp_[local] = stamp_;
+    remap_vertex_[local] = vertex;
+    out.positions.push_back(
+        float3{positions->component(local, 0), positions->component(local, 1),
+               positions->component(local, 2)});
+    float3 normal{0, 0, 0};
+    if (normals) {
+      normal = transformNormal(kIdentity3,
+                               {normals->component(local, 0), normals->component(local, 1),
+                                normals->component(local, 2)});
+      normals_usable &= normal.x != 0 || normal.y != 0 || normal.z != 0;
+    }
+    out.normals.push_back(normal);
+    if (uvs)  // glTF's v = 0 is the top of the image; tessera's is the bottom.
+      out.uvs.push_back({uvs->component(local, 0), 1.0f - uvs->component(local, 1)});
+    if (colors)
+      out.colors.push_back({colors->component(local, 0), colors->component(local, 1),
+                            colors->component(local, 2),
+                            colors->components == 4 ? colors->component(local, 3) : 1.0f});
+    return vertex;
+  };
+
+  for (size_t t = 0; t < triangle_count; ++t) {
+    size_t corners[3];
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      corners[0] = 3 * t, corners[1] = 3 * t + 1, corners[2] = 3 * t + 2;
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      // Every other triangle is listed clockwise; swap to keep one winding (glTF 3.7.2.1).
+      corners[0] = t;
+      corners[1] = t + 1 + t % 2;
+      corners[2] = t + 2 - t % 2;
+    } else {
+      corners[0] = 0, corners[1] = t + 1, corners[2] = t + 2;
+    }
+    bool finite = true;
+    for (size_t corner : corners) {
+      Expected<uint32_t> vertex = vertexOf(corner);
+      if (!vertex) return vertex.error();
+      out.indices.push_back(*vertex);
+      finite &= isFinite(out.positions[*vertex]);
+    }
+    out.triangle_materials.push_back(*material);
+    if (!finite) ++model_.nonfinite_triangles;
+  }
+  if (uvs) out.uvs.resize(out.positions.size(), float2{0, 0});
+  if (colors) out.colors.resize(out.positions.size(), float4{1, 1, 1, 1});
+  stored_triangles_ += triangle_count;
+  stored_vertices_ += out.positions.size() - first_vertex;
+  if (!normals_usable) {
+    if (normals)
+      warn(where + ": some normals are zero or not finite; smooth normals are generated");
+    generated_normal_ranges_.push_back({first_vertex, out.positions.size()});
+  }
+  return {};
+}
+
+}  // namespace tessera::io::gltf
