@@ -120,7 +120,9 @@ BenchScene makeInstancesScene(Shading shading, bool flattened) {
   SceneGraph graph;
   GraphMesh sphere;
   sphere.mesh = std::make_shared<const Mesh>(makeUvSphere(25, 21));
-  sphere.materials = {Material{srgbColor(0.8f, 0.6f, 0.3f)}};
+  Material material;
+  material.base_color = srgbColor(0.8f, 0.6f, 0.3f);
+  sphere.materials = {material};
   graph.meshes.push_back(sphere);
   for (int i = 0; i < 10000; ++i) {
     GraphNode node;

@@ -110,7 +110,9 @@ TEST(Culling, ClusterConeHoldsEveryFaceNormal) {
                    b = sphere.positions[sphere.indices[t * 3 + 1]],
                    d = sphere.positions[sphere.indices[t * 3 + 2]];
       const float3 n = normalize(cross(b - a, d - a));
-      if (c.cone_cos > 0) EXPECT_GE(dot(n, c.cone_axis), c.cone_cos - 1e-5f);
+      if (c.cone_cos > 0) {
+        EXPECT_GE(dot(n, c.cone_axis), c.cone_cos - 1e-5f);
+      }
       for (float3 p : {a, b, d}) {
         EXPECT_TRUE(p.x >= c.bounds.min.x && p.y >= c.bounds.min.y && p.z >= c.bounds.min.z);
         EXPECT_TRUE(p.x <= c.bounds.max.x && p.y <= c.bounds.max.y && p.z <= c.bounds.max.z);
