@@ -57,6 +57,7 @@ Expected<void> GraphBuilder::run() {
     }
   }
   placeLights();
+  readAnimations();
   return finish();
 }
 

@@ -22,6 +22,8 @@
 
 namespace tinygltf {
 class Model;
+struct Animation;
+struct AnimationSampler;
 struct Primitive;
 struct Accessor;
 }  // namespace tinygltf
@@ -73,6 +75,13 @@ class GraphBuilder {
                                                  std::initializer_list<int> types,
                                                  std::initializer_list<int> components,
                                                  Expected<void>& fatal);
+
+  // gltf_animations.cpp
+  void readAnimations();
+  Expected<Animation> readAnimation(const tinygltf::Animation& in, const std::string& name,
+                                    const std::vector<int32_t>& graph_node);
+  Expected<AnimationSampler> readSampler(const tinygltf::AnimationSampler& in, bool rotation,
+                                         const std::string& what);
 
   // gltf_primitives.cpp
   // The graph mesh of glTF mesh `mesh_index`, read on first use.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <tessera/scene/graph.h>
 
@@ -140,9 +141,6 @@ void Animation::apply(float t, SceneGraph& graph) const {
 }
 
 Expected<void> validateAnimation(const Animation& animation, size_t node_count) {
-  for (size_t i = 0; i < animation.samplers.size(); ++i) {
-    if (auto valid = validateSampler(animation, i); !valid) return valid;
-  }
   for (size_t i = 0; i < animation.channels.size(); ++i) {
     const AnimationChannel& c = animation.channels[i];
     const std::string name = "animation '" + animation.name + "' channel " + std::to_string(i);
@@ -152,6 +150,13 @@ Expected<void> validateAnimation(const Animation& animation, size_t node_count) 
     if (c.node < 0 || static_cast<size_t>(c.node) >= node_count)
       return makeError(name + " names node " + std::to_string(c.node) + " of " +
                        std::to_string(node_count));
+  }
+  // The samplers the channels use (a file may list others, which are never read).
+  std::vector<char> used(animation.samplers.size(), 0);
+  for (const AnimationChannel& c : animation.channels) used[static_cast<size_t>(c.sampler)] = 1;
+  for (size_t i = 0; i < animation.samplers.size(); ++i) {
+    if (!used[i]) continue;
+    if (auto valid = validateSampler(animation, i); !valid) return valid;
   }
   return {};
 }

@@ -50,7 +50,8 @@ struct Animation {
   void apply(float t, SceneGraph& graph) const;
 };
 
-// An error naming the animation and the sampler or channel when times are empty, not finite or
+// An error naming the animation and the sampler or channel when a sampler a channel uses has
+// times empty, not finite or
 // not strictly increasing, the value count does not match (one or three per keyframe), or an
 // index is out of range (`node_count` nodes in the graph).
 Expected<void> validateAnimation(const Animation& animation, size_t node_count);

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include <tessera/base/expected.h>
+#include <tessera/scene/animation.h>
 #include <tessera/scene/scene.h>
 
 namespace tessera {
@@ -68,6 +69,8 @@ struct SceneGraph {
   std::vector<GraphNode> nodes;  // parents first
   std::vector<GraphMesh> meshes;
   std::vector<GraphCamera> cameras;
+  // Keyframe clips (glTF animations) over these nodes: Animation::apply, then updateWorld().
+  std::vector<Animation> animations;
   std::vector<float4x4> world;  // updateWorld(): one per node
 
   // An error naming the node or index for a parent not before its child, or an index out of
