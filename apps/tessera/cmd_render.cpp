@@ -18,6 +18,7 @@
 #include <tessera/scene/color.h>
 
 #include "backends.h"
+#include "animation_frames.h"
 #include "budget_flags.h"
 #include "commands.h"
 #include "diagnostics_output.h"
@@ -44,6 +45,8 @@ struct RenderSettings {
   std::string backend = "cpu";
   int turntable = 0;
   int fps = 30;
+  int animation_index = -1;  // --animation-index: the glTF clip to play, -1 none
+  std::string frame_range;   // --frame-range A:B, frames of the clip at --fps
   int workers = 0;
   int device = -1;
   bool axes = false;
@@ -136,7 +139,13 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   addVisibilityFlags(flags, s);
   addLightFlags(flags, s.lights);
   flags.addInt("turntable", &s.turntable, "frames of one full turn about the up axis", 1, 100000);
-  flags.addInt("fps", &s.fps, "frames per second of a turntable (default 30)", 1, 100);
+  flags.addInt("fps", &s.fps, "frames per second of a turntable or animation (default 30)", 1,
+               100);
+  flags.addInt("animation-index", &s.animation_index,
+               "play the model's animation N (glTF, from 0) at --fps over its length", 0,
+               1000000);
+  flags.addString("frame-range", &s.frame_range,
+                  "A:B: render frames A to B (inclusive, from 0, at --fps) of the animation");
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
@@ -165,6 +174,10 @@ std::string checkOutput(const RenderSettings& s, OutputKind& kind) {
   }
   if (kind == OutputKind::kPng && s.turntable > 1)
     return "--turntable writes several frames: use a .gif, .mp4 or {frame} .png output";
+  if (s.animation_index >= 0 && s.turntable > 0)
+    return "--animation-index and --turntable do not go together";
+  if (!s.frame_range.empty() && s.animation_index < 0)
+    return "--frame-range picks frames of an animation: add --animation-index N";
   if (kind == OutputKind::kVideo && s.aov != "color")
     return "--aov " + s.aov + " needs PNG output (a .png or a {frame} template)";
   if ((s.crc || !s.reference.path.empty()) && s.aov != "color")
@@ -192,7 +205,8 @@ std::string refuseVisibility(const RenderSettings& s, bool diagnostics) {
 // The model as a scene with its camera, lights and axes, and the model's bounds. An exit status
 // other than kExitOk when something fails (printed); kExitOk after --info's listing too.
 int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, Scene& scene,
-              Bounds& bounds, const std::function<int(const std::string&)>& usage_error) {
+              Bounds& bounds, SceneGraph& graph,
+              const std::function<int(const std::string&)>& usage_error) {
   Expected<io::Model> model = io::loadModel(model_path, s.budget);
   if (!model) {
     printError("render", model.error().message);
@@ -234,13 +248,24 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
   scene_settings.cull = cull_back ? CullMode::kBack : CullMode::kNone;
   scene_settings.background_srgb = s.background;
   const std::vector<Light> lights = model->lights;
-  SceneGraph graph;
   Expected<Scene> made = makeModelScene(std::move(*model), model_path, scene_settings, &graph);
   if (!made) {
     printError("render", made.error().message);
     return kExitFailure;
   }
   scene = std::move(*made);
+  if (s.animation_index >= 0 &&
+      static_cast<size_t>(s.animation_index) >= graph.animations.size()) {
+    const size_t n = graph.animations.size();
+    printError("render", model_path.string() +
+                             (n == 0 ? std::string(" has no animations")
+                                     : " has " + std::to_string(n) + " animation" +
+                                           (n == 1 ? "" : "s") + " (--animation-index 0 to " +
+                                           std::to_string(n - 1) + ")") +
+                             "; --animation-index " + std::to_string(s.animation_index) +
+                             " is past the end");
+    return kExitFailure;
+  }
 
   const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
   Expected<Camera> camera = makeCamera(s.camera, bounds, aspect, &graph);
@@ -285,9 +310,16 @@ RenderOptions renderOptions(const RenderSettings& s, bool diagnostics, SamplingS
   return options;
 }
 
+// The scene's instances posed by `clip` at time t (the graph's first instance is object 0).
+void poseAnimation(const Animation& clip, float t, SceneGraph& graph, Scene& scene) {
+  clip.apply(t, graph);
+  graph.updateWorld();
+  updateInstances(graph, 0, scene);
+}
+
 // Renders the frames of `scene` and writes them (and the stats file, when open); the exit status.
 int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const Bounds& bounds,
-                 bool diagnostics, std::optional<io::AtomicFile>& stats_file) {
+                 SceneGraph& graph, bool diagnostics, std::optional<io::AtomicFile>& stats_file) {
   std::vector<std::string> stats_frames;
   Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
   if (!backend) {
@@ -299,7 +331,24 @@ int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const B
   const RenderOptions options = renderOptions(s, diagnostics, sampling);
   Accumulator accumulator;
   Frame frame;
-  const int frame_count = std::max(s.turntable, 1);
+  const Animation* clip =
+      s.animation_index >= 0 ? &graph.animations[static_cast<size_t>(s.animation_index)] : nullptr;
+  FramePlan plan{0, std::max(s.turntable, 1)};
+  if (clip) {
+    Expected<FramePlan> frames = animationFrames(*clip, s.fps, s.frame_range);
+    if (!frames) {
+      printError("render", frames.error().message);
+      return kExitUsage;
+    }
+    plan = *frames;
+  }
+  const int frame_count = plan.count;
+  if (frame_count > 1 && kind == OutputKind::kPng) {
+    printError("render", "the animation has " + std::to_string(frame_count) +
+                             " frames: use a .gif, .mp4 or {frame} .png output, or --frame-range "
+                             "A:A for one");
+    return kExitUsage;
+  }
   // The output's folder, made when missing (for a sequence, frame 0's: the template's folder).
   const std::filesystem::path first_output =
       kind == OutputKind::kSequence ? io::formatFramePath(s.output, 0)
@@ -322,11 +371,17 @@ int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const B
   const float3 up = s.camera.upAxis();
   Progress progress("render: frame", frame_count);
   for (int i = 0; i < frame_count; ++i) {
-    // The turntable turns the model about the up axis through its centre.
-    const quat turn = quat::fromAxisAngle(
-        up, 2.0f * kPi * static_cast<float>(i) / static_cast<float>(frame_count));
-    scene.objects[0].transform.rotation = turn;
-    scene.objects[0].transform.translation = center - rotate(turn, center);
+    if (clip) {
+      poseAnimation(*clip, frameTime(*clip, s.fps, plan.first + i), graph, scene);
+    } else {
+      // The turntable turns every instance about the up axis through the model's centre.
+      const quat turn = quat::fromAxisAngle(
+          up, 2.0f * kPi * static_cast<float>(i) / static_cast<float>(frame_count));
+      for (Object& object : scene.objects) {
+        object.transform.rotation = turn;
+        object.transform.translation = center - rotate(turn, center);
+      }
+    }
     if (Expected<void> rendered =
             renderSampled(renderer, accumulator, scene, options, sampling, frame);
         !rendered) {
@@ -438,11 +493,12 @@ int runRender(const std::vector<std::string>& args) {
 
   Scene scene;
   Bounds bounds;
-  if (int status = loadScene(s, model_path, scene, bounds, usageError); status != kExitOk)
+  SceneGraph graph;
+  if (int status = loadScene(s, model_path, scene, bounds, graph, usageError); status != kExitOk)
     return status;
   if (s.info) return kExitOk;
 
-  return renderFrames(s, kind, scene, bounds, diagnostics, stats_file);
+  return renderFrames(s, kind, scene, bounds, graph, diagnostics, stats_file);
 }
 
 }  // namespace tessera::cli

@@ -125,6 +125,9 @@ void refitGraph(SceneGraph& graph, const double center[3], double scale) {
   for (GraphNode& node : graph.nodes) node.parent = node.parent == kNoIndex ? 0 : node.parent + 1;
   graph.nodes.insert(graph.nodes.begin(), std::move(root));
   graph.world.clear();
+  // Every node moved up by one: the animations follow their nodes.
+  for (Animation& animation : graph.animations)
+    for (AnimationChannel& channel : animation.channels) ++channel.node;
 }
 
 std::string shortNumber(double value) {
