@@ -59,3 +59,8 @@ ffmpeg -loglevel error -y -i "$tmp/zbuffer.png" -i "$tmp/painter.png" \
   --camera-focal-point 0,0,0 --shading flat --background-color 0.9,0.9,0.9 --edges \
   --edge-color 0.1,0.1,0.1 \
   -o "$out/edges.png"
+
+# A glTF animation (docs/usage.md, "Animations"): docs/animated_scene.py's hub and moon.
+python3 "$(dirname "$0")/animated_scene.py" "$tmp/orbit"
+"$tessera" render "$tmp/orbit/orbit.gltf" --animation-index 0 --fps 12 --resolution 240x160 \
+  --shading flat -o "$out/animation.gif"

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 #include <tessera/scene/animation.h>
 #include <tessera/scene/graph.h>
@@ -142,6 +143,35 @@ TEST(Animation, ApplySetsTheNodesTransformAtTimeT) {
       EXPECT_NEAR(graph.world[1].col[c][r], expected.col[c][r], 1e-5f) << c << "," << r;
     }
   }
+}
+
+// A triangle at x = 1 turned half way round about Y: its rest bounds end at x = 1, the clip's
+// reach x = -1 too (the near and far planes of an animated model come from these).
+TEST(Animation, ClipBoundsCoverEveryPose) {
+  SceneGraph graph;
+  GraphMesh mesh;
+  auto triangle = std::make_shared<Mesh>();
+  triangle->positions = {{1, 0, 0}, {1, 0.1f, 0}, {1, 0, 0.1f}};
+  triangle->indices = {0, 1, 2};
+  mesh.mesh = triangle;
+  graph.meshes.push_back(mesh);
+  graph.nodes.resize(1);
+  graph.nodes[0].mesh = 0;
+  Animation clip;
+  AnimationSampler turn;
+  turn.times = {0.0f, 1.0f};
+  const quat half = quat::fromAxisAngle({0, 1, 0}, 3.14159265f);
+  turn.values = {{0, 0, 0, 1}, {half.x, half.y, half.z, half.w}};
+  clip.samplers = {turn};
+  clip.channels = {{0, AnimatedProperty::kRotation, 0}};
+  graph.updateWorld();
+  EXPECT_NEAR(graph.bounds().min.x, 1.0f, 1e-5f);
+  const Bounds b = clipBounds(clip, graph);
+  EXPECT_NEAR(b.min.x, -1.005f, 1e-2f);  // the far corner, radius sqrt(1 + 0.01)
+  EXPECT_NEAR(b.max.x, 1.0f, 1e-3f);
+  // A quarter turn takes x = 1 to z = -1 or, the way this half turn goes, z = +1.
+  EXPECT_GT(b.max.z - b.min.z, 0.9f);
+  EXPECT_NEAR(graph.world[0].col[0].x, 1.0f, 1e-6f);  // left at the clip's start
 }
 
 TEST(Animation, ValidationNamesTheSamplerOrChannel) {

@@ -266,6 +266,15 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
                              " is past the end");
     return kExitFailure;
   }
+  // An animated model is framed, and its near and far planes set, for every pose of the clip.
+  if (s.animation_index >= 0) {
+    const Bounds moving =
+        clipBounds(graph.animations[static_cast<size_t>(s.animation_index)], graph);
+    if (!moving.empty()) {
+      bounds.add(moving.min);
+      bounds.add(moving.max);
+    }
+  }
 
   const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
   Expected<Camera> camera = makeCamera(s.camera, bounds, aspect, &graph);

@@ -140,6 +140,27 @@ void Animation::apply(float t, SceneGraph& graph) const {
   }
 }
 
+Bounds clipBounds(const Animation& clip, SceneGraph& graph, int samples) {
+  Bounds bounds;
+  auto add = [&](float t) {
+    clip.apply(t, graph);
+    graph.updateWorld();
+    const Bounds pose = graph.bounds();
+    if (!pose.empty()) {
+      bounds.add(pose.min);
+      bounds.add(pose.max);
+    }
+  };
+  const float start = clip.startTime(), end = clip.endTime();
+  for (const AnimationSampler& sampler : clip.samplers)
+    for (float t : sampler.times) add(t);
+  for (int i = 0; i <= samples; ++i)
+    add(start + (end - start) * static_cast<float>(i) / static_cast<float>(std::max(samples, 1)));
+  clip.apply(start, graph);
+  graph.updateWorld();
+  return bounds;
+}
+
 Expected<void> validateAnimation(const Animation& animation, size_t node_count) {
   for (size_t i = 0; i < animation.channels.size(); ++i) {
     const AnimationChannel& c = animation.channels[i];

@@ -12,6 +12,7 @@
 #include <tessera/base/expected.h>
 #include <tessera/math/quat.h>
 #include <tessera/math/vec.h>
+#include <tessera/scene/mesh.h>
 
 namespace tessera {
 
@@ -49,6 +50,12 @@ struct Animation {
   // file's time line). World matrices are then the caller's: SceneGraph::updateWorld().
   void apply(float t, SceneGraph& graph) const;
 };
+
+// World bounds of `graph`'s instances over the clip: the union of the poses at every keyframe
+// time and at `samples` evenly spaced times between start and end (a turning cube's corners
+// reach past its rest bounds), for framing and near/far planes. Leaves the graph posed at the
+// clip's start, world matrices updated.
+Bounds clipBounds(const Animation& clip, SceneGraph& graph, int samples = 64);
 
 // An error naming the animation and the sampler or channel when a sampler a channel uses has
 // times empty, not finite or
