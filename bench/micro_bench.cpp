@@ -14,6 +14,7 @@
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
 
+#include <tessera/model/camera_setup.h>
 #include "bench/scenes.h"
 #include "render/bin.h"
 #include "render/clip.h"
@@ -22,7 +23,6 @@
 #include "render/setup.h"
 #include "render/shade.h"
 #include "render/vertex.h"
-#include <tessera/model/camera_setup.h>
 
 using namespace tessera;
 

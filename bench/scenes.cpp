@@ -194,8 +194,7 @@ Expected<BenchScene> loadModelScene(const std::filesystem::path& path, Shading s
   if (!model) return model.error();
   // A glTF scene graph is drawn flattened: one object that the bench turns.
   Mesh mesh = model->graph.nodes.empty() ? std::move(model->mesh) : io::flattenedMesh(*model);
-  if (mesh.bounds().empty())
-    return makeError(path.string() + ": the model has no finite vertices");
+  if (mesh.bounds().empty()) return makeError(path.string() + ": the model has no finite vertices");
   std::vector<Material> materials = model->graph.meshes.empty()
                                         ? model->materials
                                         : model->graph.meshes.front().materials.vector();

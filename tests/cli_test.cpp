@@ -503,7 +503,7 @@ TEST_F(Cli, CameraIndexDrawsFromTheFilesCameraAndCountsThemPastTheEnd) {
 // orthographic, 150 pixels a unit: columns 75 to 225, rows 118.9 to 225, as wide at the top.
 TEST_F(Cli, AssimpCameraSampleIsSeenFromItsCameras) {
   const std::string model = "/usr/share/assimp/models/glTF2/cameras/Cameras.gltf";
-  if (!fs::exists(model)) GTEST_SKIP() << model << " is not installed (assimp-testmodels)";
+  ASSERT_TRUE(fs::exists(model)) << model << ": scripts/setup.sh installs assimp-testmodels";
   struct Extent {
     int top = 1 << 30, bottom = -1, top_width = 0, bottom_width = 0;
   };

@@ -11,8 +11,8 @@
 #include <sstream>
 #include <thread>
 
-#include <tessera/model/model_scene.h>
 #include <tessera/io/validation.h>
+#include <tessera/model/model_scene.h>
 #include <tessera/render/sampling.h>
 
 #include "backends.h"

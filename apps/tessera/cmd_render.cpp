@@ -8,17 +8,17 @@
 #include <memory>
 #include <optional>
 
-#include <tessera/model/model_scene.h>
 #include <tessera/io/atomic_file.h>
 #include <tessera/io/frame_sink.h>
 #include <tessera/io/image_loader.h>
 #include <tessera/io/image_writer.h>
 #include <tessera/io/model_loader.h>
+#include <tessera/model/model_scene.h>
 #include <tessera/render/cpu_renderer.h>
 #include <tessera/scene/color.h>
 
-#include "backends.h"
 #include "animation_frames.h"
+#include "backends.h"
 #include "budget_flags.h"
 #include "commands.h"
 #include "diagnostics_output.h"
@@ -61,7 +61,7 @@ struct RenderSettings {
   bool edges = false;
   float3 edge_color{0, 0, 0};  // sRGB
   float line_width = 1.0f;
-  LightSettings lights;                  // --light, --ambient
+  LightSettings lights;  // --light, --ambient
 };
 
 enum class OutputKind { kPng, kVideo, kSequence };  // kVideo: .gif or .mp4
@@ -139,11 +139,9 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   addVisibilityFlags(flags, s);
   addLightFlags(flags, s.lights);
   flags.addInt("turntable", &s.turntable, "frames of one full turn about the up axis", 1, 100000);
-  flags.addInt("fps", &s.fps, "frames per second of a turntable or animation (default 30)", 1,
-               100);
+  flags.addInt("fps", &s.fps, "frames per second of a turntable or animation (default 30)", 1, 100);
   flags.addInt("animation-index", &s.animation_index,
-               "play the model's animation N (glTF, from 0) at --fps over its length", 0,
-               1000000);
+               "play the model's animation N (glTF, from 0) at --fps over its length", 0, 1000000);
   flags.addString("frame-range", &s.frame_range,
                   "A:B: render frames A to B (inclusive, from 0, at --fps) of the animation");
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
@@ -254,16 +252,14 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
     return kExitFailure;
   }
   scene = std::move(*made);
-  if (s.animation_index >= 0 &&
-      static_cast<size_t>(s.animation_index) >= graph.animations.size()) {
+  if (s.animation_index >= 0 && static_cast<size_t>(s.animation_index) >= graph.animations.size()) {
     const size_t n = graph.animations.size();
-    printError("render", model_path.string() +
-                             (n == 0 ? std::string(" has no animations")
-                                     : " has " + std::to_string(n) + " animation" +
-                                           (n == 1 ? "" : "s") + " (--animation-index 0 to " +
-                                           std::to_string(n - 1) + ")") +
-                             "; --animation-index " + std::to_string(s.animation_index) +
-                             " is past the end");
+    printError("render",
+               model_path.string() +
+                   (n == 0 ? std::string(" has no animations")
+                           : " has " + std::to_string(n) + " animation" + (n == 1 ? "" : "s") +
+                                 " (--animation-index 0 to " + std::to_string(n - 1) + ")") +
+                   "; --animation-index " + std::to_string(s.animation_index) + " is past the end");
     return kExitFailure;
   }
   // An animated model is framed, and its near and far planes set, for every pose of the clip.
@@ -359,9 +355,9 @@ int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const B
     return kExitUsage;
   }
   // The output's folder, made when missing (for a sequence, frame 0's: the template's folder).
-  const std::filesystem::path first_output =
-      kind == OutputKind::kSequence ? io::formatFramePath(s.output, 0)
-                                    : std::filesystem::path(s.output);
+  const std::filesystem::path first_output = kind == OutputKind::kSequence
+                                                 ? io::formatFramePath(s.output, 0)
+                                                 : std::filesystem::path(s.output);
   if (Expected<void> folder = io::createParentFolders(first_output); !folder) {
     printError("render", folder.error().message);
     return kExitFailure;
@@ -476,9 +472,9 @@ int runRender(const std::vector<std::string>& args) {
   }
   if ((s.camera.orthographic || s.camera.camera_index >= 0) &&
       s.camera.projectionMode() != Projection::kPerspective)
-    return usageError(std::string(s.camera.orthographic ? "--camera-orthographic"
-                                                        : "--camera-index") +
-                      " and --projection " + s.camera.projection + " do not go together");
+    return usageError(
+        std::string(s.camera.orthographic ? "--camera-orthographic" : "--camera-index") +
+        " and --projection " + s.camera.projection + " do not go together");
   if (needsPixelTests(s.aov) && s.camera.projectionMode() != Projection::kPerspective) {
     printError("render", "--aov " + s.aov + " is measured for the perspective projection only");
     return kExitFailure;

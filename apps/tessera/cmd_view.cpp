@@ -8,9 +8,9 @@
 #include <optional>
 #include <thread>
 
-#include <tessera/model/model_scene.h>
 #include <tessera/io/image_loader.h>
 #include <tessera/io/model_loader.h>
+#include <tessera/model/model_scene.h>
 #include <tessera/render/projection.h>
 #include <tessera/render/sampling.h>
 #include <tessera/scene/color.h>
@@ -77,9 +77,8 @@ io::Model cubeModel() {
 
 int runView(const std::vector<std::string>& args) {
   ViewSettings s;
-  FlagSet flags(
-      "tessera view [MODEL] [--width 800] [--height 600] [--fps 60] [--fov 50] [flags]",
-      /*single_dash=*/true);
+  FlagSet flags("tessera view [MODEL] [--width 800] [--height 600] [--fps 60] [--fov 50] [flags]",
+                /*single_dash=*/true);
   flags.addInt("w|width", &s.width, "window width (default 800)", 1, 16384);
   flags.addInt("h|height", &s.height, "window height (default 600)", 1, 16384);
   flags.addInt("fps", &s.fps, "most frames a second while anything moves (default 60)", 1, 1000);

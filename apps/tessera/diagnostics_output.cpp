@@ -118,20 +118,18 @@ std::string statsFrameJson(const Frame& frame, int index, const std::string& bac
   const CullCounts& k = c.culled;
   const bool setup = d.has_setup_counters;
   auto counted = [&](uint64_t v) { return setup ? std::to_string(v) : std::string("null"); };
-  const std::string culled =
-      !setup ? std::string("null")
-             : "{\"invalid\": " + std::to_string(k.invalid) +
-                   ", \"non_finite\": " + std::to_string(k.non_finite) +
-                   ", \"frustum\": " + std::to_string(k.frustum) +
-                   ", \"degenerate\": " + std::to_string(k.degenerate) +
-                   ", \"facing\": " + std::to_string(k.facing) +
-                   ", \"no_pixel\": " + std::to_string(k.no_pixel) +
-                   ", \"clipped_away\": " + std::to_string(k.clipped_away) +
-                   ", \"skipped\": " + std::to_string(k.skipped) +
-                   ", \"total\": " + std::to_string(k.total()) + "}";
+  const std::string culled = !setup ? std::string("null")
+                                    : "{\"invalid\": " + std::to_string(k.invalid) +
+                                          ", \"non_finite\": " + std::to_string(k.non_finite) +
+                                          ", \"frustum\": " + std::to_string(k.frustum) +
+                                          ", \"degenerate\": " + std::to_string(k.degenerate) +
+                                          ", \"facing\": " + std::to_string(k.facing) +
+                                          ", \"no_pixel\": " + std::to_string(k.no_pixel) +
+                                          ", \"clipped_away\": " + std::to_string(k.clipped_away) +
+                                          ", \"skipped\": " + std::to_string(k.skipped) +
+                                          ", \"total\": " + std::to_string(k.total()) + "}";
   out += "  \"counters\": {\"triangles_in\": " + std::to_string(c.triangles_in) +
-         ", \"culled\": " + culled +
-         ", \"triangles_clipped\": " + counted(c.triangles_clipped) +
+         ", \"culled\": " + culled + ", \"triangles_clipped\": " + counted(c.triangles_clipped) +
          ", \"clip_splits\": " + counted(c.clip_splits) +
          ", \"triangles_setup\": " + counted(c.triangles_setup) +
          ", \"triangles_binned\": " + measured(c.triangles_binned) +

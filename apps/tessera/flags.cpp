@@ -1,9 +1,9 @@
 #include "flags.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <algorithm>
 #include <sstream>
 
 namespace tessera::cli {
@@ -208,8 +208,8 @@ Expected<std::vector<std::string>> FlagSet::parse(const std::vector<std::string>
     // -h: help, or the height when a number follows and the command has -h|height.
     if (body == "h" && !has_value) {
       long long number = 0;
-      const bool height = find("h") != nullptr && i + 1 < args.size() &&
-                          parseIntStrict(args[i + 1], number);
+      const bool height =
+          find("h") != nullptr && i + 1 < args.size() && parseIntStrict(args[i + 1], number);
       if (!height) {
         help_ = true;
         continue;
@@ -260,7 +260,8 @@ std::string FlagSet::hint() const {
 std::string FlagSet::usage() const {
   std::ostringstream out;
   out << "usage: " << synopsis_ << "\n\nflags:\n";
-  if (single_dash_) out << "  (one dash works as well: -fps 30 is --fps 30, as in the first demo)\n";
+  if (single_dash_)
+    out << "  (one dash works as well: -fps 30 is --fps 30, as in the first demo)\n";
   for (const Flag& f : flags_) {
     std::string line = "  ";
     for (size_t i = 0; i < f.names.size(); ++i) {

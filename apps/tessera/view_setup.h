@@ -16,7 +16,6 @@ namespace tessera::cli {
 
 using namespace tessera::model;  // CameraSettings and the rest of camera_setup.h
 
-
 inline void addCameraFlags(FlagSet& flags, CameraSettings& c) {
   flags.addFloat3("camera-position", &c.position, &c.has_position, "camera position (model units)");
   flags.addFloat3("camera-focal-point", &c.focal_point, &c.has_focal_point,
@@ -32,9 +31,9 @@ inline void addCameraFlags(FlagSet& flags, CameraSettings& c) {
                     return "";
                   });
   flags.addSwitch("camera-orthographic", &c.orthographic,
-                "orthographic projection for the framing (or flag-given) camera");
+                  "orthographic projection for the framing (or flag-given) camera");
   flags.addInt("camera-index", &c.camera_index,
-                "draw from the file's camera N (glTF cameras, from 0)", 0, 1 << 30);
+               "draw from the file's camera N (glTF cameras, from 0)", 0, 1 << 30);
   flags.addChoice("up", &c.up, {"+Y", "+Z"}, "the model's up axis (default +Y)");
   std::vector<std::string> modes;
   for (Projection p : kProjections) modes.push_back(projectionName(p));

@@ -50,20 +50,6 @@ namespace {
 constexpr size_t kVerticesPerJob =
     4096;  // the bunny's 35k vertices: 9 jobs, balanced over 2 workers
 constexpr size_t kMinTrianglesPerChunk = 4096;
-// Small scenes may be transformed once per worker, each worker into its own VertexBuffer, which
-// its setup chunks then read: a mesh's triangles reach for vertices all over its vertex order
-// (the bunny's last chunk uses vertices 0 to 34,833), so with one shared buffer part of setup's
-// vertex reads go to lines the other core wrote. Whether that pays depends on the host: on this
-// project's 2-core VM it took 4-7% off the bunny's frame where a line took 450-550 ns between the
-// cores and added 3% where it took 120-140 ns (the same VM, an hour apart), so the renderer times
-// both ways (ReplicationChoice, render/replication.h). It is tried while all the copies together
-// hold at most this many vertices (15 MB; two workers: 128k vertices, 0.4 ms each to transform),
-// so that many workers neither hold many copies nor each transform a large mesh.
-constexpr size_t kMaxReplicatedVertexCopies = size_t{1} << 18;
-
-bool mayReplicate(size_t vertex_total, int workers) {
-  return workers > 1 && vertex_total * static_cast<size_t>(workers) <= kMaxReplicatedVertexCopies;
-}
 
 }  // namespace
 
@@ -205,16 +191,17 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
     const bool has_color = mesh.colors.size() == vertex_count;
     const bool has_materials = mesh.triangle_materials.size() == mesh.triangleCount();
 
-    const SetupContext ctx =
-        objectSetupContext(lights, object, xf.model, grid.width, grid.height, want_normals,
-                           sample_reach);
+    const SetupContext ctx = objectSetupContext(lights, object, xf.model, grid.width, grid.height,
+                                                want_normals, sample_reach);
     // Flat shading lights the face; so do vertices of a mesh without normals.
     const bool needs_face_normal =
         object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;
     const MeshVertices mesh_vertices{
-        vertices.screen.data() + xf.vertex_base, vertices.normal.data() + xf.vertex_base,
+        vertices.screen.data() + xf.vertex_base,
+        vertices.normal.data() + xf.vertex_base,
         litPerVertex(object, lights) ? vertices.lit.data() + xf.vertex_base : nullptr,
-        has_uv ? mesh.uvs.data() : nullptr, has_color ? mesh.colors.data() : nullptr,
+        has_uv ? mesh.uvs.data() : nullptr,
+        has_color ? mesh.colors.data() : nullptr,
         mesh.positions.data()};
     const uint16_t* outcodes = vertices.outcode.data() + xf.vertex_base;
     const PlainGouraud plain_gouraud = plainGouraudFor(ctx, mesh_vertices, has_materials);

@@ -1,6 +1,6 @@
 // Which way the CPU renderer runs its vertex stage for a small scene with more than one worker:
 // once, shared by every worker's setup, or once per worker, each into its own copy (see
-// mayReplicate in cpu_renderer.cpp). Kept apart so that tests can hold it to its rules.
+// mayReplicate below). Kept apart so that tests can hold it to its rules.
 #pragma once
 
 #include <algorithm>
@@ -9,6 +9,21 @@
 #include <iterator>
 
 namespace tessera::render {
+
+// Small scenes may be transformed once per worker, each worker into its own VertexBuffer, which
+// its setup chunks then read: a mesh's triangles reach for vertices all over its vertex order
+// (the bunny's last chunk uses vertices 0 to 34,833), so with one shared buffer part of setup's
+// vertex reads go to lines the other core wrote. Whether that pays depends on the host: on this
+// project's 2-core VM it took 4-7% off the bunny's frame where a line took 450-550 ns between the
+// cores and added 3% where it took 120-140 ns (the same VM, an hour apart), so the renderer times
+// both ways (ReplicationChoice, render/replication.h). It is tried while all the copies together
+// hold at most this many vertices (15 MB; two workers: 128k vertices, 0.4 ms each to transform),
+// so that many workers neither hold many copies nor each transform a large mesh.
+constexpr size_t kMaxReplicatedVertexCopies = size_t{1} << 18;
+
+inline bool mayReplicate(size_t vertex_total, int workers) {
+  return workers > 1 && vertex_total * static_cast<size_t>(workers) <= kMaxReplicatedVertexCopies;
+}
 
 // Keeps the faster of the two ways to run the vertex stage for a scene, by the median of each
 // way's last kSamples frame times (to the end of the tile stage; a median: one frame in a slow
