@@ -9,14 +9,18 @@
 namespace tessera::viewer {
 
 void prepareClip(LoadedScene& loaded, int index) {
-  loaded.bounds = loaded.scene.bounds();
   loaded.clip = -1;
-  if (index < 0 || static_cast<size_t>(index) >= loaded.graph.animations.size()) return;
+  if (index < 0 || static_cast<size_t>(index) >= loaded.graph.animations.size()) {
+    loaded.bounds = loaded.scene.bounds();
+    return;
+  }
   loaded.clip = index;
-  // clipBounds leaves the graph posed at the clip's start: the scene follows it.
+  // clipBounds leaves the graph posed at the clip's start: the scene follows it, and the bounds
+  // are those of that pose (not of whatever pose the scene had) and of every later one.
   const Bounds moving =
       clipBounds(loaded.graph.animations[static_cast<size_t>(index)], loaded.graph);
   updateInstances(loaded.graph, 0, loaded.scene);
+  loaded.bounds = loaded.scene.bounds();
   if (!moving.empty()) {
     loaded.bounds.add(moving.min);
     loaded.bounds.add(moving.max);
@@ -58,11 +62,16 @@ void AnimationPlayer::pose(Scene& scene) {
 std::string AnimationPlayer::describe() const {
   if (!hasClip()) return "";
   const Animation& clip = graph_.animations[static_cast<size_t>(clip_)];
-  const std::string name = clip.name.empty() ? "#" + std::to_string(clip_) : "'" + clip.name + "'";
+  // Appended piece by piece: GCC 12 warns (-Wrestrict, falsely) on "#" + std::to_string(...).
+  std::string line = "animation ";
+  if (clip.name.empty())
+    line.append("#").append(std::to_string(clip_));
+  else
+    line.append("'").append(clip.name).append("'");
   char times[64];
   std::snprintf(times, sizeof times, " %.2f / %.2f s, ", time_,
                 static_cast<double>(clip.duration()));
-  return "animation " + name + times + (playing_ ? "playing" : "paused (space plays)");
+  return line.append(times).append(playing_ ? "playing" : "paused (space plays)");
 }
 
 std::string AnimationPlayer::state() const {

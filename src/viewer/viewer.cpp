@@ -132,7 +132,7 @@ class Viewer {
   DiagnosticView diagnostic_view_ = DiagnosticView::kOff;
   DiagnosticPicture diagnostic_picture_;
   std::string commit_message_;  // Shift+F2's line: the commit path, or that it does not apply
-  std::string notice_;          // space without an animation: says so until the next action
+  std::string notice_;          // space without an animation: says so, as crc_message_ lasts
   std::string error_;           // the last load error, shown until the next load
   fs::path loading_path_;
   Clock::time_point load_started_;
@@ -229,13 +229,12 @@ void Viewer::togglePlayback() {
 }
 
 void Viewer::handleAction(const Action& action) {
-  // A CRC result describes the picture it was taken of: gone once the picture changes.
+  // A CRC result (and the notice) describes the picture it was taken of: gone once it changes.
   using T = Action::Type;
-  if (action.type != T::kTogglePlayback) notice_.clear();
   if (action.type != T::kStoreCrc && action.type != T::kCompareCrc &&
       action.type != T::kScreenshot && action.type != T::kToggleKeyList &&
       action.type != T::kToggleStats)
-    crc_message_.clear();
+    crc_message_.clear(), notice_.clear();
   if (applyCameraAction(action, camera_)) {
     dirty_ = view_changed_ = true;
     return;
