@@ -22,21 +22,22 @@ constexpr int kWidth = 320, kHeight = 240;
 class ViewerAnimation : public ViewerWindow {
  protected:
   // Starts the viewer on the animated cube (written into the test's folder) with `args`.
-  bool openAnimatedCube(const std::vector<std::string>& args, bool camera = false) {
+  bool openAnimatedCube(const std::vector<std::string>& args, bool camera = false,
+                        int width = kWidth) {
     AnimatedCubeFile file;
     file.camera = camera;
     file.write(dir_);
     if (xserver_ == nullptr && !startX(skip_reason_)) return false;
     std::vector<std::string> all{
-        "-w", std::to_string(kWidth), "-h", std::to_string(kHeight), "-workers", "2", "cube.gltf"};
+        "-w", std::to_string(width), "-h", std::to_string(kHeight), "-workers", "2", "cube.gltf"};
     all.insert(all.end(), args.begin(), args.end());
     startViewer(all);
     EXPECT_TRUE(viewer_->waitForLine("tessera view: showing cube.gltf"))
         << viewer_->output() << slurp(dir_ / "viewer.err");
     window_ = findWindow();
     EXPECT_FALSE(window_.empty()) << "no visible 'tessera view' window";
-    xdotool({"mousemove", "--window", window_, std::to_string(kWidth / 2),
-             std::to_string(kHeight / 2)});
+    xdotool(
+        {"mousemove", "--window", window_, std::to_string(width / 2), std::to_string(kHeight / 2)});
     return !window_.empty() && !HasFailure();
   }
 
@@ -124,6 +125,52 @@ TEST_F(ViewerAnimation, CameraIndexStartsFromTheFilesCameraAndEnterReturnsToIt) 
   xdotool({"key", "Return"});
   const DecodedPng back = screenshot();
   EXPECT_EQ(countDifferent(from_camera, back, 0, 0, kWidth, kHeight), 0);
+  quit();
+}
+
+TEST_F(ViewerAnimation, TheStatsOverlayShowsTheClipItsTimeAndWhetherItPlays) {
+  // Wide enough for the clip's line on one line.
+  constexpr int kWide = 480;
+  if (!openAnimatedCube({"-stats"}, false, kWide)) GTEST_SKIP() << skip_reason_;
+  const DecodedPng start = screenshot();
+  ASSERT_EQ(start.width, kWide);
+  // Lines: fps, render time, size and backend, projection, sampling, then the clip's; counted
+  // left of the cube (from x = 160), whose lit top is as bright as text.
+  const std::vector<std::pair<int, int>> lines = textLines(start, 0, 0, 150, 140);
+  ASSERT_EQ(lines.size(), 6u);
+  space("tessera view: animation playing from 0.000 s");
+  ::usleep(400 * 1000);
+  space("tessera view: animation paused at ");
+  const DecodedPng paused = screenshot();
+  ASSERT_EQ(paused.width, kWide);
+  // The clip's line changed (its time; paused, not playing) where the projection's did not.
+  EXPECT_FALSE(sameText(start, paused, lines[5]));
+  EXPECT_TRUE(sameText(start, paused, lines[3]));
+  quit();
+}
+
+TEST_F(ViewerAnimation, CameraOrthographicStartsOrthographicAndEnterReturnsToIt) {
+  if (!openAnimatedCube({})) GTEST_SKIP() << skip_reason_;
+  const DecodedPng perspective = screenshot();
+  quit();
+  ASSERT_TRUE(openAnimatedCube({"--camera-orthographic"}));
+  const DecodedPng orthographic = screenshot();
+  ASSERT_EQ(perspective.width, kWidth);
+  ASSERT_EQ(orthographic.width, kWidth);
+  // The same three-quarter view of the same bounds, drawn without perspective: another picture
+  // of about the same size.
+  EXPECT_GT(countDifferent(perspective, orthographic, 0, 0, kWidth, kHeight), 200);
+  const Rgb background = pixel(perspective, 2, 2);
+  const double share = coverage(perspective, background).share;
+  EXPECT_NEAR(coverage(orthographic, background).share, share, share * 0.35);
+  xdotool({"mousemove", "--window", window_, "160", "120", "mousedown", "1", "mousemove",
+           "--window", window_, "190", "150", "mouseup", "1"});
+  xdotool({"click", "4"});  // wheel: zoom in
+  const DecodedPng moved = screenshot();
+  EXPECT_GT(countDifferent(orthographic, moved, 0, 0, kWidth, kHeight), 200);
+  xdotool({"key", "Return"});
+  const DecodedPng back = screenshot();
+  EXPECT_EQ(countDifferent(orthographic, back, 0, 0, kWidth, kHeight), 0);
   quit();
 }
 

@@ -71,7 +71,7 @@ std::string AnimationPlayer::describe() const {
   char times[64];
   std::snprintf(times, sizeof times, " %.2f / %.2f s, ", time_,
                 static_cast<double>(clip.duration()));
-  return line.append(times).append(playing_ ? "playing" : "paused (space plays)");
+  return line.append(times).append(playing_ ? "playing" : "paused");
 }
 
 std::string AnimationPlayer::state() const {
