@@ -187,6 +187,46 @@ std::optional<Camera> viewStartCamera(CameraSettings settings, float fov,
   return *camera;
 }
 
+// The viewer's hooks: loads (on the loading thread; the first may take the preloaded scene), the
+// default cube, the lights, Shift+F2 and the start camera. `fov`: the perspective view angle.
+viewer::ViewerHooks viewHooks(const ViewSettings& s, const ViewLoad& load,
+                              std::shared_ptr<PreloadedScene> preloaded, float fov) {
+  viewer::ViewerHooks hooks;
+  // For tests only: while the file named by TESSERA_VIEW_TEST_HOLD_LOADS exists (at most a
+  // minute), loads wait, so that a test can see the window during a load that takes long.
+  std::string hold_file;
+  if (const char* hold = std::getenv("TESSERA_VIEW_TEST_HOLD_LOADS")) hold_file = hold;
+  // Runs on the loading thread. Between a load and the scene's swap a frame may place (or keep)
+  // the previous model's lights: the next frame is right.
+  hooks.load_file = [load, hold_file, preloaded](
+                        const std::filesystem::path& path) -> Expected<viewer::LoadedScene> {
+    if (std::optional<viewer::LoadedScene> loaded = preloaded->take()) return std::move(*loaded);
+    if (!hold_file.empty()) {
+      const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+      std::error_code ec;
+      while (std::filesystem::exists(hold_file, ec) && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return loadViewScene(load, path);
+  };
+  hooks.default_scene = [scene_settings = load.scene_settings] {
+    ModelSceneSettings cube_settings = scene_settings;
+    cube_settings.shading = Shading::kFlat;
+    cube_settings.cull = CullMode::kBack;
+    return makeModelScene(cubeModel(), "cube", cube_settings).value();
+  };
+  hooks.place_lights = [own_lights = load.own_lights, light_settings = s.lights](Scene& scene) {
+    if (own_lights->load()) return;
+    addViewLights(scene);
+    if (light_settings.ambient_given) scene.ambient = light_settings.ambient;
+  };
+  hooks.commit_path = vulkanCommitPath;
+  hooks.start_camera = [camera = s.camera, fov](const viewer::LoadedScene& loaded, float aspect) {
+    return viewStartCamera(camera, fov, loaded, aspect);
+  };
+  return hooks;
+}
+
 #endif
 
 }  // namespace
@@ -309,41 +349,8 @@ int runView(const std::vector<std::string>& args) {
     return kExitFailure;
   }
 
-  viewer::ViewerHooks hooks;
-  // For tests only: while the file named by TESSERA_VIEW_TEST_HOLD_LOADS exists (at most a
-  // minute), loads wait, so that a test can see the window during a load that takes long.
-  std::string hold_file;
-  if (const char* hold = std::getenv("TESSERA_VIEW_TEST_HOLD_LOADS")) hold_file = hold;
-  // Runs on the loading thread. Between a load and the scene's swap a frame may place (or keep)
-  // the previous model's lights: the next frame is right.
-  hooks.load_file = [load, hold_file, preloaded](
-                        const std::filesystem::path& path) -> Expected<viewer::LoadedScene> {
-    if (std::optional<viewer::LoadedScene> loaded = preloaded->take()) return std::move(*loaded);
-    if (!hold_file.empty()) {
-      const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(1);
-      std::error_code ec;
-      while (std::filesystem::exists(hold_file, ec) && std::chrono::steady_clock::now() < until)
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return loadViewScene(load, path);
-  };
-  hooks.default_scene = [scene_settings] {
-    ModelSceneSettings cube_settings = scene_settings;
-    cube_settings.shading = Shading::kFlat;
-    cube_settings.cull = CullMode::kBack;
-    return makeModelScene(cubeModel(), "cube", cube_settings).value();
-  };
-  hooks.place_lights = [own_lights = load.own_lights, light_settings = s.lights](Scene& scene) {
-    if (own_lights->load()) return;
-    addViewLights(scene);
-    if (light_settings.ambient_given) scene.ambient = light_settings.ambient;
-  };
-  hooks.commit_path = vulkanCommitPath;
   const float fov = s.has_fov && isPerspectiveFov(s.fov) ? s.fov : 50.0f;
-  hooks.start_camera = [camera = s.camera, fov](const viewer::LoadedScene& loaded, float aspect) {
-    return viewStartCamera(camera, fov, loaded, aspect);
-  };
-
+  const viewer::ViewerHooks hooks = viewHooks(s, load, preloaded, fov);
   viewer::ViewerOptions options;
   options.width = s.width;
   options.height = s.height;
