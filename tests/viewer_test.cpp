@@ -258,12 +258,13 @@ TEST(InputState, WheelZoomsAndKeysMapAsInF3d) {
   EXPECT_EQ(viewOf(Key::kSeven), ViewPreset::kTop);
   EXPECT_EQ(viewOf(Key::kNine), ViewPreset::kIsometric);
   const std::pair<Key, Action::Type> commands[] = {
-      {Key::kEnter, Action::Type::kResetCamera},   {Key::kEscape, Action::Type::kQuit},
-      {Key::kF1, Action::Type::kToggleStats},      {Key::kF2, Action::Type::kToggleWorldAxes},
-      {Key::kF3, Action::Type::kToggleObjectAxes}, {Key::kF12, Action::Type::kScreenshot},
-      {Key::kF10, Action::Type::kToggleJitter},    {Key::kH, Action::Type::kToggleKeyList},
-      {Key::kF4, Action::Type::kCycleProjection},  {Key::kF5, Action::Type::kStoreCrc},
-      {Key::kF6, Action::Type::kCompareCrc},       {Key::kF11, Action::Type::kCycleAnalysisView},
+      {Key::kEnter, Action::Type::kResetCamera},    {Key::kEscape, Action::Type::kQuit},
+      {Key::kF1, Action::Type::kToggleStats},       {Key::kF2, Action::Type::kToggleWorldAxes},
+      {Key::kF3, Action::Type::kToggleObjectAxes},  {Key::kF12, Action::Type::kScreenshot},
+      {Key::kF10, Action::Type::kToggleJitter},     {Key::kH, Action::Type::kToggleKeyList},
+      {Key::kF4, Action::Type::kCycleProjection},   {Key::kF5, Action::Type::kStoreCrc},
+      {Key::kF6, Action::Type::kCompareCrc},        {Key::kF11, Action::Type::kCycleAnalysisView},
+      {Key::kSpace, Action::Type::kTogglePlayback},
   };
   for (const auto& [k, type] : commands) {
     a = input.handle(key(k), 100.0f);
@@ -299,6 +300,17 @@ TEST(InputState, ShiftPicksTheSecondRowOfFunctionKeysAndNothingElse) {
   EXPECT_EQ(a->type, Action::Type::kToggleKeyList);
 }
 
+TEST(InputState, SpacePlaysOrPausesTheAnimationAndMovesNoCamera) {
+  InputState input;
+  for (bool shift : {false, true}) {
+    std::optional<Action> a = input.handle(key(Key::kSpace, shift), 100.0f);
+    ASSERT_TRUE(a);
+    EXPECT_EQ(a->type, Action::Type::kTogglePlayback);
+    OrbitCamera camera;
+    EXPECT_FALSE(applyCameraAction(*a, camera));
+  }
+}
+
 TEST(InputState, TheKeyListNamesEveryMappedKeyAndOnlyThose) {
   auto listed = [](Key k, bool shift) {
     for (const KeyHelp& help : keyList())
@@ -320,8 +332,9 @@ TEST(InputState, TheKeyListNamesEveryMappedKeyAndOnlyThose) {
           << "key " << i << (shift ? " with shift" : "") << " is unlisted";
     }
   }
-  // 1 3 7 9 Enter Escape H F1-F6 F10-F12, Shift+F1, Shift+F2, Shift+F3, Shift+F12
-  EXPECT_EQ(mapped, 20);
+  // 1 3 7 9 Enter Escape H space F1-F6 F10-F12, Shift+F1, Shift+F2, Shift+F3, Shift+F12
+  EXPECT_EQ(mapped, 21);
+  EXPECT_TRUE(listed(Key::kSpace, false));
   EXPECT_TRUE(listed(Key::kF5, false));
   EXPECT_TRUE(listed(Key::kF6, false));
   EXPECT_TRUE(listed(Key::kF4, false));
@@ -364,10 +377,10 @@ Scene cubeScene() {
 }
 
 // Waits (generously) for the loader's result.
-std::optional<Expected<Scene>> waitForResult(SceneLoader& loader) {
+std::optional<Expected<LoadedScene>> waitForResult(SceneLoader& loader) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (std::chrono::steady_clock::now() < deadline) {
-    if (std::optional<Expected<Scene>> result = loader.takeResult()) return result;
+    if (std::optional<Expected<LoadedScene>> result = loader.takeResult()) return result;
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   return std::nullopt;
@@ -380,12 +393,13 @@ TEST(SceneLoader, RunsOffTheCallingThreadAndHandsTheResultOverOnce) {
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<bool> other_thread{false};
   std::atomic<bool> finished{false};
-  loader.start("cube.obj", [&]() -> Expected<Scene> {
+  loader.start("cube.obj", [&]() -> Expected<LoadedScene> {
     other_thread = std::this_thread::get_id() != caller;
     while (!release) std::this_thread::yield();
-    Scene scene = cubeScene();
+    LoadedScene loaded;
+    loaded.scene = cubeScene();
     finished = true;
-    return scene;
+    return loaded;
   });
   EXPECT_EQ(loader.name(), "cube.obj");
   // While the load runs, the caller is not blocked and there is no result.
@@ -396,10 +410,10 @@ TEST(SceneLoader, RunsOffTheCallingThreadAndHandsTheResultOverOnce) {
   std::this_thread::sleep_for(std::chrono::milliseconds(20));
   // Finished but not taken: still busy, so a caller that polls while busy() gets the result.
   EXPECT_TRUE(loader.busy());
-  std::optional<Expected<Scene>> result = waitForResult(loader);
+  std::optional<Expected<LoadedScene>> result = waitForResult(loader);
   ASSERT_TRUE(result);
   ASSERT_TRUE(result->ok());
-  EXPECT_EQ(result->value().triangleCount(), 12u);
+  EXPECT_EQ(result->value().scene.triangleCount(), 12u);
   EXPECT_TRUE(other_thread);
   EXPECT_FALSE(loader.busy());
   EXPECT_FALSE(loader.takeResult());
@@ -408,12 +422,15 @@ TEST(SceneLoader, RunsOffTheCallingThreadAndHandsTheResultOverOnce) {
 TEST(SceneLoader, TheLatestLoadWinsAndErrorsComeBackAsErrors) {
   SceneLoader loader;
   std::atomic<bool> release{false};
-  loader.start("slow.obj", [&]() -> Expected<Scene> {
+  loader.start("slow.obj", [&]() -> Expected<LoadedScene> {
     while (!release) std::this_thread::yield();
-    return cubeScene();
+    LoadedScene loaded;
+    loaded.scene = cubeScene();
+    return loaded;
   });
-  loader.start("bad.obj", []() -> Expected<Scene> { return makeError("bad.obj:3: nonsense"); });
-  std::optional<Expected<Scene>> result = waitForResult(loader);
+  loader.start("bad.obj",
+               []() -> Expected<LoadedScene> { return makeError("bad.obj:3: nonsense"); });
+  std::optional<Expected<LoadedScene>> result = waitForResult(loader);
   ASSERT_TRUE(result);
   ASSERT_FALSE(result->ok());
   EXPECT_EQ(result->error().message, "bad.obj:3: nonsense");
@@ -426,8 +443,8 @@ TEST(SceneLoader, TheLatestLoadWinsAndErrorsComeBackAsErrors) {
 
 TEST(SceneLoader, AnExceptionBecomesAnError) {
   SceneLoader loader;
-  loader.start("huge.obj", []() -> Expected<Scene> { throw std::bad_alloc(); });
-  std::optional<Expected<Scene>> result = waitForResult(loader);
+  loader.start("huge.obj", []() -> Expected<LoadedScene> { throw std::bad_alloc(); });
+  std::optional<Expected<LoadedScene>> result = waitForResult(loader);
   ASSERT_TRUE(result);
   ASSERT_FALSE(result->ok());
   EXPECT_NE(result->error().message.find("out of memory"), std::string::npos);

@@ -26,6 +26,15 @@ Expected<FramePlan> animationFrames(const Animation& clip, int fps, const std::s
   return plan;
 }
 
+std::string animationIndexError(const std::string& path, size_t count, int index) {
+  const std::string n = std::to_string(count);
+  return path +
+         (count == 0 ? std::string(" has no animations")
+                     : " has " + n + " animation" + (count == 1 ? "" : "s") +
+                           " (--animation-index 0 to " + std::to_string(count - 1) + ")") +
+         "; --animation-index " + std::to_string(index) + " is past the end";
+}
+
 float frameTime(const Animation& clip, int fps, int frame) {
   return clip.startTime() + static_cast<float>(static_cast<double>(frame) / fps);
 }

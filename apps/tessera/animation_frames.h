@@ -1,4 +1,5 @@
-// Which frames of a glTF animation `tessera render --animation-index` draws, and when.
+// Which frames of a glTF animation `tessera render --animation-index` draws, and when; the
+// message for a clip index past the end (render and view).
 #pragma once
 
 #include <string>
@@ -18,6 +19,10 @@ struct FramePlan {
 // `range` "A:B" (inclusive, from 0) picks frames A to B instead; frames past the clip's end hold
 // its last pose. A malformed or backward range is an error saying what was expected.
 Expected<FramePlan> animationFrames(const Animation& clip, int fps, const std::string& range);
+
+// `render` and `view`'s message for --animation-index `index` past the `count` clips of the model
+// at `path`: how many there are.
+std::string animationIndexError(const std::string& path, size_t count, int index);
 
 // The time (seconds, the file's time line) of frame `frame` of the clip.
 float frameTime(const Animation& clip, int fps, int frame);

@@ -253,13 +253,8 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
   }
   scene = std::move(*made);
   if (s.animation_index >= 0 && static_cast<size_t>(s.animation_index) >= graph.animations.size()) {
-    const size_t n = graph.animations.size();
-    printError("render",
-               model_path.string() +
-                   (n == 0 ? std::string(" has no animations")
-                           : " has " + std::to_string(n) + " animation" + (n == 1 ? "" : "s") +
-                                 " (--animation-index 0 to " + std::to_string(n - 1) + ")") +
-                   "; --animation-index " + std::to_string(s.animation_index) + " is past the end");
+    printError("render", animationIndexError(model_path.string(), graph.animations.size(),
+                                             s.animation_index));
     return kExitFailure;
   }
   // An animated model is framed, and its near and far planes set, for every pose of the clip.

@@ -5,17 +5,21 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <thread>
+#include <utility>
 
 #include <tessera/io/image_loader.h>
 #include <tessera/io/model_loader.h>
+#include <tessera/model/camera_setup.h>
 #include <tessera/model/model_scene.h>
 #include <tessera/render/projection.h>
 #include <tessera/render/sampling.h>
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
 
+#include "animation_frames.h"
 #include "backends.h"
 #include "budget_flags.h"
 #include "commands.h"
@@ -23,6 +27,7 @@
 #include "light_flags.h"
 
 #ifdef TESSERA_HAS_VIEWER
+#include <tessera/viewer/animation_player.h>
 #include <tessera/viewer/viewer.h>
 #endif
 
@@ -48,7 +53,9 @@ struct ViewSettings {
   int device = -1;
   int msaa = 4;  // what `tessera render` makes by default
   io::LoadBudget budget;
-  LightSettings lights;  // --light, --ambient
+  LightSettings lights;      // --light, --ambient
+  int animation_index = -1;  // --animation-index: the clip space plays; -1: the first, if any
+  CameraSettings camera;     // --camera-index, --camera-orthographic (the rest unused)
 };
 
 bool isPerspectiveFov(float fov) {
@@ -72,6 +79,155 @@ io::Model cubeModel() {
   model.materials.push_back(material);
   return model;
 }
+
+// --camera-index, --camera-orthographic and --animation-index against the other flags: "" or the
+// usage error.
+std::string checkViewCameraFlags(const ViewSettings& s, Projection projection, bool no_model) {
+  const CameraSettings& c = s.camera;
+  if ((c.orthographic || c.camera_index >= 0) && projection != Projection::kPerspective)
+    return std::string(c.orthographic ? "--camera-orthographic" : "--camera-index") +
+           " and --projection " + projectionName(projection) + " do not go together";
+  if (no_model && c.camera_index >= 0) return "--camera-index picks a camera of a MODEL: give one";
+  if (no_model && s.animation_index >= 0)
+    return "--animation-index picks an animation of a MODEL: give one";
+  return "";
+}
+
+#ifdef TESSERA_HAS_VIEWER
+
+// What every load of the viewer shares; the loading thread owns its copy.
+struct ViewLoad {
+  ModelSceneSettings scene_settings;
+  io::LoadBudget budget;
+  LightSettings lights;
+  int animation_index = -1;
+  // Whether the model last loaded brings its own lights (its file's or --light's): the default
+  // rig, fixed to the view, is placed only when it does not.
+  std::shared_ptr<std::atomic<bool>> own_lights;
+};
+
+// The start model loaded before the window opened, taken (once) by the viewer's first load.
+struct PreloadedScene {
+  std::mutex mutex;  // loads run on their own threads
+  std::optional<viewer::LoadedScene> scene;
+
+  std::optional<viewer::LoadedScene> take() {
+    std::lock_guard<std::mutex> lock(mutex);
+    return std::exchange(scene, std::nullopt);
+  }
+};
+
+// A model as the viewer shows it: framed (any scale is drawn), with its graph and the clip the
+// space bar plays: --animation-index where the model has it, else its first.
+Expected<viewer::LoadedScene> loadViewScene(const ViewLoad& load,
+                                            const std::filesystem::path& path) {
+  Expected<io::Model> model = io::loadModel(path, load.budget);
+  if (!model) return model.error();
+  model->lights.insert(model->lights.end(), load.lights.lights.begin(), load.lights.lights.end());
+  fitModelScale(*model, path, /*keep_coordinates=*/false);
+  for (const std::string& warning : model->warnings)
+    std::cerr << "tessera view: warning: " << warning << "\n";
+  const std::vector<Light> lights = model->lights;
+  viewer::LoadedScene loaded;
+  Expected<Scene> scene =
+      makeModelScene(std::move(*model), path, load.scene_settings, &loaded.graph);
+  if (!scene) return scene.error();
+  loaded.scene = std::move(*scene);
+  addViewLights(loaded.scene);
+  applyLights(loaded.scene, lights, load.lights);
+  load.own_lights->store(!lights.empty());
+  const size_t clips = loaded.graph.animations.size();
+  const int wanted = std::max(load.animation_index, 0);
+  viewer::prepareClip(loaded, clips == 0 ? -1 : static_cast<size_t>(wanted) < clips ? wanted : 0);
+  return loaded;
+}
+
+// The start model, loaded before the window opens when --animation-index or --camera-index name
+// something in it, so that an index past the end fails as in `render` (exit 1). kExitOk or the
+// status (printed).
+int preloadViewScene(const ViewSettings& s, const ViewLoad& load, const std::filesystem::path& path,
+                     viewer::LoadedScene& loaded) {
+  Expected<viewer::LoadedScene> made = loadViewScene(load, path);
+  if (!made) {
+    printError("view", made.error().message);
+    return kExitFailure;
+  }
+  const size_t clips = made->graph.animations.size();
+  if (s.animation_index >= 0 && static_cast<size_t>(s.animation_index) >= clips) {
+    printError("view", animationIndexError(path.string(), clips, s.animation_index));
+    return kExitFailure;
+  }
+  if (s.camera.camera_index >= 0) {
+    const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
+    if (Expected<Camera> camera = makeCamera(s.camera, made->bounds, aspect, &made->graph);
+        !camera) {
+      printError("view", path.string() + ": " + camera.error().message);
+      return kExitFailure;
+    }
+  }
+  loaded = std::move(*made);
+  return kExitOk;
+}
+
+// The start camera of a loaded scene: --camera-index's where the scene has that camera (a model
+// dropped later may not: it is framed), or the orthographic framing; nullopt: the orbit camera
+// frames it. `fov`: the viewer's perspective angle, which the orthographic framing matches.
+std::optional<Camera> viewStartCamera(CameraSettings settings, float fov,
+                                      const viewer::LoadedScene& loaded, float aspect) {
+  if (settings.camera_index >= 0 &&
+      static_cast<size_t>(settings.camera_index) >= loaded.graph.cameras.size())
+    settings.camera_index = -1;
+  if (settings.camera_index < 0 && !settings.orthographic) return std::nullopt;
+  settings.view_angle = fov, settings.has_view_angle = true;
+  Expected<Camera> camera = makeCamera(settings, loaded.bounds, aspect, &loaded.graph);
+  if (!camera) {
+    std::cerr << "tessera view: warning: " << camera.error().message << "; framing the model\n";
+    return std::nullopt;
+  }
+  return *camera;
+}
+
+// The viewer's hooks: loads (on the loading thread; the first may take the preloaded scene), the
+// default cube, the lights, Shift+F2 and the start camera. `fov`: the perspective view angle.
+viewer::ViewerHooks viewHooks(const ViewSettings& s, const ViewLoad& load,
+                              std::shared_ptr<PreloadedScene> preloaded, float fov) {
+  viewer::ViewerHooks hooks;
+  // For tests only: while the file named by TESSERA_VIEW_TEST_HOLD_LOADS exists (at most a
+  // minute), loads wait, so that a test can see the window during a load that takes long.
+  std::string hold_file;
+  if (const char* hold = std::getenv("TESSERA_VIEW_TEST_HOLD_LOADS")) hold_file = hold;
+  // Runs on the loading thread. Between a load and the scene's swap a frame may place (or keep)
+  // the previous model's lights: the next frame is right.
+  hooks.load_file = [load, hold_file, preloaded](
+                        const std::filesystem::path& path) -> Expected<viewer::LoadedScene> {
+    if (std::optional<viewer::LoadedScene> loaded = preloaded->take()) return std::move(*loaded);
+    if (!hold_file.empty()) {
+      const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+      std::error_code ec;
+      while (std::filesystem::exists(hold_file, ec) && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return loadViewScene(load, path);
+  };
+  hooks.default_scene = [scene_settings = load.scene_settings] {
+    ModelSceneSettings cube_settings = scene_settings;
+    cube_settings.shading = Shading::kFlat;
+    cube_settings.cull = CullMode::kBack;
+    return makeModelScene(cubeModel(), "cube", cube_settings).value();
+  };
+  hooks.place_lights = [own_lights = load.own_lights, light_settings = s.lights](Scene& scene) {
+    if (own_lights->load()) return;
+    addViewLights(scene);
+    if (light_settings.ambient_given) scene.ambient = light_settings.ambient;
+  };
+  hooks.commit_path = vulkanCommitPath;
+  hooks.start_camera = [camera = s.camera, fov](const viewer::LoadedScene& loaded, float aspect) {
+    return viewStartCamera(camera, fov, loaded, aspect);
+  };
+  return hooks;
+}
+
+#endif
 
 }  // namespace
 
@@ -102,6 +258,13 @@ int runView(const std::vector<std::string>& args) {
   flags.addString("texture", &s.texture, "an image used as the albedo of every material");
   addBudgetFlags(flags, s.budget);
   addLightFlags(flags, s.lights);
+  flags.addInt("animation-index", &s.animation_index,
+               "the model's animation the space bar plays (glTF, from 0; default 0)", 0, 1000000);
+  flags.addInt("camera-index", &s.camera.camera_index,
+               "start from the file's camera N (glTF cameras, from 0; Enter returns to it)", 0,
+               1 << 30);
+  flags.addSwitch("camera-orthographic", &s.camera.orthographic,
+                  "orthographic projection for the start camera");
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
   flags.addCustom(
@@ -125,7 +288,8 @@ int runView(const std::vector<std::string>& args) {
                  "F11 cycles the analysis view (off, tile field, density), F12 screenshot,\n"
                  "Shift+F1 tile heatmap, Shift+F2 32-bit commit path (vulkan),\n"
                  "Shift+F3 cycles MSAA 1/2/4/8, Shift+F12 temporal reprojection (on with\n"
-                 "jitter), H lists the keys in the window, Escape quits.\n"
+                 "jitter), space plays or pauses the animation, H lists the keys in the\n"
+                 "window, Escape quits.\n"
                  "Drop a model file on the window to load it.\n";
     return kExitOk;
   }
@@ -140,6 +304,8 @@ int runView(const std::vector<std::string>& args) {
   if (std::string range = checkFov(s, projection, static_cast<float>(s.width) / s.height);
       !range.empty())
     return usageError("-fov: " + range);
+  if (std::string wrong = checkViewCameraFlags(s, projection, positional->empty()); !wrong.empty())
+    return usageError(wrong);
 #ifndef TESSERA_HAS_VIEWER
   printError("view",
              "this tessera was built without the viewer (it needs SDL2 and SDL2_ttf: install "
@@ -166,66 +332,31 @@ int runView(const std::vector<std::string>& args) {
     scene_settings.albedo = std::make_shared<const Texture>(std::move(*texture));
   }
 
+  ViewLoad load{scene_settings, s.budget, s.lights, s.animation_index,
+                std::make_shared<std::atomic<bool>>(false)};
+  // --animation-index and --camera-index are checked against the model before the window opens;
+  // the viewer's first load then takes this scene.
+  auto preloaded = std::make_shared<PreloadedScene>();
+  if (model_path && (s.animation_index >= 0 || s.camera.camera_index >= 0)) {
+    if (int status = preloadViewScene(s, load, *model_path, preloaded->scene.emplace());
+        status != kExitOk)
+      return status;
+  }
+
   Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
   if (!backend) {
     printError("view", backend.error().message);
     return kExitFailure;
   }
 
-  viewer::ViewerHooks hooks;
-  // For tests only: while the file named by TESSERA_VIEW_TEST_HOLD_LOADS exists (at most a
-  // minute), loads wait, so that a test can see the window during a load that takes long.
-  std::string hold_file;
-  if (const char* hold = std::getenv("TESSERA_VIEW_TEST_HOLD_LOADS")) hold_file = hold;
-  // Runs on the loading thread: it owns its copy of the settings.
-  // Whether the model last loaded brings its own lights (its file's or --light's): the default
-  // rig, fixed to the view, is placed only when it does not. Between a load and the scene's swap a
-  // frame may place (or keep) the previous model's lights: the next frame is right.
-  auto own_lights = std::make_shared<std::atomic<bool>>(false);
-  hooks.load_file = [scene_settings, hold_file, budget = s.budget, light_settings = s.lights,
-                     own_lights](const std::filesystem::path& path) -> Expected<Scene> {
-    if (!hold_file.empty()) {
-      const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(1);
-      std::error_code ec;
-      while (std::filesystem::exists(hold_file, ec) && std::chrono::steady_clock::now() < until)
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    Expected<io::Model> model = io::loadModel(path, budget);
-    if (!model) return model.error();
-    model->lights.insert(model->lights.end(), light_settings.lights.begin(),
-                         light_settings.lights.end());
-    // The viewer frames every model: any scale is drawn.
-    fitModelScale(*model, path, /*keep_coordinates=*/false);
-    for (const std::string& warning : model->warnings)
-      std::cerr << "tessera view: warning: " << warning << "\n";
-    const std::vector<Light> lights = model->lights;
-    Expected<Scene> scene = makeModelScene(std::move(*model), path, scene_settings);
-    if (scene) {
-      addViewLights(*scene);
-      applyLights(*scene, lights, light_settings);
-      own_lights->store(!lights.empty());
-    }
-    return scene;
-  };
-  hooks.default_scene = [scene_settings] {
-    ModelSceneSettings cube_settings = scene_settings;
-    cube_settings.shading = Shading::kFlat;
-    cube_settings.cull = CullMode::kBack;
-    return makeModelScene(cubeModel(), "cube", cube_settings).value();
-  };
-  hooks.place_lights = [own_lights, light_settings = s.lights](Scene& scene) {
-    if (own_lights->load()) return;
-    addViewLights(scene);
-    if (light_settings.ambient_given) scene.ambient = light_settings.ambient;
-  };
-  hooks.commit_path = vulkanCommitPath;
-
+  const float fov = s.has_fov && isPerspectiveFov(s.fov) ? s.fov : 50.0f;
+  const viewer::ViewerHooks hooks = viewHooks(s, load, preloaded, fov);
   viewer::ViewerOptions options;
   options.width = s.width;
   options.height = s.height;
   options.fps = s.fps;
   // Perspective takes -fov when it is a perspective angle; every mode takes it where it fits.
-  if (s.has_fov && isPerspectiveFov(s.fov)) options.fov_y_degrees = s.fov;
+  options.fov_y_degrees = fov;
   if (s.has_fov) options.view_angle = s.fov;
   options.projection = projection;
   options.stats = s.stats;

@@ -56,6 +56,8 @@ std::optional<Action> keyAction(Key key, bool shift) {
       return act(Action::Type::kQuit);
     case Key::kH:
       return act(Action::Type::kToggleKeyList);
+    case Key::kSpace:
+      return act(Action::Type::kTogglePlayback);
     case Key::kF1:
       return act(Action::Type::kToggleStats);
     case Key::kF2:
@@ -104,6 +106,7 @@ const std::vector<KeyHelp>& keyList() {
       {"Shift+F2", "32-bit commit path (vulkan)", {{Key::kF2, true}}},
       {"Shift+F3", "MSAA 1, 2, 4, 8 samples", {{Key::kF3, true}}},
       {"Shift+F12", "temporal reprojection", {{Key::kF12, true}}},
+      {"space", "play / pause the animation", {{Key::kSpace}}},
       {"H", "this list", {{Key::kH}}},
       {"Escape", "quit", {{Key::kEscape}}},
   };

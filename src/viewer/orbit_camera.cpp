@@ -51,9 +51,28 @@ void OrbitCamera::frame(const Bounds& bounds, float3 direction, float fov_y_degr
   pose_.yaw_degrees = degrees(std::atan2(d.x, d.z));
   pose_.pitch_degrees = degrees(std::asin(std::clamp(d.y, -1.0f, 1.0f)));
   home_ = pose_;
+  start_camera_.reset();
+  at_start_camera_ = false;
+}
+
+void OrbitCamera::frameCamera(const Camera& camera, const Bounds& bounds) {
+  bounds_ = bounds;
+  const float3 forward = normalize(camera.target - camera.position);
+  const float radius = bounds.empty() ? 1.0f : std::max(bounds.radius(), 1e-6f);
+  const float3 center = bounds.empty() ? camera.target : bounds.center();
+  // Turn about the point of the view axis nearest the model's centre (not behind the eye).
+  pose_.distance = std::max(dot(center - camera.position, forward), radius * 1e-3f);
+  pose_.target = camera.position + forward * pose_.distance;
+  pose_.yaw_degrees = degrees(std::atan2(-forward.x, -forward.z));
+  pose_.pitch_degrees = degrees(std::asin(std::clamp(-forward.y, -1.0f, 1.0f)));
+  if (!camera.orthographic) fov_y_degrees_ = camera.fov_y_degrees;
+  home_ = pose_;
+  start_camera_ = camera;
+  at_start_camera_ = true;
 }
 
 void OrbitCamera::orbit(float dx, float dy) {
+  at_start_camera_ = false;
   pose_.yaw_degrees -= dx * kDegreesPerViewportHeight;
   pose_.yaw_degrees = std::remainder(pose_.yaw_degrees, 360.0f);
   pose_.pitch_degrees =
@@ -61,6 +80,7 @@ void OrbitCamera::orbit(float dx, float dy) {
 }
 
 void OrbitCamera::pan(float dx, float dy) {
+  at_start_camera_ = false;
   const float angle =
       projection_ == Projection::kPerspective ? fov_y_degrees_ : view_angle_degrees_;
   const float2 span = panSpan(projection_, angle, pose_.distance);
@@ -68,12 +88,14 @@ void OrbitCamera::pan(float dx, float dy) {
 }
 
 void OrbitCamera::zoom(float steps) {
+  at_start_camera_ = false;
   const float radius = std::max(bounds_.radius(), 1e-6f);
   pose_.distance =
       std::clamp(pose_.distance * std::pow(kZoomPerStep, steps), radius * 1e-3f, radius * 1e3f);
 }
 
 void OrbitCamera::setView(ViewPreset preset) {
+  at_start_camera_ = false;
   switch (preset) {
     case ViewPreset::kFront:
       pose_.yaw_degrees = 0.0f, pose_.pitch_degrees = 0.0f;
@@ -94,6 +116,7 @@ void OrbitCamera::setView(ViewPreset preset) {
 
 void OrbitCamera::reset() {
   pose_ = home_;
+  at_start_camera_ = start_camera_.has_value();
 }
 
 float3 OrbitCamera::position() const {
@@ -120,11 +143,12 @@ void OrbitCamera::setProjection(Projection mode, float view_angle_degrees) {
 }
 
 Camera OrbitCamera::camera() const {
+  const bool perspective = projection_ == Projection::kPerspective;
+  if (at_start_camera_ && perspective) return *start_camera_;
   Camera c;
   c.position = position();
   c.target = pose_.target;
   c.up = up();
-  const bool perspective = projection_ == Projection::kPerspective;
   c.fov_y_degrees = perspective ? fov_y_degrees_ : view_angle_degrees_;
   // Near and far bracket the bounding sphere, wherever panning and zooming have put the camera:
   // along the view direction in perspective, as distances from the eye otherwise (the rule of
@@ -136,6 +160,13 @@ Camera OrbitCamera::camera() const {
       perspective ? dot(center - c.position, forward()) : length(center - c.position);
   c.far_z = std::max(depth + radius * 1.01f, radius * 1e-3f);
   c.near_z = std::max(depth - radius * 1.01f, c.far_z * 1e-4f);
+  // An orthographic start camera stays orthographic (the nonlinear modes have their own rays):
+  // as high at the turning point as it was, zooming scales it. Near may be 0, not behind the eye.
+  if (start_camera_ && start_camera_->orthographic && perspective) {
+    c.orthographic = true;
+    c.ortho_half_height = start_camera_->ortho_half_height * pose_.distance / home_.distance;
+    c.near_z = std::max(depth - radius * 1.01f, 0.0f);
+  }
   return c;
 }
 

@@ -11,7 +11,7 @@ struct SceneLoader::Job {
   std::thread thread;
   std::atomic<bool> done{false};
   // Written by the thread before `done` is set (release), read after it is seen (acquire).
-  std::optional<Expected<Scene>> result;
+  std::optional<Expected<LoadedScene>> result;
 };
 
 SceneLoader::SceneLoader() = default;
@@ -40,8 +40,8 @@ void SceneLoader::start(std::string name, LoadFunction load) {
   jobs_.push_back(std::move(job));
 }
 
-std::optional<Expected<Scene>> SceneLoader::takeResult() {
-  std::optional<Expected<Scene>> taken;
+std::optional<Expected<LoadedScene>> SceneLoader::takeResult() {
+  std::optional<Expected<LoadedScene>> taken;
   if (latest_ != nullptr && latest_->done.load(std::memory_order_acquire)) {
     taken = std::move(latest_->result);
     latest_ = nullptr;

@@ -62,6 +62,8 @@ Key toKey(SDL_Keycode code) {
       return Key::kEscape;
     case SDLK_h:
       return Key::kH;
+    case SDLK_SPACE:
+      return Key::kSpace;
     case SDLK_F1:
       return Key::kF1;
     case SDLK_F2:

@@ -18,6 +18,7 @@
 #include <tessera/io/validation.h>
 #include <tessera/render/frame.h>
 #include <tessera/render/heatmap.h>
+#include <tessera/viewer/animation_player.h>
 #include <tessera/viewer/diagnostic_view.h>
 #include <tessera/viewer/frame_renderer.h>
 #include <tessera/viewer/input_state.h>
@@ -68,7 +69,8 @@ class Viewer {
  private:
   void startLoad(const fs::path& path);
   void takeLoadResult();
-  void showScene(Scene scene, const std::string& name);
+  void showScene(LoadedScene loaded, const std::string& name);
+  void togglePlayback();
   void handleEvent(const SDL_Event& event);
   void handleAction(const Action& action);
   void drawFrame();
@@ -83,8 +85,10 @@ class Viewer {
   const std::vector<uint32_t>& shownPixels();
   float pixelAspect() const;
   // Frames keep coming without input: the stats measure them, a load shows its progress, the
-  // jitter cycles or the temporal pass converges.
-  bool animating() const { return stats_ || loader_.busy() || sampling().wantsAnotherFrame(); }
+  // jitter cycles, the temporal pass converges or the animation plays.
+  bool animating() const {
+    return stats_ || loader_.busy() || sampling().wantsAnotherFrame() || player_.playing();
+  }
   SamplingModes& sampling() { return frames_.sampling(); }
   const SamplingModes& sampling() const { return frames_.sampling(); }
 
@@ -105,6 +109,7 @@ class Viewer {
   bool has_scene_ = false;
   bool announce_scene_ = false;  // print "showing ..." after the scene's first frame
   OrbitCamera camera_;
+  AnimationPlayer player_;  // the space bar: the loaded graph's clip
   InputState input_;
   FrameRenderer frames_;
   Frame frame_;
@@ -127,6 +132,7 @@ class Viewer {
   DiagnosticView diagnostic_view_ = DiagnosticView::kOff;
   DiagnosticPicture diagnostic_picture_;
   std::string commit_message_;  // Shift+F2's line: the commit path, or that it does not apply
+  std::string notice_;          // space without an animation: says so, as crc_message_ lasts
   std::string error_;           // the last load error, shown until the next load
   fs::path loading_path_;
   Clock::time_point load_started_;
@@ -163,18 +169,24 @@ void Viewer::startLoad(const fs::path& path) {
   loading_path_ = path;
   load_started_ = Clock::now();
   error_.clear();
-  std::function<Expected<Scene>(const fs::path&)> load_file = hooks_.load_file;
+  std::function<Expected<LoadedScene>(const fs::path&)> load_file = hooks_.load_file;
   loader_.start(name, [load_file, path] { return load_file(path); });
   dirty_ = true;
 }
 
-void Viewer::showScene(Scene scene, const std::string& name) {
-  scene_ = std::move(scene);
+void Viewer::showScene(LoadedScene loaded, const std::string& name) {
+  scene_ = std::move(loaded.scene);
   scene_name_ = name;
   has_scene_ = true;
   announce_scene_ = true;
-  const Bounds bounds = scene_.bounds();
-  camera_.frame(bounds, options_.view_direction, options_.fov_y_degrees, pixelAspect());
+  const Bounds bounds = loaded.bounds.empty() ? scene_.bounds() : loaded.bounds;
+  const std::optional<Camera> start =
+      hooks_.start_camera ? hooks_.start_camera(loaded, pixelAspect()) : std::nullopt;
+  if (start)
+    camera_.frameCamera(*start, bounds);
+  else
+    camera_.frame(bounds, options_.view_direction, options_.fov_y_degrees, pixelAspect());
+  player_.reset(std::move(loaded.graph), loaded.clip);
   scene_.world_axes_length = axesLength(bounds);
   for (Object& object : scene_.objects)
     if (object.mesh) object.axes_length = axesLength(object.mesh->bounds()) * 0.75f;
@@ -185,11 +197,11 @@ void Viewer::showScene(Scene scene, const std::string& name) {
 }
 
 void Viewer::takeLoadResult() {
-  std::optional<Expected<Scene>> result = loader_.takeResult();
+  std::optional<Expected<LoadedScene>> result = loader_.takeResult();
   if (!result) return;
   dirty_ = true;
   if (result->ok()) {
-    if (result->value().objects.empty()) {
+    if (result->value().scene.objects.empty()) {
       error_ = loader_.name() + ": nothing to show";
     } else {
       showScene(std::move(result->value()), loader_.name());
@@ -206,16 +218,23 @@ void Viewer::takeLoadResult() {
       error_.erase(at, folder.size() + 1);
   }
   // The model given at start failed: show the default scene under the message.
-  if (!has_scene_) showScene(hooks_.default_scene(), "cube");
+  if (!has_scene_) showScene(withoutGraph(hooks_.default_scene()), "cube");
+}
+
+// Space: stdout says what it did (for scripts and tests); without a clip, the window too.
+void Viewer::togglePlayback() {
+  const bool toggled = player_.togglePlaying(Clock::now());
+  notice_ = toggled ? "" : "no animation to play in " + scene_name_;
+  std::cout << "tessera view: " << (toggled ? player_.state() : notice_) << std::endl;
 }
 
 void Viewer::handleAction(const Action& action) {
-  // A CRC result describes the picture it was taken of: gone once the picture changes.
+  // A CRC result (and the notice) describes the picture it was taken of: gone once it changes.
   using T = Action::Type;
   if (action.type != T::kStoreCrc && action.type != T::kCompareCrc &&
       action.type != T::kScreenshot && action.type != T::kToggleKeyList &&
       action.type != T::kToggleStats)
-    crc_message_.clear();
+    crc_message_.clear(), notice_.clear();
   if (applyCameraAction(action, camera_)) {
     dirty_ = view_changed_ = true;
     return;
@@ -271,6 +290,9 @@ void Viewer::handleAction(const Action& action) {
       break;
     case Action::Type::kToggleKeyList:
       key_list_ = !key_list_;
+      break;
+    case Action::Type::kTogglePlayback:
+      togglePlayback();
       break;
     case Action::Type::kQuit:
       quit_ = true;
@@ -331,6 +353,7 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
     std::snprintf(text, sizeof text, "\n%d x %d, %zu triangles, %s\n", pixel_width, pixel_height,
                   scene_.triangleCount(), backend_.name());
     lines += text + frames_.describeProjection() + "\n" + sampling().describe();
+    if (player_.hasClip()) lines += "\n" + player_.describe();
     if (hooks_.commit_path) {
       if (const std::string path = hooks_.commit_path(backend_, false); !path.empty())
         lines += "\n" + path;
@@ -361,6 +384,7 @@ void Viewer::drawOverlay(int pixel_width, int pixel_height) {
   const SDL_Color white{255, 255, 255, 255};
   stack(status, color);
   stack(crc_message_, crc_color_);
+  stack(notice_, white);
   stack(commit_message_, white);
   stack(diagnostic_picture_.caption, white);
   if (key_list_) drawKeyList(pixel_width, pixel_height);
@@ -471,7 +495,8 @@ void Viewer::drawFrame() {
 
   // The scene is rendered again only when it would look different, or continuously while the
   // stats are shown (they measure it) or the jittered samples change it; an overlay-only update
-  // reuses the last frame.
+  // reuses the last frame. A new pose moves geometry: the temporal history no longer matches.
+  if (player_.update(Clock::now(), scene_)) sampling().reset(), view_changed_ = true;
   if (view_changed_ || stats_ || sampling().wantsAnotherFrame() || frame_.width != pixel_w ||
       frame_.height != pixel_h) {
     view_changed_ = false;
@@ -509,7 +534,7 @@ void Viewer::run(const std::optional<fs::path>& model) {
     scene_.objects.clear();  // only its background, until the model arrives
     startLoad(*model);
   } else {
-    showScene(hooks_.default_scene(), "cube");
+    showScene(withoutGraph(hooks_.default_scene()), "cube");
   }
   const auto frame_interval = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(1.0 / options_.fps));
@@ -518,7 +543,7 @@ void Viewer::run(const std::optional<fs::path>& model) {
   const auto loading_interval =
       std::max<Clock::duration>(frame_interval, std::chrono::milliseconds(100));
   auto nextDraw = [&](Clock::time_point last_draw) {
-    const bool moving = dirty_ || stats_ || sampling().wantsAnotherFrame();
+    const bool moving = dirty_ || stats_ || sampling().wantsAnotherFrame() || player_.playing();
     return last_draw + (moving ? frame_interval : loading_interval);
   };
   Clock::time_point last_draw = Clock::now() - loading_interval;

@@ -21,6 +21,7 @@ enum class Key {
   kEnter,
   kEscape,
   kH,
+  kSpace,
   kF1,
   kF2,
   kF3,
@@ -64,6 +65,7 @@ struct Action {
     kToggleJitter,       // sub-pixel jitter, a new offset each frame
     kToggleTemporal,     // temporal reprojection of the jittered frames
     kToggleKeyList,      // the in-window list of keys
+    kTogglePlayback,     // play or pause the model's animation
     kQuit,
   };
   Type type = Type::kOrbit;

@@ -2,6 +2,8 @@
 // driven by drags and wheel steps. Knows nothing of windows or SDL.
 #pragma once
 
+#include <optional>
+
 #include <tessera/render/projection.h>
 #include <tessera/scene/mesh.h>
 #include <tessera/scene/scene.h>
@@ -16,6 +18,12 @@ class OrbitCamera {
   // Frames `bounds` (the whole model fits the narrower field of view) from `direction`, which
   // points from the model towards the camera, and makes this the view that reset() returns to.
   void frame(const Bounds& bounds, float3 direction, float fov_y_degrees, float aspect);
+  // Starts from `camera` (a camera of the file, or an orthographic framing: --camera-index,
+  // --camera-orthographic) and makes it the view that reset() returns to. Until the camera moves,
+  // camera() is exactly this one (in perspective mode); moving turns it about the point on its
+  // view axis nearest the bounds' centre, keeping its field of view or, orthographic, its height
+  // at that distance.
+  void frameCamera(const Camera& camera, const Bounds& bounds);
 
   // Turns about the target by fractions of the viewport height: a drag across the whole height
   // turns 180 degrees. The model follows the pointer: dragging right turns it to the right,
@@ -62,6 +70,9 @@ class OrbitCamera {
 
   Pose pose_;
   Pose home_;
+  // frameCamera()'s camera, and whether the pose is still its own (no move since it or reset()).
+  std::optional<Camera> start_camera_;
+  bool at_start_camera_ = false;
   float fov_y_degrees_ = 50.0f;
   Projection projection_ = Projection::kPerspective;
   float view_angle_degrees_ = 50.0f;  // the nonlinear mode's

@@ -6,16 +6,35 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <tessera/base/expected.h>
+#include <tessera/scene/graph.h>
 #include <tessera/scene/scene.h>
 
 namespace tessera::viewer {
 
+// What a load gives the viewer: the scene, and the scene graph it was made from, whose clips the
+// space bar plays and whose cameras --camera-index picks (an empty graph for a scene without one).
+struct LoadedScene {
+  Scene scene;
+  SceneGraph graph;
+  int clip = -1;  // the clip to play (into graph.animations), -1 none: prepareClip()
+  Bounds bounds;  // what the camera frames: the scene's, and every pose of the clip
+};
+
+// A scene that comes without a graph (nothing to play, no cameras), framed by its own bounds.
+inline LoadedScene withoutGraph(Scene scene) {
+  LoadedScene loaded;
+  loaded.scene = std::move(scene);
+  loaded.bounds = loaded.scene.bounds();
+  return loaded;
+}
+
 class SceneLoader {
  public:
-  using LoadFunction = std::function<Expected<Scene>()>;
+  using LoadFunction = std::function<Expected<LoadedScene>()>;
 
   SceneLoader();
   // Waits for every thread still running (a load cannot be cancelled half-way).
@@ -33,7 +52,7 @@ class SceneLoader {
   const std::string& name() const { return name_; }
   // The latest load's result, once, when it has finished; nullopt while it runs (or after the
   // result was taken). Also joins the threads of superseded loads that have ended.
-  std::optional<Expected<Scene>> takeResult();
+  std::optional<Expected<LoadedScene>> takeResult();
 
  private:
   struct Job;

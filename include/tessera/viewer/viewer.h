@@ -12,6 +12,7 @@
 #include <tessera/render/backend.h>
 #include <tessera/render/projection.h>
 #include <tessera/scene/scene.h>
+#include <tessera/viewer/scene_loader.h>
 
 namespace tessera::viewer {
 
@@ -34,11 +35,15 @@ struct ViewerOptions {
 };
 
 struct ViewerHooks {
-  // Makes the scene of a model file (given at start or dropped on the window). Runs on a
-  // background thread: it must not touch anything the caller keeps.
-  std::function<Expected<Scene>(const std::filesystem::path&)> load_file;
+  // Makes the scene of a model file (given at start or dropped on the window), with its graph and
+  // the clip the space bar plays (prepareClip). Runs on a background thread: it must not touch
+  // anything the caller keeps.
+  std::function<Expected<LoadedScene>(const std::filesystem::path&)> load_file;
   // The scene shown without a model, or when the model given at start fails to load.
   std::function<Scene()> default_scene;
+  // The camera a loaded scene starts from (and Enter returns to) for a window of `aspect`: a
+  // camera of its graph or an orthographic one; nullopt (or unset): the orbit camera frames it.
+  std::function<std::optional<Camera>(const LoadedScene&, float aspect)> start_camera;
   // Places the lights for the scene's current camera (called whenever the camera moves).
   std::function<void(Scene&)> place_lights;
   // Shift+F2: with `toggle`, switches the backend's 32-bit visibility commit path; returns the
