@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
 #include <tessera/math/math.h>
 
 using namespace tessera;
@@ -28,6 +32,31 @@ TEST(Math, MatrixProductComposesRightToLeft) {
   // Scale then translate: T * S applied to (1, 0, 0) is (2, 0, 0) + (0, 5, 0).
   float4x4 m = translation({0, 5, 0}) * scaling({2, 2, 2});
   expectNear((m * float4{1, 0, 0, 1}).xyz(), {2, 5, 0});
+}
+
+// The 4x4 product runs four lanes at a time; it must give the bits of the column formula (the
+// image's hash depends on them), here over matrices with no zero, huge and tiny entries.
+TEST(Math, MatrixProductHasTheBitsOfTheColumnFormula) {
+  float4x4 a, b;
+  uint32_t seed = 12345;
+  auto next = [&] {
+    seed = seed * 1664525u + 1013904223u;
+    const float unit = static_cast<float>(seed >> 8) / 16777216.0f - 0.5f;
+    return unit * std::ldexp(1.0f, static_cast<int>(seed % 40) - 20);
+  };
+  for (int round = 0; round < 50; ++round) {
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) a(r, c) = next(), b(r, c) = next();
+    const float4x4 product = a * b;
+    for (int c = 0; c < 4; ++c) {
+      const float4 v = b.col[c];
+      for (int r = 0; r < 4; ++r) {
+        const float expected = a(r, 0) * v.x + a(r, 1) * v.y + a(r, 2) * v.z + a(r, 3) * v.w;
+        EXPECT_EQ(std::bit_cast<uint32_t>(product(r, c)), std::bit_cast<uint32_t>(expected))
+            << "row " << r << ", column " << c;
+      }
+    }
+  }
 }
 
 TEST(Math, InverseUndoesAGeneralTransform) {

@@ -194,3 +194,27 @@ TEST(Texture, MipChainAveragesInLinearLight) {
   EXPECT_NEAR(mid.x, 0.5f * (a.x + b.x), 1e-6f);
   EXPECT_TRUE(std::isfinite(t.sampleLod({0.1f, 0.2f}, std::nanf(""), trilinear).x));
 }
+
+// An instance's T * R * S is built in closed form; it must hold the bits of the three 4x4
+// products it replaced, for any rotation and scale (mirrors included).
+TEST(Transform, TrsHasTheBitsOfTheThreeProducts) {
+  const float3 scales[] = {{1, 1, 1}, {2, 0.5f, 3}, {-1, 1, 1}, {0.001f, 1000, -7}};
+  const float3 angles[] = {{0, 0, 0}, {0.3f, -1.1f, 2}, {3.1f, 0.2f, -0.7f}};
+  for (const float3& scale : scales)
+    for (const float3& angle : angles) {
+      Transform t;
+      t.translation = {1.5f, -2.25f, 1e4f};
+      t.rotation = fromEuler(angle);
+      t.scale = scale;
+      const float4x4 products = translation(t.translation) * toMatrix4(t.rotation) * scaling(scale);
+      const float4x4 closed = t.trs();
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+          EXPECT_EQ(closed(r, c) + 0.0f, products(r, c) + 0.0f)  // +0: -0 and 0 alike
+              << "row " << r << ", column " << c;
+      EXPECT_TRUE(t.sameTrs(t));
+      Transform moved = t;
+      moved.rotation.w += 1e-3f;
+      EXPECT_FALSE(t.sameTrs(moved));
+    }
+}

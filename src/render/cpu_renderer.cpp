@@ -440,11 +440,19 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   // frustum culling keeps, and vertex bases for the objects that draw.
   s.objects.resize(scene.objects.size());
   size_t triangle_total = 0;
+  // A scene graph's instances share one T * R * S (identity, or a turntable's): computed once
+  // for each run of objects that share it.
+  float4x4 trs;
+  const Transform* trs_of = nullptr;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const Object& object = scene.objects[i];
     TESSERA_CHECK(!object.materials.empty()) << "object " << i << " has no material";
+    if (!trs_of || !trs_of->sameTrs(object.transform)) {
+      trs = object.transform.trs();
+      trs_of = &object.transform;
+    }
     // What culling reads; the rest of makeObjectTransforms' constants only for what draws.
-    s.objects[i].model = object.transform.matrix();
+    s.objects[i].model = object.transform.withBase(trs);
     s.objects[i].model_view_projection = view_projection * s.objects[i].model;
     s.objects[i].triangle_base = triangle_total;
     if (object.mesh) triangle_total += object.mesh->triangleCount();

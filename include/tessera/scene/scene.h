@@ -30,11 +30,28 @@ struct Transform {
   // TRS above then moves as a whole (a turntable). Unset: the identity.
   std::optional<float4x4> base;
 
-  // T * R * S * base
-  float4x4 matrix() const {
-    const float4x4 trs = tessera::translation(translation) * toMatrix4(rotation) * scaling(scale);
-    return base ? trs * *base : trs;
+  // T * R * S, in closed form: the rotation's columns scaled, the translation beside them (the
+  // same bits as the three 4x4 products, which add and multiply by nothing but 0 and 1).
+  float4x4 trs() const {
+    const float3x3 r = toMatrix3(rotation);
+    float4x4 m;
+    m.col[0] = float4{r.col[0] * scale.x, 0.0f};
+    m.col[1] = float4{r.col[1] * scale.y, 0.0f};
+    m.col[2] = float4{r.col[2] * scale.z, 0.0f};
+    m.col[3] = float4{translation, 1.0f};
+    return m;
   }
+  // The same T, R and S as `other` (a turntable turns every instance alike).
+  bool sameTrs(const Transform& other) const {
+    return translation == other.translation && rotation.x == other.rotation.x &&
+           rotation.y == other.rotation.y && rotation.z == other.rotation.z &&
+           rotation.w == other.rotation.w && scale == other.scale;
+  }
+
+  // T * R * S * base
+  float4x4 matrix() const { return withBase(trs()); }
+  // `trs` (this transform's trs()) times base.
+  float4x4 withBase(const float4x4& trs) const { return base ? trs * *base : trs; }
 };
 
 struct MeshClusters;  // clusters.h
