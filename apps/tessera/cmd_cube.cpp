@@ -14,6 +14,7 @@
 #include "backends.h"
 #include "commands.h"
 #include "flags.h"
+#include "progress.h"
 #include "sampling_flags.h"
 #include "validation.h"
 
@@ -35,6 +36,7 @@ struct CubeSettings {
   bool axes = false;
   bool crc = false;
   SamplingSettings sampling;
+  ProgressFlags progress;
 };
 
 Scene makeCubeScene(const CubeSettings& settings) {
@@ -93,6 +95,7 @@ int runCube(const std::vector<std::string>& args) {
   flags.addSwitch("crc", &s.crc,
                   "print the CRC-32 of each frame's RGBA8 colour pixels: crc32 frame N HEX");
   addSamplingFlags(flags, s.sampling);  // the demo keeps its look: one sample unless asked
+  addProgressFlags(flags, s.progress);
 
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {
@@ -155,7 +158,7 @@ int runCube(const std::vector<std::string>& args) {
   options.projection = projection;
   Accumulator accumulator;
   Frame frame;
-  Progress progress("cube: frame", static_cast<int>(frame_count));
+  Progress progress("cube: frame", static_cast<int>(frame_count), s.progress);
   for (long long i = 0; i < frame_count; ++i) {
     // One full turn about the vertical axis over the whole animation, on a tilted cube.
     const float angle = 2.0f * kPi * static_cast<float>(i) / static_cast<float>(frame_count);
@@ -179,8 +182,10 @@ int runCube(const std::vector<std::string>& args) {
     return kExitFailure;
   }
   progress.finish();
-  std::cout << "wrote " << s.output << " (" << frame_count
-            << (frame_count == 1 ? " frame, " : " frames, ") << s.width << "x" << s.height << ")\n";
+  if (!s.progress.quiet)
+    std::cout << "wrote " << s.output << " (" << frame_count
+              << (frame_count == 1 ? " frame, " : " frames, ") << s.width << "x" << s.height
+              << ")\n";
   return kExitOk;
 }
 

@@ -24,6 +24,7 @@
 #include "diagnostics_output.h"
 #include "flags.h"
 #include "light_flags.h"
+#include "progress.h"
 #include "sampling_flags.h"
 #include "validation.h"
 #include "view_setup.h"
@@ -61,7 +62,8 @@ struct RenderSettings {
   bool edges = false;
   float3 edge_color{0, 0, 0};  // sRGB
   float line_width = 1.0f;
-  LightSettings lights;  // --light, --ambient
+  LightSettings lights;    // --light, --ambient
+  ProgressFlags progress;  // --quiet, --progress
 };
 
 enum class OutputKind { kPng, kVideo, kSequence };  // kVideo: .gif or .mp4
@@ -155,6 +157,7 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
                   "print the CRC-32 of each frame's RGBA8 colour pixels: crc32 frame N HEX");
   addReferenceFlags(flags, s.reference);
   addBudgetFlags(flags, s.budget);
+  addProgressFlags(flags, s.progress);
 }
 
 // What the output path asks for, and the flags that cannot go with it: "" or a usage error.
@@ -369,7 +372,7 @@ int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const B
   }
   const float3 center = bounds.center();
   const float3 up = s.camera.upAxis();
-  Progress progress("render: frame", frame_count);
+  Progress progress("render: frame", frame_count, s.progress);
   for (int i = 0; i < frame_count; ++i) {
     if (clip) {
       poseAnimation(*clip, frameTime(*clip, s.fps, plan.first + i), graph, scene);
@@ -402,7 +405,7 @@ int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const B
       return kExitFailure;
     }
     if (s.crc) printFrameCrc(i, frame);
-    if (frame_count > 1) progress.update(i + 1);
+    progress.update(i + 1);
   }
   if (sink) {
     if (Expected<void> done = sink->finish(); !done) {
@@ -410,7 +413,7 @@ int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const B
       return kExitFailure;
     }
   }
-  if (frame_count > 1) progress.finish();
+  progress.finish();
   if (stats_file) {
     const std::string json = statsFileJson(stats_frames);
     Expected<void> done = stats_file->write(json.data(), json.size());
@@ -420,10 +423,12 @@ int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const B
       return kExitFailure;
     }
   }
-  std::cout << "wrote " << s.output << " (" << s.width << "x" << s.height << ", "
-            << scene.triangleCount() << " triangles";
-  if (frame_count > 1) std::cout << ", " << frame_count << " frames";
-  std::cout << ")\n";
+  if (!s.progress.quiet) {
+    std::cout << "wrote " << s.output << " (" << s.width << "x" << s.height << ", "
+              << scene.triangleCount() << " triangles";
+    if (frame_count > 1) std::cout << ", " << frame_count << " frames";
+    std::cout << ")\n";
+  }
   if (!s.reference.path.empty()) return checkReference(s.reference, s.output, frame);
   return kExitOk;
 }

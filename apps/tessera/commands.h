@@ -35,17 +35,4 @@ int runDevices(const std::vector<std::string>& args);
 // Prints "tessera <command>: error: <message>" to stderr.
 void printError(const std::string& command, const std::string& message);
 
-// A one-line progress counter on stderr, shown only when stderr is a terminal.
-class Progress {
- public:
-  Progress(std::string label, int total);
-  void update(int done);
-  void finish();
-
- private:
-  std::string label_;
-  int total_;
-  bool enabled_;
-};
-
 }  // namespace tessera::cli

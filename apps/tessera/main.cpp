@@ -4,8 +4,6 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include "commands.h"
 #include "flags.h"
 
@@ -13,20 +11,6 @@ namespace tessera::cli {
 
 void printError(const std::string& command, const std::string& message) {
   std::cerr << "tessera " << command << ": error: " << message << std::endl;
-}
-
-Progress::Progress(std::string label, int total)
-    : label_(std::move(label)), total_(total), enabled_(isatty(STDERR_FILENO) == 1) {}
-
-void Progress::update(int done) {
-  if (!enabled_) return;
-  std::fprintf(stderr, "\r%s %d/%d", label_.c_str(), done, total_);
-  std::fflush(stderr);
-}
-
-void Progress::finish() {
-  if (!enabled_) return;
-  std::fprintf(stderr, "\r%s %d/%d done\n", label_.c_str(), total_, total_);
 }
 
 }  // namespace tessera::cli
