@@ -88,4 +88,74 @@ TEST_F(CliOutput, OneFrameShowsProgressOnlyWhenAsked) {
   EXPECT_EQ(m[3].str(), "1");
 }
 
+// --duration SECONDS beside --turntable N: frames = round(duration x fps).
+TEST_F(CliOutput, DurationSetsTheTurntablesFrames) {
+  RunResult r = run("render quad.obj --resolution 16,16 --duration 0.5 --fps 8 -o d_{frame}.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "d_0003.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "d_0004.png"));
+  // 0.55 s at 10 fps is 5.5 frames: rounded to 6 (half away from zero).
+  r = run("render quad.obj --resolution 16,16 --duration=550ms --fps 10 -o e_{frame}.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "e_0005.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "e_0006.png"));
+  // Both, agreeing: fine.
+  r =
+      run("render quad.obj --resolution 16,16 --duration 1s --turntable 10 --fps 10 "
+          "-o f_{frame}.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "f_0009.png"));
+}
+
+TEST_F(CliOutput, DurationThatDisagreesOrGivesNoFrameIsAUsageError) {
+  const std::set<std::string> before = filesInDir();
+  RunResult r =
+      run("render quad.obj --resolution 16,16 --duration 1 --turntable 12 --fps 10 -o g.gif");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--duration 1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("10 frames"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--turntable 12"), std::string::npos) << r.err;
+  r = run("render quad.obj --duration 0.01 --fps 10 -o g.gif");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no frame"), std::string::npos) << r.err;
+  r = run("render quad.obj --duration -2 -o g.gif");
+  EXPECT_EQ(r.exit_code, 2);
+  r = run("render quad.obj --duration 2 -o g.png");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(".gif"), std::string::npos) << r.err;
+  EXPECT_EQ(filesInDir(), before);
+}
+
+// yuv420p needs even sides: an odd size is refused with the nearest even ones, before anything
+// is written (ffmpeg is not needed to see it), never padded silently.
+TEST_F(CliOutput, Mp4AtAnOddSizeIsRefusedWithTheNearestEvenSizes) {
+  const std::set<std::string> before = filesInDir();
+  RunResult r = run("render quad.obj --resolution 33x24 --turntable 2 -o odd.mp4");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("even"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("32x24 or 34x24"), std::string::npos) << r.err;
+  r = run("render quad.obj --resolution 32x25 --turntable 2 -o odd.mp4");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("32x24 or 32x26"), std::string::npos) << r.err;
+  r = run("cube -w 33 -h 33 -fps 2 -dur 1 -out odd.mp4");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("32x32 or 34x34"), std::string::npos) << r.err;
+  EXPECT_EQ(filesInDir(), before);
+  // A GIF or PNG sequence at the same odd size is fine: only the MP4 encoder needs even sides.
+  r = run("render quad.obj --resolution 33x24 --turntable 2 -o odd.gif");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST_F(CliOutput, Mp4AtAnEvenSizeIsExactlyThatSize) {
+  if (std::system("command -v ffprobe > /dev/null") != 0)
+    GTEST_SKIP() << "ffmpeg is not installed (scripts/setup.sh installs it)";
+  RunResult r = run("render quad.obj --resolution 34x24 --turntable 2 -o even.mp4");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string probe = "ffprobe -v error -show_entries stream=width,height -of csv=p=0 '" +
+                            (dir_ / "even.mp4").string() + "' > '" + (dir_ / "probe.txt").string() +
+                            "'";
+  ASSERT_EQ(std::system(probe.c_str()), 0);
+  EXPECT_EQ(tessera::test::slurp(dir_ / "probe.txt"), "34,24\n");
+}
+
 }  // namespace

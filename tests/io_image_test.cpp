@@ -20,8 +20,8 @@
 #include <limits>
 #include <memory>
 #include <optional>
-#include <string>
 #include <set>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -955,10 +955,10 @@ TEST(IoMp4Sink, FfmpegWritesTheFramesAndTheFileAppearsOnFinish) {
       std::filesystem::temp_directory_path() / ("tessera_mp4_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::filesystem::path path = dir / "clip.mp4";
-  tessera::io::AnimationSettings settings{33, 24, 10, true};  // odd width: padded to even
+  tessera::io::AnimationSettings settings{34, 24, 10, true};
   auto sink = tessera::io::openFrameSink(path.string(), settings);
   ASSERT_TRUE(sink.ok()) << sink.error().message;
-  std::vector<uint32_t> pixels(33 * 24);
+  std::vector<uint32_t> pixels(34 * 24);
   for (int frame = 0; frame < 7; ++frame) {
     std::fill(pixels.begin(), pixels.end(), 0xff000000u | (frame * 30u));
     ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
@@ -976,6 +976,23 @@ TEST(IoMp4Sink, FfmpegWritesTheFramesAndTheFileAppearsOnFinish) {
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) files += entry.exists();
   EXPECT_EQ(files, 1);
+  std::filesystem::remove_all(dir);
+}
+
+// yuv420p needs even sides: an odd size is refused up front (ffmpeg or not), never padded to a
+// file a pixel larger than asked.
+TEST(IoMp4Sink, OddSizesAreRefusedWithTheNearestEvenOnes) {
+  EXPECT_EQ(tessera::io::mp4SizeProblem(34, 24), "");
+  EXPECT_NE(tessera::io::mp4SizeProblem(33, 24).find("32x24 or 34x24"), std::string::npos);
+  EXPECT_NE(tessera::io::mp4SizeProblem(1, 1).find("use 2x2 ("), std::string::npos);
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("tessera_mp4_odd_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  auto sink = tessera::io::openFrameSink((dir / "odd.mp4").string(), {33, 24, 10, true});
+  ASSERT_FALSE(sink.ok());
+  EXPECT_NE(sink.error().message.find("odd.mp4"), std::string::npos) << sink.error().message;
+  EXPECT_NE(sink.error().message.find("even"), std::string::npos) << sink.error().message;
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
   std::filesystem::remove_all(dir);
 }
 

@@ -130,6 +130,12 @@ int runCube(const std::vector<std::string>& args) {
   std::string extension = std::filesystem::path(s.output).extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (!sequence && extension == ".png") frame_count = 1;
+  if (!sequence && extension == ".mp4")
+    if (std::string odd = io::mp4SizeProblem(s.width, s.height); !odd.empty()) {
+      printError("cube", odd);
+      std::cerr << flags.hint();
+      return kExitUsage;
+    }
   io::AnimationSettings animation{s.width, s.height, s.fps, true};
   const std::filesystem::path first_output =
       sequence ? io::formatFramePath(s.output, 0) : std::filesystem::path(s.output);

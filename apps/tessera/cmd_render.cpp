@@ -7,6 +7,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 
 #include <tessera/io/atomic_file.h>
 #include <tessera/io/frame_sink.h>
@@ -45,6 +46,7 @@ struct RenderSettings {
   std::string aov = "color";
   std::string backend = "cpu";
   int turntable = 0;
+  float duration = 0.0f;  // --duration SECONDS: the turntable's length, 0 when not given
   int fps = 30;
   int animation_index = -1;  // --animation-index: the glTF clip to play, -1 none
   std::string frame_range;   // --frame-range A:B, frames of the clip at --fps
@@ -141,6 +143,8 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   addVisibilityFlags(flags, s);
   addLightFlags(flags, s.lights);
   flags.addInt("turntable", &s.turntable, "frames of one full turn about the up axis", 1, 100000);
+  flags.addSeconds("duration", &s.duration,
+                   "seconds of one full turn (4s, 2.5, 500ms): round(duration x fps) frames");
   flags.addInt("fps", &s.fps, "frames per second of a turntable or animation (default 30)", 1, 100);
   flags.addInt("animation-index", &s.animation_index,
                "play the model's animation N (glTF, from 0) at --fps over its length", 0, 1000000);
@@ -158,6 +162,26 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   addReferenceFlags(flags, s.reference);
   addBudgetFlags(flags, s.budget);
   addProgressFlags(flags, s.progress);
+}
+
+// --duration as --turntable's frame count (round(duration x fps)): "" or a usage error when it
+// gives no frame, too many, or disagrees with a --turntable given beside it.
+std::string resolveDuration(RenderSettings& s) {
+  if (s.duration <= 0.0f) return "";
+  if (s.animation_index >= 0)
+    return "--duration sets a turntable's length; an animation plays for its own length "
+           "(--frame-range picks part of it)";
+  const double frames = std::round(static_cast<double>(s.duration) * s.fps);
+  std::ostringstream given;
+  given << "--duration " << s.duration << " at --fps " << s.fps << " is "
+        << static_cast<long long>(frames) << (frames == 1 ? " frame" : " frames");
+  if (frames < 1) return given.str() + ": no frame to render";
+  if (frames > 100000) return given.str() + ", more than 100000";
+  if (s.turntable > 0 && s.turntable != static_cast<int>(frames))
+    return given.str() + ", not --turntable " + std::to_string(s.turntable) +
+           ": give one of them, or both agreeing";
+  s.turntable = static_cast<int>(frames);
+  return "";
 }
 
 // What the output path asks for, and the flags that cannot go with it: "" or a usage error.
@@ -179,6 +203,8 @@ std::string checkOutput(const RenderSettings& s, OutputKind& kind) {
     return "--animation-index and --turntable do not go together";
   if (!s.frame_range.empty() && s.animation_index < 0)
     return "--frame-range picks frames of an animation: add --animation-index N";
+  if (endsWithIgnoringCase(s.output, ".mp4"))
+    if (std::string odd = io::mp4SizeProblem(s.width, s.height); !odd.empty()) return odd;
   if (kind == OutputKind::kVideo && s.aov != "color")
     return "--aov " + s.aov + " needs PNG output (a .png or a {frame} template)";
   if ((s.crc || !s.reference.path.empty()) && s.aov != "color")
@@ -455,6 +481,7 @@ int runRender(const std::vector<std::string>& args) {
   const std::filesystem::path model_path = positional->front();
   if (s.output.empty()) s.output = model_path.stem().string() + ".png";
 
+  if (std::string wrong = resolveDuration(s); !wrong.empty()) return usageError(wrong);
   OutputKind kind = OutputKind::kPng;
   if (std::string wrong = checkOutput(s, kind); !wrong.empty()) return usageError(wrong);
   const bool diagnostics = isDiagnosticAov(s.aov) || !s.stats.empty();

@@ -80,33 +80,13 @@ class Mp4Sink : public FrameSink {
     const std::string size =
         std::to_string(settings_.width) + "x" + std::to_string(settings_.height);
     const std::string rate = std::to_string(settings_.fps);
-    // yuv420p needs even sizes: pad odd ones by a pixel.
-    std::vector<std::string> args = {"ffmpeg",
-                                     "-nostdin",
-                                     "-y",
-                                     "-loglevel",
-                                     "error",
-                                     "-f",
-                                     "rawvideo",
-                                     "-pix_fmt",
-                                     "rgba",
-                                     "-s",
-                                     size,
-                                     "-r",
-                                     rate,
-                                     "-i",
-                                     "-",
-                                     "-vf",
-                                     "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                     "-c:v",
-                                     "libx264",
-                                     "-pix_fmt",
-                                     "yuv420p",
-                                     "-movflags",
-                                     "+faststart",
-                                     "-f",
-                                     "mp4",
-                                     temporary_.string()};
+    // yuv420p needs even sizes: openMp4Sink refuses odd ones (mp4SizeProblem), so the file is
+    // the size asked for, never a pixel larger.
+    std::vector<std::string> args = {
+        "ffmpeg",   "-nostdin",  "-y",         "-loglevel", "error",   "-f",
+        "rawvideo", "-pix_fmt",  "rgba",       "-s",        size,      "-r",
+        rate,       "-i",        "-",          "-c:v",      "libx264", "-pix_fmt",
+        "yuv420p",  "-movflags", "+faststart", "-f",        "mp4",     temporary_.string()};
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
@@ -168,9 +148,23 @@ class Mp4Sink : public FrameSink {
 
 }  // namespace
 
+std::string mp4SizeProblem(int width, int height) {
+  if (width % 2 == 0 && height % 2 == 0) return "";
+  auto size = [](int w, int h) { return std::to_string(w) + "x" + std::to_string(h); };
+  // 1 pixel has no smaller even size: suggest the larger one alone.
+  const bool can_shrink = width > 1 && height > 1;
+  return "an MP4 (H.264, yuv420p) needs an even width and height, not " + size(width, height) +
+         ": use " +
+         (can_shrink ? size(width - width % 2, height - height % 2) + " or " : std::string()) +
+         size(width + width % 2, height + height % 2) +
+         " (the nearest even sizes), or write a .gif or a {frame} PNG sequence";
+}
+
 Expected<std::unique_ptr<FrameSink>> openMp4Sink(const std::filesystem::path& path,
                                                  const AnimationSettings& settings) {
   if (auto valid = validateAnimationSettings(settings); !valid) return valid.error();
+  if (std::string odd = mp4SizeProblem(settings.width, settings.height); !odd.empty())
+    return makeError("cannot write '" + path.string() + "': " + odd);
   const std::filesystem::path ffmpeg = findOnPath("ffmpeg");
   if (ffmpeg.empty())
     return makeError("cannot write '" + path.string() +

@@ -42,10 +42,14 @@ Expected<std::unique_ptr<FrameSink>> openGifSink(const std::filesystem::path& pa
 Expected<std::unique_ptr<FrameSink>> openPngSequenceSink(const std::string& path_template,
                                                          const AnimationSettings& settings);
 // An MP4 (H.264) made by the `ffmpeg` program, found on PATH, with the frames piped to it; an
-// error naming the missing program when there is none. Ignores SIGPIPE for the process, so that
-// an ffmpeg that dies shows up as a write error.
+// error naming the missing program when there is none, and for an odd width or height
+// (mp4SizeProblem: the file is never silently a pixel larger than asked). Ignores SIGPIPE for the
+// process, so that an ffmpeg that dies shows up as a write error.
 Expected<std::unique_ptr<FrameSink>> openMp4Sink(const std::filesystem::path& path,
                                                  const AnimationSettings& settings);
+// "" when an MP4 can be made at width x height; else why not (yuv420p halves both sides for
+// colour, so both must be even) with the nearest even sizes to use instead.
+std::string mp4SizeProblem(int width, int height);
 // Picks by the path: a "{frame}" template ending in .png -> PNG sequence, ".gif" -> GIF, ".mp4"
 // -> MP4 through ffmpeg, ".png" -> a single PNG (a second frame is an error). Extensions are
 // case-insensitive. Anything else is an error naming the supported forms. Every opener validates
