@@ -40,6 +40,7 @@ struct RenderSettings {
   std::string output;
   int width = 1000, height = 600;
   float3 background{0.2f, 0.2f, 0.2f};
+  std::optional<float3> color;  // --color: the default material's, sRGB
   CameraSettings camera;
   std::string shading = "smooth";
   std::string backface;  // empty: the model says (glTF doubleSided), else visible
@@ -122,8 +123,18 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
                   "(default MODEL's name with .png, in the current folder)");
   flags.addCustom("resolution", "W,H", "image size in pixels, W,H or WxH (default 1000,600)",
                   [&](const std::string& v) { return parseSize(v, s.width, s.height); });
-  flags.addCustom("background-color", "R,G,B", "background, sRGB 0..1 (default 0.2,0.2,0.2)",
+  flags.addCustom("background-color|bg-color", "R,G,B",
+                  "background, sRGB 0..1 (default 0.2,0.2,0.2)",
                   [&](const std::string& v) { return parseSrgbColor(v, s.background); });
+  flags.addCustom("color", "R,G,B",
+                  "base colour, sRGB 0..1, of faces the file gives no material (default 0.8 grey; "
+                  "f3d's --color)",
+                  [&](const std::string& v) {
+                    float3 c;
+                    std::string problem = parseSrgbColor(v, c);
+                    if (problem.empty()) s.color = c;
+                    return problem;
+                  });
   addCameraFlags(flags, s.camera);
   flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit"},
                   "flat, smooth (per-pixel), gouraud (per-vertex) or unlit (default smooth)");
@@ -153,7 +164,7 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
-  flags.addSwitch("axes", &s.axes, "draw the world axes");
+  flags.addSwitch("axes|axis|x", &s.axes, "draw the world axes (f3d's -x, --axis)");
   flags.addString("texture", &s.texture,
                   "an albedo texture (PNG, JPEG, BMP, TGA) for every material");
   flags.addSwitch("info", &s.info, "print the model's counts, bounds and warnings; do not render");
@@ -251,6 +262,10 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
   for (const std::string& warning : model->warnings)
     std::cerr << "tessera render: warning: " << warning << "\n";
   ModelSceneSettings scene_settings;
+  scene_settings.default_color_srgb = s.color;
+  if (s.color && !hasDefaultMaterial(*model))
+    std::cerr << "tessera render: warning: --color has no effect: every face of "
+              << model_path.string() << " has a material of the file\n";
   if (!s.texture.empty()) {
     Expected<Texture> texture = io::loadTexture(s.texture, /*srgb=*/true, s.budget.texturePixels());
     if (!texture) {

@@ -3,6 +3,7 @@
 // addCameraFlags depends on the core alone, so the micro-benchmarks build it too.
 #pragma once
 
+#include <iterator>
 #include <string>
 
 #include <tessera/base/expected.h>
@@ -34,7 +35,14 @@ inline void addCameraFlags(FlagSet& flags, CameraSettings& c) {
                   "orthographic projection for the framing (or flag-given) camera");
   flags.addInt("camera-index", &c.camera_index,
                "draw from the file's camera N (glTF cameras, from 0)", 0, 1 << 30);
-  flags.addChoice("up", &c.up, {"+Y", "+Z"}, "the model's up axis (default +Y)");
+  flags.addChoice("up", &c.up, {std::begin(kUpAxes), std::end(kUpAxes)},
+                  "the model's up axis, a signed world axis (default +Y)");
+  flags.addFloat("camera-azimuth-angle", &c.azimuth,
+                 "after placing the camera, turn it about the focal point around view up by "
+                 "DEG (positive: to the camera's right; f3d's)",
+                 -360.0f, 360.0f);
+  flags.addFloat("camera-elevation-angle", &c.elevation,
+                 "then turn it towards view up by DEG (positive: upwards; f3d's)", -360.0f, 360.0f);
   std::vector<std::string> modes;
   for (Projection p : kProjections) modes.push_back(projectionName(p));
   flags.addChoice("projection", &c.projection, modes,

@@ -6,6 +6,14 @@
 
 namespace tessera::model {
 
+float3 CameraSettings::upAxis() const {
+  const float sign = !up.empty() && up[0] == '-' ? -1.0f : 1.0f;
+  const char axis = up.empty() ? 'Y' : up.back();
+  if (axis == 'X' || axis == 'x') return {sign, 0, 0};
+  if (axis == 'Z' || axis == 'z') return {0, 0, sign};
+  return {0, sign, 0};
+}
+
 Expected<float> viewAngle(const CameraSettings& settings, float aspect) {
   const Projection mode = settings.projectionMode();
   const float angle =
@@ -60,6 +68,20 @@ void makeOrthographic(Camera& camera, const Bounds& bounds) {
   camera.near_z = std::max(0.0f, camera.near_z);
 }
 
+// f3d's (VTK's) Azimuth then Elevation: the position turns about the focal point, first by a
+// right-handed turn about the view up, then about the camera's left axis (-right), which raises
+// the camera towards view up for a positive angle. The view up is kept, as VTK keeps it.
+void turnCamera(Camera& camera, float azimuth_degrees, float elevation_degrees) {
+  if (azimuth_degrees == 0.0f && elevation_degrees == 0.0f) return;
+  const float3 up = normalize(camera.up);
+  float3 offset = camera.position - camera.target;
+  offset = rotate(quat::fromAxisAngle(up, radians(azimuth_degrees)), offset);
+  const float3 right = cross(-offset, up);  // forward x up
+  if (length(right) > 0.0f)
+    offset = rotate(quat::fromAxisAngle(-normalize(right), radians(elevation_degrees)), offset);
+  camera.position = camera.target + offset;
+}
+
 }  // namespace
 
 Expected<Camera> makeCamera(const CameraSettings& settings, const Bounds& bounds, float aspect,
@@ -86,6 +108,8 @@ Expected<Camera> makeCamera(const CameraSettings& settings, const Bounds& bounds
                               perspective ? *angle : std::min(*angle, 90.0f), aspect);
   camera.fov_y_degrees = *angle;
   if (!settings.explicitCamera()) {
+    // About the bounds' centre: the framing's near and far (its sphere's) still hold.
+    turnCamera(camera, settings.azimuth, settings.elevation);
     if (settings.orthographic) makeOrthographic(camera, bounds);
     return camera;
   }
@@ -95,6 +119,7 @@ Expected<Camera> makeCamera(const CameraSettings& settings, const Bounds& bounds
   if (length(camera.target - camera.position) == 0.0f)
     return makeError("the camera position and focal point are the same point");
   if (length(camera.up) == 0.0f) return makeError("--camera-view-up must not be zero");
+  turnCamera(camera, settings.azimuth, settings.elevation);
   if (perspective)
     fitNearFar(camera, bounds);
   else

@@ -17,6 +17,45 @@ Shading shadingFromName(const std::string& name) {
   return Shading::kPhong;
 }
 
+bool isDefaultMaterial(const Material& material) {
+  const Material fresh;
+  return !material.albedo && material.base_color.x == fresh.base_color.x &&
+         material.base_color.y == fresh.base_color.y &&
+         material.base_color.z == fresh.base_color.z && material.base_color.w == fresh.base_color.w;
+}
+
+bool hasDefaultMaterial(const io::Model& model) {
+  auto any = [](const MaterialList& list) {
+    return std::any_of(list.begin(), list.end(), isDefaultMaterial);
+  };
+  if (model.graph.nodes.empty())
+    return std::any_of(model.materials.begin(), model.materials.end(), isDefaultMaterial);
+  return std::any_of(model.graph.meshes.begin(), model.graph.meshes.end(),
+                     [&](const GraphMesh& m) { return any(m.materials); });
+}
+
+namespace {
+
+// Applies `change` to each mesh's materials, once per list: meshes that shared one list share
+// the changed copy.
+template <class Change>
+void changeMaterialLists(SceneGraph& graph, Change change) {
+  std::vector<std::pair<MaterialList, MaterialList>> changed;  // before, after
+  for (GraphMesh& mesh : graph.meshes) {
+    auto same = std::find_if(changed.begin(), changed.end(),
+                             [&](const auto& c) { return c.first.sharesWith(mesh.materials); });
+    if (same != changed.end()) {
+      mesh.materials = same->second;
+      continue;
+    }
+    const MaterialList before = mesh.materials;
+    for (Material& material : mesh.materials) change(material);
+    changed.push_back({before, mesh.materials});
+  }
+}
+
+}  // namespace
+
 Expected<Scene> makeModelScene(io::Model model, const std::filesystem::path& path,
                                const ModelSceneSettings& settings, SceneGraph* graph_out) {
   SceneGraph graph = io::takeGraph(std::move(model));
@@ -24,25 +63,22 @@ Expected<Scene> makeModelScene(io::Model model, const std::filesystem::path& pat
     return makeError(path.string() + ": " + ok.error().message);
   if (graph.bounds().empty())
     return makeError(path.string() + ": the model has no finite vertices");
-  // The texture is the albedo: a white base colour lets it show as it is (alpha is kept). Each
-  // list is changed once (meshes that shared one list share the changed copy).
-  if (settings.albedo) {
-    std::vector<std::pair<MaterialList, MaterialList>> changed;  // before, after
-    for (GraphMesh& mesh : graph.meshes) {
-      auto same = std::find_if(changed.begin(), changed.end(), [&](const auto& c) {
-        return c.first.sharesWith(mesh.materials);
-      });
-      if (same != changed.end()) {
-        mesh.materials = same->second;
-        continue;
-      }
-      const MaterialList before = mesh.materials;
-      for (Material& material : mesh.materials) {
+  // --texture is every material's albedo, on a white base colour (alpha kept); --color is the
+  // base colour of the loader's default materials (linear from sRGB), which multiplies the
+  // texture as in f3d.
+  const std::optional<float3> color = settings.default_color_srgb;
+  if (settings.albedo || color) {
+    const float4 linear =
+        color ? float4{srgbToLinear(color->x), srgbToLinear(color->y), srgbToLinear(color->z), 1}
+              : float4{};
+    changeMaterialLists(graph, [&](Material& material) {
+      const bool recolor = color && isDefaultMaterial(material);
+      if (settings.albedo) {
         material.albedo = settings.albedo;
         material.base_color = {1.0f, 1.0f, 1.0f, material.base_color.w};
       }
-      changed.push_back({before, mesh.materials});
-    }
+      if (recolor) material.base_color = linear;
+    });
   }
   graph.prepareMeshes();
   Scene scene;
@@ -179,8 +215,10 @@ std::string fitModelScale(io::Model& model, const std::filesystem::path& path,
 }
 
 float3 threeQuarterDirection(float3 up) {
+  // Z up: the front is -Y (f3d's, CAD's); X or Y up: the front is +Z. Right follows from both,
+  // so +Y and +Z keep +X to the right and the other four axes stay right-handed.
   const float3 toward_viewer = up.z != 0.0f ? float3{0, -1, 0} : float3{0, 0, 1};
-  const float3 right{1, 0, 0};
+  const float3 right = cross(up, toward_viewer);
   return toward_viewer + right * 0.6f + up * 0.45f;
 }
 

@@ -19,20 +19,28 @@ struct CameraSettings {
   bool has_position = false, has_focal_point = false, has_view_up = false;
   float view_angle = 30.0f;  // vertical, degrees
   bool has_view_angle = false;
-  std::string up = "+Y";                   // the model's up axis: +Y or +Z
+  std::string up = "+Y";                   // the model's up axis: kUpAxes' names
   std::string projection = "perspective";  // projection.h's names
   // --camera-orthographic: the framing (or flag-given) camera is orthographic, as high as the
   // perspective one's view of the model's bounds.
   bool orthographic = false;
   // --camera-index: a camera of the file (SceneGraph::cameras) instead; -1: none.
   int camera_index = -1;
+  // f3d's --camera-azimuth-angle and --camera-elevation-angle, degrees, applied after the camera
+  // is placed (framed or given), as VTK's Azimuth and Elevation: the position turns about the
+  // focal point, first about view up (positive: the camera moves to its right), then towards
+  // view up (positive: the camera rises).
+  float azimuth = 0.0f, elevation = 0.0f;
 
   bool explicitCamera() const { return has_position || has_focal_point || has_view_up; }
-  float3 upAxis() const { return up == "+Z" ? float3{0, 0, 1} : float3{0, 1, 0}; }
+  float3 upAxis() const;
   Projection projectionMode() const {
     return parseProjection(projection).value_or(Projection::kPerspective);
   }
 };
+
+// --up's values, f3d's: a signed world axis.
+inline constexpr const char* kUpAxes[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
 
 // Near and far as distances from the eye (the nonlinear projections' depth) around the bounds'
 // sphere, wherever the model turns about its centre: a range along the view axis may cut its

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <tessera/base/expected.h>
@@ -20,7 +21,17 @@ struct ModelSceneSettings {
   float3 background_srgb{0.2f, 0.2f, 0.2f};  // sRGB, 0..1
   // When set, the albedo of every material (their base colours become white).
   std::shared_ptr<const Texture> albedo;
+  // --color: when set, the base colour (sRGB, 0..1) of the materials the file did not give,
+  // those the loader made (isDefaultMaterial); the file's own materials keep theirs. f3d's
+  // --color likewise colours a model read without materials.
+  std::optional<float3> default_color_srgb;
 };
+
+// Whether `material` is the one a loader gives faces without a material of the file: 0.8 grey,
+// opaque, untextured (Material's defaults).
+bool isDefaultMaterial(const Material& material);
+// Whether any material the model draws with is the loader's default.
+bool hasDefaultMaterial(const io::Model& model);
 
 // "flat", "smooth" (per-pixel), "gouraud" (per-vertex) or "unlit".
 Shading shadingFromName(const std::string& name);
@@ -41,13 +52,14 @@ bool modelHasUvs(const io::Model& model);
 // origin. Past that (a model 1e10 or 3e38 across, or 1e-42), with the framing camera
 // (`keep_coordinates` false), the model is moved and scaled in double, by a power of two, to
 // about unit size at the origin: the picture is the one its own scale would give. With camera
-// flags it stays as it is (a scene graph is moved by a new root node, the meshes untouched), and when it is far outside float's comfort the returned warning says
-// why it may not be drawn. Empty when there is nothing to say.
+// flags it stays as it is (a scene graph is moved by a new root node, the meshes untouched), and
+// when it is far outside float's comfort the returned warning says why it may not be drawn. Empty
+// when there is nothing to say.
 std::string fitModelScale(io::Model& model, const std::filesystem::path& path,
                           bool keep_coordinates);
 
 // The direction, from the model towards the camera, of the default view: from the front, right
-// and above. `up` is +Y or +Z.
+// and above. `up` is a signed world axis (--up).
 float3 threeQuarterDirection(float3 up);
 
 // Near and far that bracket the bounds as seen from the camera.
