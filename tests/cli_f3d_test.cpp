@@ -186,9 +186,9 @@ TEST_F(CliF3d, AliasesShareTheFlagTable) {
   EXPECT_NE(tessera::test::slurp(dir_ / "axes.png"), tessera::test::slurp(dir_ / "none.png"));
   // Help lists the aliases and a typo of one is answered with it.
   r = run("render --help");
-  for (const char* name :
-       {"--bg-color", "--axis", "-x", "--camera-azimuth-angle", "--camera-elevation-angle",
-        "--color", "--duration", "--quiet", "--progress", "--ref"})
+  for (const char* name : {"--bg-color", "--axis", "-x", "--camera-azimuth-angle",
+                           "--camera-elevation-angle", "--color", "--duration", "--quiet",
+                           "--progress", "--ref", "--texture-base-color", "--edges, -e"})
     EXPECT_NE(r.out.find(name), std::string::npos) << name;
   r = run("render quad.obj --bg-colr 1,0,0");
   EXPECT_EQ(r.exit_code, 2);

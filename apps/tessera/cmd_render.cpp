@@ -102,7 +102,7 @@ void addVisibilityFlags(FlagSet& flags, RenderSettings& s) {
   flags.addChoice("visibility", &s.visibility, {"z-buffer", "painter"},
                   "z-buffer, or painter: no depth test, triangles drawn back to front by their "
                   "average depth (default z-buffer; cpu backend, perspective projection)");
-  flags.addSwitch("edges", &s.edges,
+  flags.addSwitch("edges|e", &s.edges,
                   "draw every polygon's outline (cpu backend, perspective projection)");
   flags.addCustom("edge-color", "R,G,B", "the edges' colour, sRGB 0..1 (default 0,0,0)",
                   [&](const std::string& v) { return parseSrgbColor(v, s.edge_color); });
@@ -165,7 +165,7 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
   flags.addSwitch("axes|axis|x", &s.axes, "draw the world axes (f3d's -x, --axis)");
-  flags.addString("texture", &s.texture,
+  flags.addString("texture|texture-base-color", &s.texture,
                   "an albedo texture (PNG, JPEG, BMP, TGA) for every material");
   flags.addSwitch("info", &s.info, "print the model's counts, bounds and warnings; do not render");
   flags.addSwitch("crc", &s.crc,

@@ -3,6 +3,7 @@
 // addCameraFlags depends on the core alone, so the micro-benchmarks build it too.
 #pragma once
 
+#include <cmath>
 #include <iterator>
 #include <string>
 
@@ -37,12 +38,19 @@ inline void addCameraFlags(FlagSet& flags, CameraSettings& c) {
                "draw from the file's camera N (glTF cameras, from 0)", 0, 1 << 30);
   flags.addChoice("up", &c.up, {std::begin(kUpAxes), std::end(kUpAxes)},
                   "the model's up axis, a signed world axis (default +Y)");
-  flags.addFloat("camera-azimuth-angle", &c.azimuth,
-                 "after placing the camera, turn it about the focal point around view up by "
-                 "DEG (positive: to the camera's right; f3d's)",
-                 -360.0f, 360.0f);
-  flags.addFloat("camera-elevation-angle", &c.elevation,
-                 "then turn it towards view up by DEG (positive: upwards; f3d's)", -360.0f, 360.0f);
+  auto degrees = [](float* out) {
+    return [out](const std::string& text) -> std::string {
+      if (!parseFloatStrict(text, *out) || std::fabs(*out) > 360.0f)
+        return "needs a number of degrees from -360 to 360, got '" + text + "'";
+      return "";
+    };
+  };
+  flags.addCustom("camera-azimuth-angle", "DEG",
+                  "after placing the camera, turn it about the focal point around view up "
+                  "(positive: to the camera's right; f3d's)",
+                  degrees(&c.azimuth));
+  flags.addCustom("camera-elevation-angle", "DEG",
+                  "then turn it towards view up (positive: upwards; f3d's)", degrees(&c.elevation));
   std::vector<std::string> modes;
   for (Projection p : kProjections) modes.push_back(projectionName(p));
   flags.addChoice("projection", &c.projection, modes,
