@@ -82,11 +82,22 @@ class Mp4Sink : public FrameSink {
     const std::string rate = std::to_string(settings_.fps);
     // yuv420p needs even sizes: openMp4Sink refuses odd ones (mp4SizeProblem), so the file is
     // the size asked for, never a pixel larger.
+    // One option and its value a line.
+    // clang-format off
     std::vector<std::string> args = {
-        "ffmpeg",   "-nostdin",  "-y",         "-loglevel", "error",   "-f",
-        "rawvideo", "-pix_fmt",  "rgba",       "-s",        size,      "-r",
-        rate,       "-i",        "-",          "-c:v",      "libx264", "-pix_fmt",
-        "yuv420p",  "-movflags", "+faststart", "-f",        "mp4",     temporary_.string()};
+        "ffmpeg", "-nostdin", "-y",
+        "-loglevel", "error",
+        "-f", "rawvideo",
+        "-pix_fmt", "rgba",
+        "-s", size,
+        "-r", rate,
+        "-i", "-",
+        "-c:v", "libx264",
+        "-pix_fmt", "yuv420p",
+        "-movflags", "+faststart",
+        "-f", "mp4",
+        temporary_.string()};
+    // clang-format on
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
