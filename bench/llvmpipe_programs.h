@@ -10,6 +10,8 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <GL/glext.h>
+// Last of the GL headers: the calls below go through the pointers it loads.
+#include "bench/gl_api.h"
 
 #include <tessera/base/expected.h>
 #include <tessera/scene/scene.h>

@@ -333,6 +333,7 @@ Expected<std::unique_ptr<LlvmpipeReference>> LlvmpipeReference::create(int worke
   std::unique_ptr<LlvmpipeReference> reference(new LlvmpipeReference());
   State& s = *reference->state_;
   s.threads = threads;
+  if (const std::string missing = loadGlApi(); !missing.empty()) return makeError(missing);
   s.context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   if (!s.context) return makeError("OSMesaCreateContextExt failed: no OSMesa context");
   if (Expected<void> sized = reference->setResolution(16, 16); !sized) return sized.error();
