@@ -1,0 +1,550 @@
+// The CPU pipeline's raster stage through its public seam, on scenes small enough to reason about
+// pixel by pixel: coverage and the top-left rule, clipping, depth, Hi-Z, culling, dropped
+// triangles, and the setup and cull kernels against the per-triangle path.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <new>
+#include <random>
+#include <set>
+#include <thread>
+
+#include <tessera/render/cpu_renderer.h>
+#include <tessera/scene/color.h>
+#include <tessera/scene/primitives.h>
+
+#include "render/chunk_layout.h"
+#include "render/clip.h"
+#include "render/kernels.h"
+#include "render/page_pool.h"
+#include "render/replication.h"
+#include "render/worker_pool.h"
+
+#include "render_test_scenes.h"
+
+using namespace tessera;
+using namespace tessera::test;  // NOLINT(google-build-using-namespace)
+
+TEST(Raster, SharedEdgeGridCoversEachPixelOnce) {
+  constexpr int kW = 64, kH = 48;
+  // Vertex columns and rows on pixel centres (x.5) and off them; the 7x7 cells have diagonals
+  // that pass exactly through pixel centres.
+  const float xs[] = {0, 7.5f, 14.5f, 20.5f, 31.5f, 40.5f, 47.5f, 55.25f, 64};
+  const float ys[] = {0, 5.5f, 12.5f, 18.5f, 29.5f, 36.5f, 48};
+  std::vector<float3> triangles;
+  for (int r = 0; r + 1 < 7; ++r) {
+    for (int c = 0; c + 1 < 9; ++c) {
+      float3 p00{xs[c], ys[r], 0}, p10{xs[c + 1], ys[r], 0}, p01{xs[c], ys[r + 1], 0},
+          p11{xs[c + 1], ys[r + 1], 0};
+      // Alternate the diagonal, and the winding, from cell to cell.
+      bool flip = (r + c) % 2 == 1;
+      if (flip)
+        triangles.insert(triangles.end(), {p00, p10, p11, p00, p11, p01});
+      else
+        triangles.insert(triangles.end(), {p00, p01, p10, p10, p01, p11});
+      if (c % 3 == 0) std::swap(triangles[triangles.size() - 1], triangles[triangles.size() - 2]);
+    }
+  }
+  std::vector<int> coverage(kW * kH, 0);
+  for (size_t t = 0; t < triangles.size(); t += 3) {
+    Scene scene = clipSpaceScene();
+    scene.objects.push_back(
+        unlitObject(windowTriangle(triangles[t], triangles[t + 1], triangles[t + 2], kW, kH)));
+    Frame f = renderScene(scene, kW, kH);
+    for (int i = 0; i < kW * kH; ++i) coverage[i] += f.triangle_id[i] != kNoTriangle;
+  }
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) EXPECT_EQ(coverage[y * kW + x], 1) << "pixel " << x << "," << y;
+}
+
+TEST(Raster, TopLeftRuleOnEdgesThroughPixelCentres) {
+  constexpr int kW = 10, kH = 10;
+  // A square whose four edges pass exactly through pixel centres: the top and left edges own
+  // their centres, the bottom and right ones do not.
+  Scene scene = clipSpaceScene();
+  Mesh quad;
+  for (float3 p :
+       {float3{2.5f, 2.5f, 0}, float3{6.5f, 2.5f, 0}, float3{6.5f, 6.5f, 0}, float3{2.5f, 6.5f, 0}})
+    quad.positions.push_back(windowToNdc(p.x, p.y, p.z, kW, kH));
+  quad.indices = {0, 2, 1, 0, 3, 2};
+  scene.objects.push_back(unlitObject(quad));
+  Frame f = renderScene(scene, kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      bool inside = x >= 2 && x <= 5 && y >= 2 && y <= 5;
+      EXPECT_EQ(f.idAt(x, y) != kNoTriangle, inside) << x << "," << y;
+    }
+}
+
+TEST(Raster, TopLeftRuleForASingleTriangle) {
+  constexpr int kW = 8, kH = 8;
+  // Right triangle: horizontal top edge on row 1's centres (top: owned), vertical left edge on
+  // column 1's centres (left: owned), hypotenuse through centres (bottom-right: not owned).
+  Scene scene = clipSpaceScene();
+  scene.objects.push_back(
+      unlitObject(windowTriangle({1.5f, 1.5f, 0}, {5.5f, 1.5f, 0}, {1.5f, 5.5f, 0}, kW, kH)));
+  Frame f = renderScene(scene, kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      // Centre (x+0.5, y+0.5) strictly inside or on an owned edge: x >= 1, y >= 1, x + y < 6.
+      bool expected = x >= 1 && y >= 1 && (x + y) < 6;
+      EXPECT_EQ(f.idAt(x, y) != kNoTriangle, expected) << x << "," << y;
+    }
+}
+
+TEST(Raster, SubpixelTriangleBetweenCentresCoversNothing) {
+  Scene scene = clipSpaceScene();
+  scene.objects.push_back(
+      unlitObject(windowTriangle({3.6f, 3.6f, 0}, {3.9f, 3.6f, 0}, {3.6f, 3.9f, 0}, 8, 8)));
+  PipelineStats stats;
+  Frame f = renderScene(scene, 8, 8, 1, &stats);
+  EXPECT_EQ(coveredCount(f), 0);
+  EXPECT_EQ(stats.triangles_setup, 0u);
+  EXPECT_EQ(stats.triangles_culled, 1u);
+}
+
+TEST(Raster, TriangleFarOutsideTheGuardBandIsClippedAndFillsTheScreen) {
+  constexpr int kW = 40, kH = 30;
+  Scene scene = clipSpaceScene();
+  Mesh huge;
+  huge.positions = {{-1e6f, -1e6f, 0.0f}, {1e6f, -1e6f, 0.0f}, {0.0f, 1e6f, 0.0f}};
+  huge.indices = {0, 1, 2};
+  scene.objects.push_back(unlitObject(huge));
+  PipelineStats stats;
+  Frame f = renderScene(scene, kW, kH, 1, &stats);
+  EXPECT_EQ(stats.triangles_clipped, 1u);
+  EXPECT_EQ(coveredCount(f), kW * kH);
+  for (float z : f.depth) EXPECT_NEAR(z, 0.5f, 1e-6f);
+}
+
+TEST(Raster, TriangleCrossingTheNearPlaneMatchesTheAnalyticFloor) {
+  // A floor at y = -1 running from behind the camera to z = -40; the camera at the origin looks
+  // down -Z with a 90 degree field of view.
+  constexpr int kW = 64, kH = 48;
+  Scene scene;
+  scene.ambient = float3(1.0f);
+  scene.camera.position = {0, 0, 0};
+  scene.camera.target = {0, 0, -1};
+  scene.camera.fov_y_degrees = 90.0f;
+  scene.camera.near_z = 0.5f;
+  scene.camera.far_z = 100.0f;
+  Mesh floor;
+  floor.positions = {{-30, -1, 10}, {30, -1, 10}, {30, -1, -40}, {-30, -1, -40}};
+  floor.indices = {0, 1, 2, 0, 2, 3};
+  scene.objects.push_back(unlitObject(floor, CullMode::kBack));
+  PipelineStats stats;
+  Frame f = renderScene(scene, kW, kH, 1, &stats);
+  EXPECT_EQ(stats.triangles_clipped, 2u);
+
+  const float aspect = static_cast<float>(kW) / kH;
+  const float4x4 projection = scene.camera.projection(aspect);
+  int checked = 0;
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) {
+      float ndc_x = 2.0f * (x + 0.5f) / kW - 1.0f, ndc_y = 1.0f - 2.0f * (y + 0.5f) / kH;
+      float3 dir{ndc_x * aspect, ndc_y, -1.0f};  // tan(45 deg) = 1
+      bool hit = false;
+      float t = 0;
+      if (dir.y < 0) {
+        t = -1.0f / dir.y;  // view distance along -Z
+        float3 p = dir * t;
+        // Skip pixels within a pixel's worth of the floor's far edge or sides.
+        float margin = 0.6f * t * 2.0f / kH;
+        if (std::fabs(p.z + 40.0f) < margin * 3 || std::fabs(std::fabs(p.x) - 30.0f) < margin * 3)
+          continue;
+        hit = p.z > -40.0f && std::fabs(p.x) < 30.0f;
+      }
+      EXPECT_EQ(f.idAt(x, y) != kNoTriangle, hit) << x << "," << y;
+      if (hit) {
+        float4 clip = projection * float4{dir * t, 1.0f};
+        // Vertices snap to 1/256 pixel and the plane is evaluated in float: near the horizon
+        // that moves depth by a few 1e-5.
+        EXPECT_NEAR(f.depthAt(x, y), clip.z / clip.w * 0.5f + 0.5f, 1e-4f) << x << "," << y;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, kW * kH / 3);
+}
+
+TEST(Raster, InterpenetratingTrianglesResolveByDepth) {
+  constexpr int kW = 32, kH = 16;
+  Scene scene = clipSpaceScene();
+  Mesh m;
+  // Quad A leans from z = -0.5 (left, near) to z = 0.5 (right, far); quad B is flat at z = 0.
+  m.positions = {{-1, -1, -0.5f}, {1, -1, 0.5f}, {1, 1, 0.5f}, {-1, 1, -0.5f},
+                 {-1, -1, 0.0f},  {1, -1, 0.0f}, {1, 1, 0.0f}, {-1, 1, 0.0f}};
+  m.indices = {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7};
+  scene.objects.push_back(unlitObject(m));
+  Frame f = renderScene(scene, kW, kH);
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) {
+      uint32_t id = f.idAt(x, y);
+      if (x < kW / 2 - 1) {
+        EXPECT_TRUE(id == 1 || id == 2) << x << "," << y << " id " << id;
+      }
+      if (x > kW / 2) {
+        EXPECT_TRUE(id == 3 || id == 4) << x << "," << y << " id " << id;
+      }
+      // Depth is the nearer of the two planes.
+      float z_a = 0.5f * ((x + 0.5f) / kW * 2.0f - 1.0f) * 0.5f + 0.5f;
+      EXPECT_NEAR(f.depthAt(x, y), std::min(z_a, 0.5f), 1e-6f);
+    }
+  }
+}
+
+TEST(Raster, HiZRejectsOnlyWhatIsHidden) {
+  // A screen-covering wall at z = 0 drawn first (it sets the blocks' depth bounds), then small
+  // and large triangles behind it (all hidden) and in front of it (all visible), interleaved.
+  constexpr int kW = 128, kH = 96;
+  Scene scene = clipSpaceScene();
+  Mesh m;
+  auto quad = [&](float x0, float y0, float x1, float y1, float z) {
+    const uint32_t base = static_cast<uint32_t>(m.positions.size());
+    m.positions.insert(m.positions.end(), {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}});
+    m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  };
+  quad(-1, -1, 1, 1, 0.0f);  // ids 1, 2
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> pos(-0.95f, 0.8f);
+  std::vector<std::pair<float, float>> in_front;
+  for (int i = 0; i < 60; ++i) {
+    const float x = pos(rng), y = pos(rng);
+    const float size = i % 10 == 0 ? 0.6f : 0.08f;  // some large, most small
+    const bool front = i % 3 == 0;
+    quad(x, y, x + size, y + size, front ? -0.2f - 0.001f * i : 0.3f);
+    if (front) in_front.emplace_back(x, y);
+  }
+  scene.objects.push_back(unlitObject(m, CullMode::kBack));
+  Frame f = renderScene(scene, kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const uint32_t id = f.idAt(x, y);
+      ASSERT_NE(id, kNoTriangle);
+      // Triangle index id - 1 belongs to quad (id - 1) / 2; quad 0 is the wall, quad q >= 1 is
+      // random quad q - 1, in front when (q - 1) % 3 == 0.
+      const int q = static_cast<int>(id - 1) / 2;
+      EXPECT_TRUE(q == 0 || (q - 1) % 3 == 0) << "hidden quad " << q << " at " << x << "," << y;
+    }
+  // Every quad in front owns the pixel at its lower-left corner's inside.
+  for (auto [qx, qy] : in_front) {
+    const int px = static_cast<int>((qx + 1.0f) * 0.5f * kW) + 1;
+    const int py = static_cast<int>((1.0f - (qy + 0.02f)) * 0.5f * kH) - 1;
+    const int q = static_cast<int>(f.idAt(px, py) - 1) / 2;
+    EXPECT_NE(q, 0) << "a quad in front is missing at " << px << "," << py;
+  }
+}
+
+TEST(Raster, BackfaceCullModes) {
+  constexpr int kW = 16, kH = 8;
+  Mesh m;
+  // Left triangle counter-clockwise in NDC (front), right one clockwise (back).
+  m.positions = {{-0.9f, -0.9f, 0}, {-0.1f, -0.9f, 0}, {-0.5f, 0.9f, 0},
+                 {0.1f, -0.9f, 0},  {0.5f, 0.9f, 0},   {0.9f, -0.9f, 0}};
+  m.indices = {0, 1, 2, 3, 4, 5};
+  auto ids = [&](CullMode cull) {
+    Scene scene = clipSpaceScene();
+    scene.objects.push_back(unlitObject(m, cull));
+    Frame f = renderScene(scene, kW, kH);
+    std::set<uint32_t> seen(f.triangle_id.begin(), f.triangle_id.end());
+    seen.erase(kNoTriangle);
+    return seen;
+  };
+  EXPECT_EQ(ids(CullMode::kBack), (std::set<uint32_t>{1}));
+  EXPECT_EQ(ids(CullMode::kFront), (std::set<uint32_t>{2}));
+  EXPECT_EQ(ids(CullMode::kNone), (std::set<uint32_t>{1, 2}));
+}
+
+TEST(Raster, NonFiniteDegenerateAndOutOfRangeTrianglesAreDropped) {
+  Scene scene = clipSpaceScene();
+  Mesh m;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {nan, 0, 0}, {0.5f, 0.5f, 0}, {kInf, 0, 0}};
+  m.indices = {0, 1, 3,   // NaN vertex
+               0, 1, 5,   // infinite vertex
+               0, 2, 4,   // collinear? no: a real triangle, kept below
+               0, 0, 1,   // degenerate
+               0, 1, 99,  // index past the end
+               0, 1, 2};  // valid
+  scene.objects.push_back(unlitObject(m));
+  PipelineStats stats;
+  Frame f = renderScene(scene, 16, 16, 1, &stats);
+  EXPECT_EQ(stats.triangles_in, 6u);
+  EXPECT_EQ(stats.triangles_culled, 4u);
+  std::set<uint32_t> seen(f.triangle_id.begin(), f.triangle_id.end());
+  EXPECT_TRUE(seen.count(6));
+  EXPECT_FALSE(seen.count(1) || seen.count(2) || seen.count(4) || seen.count(5));
+}
+
+TEST(Raster, DroppedTrianglesInsideGroupsOfEight) {
+  // The pattern above three times over: setup culls eight triangles at a time, and a group
+  // holding an index past the end is taken one triangle at a time.
+  Scene scene = clipSpaceScene();
+  Mesh m;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {nan, 0, 0}, {0.5f, 0.5f, 0}, {kInf, 0, 0}};
+  for (int copy = 0; copy < 3; ++copy)
+    m.indices.insert(m.indices.end(), {0, 1, 3, 0, 1, 5, 0, 2, 4, 0, 0, 1, 0, 1, 99, 0, 1, 2});
+  // Two more groups with nothing wrong in them: kept, culled by area, and off screen.
+  m.positions.push_back({3, 3, 0});  // 6: outside the right and top planes
+  m.positions.push_back({4, 3, 0});
+  m.positions.push_back({3, 4, 0});
+  for (int i = 0; i < 16; ++i) {
+    if (i % 4 == 0) m.indices.insert(m.indices.end(), {0, 1, 2});  // drawn (last wins: equal z)
+    if (i % 4 == 1) m.indices.insert(m.indices.end(), {0, 0, 2});  // zero area
+    if (i % 4 == 2) m.indices.insert(m.indices.end(), {6, 7, 8});  // outside the frustum
+    if (i % 4 == 3) m.indices.insert(m.indices.end(), {0, 2, 4});  // drawn
+  }
+  scene.objects.push_back(unlitObject(m));
+  PipelineStats stats;
+  Frame f = renderScene(scene, 16, 16, 1, &stats);
+  EXPECT_EQ(stats.triangles_in, 34u);
+  EXPECT_EQ(stats.triangles_culled, 12u + 8u);
+  EXPECT_EQ(stats.triangles_setup, 6u + 8u);
+  std::set<uint32_t> seen(f.triangle_id.begin(), f.triangle_id.end());
+  // Ids are triangle index + 1; equal depths keep the first triangle drawn on a pixel.
+  EXPECT_TRUE(seen.count(3)) << "the first kept real triangle";
+  EXPECT_TRUE(seen.count(6)) << "the first valid triangle";
+  for (uint32_t id : seen) {
+    EXPECT_TRUE(id == kNoTriangle || id == 3 || id == 6) << id;
+  }
+}
+
+// The cull kernel of every instruction set against setup's per-triangle functions, on random
+// triangles: some cross a cut plane, some have a non-finite vertex or are wholly outside a plane,
+// some are degenerate, back-facing or off the viewport.
+TEST(Raster, CullKernelMatchesThePerTriangleChecks) {
+  using namespace tessera::render;
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int32_t> coordinate(-300 * kSubpixelOne, 500 * kSubpixelOne);
+  std::uniform_int_distribution<int> pick(0, 15);
+  constexpr int kVertices = 64;
+  std::vector<ScreenVertex> screen(kVertices);
+  std::vector<uint16_t> outcodes(kVertices);
+  for (int i = 0; i < kVertices; ++i) {
+    const int kind = pick(rng);
+    // A few vertices repeat another's position (degenerate triangles).
+    screen[i] = i > 0 && kind == 0 ? screen[i - 1]
+                                   : ScreenVertex{coordinate(rng), coordinate(rng), 0.5f, 1.0f};
+    const uint32_t code = kind == 1   ? uint32_t{kClipNear}
+                          : kind == 2 ? uint32_t{kNonFinite}
+                          : kind == 3 ? uint32_t{kClipLeft}
+                                      : 0u;
+    outcodes[i] = static_cast<uint16_t>(code);
+  }
+  const int width = 201, height = 150;
+  std::map<int, int> decided;  // how many lanes took each branch below
+  for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512}) {
+    if (isa > detectIsa()) continue;
+    const Kernels kernels = kernelsFor(isa);
+    for (int32_t reach : {0, kSampleReach})
+      for (CullMode cull : {CullMode::kBack, CullMode::kFront, CullMode::kNone}) {
+        SetupContext ctx;
+        ctx.width = width;
+        ctx.height = height;
+        ctx.cull = cull;
+        ctx.sample_reach = reach;
+        for (int group = 0; group < 200; ++group) {
+          uint32_t indices[24];
+          for (uint32_t& index : indices) index = static_cast<uint32_t>(rng() % kVertices);
+          CullGroup out;
+          ASSERT_TRUE(kernels.cull_group(indices, kVertices, screen.data(), outcodes.data(), width,
+                                         height, cull, reach, out));
+          for (int l = 0; l < 8; ++l) {
+            const uint32_t* idx = &indices[3 * l];
+            const uint32_t c0 = outcodes[idx[0]], c1 = outcodes[idx[1]], c2 = outcodes[idx[2]];
+            SCOPED_TRACE(testing::Message()
+                         << isaName(isa) << " cull " << static_cast<int>(cull) << " reach " << reach
+                         << " group " << group << " lane " << l);
+            if (((c0 | c1 | c2) & kNonFinite) || (c0 & c1 & c2 & kRejectPlanes)) {
+              EXPECT_EQ(out.kind[l], CullGroup::kCulled);
+              ++decided[0];
+              continue;
+            }
+            if (const uint32_t cut = (c0 | c1 | c2) & kCutPlanes) {
+              EXPECT_EQ(out.kind[l], CullGroup::kClip);
+              EXPECT_EQ(static_cast<uint32_t>(out.cut[l]), cut);
+              ++decided[1];
+              continue;
+            }
+            const ScreenVertex &v0 = screen[idx[0]], &v1 = screen[idx[1]], &v2 = screen[idx[2]];
+            const int64_t area = signedArea(v0, v1, v2);
+            const PixelBox box = pixelBox(ctx, v0, v1, v2);
+            if (cullsArea(ctx, area) || box.empty()) {
+              EXPECT_EQ(out.kind[l], CullGroup::kCulled);
+              ++decided[cullsArea(ctx, area) ? 2 : 3];
+              continue;
+            }
+            ++decided[4];
+            ASSERT_EQ(out.kind[l], CullGroup::kVisible);
+            EXPECT_EQ(static_cast<int64_t>(out.area[l]), area);
+            EXPECT_EQ(out.min_x[l], box.min_x);
+            EXPECT_EQ(out.min_y[l], box.min_y);
+            EXPECT_EQ(out.max_x[l], box.max_x);
+            EXPECT_EQ(out.max_y[l], box.max_y);
+          }
+        }
+        // An index past the end: nothing decided, the caller goes one triangle at a time.
+        uint32_t indices[24] = {};
+        indices[17] = kVertices;
+        CullGroup out;
+        EXPECT_FALSE(kernels.cull_group(indices, kVertices, screen.data(), outcodes.data(), width,
+                                        height, cull, reach, out));
+      }
+  }
+  // Every branch was taken: dropped, clipped, culled by area, off the viewport, visible.
+  for (int branch = 0; branch < 5; ++branch) EXPECT_GT(decided[branch], 20) << branch;
+}
+
+TEST(ChunkLayout, CoversEveryTriangleInOrderAndEndsEachBlockSmall) {
+  using namespace tessera::render;
+  for (size_t total : {size_t{0}, size_t{1}, size_t{100}, size_t{4096}, size_t{9216}, size_t{69666},
+                       size_t{200000}, size_t{1000000}}) {
+    const size_t chunk_size = std::max<size_t>(4096, (total + kMaxChunks - 1) / kMaxChunks);
+    for (int workers : {1, 2, 3, 4}) {
+      std::vector<TriangleChunk> chunks;
+      const size_t count = layOutChunks(total, chunk_size, workers, chunks);
+      const std::string what = std::to_string(total) + " triangles, " + std::to_string(workers);
+      ASSERT_LE(count, kMaxChunks) << what;
+      ASSERT_GE(chunks.size(), count) << what;
+      size_t next = 0;
+      for (size_t c = 0; c < count; ++c) {
+        EXPECT_EQ(chunks[c].first_triangle, next) << what << ", chunk " << c;
+        EXPECT_LE(chunks[c].triangle_count, chunk_size) << what << ", chunk " << c;
+        next += chunks[c].triangle_count;
+      }
+      EXPECT_EQ(next, total) << what;
+      // Where blocks end small (more chunks than equal ones), every worker's block but the last
+      // (WorkerPool: count * w / n onwards) ends in chunks of a half, a quarter and an eighth.
+      const bool tapered = count != (total + chunk_size - 1) / chunk_size;
+      if (workers == 1 || total <= 4096 || total == 1000000) {
+        EXPECT_FALSE(tapered) << what;  // one worker, no room for a head, or past kMaxChunks
+      }
+      if (total == 69666 || total == 200000) {
+        EXPECT_EQ(tapered, workers > 1) << what;
+      }
+      if (tapered) {
+        EXPECT_EQ(count % workers, 0u) << what;
+        for (int w = 0; w + 1 < workers; ++w) {
+          const size_t block_end = count * static_cast<size_t>(w + 1) / workers;
+          EXPECT_EQ(chunks[block_end - 1].triangle_count, chunk_size / 8) << what << ", " << w;
+          EXPECT_EQ(chunks[block_end - 2].triangle_count, chunk_size / 4) << what << ", " << w;
+          EXPECT_EQ(chunks[block_end - 3].triangle_count, chunk_size / 2) << what << ", " << w;
+        }
+      }
+    }
+  }
+  // The bunny with two workers: 11 chunks a block, the first ending in 2048, 1024 and 512.
+  std::vector<TriangleChunk> chunks;
+  ASSERT_EQ(layOutChunks(69666, 4096, 2, chunks), 22u);
+  EXPECT_EQ(chunks[10].triangle_count, 512u);
+  EXPECT_EQ(chunks[11].first_triangle, 34833u);
+}
+
+TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
+  // Every instruction set's batch kernel against the one-triangle setupRaster, on visible
+  // triangles from a pixel to hundreds of pixels across (small ones keep their edge values at the
+  // box corner, large ones c and z_min in RasterWide): the raster records byte for byte, the
+  // large triangles' RasterWide, and the shading planes.
+  using namespace tessera::render;
+  std::mt19937 rng(5);
+  const int width = 640, height = 480;
+  Scene scene;
+  Object object;
+  object.materials = {Material{}};
+  SetupContext ctx;
+  ctx.width = width;
+  ctx.height = height;
+  ctx.cull = CullMode::kNone;
+  ctx.shading = Shading::kFlat;
+  LightRig lights;
+  lights.prepare(scene);
+  ctx.lights = &lights;
+  ctx.object = &object;
+  std::uniform_int_distribution<int32_t> centre(-100 * kSubpixelOne, 700 * kSubpixelOne);
+  std::uniform_real_distribution<float> depth(0.0f, 1.0f), inv_w(0.1f, 2.0f);
+  const int32_t extents[] = {kSubpixelOne, 6 * kSubpixelOne, 40 * kSubpixelOne, 500 * kSubpixelOne};
+  struct Triangle {
+    ScreenVertex v[3];
+    int64_t area;
+  };
+  std::vector<Triangle> triangles;
+  while (triangles.size() < 400) {
+    const int32_t extent = extents[rng() % 4];
+    std::uniform_int_distribution<int32_t> offset(-extent, extent);
+    const int32_t cx = centre(rng), cy = centre(rng);
+    Triangle t;
+    for (ScreenVertex& v : t.v) v = {cx + offset(rng), cy + offset(rng), depth(rng), inv_w(rng)};
+    t.area = signedArea(t.v[0], t.v[1], t.v[2]);
+    if (t.area == 0 || pixelBox(ctx, t.v[0], t.v[1], t.v[2]).empty()) continue;
+    triangles.push_back(t);
+  }
+  // With one sample, and with MSAA's reach (boxes grown by half a pixel, the small test by more).
+  for (int32_t reach : {0, kSampleReach}) {
+    ctx.sample_reach = reach;
+    std::vector<RasterTriangle> expected(triangles.size());
+    std::vector<RasterWide> expected_wide(triangles.size());
+    std::vector<ShadeTriangle> expected_shade(triangles.size());
+    int small = 0;
+    for (size_t i = 0; i < triangles.size(); ++i) {
+      const Triangle& t = triangles[i];
+      TriangleOrientation o;
+      ASSERT_TRUE(
+          setupRaster(ctx, t.v[0], t.v[1], t.v[2], t.area, expected[i], expected_wide[i], o));
+      const VertexAttributes a{};
+      const VertexAttributes attributes[3] = {a, a, a};
+      ShadeExtras extras;
+      setupShade(ctx, t.v, attributes, o, expected[i], float3{0, 0, 1}, 0, 0, expected_shade[i],
+                 extras);
+      small += expected[i].small();
+    }
+    EXPECT_GT(small, 100);
+    EXPECT_GT(static_cast<int>(triangles.size()) - small, 50);
+
+    // lead 8: full batches of records on whole lines (streamed as lines); lead 3: a short first
+    // batch, after which the batches' records start inside a line (streamed record by record).
+    for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512})
+      for (size_t lead : {size_t{8}, size_t{3}}) {
+        if (isa > detectIsa()) continue;
+        const Kernels kernels = kernelsFor(isa);
+        PoolVector<RasterTriangle> raster(triangles.size());  // aligned: the kernel streams into it
+        std::vector<RasterWide> wide(triangles.size());
+        PoolVector<ShadeTriangle> shade(triangles.size());
+        for (size_t first = 0; first < triangles.size(); first += first == 0 ? lead : 8) {
+          SetupBatch batch;
+          for (size_t i = first; i < std::min(first + (first == 0 ? lead : 8), triangles.size());
+               ++i) {
+            // The caller's part of the shading record, which the kernel carries to shade[record].
+            ShadeTriangle& staged = batch.nextShade();
+            staged.triangle_id = static_cast<uint32_t>(1000 + i);
+            staged.color[2] = float3{static_cast<float>(i), 0.5f, 0.25f};
+            batch.push(triangles[i].v[0], triangles[i].v[1], triangles[i].v[2], triangles[i].area,
+                       static_cast<uint32_t>(i));
+          }
+          batch.padLanes();
+          kernels.setup_batch(batch, width, height, reach, raster.data(), wide.data(),
+                              shade.data());
+        }
+        for (size_t i = 0; i < triangles.size(); ++i) {
+          SCOPED_TRACE(testing::Message() << isaName(isa) << " reach " << reach << " lead " << lead
+                                          << " triangle " << i);
+          ASSERT_EQ(0, std::memcmp(&raster[i], &expected[i], sizeof(RasterTriangle)));
+          if (!expected[i].small()) {
+            for (int k = 0; k < 3; ++k) EXPECT_EQ(wide[i].c[k], expected_wide[i].c[k]);
+            EXPECT_EQ(wide[i].z_min, expected_wide[i].z_min);
+          }
+          // The planes, x0 .. sdy, as setupShade forms them.
+          EXPECT_EQ(0, std::memcmp(&shade[i].x0, &expected_shade[i].x0, 9 * sizeof(float)));
+          EXPECT_EQ(shade[i].triangle_id, 1000 + i);
+          EXPECT_EQ(shade[i].color[2].x, static_cast<float>(i));
+          EXPECT_EQ(shade[i].color[2].z, 0.25f);
+        }
+      }
+  }
+}
