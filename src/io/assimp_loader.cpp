@@ -95,7 +95,7 @@ Expected<void> checkDeclared(const std::string& name, const std::string& what, u
 // PLY ("element vertex N", "element face N") and OFF ("OFF V F E") headers, before assimp reads
 // them: its readers size their arrays from these counts.
 Expected<void> checkDeclaredCounts(const std::vector<uint8_t>& bytes, const std::string& name,
-                                   const std::string& extension, const LoadBudget& budget) {
+                                   const LoadBudget& budget) {
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()),
                               std::min<size_t>(bytes.size(), 64 << 10));
   if (text.starts_with("ply")) {
@@ -114,9 +114,10 @@ Expected<void> checkDeclaredCounts(const std::vector<uint8_t>& bytes, const std:
                                                    : singleQuoted(elided(element)) + " elements";
       if (Expected<void> ok = checkDeclared(name, what, count, limit, bytes.size()); !ok) return ok;
     }
-  } else if (extension == "off") {
+  } else {
+    // By content, as assimp finds the reader when the extension does not say.
     const std::vector<std::string_view> words = headerWords(text, 4);
-    if (words.size() == 4 && words[0].ends_with("OFF")) {
+    if (words.size() == 4 && words[0].ends_with("OFF") && words[0].size() <= 5) {
       if (Expected<void> ok = checkDeclared(name, "vertices", parseCount(words[1]),
                                             budget.vertices(), bytes.size());
           !ok)
@@ -140,9 +141,7 @@ std::string failure(const std::string& name, const char* reason, const SandboxIO
 Expected<Model> importScene(const std::string& key, const std::string& name,
                             std::vector<uint8_t> bytes, const fs::path& folder,
                             const LoadBudget& budget) {
-  const std::string extension = lowered(fs::path(key).extension().string().substr(
-      std::min<size_t>(1, fs::path(key).extension().string().size())));
-  if (Expected<void> ok = checkDeclaredCounts(bytes, name, extension, budget); !ok)
+  if (Expected<void> ok = checkDeclaredCounts(bytes, name, budget); !ok)
     return ok.error();
   try {
     Assimp::Importer importer;
