@@ -88,7 +88,7 @@ int runInfo(const std::vector<std::string>& args) {
   io::LoadBudget budget;
   addBudgetFlags(flags, budget);
   bool readers_list = false;
-  flags.addSwitch("--readers-list", &readers_list,
+  flags.addSwitch("readers-list", &readers_list,
                   "list the model formats tessera reads, with their reader and extensions");
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {

@@ -31,11 +31,12 @@ namespace fs = std::filesystem;
 namespace {
 
 // Triangles only (polygons split, points and lines sorted into meshes of their own), shared
-// vertices joined, and assimp's own check of the scene's indices and references. assimp's logger
-// is left as it is by default, the null logger: nothing reaches standard output.
+// vertices joined, invalid normals and UVs dropped. Not aiProcess_ValidateDataStructure: it
+// refuses a point cloud (a mesh without faces), which deserves its own message; the scene
+// builder checks every index it uses instead. assimp's logger is left as it is by default, the
+// null logger: nothing reaches standard output.
 constexpr unsigned kPostProcess = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                  aiProcess_SortByPType | aiProcess_ValidateDataStructure |
-                                  aiProcess_FindInvalidData;
+                                  aiProcess_SortByPType | aiProcess_FindInvalidData;
 
 std::string lowered(std::string text) {
   for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -141,8 +142,7 @@ std::string failure(const std::string& name, const char* reason, const SandboxIO
 Expected<Model> importScene(const std::string& key, const std::string& name,
                             std::vector<uint8_t> bytes, const fs::path& folder,
                             const LoadBudget& budget) {
-  if (Expected<void> ok = checkDeclaredCounts(bytes, name, budget); !ok)
-    return ok.error();
+  if (Expected<void> ok = checkDeclaredCounts(bytes, name, budget); !ok) return ok.error();
   try {
     Assimp::Importer importer;
     // The importer owns and deletes its IO system.

@@ -40,6 +40,53 @@ float4x4 toMatrix(const aiMatrix4x4& m) {
   return out;
 }
 
+// A file named `file_name`, in any case, in `folder` (not below it), or empty. DOS-era formats
+// (3DS) name "TEST.PNG" for test.png.
+fs::path findIgnoringCase(const fs::path& folder, const std::string& file_name) {
+  constexpr size_t kMaxEntries = 10000;  // a folder of a million files is not searched through
+  std::error_code error;
+  size_t seen = 0;
+  for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {
+    if (++seen > kMaxEntries) break;
+    if (equalsIgnoreCase(it->path().filename().string(), file_name)) return it->path();
+  }
+  return {};
+}
+
+// The texture a material names, beneath `folder`: as named (in any case), or else, for a name
+// the sandbox refuses as absolute (exporters write D:\work\tex.jpg), a file of the same name in
+// the model's folder. Empty with `why` set when there is none.
+fs::path findTexture(const fs::path& folder, const std::string& reference, std::string& why,
+                     bool& moved) {
+  moved = false;
+  Expected<fs::path> path = resolveReferencedFile(folder, reference);
+  std::error_code error;
+  if (path && fs::exists(*path, error)) return *path;
+  std::string file_name = reference;
+  const size_t slash = file_name.find_last_of("/\\");
+  if (slash != std::string::npos) file_name.erase(0, slash + 1);
+  const bool absolute = !path && path.error().message == "it is an absolute path";
+  if (!path && !absolute) {
+    why = "refused: " + path.error().message;
+    return {};
+  }
+  const fs::path where = absolute ? folder : path->parent_path();
+  if (!file_name.empty() && file_name != "..") {
+    const fs::path found = findIgnoringCase(where, file_name);
+    if (!found.empty()) {
+      Expected<fs::path> inside =
+          resolveReferencedFile(folder, found.lexically_relative(folder).string());
+      if (inside) {
+        moved = absolute;
+        return *inside;
+      }
+    }
+  }
+  why = absolute ? "refused: it is an absolute path, and no " + file_name + " is beside the model"
+                 : "not found";
+  return {};
+}
+
 float unitChannel(float value, float fallback) {
   return std::isfinite(value) ? std::clamp(value, 0.0f, 1.0f) : fallback;
 }
@@ -276,16 +323,20 @@ std::shared_ptr<const Texture> SceneBuilder::texture(const std::string& referenc
                          /*srgb=*/true);
   } else if (folder_.empty()) {
     warn("texture " + singleQuoted(elided(reference)) +
-         " is an external file, and this model was given in " + "memory" + dropped);
+         " is an external file, and this model was given in memory" + dropped);
     return nullptr;
   } else {
-    Expected<fs::path> path = resolveReferencedFile(folder_, reference);
-    if (!path) {
-      warn("texture " + singleQuoted(elided(reference)) + " refused: " + path.error().message +
-           dropped);
+    std::string why;
+    bool moved = false;
+    const fs::path path = findTexture(folder_, reference, why, moved);
+    if (path.empty()) {
+      warn("texture " + singleQuoted(elided(reference)) + " " + why + dropped);
       return nullptr;
     }
-    decoded = textures_.load(*path, /*srgb=*/true);
+    if (moved)
+      warn("texture " + singleQuoted(elided(reference)) + " is an absolute path; " +
+           path.filename().string() + " beside the model is used");
+    decoded = textures_.load(path, /*srgb=*/true);
   }
   if (!decoded) {
     if (!fatal_) fatal_ = decoded.error();
