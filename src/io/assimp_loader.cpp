@@ -30,13 +30,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Triangles only (polygons split, points and lines sorted into meshes of their own), shared
-// vertices joined, invalid normals and UVs dropped. Not aiProcess_ValidateDataStructure: it
-// refuses a point cloud (a mesh without faces), which deserves its own message; the scene
-// builder checks every index it uses instead. assimp's logger is left as it is by default, the
-// null logger: nothing reaches standard output.
-constexpr unsigned kPostProcess = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                  aiProcess_SortByPType | aiProcess_FindInvalidData;
+// Triangles only (polygons split, points and lines sorted into meshes of their own) and shared
+// vertices joined. Not aiProcess_ValidateDataStructure nor FindInvalidData: they refuse or
+// remove point clouds (a mesh without faces, "No meshes remaining") before they could be named;
+// the scene builder checks every index it uses and replaces non-finite normals and UVs instead.
+// assimp's logger is left as it is by default, the null logger: nothing reaches standard output.
+constexpr unsigned kPostProcess =
+    aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
 
 std::string lowered(std::string text) {
   for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

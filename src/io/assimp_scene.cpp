@@ -94,6 +94,9 @@ float unitChannel(float value, float fallback) {
 }  // namespace
 
 Expected<void> SceneBuilder::run() {
+  if (scene_.mRootNode != nullptr && scene_.mNumMeshes == 0)
+    return makeError(name_ + ": no triangles in the scene (the file holds no meshes" +
+                     (scene_.mNumCameras || scene_.mNumLights ? ", only cameras or lights)" : ")"));
   if (scene_.mRootNode == nullptr || (scene_.mFlags & AI_SCENE_FLAGS_INCOMPLETE))
     return makeError(name_ + ": assimp cannot read it: the file holds no complete scene");
   const std::vector<std::pair<const aiNode*, int32_t>> nodes = walkNodes();
