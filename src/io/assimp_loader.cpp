@@ -19,10 +19,26 @@
 #include <assimp/Importer.hpp>
 
 #include "assimp_formats.h"
+#include "assimp_headers.h"
 #include "assimp_io.h"
+#include "assimp_process.h"
 #include "assimp_scene.h"
 #include "load_budget.h"
 #include "model_paths.h"
+
+// Debian's libassimp is built with its assertions on, and a failed one calls this function,
+// whose library definition aborts the process: a hostile file could end tessera (the fuzz target
+// found one in TriangulateProcess). This definition takes the library's place (an executable's
+// symbol comes first in ELF's lookup, and assimp calls it through its PLT) and throws instead;
+// importScene turns the exception into one line naming the file.
+namespace Assimp {
+void aiAssertViolation(const char* expression, const char* file, int line);
+void aiAssertViolation(const char* expression, const char* file, int line) {
+  throw std::runtime_error(std::string("assimp's internal check failed (") +
+                           (expression ? expression : "?") + " at " + (file ? file : "?") + ":" +
+                           std::to_string(line) + ")");
+}
+}  // namespace Assimp
 
 namespace tessera::io {
 
@@ -57,78 +73,6 @@ std::string oneLine(std::string_view text) {
   return out;
 }
 
-// The first `max_words` blank-separated words of `text`, '#' comments skipped (OFF).
-std::vector<std::string_view> headerWords(std::string_view text, size_t max_words) {
-  std::vector<std::string_view> words;
-  size_t at = 0;
-  while (at < text.size() && words.size() < max_words) {
-    const char c = text[at];
-    if (c == '#') {
-      while (at < text.size() && text[at] != '\n') ++at;
-    } else if (std::isspace(static_cast<unsigned char>(c))) {
-      ++at;
-    } else {
-      const size_t begin = at;
-      while (at < text.size() && !std::isspace(static_cast<unsigned char>(text[at]))) ++at;
-      words.push_back(text.substr(begin, at - begin));
-    }
-  }
-  return words;
-}
-
-uint64_t parseCount(std::string_view word) {
-  uint64_t value = 0;
-  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-  return error == std::errc{} ? value : 0;
-}
-
-// A count a header declares, against the budget and against what the file can hold: every
-// element takes at least one byte, so a count past the file's size is a lie assimp would
-// allocate for.
-Expected<void> checkDeclared(const std::string& name, const std::string& what, uint64_t count,
-                             uint64_t budget, size_t file_bytes) {
-  if (count > file_bytes)
-    return makeError(name + ": the header declares " + std::to_string(count) + " " + what +
-                     ", more than the file's " + std::to_string(file_bytes) + " bytes can hold");
-  return checkBudget(name, what, count, budget, "--max-triangles");
-}
-
-// PLY ("element vertex N", "element face N") and OFF ("OFF V F E") headers, before assimp reads
-// them: its readers size their arrays from these counts.
-Expected<void> checkDeclaredCounts(const std::vector<uint8_t>& bytes, const std::string& name,
-                                   const LoadBudget& budget) {
-  const std::string_view text(reinterpret_cast<const char*>(bytes.data()),
-                              std::min<size_t>(bytes.size(), 64 << 10));
-  if (text.starts_with("ply")) {
-    const size_t end = text.find("end_header");
-    const std::vector<std::string_view> words =
-        headerWords(text.substr(0, end == std::string_view::npos ? text.size() : end), 1 << 14);
-    for (size_t i = 0; i + 2 < words.size(); ++i) {
-      if (words[i] != "element") continue;
-      const std::string element(words[i + 1]);
-      const uint64_t count = parseCount(words[i + 2]);
-      const uint64_t limit = element == "face"     ? budget.triangles()
-                             : element == "vertex" ? budget.vertices()
-                                                   : UINT64_MAX;
-      const std::string what = element == "vertex" ? "vertices"
-                               : element == "face" ? "faces"
-                                                   : singleQuoted(elided(element)) + " elements";
-      if (Expected<void> ok = checkDeclared(name, what, count, limit, bytes.size()); !ok) return ok;
-    }
-  } else {
-    // By content, as assimp finds the reader when the extension does not say.
-    const std::vector<std::string_view> words = headerWords(text, 4);
-    if (words.size() == 4 && words[0].ends_with("OFF") && words[0].size() <= 5) {
-      if (Expected<void> ok = checkDeclared(name, "vertices", parseCount(words[1]),
-                                            budget.vertices(), bytes.size());
-          !ok)
-        return ok;
-      return checkDeclared(name, "faces", parseCount(words[2]), budget.triangles(), bytes.size());
-    }
-  }
-  return {};
-}
-
 // The message for an import that failed: assimp's reason, and the files the sandbox refused.
 std::string failure(const std::string& name, const char* reason, const SandboxIOSystem& files) {
   std::string message = name + ": assimp cannot read it: " + oneLine(reason ? reason : "");
@@ -136,28 +80,61 @@ std::string failure(const std::string& name, const char* reason, const SandboxIO
   return message;
 }
 
+// assimp's reader, tessera's check of what it read, then assimp's post-processing (which indexes
+// without checking): the scene `importer` holds, or one line saying why there is none. The files
+// the sandbox refused go to `refusals`.
+Expected<const aiScene*> readScene(Assimp::Importer& importer, const std::string& key,
+                                   const std::string& name, const std::vector<uint8_t>& bytes,
+                                   const fs::path& folder, const LoadBudget& budget,
+                                   std::vector<std::string>& refusals) {
+  // The importer owns and deletes its IO system.
+  auto* files = new SandboxIOSystem(key, bytes, folder, budget.fileBytes());
+  importer.SetIOHandler(files);
+  // Bones without a mesh would be drawn as a made-up skeleton mesh.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
+  const aiScene* scene = importer.ReadFile(key, 0);
+  refusals = files->refusals();
+  if (!files->overBudget().empty()) return makeError(name + ": " + files->overBudget());
+  if (scene == nullptr) return makeError(failure(name, importer.GetErrorString(), *files));
+  if (Expected<void> ok = assimp::checkImportedScene(*scene, name); !ok) return ok.error();
+  scene = importer.ApplyPostProcessing(kPostProcess);
+  if (scene == nullptr) return makeError(failure(name, importer.GetErrorString(), *files));
+  return scene;
+}
+
 // assimp on a model whose bytes are read: `key` is the name assimp is given (its extension picks
 // the reader first), `name` the one messages use, `folder` where referred files may be (empty:
-// none).
+// none). The checks tessera can make come first; then assimp reads the file in a child process
+// (assimp_process.h), and only when that went well, here.
 Expected<Model> importScene(const std::string& key, const std::string& name,
-                            std::vector<uint8_t> bytes, const fs::path& folder,
+                            const std::vector<uint8_t>& bytes, const fs::path& folder,
                             const LoadBudget& budget) {
-  if (Expected<void> ok = checkDeclaredCounts(bytes, name, budget); !ok) return ok.error();
+  std::string extension = lowered(fs::path(key).extension().string());
+  if (!extension.empty()) extension.erase(0, 1);
+  if (Expected<void> ok = checkHeaders(bytes, name, extension, budget); !ok) return ok.error();
+  // Half a minute, and a second more for every 10 MiB: far past any sound file's read.
+  const int seconds = 30 + static_cast<int>(bytes.size() / (10 << 20));
+  const auto probe = [&]() -> Expected<void> {
+    Assimp::Importer importer;
+    std::vector<std::string> refusals;
+    Expected<const aiScene*> scene =
+        readScene(importer, key, name, bytes, folder, budget, refusals);
+    if (!scene) return scene.error();
+    return {};
+  };
+  // Twice the memory limit: assimp's own structures beside the file's bytes.
+  if (Expected<void> ok = runIsolated(probe, name, 2 * budget.memory_bytes, seconds); !ok)
+    return ok.error();
   try {
     Assimp::Importer importer;
-    // The importer owns and deletes its IO system.
-    auto* files = new SandboxIOSystem(key, std::move(bytes), folder, budget.fileBytes());
-    importer.SetIOHandler(files);
-    // Bones without a mesh would be drawn as a made-up skeleton mesh.
-    importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
-    const aiScene* scene = importer.ReadFile(key, kPostProcess);
-    if (!files->overBudget().empty()) return makeError(name + ": " + files->overBudget());
-    if (scene == nullptr) return makeError(failure(name, importer.GetErrorString(), *files));
+    std::vector<std::string> refusals;
+    Expected<const aiScene*> scene =
+        readScene(importer, key, name, bytes, folder, budget, refusals);
+    if (!scene) return scene.error();
     Model model;
-    assimp::SceneBuilder builder(*scene, name, folder, budget, model);
+    assimp::SceneBuilder builder(**scene, name, folder, budget, model);
     if (Expected<void> ok = builder.run(); !ok) return ok.error();
-    for (const std::string& refusal : files->refusals())
-      model.warnings.push_back(name + ": " + refusal);
+    for (const std::string& refusal : refusals) model.warnings.push_back(name + ": " + refusal);
     return model;
   } catch (const std::bad_alloc&) {
     return makeError(name + ": assimp cannot read it: it ran out of memory");
@@ -224,8 +201,7 @@ Expected<Model> loadAssimp(const fs::path& path, const LoadBudget& budget) {
   std::error_code error;
   const fs::path absolute = fs::absolute(path, error).lexically_normal();
   if (error) return makeError(name + ": cannot resolve its folder: " + error.message());
-  return importScene(absolute.string(), name, std::move(bytes).value(), absolute.parent_path(),
-                     budget);
+  return importScene(absolute.string(), name, *bytes, absolute.parent_path(), budget);
 }
 
 Expected<Model> loadAssimpFromMemory(std::span<const uint8_t> bytes, const std::string& name,

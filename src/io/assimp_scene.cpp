@@ -93,6 +93,51 @@ float unitChannel(float value, float fallback) {
 
 }  // namespace
 
+Expected<void> checkImportedScene(const aiScene& scene, const std::string& name) {
+  const auto broken = [&](const std::string& what) {
+    return makeError(name + ": assimp cannot read it: " + what);
+  };
+  if (scene.mNumMeshes > 0 && scene.mMeshes == nullptr) return broken("the mesh list is missing");
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh* mesh = scene.mMeshes[m];
+    const std::string label = "mesh " + std::to_string(m);
+    if (mesh == nullptr) return broken(label + " is missing");
+    if (mesh->mNumVertices > 0 && mesh->mVertices == nullptr)
+      return broken(label + " has no vertex positions");
+    if (mesh->mNumFaces > 0 && mesh->mFaces == nullptr) return broken(label + " has no faces");
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices == 0 || face.mIndices == nullptr)
+        return broken(label + ", face " + std::to_string(f) + " has no vertices");
+      for (unsigned i = 0; i < face.mNumIndices; ++i)
+        if (face.mIndices[i] >= mesh->mNumVertices)
+          return broken(label + ", face " + std::to_string(f) + " uses vertex " +
+                        std::to_string(face.mIndices[i]) + " of " +
+                        std::to_string(mesh->mNumVertices));
+    }
+  }
+  // The nodes, without recursion; a node reached twice is a broken tree.
+  std::vector<const aiNode*> stack;
+  if (scene.mRootNode != nullptr) stack.push_back(scene.mRootNode);
+  std::unordered_set<const aiNode*> seen;
+  while (!stack.empty()) {
+    const aiNode* node = stack.back();
+    stack.pop_back();
+    if (node == nullptr) return broken("a node is missing");
+    if (!seen.insert(node).second) return broken("the node tree has a cycle");
+    if (node->mNumMeshes > 0 && node->mMeshes == nullptr)
+      return broken("a node's meshes are missing");
+    for (unsigned i = 0; i < node->mNumMeshes; ++i)
+      if (node->mMeshes[i] >= scene.mNumMeshes)
+        return broken("node " + singleQuoted(node->mName.C_Str()) + " refers to mesh " +
+                      std::to_string(node->mMeshes[i]) + " of " + std::to_string(scene.mNumMeshes));
+    if (node->mNumChildren > 0 && node->mChildren == nullptr)
+      return broken("a node's children are missing");
+    for (unsigned i = 0; i < node->mNumChildren; ++i) stack.push_back(node->mChildren[i]);
+  }
+  return {};
+}
+
 Expected<void> SceneBuilder::run() {
   if (scene_.mRootNode != nullptr && scene_.mNumMeshes == 0)
     return makeError(name_ + ": no triangles in the scene (the file holds no meshes" +

@@ -22,6 +22,11 @@ struct aiMaterial;
 
 namespace tessera::io::assimp {
 
+// The scene as assimp's reader left it, before any post-processing: every face with vertices
+// and indices in range, every node's meshes in range. assimp's post-processing steps (triangulate,
+// join vertices) index without checking, and crash or fail an assertion on a broken face.
+Expected<void> checkImportedScene(const aiScene& scene, const std::string& name);
+
 // Distinct warnings listed per file; the rest are counted.
 constexpr size_t kMaxWarnings = 20;
 
