@@ -60,8 +60,9 @@ bool isPlyType(std::string_view word) {
 
 // A PLY header, line by line, before assimp sees it: assimp 5.2's PLY reader loops forever on
 // some broken headers (a NUL inside a keyword, found by fuzz/assimp_fuzz.cpp), so only the
-// header grammar goes through: printable lines of `format`, `comment`, `obj_info`,
-// `element NAME COUNT` and `property [list TYPE] TYPE NAME`, up to `end_header`. The counts an
+// header grammar goes through: printable lines, well-formed `format`, `element NAME COUNT` and
+// `property [list TYPE] TYPE NAME` lines, up to `end_header` (other lines are skipped, as assimp
+// skips them). The counts an
 // element declares are checked against the budget and the file's size: assimp sizes its arrays
 // from them.
 Expected<void> checkPlyHeader(std::string_view text, const std::string& name,
@@ -108,9 +109,8 @@ Expected<void> checkPlyHeader(std::string_view text, const std::string& name,
           words.size() == 5 && words[1] == "list" && isPlyType(words[2]) && isPlyType(words[3]);
       if (!in_element || !(list || (words.size() == 3 && isPlyType(words[1]))))
         return bad("'property TYPE NAME' or 'property list TYPE TYPE NAME' expected");
-    } else if (key != "comment" && key != "obj_info") {
-      return bad("an unknown keyword " + singleQuoted(elided(key)));
     }
+    // Any other line is skipped, as assimp does (Blender 2.4 wrote "Created by Blender3D...").
   }
   return makeError(name + ": the PLY header has no end_header in its first 64 KiB");
 }
