@@ -137,7 +137,9 @@ std::vector<ModelFormat> modelFormats();
 bool hasAssimp();
 
 // Any format assimp reads (PLY, OFF, COLLADA, FBX, 3DS, 3MF...), through assimp, sandboxed: the
-// file's size is checked first; assimp opens files only through an IO system that serves
+// file's size is checked first, then PLY headers and OFF files; assimp reads the file first in a
+// child process (memory capped, time limited: a crash or hang there is an error, not tessera's
+// end), and only then in this one; assimp opens files only through an IO system that serves
 // regular files beneath the model's folder within LoadBudget::fileBytes() (never a FIFO, device,
 // absolute or climbing path); the scene's triangle and vertex counts are checked against the
 // budget before anything is copied; its failures and exceptions become one error naming the
