@@ -1,10 +1,9 @@
 // Every format assimp reads that tessera has no loader of its own for, sandboxed (loadAssimp,
-// model_loader.h): the size and path checks first, the declared counts of PLY and OFF headers
-// against the budget before assimp allocates for them, then assimp through SandboxIOSystem, and
-// its failures and exceptions as one line naming the file.
+// model_loader.h): the size and path checks first, PLY headers and OFF files (assimp_headers.h),
+// then assimp through SandboxIOSystem, first in a child process (assimp_process.h), and its
+// failures and exceptions as one line naming the file.
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -29,8 +28,9 @@
 // Debian's libassimp is built with its assertions on, and a failed one calls this function,
 // whose library definition aborts the process: a hostile file could end tessera (the fuzz target
 // found one in TriangulateProcess). This definition takes the library's place (an executable's
-// symbol comes first in ELF's lookup, and assimp calls it through its PLT) and throws instead;
-// importScene turns the exception into one line naming the file.
+// symbol comes first in ELF's lookup, and assimp calls it through its PLT) and throws instead:
+// the child process that reads a file first (assimp_process.h) then says which check failed
+// rather than only that it crashed.
 namespace Assimp {
 void aiAssertViolation(const char* expression, const char* file, int line);
 void aiAssertViolation(const char* expression, const char* file, int line) {
