@@ -11,8 +11,10 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace tessera;
   const char* name = "fuzz.off";
-  if (size >= 3 && std::memcmp(data, "ply", 3) == 0) name = "fuzz.ply";
-  else if (size >= 1 && data[0] == '<') name = "fuzz.dae";
+  if (size >= 3 && std::memcmp(data, "ply", 3) == 0)
+    name = "fuzz.ply";
+  else if (size >= 1 && data[0] == '<')
+    name = "fuzz.dae";
   // A small budget: the counts it bounds are checked before assimp or tessera allocate.
   io::LoadBudget budget;
   budget.memory_bytes = uint64_t{64} << 20;
