@@ -9,7 +9,7 @@ set -euo pipefail
 seconds="${1:-30}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$root/build-fuzz"
-formats=(obj mtl stl gltf)
+formats=(obj mtl stl gltf assimp)
 
 for tool in clang++; do
   command -v "$tool" >/dev/null || { echo "run_all: $tool not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }

@@ -1,6 +1,7 @@
 // tessera info MODEL (and render --info): what a model holds, without rendering it.
 #include <iostream>
 #include <set>
+#include <string>
 
 #include <tessera/io/model_loader.h>
 
@@ -65,13 +66,37 @@ void printModelInfo(const std::string& path, const io::Model& model, std::ostrea
   for (const std::string& w : model.warnings) out << "  " << w << "\n";
 }
 
+// f3d's --readers-list: one line per format, its reader and its extensions.
+void printReaders(std::ostream& out) {
+  out << "format                                          reader   extensions\n";
+  for (const io::ModelFormat& format : io::modelFormats()) {
+    std::string name = format.name;
+    if (name.size() < 48) name.resize(48, ' ');
+    std::string reader = format.reader;
+    if (reader.size() < 9) reader.resize(9, ' ');
+    out << name << reader;
+    for (size_t i = 0; i < format.extensions.size(); ++i)
+      out << (i ? " ." : ".") << format.extensions[i];
+    out << "\n";
+  }
+  if (!io::hasAssimp())
+    out << "(this build has no assimp: PLY, OFF, COLLADA, FBX, 3DS, 3MF... are not read)\n";
+}
+
 int runInfo(const std::vector<std::string>& args) {
-  FlagSet flags("tessera info MODEL");
+  FlagSet flags("tessera info MODEL | tessera info --readers-list");
   io::LoadBudget budget;
   addBudgetFlags(flags, budget);
+  bool readers_list = false;
+  flags.addSwitch("readers-list", &readers_list,
+                  "list the model formats tessera reads, with their reader and extensions");
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {
     std::cout << flags.usage();
+    return kExitOk;
+  }
+  if (positional && readers_list && positional->empty()) {
+    printReaders(std::cout);
     return kExitOk;
   }
   if (!positional || positional->size() != 1) {

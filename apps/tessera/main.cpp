@@ -25,6 +25,7 @@ constexpr const char* kUsage =
     "  render MODEL    render a model to PNG (colour or an AOV), GIF, MP4 or a PNG sequence\n"
     "  bench [SCENE]   time built-in scenes or models, beside Mesa's llvmpipe with --vs llvmpipe\n"
     "  info MODEL      print a model's counts, bounds and warnings without rendering it\n"
+    "                  (info --readers-list: the model formats and which reader reads each)\n"
     "  view [MODEL]    look at a model (or the cube) in a window: orbit, zoom, pan, screenshots\n"
     "  devices         list the Vulkan devices and the backends each can run\n"
     "\n"

@@ -5,6 +5,8 @@
 #include <string>
 #include <utility>
 
+#include "assimp_formats.h"
+
 namespace tessera::io {
 
 Expected<Model> loadModel(const std::filesystem::path& path, const LoadBudget& budget) {
@@ -13,10 +15,24 @@ Expected<Model> loadModel(const std::filesystem::path& path, const LoadBudget& b
   if (extension == ".obj") return loadObj(path, budget);
   if (extension == ".gltf" || extension == ".glb") return loadGltf(path, budget);
   if (extension == ".stl") return loadStl(path, budget);
+  if (extension.size() > 1 && isAssimpExtension(extension.substr(1)))
+    return loadAssimp(path, budget);
   const std::string what =
       extension.empty() ? "has no file extension" : "has an unknown extension '" + extension + "'";
-  return makeError(path.string() + ": " + what +
-                   "; supported model formats: .obj, .gltf, .glb, .stl");
+  return makeError(path.string() + ": " + what + "; supported model formats: .obj, .gltf, .glb, " +
+                   ".stl" +
+                   (hasAssimp() ? " and assimp's (tessera info --readers-list)"
+                                : " (this build has no assimp for the others)"));
+}
+
+std::vector<ModelFormat> modelFormats() {
+  std::vector<ModelFormat> formats = {
+      {"Wavefront OBJ (with MTL)", {"obj"}, "tessera"},
+      {"glTF 2.0 (JSON and binary)", {"gltf", "glb"}, "tessera"},
+      {"STL (binary and ASCII)", {"stl"}, "tessera"},
+  };
+  for (const ModelFormat& format : assimpFormats()) formats.push_back(format);
+  return formats;
 }
 
 SceneGraph takeGraph(Model&& model) {

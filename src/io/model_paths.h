@@ -25,6 +25,16 @@ std::string numberAfter(std::string_view text, std::string_view marker);
 // and any other text over 80 characters cut with "...".
 std::string elided(std::string_view text);
 
+// `text` in single quotes, for messages.
+inline std::string singleQuoted(std::string_view text) {
+  std::string out;
+  out.reserve(text.size() + 2);
+  out += '\'';
+  out += text;
+  out += '\'';
+  return out;
+}
+
 // Encoded image files a model names (or --texture): far past any real texture, and read whole
 // into memory before decoding.
 constexpr uintmax_t kMaxImageFileBytes = uintmax_t{512} << 20;

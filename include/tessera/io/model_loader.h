@@ -45,8 +45,8 @@ struct LoadBudget {
 
 struct Model {
   // OBJ, STL and models built by hand: one mesh, the scene's one node (takeGraph).
-  Mesh mesh;                          // triangles in the contract's load order
-  std::vector<Material> materials;    // at least one; Mesh::triangle_materials indexes these
+  Mesh mesh;                        // triangles in the contract's load order
+  std::vector<Material> materials;  // at least one; Mesh::triangle_materials indexes these
   // glTF: the scene graph (graph.h), each mesh stored once and drawn by every node that refers
   // to it; `mesh` is then empty and `materials` lists the file's materials, the list every graph
   // mesh shares (GraphMesh::materials). The instances' triangles, depth-first over the
@@ -76,7 +76,8 @@ SceneGraph takeGraph(Model&& model);
 // flattened (SceneGraph::flatten). For tools and tests; a renderer instances the graph.
 Mesh flattenedMesh(const Model& model);
 
-// By extension (case-insensitive): .obj, .gltf, .glb, .stl.
+// By extension (case-insensitive): .obj, .gltf, .glb and .stl with tessera's own loaders, every
+// other extension assimp reads (modelFormats) through loadAssimp.
 Expected<Model> loadModel(const std::filesystem::path& path, const LoadBudget& budget = {});
 
 // Wavefront OBJ with its MTL files (tinyobjloader). Faces in file order; convex polygons are
@@ -119,5 +120,42 @@ Expected<Model> loadStl(const std::filesystem::path& path, const LoadBudget& bud
 // The same from bytes in memory; `name` is used in messages.
 Expected<Model> loadStlFromMemory(std::span<const uint8_t> bytes, const std::string& name,
                                   const LoadBudget& budget = {});
+
+// A format tessera reads: its name, its extensions (lower case, without the dot) and which
+// reader reads it ("tessera" or "assimp").
+struct ModelFormat {
+  std::string name;
+  std::vector<std::string> extensions;
+  std::string reader;
+};
+
+// Every format loadModel reads: tessera's own first (OBJ, glTF, STL), then assimp's in its
+// order, without the extensions tessera's loaders keep. Empty for assimp when the build has none.
+std::vector<ModelFormat> modelFormats();
+
+// Whether this build reads the formats through assimp (TESSERA_ASSIMP and libassimp-dev).
+bool hasAssimp();
+
+// Any format assimp reads (PLY, OFF, COLLADA, FBX, 3DS, 3MF...), through assimp, sandboxed: the
+// file's size is checked first, then PLY headers and OFF files; assimp reads the file first in a
+// child process (memory capped, time limited: a crash or hang there is an error, not tessera's
+// end), and only then in this one; assimp opens files only through an IO system that serves
+// regular files beneath the model's folder within LoadBudget::fileBytes() (never a FIFO, device,
+// absolute or climbing path); the scene's triangle and vertex counts are checked against the
+// budget before anything is copied; its failures and exceptions become one error naming the
+// file ("NAME: assimp cannot read it: REASON"). Triangulated, identical vertices joined. The node
+// hierarchy becomes Model::graph (each assimp mesh list stored once, drawn by every node that
+// refers to it; triangle ids depth-first over the nodes as for glTF). Normals when the file has
+// them (else smooth ones are generated), UV set 0, vertex colour set 0 (sRGB-encoded in every
+// format assimp reads, decoded to linear), materials with their diffuse colour, opacity,
+// two-sidedness and diffuse texture (embedded, or a file beneath the model's folder). Points and
+// lines are not drawn: a file with nothing else is an error, else a warning says what was
+// skipped. Without assimp in the build, an error says so.
+Expected<Model> loadAssimp(const std::filesystem::path& path, const LoadBudget& budget = {});
+
+// The same from bytes in memory: `name`'s extension picks the format (assimp also looks at the
+// bytes); nothing but these bytes can be opened (textures are refused with a warning).
+Expected<Model> loadAssimpFromMemory(std::span<const uint8_t> bytes, const std::string& name,
+                                     const LoadBudget& budget = {});
 
 }  // namespace tessera::io
