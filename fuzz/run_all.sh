@@ -27,6 +27,8 @@ for f in "${formats[@]}"; do targets+=("tessera_fuzz_$f"); done
 cmake --build "$build" -j"${JOBS:-$(nproc)}" --target "${targets[@]}"
 
 mkdir -p "$build/artifacts"
+# Leaks inside Debian's libassimp, which we cannot fix, are suppressed (scripts/lsan.supp).
+export LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp"
 # One fuzzer: its execution count on success; the end of its log and a failure otherwise.
 fuzz_one() {  # format
   local f="$1"

@@ -14,6 +14,8 @@ command -v clang++ >/dev/null || { echo "sanitize: clang++ not found (scripts/se
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=0"
 # Known findings not yet fixed are listed, with why, in scripts/ubsan.supp.
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$root/scripts/ubsan.supp"
+# Leaks inside Debian's libassimp, which we cannot fix (scripts/lsan.supp says which).
+export LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp"
 export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
 
 # The whole unit suite but what needs a GPU, a display or timing: those run in the Release
