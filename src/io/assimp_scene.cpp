@@ -12,6 +12,7 @@
 
 #include <tessera/scene/color.h>
 
+#include "graph_model.h"
 #include "model_paths.h"
 
 namespace tessera::io::assimp {
@@ -411,18 +412,7 @@ Expected<void> SceneBuilder::finish() {
   if (scene_.mNumAnimations > 0) warn("animations are not played (assimp formats)");
   if (scene_.mNumCameras > 0 || scene_.mNumLights > 0)
     warn("the file's cameras and lights are not used");
-  if (model_.materials.empty()) model_.materials.push_back(Material{});
-  // Every mesh indexes the one list of materials in first-use order: shared, not copied.
-  const MaterialList shared(model_.materials);
-  for (GraphMesh& mesh : model_.graph.meshes) mesh.materials = shared;
-  if (model_.nonfinite_triangles > 0)
-    model_.warnings.push_back(
-        name_ + ": " + std::to_string(model_.nonfinite_triangles) +
-        " triangles have a NaN or infinite vertex position (kept so triangle ids stay in load "
-        "order; they are not drawn)");
-  if (unlisted_warnings_ > 0)
-    model_.warnings.push_back(name_ + ": " + std::to_string(unlisted_warnings_) +
-                              " more warnings like these");
+  finishGraphModel(model_, name_, unlisted_warnings_);
   return {};
 }
 

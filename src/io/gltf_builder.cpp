@@ -7,6 +7,7 @@
 
 #include "gltf_builder.h"
 #include "gltf_lights.h"
+#include "graph_model.h"
 #include "load_budget.h"
 #include "tinygltf_include.h"
 
@@ -112,15 +113,17 @@ void GraphBuilder::readCameras() {
   const auto positive = [](double v) { return v > 0 && std::isfinite(v); };
   for (size_t i = 0; i < gltf_.cameras.size(); ++i) {
     const tinygltf::Camera& c = gltf_.cameras[i];
-    const std::string what = "camera " + std::to_string(i) +
-                             (c.name.empty() ? "" : " ('" + c.name + "')");
+    const std::string what =
+        "camera " + std::to_string(i) + (c.name.empty() ? "" : " ('" + c.name + "')");
     GraphCamera out;
     out.name = c.name;
     std::string bad;
     if (c.type == "perspective") {
       const tinygltf::PerspectiveCamera& p = c.perspective;
-      if (!positive(p.yfov) || p.yfov >= 3.14159265358979) bad = "yfov " + std::to_string(p.yfov);
-      else if (!positive(p.znear)) bad = "znear " + std::to_string(p.znear);
+      if (!positive(p.yfov) || p.yfov >= 3.14159265358979)
+        bad = "yfov " + std::to_string(p.yfov);
+      else if (!positive(p.znear))
+        bad = "znear " + std::to_string(p.znear);
       else if (p.zfar != 0 && !(p.zfar > p.znear && std::isfinite(p.zfar)))
         bad = "zfar " + std::to_string(p.zfar) + " (not past znear)";
       else if (p.aspectRatio < 0 || !std::isfinite(p.aspectRatio))
@@ -132,9 +135,12 @@ void GraphBuilder::readCameras() {
     } else if (c.type == "orthographic") {
       const tinygltf::OrthographicCamera& o = c.orthographic;
       out.orthographic = true;
-      if (!positive(o.xmag)) bad = "xmag " + std::to_string(o.xmag);
-      else if (!positive(o.ymag)) bad = "ymag " + std::to_string(o.ymag);
-      else if (!(o.znear >= 0) || !std::isfinite(o.znear)) bad = "znear " + std::to_string(o.znear);
+      if (!positive(o.xmag))
+        bad = "xmag " + std::to_string(o.xmag);
+      else if (!positive(o.ymag))
+        bad = "ymag " + std::to_string(o.ymag);
+      else if (!(o.znear >= 0) || !std::isfinite(o.znear))
+        bad = "znear " + std::to_string(o.znear);
       else if (!(o.zfar > o.znear) || !std::isfinite(o.zfar))
         bad = "zfar " + std::to_string(o.zfar) + " (not past znear)";
       out.xmag = static_cast<float>(o.xmag);
@@ -154,7 +160,9 @@ void GraphBuilder::readCameras() {
 // ---- Warnings ----
 
 // A warning about the model file; at most kMaxWarnings distinct ones are listed.
-void GraphBuilder::warn(const std::string& text) { warnAbout(name_ + ": " + text); }
+void GraphBuilder::warn(const std::string& text) {
+  warnAbout(name_ + ": " + text);
+}
 Warn GraphBuilder::warner() {
   return [this](const std::string& text) { warn(text); };
 }
@@ -207,27 +215,14 @@ Expected<void> GraphBuilder::finish() {
   for (auto [mode, count] : skipped_by_mode_) {
     const std::string what =
         mode >= 0 && mode < 4 ? kModeNames[mode] : "primitives of mode " + std::to_string(mode);
-    warn(std::to_string(count) + " primitive(s) of " + what +
-         " skipped: only triangles are drawn");
+    warn(std::to_string(count) + " primitive(s) of " + what + " skipped: only triangles are drawn");
   }
   size_t double_sided = 0;
   for (const Material& material : model_.materials) double_sided += material.double_sided;
   model_.cull_back_faces = double_sided == 0;
   if (double_sided > 0 && double_sided < model_.materials.size())
     warn("some materials are double-sided and some are not; back faces are drawn for all");
-  // Every mesh indexes the one list of the file's materials in first-use order: shared, not
-  // copied.
-  if (model_.materials.empty()) model_.materials.push_back(Material{});
-  const MaterialList shared(model_.materials);
-  for (GraphMesh& mesh : graph.meshes) mesh.materials = shared;
-  if (model_.nonfinite_triangles > 0)
-    model_.warnings.push_back(
-        name_ + ": " + std::to_string(model_.nonfinite_triangles) +
-        " triangles have a NaN or infinite vertex position (kept so triangle ids stay in load "
-        "order; they are not drawn)");
-  if (unlisted_warnings_ > 0)
-    model_.warnings.push_back(name_ + ": " + std::to_string(unlisted_warnings_) +
-                              " more warnings like these");
+  finishGraphModel(model_, name_, unlisted_warnings_);
   return {};
 }
 }  // namespace tessera::io::gltf
