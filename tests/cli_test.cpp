@@ -142,7 +142,8 @@ TEST_F(Cli, BadFlagsPointToHelpAndExitTwo) {
 // The traps of issue 20: -h is help (a number after it is the seed demo's height), --version
 // everywhere, WxH sizes, a typo gets a suggestion, missing output folders are made.
 TEST_F(Cli, OneGrammarForEveryCommand) {
-  for (const char* args : {"cube -h", "view -h", "render -h", "bench -h", "info -h", "cube --help"}) {
+  for (const char* args :
+       {"cube -h", "view -h", "render -h", "bench -h", "info -h", "cube --help"}) {
     RunResult r = run(args);
     EXPECT_EQ(r.exit_code, 0) << args << ": " << r.err;
     EXPECT_NE(r.out.find("usage: tessera"), std::string::npos) << args;
