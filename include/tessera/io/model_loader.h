@@ -66,6 +66,12 @@ struct Model {
   // glTF KHR_lights_punctual: the file's lights in world space (gltf_lights.cpp), in node order;
   // empty for other formats. A caller lights the model with these instead of its default rig.
   std::vector<Light> lights;
+  // Primitives without faces, in world space (node transforms applied at load): OBJ `p` and `l`
+  // elements and an OBJ without faces, glTF POINTS and LINES modes, a PLY of vertices only.
+  // A model may hold only these (no triangles); buildScene moves them into Scene::points and
+  // Scene::lines. Line colours are linear RGB.
+  PointList points;
+  LineList lines;
 };
 
 // The model's scene graph, moved out of it: `graph` when the loader built one, else one node

@@ -22,6 +22,14 @@ struct EdgeOptions {
   float width = 1.0f;              // pixels, above 0
 };
 
+// How Scene::points are drawn by the point pass (render/point_pass.h), after the triangles,
+// depth-tested against them and writing depth.
+struct PointOptions {
+  float size = 3.0f;             // pixels across, above 0 (`--point-size`)
+  bool sprites = false;          // shaded spheres instead of flat discs (`--point-sprites`)
+  float3 color{1.0f, 1.0f, 1.0f};  // linear RGB, for points without colours of their own
+};
+
 struct RenderOptions {
   int width = 480;
   int height = 480;
@@ -46,6 +54,8 @@ struct RenderOptions {
   Projection projection = Projection::kPerspective;
   Visibility visibility = Visibility::kDepthBuffer;
   EdgeOptions edges;  // drawn when `lines` is set too
+  PointOptions points;
+  float line_width = 1.0f;  // Scene::lines, in pixels (`--line-width`)
   // Test objects with clusters (Object::clusters) and their clusters against the frustum (and
   // back faces by normal cones) before their vertices are transformed (perspective only). Never
   // changes the image; off for tests that compare with and without.

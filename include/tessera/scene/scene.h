@@ -148,6 +148,18 @@ struct LineList {
   }
 };
 
+// World-space points (a point cloud, a mesh's vertices without faces): positions[i] in colors[i]
+// (linear RGB) when `colors` has one per position, else all in the scene's point colour
+// (RenderOptions::points). Drawn by the point pass (render/point_pass.h) after the triangles,
+// depth-tested and writing depth.
+struct PointList {
+  std::vector<float3> positions;
+  std::vector<float3> colors;  // empty, or one per position
+
+  size_t size() const { return positions.size(); }
+  bool empty() const { return positions.empty(); }
+};
+
 struct Scene {
   std::vector<Object> objects;
   std::vector<Light> lights;
@@ -155,6 +167,7 @@ struct Scene {
   Camera camera;
   float4 background{0.0f, 0.0f, 0.0f, 1.0f};  // linear RGBA
   LineList lines;
+  PointList points;
   bool show_world_axes = false;
   float world_axes_length = 1.0f;
 
