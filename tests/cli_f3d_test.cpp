@@ -198,4 +198,70 @@ TEST_F(CliF3d, AliasesShareTheFlagTable) {
   EXPECT_NE(r.err.find("did you mean '--camera-azimuth-angle'"), std::string::npos) << r.err;
 }
 
+// --no-background: an RGBA PNG, transparent where the model is not, opaque where it is, and
+// straight (not premultiplied) colour at its anti-aliased edge; refused for GIF and for AOVs.
+TEST_F(CliF3d, NoBackgroundWritesAnRgbaPngWithTheModelsCoverage) {
+  tessera::test::writeFile(dir_ / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+  RunResult r = run("render tri.obj --shading unlit --color 1,1,1 --resolution 48,48 "
+                    "--no-background -o clear.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const DecodedPng png = decode("clear.png");
+  ASSERT_EQ(png.channels, 4);
+  EXPECT_EQ(png.rgba(0, 0), (std::array<int, 4>{0, 0, 0, 0}));
+  EXPECT_EQ(png.rgba(24, 30), (std::array<int, 4>{255, 255, 255, 255}));
+  int partial = 0;
+  for (int y = 0; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x) {
+      const int a = png.at(x, y, 3);
+      if (a == 0 || a == 255) continue;
+      ++partial;
+      EXPECT_GE(png.at(x, y, 0), 250) << x << "," << y << ": the edge is premultiplied";
+    }
+  EXPECT_GT(partial, 10) << "no anti-aliased edge";
+  // The same without the flag: an opaque RGB PNG.
+  ASSERT_EQ(run("render tri.obj --resolution 48,48 -o opaque.png").exit_code, 0);
+  EXPECT_EQ(decode("opaque.png").channels, 3);
+  r = run("render tri.obj --no-background --turntable 3 -o spin.gif");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("alpha"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "spin.gif"));
+  EXPECT_EQ(run("render tri.obj --no-background --aov depth -o d.png").exit_code, 2);
+}
+
+TEST_F(CliF3d, OpacityMixesTheModelWithTheBackground) {
+  tessera::test::writeFile(dir_ / "quad.obj",
+                           "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+  const std::string common = "render quad.obj --shading unlit --color 1,1,1 --bg-color 0,0,0 "
+                             "--resolution 20,20 ";
+  ASSERT_EQ(run(common + "--opacity 0.5 -o half.png").exit_code, 0);
+  EXPECT_EQ(decode("half.png").rgb(10, 10), (std::array<int, 3>{188, 188, 188}));  // linear 0.5
+  ASSERT_EQ(run(common + "--opacity 0 -o none.png").exit_code, 0);
+  EXPECT_EQ(decode("none.png").rgb(10, 10), (std::array<int, 3>{0, 0, 0}));
+  EXPECT_EQ(run(common + "--opacity 1.5 -o bad.png").exit_code, 2);
+}
+
+// --grid: lines under the model, across the up axis; seen below a model viewed from above.
+TEST_F(CliF3d, GridDrawsAGroundUnderTheModel) {
+  tessera::test::writeFile(dir_ / "m.mtl", kMtl);
+  tessera::test::writeFile(dir_ / "box.obj", "mtllib m.mtl\n" + box({0, 0.3f, 0}, 0.3f, "red", 1));
+  const std::string common = "render box.obj --shading unlit --bg-color 0,0,0 --resolution 80,60 ";
+  ASSERT_EQ(run(common + "-o plain.png").exit_code, 0);
+  RunResult r = run(common + "--grid -o grid.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const DecodedPng plain = decode("plain.png"), grid = decode("grid.png");
+  int lit = 0, reds = 0, red_changed = 0;
+  for (int y = 0; y < grid.height; ++y)
+    for (int x = 0; x < grid.width; ++x) {
+      const bool red = plain.at(x, y, 0) > 128 && plain.at(x, y, 1) < 64;
+      reds += red;
+      if (red) red_changed += grid.rgb(x, y) != plain.rgb(x, y);
+      lit += !red && plain.rgb(x, y) == (std::array<int, 3>{0, 0, 0}) &&
+             grid.rgb(x, y) != plain.rgb(x, y);
+    }
+  EXPECT_GT(lit, 100) << "no grid drawn on the background";
+  // (A pixel at the box's anti-aliased edge whose centre is the background may take a line.)
+  ASSERT_GT(reds, 200);
+  EXPECT_LT(red_changed * 20, reds) << "the grid shows through the box, which stands on it";
+}
+
 }  // namespace

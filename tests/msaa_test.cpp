@@ -12,33 +12,14 @@
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
 
+#include "msaa_test_scenes.h"
+
 using namespace tessera;
+using namespace tessera::test;
 
 namespace {
 
 constexpr int kSampleCounts[] = {2, 4, 8};
-
-// Object coordinates are clip coordinates (w = 1), given as window positions in 1/256 pixel: on a
-// power-of-two viewport every such position maps back to itself exactly, so the test knows the
-// snapped vertices.
-Scene clipSpaceScene() {
-  Scene scene;
-  scene.camera.view_override = float4x4::identity();
-  scene.camera.projection_override = float4x4::identity();
-  scene.ambient = float3(1.0f);
-  scene.background = {0, 0, 0, 1};
-  return scene;
-}
-
-struct SubPixel {
-  int64_t x, y;  // 1/256 pixel, y down
-};
-
-float3 toNdc(SubPixel p, float z, int width, int height) {
-  const float x = static_cast<float>(p.x) / 256.0f, y = static_cast<float>(p.y) / 256.0f;
-  return {2.0f * x / static_cast<float>(width) - 1.0f, 1.0f - 2.0f * y / static_cast<float>(height),
-          z};
-}
 
 // The coverage rule, written out independently of the renderer: a point is inside when it is on
 // the inner side of all three edges, or on an edge that is a top or left one (y down, the
@@ -56,32 +37,6 @@ bool insideTriangle(const SubPixel v[3], int64_t px, int64_t py) {
     if (e < 0 || (e == 0 && !top_left)) return false;
   }
   return true;
-}
-
-Object unlitMesh(Mesh mesh) {
-  Object o;
-  o.mesh = std::make_shared<Mesh>(std::move(mesh));
-  o.materials[0].base_color = {1, 1, 1, 1};
-  o.shading = Shading::kUnlit;
-  o.cull = CullMode::kNone;
-  return o;
-}
-
-RenderOptions optionsFor(int width, int height, int msaa) {
-  RenderOptions options;
-  options.width = width;
-  options.height = height;
-  options.msaa = msaa;
-  options.coverage = true;
-  return options;
-}
-
-Frame render(const Scene& scene, const RenderOptions& options, int workers = 1,
-             SimdLevel simd = SimdLevel::kAuto) {
-  CpuRenderer renderer(workers, simd);
-  Frame frame;
-  renderer.render(scene, options, frame);
-  return frame;
 }
 
 // A mesh of triangles given in sub-pixels, one material per triangle.

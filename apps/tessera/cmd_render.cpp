@@ -15,6 +15,7 @@
 #include <tessera/io/image_writer.h>
 #include <tessera/io/model_loader.h>
 #include <tessera/model/model_scene.h>
+#include <tessera/render/composite.h>
 #include <tessera/render/cpu_renderer.h>
 #include <tessera/scene/color.h>
 
@@ -27,6 +28,7 @@
 #include "light_flags.h"
 #include "progress.h"
 #include "sampling_flags.h"
+#include "surface_flags.h"
 #include "validation.h"
 #include "view_setup.h"
 
@@ -67,6 +69,7 @@ struct RenderSettings {
   float line_width = 1.0f;
   LightSettings lights;    // --light, --ambient
   ProgressFlags progress;  // --quiet, --progress
+  SurfaceSettings surface;  // --grid, --no-background, --opacity
 };
 
 enum class OutputKind { kPng, kVideo, kSequence };  // kVideo: .gif or .mp4
@@ -78,13 +81,17 @@ bool endsWithIgnoringCase(const std::string& text, const std::string& suffix) {
 }
 
 Expected<void> writeStill(const std::filesystem::path& path, const Frame& frame,
-                          const std::string& aov) {
+                          const std::string& aov, bool alpha) {
   if (aov == "id") return io::writeIdPng(path, frame);
   if (aov == "depth") return io::writeDepthPng(path, frame);
   if (aov == "normal") return io::writeNormalPng(path, frame);
   if (aov == "coverage") return io::writeCoveragePng(path, frame);
   if (isDiagnosticAov(aov)) return writeDiagnosticAov(path, frame, aov);
-  return io::writePngRgba8(path, frame.width, frame.height, frame.color.data());
+  if (!alpha) return io::writePngRgba8(path, frame.width, frame.height, frame.color.data());
+  // A transparent background: the frame's colours are premultiplied (composite.h).
+  std::vector<uint32_t> straight = frame.color;
+  straightAlpha(straight);
+  return io::writePngRgba8(path, frame.width, frame.height, straight.data(), /*keep_alpha=*/true);
 }
 
 // An sRGB colour flag's value, each channel in 0..1: "" or what is wrong.
@@ -173,6 +180,7 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   addReferenceFlags(flags, s.reference);
   addBudgetFlags(flags, s.budget);
   addProgressFlags(flags, s.progress);
+  addSurfaceFlags(flags, s.surface);
 }
 
 // --duration as --turntable's frame count (round(duration x fps)): "" or a usage error when it
@@ -224,7 +232,7 @@ std::string checkOutput(const RenderSettings& s, OutputKind& kind) {
     return "--reference compares one image: use a .png output without --turntable";
   if (s.reference.update && s.reference.path.empty())
     return "--reference-update needs --reference PATH, the file to write";
-  return "";
+  return refuseSurface(s.surface, kind != OutputKind::kVideo, s.aov);
 }
 
 // What --visibility painter and --edges cannot go with, or "".
@@ -321,6 +329,7 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
   scene.camera = *camera;
   addViewLights(scene);
   applyLights(scene, lights, s.lights);
+  applySurface(s.surface, bounds, s.camera.upAxis(), scene);
   if (s.axes) {
     scene.show_world_axes = true;
     scene.world_axes_length = std::max(bounds.radius(), 1e-6f);
@@ -345,6 +354,7 @@ RenderOptions renderOptions(const RenderSettings& s, bool diagnostics, SamplingS
   options.edges.show = s.edges;
   for (int i = 0; i < 3; ++i) options.edges.color[i] = srgbToLinear(s.edge_color[i]);
   options.edges.width = s.line_width;
+  options.opacity = s.surface.opacity;
   // The id, depth and normal AOVs are the pixel centre's: one sample, no jitter. Coverage is
   // frame 0's (not jittered) at the --msaa count.
   sampling = s.sampling;
@@ -439,7 +449,7 @@ int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const B
     } else {
       std::filesystem::path path = kind == OutputKind::kSequence ? io::formatFramePath(s.output, i)
                                                                  : std::filesystem::path(s.output);
-      written = writeStill(path, frame, s.aov);
+      written = writeStill(path, frame, s.aov, s.surface.no_background);
     }
     if (!written) {
       printError("render", written.error().message);

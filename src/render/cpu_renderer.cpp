@@ -20,6 +20,7 @@
 #endif
 
 #include <tessera/base/check.h>
+#include <tessera/render/composite.h>
 #include <tessera/scene/color.h>
 
 #include "render/bin.h"
@@ -400,6 +401,10 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     render(scene, withDiagnosticInputs(options), frame);
     return;
   }
+  if (needsComposite(scene, options) && !options.coverage) {
+    render(scene, withCompositeInputs(scene, options), frame);
+    return;
+  }
   frame.diagnostics.valid = false;
   const bool painter = options.visibility == Visibility::kPainter;
   if (options.projection != Projection::kPerspective) {
@@ -567,6 +572,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const Clock::time_point t_tiles = Clock::now();
   if (replicable) s.replication.record(replicate, elapsed_ms(t_start, t_tiles));
 
+  if (needsComposite(scene, options))
+    compositeOverBackground(scene.background, options.opacity, frame);
   // Lines.
   if (draws_lines) s.line_pass.draw(scene, s.objects, options, view_projection, sampled, frame);
 

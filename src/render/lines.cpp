@@ -54,7 +54,11 @@ void blendPixel(Frame& frame, int x, int y, float z, float3 color, float a) {
   const size_t index = static_cast<size_t>(y) * frame.width + x;
   if (!(z < frame.depth[index])) return;
   const uint32_t old = frame.color[index];
-  uint32_t mixed = old & 0xff000000u;
+  // Over what is there: alpha too, for a transparent background (composite.h).
+  const uint32_t old_alpha = old >> 24;
+  uint32_t mixed = static_cast<uint32_t>(std::lround(static_cast<float>(old_alpha) +
+                                                     (255.0f - static_cast<float>(old_alpha)) * a))
+                   << 24;
   for (int k = 0; k < 3; ++k) {
     const float under = decodeSrgb8(static_cast<uint8_t>(old >> (8 * k)));
     mixed |= static_cast<uint32_t>(encodeSrgb8(under + (color[k] - under) * a)) << (8 * k);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <tessera/base/check.h>
+#include <tessera/render/composite.h>
 #include <tessera/scene/color.h>
 
 #include "render/chunk_layout.h"
@@ -244,6 +245,8 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   });
   const Clock::time_point t_tiles = Clock::now();
 
+  if (needsComposite(scene, options))
+    compositeOverBackground(scene.background, options.opacity, frame);
   if (draws_lines) {
     sceneLines(scene, objects_, lines_);
     const RayLines mode{options.projection,

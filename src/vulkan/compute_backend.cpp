@@ -22,6 +22,7 @@
 #include <string>
 
 #include <tessera/base/check.h>
+#include <tessera/render/composite.h>
 
 #include "render/fixed_point.h"
 #include "vulkan/backend_diagnostics.h"
@@ -555,7 +556,7 @@ ComputeBackend::ComputeBackend(std::unique_ptr<State> state) : state_(std::move(
 ComputeBackend::~ComputeBackend() = default;
 
 void ComputeBackend::render(const Scene& scene, const RenderOptions& requested, Frame& frame) {
-  const RenderOptions options = withDiagnosticInputs(requested);
+  const RenderOptions options = withCompositeInputs(scene, withDiagnosticInputs(requested));
   frame.diagnostics.valid = false;
   state_->last_result = renderIntoFrame(scene, options, frame,
                                         [&] { return state_->renderFrame(scene, options, frame); });

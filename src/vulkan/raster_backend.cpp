@@ -19,6 +19,7 @@
 #include <limits>
 
 #include <tessera/base/check.h>
+#include <tessera/render/composite.h>
 #include <tessera/scene/color.h>
 
 #include "shaders/MeshFrag.spv.h"
@@ -418,7 +419,7 @@ RasterBackend::RasterBackend(std::unique_ptr<State> state) : state_(std::move(st
 RasterBackend::~RasterBackend() = default;
 
 void RasterBackend::render(const Scene& scene, const RenderOptions& requested, Frame& frame) {
-  const RenderOptions options = withDiagnosticInputs(requested);
+  const RenderOptions options = withCompositeInputs(scene, withDiagnosticInputs(requested));
   frame.diagnostics.valid = false;
   state_->last_result = renderIntoFrame(scene, options, frame,
                                         [&] { return state_->renderFrame(scene, options, frame); });

@@ -8,6 +8,7 @@
 #include <span>
 
 #include <tessera/base/check.h>
+#include <tessera/render/composite.h>
 #include <tessera/scene/color.h>
 
 #include "render/clip.h"
@@ -394,6 +395,8 @@ Expected<void> renderIntoFrame(const Scene& scene, const RenderOptions& options,
 
 void drawSceneLines(const Scene& scene, const RenderOptions& options, const PackedScene& packed,
                     Frame& frame) {
+  if (needsComposite(scene, options))
+    compositeOverBackground(scene.background, options.opacity, frame);
   if (!drawsLines(scene, options)) return;
   LineList lines;
   lines.points.assign(scene.lines.points.begin(), scene.lines.points.end());

@@ -72,7 +72,8 @@ void clearFrame(Frame& frame);
 Expected<void> renderIntoFrame(const Scene& scene, const RenderOptions& options, Frame& frame,
                                const std::function<Expected<void>()>& draw);
 
-// The CPU's line pass on the finished frame (scene lines, world and object axes).
+// On the finished frame: the composite over the background (composite.h), then the CPU's line
+// pass (scene lines, world and object axes).
 void drawSceneLines(const Scene& scene, const RenderOptions& options, const PackedScene& packed,
                     Frame& frame);
 

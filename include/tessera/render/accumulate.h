@@ -19,7 +19,7 @@ class Accumulator {
 
  private:
   Frame scratch_;
-  std::vector<float> sum_;  // linear RGB per pixel
+  std::vector<float> sum_;  // linear RGB and alpha (0..255) per pixel
 };
 
 }  // namespace tessera

@@ -56,6 +56,9 @@ struct RenderOptions {
   EdgeOptions edges;  // drawn when `lines` is set too
   PointOptions points;
   float line_width = 1.0f;  // Scene::lines, in pixels (`--line-width`)
+  // The triangles' opacity over the background, 0..1 (`--opacity`; compositeOverBackground in
+  // composite.h): only the nearest surface is seen, mixed with the background.
+  float opacity = 1.0f;
   // Test objects with clusters (Object::clusters) and their clusters against the frustum (and
   // back faces by normal cones) before their vertices are transformed (perspective only). Never
   // changes the image; off for tests that compare with and without.
