@@ -64,3 +64,5 @@ ffmpeg -loglevel error -y -i "$tmp/zbuffer.png" -i "$tmp/painter.png" \
 python3 "$(dirname "$0")/animated_scene.py" "$tmp/orbit"
 "$tessera" render "$tmp/orbit/orbit.gltf" --animation-index 0 --fps 12 --resolution 240x160 \
   --shading flat -o "$out/animation.gif"
+# A ground grid under a model (--grid; glmark2-data's horse, read through assimp).
+"$tessera" render /usr/share/glmark2/models/horse.3ds --grid --resolution 480,300 -o "$out/grid.png"
