@@ -1,41 +1,32 @@
 #!/usr/bin/env bash
-# Builds the loaders' fuzz targets with clang (libFuzzer, ASan, UBSan) in build-fuzz/ and runs
-# each for SECONDS (default 30), starting from the seed corpus in fuzz/corpus/<format>/. Prints
-# each target's execution count; exits non-zero on the first crash, leak, hang or sanitizer
-# report, leaving the input in build-fuzz/artifacts/.
+# Builds the loaders' fuzz targets with clang (libFuzzer, ASan, UBSan) in build-asan/, the build
+# the sanitizer run shares (scripts/asan_build.sh), and runs each for SECONDS (default 30),
+# starting from the seed corpus in fuzz/corpus/<format>/. Prints each target's execution count;
+# exits non-zero on the first crash, leak, hang or sanitizer report, leaving the input in
+# build-asan/fuzz-artifacts/.
 #
 #   fuzz/run_all.sh [SECONDS]        JOBS=N sets the build's parallelism (default: nproc)
 set -euo pipefail
 seconds="${1:-30}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
-build="$root/build-fuzz"
 formats=(obj mtl stl gltf assimp)
 
-for tool in clang++; do
-  command -v "$tool" >/dev/null || { echo "run_all: $tool not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }
-done
-
-# A separate build at -O1 with line tables (as OSS-Fuzz builds): quick to compile, readable
-# reports.
-mkdir -p "$build"
-cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=None \
-  "-DCMAKE_CXX_FLAGS=-O1 -gline-tables-only" -DTESSERA_FUZZ=ON -DTESSERA_TESTS=OFF \
-  -DTESSERA_BENCH=OFF \
-  >"$build/configure.log" 2>&1 || { cat "$build/configure.log" >&2; exit 1; }
+source "$root/scripts/asan_build.sh"
+build=$(configure_asan_build "$root")
 targets=()
 for f in "${formats[@]}"; do targets+=("tessera_fuzz_$f"); done
 cmake --build "$build" -j"${JOBS:-$(nproc)}" --target "${targets[@]}"
 
-mkdir -p "$build/artifacts"
+mkdir -p "$build/fuzz-artifacts"
 # Leaks inside Debian's libassimp, which we cannot fix, are suppressed (scripts/lsan.supp).
 export LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp"
 # One fuzzer: its execution count on success; the end of its log and a failure otherwise.
 fuzz_one() {  # format
   local f="$1"
   # New inputs go to a scratch corpus: the seeds in the repository stay as they are.
-  local work="$build/corpus/$f"
+  local work="$build/fuzz-corpus/$f"
   mkdir -p "$work"
-  local log="$build/fuzz_$f.log"
+  local log="$build/logs/fuzz_$f.log"
   # -timeout: an input taking 10 s counts as a hang; -rss_limit_mb: libFuzzer's 2 GiB default,
   # stated; -max_len: room for small glTF files with embedded buffers.
   # A dictionary of the format's keywords helps the fuzzer past its syntax.
@@ -43,7 +34,7 @@ fuzz_one() {  # format
   [ -f "$root/fuzz/dict/$f.dict" ] && dict=(-dict="$root/fuzz/dict/$f.dict")
   if "$build/fuzz/tessera_fuzz_$f" "$work" "$root/fuzz/corpus/$f" "${dict[@]}" \
       -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=16384 \
-      -print_final_stats=1 -artifact_prefix="$build/artifacts/$f-" >"$log" 2>&1; then
+      -print_final_stats=1 -artifact_prefix="$build/fuzz-artifacts/$f-" >"$log" 2>&1; then
     local runs
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
     echo "fuzz $f: ${runs:-?} executions in ${seconds} s"

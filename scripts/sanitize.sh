@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The unit suite under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/) and the
-# threaded render tests under ThreadSanitizer (build-tsan/), each a lean clang build at -O1 (no
-# Vulkan, no benchmarks) of only the targets it runs. Exits non-zero on the first failing test
+# The unit suite under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/, the clang build
+# the fuzz targets share: scripts/asan_build.sh) and the threaded render tests under
+# ThreadSanitizer (build-tsan/, gcc), each a lean build at -O1 (no Vulkan, no benchmarks) of only
+# the targets it runs. Exits non-zero on the first failing test
 # binary or sanitizer report, printing the end of its log (kept in build-*/logs/).
 #
 #   scripts/sanitize.sh        JOBS=N sets the parallelism (default: nproc)
@@ -22,7 +23,7 @@ export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
 # build (ctest), unsanitized.
 # The viewer's input and state tests (no window) run in the Release build only: they parse
 # nothing a user hands in, and their compile time is CI's to spend elsewhere.
-asan_tests=(math_test scene_test render_test render_raster_test render_shading_test msaa_test projection_test diagnostics_test
+asan_tests=(math_test scene_test render_test render_raster_test render_shading_test msaa_test composite_test projection_test diagnostics_test
             io_image_test io_obj_test io_gltf_test io_gltf_files_test
             io_stl_test io_assimp_test cli_test cli_validation_test
             cli_diagnostics_test hostile_test animation_test gltf_animation_test)
@@ -30,11 +31,14 @@ asan_tests=(math_test scene_test render_test render_raster_test render_shading_t
 tsan_tests=(render_test)
 tsan_filter='Renderer.ImageIsBitIdenticalForAnyWorkerCount:Renderer.AnAnimationIsTheSameForOneAndTwoWorkers:WorkerPool.*:PagePool.*'
 
+# The TSan build's configuration (the ASan build's is scripts/asan_build.sh's).
 configure() {  # folder, compiler, extra cmake arguments...
   local build="$1" compiler="$2"
   shift 2
   mkdir -p "$build/logs"
-  cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER="$compiler" -DCMAKE_BUILD_TYPE=None \
+  local generator=()
+  if [ ! -f "$build/CMakeCache.txt" ] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
+  cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$compiler" -DCMAKE_BUILD_TYPE=None \
     "-DCMAKE_CXX_FLAGS=-O1 -g1 -fno-omit-frame-pointer" \
     -DTESSERA_VULKAN=OFF -DTESSERA_BENCH=OFF "$@" \
     >"$build/logs/configure.log" 2>&1 || { cat "$build/logs/configure.log" >&2; exit 1; }
@@ -56,11 +60,10 @@ run_tests() {  # build folder, gtest filter, binaries...
 
 start=$SECONDS
 # No window and no llvmpipe reference in `tessera` itself: the tests here use neither.
-# The test sources at -O0 (TESSERA_TEST_COMPILE_OPTIONS): half their compile time.
-configure "$root/build-asan" clang++ -DTESSERA_SANITIZE=ON -DTESSERA_VIEWER=OFF -DTESSERA_OSMESA=OFF \
-  -DTESSERA_TEST_COMPILE_OPTIONS=-O0
-cmake --build "$root/build-asan" -j"$jobs" --target "${asan_tests[@]}" tessera
-run_tests "$root/build-asan" '*' "${asan_tests[@]}"
+source "$root/scripts/asan_build.sh"
+asan_build=$(configure_asan_build "$root")
+cmake --build "$asan_build" -j"$jobs" --target "${asan_tests[@]}" tessera
+run_tests "$asan_build" '*' "${asan_tests[@]}"
 
 # GCC: its ThreadSanitizer runtime is a shared library, so render_test's own operator new (it
 # counts allocations) replaces the runtime's; clang links its runtime statically and the two

@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake ninja-build pkg-config
   libgtest-dev libgmock-dev libbenchmark-dev
   libtinyobjloader-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libassimp-dev
   libspng-dev libpng-dev zlib1g-dev libgif-dev libimagequant-dev
@@ -32,5 +32,9 @@ if [ ${#missing[@]} -gt 0 ]; then
   "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release ${TESSERA_CMAKE_ARGS:-}
+# Ninja for a new build folder (it schedules the two cores better than make); a folder keeps the
+# generator it was made with.
+generator=()
+if [ ! -f build/CMakeCache.txt ] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
+cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release ${TESSERA_CMAKE_ARGS:-}
 cmake --build build -j"$(nproc)"
