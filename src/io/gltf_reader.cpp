@@ -50,6 +50,17 @@ Expected<ElementReader> GraphBuilder::reader(int accessor_index, const std::stri
   if (reader.count == 0) return makeError(what + ": count is 0");
   const size_t element = static_cast<size_t>(reader.components) * component_bytes;
 
+  // A Draco primitive's attribute: the decoded values, converted to the declared type.
+  if (draco_) {
+    auto decoded = draco_->accessors.find(accessor_index);
+    if (decoded != draco_->accessors.end()) {
+      reader.data = decoded->second.bytes.data();
+      reader.count = decoded->second.count;
+      reader.stride = element;
+      return reader;
+    }
+  }
+
   if (!accessor.sparse.isSparse && accessor.bufferView >= 0) {
     Expected<std::span<const uint8_t>> bytes = viewBytes(gltf_, accessor.bufferView, what);
     if (!bytes) return bytes.error();
