@@ -195,7 +195,7 @@ Expected<void> GraphBuilder::checkExtensions() {
   for (const std::string& extension : gltf_.extensionsRequired) {
     if (extension == "KHR_mesh_quantization") continue;  // read like any other accessor
     if (extension == "KHR_lights_punctual") continue;    // gltf_lights.cpp
-    if (extension == kDracoExtension) {                   // gltf_draco.h
+    if (extension == kDracoExtension) {                  // gltf_draco.h
       if (dracoDecoderBuilt()) continue;
       return makeError(noDracoDecoder(name_ + ": the file"));
     }

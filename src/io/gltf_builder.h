@@ -111,8 +111,8 @@ class GraphBuilder {
   std::map<int, size_t> skipped_by_mode_;
   std::set<std::string> warned_;
   size_t unlisted_warnings_ = 0;
-  std::vector<int32_t> graph_mesh_;    // per glTF mesh: its graph mesh, or kNoIndex
-  std::vector<int32_t> graph_camera_;  // per glTF camera: its graph camera, or kNoIndex
+  std::vector<int32_t> graph_mesh_;     // per glTF mesh: its graph mesh, or kNoIndex
+  std::vector<int32_t> graph_camera_;   // per glTF camera: its graph camera, or kNoIndex
   std::vector<size_t> mesh_nonfinite_;  // per graph mesh: triangles with a non-finite vertex
   uint64_t stored_triangles_ = 0, stored_vertices_ = 0;
 };

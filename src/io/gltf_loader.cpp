@@ -36,7 +36,6 @@ using namespace gltf;
 // tinygltf takes lengths as unsigned int; 2 GiB keeps every offset well inside that.
 constexpr uintmax_t kMaxGltfBytes = uintmax_t{2} << 30;
 
-
 // One of tinygltf's message lines in tessera's words: the ones a hostile file reaches say what
 // is wrong without tinygltf's phrasing or its placeholders, and any value is elided.
 std::string inOwnWords(std::string line) {
@@ -128,11 +127,15 @@ Expected<Model> parseGltf(std::span<const uint8_t> bytes, const std::string& nam
   if (*draco_ready) {
     parsed_bytes = (*draco_ready)->bytes;
     if (!binary)
-      json_text = std::string_view(reinterpret_cast<const char*>(parsed_bytes.data()),
-                                   parsed_bytes.size());
+      json_text =
+          std::string_view(reinterpret_cast<const char*>(parsed_bytes.data()), parsed_bytes.size());
   }
 
-  ExternalFiles files{folder, name, {}, 0, budget.fileBytes() - std::min<uint64_t>(budget.fileBytes(), bytes.size())};
+  ExternalFiles files{folder,
+                      name,
+                      {},
+                      0,
+                      budget.fileBytes() - std::min<uint64_t>(budget.fileBytes(), bytes.size())};
   tinygltf::TinyGLTF parser;
   parser.SetFsCallbacks({&fileExists, &expandFilePath, &readWholeFile, &refuseWrite, &files});
   parser.SetImageLoader(&keepEncodedImage, nullptr);
@@ -187,7 +190,8 @@ Expected<Model> loadGltfFromMemory(std::span<const uint8_t> bytes, const std::st
 Expected<Model> loadGltf(const std::filesystem::path& path, const LoadBudget& budget) {
   const std::string name = path.string();
   return guarded(name, [&]() -> Expected<Model> {
-    Expected<std::vector<unsigned char>> bytes = readRegularFile(path, std::min<uint64_t>(kMaxGltfBytes, budget.fileBytes()), "glTF");
+    Expected<std::vector<unsigned char>> bytes =
+        readRegularFile(path, std::min<uint64_t>(kMaxGltfBytes, budget.fileBytes()), "glTF");
     if (!bytes) return bytes.error();
     fs::path folder = path.parent_path();
     if (folder.empty()) folder = ".";
