@@ -29,6 +29,8 @@ namespace {
 
 using namespace gltf_test;  // NOLINT(google-build-using-namespace): the tests' own helpers
 
+#if TESSERA_HAS_DRACO
+
 // A unit cube, 12 triangles counter-clockwise from outside, with per-face normals and uvs: the
 // uncompressed mesh every test compares with, triangle by triangle.
 struct Corner {
@@ -55,8 +57,6 @@ std::vector<std::array<Corner, 3>> cubeTriangles() {
 }
 
 constexpr float kPositionStep = 2.0f / (1 << 14);  // 14-bit quantization of a 2-unit cube
-
-#if TESSERA_HAS_DRACO
 
 // The Draco stream of `triangles` and its attribute ids, plus what the decoder makes of it.
 struct Encoded {

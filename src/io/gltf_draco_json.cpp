@@ -107,8 +107,11 @@ Expected<std::optional<DracoReadyFile>> hideDracoIndices(std::span<const uint8_t
     // dump() throws on a string that is not UTF-8, which the parser let through.
     return makeError(name + ": the JSON has a string that is not UTF-8");
   }
-  if (text.size() > UINT32_MAX - 64)
-    return makeError(name + ": the JSON is too large to rewrite for the Draco primitives");
+  // tinygltf takes the length as an unsigned int.
+  const uint64_t rest =
+      binary ? uint64_t{readU32(file.data() + 8)} - 20 - readU32(file.data() + 12) : 0;
+  if (text.size() + 24 + rest > UINT32_MAX)
+    return makeError(name + ": the file is too large to rewrite for its Draco primitives");
   ready.bytes =
       binary ? rebuiltGlb(file, std::move(text)) : std::vector<uint8_t>(text.begin(), text.end());
   return Result(std::move(ready));
