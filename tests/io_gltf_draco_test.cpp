@@ -278,6 +278,53 @@ TEST_F(GltfFiles, DracoAttributeIdTheStreamLacksIsAnError) {
                       "mesh 0 primitive 0: the Draco stream has no attribute 17 (NORMAL)");
 }
 
+// COLOR_0 as normalized bytes: converted to the accessor's type and normalized as glTF says.
+TEST_F(GltfFiles, DracoColoursAreNormalizedBytes) {
+  const float p[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const uint8_t c[3][4] = {{255, 0, 0, 255}, {0, 255, 0, 128}, {0, 0, 51, 0}};
+  draco::TriangleSoupMeshBuilder builder;
+  builder.Start(1);
+  const int pos = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+  const int col = builder.AddAttribute(draco::GeometryAttribute::COLOR, 4, draco::DT_UINT8,
+                                       /*normalized=*/true);
+  builder.SetAttributeValuesForFace(pos, draco::FaceIndex(0), p[0], p[1], p[2]);
+  builder.SetAttributeValuesForFace(col, draco::FaceIndex(0), c[0], c[1], c[2]);
+  std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+  ASSERT_NE(mesh, nullptr);
+  draco::Encoder encoder;
+  draco::EncoderBuffer buffer;
+  ASSERT_TRUE(encoder.EncodeMeshToBuffer(*mesh, &buffer).ok());
+  GltfBuilder b;
+  const int view = b.bufferView(std::vector<uint8_t>(buffer.data(), buffer.data() + buffer.size()));
+  b.rawAccessor(R"({"componentType":5126,"type":"VEC3","count":3})");
+  b.rawAccessor(R"({"componentType":5121,"normalized":true,"type":"VEC4","count":3})");
+  b.rawAccessor(R"({"componentType":5123,"type":"SCALAR","count":3})");
+  const std::string body =
+      kOneNodeScene +
+      ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,"
+      "\"COLOR_0\":1},\"indices\":2,\"extensions\":{\"KHR_draco_mesh_compression\":{"
+      "\"bufferView\":" +
+      std::to_string(view) +
+      ",\"attributes\":{\"POSITION\":" + std::to_string(mesh->attribute(pos)->unique_id()) +
+      ",\"COLOR_0\":" + std::to_string(mesh->attribute(col)->unique_id()) + "}}}}]}]";
+  Expected<Model> model = loadJson(b.json(body));
+  ASSERT_TRUE(model) << model.error().message;
+  const Mesh flat = io::flattenedMesh(*model);
+  ASSERT_EQ(flat.triangleCount(), 1u);
+  ASSERT_EQ(flat.colors.size(), flat.positions.size());
+  for (size_t corner = 0; corner < 3; ++corner) {
+    const uint32_t v = flat.indices[corner];
+    // Which input corner this is, by its position (the encoder may rotate the face).
+    size_t k = 0;
+    while (k < 3 && length(flat.positions[v] - float3{p[k][0], p[k][1], p[k][2]}) > 1e-3f) ++k;
+    ASSERT_LT(k, 3u);
+    EXPECT_NEAR(flat.colors[v].x, c[k][0] / 255.0f, 1e-6f);
+    EXPECT_NEAR(flat.colors[v].y, c[k][1] / 255.0f, 1e-6f);
+    EXPECT_NEAR(flat.colors[v].z, c[k][2] / 255.0f, 1e-6f);
+    EXPECT_NEAR(flat.colors[v].w, c[k][3] / 255.0f, 1e-6f);
+  }
+}
+
 // A real file: Khronos's 2CylinderEngine sample, Draco-compressed, as Debian's assimp package
 // ships it (its accessors declare exactly what the streams decode to).
 TEST_F(GltfFiles, KhronosDracoSampleLoadsWithoutWarnings) {
