@@ -325,6 +325,36 @@ TEST_F(GltfFiles, DracoColoursAreNormalizedBytes) {
   }
 }
 
+// With the extension only used (not required) the file may carry uncompressed data too; a build
+// with Draco draws the stream (the extension says the compressed data must be used).
+TEST_F(GltfFiles, DracoStreamIsDrawnRatherThanTheFallback) {
+  const Encoded e = encode(cubeTriangles());
+  GltfBuilder b;
+  const int view = b.bufferView(e.bytes);
+  // A fallback of the same counts (as the extension has it) that differs from the stream: every
+  // point far away.
+  const int p = b.positions(std::vector<float3>(e.points, float3{50, 50, 50}));
+  std::vector<uint16_t> fallback_indices(3 * e.faces);
+  for (size_t k = 0; k < fallback_indices.size(); ++k)
+    fallback_indices[k] = static_cast<uint16_t>(k % e.points);
+  const int i = b.indices(fallback_indices);
+  const std::string body =
+      kOneNodeScene + "," +
+      oneMesh(p, "",
+              ",\"indices\":" + std::to_string(i) +
+                  ",\"extensions\":{\"KHR_draco_mesh_compression\":{\"bufferView\":" +
+                  std::to_string(view) +
+                  ",\"attributes\":{\"POSITION\":" + std::to_string(e.position_id) + "}}}") +
+      ",\"extensionsUsed\":[\"KHR_draco_mesh_compression\"]";
+  Expected<Model> model = loadJson(b.json(body));
+  ASSERT_TRUE(model) << model.error().message;
+  const Mesh mesh = io::flattenedMesh(*model);
+  ASSERT_EQ(mesh.triangleCount(), e.faces);
+  for (size_t t = 0; t < mesh.triangleCount(); ++t)
+    for (size_t c = 0; c < 3; ++c)
+      expectNear3(trianglePositions(mesh, t)[c], e.decoded_faces[t][c]);
+}
+
 // A real file: Khronos's 2CylinderEngine sample, Draco-compressed, as Debian's assimp package
 // ships it (its accessors declare exactly what the streams decode to).
 TEST_F(GltfFiles, KhronosDracoSampleLoadsWithoutWarnings) {
