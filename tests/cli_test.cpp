@@ -253,6 +253,35 @@ TEST_F(Cli, RenderIdAovEncodesTriangleIndexPlusOne) {
   EXPECT_EQ(png.at(14, 10, 0), 2);
 }
 
+// A Draco-compressed GLB (KHR_draco_mesh_compression, required) rendered end to end: every face
+// of the tetrahedron the camera sees has its id, in the decoder's order.
+TEST_F(Cli, RenderDracoGlbDrawsItsTriangles) {
+  const std::string model = std::string(TESSERA_TEST_DATA_DIR) + "/draco_tetrahedron.glb";
+  RunResult r = run("render '" + model +
+                    "' --resolution 60,40 --aov id -o id.png "
+                    "--camera-position 2,2,2 --camera-focal-point 0,0,0");
+#if !TESSERA_HAS_DRACO
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("needs KHR_draco_mesh_compression (this build has no Draco decoder)"),
+            std::string::npos)
+      << r.err;
+  GTEST_SKIP() << "this build has no Draco decoder: the file is refused";
+#endif
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  DecodedPng png;
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "id.png").string(), png));
+  std::set<int> ids;
+  for (int y = 0; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x)
+      ids.insert(png.at(x, y, 0) + 256 * png.at(x, y, 1) + 65536 * png.at(x, y, 2));
+  // From (2,2,2) the three faces at the origin's planes are back faces of the closed
+  // tetrahedron, culled; the slanted face is triangle 1, 2, 3 or 4 in the decoder's order.
+  EXPECT_EQ(ids.size(), 2u);
+  EXPECT_TRUE(ids.count(0));
+  EXPECT_GE(*ids.rbegin(), 1);
+  EXPECT_LE(*ids.rbegin(), 4);
+}
+
 TEST_F(Cli, RenderDepthAndNormalAovs) {
   writeQuadObj("quad.obj");
   RunResult r = run("render quad.obj --resolution 40,30 --aov depth -o depth.png");

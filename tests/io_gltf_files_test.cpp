@@ -302,9 +302,9 @@ TEST_F(GltfFiles, RequiredExtensionsThatAreNotSupportedAreAnError) {
   GltfBuilder b;
   const int p = b.positions(kTriangle);
   expectErrorContains(loadJson(b.json(kOneNodeScene + "," + oneMesh(p) +
-                                      ",\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],"
-                                      "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"]")),
-                      "requires the extension KHR_draco_mesh_compression");
+                                      ",\"extensionsUsed\":[\"EXT_meshopt_compression\"],"
+                                      "\"extensionsRequired\":[\"EXT_meshopt_compression\"]")),
+                      "requires the extension EXT_meshopt_compression");
 }
 
 TEST_F(GltfFiles, MissingFileAndNotGltfAreErrors) {

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "gltf_builder.h"
+#include "gltf_draco.h"
 #include "gltf_lights.h"
 #include "graph_model.h"
 #include "load_budget.h"
@@ -194,6 +195,10 @@ Expected<void> GraphBuilder::checkExtensions() {
   for (const std::string& extension : gltf_.extensionsRequired) {
     if (extension == "KHR_mesh_quantization") continue;  // read like any other accessor
     if (extension == "KHR_lights_punctual") continue;    // gltf_lights.cpp
+    if (extension == kDracoExtension) {                  // gltf_draco.h
+      if (dracoDecoderBuilt()) continue;
+      return makeError(noDracoDecoder(name_ + ": the file"));
+    }
     if (extension == "KHR_texture_transform" || extension.starts_with("KHR_materials_")) {
       warn("extension " + extension + " is not applied");
       continue;

@@ -1,6 +1,7 @@
 // The glTF loader's builder: from a parsed tinygltf::Model to io::Model's scene graph. Private to
 // tessera_io. Split by concern: gltf_builder.cpp (the node walk, cameras, warnings, the end),
-// gltf_reader.cpp (checked accessor reads), gltf_primitives.cpp (meshes and their primitives).
+// gltf_reader.cpp (checked accessor reads), gltf_primitives.cpp (meshes and their primitives),
+// gltf_draco.h (Draco-compressed primitives).
 #pragma once
 
 #include <array>
@@ -17,6 +18,7 @@
 #include <tessera/io/model_loader.h>
 
 #include "gltf_accessors.h"
+#include "gltf_draco.h"
 #include "gltf_materials.h"
 #include "gltf_nodes.h"
 
@@ -89,6 +91,8 @@ class GraphBuilder {
   Expected<void> drawMesh(size_t mesh_index, Mesh& out);
   Expected<void> drawPrimitive(const tinygltf::Primitive& primitive, const std::string& where,
                                Mesh& out);
+  // Whether the primitive's geometry comes from its Draco stream, decoded into draco_.
+  Expected<bool> readDraco(const tinygltf::Primitive& primitive, const std::string& where);
 
   const tinygltf::Model& gltf_;
   const LoadBudget budget_;
@@ -99,14 +103,16 @@ class GraphBuilder {
   MaterialTable materials_;
 
   std::map<int, std::vector<uint8_t>> dense_;  // sparse or bufferView-less accessors
+  // The Draco primitive being drawn: reader() reads its accessors from the decoded stream.
+  std::optional<DracoPrimitive> draco_;
   std::vector<uint32_t> remap_stamp_, remap_vertex_;
   uint32_t stamp_ = 0;
   std::vector<std::pair<size_t, size_t>> generated_normal_ranges_;  // of the mesh being read
   std::map<int, size_t> skipped_by_mode_;
   std::set<std::string> warned_;
   size_t unlisted_warnings_ = 0;
-  std::vector<int32_t> graph_mesh_;    // per glTF mesh: its graph mesh, or kNoIndex
-  std::vector<int32_t> graph_camera_;  // per glTF camera: its graph camera, or kNoIndex
+  std::vector<int32_t> graph_mesh_;     // per glTF mesh: its graph mesh, or kNoIndex
+  std::vector<int32_t> graph_camera_;   // per glTF camera: its graph camera, or kNoIndex
   std::vector<size_t> mesh_nonfinite_;  // per graph mesh: triangles with a non-finite vertex
   uint64_t stored_triangles_ = 0, stored_vertices_ = 0;
 };

@@ -18,6 +18,7 @@
 
 #include "gltf_builder.h"
 #include "gltf_container.h"
+#include "gltf_draco.h"
 #include "gltf_files.h"
 #include "model_paths.h"
 
@@ -34,7 +35,6 @@ using namespace gltf;
 
 // tinygltf takes lengths as unsigned int; 2 GiB keeps every offset well inside that.
 constexpr uintmax_t kMaxGltfBytes = uintmax_t{2} << 30;
-
 
 // One of tinygltf's message lines in tessera's words: the ones a hostile file reaches say what
 // is wrong without tinygltf's phrasing or its placeholders, and any value is elided.
@@ -119,8 +119,23 @@ Expected<Model> parseGltf(std::span<const uint8_t> bytes, const std::string& nam
     json_text = std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   }
   if (Expected<void> ok = checkJsonShape(json_text, name); !ok) return ok.error();
+  // Draco primitives' indices without a bufferView, which tinygltf refuses, hidden from it.
+  Expected<std::optional<DracoReadyFile>> draco_ready =
+      hideDracoIndices(bytes, json_text, binary, name);
+  if (!draco_ready) return draco_ready.error();
+  std::span<const uint8_t> parsed_bytes = bytes;
+  if (*draco_ready) {
+    parsed_bytes = (*draco_ready)->bytes;
+    if (!binary)
+      json_text =
+          std::string_view(reinterpret_cast<const char*>(parsed_bytes.data()), parsed_bytes.size());
+  }
 
-  ExternalFiles files{folder, name, {}, 0, budget.fileBytes() - std::min<uint64_t>(budget.fileBytes(), bytes.size())};
+  ExternalFiles files{folder,
+                      name,
+                      {},
+                      0,
+                      budget.fileBytes() - std::min<uint64_t>(budget.fileBytes(), bytes.size())};
   tinygltf::TinyGLTF parser;
   parser.SetFsCallbacks({&fileExists, &expandFilePath, &readWholeFile, &refuseWrite, &files});
   parser.SetImageLoader(&keepEncodedImage, nullptr);
@@ -128,8 +143,8 @@ Expected<Model> parseGltf(std::span<const uint8_t> bytes, const std::string& nam
   std::string errors, library_warnings;
   const std::string base(kFolderMarker.substr(0, kFolderMarker.size() - 1));
   const bool parsed =
-      binary ? parser.LoadBinaryFromMemory(&gltf, &errors, &library_warnings, bytes.data(),
-                                           static_cast<unsigned int>(bytes.size()), base)
+      binary ? parser.LoadBinaryFromMemory(&gltf, &errors, &library_warnings, parsed_bytes.data(),
+                                           static_cast<unsigned int>(parsed_bytes.size()), base)
              : parser.LoadASCIIFromString(&gltf, &errors, &library_warnings, json_text.data(),
                                           static_cast<unsigned int>(json_text.size()), base);
   if (!parsed) {
@@ -139,6 +154,9 @@ Expected<Model> parseGltf(std::span<const uint8_t> bytes, const std::string& nam
     return makeError(name + ": not a readable glTF file: " +
                      (message.empty() ? "tinygltf gave no reason" : message));
   }
+
+  if (*draco_ready) restoreDracoIndices(gltf, (*draco_ready)->hidden);
+  draco_ready->reset();  // tinygltf has copied the buffers
 
   Model model;
   GraphBuilder builder(gltf, name, folder, bytes.size() + files.bytes_read, budget, model);
@@ -172,7 +190,8 @@ Expected<Model> loadGltfFromMemory(std::span<const uint8_t> bytes, const std::st
 Expected<Model> loadGltf(const std::filesystem::path& path, const LoadBudget& budget) {
   const std::string name = path.string();
   return guarded(name, [&]() -> Expected<Model> {
-    Expected<std::vector<unsigned char>> bytes = readRegularFile(path, std::min<uint64_t>(kMaxGltfBytes, budget.fileBytes()), "glTF");
+    Expected<std::vector<unsigned char>> bytes =
+        readRegularFile(path, std::min<uint64_t>(kMaxGltfBytes, budget.fileBytes()), "glTF");
     if (!bytes) return bytes.error();
     fs::path folder = path.parent_path();
     if (folder.empty()) folder = ".";

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "gltf_builder.h"
+#include "gltf_draco.h"
 #include "gltf_transforms.h"
 #include "load_budget.h"
 #include "tinygltf_include.h"
@@ -47,6 +48,7 @@ Expected<void> GraphBuilder::drawMesh(size_t mesh_index, Mesh& out) {
     const std::string where =
         "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
     Expected<void> ok = drawPrimitive(mesh.primitives[p], where, out);
+    draco_.reset();  // its decoded accessors belong to that primitive alone
     if (!ok) return ok;
   }
   // Vertices of different primitives are never shared, so smooth normals over the whole mesh
@@ -68,7 +70,7 @@ Expected<void> GraphBuilder::drawMesh(size_t mesh_index, Mesh& out) {
 
 Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
                                            const std::string& where, Mesh& out) {
-  const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+  int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
   if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
       mode != TINYGLTF_MODE_TRIANGLE_FAN) {
     ++skipped_by_mode_[mode];
@@ -80,15 +82,25 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
     warn(where + " has no POSITION and is skipped");
     return {};
   }
+  Expected<bool> draco = readDraco(primitive, where);
+  if (!draco) return draco.error();
+  if (*draco) mode = TINYGLTF_MODE_TRIANGLES;  // a Draco mesh decodes to a list of faces
   // KHR_mesh_quantization allows integer positions, normals and texture coordinates.
-  Expected<ElementReader> positions =
-      reader(position_it->second, "POSITION of " + where, {3}, {});
+  Expected<ElementReader> positions = reader(position_it->second, "POSITION of " + where, {3}, {});
   if (!positions) return positions.error();
   const size_t vertex_count = positions->count;
 
   std::optional<ElementReader> indices;
   size_t corner_count = vertex_count;
-  if (primitive.indices >= 0) {
+  if (draco_) {
+    indices = ElementReader{reinterpret_cast<const uint8_t*>(draco_->indices.data()),
+                            sizeof(uint32_t),
+                            draco_->indices.size(),
+                            1,
+                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                            false};
+    corner_count = indices->count;
+  } else if (primitive.indices >= 0) {
     Expected<ElementReader> read =
         reader(primitive.indices, "indices of " + where, {1},
                {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
@@ -113,10 +125,9 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   // countDrawn counted these in advance (with instancing); this holds the meshes stored to the
   // same budget should the two ever disagree.
   const size_t new_vertices = std::min(vertex_count, 3 * triangle_count);
-  if (triangle_count > budget_.triangles() - std::min<uint64_t>(budget_.triangles(),
-                                                                 stored_triangles_) ||
-      new_vertices > budget_.vertices() - std::min<uint64_t>(budget_.vertices(),
-                                                              stored_vertices_))
+  if (triangle_count >
+          budget_.triangles() - std::min<uint64_t>(budget_.triangles(), stored_triangles_) ||
+      new_vertices > budget_.vertices() - std::min<uint64_t>(budget_.vertices(), stored_vertices_))
     return makeError(name_ + ": the meshes hold more than the budget of " +
                      std::to_string(budget_.triangles()) + " triangles or " +
                      std::to_string(budget_.vertices()) +
@@ -129,8 +140,7 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   Expected<uint16_t> material = materials_.materialFor(primitive.material, model_.materials);
   if (!material) return material.error();
   int uv_set = 0;
-  if (primitive.material >= 0 &&
-      static_cast<size_t>(primitive.material) < gltf_.materials.size()) {
+  if (primitive.material >= 0 && static_cast<size_t>(primitive.material) < gltf_.materials.size()) {
     const tinygltf::TextureInfo& info = gltf_.materials[static_cast<size_t>(primitive.material)]
                                             .pbrMetallicRoughness.baseColorTexture;
     if (info.index >= 0) uv_set = std::max(info.texCoord, 0);
@@ -163,20 +173,19 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   auto vertexOf = [&](size_t corner) -> Expected<uint32_t> {
     const size_t local = indices ? indices->index(corner) : corner;
     if (local >= vertex_count)
-      return makeError(name_ + ": " + where + ": index " + std::to_string(local) +
-                       " is past the " + std::to_string(vertex_count) + " vertices");
+      return makeError(name_ + ": " + where + ": index " + std::to_string(local) + " is past the " +
+                       std::to_string(vertex_count) + " vertices");
     if (remap_stamp_[local] == stamp_) return remap_vertex_[local];
     const auto vertex = static_cast<uint32_t>(out.positions.size());
     remap_stamp_[local] = stamp_;
     remap_vertex_[local] = vertex;
-    out.positions.push_back(
-        float3{positions->component(local, 0), positions->component(local, 1),
-               positions->component(local, 2)});
+    out.positions.push_back(float3{positions->component(local, 0), positions->component(local, 1),
+                                   positions->component(local, 2)});
     float3 normal{0, 0, 0};
     if (normals) {
-      normal = transformNormal(kIdentity3,
-                               {normals->component(local, 0), normals->component(local, 1),
-                                normals->component(local, 2)});
+      normal =
+          transformNormal(kIdentity3, {normals->component(local, 0), normals->component(local, 1),
+                                       normals->component(local, 2)});
       normals_usable &= normal.x != 0 || normal.y != 0 || normal.z != 0;
     }
     out.normals.push_back(normal);
@@ -221,6 +230,34 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
     generated_normal_ranges_.push_back({first_vertex, out.positions.size()});
   }
   return {};
+}
+
+// KHR_draco_mesh_compression (gltf_draco.h): whether the primitive's geometry comes from its
+// Draco stream, decoded into draco_ (reader() then reads its accessors from it). A build without
+// Draco reads the uncompressed fallback a file may carry beside the stream, and refuses the
+// primitive when there is none.
+Expected<bool> GraphBuilder::readDraco(const tinygltf::Primitive& primitive,
+                                       const std::string& where) {
+  draco_.reset();
+  if (primitive.extensions.count(std::string(kDracoExtension)) == 0) return false;
+  if (!dracoDecoderBuilt()) {
+    auto viewed = [&](int accessor) {
+      return accessor >= 0 && static_cast<size_t>(accessor) < gltf_.accessors.size() &&
+             gltf_.accessors[static_cast<size_t>(accessor)].bufferView >= 0;
+    };
+    if (viewed(primitive.attributes.at("POSITION")) &&
+        (primitive.indices < 0 || viewed(primitive.indices))) {
+      warn(where + " is read from its uncompressed fallback: this build has no Draco decoder");
+      return false;
+    }
+    return makeError(noDracoDecoder(name_ + ": " + where));
+  }
+  Expected<DracoPrimitive> decoded = decodeDracoPrimitive(
+      gltf_, primitive, name_, where, DracoBudget{budget_, stored_triangles_, stored_vertices_});
+  if (!decoded) return decoded.error();
+  for (const std::string& warning : decoded->warnings) warn(warning);
+  draco_ = std::move(decoded).value();
+  return true;
 }
 
 }  // namespace tessera::io::gltf

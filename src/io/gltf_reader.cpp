@@ -18,12 +18,11 @@ std::string GraphBuilder::accessorName(int accessor, const std::string& role) co
 // A reader for `accessor`, its type and component types checked against `allowed_types` and
 // `allowed_components` (empty: any), and its range against its buffer view.
 Expected<ElementReader> GraphBuilder::reader(int accessor_index, const std::string& role,
-                               std::initializer_list<int> allowed_types,
-                               std::initializer_list<int> allowed_components) {
+                                             std::initializer_list<int> allowed_types,
+                                             std::initializer_list<int> allowed_components) {
   if (accessor_index < 0 || static_cast<size_t>(accessor_index) >= gltf_.accessors.size())
-    return makeError(name_ + ": " + role + " refers to accessor " +
-                     std::to_string(accessor_index) + ", but the file has " +
-                     std::to_string(gltf_.accessors.size()));
+    return makeError(name_ + ": " + role + " refers to accessor " + std::to_string(accessor_index) +
+                     ", but the file has " + std::to_string(gltf_.accessors.size()));
   const std::string what = accessorName(accessor_index, role);
   const tinygltf::Accessor& accessor = gltf_.accessors[static_cast<size_t>(accessor_index)];
   ElementReader reader;
@@ -50,22 +49,32 @@ Expected<ElementReader> GraphBuilder::reader(int accessor_index, const std::stri
   if (reader.count == 0) return makeError(what + ": count is 0");
   const size_t element = static_cast<size_t>(reader.components) * component_bytes;
 
+  // A Draco primitive's attribute: the decoded values, converted to the declared type.
+  if (draco_) {
+    auto decoded = draco_->accessors.find(accessor_index);
+    if (decoded != draco_->accessors.end()) {
+      reader.data = decoded->second.bytes.data();
+      reader.count = decoded->second.count;
+      reader.stride = element;
+      return reader;
+    }
+  }
+
   if (!accessor.sparse.isSparse && accessor.bufferView >= 0) {
     Expected<std::span<const uint8_t>> bytes = viewBytes(gltf_, accessor.bufferView, what);
     if (!bytes) return bytes.error();
-    const tinygltf::BufferView& view =
-        gltf_.bufferViews[static_cast<size_t>(accessor.bufferView)];
+    const tinygltf::BufferView& view = gltf_.bufferViews[static_cast<size_t>(accessor.bufferView)];
     reader.stride = view.byteStride != 0 ? view.byteStride : element;
     if (reader.stride < element)
       return makeError(what + ": bufferView " + std::to_string(accessor.bufferView) +
                        " has byteStride " + std::to_string(view.byteStride) +
                        ", smaller than the " + std::to_string(element) + "-byte element");
     if (!fits(accessor.byteOffset, reader.count, reader.stride, element, bytes->size()))
-      return makeError(
-          what + ": " + std::to_string(reader.count) + " elements of " + std::to_string(element) +
-          " bytes, " + std::to_string(reader.stride) + " apart from byte " +
-          std::to_string(accessor.byteOffset) + ", reach past the end of bufferView " +
-          std::to_string(accessor.bufferView) + " (" + std::to_string(bytes->size()) + " bytes)");
+      return makeError(what + ": " + std::to_string(reader.count) + " elements of " +
+                       std::to_string(element) + " bytes, " + std::to_string(reader.stride) +
+                       " apart from byte " + std::to_string(accessor.byteOffset) +
+                       ", reach past the end of bufferView " + std::to_string(accessor.bufferView) +
+                       " (" + std::to_string(bytes->size()) + " bytes)");
     reader.data = bytes->data() + accessor.byteOffset;
     return reader;
   }
@@ -83,14 +92,13 @@ Expected<ElementReader> GraphBuilder::reader(int accessor_index, const std::stri
 }
 
 Expected<std::vector<uint8_t>> GraphBuilder::densify(const tinygltf::Accessor& accessor,
-                                       const std::string& what, size_t element) {
+                                                     const std::string& what, size_t element) {
   const size_t count = accessor.count;
   std::vector<uint8_t> dense;
   if (accessor.bufferView >= 0) {
     Expected<std::span<const uint8_t>> bytes = viewBytes(gltf_, accessor.bufferView, what);
     if (!bytes) return bytes.error();
-    const tinygltf::BufferView& view =
-        gltf_.bufferViews[static_cast<size_t>(accessor.bufferView)];
+    const tinygltf::BufferView& view = gltf_.bufferViews[static_cast<size_t>(accessor.bufferView)];
     const size_t stride = view.byteStride != 0 ? view.byteStride : element;
     if (stride < element)
       return makeError(what + ": bufferView byteStride " + std::to_string(view.byteStride) +
@@ -126,9 +134,11 @@ Expected<std::vector<uint8_t>> GraphBuilder::densify(const tinygltf::Accessor& a
       sparse.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
       sparse.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
     return makeError(sparse_what + " indices must be unsigned byte, short or int");
-  Expected<std::span<const uint8_t>> indices = viewBytes(gltf_, sparse.indices.bufferView, sparse_what);
+  Expected<std::span<const uint8_t>> indices =
+      viewBytes(gltf_, sparse.indices.bufferView, sparse_what);
   if (!indices) return indices.error();
-  Expected<std::span<const uint8_t>> values = viewBytes(gltf_, sparse.values.bufferView, sparse_what);
+  Expected<std::span<const uint8_t>> values =
+      viewBytes(gltf_, sparse.values.bufferView, sparse_what);
   if (!values) return values.error();
   if (sparse.indices.byteOffset < 0 || !fits(static_cast<uint64_t>(sparse.indices.byteOffset),
                                              sparse_count, static_cast<uint64_t>(index_bytes),
@@ -155,12 +165,10 @@ Expected<std::vector<uint8_t>> GraphBuilder::densify(const tinygltf::Accessor& a
 }
 
 // An optional attribute: a reader, or nothing with a warning when it cannot be used.
-std::optional<ElementReader> GraphBuilder::optionalAttribute(const tinygltf::Primitive& primitive,
-                                               const std::string& semantic,
-                                               const std::string& where, size_t vertex_count,
-                                               std::initializer_list<int> types,
-                                               std::initializer_list<int> components,
-                                               Expected<void>& fatal) {
+std::optional<ElementReader> GraphBuilder::optionalAttribute(
+    const tinygltf::Primitive& primitive, const std::string& semantic, const std::string& where,
+    size_t vertex_count, std::initializer_list<int> types, std::initializer_list<int> components,
+    Expected<void>& fatal) {
   auto it = primitive.attributes.find(semantic);
   if (it == primitive.attributes.end()) return std::nullopt;
   Expected<ElementReader> attribute =

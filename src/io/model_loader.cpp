@@ -28,7 +28,9 @@ Expected<Model> loadModel(const std::filesystem::path& path, const LoadBudget& b
 std::vector<ModelFormat> modelFormats() {
   std::vector<ModelFormat> formats = {
       {"Wavefront OBJ (with MTL)", {"obj"}, "tessera"},
-      {"glTF 2.0 (JSON and binary)", {"gltf", "glb"}, "tessera"},
+      {TESSERA_HAS_DRACO ? "glTF 2.0 (JSON and binary, Draco)" : "glTF 2.0 (JSON and binary)",
+       {"gltf", "glb"},
+       "tessera"},
       {"STL (binary and ASCII)", {"stl"}, "tessera"},
   };
   for (const ModelFormat& format : assimpFormats()) formats.push_back(format);
