@@ -32,6 +32,7 @@
 #include "load_budget.h"
 #include "model_paths.h"
 #include "obj_materials.h"
+#include "obj_points.h"
 #include "obj_polygons.h"
 #include "obj_scan.h"
 
@@ -113,8 +114,12 @@ Expected<void> checkScan(const std::string& name, const ObjLineIndex& lines,
           checkBudget(name, "triangles", lines.triangles, budget.triangles(), "--max-triangles");
       !ok)
     return ok;
-  return checkBudget(name, "vertex positions", lines.positions, budget.vertices(),
-                     "--max-triangles");
+  if (Expected<void> ok = checkBudget(name, "vertex positions", lines.positions, budget.vertices(),
+                                      "--max-triangles");
+      !ok)
+    return ok;
+  return checkBudget(name, "points and line end points", objPointBudgetCount(lines),
+                     budget.points(), "");
 }
 
 Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
@@ -125,7 +130,7 @@ Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
   __gnu_cxx::stdio_filebuf<char> buffer(file->release(), std::ios::in | std::ios::binary);
   std::istream in(&buffer);
 
-  const ObjLineIndex lines = scanObjLines(in);
+  const ObjLineIndex lines = scanObjLines(in, budget.points() + 1);
   if (in.bad()) return makeError(name + ": read error");
   if (Expected<void> ok = checkScan(name, lines, budget); !ok) return ok.error();
   in.clear();
@@ -179,7 +184,17 @@ Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
     face_count += mesh.num_face_vertices.size();
     corner_count += corners;
   }
-  if (face_count == 0) return makeError(name + ": no triangles (the file has no faces)");
+  if (Expected<void> ok = addObjPointsAndLines(name, attrib, lines, face_count > 0,
+                                               library_materials, reader, model);
+      !ok)
+    return ok.error();
+  if (face_count == 0) {
+    if (model.points.empty() && model.lines.points.empty())
+      return makeError(name + ": nothing to draw: no faces, points or lines" +
+                       (position_count > 0 ? " (and no vertex at a finite position)" : ""));
+    model.materials.push_back(Material{});
+    return model;
+  }
   const FaceLocator locate(name,
                            lines.face_lines.size() == face_count ? &lines.face_lines : nullptr);
 

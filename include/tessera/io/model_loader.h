@@ -32,6 +32,10 @@ struct LoadBudget {
   uint64_t triangles() const { return max_triangles ? max_triangles : memory_bytes / 512; }
   // Mesh vertices (positions, normals, uvs, colours and the renderer's transformed copies).
   uint64_t vertices() const { return std::max(triangles(), memory_bytes / 256); }
+  // Points and line end points (Model::points, Model::lines): about 64 bytes each (position and
+  // colour in the model and again in the loader's reading of the file, the point pass's
+  // transformed copy), so 16,777,216 for 1 GiB. Only --memory-limit raises it.
+  uint64_t points() const { return memory_bytes / 64; }
   // Decoded pixels of one texture (4 bytes each, a third more for mipmaps, twice that while
   // decoding): 8192 x 8192 for 1 GiB.
   uint64_t texturePixels() const {
