@@ -1,5 +1,6 @@
 // The glTF builder's meshes: each glTF mesh read once, in its own space, its primitives in
-// order (TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN), each vertex emitted on first use.
+// order (TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN), each vertex emitted on first use. Points and
+// lines are gltf_points.cpp's.
 #include <algorithm>
 #include <array>
 #include <memory>
@@ -71,7 +72,8 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
   if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
       mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-    ++skipped_by_mode_[mode];
+    // Points and lines are placed per node in world space (gltf_points.cpp).
+    if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_LINE_STRIP) ++skipped_by_mode_[mode];
     return {};
   }
   if (!primitive.targets.empty()) warn("morph targets are not applied");
@@ -81,8 +83,7 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
     return {};
   }
   // KHR_mesh_quantization allows integer positions, normals and texture coordinates.
-  Expected<ElementReader> positions =
-      reader(position_it->second, "POSITION of " + where, {3}, {});
+  Expected<ElementReader> positions = reader(position_it->second, "POSITION of " + where, {3}, {});
   if (!positions) return positions.error();
   const size_t vertex_count = positions->count;
 
@@ -113,10 +114,9 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   // countDrawn counted these in advance (with instancing); this holds the meshes stored to the
   // same budget should the two ever disagree.
   const size_t new_vertices = std::min(vertex_count, 3 * triangle_count);
-  if (triangle_count > budget_.triangles() - std::min<uint64_t>(budget_.triangles(),
-                                                                 stored_triangles_) ||
-      new_vertices > budget_.vertices() - std::min<uint64_t>(budget_.vertices(),
-                                                              stored_vertices_))
+  if (triangle_count >
+          budget_.triangles() - std::min<uint64_t>(budget_.triangles(), stored_triangles_) ||
+      new_vertices > budget_.vertices() - std::min<uint64_t>(budget_.vertices(), stored_vertices_))
     return makeError(name_ + ": the meshes hold more than the budget of " +
                      std::to_string(budget_.triangles()) + " triangles or " +
                      std::to_string(budget_.vertices()) +
@@ -129,8 +129,7 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   Expected<uint16_t> material = materials_.materialFor(primitive.material, model_.materials);
   if (!material) return material.error();
   int uv_set = 0;
-  if (primitive.material >= 0 &&
-      static_cast<size_t>(primitive.material) < gltf_.materials.size()) {
+  if (primitive.material >= 0 && static_cast<size_t>(primitive.material) < gltf_.materials.size()) {
     const tinygltf::TextureInfo& info = gltf_.materials[static_cast<size_t>(primitive.material)]
                                             .pbrMetallicRoughness.baseColorTexture;
     if (info.index >= 0) uv_set = std::max(info.texCoord, 0);
@@ -163,20 +162,19 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   auto vertexOf = [&](size_t corner) -> Expected<uint32_t> {
     const size_t local = indices ? indices->index(corner) : corner;
     if (local >= vertex_count)
-      return makeError(name_ + ": " + where + ": index " + std::to_string(local) +
-                       " is past the " + std::to_string(vertex_count) + " vertices");
+      return makeError(name_ + ": " + where + ": index " + std::to_string(local) + " is past the " +
+                       std::to_string(vertex_count) + " vertices");
     if (remap_stamp_[local] == stamp_) return remap_vertex_[local];
     const auto vertex = static_cast<uint32_t>(out.positions.size());
     remap_stamp_[local] = stamp_;
     remap_vertex_[local] = vertex;
-    out.positions.push_back(
-        float3{positions->component(local, 0), positions->component(local, 1),
-               positions->component(local, 2)});
+    out.positions.push_back(float3{positions->component(local, 0), positions->component(local, 1),
+                                   positions->component(local, 2)});
     float3 normal{0, 0, 0};
     if (normals) {
-      normal = transformNormal(kIdentity3,
-                               {normals->component(local, 0), normals->component(local, 1),
-                                normals->component(local, 2)});
+      normal =
+          transformNormal(kIdentity3, {normals->component(local, 0), normals->component(local, 1),
+                                       normals->component(local, 2)});
       normals_usable &= normal.x != 0 || normal.y != 0 || normal.z != 0;
     }
     out.normals.push_back(normal);
