@@ -184,14 +184,13 @@ Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
     face_count += mesh.num_face_vertices.size();
     corner_count += corners;
   }
-  if (Expected<void> ok = addObjPointsAndLines(name, attrib, lines, face_count > 0,
-                                               library_materials, reader, model);
+  if (Expected<void> ok =
+          addObjPointsAndLines(name, attrib, lines, library_materials, reader, model);
       !ok)
     return ok.error();
   if (face_count == 0) {
     if (model.points.empty() && model.lines.points.empty())
-      return makeError(name + ": nothing to draw: no faces, points or lines" +
-                       (position_count > 0 ? " (and no vertex at a finite position)" : ""));
+      return makeError(name + ": nothing to draw: no faces, points or lines");
     model.materials.push_back(Material{});
     return model;
   }

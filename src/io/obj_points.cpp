@@ -48,15 +48,19 @@ std::vector<float3> lineColors(const ObjElements& elements,
 
 }  // namespace
 
+bool hasFaceLines(const ObjLineIndex& lines) {
+  return !lines.face_lines.empty() || lines.short_faces > 0;
+}
+
 uint64_t objPointBudgetCount(const ObjLineIndex& lines) {
   const ObjElements& elements = lines.elements;
   const uint64_t counted = elements.point_vertices + 2 * elements.line_segments;
-  if (counted == 0 && lines.triangles == 0 && lines.face_lines.empty()) return lines.positions;
+  if (counted == 0 && !hasFaceLines(lines)) return lines.positions;
   return counted;
 }
 
 Expected<void> addObjPointsAndLines(const std::string& name, const tinyobj::attrib_t& attrib,
-                                    const ObjLineIndex& lines, bool has_faces,
+                                    const ObjLineIndex& lines,
                                     const std::vector<tinyobj::material_t>& library_materials,
                                     const FolderMaterialReader& reader, Model& model) {
   const ObjElements& elements = lines.elements;
@@ -74,7 +78,7 @@ Expected<void> addObjPointsAndLines(const std::string& name, const tinyobj::attr
     if (has_colors) points.colors.push_back(pointColor(attrib, i));
   };
 
-  if (!has_faces && elements.elements.empty()) {
+  if (!hasFaceLines(lines) && elements.elements.empty()) {
     // Vertices without faces, points or lines: a point cloud.
     points.positions.reserve(position_count);
     if (has_colors) points.colors.reserve(position_count);

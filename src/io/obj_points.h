@@ -1,4 +1,4 @@
-// OBJ points and lines: `p` elements, `l` polylines and, in a file with no faces, points or lines,
+// OBJ points and lines: `p` elements, `l` polylines and, in a file with no `f`, `p` or `l` lines,
 // every vertex, into Model::points and Model::lines. Private to tessera_io.
 #pragma once
 
@@ -12,8 +12,12 @@
 
 namespace tessera::io {
 
+// Whether the file has `f` lines, even ones of fewer than 3 corners (which are dropped): a file
+// meant to have faces is not read as a point cloud.
+bool hasFaceLines(const ObjLineIndex& lines);
+
 // How many points and line end points the OBJ will give, for the budget: its elements' vertices,
-// or every position when it has no faces and no elements.
+// or every position when it has no `f` lines and no elements.
 uint64_t objPointBudgetCount(const ObjLineIndex& lines);
 
 // Appends the file's points and segments to `model` (OBJ has no transforms: world space is the
@@ -23,7 +27,7 @@ uint64_t objPointBudgetCount(const ObjLineIndex& lines);
 // material's 0.8 grey. An index past the positions is an error naming the line; points and
 // segments at a non-finite position are dropped with a warning.
 Expected<void> addObjPointsAndLines(const std::string& name, const tinyobj::attrib_t& attrib,
-                                    const ObjLineIndex& lines, bool has_faces,
+                                    const ObjLineIndex& lines,
                                     const std::vector<tinyobj::material_t>& library_materials,
                                     const FolderMaterialReader& reader, Model& model);
 
