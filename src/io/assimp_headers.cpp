@@ -43,11 +43,12 @@ uint64_t parseCount(std::string_view word) {
 // element takes at least one byte, so a count past the file's size is a lie assimp would
 // allocate for.
 Expected<void> checkDeclared(const std::string& name, const std::string& what, uint64_t count,
-                             uint64_t budget, size_t file_bytes) {
+                             uint64_t budget, size_t file_bytes,
+                             const std::string& flag = "--max-triangles") {
   if (count > file_bytes)
     return makeError(name + ": the header declares " + std::to_string(count) + " " + what +
                      ", more than the file's " + std::to_string(file_bytes) + " bytes can hold");
-  return checkBudget(name, what, count, budget, "--max-triangles");
+  return checkBudget(name, what, count, budget, flag);
 }
 
 bool isPlyType(std::string_view word) {
@@ -69,6 +70,9 @@ Expected<void> checkPlyHeader(std::string_view text, const std::string& name,
                               const LoadBudget& budget, size_t file_bytes) {
   size_t line_number = 0, at = 0;
   bool in_element = false;
+  // The vertex count is checked at end_header: a PLY without faces is a point cloud, whose
+  // vertices are points (LoadBudget::points()).
+  uint64_t vertices = 0, faces = 0;
   while (at < text.size()) {
     const size_t end = std::min(text.find('\n', at), text.size());
     std::string_view line = text.substr(at, end - at);
@@ -87,7 +91,10 @@ Expected<void> checkPlyHeader(std::string_view text, const std::string& name,
     if (line_number == 1) {
       if (key != "ply" || words.size() != 1) return bad("'ply' expected");
     } else if (key == "end_header") {
-      return {};
+      if (faces == 0)
+        return checkDeclared(name, "vertices (points: the file has no faces)", vertices,
+                             budget.points(), file_bytes, "");
+      return checkDeclared(name, "vertices", vertices, budget.vertices(), file_bytes);
     } else if (key == "format") {
       if (words.size() != 3 || (words[1] != "ascii" && words[1] != "binary_little_endian" &&
                                 words[1] != "binary_big_endian"))
@@ -96,8 +103,10 @@ Expected<void> checkPlyHeader(std::string_view text, const std::string& name,
       if (words.size() != 3 || words[2].find_first_not_of("0123456789") != std::string_view::npos)
         return bad("'element NAME COUNT' expected");
       const uint64_t count = parseCount(words[2]);
+      if (words[1] == "vertex") vertices = count;
+      if (words[1] == "face") faces = count;
       const uint64_t limit = words[1] == "face"     ? budget.triangles()
-                             : words[1] == "vertex" ? budget.vertices()
+                             : words[1] == "vertex" ? std::max(budget.vertices(), budget.points())
                                                     : UINT64_MAX;
       const std::string what = words[1] == "vertex" ? "vertices"
                                : words[1] == "face" ? "faces"

@@ -56,6 +56,12 @@ class SceneBuilder {
   Material buildMaterial(const aiMaterial& source, const std::string& label);
   std::shared_ptr<const Texture> texture(const std::string& reference, const std::string& label);
   Expected<void> finish();
+  // assimp_points.cpp
+  bool hasPointsOrLines(const aiMesh* mesh) const;
+  uint64_t pointCount(const aiMesh& mesh) const;
+  float3 lineColor(unsigned material) const;
+  void placeMesh(const aiMesh& mesh, const float4x4& world, size_t& dropped);
+  void placePointsAndLines(const std::vector<std::pair<const aiNode*, int32_t>>& nodes);
   void warn(const std::string& text);
 
   const aiScene& scene_;
