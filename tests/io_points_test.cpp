@@ -227,6 +227,44 @@ TEST_F(PointFiles, BinaryPlyOfVerticesOnlyIsAColouredPointCloud) {
   expectPlyCloud(loadModel(write(at("cloud.ply"), bytes)));
 }
 
+// Read by ply_points.cpp, not assimp: big-endian doubles, float colours in 0..1 and a property
+// it does not use.
+TEST_F(PointFiles, BigEndianPlyOfDoublesWithFloatColoursIsAPointCloud) {
+  if (!hasAssimp()) GTEST_SKIP() << "built without assimp";
+  std::string bytes =
+      "ply\nformat binary_big_endian 1.0\ncomment made by hand\nelement vertex 2\n"
+      "property double x\nproperty double y\nproperty double z\nproperty float intensity\n"
+      "property float red\nproperty float green\nproperty float blue\nend_header\n";
+  auto big = [&](auto value) {
+    char raw[sizeof value];
+    std::memcpy(raw, &value, sizeof value);
+    bytes.append(std::rbegin(raw), std::rend(raw));
+  };
+  for (double v : {1.5, -2.0, 3.0}) big(v);
+  for (float v : {9.0f, 0.5f, 0.0f, 1.0f}) big(v);
+  for (double v : {0.0, 0.0, 1e300}) big(v);  // past float: not drawn
+  for (float v : {9.0f, 0.5f, 0.0f, 1.0f}) big(v);
+  Expected<Model> model = loadModel(write(at("big.ply"), bytes));
+  ASSERT_TRUE(model) << model.error().message;
+  ASSERT_EQ(model->points.size(), 1u);
+  expectNear3(model->points.positions[0], {1.5f, -2, 3});
+  expectNear3(model->points.colors[0], {srgbToLinear(0.5f), 0, 1});
+  EXPECT_TRUE(anyWarningContains(*model, "1 points at a NaN or infinite position"))
+      << allWarnings(*model);
+}
+
+TEST_F(PointFiles, PlyCloudShorterThanItsHeaderIsAnError) {
+  if (!hasAssimp()) GTEST_SKIP() << "built without assimp";
+  std::string binary = std::string("ply\nformat binary_little_endian 1.0\n") + kPlyHeader;
+  binary += std::string(15 * 2 + 7, '\0');  // two vertices and a half
+  expectErrorContains(loadModel(write(at("short.ply"), binary)),
+                      "short.ply: the file ends before its 3 vertices");
+  const std::string ascii = std::string("ply\nformat ascii 1.0\n") + kPlyHeader +
+                            "0 0 0 1 2 3\n0 0 zero 1 2 3\n0 0 0 1 2 3\n";
+  expectErrorContains(loadModel(write(at("word.ply"), ascii)),
+                      "word.ply: vertex 2: property 'z' is not a number");
+}
+
 TEST_F(PointFiles, PlyPointsOverTheBudgetAreRefusedFromTheHeader) {
   if (!hasAssimp()) GTEST_SKIP() << "built without assimp";
   // 40 points, the budget 39 (a memory limit of 2496 bytes, past the file's size; far too
@@ -241,6 +279,48 @@ TEST_F(PointFiles, PlyPointsOverTheBudgetAreRefusedFromTheHeader) {
   expectErrorContains(loadModel(write(at("cloud.ply"), text), budget),
                       "40 vertices (points: the file has no faces), over the budget of 39; raise "
                       "it with --memory-limit");
+}
+
+// ---- Real files: Debian's assimp-testmodels, when installed ----
+
+const fs::path kAssimpModels = "/usr/share/assimp/models";
+
+TEST(PointTestModels, ObjPointsLinesAndMixedFromAssimpsTestModels) {
+  if (!fs::exists(kAssimpModels / "OBJ/testmixed.obj")) GTEST_SKIP() << "no assimp-testmodels";
+  Expected<Model> lines = loadObj(kAssimpModels / "OBJ/testline.obj");
+  ASSERT_TRUE(lines) << lines.error().message;
+  EXPECT_EQ(lines->lines.colors.size(), 18u);  // six 4-vertex polylines
+  EXPECT_TRUE(lines->points.empty());
+  Expected<Model> points = loadObj(kAssimpModels / "OBJ/testpoints.obj");
+  ASSERT_TRUE(points) << points.error().message;
+  EXPECT_EQ(points->points.size(), 24u);
+  Expected<Model> mixed = loadObj(kAssimpModels / "OBJ/testmixed.obj");
+  ASSERT_TRUE(mixed) << mixed.error().message;
+  EXPECT_EQ(mixed->lines.colors.size(), 18u);
+  EXPECT_EQ(mixed->points.size(), 24u);
+  EXPECT_EQ(mixed->mesh.triangleCount(), 12u);                             // six quads
+  Expected<Model> cloud = loadObj(kAssimpModels / "OBJ/point_cloud.obj");  // MeshLab's
+  ASSERT_TRUE(cloud) << cloud.error().message;
+  EXPECT_EQ(cloud->points.size(), 3u);
+}
+
+TEST(PointTestModels, PlyPointsAndAc3dLinesFromAssimpsTestModels) {
+  if (!hasAssimp() || !fs::exists(kAssimpModels / "PLY/points.ply"))
+    GTEST_SKIP() << "no assimp or no assimp-testmodels";
+  Expected<Model> ply = loadModel(kAssimpModels / "PLY/points.ply");
+  ASSERT_TRUE(ply) << ply.error().message;
+  ASSERT_EQ(ply->points.size(), 4u);
+  ASSERT_EQ(ply->points.colors.size(), 4u);
+  expectNear3(ply->points.colors[1], {1, 0, 1});
+  expectNear3(ply->points.positions[1], {0, 0, 1});
+  // AC3D's line surfaces through assimp: an open polyline of 5 references (the last repeats
+  // the first) and a closed one of 4: four segments each.
+  Expected<Model> open = loadModel(kAssimpModels / "AC/openLine.ac");
+  ASSERT_TRUE(open) << open.error().message;
+  EXPECT_EQ(open->lines.colors.size(), 4u);
+  Expected<Model> closed = loadModel(kAssimpModels / "AC/closedLine.ac");
+  ASSERT_TRUE(closed) << closed.error().message;
+  EXPECT_EQ(closed->lines.colors.size(), 4u);
 }
 
 // ---- The scene ----
