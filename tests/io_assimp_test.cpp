@@ -435,7 +435,9 @@ TEST(AssimpTestModels, EveryModelLoadsOrFailsWithOneLine) {
       Expected<Model> model = listed ? loadModel(entry.path()) : loadAssimp(entry.path());
       if (model) {
         ++loaded;
-        EXPECT_GT(model->graph.drawnTriangleCount() + model->mesh.triangleCount(), 0u)
+        EXPECT_GT(model->graph.drawnTriangleCount() + model->mesh.triangleCount() +
+                      model->points.size() + model->lines.colors.size(),
+                  0u)
             << entry.path();
       } else {
         ++failed;

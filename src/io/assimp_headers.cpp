@@ -181,6 +181,22 @@ Expected<void> checkOffFile(std::string_view text, const std::string& name,
 
 }  // namespace
 
+uint64_t plyDeclaredFaces(const std::vector<uint8_t>& bytes) {
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()),
+                              std::min<size_t>(bytes.size(), 64 << 10));
+  if (!text.starts_with("ply")) return 0;
+  uint64_t faces = 0;
+  for (size_t at = 0; at < text.size();) {
+    const size_t end = std::min(text.find('\n', at), text.size());
+    const std::vector<std::string_view> words = headerWords(text.substr(at, end - at), 4);
+    at = end + 1;
+    if (!words.empty() && words[0] == "end_header") break;
+    if (words.size() == 3 && words[0] == "element" && words[1] == "face")
+      faces += parseCount(words[2]);
+  }
+  return faces;
+}
+
 Expected<void> checkHeaders(const std::vector<uint8_t>& bytes, const std::string& name,
                             const std::string& extension, const LoadBudget& budget) {
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());

@@ -143,6 +143,7 @@ Expected<Model> importScene(const std::string& key, const std::string& name,
     if (!scene) return scene.error();
     Model model;
     assimp::SceneBuilder builder(**scene, name, folder, budget, model);
+    builder.setDeclaredFaces(plyDeclaredFaces(bytes));
     if (Expected<void> ok = builder.run(); !ok) return ok.error();
     for (const std::string& refusal : refusals) model.warnings.push_back(name + ": " + refusal);
     return model;

@@ -33,7 +33,7 @@ float3 worldPoint(const float4x4& world, const aiVector3D& p) {
 
 bool SceneBuilder::hasPointsOrLines(const aiMesh* mesh) const {
   if (mesh == nullptr || mesh->mVertices == nullptr || mesh->mNumVertices == 0) return false;
-  if (mesh->mNumFaces == 0) return true;  // vertices only: a point cloud
+  if (mesh->mNumFaces == 0) return declared_faces_ == 0;  // vertices only: a point cloud
   return mesh->mFaces != nullptr &&
          (mesh->mPrimitiveTypes & (aiPrimitiveType_POINT | aiPrimitiveType_LINE)) != 0;
 }

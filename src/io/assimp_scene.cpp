@@ -417,7 +417,11 @@ std::shared_ptr<const Texture> SceneBuilder::texture(const std::string& referenc
 Expected<void> SceneBuilder::finish() {
   if (model_.graph.drawnTriangleCount() == 0 && model_.points.empty() &&
       model_.lines.points.empty())
-    return makeError(name_ + ": nothing to draw: no faces, points or lines in the scene");
+    return makeError(name_ + ": nothing to draw: no faces, points or lines in the scene" +
+                     (declared_faces_ > 0
+                          ? " (the header declares " + std::to_string(declared_faces_) +
+                                " faces; is the file cut short?)"
+                          : ""));
   if (scene_.mNumAnimations > 0) warn("animations are not played (assimp formats)");
   if (scene_.mNumCameras > 0 || scene_.mNumLights > 0)
     warn("the file's cameras and lights are not used");

@@ -43,6 +43,9 @@ class SceneBuilder {
         model_(model) {}
 
   Expected<void> run();
+  // The faces the file's header declares (plyDeclaredFaces): when there are any, meshes without
+  // faces are not drawn as point clouds (their faces were lost: a truncated file).
+  void setDeclaredFaces(uint64_t faces) { declared_faces_ = faces; }
 
  private:
   // The nodes parents first, depth-first from the root, children in order; each node once.
@@ -78,6 +81,7 @@ class SceneBuilder {
   std::map<std::string, std::shared_ptr<const Texture>> texture_cache_;
   std::set<std::string> warned_;
   size_t unlisted_warnings_ = 0;
+  uint64_t declared_faces_ = 0;
 };
 
 }  // namespace tessera::io::assimp
