@@ -31,9 +31,13 @@ float3 worldPoint(const float4x4& world, const aiVector3D& p) {
 
 }  // namespace
 
+// A PLY that declares faces draws none of these: its faces are polygons, and one of fewer than 3
+// corners is degenerate, or what assimp's reader makes of a truncated file (it reads a face cut
+// short as a line); finish() says so.
 bool SceneBuilder::hasPointsOrLines(const aiMesh* mesh) const {
   if (mesh == nullptr || mesh->mVertices == nullptr || mesh->mNumVertices == 0) return false;
-  if (mesh->mNumFaces == 0) return declared_faces_ == 0;  // vertices only: a point cloud
+  if (declared_faces_ > 0) return false;
+  if (mesh->mNumFaces == 0) return true;  // vertices only: a point cloud
   return mesh->mFaces != nullptr &&
          (mesh->mPrimitiveTypes & (aiPrimitiveType_POINT | aiPrimitiveType_LINE)) != 0;
 }

@@ -422,6 +422,14 @@ Expected<void> SceneBuilder::finish() {
                           ? " (the header declares " + std::to_string(declared_faces_) +
                                 " faces; is the file cut short?)"
                           : ""));
+  if (declared_faces_ > 0) {
+    size_t degenerate = 0;
+    for (unsigned i = 0; i < scene_.mNumMeshes; ++i)
+      degenerate += scene_.mMeshes[i] != nullptr && !drawn(scene_.mMeshes[i]);
+    if (degenerate > 0)
+      warn(std::to_string(degenerate) +
+           " mesh(es) of PLY faces with fewer than 3 corners (or none) are not drawn");
+  }
   if (scene_.mNumAnimations > 0) warn("animations are not played (assimp formats)");
   if (scene_.mNumCameras > 0 || scene_.mNumLights > 0)
     warn("the file's cameras and lights are not used");

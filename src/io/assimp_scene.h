@@ -43,8 +43,8 @@ class SceneBuilder {
         model_(model) {}
 
   Expected<void> run();
-  // The faces the file's header declares (plyDeclaredFaces): when there are any, meshes without
-  // faces are not drawn as point clouds (their faces were lost: a truncated file).
+  // The faces the file's header declares (plyDeclaredFaces): when there are any, meshes of
+  // points, lines or no faces are not drawn (assimp_points.cpp: hasPointsOrLines).
   void setDeclaredFaces(uint64_t faces) { declared_faces_ = faces; }
 
  private:

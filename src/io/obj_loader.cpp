@@ -122,49 +122,19 @@ Expected<void> checkScan(const std::string& name, const ObjLineIndex& lines,
                      budget.points(), "");
 }
 
-Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
-  const std::string name = path.string();
-  Expected<RegularFile> file = openRegularFile(path, kMaxObjBytes, "OBJ");
-  if (!file) return file.error();
-  // The stream owns the descriptor from here on.
-  __gnu_cxx::stdio_filebuf<char> buffer(file->release(), std::ios::in | std::ios::binary);
-  std::istream in(&buffer);
+float3 vec3At(const std::vector<float>& values, size_t i) {
+  return float3{values[3 * i], values[3 * i + 1], values[3 * i + 2]};
+}
 
-  const ObjLineIndex lines = scanObjLines(in, budget.points() + 1);
-  if (in.bad()) return makeError(name + ": read error");
-  if (Expected<void> ok = checkScan(name, lines, budget); !ok) return ok.error();
-  in.clear();
-  in.seekg(0);
+struct FaceCounts {
+  size_t faces = 0, corners = 0;
+};
 
-  Model model;
-  fs::path folder = path.parent_path();
-  if (folder.empty()) folder = ".";
-  FolderMaterialReader reader(folder, name, lines.material_libraries, model.warnings);
-  tinyobj::attrib_t attrib;
-  std::vector<tinyobj::shape_t> shapes;
-  std::vector<tinyobj::material_t> library_materials;
-  std::string library_warnings, library_errors;
-  // triangulate = false: polygons are split below, in the contract's order.
-  // default_vcols_fallback = false: colours stay empty unless every `v` line has them.
-  const bool parsed =
-      tinyobj::LoadObj(&attrib, &shapes, &library_materials, &library_warnings, &library_errors,
-                       &in, &reader, /*triangulate=*/false, /*default_vcols_fallback=*/false);
-  if (!parsed) return libraryError(name, library_errors);
-  // tinyobjloader reads nan and inf as 0; they are made what they say, so that their triangles
-  // are dropped like any other non-finite one.
-  for (uint64_t position : lines.nonfinite_positions)
-    if (3 * position + 2 < attrib.vertices.size())
-      attrib.vertices[3 * position] = std::numeric_limits<float>::quiet_NaN();
-  forwardLibraryWarnings(name, library_warnings, model.warnings);
-  if (lines.short_faces > 0)
-    model.warnings.push_back(name + ": " + std::to_string(lines.short_faces) +
-                             " faces with fewer than 3 corners skipped");
-
-  // ---- Validate what tinyobjloader returned ----
-  const size_t position_count = attrib.vertices.size() / 3;
-  const size_t uv_count = attrib.texcoords.size() / 2;
-  const size_t normal_count = attrib.normals.size() / 3;
-  size_t face_count = 0, corner_count = 0;
+// The faces tinyobjloader returned, counted, and their lists checked against each other.
+Expected<FaceCounts> countFaces(const std::string& name,
+                                const std::vector<tinyobj::shape_t>& shapes,
+                                const ObjLineIndex& lines) {
+  FaceCounts counts;
   for (const tinyobj::shape_t& shape : shapes) {
     const tinyobj::mesh_t& mesh = shape.mesh;
     size_t corners = 0;
@@ -181,26 +151,24 @@ Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
     }
     if (mesh.material_ids.size() != mesh.num_face_vertices.size())
       return makeError(name + ": tinyobjloader returned inconsistent face data");
-    face_count += mesh.num_face_vertices.size();
-    corner_count += corners;
+    counts.faces += mesh.num_face_vertices.size();
+    counts.corners += corners;
   }
-  if (Expected<void> ok =
-          addObjPointsAndLines(name, attrib, lines, library_materials, reader, model);
-      !ok)
-    return ok.error();
-  if (face_count == 0) {
-    if (model.points.empty() && model.lines.points.empty())
-      return makeError(name + ": nothing to draw: no faces, points or lines");
-    model.materials.push_back(Material{});
-    return model;
-  }
-  const FaceLocator locate(name,
-                           lines.face_lines.size() == face_count ? &lines.face_lines : nullptr);
+  return counts;
+}
 
-  auto vec3At = [](const std::vector<float>& values, size_t i) {
-    return float3{values[3 * i], values[3 * i + 1], values[3 * i + 2]};
-  };
+// Which attributes the face corners use, every index checked against its list first.
+struct CornerUse {
   bool any_uv = false, all_normals = true, normals_usable = true;
+};
+
+Expected<CornerUse> checkCorners(const tinyobj::attrib_t& attrib,
+                                 const std::vector<tinyobj::shape_t>& shapes,
+                                 const FaceLocator& locate) {
+  const size_t position_count = attrib.vertices.size() / 3;
+  const size_t uv_count = attrib.texcoords.size() / 2;
+  const size_t normal_count = attrib.normals.size() / 3;
+  CornerUse use;
   size_t face = 0;
   for (const tinyobj::shape_t& shape : shapes) {
     size_t corner = 0;
@@ -231,34 +199,58 @@ Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
         if (index.normal_index >= 0 && static_cast<size_t>(index.normal_index) >= normal_count)
           return makeError(locate(face) + ": " +
                            pastEnd("normal", index.normal_index, normal_count, "normals"));
-        any_uv |= index.texcoord_index >= 0;
+        use.any_uv |= index.texcoord_index >= 0;
         if (index.normal_index < 0) {
-          all_normals = false;
+          use.all_normals = false;
         } else {
           float3 normal = vec3At(attrib.normals, static_cast<size_t>(index.normal_index));
-          normals_usable &= isFinite(normal) && length(normal) > 0.0f;
+          use.normals_usable &= isFinite(normal) && length(normal) > 0.0f;
         }
       }
       ++face;
     }
   }
-  if (corner_count > std::numeric_limits<uint32_t>::max())
-    return makeError(name + ": too many face corners (" + std::to_string(corner_count) + ")");
-  // The simplest honest rule: unless every corner has a usable normal from the file, generate
-  // smooth, area-weighted normals for the whole mesh (mixing given and generated normals would
-  // shade the seam between them).
-  const bool use_file_normals = all_normals && normals_usable;
-  if (all_normals && !normals_usable)
-    model.warnings.push_back(name +
-                             ": some normals are zero or not finite; smooth normals were "
-                             "generated for the whole mesh");
-  else if (!all_normals && normal_count > 0)
-    model.warnings.push_back(name +
-                             ": some faces have no normals; smooth normals were generated "
-                             "for the whole mesh");
-  const bool has_colors = !attrib.colors.empty() && attrib.colors.size() == attrib.vertices.size();
+  return use;
+}
 
-  // ---- Build the indexed mesh ----
+// Smooth normals per OBJ position, so a seam in the texture coordinates does not show as a
+// crease.
+void smoothNormalsByPosition(Mesh& mesh, const std::vector<uint32_t>& vertex_position,
+                             size_t position_count) {
+  Mesh by_position;
+  by_position.positions.resize(position_count);
+  for (size_t v = 0; v < vertex_position.size(); ++v)
+    by_position.positions[vertex_position[v]] = mesh.positions[v];
+  by_position.indices.reserve(mesh.indices.size());
+  for (uint32_t vertex : mesh.indices) by_position.indices.push_back(vertex_position[vertex]);
+  generateSmoothNormals(by_position);
+  mesh.normals.resize(mesh.positions.size());
+  for (size_t v = 0; v < vertex_position.size(); ++v)
+    mesh.normals[v] = by_position.normals[vertex_position[v]];
+}
+
+// What the mesh is built from.
+struct ObjParts {
+  const std::string& name;
+  const fs::path& folder;
+  const tinyobj::attrib_t& attrib;
+  const std::vector<tinyobj::shape_t>& shapes;
+  const std::vector<tinyobj::material_t>& library_materials;
+  const FolderMaterialReader& reader;
+  const FaceLocator& locate;
+  const LoadBudget& budget;
+};
+
+struct MeshChoices {
+  bool use_file_normals, any_uv, has_colors;
+};
+
+// The indexed mesh: one vertex per distinct corner, polygons split in the contract's order,
+// materials in first-use order.
+Expected<void> buildMesh(const ObjParts& parts, const MeshChoices& choices, size_t corner_count,
+                         Model& model) {
+  const auto& [name, folder, attrib, shapes, library_materials, reader, locate, budget] = parts;
+  const size_t position_count = attrib.vertices.size() / 3;
   Mesh& mesh = model.mesh;
   std::vector<uint32_t> vertex_position;  // mesh vertex -> OBJ position
   std::unordered_map<CornerKey, uint32_t, CornerKeyHash> vertex_of;
@@ -271,7 +263,7 @@ Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
   std::vector<float3> polygon;
   std::vector<uint32_t> polygon_vertices, local_triangles;
 
-  face = 0;
+  size_t face = 0;
   for (const tinyobj::shape_t& shape : shapes) {
     size_t corner = 0;
     for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face) {
@@ -281,21 +273,21 @@ Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
       for (size_t c = 0; c < n; ++c, ++corner) {
         const tinyobj::index_t& index = shape.mesh.indices[corner];
         CornerKey key{index.vertex_index, index.texcoord_index,
-                      use_file_normals ? index.normal_index : -1};
+                      choices.use_file_normals ? index.normal_index : -1};
         auto [slot, added] = vertex_of.try_emplace(key, static_cast<uint32_t>(vertex_of.size()));
         const size_t position = static_cast<size_t>(index.vertex_index);
         if (added) {
           vertex_position.push_back(static_cast<uint32_t>(position));
           mesh.positions.push_back(vec3At(attrib.vertices, position));
-          if (any_uv) {
+          if (choices.any_uv) {
             mesh.uvs.push_back(
                 key.uv >= 0 ? float2{attrib.texcoords[2 * key.uv], attrib.texcoords[2 * key.uv + 1]}
                             : float2{0, 0});
           }
-          if (use_file_normals)
+          if (choices.use_file_normals)
             mesh.normals.push_back(
                 normalize(vec3At(attrib.normals, static_cast<size_t>(key.normal))));
-          if (has_colors) {
+          if (choices.has_colors) {
             // Vertex colours are linear (the architecture's convention); alpha is opaque.
             float3 rgb = vec3At(attrib.colors, position);
             for (int i = 0; i < 3; ++i)
@@ -346,19 +338,90 @@ Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
 
   if (std::ranges::all_of(mesh.triangle_edges, [](uint8_t e) { return e == kAllTriangleEdges; }))
     mesh.triangle_edges.clear();  // triangles only: every edge an outline
-  if (!use_file_normals) {
-    // Per OBJ position, so a seam in the texture coordinates does not show as a crease.
-    Mesh by_position;
-    by_position.positions.resize(position_count);
-    for (size_t v = 0; v < vertex_position.size(); ++v)
-      by_position.positions[vertex_position[v]] = mesh.positions[v];
-    by_position.indices.reserve(mesh.indices.size());
-    for (uint32_t vertex : mesh.indices) by_position.indices.push_back(vertex_position[vertex]);
-    generateSmoothNormals(by_position);
-    mesh.normals.resize(mesh.positions.size());
-    for (size_t v = 0; v < vertex_position.size(); ++v)
-      mesh.normals[v] = by_position.normals[vertex_position[v]];
+  if (!choices.use_file_normals) smoothNormalsByPosition(mesh, vertex_position, position_count);
+  return {};
+}
+
+Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
+  const std::string name = path.string();
+  Expected<RegularFile> file = openRegularFile(path, kMaxObjBytes, "OBJ");
+  if (!file) return file.error();
+  // The stream owns the descriptor from here on.
+  __gnu_cxx::stdio_filebuf<char> buffer(file->release(), std::ios::in | std::ios::binary);
+  std::istream in(&buffer);
+
+  const ObjLineIndex lines = scanObjLines(in, budget.points() + 1);
+  if (in.bad()) return makeError(name + ": read error");
+  if (Expected<void> ok = checkScan(name, lines, budget); !ok) return ok.error();
+  in.clear();
+  in.seekg(0);
+
+  Model model;
+  fs::path folder = path.parent_path();
+  if (folder.empty()) folder = ".";
+  FolderMaterialReader reader(folder, name, lines.material_libraries, model.warnings);
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> library_materials;
+  std::string library_warnings, library_errors;
+  // triangulate = false: polygons are split below, in the contract's order.
+  // default_vcols_fallback = false: colours stay empty unless every `v` line has them.
+  const bool parsed =
+      tinyobj::LoadObj(&attrib, &shapes, &library_materials, &library_warnings, &library_errors,
+                       &in, &reader, /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  if (!parsed) return libraryError(name, library_errors);
+  // tinyobjloader reads nan and inf as 0; they are made what they say, so that their triangles
+  // are dropped like any other non-finite one.
+  for (uint64_t position : lines.nonfinite_positions)
+    if (3 * position + 2 < attrib.vertices.size())
+      attrib.vertices[3 * position] = std::numeric_limits<float>::quiet_NaN();
+  forwardLibraryWarnings(name, library_warnings, model.warnings);
+  if (lines.short_faces > 0)
+    model.warnings.push_back(name + ": " + std::to_string(lines.short_faces) +
+                             " faces with fewer than 3 corners skipped");
+
+  // ---- Validate what tinyobjloader returned ----
+  Expected<FaceCounts> counted = countFaces(name, shapes, lines);
+  if (!counted) return counted.error();
+  const size_t face_count = counted->faces, corner_count = counted->corners;
+  if (Expected<void> ok =
+          addObjPointsAndLines(name, attrib, lines, library_materials, reader, model);
+      !ok)
+    return ok.error();
+  if (face_count == 0) {
+    if (model.points.empty() && model.lines.points.empty())
+      return makeError(name + ": nothing to draw: no faces, points or lines");
+    model.materials.push_back(Material{});
+    return model;
   }
+  const FaceLocator locate(name,
+                           lines.face_lines.size() == face_count ? &lines.face_lines : nullptr);
+
+  Expected<CornerUse> use = checkCorners(attrib, shapes, locate);
+  if (!use) return use.error();
+  const bool all_normals = use->all_normals, normals_usable = use->normals_usable;
+  const size_t normal_count = attrib.normals.size() / 3;
+  if (corner_count > std::numeric_limits<uint32_t>::max())
+    return makeError(name + ": too many face corners (" + std::to_string(corner_count) + ")");
+  // The simplest honest rule: unless every corner has a usable normal from the file, generate
+  // smooth, area-weighted normals for the whole mesh (mixing given and generated normals would
+  // shade the seam between them).
+  const bool use_file_normals = all_normals && normals_usable;
+  if (all_normals && !normals_usable)
+    model.warnings.push_back(name +
+                             ": some normals are zero or not finite; smooth normals were "
+                             "generated for the whole mesh");
+  else if (!all_normals && normal_count > 0)
+    model.warnings.push_back(name +
+                             ": some faces have no normals; smooth normals were generated "
+                             "for the whole mesh");
+  const bool has_colors = !attrib.colors.empty() && attrib.colors.size() == attrib.vertices.size();
+
+  const ObjParts parts{name, folder, attrib, shapes, library_materials, reader, locate, budget};
+  if (Expected<void> ok =
+          buildMesh(parts, {use_file_normals, use->any_uv, has_colors}, corner_count, model);
+      !ok)
+    return ok.error();
 
   if (model.nonfinite_triangles > 0)
     model.warnings.push_back(name + ": " + std::to_string(model.nonfinite_triangles) +
