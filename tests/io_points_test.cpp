@@ -382,5 +382,16 @@ TEST_F(PointCli, AModelOfLinesRendersItsLines) {
   EXPECT_NE(info.out.find("lines:      2 segments\n"), std::string::npos) << info.out;
 }
 
+// A model of points alone renders (the points drawn once the point pass is in the build); a
+// model of nothing but points was "no finite vertices" before its points counted.
+TEST_F(PointCli, AModelOfPointsAloneRenders) {
+  write(at("cloud.obj"), "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\n");
+  const test::RunResult run =
+      test::runInFolder(at(""), TESSERA_EXE, "render cloud.obj -o cloud.png --resolution 32,32");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("0 triangles"), std::string::npos) << run.out;
+  EXPECT_TRUE(fs::exists(at("cloud.png")));
+}
+
 }  // namespace
 }  // namespace tessera::io
