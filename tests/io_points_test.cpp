@@ -119,6 +119,11 @@ TEST_F(PointFiles, ObjPointsOverTheBudgetAreRefusedNamingTheFlag) {
       "4 points and line end points, over the budget of 3");
   budget.memory_bytes = 64 * 4;
   EXPECT_TRUE(loadObj(cloud, budget));
+  // A cloud is held to the points budget, not to the (smaller) mesh vertex budget.
+  budget.memory_bytes = 64 * 8;  // 8 points; 2 mesh vertices (memory limit / 256)
+  budget.max_triangles = 1;
+  ASSERT_LT(budget.vertices(), 4u);
+  EXPECT_TRUE(loadObj(cloud, budget));
 }
 
 TEST(LoadBudgetPoints, TenMillionPointsFitTheDefaultBudget) {

@@ -114,8 +114,12 @@ Expected<void> checkScan(const std::string& name, const ObjLineIndex& lines,
           checkBudget(name, "triangles", lines.triangles, budget.triangles(), "--max-triangles");
       !ok)
     return ok;
-  if (Expected<void> ok = checkBudget(name, "vertex positions", lines.positions, budget.vertices(),
-                                      "--max-triangles");
+  // Without faces the positions are only points, drawn by the point pass: the points budget.
+  const bool faces = hasFaceLines(lines);
+  if (Expected<void> ok =
+          checkBudget(name, "vertex positions", lines.positions,
+                      faces ? budget.vertices() : std::max(budget.vertices(), budget.points()),
+                      faces ? "--max-triangles" : "");
       !ok)
     return ok;
   return checkBudget(name, "points and line end points", objPointBudgetCount(lines),
