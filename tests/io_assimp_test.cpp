@@ -361,15 +361,22 @@ TEST_F(AssimpFiles, InstancesOverTheBudgetAreRefusedBeforeCopying) {
       << model.error().message;
 }
 
-TEST_F(AssimpFiles, OnlyPointsIsAClearError) {
+TEST_F(AssimpFiles, OnlyPointsIsAPointCloudAndNothingIsAClearError) {
   const fs::path path = write("points.ply",
                               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
                               "property float y\nproperty float z\nend_header\n"
                               "0 0 0\n1 0 0\n0 1 0\n");
   Expected<Model> model = loadModel(path);
+  ASSERT_TRUE(model) << model.error().message;
+  EXPECT_EQ(model->points.size(), 3u);  // io_points_test.cpp tests them further
+  const fs::path empty = write("empty.ply",
+                               "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"
+                               "property float y\nproperty float z\nend_header\n");
+  model = loadModel(empty);
   ASSERT_FALSE(model);
-  expectOneLineNaming(model.error(), path);
-  EXPECT_NE(model.error().message.find("holds only points/lines: not drawn yet"), std::string::npos)
+  expectOneLineNaming(model.error(), empty);
+  EXPECT_NE(model.error().message.find("nothing to draw: no faces, points or lines"),
+            std::string::npos)
       << model.error().message;
 }
 
@@ -428,7 +435,9 @@ TEST(AssimpTestModels, EveryModelLoadsOrFailsWithOneLine) {
       Expected<Model> model = listed ? loadModel(entry.path()) : loadAssimp(entry.path());
       if (model) {
         ++loaded;
-        EXPECT_GT(model->graph.drawnTriangleCount() + model->mesh.triangleCount(), 0u)
+        EXPECT_GT(model->graph.drawnTriangleCount() + model->mesh.triangleCount() +
+                      model->points.size() + model->lines.colors.size(),
+                  0u)
             << entry.path();
       } else {
         ++failed;

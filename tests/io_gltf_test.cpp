@@ -159,7 +159,7 @@ TEST_F(GltfFiles, NonIndexedTrianglesUseVerticesInOrder) {
   for (const float3& n : io::flattenedMesh(*model).normals) expectNear3(n, {0, 0, 1});
 }
 
-TEST_F(GltfFiles, PointsAndLinesAreSkippedWithAWarning) {
+TEST_F(GltfFiles, PointsAndLinesBesideTrianglesAreLoaded) {
   GltfBuilder b;
   const int p = b.positions(kTriangle);
   Expected<Model> model = loadJson(b.json(
@@ -168,16 +168,18 @@ TEST_F(GltfFiles, PointsAndLinesAreSkippedWithAWarning) {
       "},\"mode\":1},{\"attributes\":{\"POSITION\":" + std::to_string(p) + "}}]}]"));
   ASSERT_TRUE(model) << model.error().message;
   EXPECT_EQ(io::flattenedMesh(*model).triangleCount(), 1u);
-  EXPECT_TRUE(anyWarningContains(*model, "1 primitive(s) of points skipped"))
+  EXPECT_EQ(model->points.size(), 3u);
+  EXPECT_EQ(model->lines.colors.size(), 1u);  // LINES of 3 vertices: one whole segment
+  EXPECT_TRUE(anyWarningContains(*model, "1 vertex after the last whole line segment is ignored"))
       << allWarnings(*model);
-  EXPECT_TRUE(anyWarningContains(*model, "1 primitive(s) of lines skipped")) << allWarnings(*model);
 }
 
-TEST_F(GltfFiles, OnlyPointsIsAnError) {
+TEST_F(GltfFiles, NothingToDrawIsAnError) {
   GltfBuilder b;
-  const int p = b.positions(kTriangle);
-  expectErrorContains(loadJson(b.json(kOneNodeScene + "," + oneMesh(p, "", ",\"mode\":0"))),
-                      "no triangles in the scene (only points or lines");
+  // A line strip of one vertex has no segment.
+  const int p = b.positions({{0, 0, 0}});
+  expectErrorContains(loadJson(b.json(kOneNodeScene + "," + oneMesh(p, "", ",\"mode\":3"))),
+                      "nothing to draw: no faces, points or lines");
 }
 
 TEST_F(GltfFiles, DefaultSceneIsTheOneDrawn) {

@@ -38,10 +38,17 @@ void printModelInfo(const std::string& path, const io::Model& model, std::ostrea
         if (material.albedo) textures.insert(material.albedo.get());
     }
   }
-  const Bounds bounds = has_graph ? graph.bounds() : model.mesh.bounds();
+  Bounds bounds = has_graph ? graph.bounds() : model.mesh.bounds();
+  for (const float3& p : model.points.positions)
+    if (isFinite(p)) bounds.add(p);
+  for (const float3& p : model.lines.points)
+    if (isFinite(p)) bounds.add(p);
   out << "model:      " << path << "\n"
       << "vertices:   " << vertices << "\n"
       << "triangles:  " << triangles << "\n"
+      << "points:     " << model.points.size()
+      << (model.points.colors.empty() ? "" : " (coloured per point)") << "\n"
+      << "lines:      " << model.lines.colors.size() << " segments\n"
       << "materials:  " << materials << "\n"
       << "textures:   " << textures.size() << "\n"
       << "normals:    " << (normals ? "per vertex" : "none") << "\n"

@@ -43,11 +43,12 @@ uint64_t parseCount(std::string_view word) {
 // element takes at least one byte, so a count past the file's size is a lie assimp would
 // allocate for.
 Expected<void> checkDeclared(const std::string& name, const std::string& what, uint64_t count,
-                             uint64_t budget, size_t file_bytes) {
+                             uint64_t budget, size_t file_bytes,
+                             const std::string& flag = "--max-triangles") {
   if (count > file_bytes)
     return makeError(name + ": the header declares " + std::to_string(count) + " " + what +
                      ", more than the file's " + std::to_string(file_bytes) + " bytes can hold");
-  return checkBudget(name, what, count, budget, "--max-triangles");
+  return checkBudget(name, what, count, budget, flag);
 }
 
 bool isPlyType(std::string_view word) {
@@ -69,6 +70,9 @@ Expected<void> checkPlyHeader(std::string_view text, const std::string& name,
                               const LoadBudget& budget, size_t file_bytes) {
   size_t line_number = 0, at = 0;
   bool in_element = false;
+  // The vertex count is checked at end_header: a PLY without faces is a point cloud, whose
+  // vertices are points (LoadBudget::points()).
+  uint64_t vertices = 0, faces = 0;
   while (at < text.size()) {
     const size_t end = std::min(text.find('\n', at), text.size());
     std::string_view line = text.substr(at, end - at);
@@ -87,7 +91,10 @@ Expected<void> checkPlyHeader(std::string_view text, const std::string& name,
     if (line_number == 1) {
       if (key != "ply" || words.size() != 1) return bad("'ply' expected");
     } else if (key == "end_header") {
-      return {};
+      if (faces == 0)
+        return checkDeclared(name, "vertices (points: the file has no faces)", vertices,
+                             budget.points(), file_bytes, "");
+      return checkDeclared(name, "vertices", vertices, budget.vertices(), file_bytes);
     } else if (key == "format") {
       if (words.size() != 3 || (words[1] != "ascii" && words[1] != "binary_little_endian" &&
                                 words[1] != "binary_big_endian"))
@@ -96,9 +103,10 @@ Expected<void> checkPlyHeader(std::string_view text, const std::string& name,
       if (words.size() != 3 || words[2].find_first_not_of("0123456789") != std::string_view::npos)
         return bad("'element NAME COUNT' expected");
       const uint64_t count = parseCount(words[2]);
-      const uint64_t limit = words[1] == "face"     ? budget.triangles()
-                             : words[1] == "vertex" ? budget.vertices()
-                                                    : UINT64_MAX;
+      if (words[1] == "vertex") vertices = count;
+      if (words[1] == "face") faces = count;
+      // Vertices are checked against their budget at end_header, once faces are known.
+      const uint64_t limit = words[1] == "face" ? budget.triangles() : UINT64_MAX;
       const std::string what = words[1] == "vertex" ? "vertices"
                                : words[1] == "face" ? "faces"
                                                     : singleQuoted(elided(words[1])) + " elements";
@@ -172,6 +180,22 @@ Expected<void> checkOffFile(std::string_view text, const std::string& name,
 }
 
 }  // namespace
+
+uint64_t plyDeclaredFaces(const std::vector<uint8_t>& bytes) {
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()),
+                              std::min<size_t>(bytes.size(), 64 << 10));
+  if (!text.starts_with("ply")) return 0;
+  uint64_t faces = 0;
+  for (size_t at = 0; at < text.size();) {
+    const size_t end = std::min(text.find('\n', at), text.size());
+    const std::vector<std::string_view> words = headerWords(text.substr(at, end - at), 4);
+    at = end + 1;
+    if (!words.empty() && words[0] == "end_header") break;
+    if (words.size() == 3 && words[0] == "element" && words[1] == "face")
+      faces += parseCount(words[2]);
+  }
+  return faces;
+}
 
 Expected<void> checkHeaders(const std::vector<uint8_t>& bytes, const std::string& name,
                             const std::string& extension, const LoadBudget& budget) {

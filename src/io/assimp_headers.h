@@ -14,6 +14,10 @@ namespace tessera::io {
 // A PLY file's header (its grammar, and the counts it declares against the budget and the
 // file's size) and a whole OFF file (counts, vertex lines, faces with indices in range), by
 // content, and also by `extension` ("off": an OFF file must look like one). Other formats pass.
+// The face count a PLY header declares (0 without a face element); 0 for other files. A PLY that
+// declares faces is not a point cloud, even when assimp reads none of them (a truncated file).
+uint64_t plyDeclaredFaces(const std::vector<uint8_t>& bytes);
+
 Expected<void> checkHeaders(const std::vector<uint8_t>& bytes, const std::string& name,
                             const std::string& extension, const LoadBudget& budget);
 

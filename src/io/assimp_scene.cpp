@@ -141,7 +141,9 @@ Expected<void> checkImportedScene(const aiScene& scene, const std::string& name)
 
 Expected<void> SceneBuilder::run() {
   if (scene_.mRootNode != nullptr && scene_.mNumMeshes == 0)
-    return makeError(name_ + ": no triangles in the scene (the file holds no meshes" +
+    return makeError(name_ +
+                     ": nothing to draw: no faces, points or lines (the file holds no "
+                     "meshes" +
                      (scene_.mNumCameras || scene_.mNumLights ? ", only cameras or lights)" : ")"));
   if (scene_.mRootNode == nullptr || (scene_.mFlags & AI_SCENE_FLAGS_INCOMPLETE))
     return makeError(name_ + ": assimp cannot read it: the file holds no complete scene");
@@ -149,6 +151,7 @@ Expected<void> SceneBuilder::run() {
   if (Expected<void> ok = checkCounts(nodes); !ok) return ok;
   for (const auto& [node, parent] : nodes)
     if (Expected<void> ok = addNode(*node, parent); !ok) return ok;
+  placePointsAndLines(nodes);
   return finish();
 }
 
@@ -180,11 +183,19 @@ bool SceneBuilder::drawn(const aiMesh* mesh) const {
 // The budget, before anything is copied: instancing can multiply a small file into a huge mesh.
 Expected<void> SceneBuilder::checkCounts(
     const std::vector<std::pair<const aiNode*, int32_t>>& nodes) {
-  uint64_t triangles = 0, vertices = 0;
+  uint64_t triangles = 0, vertices = 0, points = 0;
+  std::map<unsigned, uint64_t> mesh_points;
   for (const auto& [node, parent] : nodes) {
     for (unsigned i = 0; i < node->mNumMeshes && node->mMeshes != nullptr; ++i) {
       const unsigned index = node->mMeshes[i];
-      if (index >= scene_.mNumMeshes || !drawn(scene_.mMeshes[index])) continue;
+      if (index >= scene_.mNumMeshes) continue;
+      if (!drawn(scene_.mMeshes[index])) {
+        if (!hasPointsOrLines(scene_.mMeshes[index])) continue;
+        auto [known, added] = mesh_points.try_emplace(index, 0);
+        if (added) known->second = pointCount(*scene_.mMeshes[index]);
+        points = saturatingAdd(points, known->second);
+        continue;
+      }
       triangles = saturatingAdd(triangles, scene_.mMeshes[index]->mNumFaces);
       vertices = saturatingAdd(vertices, scene_.mMeshes[index]->mNumVertices);
     }
@@ -193,8 +204,12 @@ Expected<void> SceneBuilder::checkCounts(
                                       budget_.triangles(), "--max-triangles");
       !ok)
     return ok;
-  return checkBudget(name_, "vertices (after instancing)", vertices, budget_.vertices(),
-                     "--max-triangles");
+  if (Expected<void> ok = checkBudget(name_, "vertices (after instancing)", vertices,
+                                      budget_.vertices(), "--max-triangles");
+      !ok)
+    return ok;
+  return checkBudget(name_, "points and line end points (after instancing)", points,
+                     budget_.points(), "");
 }
 
 Expected<void> SceneBuilder::addNode(const aiNode& node, int32_t parent) {
@@ -400,15 +415,21 @@ std::shared_ptr<const Texture> SceneBuilder::texture(const std::string& referenc
 }
 
 Expected<void> SceneBuilder::finish() {
-  size_t points_or_lines = 0;
-  for (unsigned i = 0; i < scene_.mNumMeshes; ++i)
-    if (scene_.mMeshes[i] != nullptr && !drawn(scene_.mMeshes[i])) ++points_or_lines;
-  if (model_.graph.drawnTriangleCount() == 0) {
-    if (points_or_lines > 0) return makeError(name_ + ": holds only points/lines: not drawn yet");
-    return makeError(name_ + ": no triangles in the scene");
+  if (model_.graph.drawnTriangleCount() == 0 && model_.points.empty() &&
+      model_.lines.points.empty())
+    return makeError(name_ + ": nothing to draw: no faces, points or lines in the scene" +
+                     (declared_faces_ > 0
+                          ? " (the header declares " + std::to_string(declared_faces_) +
+                                " faces; is the file cut short?)"
+                          : ""));
+  if (declared_faces_ > 0) {
+    size_t degenerate = 0;
+    for (unsigned i = 0; i < scene_.mNumMeshes; ++i)
+      degenerate += scene_.mMeshes[i] != nullptr && !drawn(scene_.mMeshes[i]);
+    if (degenerate > 0)
+      warn(std::to_string(degenerate) +
+           " mesh(es) of PLY faces with fewer than 3 corners (or none) are not drawn");
   }
-  if (points_or_lines > 0)
-    warn(std::to_string(points_or_lines) + " mesh(es) of points or lines are not drawn yet");
   if (scene_.mNumAnimations > 0) warn("animations are not played (assimp formats)");
   if (scene_.mNumCameras > 0 || scene_.mNumLights > 0)
     warn("the file's cameras and lights are not used");

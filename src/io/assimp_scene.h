@@ -43,6 +43,9 @@ class SceneBuilder {
         model_(model) {}
 
   Expected<void> run();
+  // The faces the file's header declares (plyDeclaredFaces): when there are any, meshes of
+  // points, lines or no faces are not drawn (assimp_points.cpp: hasPointsOrLines).
+  void setDeclaredFaces(uint64_t faces) { declared_faces_ = faces; }
 
  private:
   // The nodes parents first, depth-first from the root, children in order; each node once.
@@ -56,6 +59,12 @@ class SceneBuilder {
   Material buildMaterial(const aiMaterial& source, const std::string& label);
   std::shared_ptr<const Texture> texture(const std::string& reference, const std::string& label);
   Expected<void> finish();
+  // assimp_points.cpp
+  bool hasPointsOrLines(const aiMesh* mesh) const;
+  uint64_t pointCount(const aiMesh& mesh) const;
+  float3 lineColor(unsigned material) const;
+  void placeMesh(const aiMesh& mesh, const float4x4& world, size_t& dropped);
+  void placePointsAndLines(const std::vector<std::pair<const aiNode*, int32_t>>& nodes);
   void warn(const std::string& text);
 
   const aiScene& scene_;
@@ -72,6 +81,7 @@ class SceneBuilder {
   std::map<std::string, std::shared_ptr<const Texture>> texture_cache_;
   std::set<std::string> warned_;
   size_t unlisted_warnings_ = 0;
+  uint64_t declared_faces_ = 0;
 };
 
 }  // namespace tessera::io::assimp

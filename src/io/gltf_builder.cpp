@@ -59,6 +59,7 @@ Expected<void> GraphBuilder::run() {
     }
   }
   placeLights();
+  if (Expected<void> ok = placePointsAndLines(); !ok) return ok;
   readAnimations();
   return finish();
 }
@@ -187,8 +188,12 @@ Expected<void> GraphBuilder::checkDrawnCounts(const std::vector<int>& roots) {
                                       budget_.triangles(), "--max-triangles");
       !ok)
     return ok;
-  return checkBudget(name_, "vertices (after instancing)", counts.vertices, budget_.vertices(),
-                     "--max-triangles");
+  if (Expected<void> ok = checkBudget(name_, "vertices (after instancing)", counts.vertices,
+                                      budget_.vertices(), "--max-triangles");
+      !ok)
+    return ok;
+  return checkBudget(name_, "points and line end points (after instancing)", counts.points,
+                     budget_.points(), "");
 }
 
 Expected<void> GraphBuilder::checkExtensions() {
@@ -211,17 +216,11 @@ Expected<void> GraphBuilder::checkExtensions() {
 
 Expected<void> GraphBuilder::finish() {
   SceneGraph& graph = model_.graph;
-  if (graph.drawnTriangleCount() == 0) {
-    std::string why = "no triangles in the scene";
-    if (!skipped_by_mode_.empty()) why += " (only points or lines, which are not drawn)";
-    return makeError(name_ + ": " + why);
-  }
-  static constexpr const char* kModeNames[] = {"points", "lines", "line loops", "line strips"};
-  for (auto [mode, count] : skipped_by_mode_) {
-    const std::string what =
-        mode >= 0 && mode < 4 ? kModeNames[mode] : "primitives of mode " + std::to_string(mode);
-    warn(std::to_string(count) + " primitive(s) of " + what + " skipped: only triangles are drawn");
-  }
+  if (graph.drawnTriangleCount() == 0 && model_.points.empty() && model_.lines.points.empty())
+    return makeError(name_ + ": nothing to draw: no faces, points or lines in the scene");
+  for (auto [mode, count] : skipped_by_mode_)
+    warn(std::to_string(count) + " primitive(s) of mode " + std::to_string(mode) +
+         " skipped: not a glTF 2.0 mode");
   size_t double_sided = 0;
   for (const Material& material : model_.materials) double_sided += material.double_sided;
   model_.cull_back_faces = double_sided == 0;

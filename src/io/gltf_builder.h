@@ -1,7 +1,8 @@
 // The glTF loader's builder: from a parsed tinygltf::Model to io::Model's scene graph. Private to
 // tessera_io. Split by concern: gltf_builder.cpp (the node walk, cameras, warnings, the end),
 // gltf_reader.cpp (checked accessor reads), gltf_primitives.cpp (meshes and their primitives),
-// gltf_draco.h (Draco-compressed primitives).
+// gltf_points.cpp (points and lines, placed per node in world space), gltf_draco.h
+// (Draco-compressed primitives).
 #pragma once
 
 #include <array>
@@ -85,6 +86,17 @@ class GraphBuilder {
   Expected<AnimationSampler> readSampler(const tinygltf::AnimationSampler& in, bool rotation,
                                          const std::string& what);
 
+  // gltf_points.cpp
+  struct PointsAndLines {
+    PointList points;  // colours always given: one per point
+    LineList lines;
+  };
+  float3 baseColorOf(int material) const;
+  Expected<void> readPointsOrLines(const tinygltf::Primitive& primitive, int mode,
+                                   const std::string& where, PointsAndLines& out);
+  Expected<const PointsAndLines*> pointsAndLinesOf(size_t mesh_index);
+  Expected<void> placePointsAndLines();
+
   // gltf_primitives.cpp
   // The graph mesh of glTF mesh `mesh_index`, read on first use.
   Expected<int32_t> meshFor(size_t mesh_index);
@@ -109,6 +121,7 @@ class GraphBuilder {
   uint32_t stamp_ = 0;
   std::vector<std::pair<size_t, size_t>> generated_normal_ranges_;  // of the mesh being read
   std::map<int, size_t> skipped_by_mode_;
+  std::map<size_t, PointsAndLines> mesh_points_;  // per glTF mesh, in its space, while placing
   std::set<std::string> warned_;
   size_t unlisted_warnings_ = 0;
   std::vector<int32_t> graph_mesh_;     // per glTF mesh: its graph mesh, or kNoIndex

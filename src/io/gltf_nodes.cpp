@@ -22,8 +22,8 @@ Expected<std::vector<int>> sceneRoots(const tinygltf::Model& gltf, const std::st
     for (int root : gltf.scenes[static_cast<size_t>(scene)].nodes) {
       if (root < 0 || static_cast<size_t>(root) >= node_count)
         return makeError(name + ": scene " + std::to_string(scene) + " lists node " +
-                         std::to_string(root) + ", but the file has " +
-                         std::to_string(node_count) + " nodes");
+                         std::to_string(root) + ", but the file has " + std::to_string(node_count) +
+                         " nodes");
       roots.push_back(root);
     }
     return roots;
@@ -195,6 +195,19 @@ DrawnCounts meshCounts(const tinygltf::Model& gltf, const tinygltf::Mesh& mesh) 
     if (position == primitive.attributes.end()) continue;
     const uint64_t vertices = accessorCount(position->second);
     const uint64_t corners = primitive.indices >= 0 ? accessorCount(primitive.indices) : vertices;
+    if (mode == TINYGLTF_MODE_POINTS) {
+      counts.points = addCapped(counts.points, corners);
+      continue;
+    }
+    if (mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP ||
+        mode == TINYGLTF_MODE_LINE_STRIP) {
+      // Two end points per segment, as gltf_points.cpp's segmentCount.
+      uint64_t segments = corners >= 2 ? corners - 1 : 0;
+      if (mode == TINYGLTF_MODE_LINE) segments = corners / 2;
+      if (mode == TINYGLTF_MODE_LINE_LOOP && corners >= 2) segments = corners;
+      counts.points = addCapped(counts.points, multiplyCapped(2, segments));
+      continue;
+    }
     uint64_t triangles = 0;
     if (mode == TINYGLTF_MODE_TRIANGLES)
       triangles = corners / 3;
@@ -230,6 +243,7 @@ DrawnCounts countDrawn(const tinygltf::Model& gltf, const std::vector<int>& root
       }
       total.triangles = addCapped(total.triangles, per_mesh[mesh].triangles);
       total.vertices = addCapped(total.vertices, per_mesh[mesh].vertices);
+      total.points = addCapped(total.points, per_mesh[mesh].points);
     }
     for (int child : node.children)
       if (child >= 0) stack.push_back(static_cast<size_t>(child));

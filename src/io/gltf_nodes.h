@@ -46,6 +46,7 @@ Transform localTransform(const tinygltf::Node& node, size_t index, const Warn& w
 struct DrawnCounts {
   uint64_t triangles = 0;
   uint64_t vertices = 0;
+  uint64_t points = 0;  // points and line end points (gltf_points.cpp)
 };
 DrawnCounts countDrawn(const tinygltf::Model& gltf, const std::vector<int>& roots);
 

@@ -1,5 +1,6 @@
 // The glTF builder's meshes: each glTF mesh read once, in its own space, its primitives in
-// order (TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN), each vertex emitted on first use.
+// order (TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN), each vertex emitted on first use. Points and
+// lines are gltf_points.cpp's.
 #include <algorithm>
 #include <array>
 #include <memory>
@@ -73,7 +74,8 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
   if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
       mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-    ++skipped_by_mode_[mode];
+    // Points and lines are placed per node in world space (gltf_points.cpp).
+    if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_LINE_STRIP) ++skipped_by_mode_[mode];
     return {};
   }
   if (!primitive.targets.empty()) warn("morph targets are not applied");

@@ -36,6 +36,14 @@ bool hasDefaultMaterial(const io::Model& model) {
 
 namespace {
 
+// The finite points and line end points (world space) into `b`.
+void addPointBounds(Bounds& b, const PointList& points, const LineList& lines) {
+  for (const float3& p : points.positions)
+    if (isFinite(p)) b.add(p);
+  for (const float3& p : lines.points)
+    if (isFinite(p)) b.add(p);
+}
+
 // Applies `change` to each mesh's materials, once per list: meshes that shared one list share
 // the changed copy.
 template <class Change>
@@ -58,11 +66,14 @@ void changeMaterialLists(SceneGraph& graph, Change change) {
 
 Expected<Scene> makeModelScene(io::Model model, const std::filesystem::path& path,
                                const ModelSceneSettings& settings, SceneGraph* graph_out) {
+  PointList points = std::move(model.points);
+  LineList lines = std::move(model.lines);
   SceneGraph graph = io::takeGraph(std::move(model));
   if (Expected<void> ok = graph.validate(); !ok)
     return makeError(path.string() + ": " + ok.error().message);
-  if (graph.bounds().empty())
-    return makeError(path.string() + ": the model has no finite vertices");
+  Bounds drawn = graph.bounds();
+  addPointBounds(drawn, points, lines);
+  if (drawn.empty()) return makeError(path.string() + ": the model has no finite vertices");
   // --texture is every material's albedo, on a white base colour (alpha kept); --color is the
   // base colour of the loader's default materials (linear from sRGB), which multiplies the
   // texture as in f3d.
@@ -86,6 +97,8 @@ Expected<Scene> makeModelScene(io::Model model, const std::filesystem::path& pat
   object.shading = settings.shading;
   object.cull = settings.cull;
   instantiate(graph, object, scene);
+  scene.points = std::move(points);
+  scene.lines = std::move(lines);
   const float3 bg = settings.background_srgb;
   scene.background = {srgbToLinear(bg.x), srgbToLinear(bg.y), srgbToLinear(bg.z), 1.0f};
   if (graph_out) *graph_out = std::move(graph);
@@ -93,10 +106,16 @@ Expected<Scene> makeModelScene(io::Model model, const std::filesystem::path& pat
 }
 
 Bounds modelBounds(const io::Model& model) {
-  if (model.graph.nodes.empty()) return model.mesh.bounds();
-  SceneGraph graph = model.graph;
-  graph.updateWorld();
-  return graph.bounds();
+  Bounds b;
+  if (model.graph.nodes.empty()) {
+    b = model.mesh.bounds();
+  } else {
+    SceneGraph graph = model.graph;
+    graph.updateWorld();
+    b = graph.bounds();
+  }
+  addPointBounds(b, model.points, model.lines);
+  return b;
 }
 
 bool modelHasUvs(const io::Model& model) {
@@ -134,8 +153,21 @@ void addBounds(DoubleBounds& b, const Mesh& mesh, const float4x4* m) {
   }
 }
 
+void addBounds(DoubleBounds& b, const std::vector<float3>& positions) {
+  for (const float3& p : positions) {
+    if (!isFinite(p)) continue;
+    const double w[3] = {p.x, p.y, p.z};
+    for (int i = 0; i < 3; ++i) {
+      b.lo[i] = std::min(b.lo[i], w[i]);
+      b.hi[i] = std::max(b.hi[i], w[i]);
+    }
+  }
+}
+
 DoubleBounds doubleBounds(const io::Model& model) {
   DoubleBounds b;
+  addBounds(b, model.points.positions);
+  addBounds(b, model.lines.points);
   if (model.graph.nodes.empty()) {
     addBounds(b, model.mesh, nullptr);
     return b;
@@ -205,6 +237,11 @@ std::string fitModelScale(io::Model& model, const std::filesystem::path& path,
     light.range = static_cast<float>(light.range / scale);
     light.intensity = static_cast<float>(light.intensity / (scale * scale));
   }
+  // Points and lines are in world space already: moved and scaled themselves.
+  for (float3& p : model.points.positions)
+    if (isFinite(p)) p = fit(p);
+  for (float3& p : model.lines.points)
+    if (isFinite(p)) p = fit(p);
   if (!model.graph.nodes.empty()) {
     refitGraph(model.graph, center, scale);
     return {};

@@ -23,6 +23,11 @@ Bounds Scene::bounds() const {
       if (isFinite(w)) b.add(w);
     }
   }
+  // Points and lines are in world space: a point cloud or a wireframe is framed like a mesh.
+  for (const float3& p : points.positions)
+    if (isFinite(p)) b.add(p);
+  for (const float3& p : lines.points)
+    if (isFinite(p)) b.add(p);
   return b;
 }
 

@@ -32,6 +32,10 @@ struct LoadBudget {
   uint64_t triangles() const { return max_triangles ? max_triangles : memory_bytes / 512; }
   // Mesh vertices (positions, normals, uvs, colours and the renderer's transformed copies).
   uint64_t vertices() const { return std::max(triangles(), memory_bytes / 256); }
+  // Points and line end points (Model::points, Model::lines): about 64 bytes each (position and
+  // colour in the model and again in the loader's reading of the file, the point pass's
+  // transformed copy), so 16,777,216 for 1 GiB. Only --memory-limit raises it.
+  uint64_t points() const { return memory_bytes / 64; }
   // Decoded pixels of one texture (4 bytes each, a third more for mipmaps, twice that while
   // decoding): 8192 x 8192 for 1 GiB.
   uint64_t texturePixels() const {
@@ -67,9 +71,10 @@ struct Model {
   // empty for other formats. A caller lights the model with these instead of its default rig.
   std::vector<Light> lights;
   // Primitives without faces, in world space (node transforms applied at load): OBJ `p` and `l`
-  // elements and an OBJ without faces, glTF POINTS and LINES modes, a PLY of vertices only.
-  // A model may hold only these (no triangles); buildScene moves them into Scene::points and
-  // Scene::lines. Line colours are linear RGB.
+  // elements and an OBJ without faces, glTF POINTS and LINES modes, assimp's point and line
+  // faces and a PLY of vertices only. A model may hold only these (no triangles);
+  // model::makeModelScene moves them into Scene::points and Scene::lines. Colours are linear
+  // RGB. A loader with nothing at all to draw fails: "nothing to draw: no faces, points or lines".
   PointList points;
   LineList lines;
 };
@@ -90,7 +95,11 @@ Expected<Model> loadModel(const std::filesystem::path& path, const LoadBudget& b
 // fan-split from their first vertex, concave ones ear-clipped. Missing normals are generated
 // (smooth, area-weighted). Materials are listed in the order triangles first use them; faces
 // without one get a default Material (0.8 grey). MTL files and textures are read only from
-// beneath the OBJ's folder; anything else is skipped with a warning.
+// beneath the OBJ's folder; anything else is skipped with a warning. `p` elements are points and
+// `l` polylines line segments (consecutive pairs), in Model::points and Model::lines; a file
+// without any `f`, `p` or `l` line is a point cloud of its vertices. Point colours are the `v`
+// line's colour read as sRGB (point-cloud tools write 8-bit colours / 255) and decoded; a
+// segment takes its `usemtl` material's Kd or the default 0.8 grey (obj_points.h).
 Expected<Model> loadObj(const std::filesystem::path& path, const LoadBudget& budget = {});
 
 // glTF 2.0, as JSON (.gltf) or binary (.glb; chosen by the file's magic, not its name), through
@@ -103,7 +112,9 @@ Expected<Model> loadObj(const std::filesystem::path& path, const LoadBudget& bud
 // (SceneGraph::prepareMeshes). Cameras (perspective and orthographic) go to graph.cameras; a
 // camera with a zero or negative field is skipped with a warning naming it (and keeps its
 // index: GraphCamera::skipped). TRIANGLES, TRIANGLE_STRIP and
-// TRIANGLE_FAN are drawn; points and lines are skipped with a warning. Materials (first-use
+// TRIANGLE_FAN are drawn as meshes; POINTS, LINES, LINE_LOOP and LINE_STRIP go, at the world
+// matrix of every node that draws their mesh, into Model::points and Model::lines, coloured
+// baseColorFactor x COLOR_0 (gltf_points.cpp). Materials (first-use
 // order) take baseColorFactor, the baseColorTexture (sRGB) with its sampler, and doubleSided;
 // texture coordinates have v flipped to tessera's convention (v = 0 at the bottom). COLOR_0 is a
 // linear vertex colour. Missing normals are generated (smooth, area-weighted). Sparse accessors
@@ -154,9 +165,11 @@ bool hasAssimp();
 // refers to it; triangle ids depth-first over the nodes as for glTF). Normals when the file has
 // them (else smooth ones are generated), UV set 0, vertex colour set 0 (sRGB-encoded in every
 // format assimp reads, decoded to linear), materials with their diffuse colour, opacity,
-// two-sidedness and diffuse texture (embedded, or a file beneath the model's folder). Points and
-// lines are not drawn: a file with nothing else is an error, else a warning says what was
-// skipped. Without assimp in the build, an error says so.
+// two-sidedness and diffuse texture (embedded, or a file beneath the model's folder). Point and
+// line faces, and meshes of vertices without faces (a PLY of vertices only), go into
+// Model::points and Model::lines at every node that draws them (assimp_points.cpp); a faceless
+// PLY's vertex count is checked against LoadBudget::points() from its header. Without assimp in
+// the build, an error says so.
 Expected<Model> loadAssimp(const std::filesystem::path& path, const LoadBudget& budget = {});
 
 // The same from bytes in memory: `name`'s extension picks the format (assimp also looks at the

@@ -37,13 +37,14 @@ bool hasDefaultMaterial(const io::Model& model);
 Shading shadingFromName(const std::string& name);
 
 // The model's instances as the scene's objects (instantiate, graph.h), in its own coordinates:
-// one object for OBJ and STL. The camera is left as it is and there are no lights yet
+// one object for OBJ and STL; Model::points and Model::lines become Scene::points and
+// Scene::lines. The camera is left as it is and there are no lights yet
 // (addViewLights). Fails when the model has no finite vertex. `graph`, when given, receives the
 // model's scene graph (its cameras, and the nodes an animation moves).
 Expected<Scene> makeModelScene(io::Model model, const std::filesystem::path& path,
                                const ModelSceneSettings& settings, SceneGraph* graph = nullptr);
 
-// World bounds of what the model draws.
+// World bounds of what the model draws: its meshes, points and line end points.
 Bounds modelBounds(const io::Model& model);
 // Whether any mesh the model draws has texture coordinates.
 bool modelHasUvs(const io::Model& model);

@@ -172,7 +172,7 @@ struct Scene {
   float world_axes_length = 1.0f;
 
   size_t triangleCount() const;
-  // World-space bounds of every object's finite vertices.
+  // World-space bounds of every object's finite vertices, the points and the line end points.
   Bounds bounds() const;
 };
 
