@@ -160,7 +160,7 @@ void drawLines(const LineList& lines, const float4x4& view_projection, Frame& fr
 }
 
 void drawRayLines(const LineList& lines, const float4x4& view, const RayLines& mode, Frame& frame,
-                  bool antialiased) {
+                  bool antialiased, float width) {
   // Pieces short enough that the curve between their ends is within a fraction of a pixel of the
   // chord at the image sizes in use; a piece whose ends land on both sides of a seam is skipped.
   constexpr int kPieces = 256;
@@ -185,7 +185,7 @@ void drawRayLines(const LineList& lines, const float4x4& view, const RayLines& m
       const float3 q{static_cast<float>(sx), static_cast<float>(sy),
                      static_cast<float>((distance - mode.near) / (mode.far - mode.near))};
       if (have_last && std::fabs(q.x - last.x) < seam)
-        drawWindowSegment(frame, last, q, lines.colors[i / 2], antialiased);
+        drawWindowSegment(frame, last, q, lines.colors[i / 2], antialiased, width);
       last = q;
       have_last = true;
     }

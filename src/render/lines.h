@@ -37,7 +37,8 @@ struct RayLines {
   double fov_y_radians = 1;
   double near = 0.1, far = 100;
 };
+// `width` in pixels, as LineStyle::width.
 void drawRayLines(const LineList& lines, const float4x4& view, const RayLines& mode, Frame& frame,
-                  bool antialiased = false);
+                  bool antialiased = false, float width = 1.0f);
 
 }  // namespace tessera::render
