@@ -22,6 +22,12 @@ struct ProjectedBlock {
   uint32_t depth[kBlock];  // window depth bits, kHidden when not drawn
 };
 
+// packSrgba8 of an opaque colour, inlined: the place stage encodes every point's colour.
+uint32_t packOpaque(float3 c) {
+  return 0xff000000u | uint32_t{encodeSrgb8(c.x)} | uint32_t{encodeSrgb8(c.y)} << 8 |
+         uint32_t{encodeSrgb8(c.z)} << 16;
+}
+
 uint32_t depthBits(float z) {
   return std::bit_cast<uint32_t>(z + 0.0f);  // -0 as +0: window depth orders as its bits
 }
@@ -62,40 +68,45 @@ __attribute__((noinline)) void projectBlock(const PointCamera& camera, int width
   }
 }
 
-struct PixelSpan {
-  int first = 1, last = 0;
-  bool empty() const { return first > last; }
-};
+// floor and ceil for |v| < 2^31 without a call into libm (the baseline x86-64 has no roundss).
+int floorToInt(float v) {
+  const int i = static_cast<int>(v);
+  return i - (static_cast<float>(i) > v);
+}
+int ceilToInt(float v) {
+  const int i = static_cast<int>(v);
+  return i + (static_cast<float>(i) < v);
+}
 
 // The pixels along one axis (of `size`) that a disc of radius r about c can touch: with centres
-// within r (and the one holding c), or antialiased within r + 0.5.
-PixelSpan discSpan(float c, float r, bool antialiased, int size) {
-  float low, high;
+// within r (and the one holding c), or antialiased within r + 0.5. Coordinates are clamped to
+// [-1, size] first, which changes no pixel on the image and keeps the conversions in range.
+inline PixelSpan discSpan(float c, float r, bool antialiased, int size) {
+  const float top = static_cast<float>(size);
+  auto clamped = [top](float v) { return std::min(std::max(v, -1.0f), top); };
+  const int holding = floorToInt(clamped(c));
+  int low, high;
   if (antialiased) {
-    low = std::floor(c - r);
-    high = std::floor(c + r);
+    low = std::min(floorToInt(clamped(c - r)), holding);
+    high = std::max(floorToInt(clamped(c + r)), holding);
   } else {
-    low = std::min(std::ceil(c - r - 0.5f), std::floor(c));
-    high = std::max(std::floor(c + r - 0.5f), std::floor(c));
+    low = std::min(ceilToInt(clamped(c - r - 0.5f)), holding);
+    high = std::max(floorToInt(clamped(c + r - 0.5f)), holding);
   }
-  low = std::max(low, 0.0f);
-  high = std::min(high, static_cast<float>(size - 1));
-  if (!(low <= high)) return {};
-  return {static_cast<int>(low), static_cast<int>(high)};
+  return {std::max(low, 0), std::min(high, size - 1)};
 }
 
 // Whether pixel (px, py) belongs to the disc: its centre within r (d2: squared distance) or it
-// holds the point; antialiased, also those within r + 0.5 (a part of the disc's edge).
+// holds the point (hx, hy); antialiased, also those within r + 0.5 (a part of the disc's edge).
 struct DiscTest {
   float r2, reach2;
   bool antialiased;
 
-  bool centre(float d2, int px, int py, float x, float y) const {
-    return d2 <= r2 ||
-           (px == static_cast<int>(std::floor(x)) && py == static_cast<int>(std::floor(y)));
+  bool centre(float d2, int px, int py, int hx, int hy) const {
+    return d2 <= r2 || (px == hx && py == hy);
   }
-  bool touches(float d2, int px, int py, float x, float y) const {
-    return centre(d2, px, py, x, y) || (antialiased && d2 < reach2);
+  bool touches(float d2, int px, int py, int hx, int hy) const {
+    return centre(d2, px, py, hx, hy) || (antialiased && d2 < reach2);
   }
 };
 
@@ -178,13 +189,19 @@ void PointPass::countChunk(size_t chunk) {
 }
 
 void PointPass::placeChunk(size_t chunk) {
+  const std::vector<float3>& colors = scene_->points.colors;
+  const bool own_colors = colors.size() == scene_->points.size();
+  const uint32_t default_color = packSrgba8(float4{options_->points.color, 1.0f});
   uint32_t* next = &counts_[chunk * static_cast<size_t>(bands_)];  // each band's next slot
-  forEachVisible(
-      camera_, scene_->points, chunk, width_, height_, radius_, antialiased_,
-      [&](size_t index, float x, float y, uint32_t depth, PixelSpan rows) {
-        for (int b = rows.first / kPointBandRows; b <= rows.last / kPointBandRows; ++b)
-          records_[band_start_[b] + next[b]++] = Record{x, y, depth, static_cast<uint32_t>(index)};
-      });
+  forEachVisible(camera_, scene_->points, chunk, width_, height_, radius_, antialiased_,
+                 [&](size_t index, float x, float y, uint32_t depth, PixelSpan rows) {
+                   const uint32_t color = own_colors ? packOpaque(colors[index]) : default_color;
+                   for (int b = rows.first / kPointBandRows; b <= rows.last / kPointBandRows; ++b) {
+                     const size_t slot = band_start_[b] + next[b]++;
+                     records_[slot] = Record{x, y, depth, static_cast<uint32_t>(index)};
+                     record_colors_[slot] = color;
+                   }
+                 });
 }
 
 void PointPass::draw(const Scene& scene, const RenderOptions& options, const PointCamera& camera,
@@ -223,10 +240,17 @@ void PointPass::draw(const Scene& scene, const RenderOptions& options, const Poi
     TESSERA_CHECK(total - band_start_[b] < kHidden) << "a band of " << total << " points";
   }
   band_start_[bands] = total;
-  if (records_.size() < total) records_.resize(total);
+  if (records_.size() < total) {
+    records_.resize(total);
+    record_colors_.resize(total);
+  }
   pool.parallelFor(chunks, [&](size_t c, int) { placeChunk(c); });
 
-  if (keys_.size() < frame.pixelCount()) keys_.resize(frame.pixelCount());
+  if (keys_.size() < frame.pixelCount()) {
+    keys_.resize(frame.pixelCount());
+    win_color_.resize(frame.pixelCount());
+    win_coverage_.resize(frame.pixelCount());
+  }
   pool.parallelFor(bands, [&](size_t b, int) { splatBand(static_cast<int>(b), frame); });
 }
 
@@ -238,8 +262,9 @@ void PointPass::splatBand(int band, Frame& frame) {
   const float* depth = &frame.depth[base];
   for (size_t i = 0; i < pixels; ++i) keys[i] = uint64_t{std::bit_cast<uint32_t>(depth[i])} << 32;
 
-  const Record* records = &records_[band_start_[band]];
-  const size_t count = band_start_[band + 1] - band_start_[band];
+  const size_t first = band_start_[band], count = band_start_[band + 1] - first;
+  const Record* records = &records_[first];
+  const uint32_t* colors = &record_colors_[first];
   const bool sprites = options_->points.sprites;
   const DiscTest test{radius_ * radius_, (radius_ + 0.5f) * (radius_ + 0.5f), antialiased_};
   for (size_t rank = 0; rank < count; ++rank) {
@@ -249,82 +274,131 @@ void PointPass::splatBand(int band, Frame& frame) {
     rows.last = std::min(rows.last, y1 - 1);
     const PixelSpan cols = discSpan(rec.x, radius_, antialiased_, width_);
     const uint64_t flat_key = uint64_t{rec.depth} << 32 | (rank + 1);
+    const int hx = floorToInt(rec.x), hy = floorToInt(rec.y);
+    if (!sprites && !antialiased_) {
+      splatFlat(rows, cols, rec.x, rec.y, flat_key, colors[rank]);
+      continue;
+    }
     SphereDepth sphere{};
     if (sprites)
       sphere = sphereDepth(camera_, scene_->points.positions[rec.index], radius_, height_,
                            camera_to_world_);
     for (int py = rows.first; py <= rows.last; ++py) {
       const float dy = static_cast<float>(py) + 0.5f - rec.y, dy2 = dy * dy;
-      uint64_t* row = keys + static_cast<size_t>(py - y0) * static_cast<size_t>(width_);
+      const size_t row = base + static_cast<size_t>(py - y0) * static_cast<size_t>(width_);
       for (int px = cols.first; px <= cols.last; ++px) {
         const float dx = static_cast<float>(px) + 0.5f - rec.x, d2 = dx * dx + dy2;
-        if (!test.touches(d2, px, py, rec.x, rec.y)) continue;
+        if (!test.touches(d2, px, py, hx, hy)) continue;
         uint64_t key = flat_key;
         if (sprites) {
           const float h = std::sqrt(std::max(0.0f, 1.0f - d2 / test.r2));
           key = uint64_t{depthBits(sphere.at(h))} << 32 | (rank + 1);
         }
-        if (key < row[px]) row[px] = key;
+        const size_t i = row + static_cast<size_t>(px);
+        if (!(key < keys_[i])) continue;
+        // The winner so far: its colour and coverage kept beside the key, so that the resolve
+        // of flat discs reads nothing but this band's pixels.
+        keys_[i] = key;
+        win_color_[i] = colors[rank];
+        win_coverage_[i] = coverageByte(test.centre(d2, px, py, hx, hy), d2);
       }
     }
   }
   resolveBand(band, frame);
 }
 
-void PointPass::resolveBand(int band, Frame& frame) {
-  const int y0 = band * kPointBandRows, y1 = std::min(height_, y0 + kPointBandRows);
-  const Record* records = &records_[band_start_[band]];
-  const PointList& points = scene_->points;
-  const bool own_colors = points.colors.size() == points.size();
-  const bool sprites = options_->points.sprites;
-  const DiscTest test{radius_ * radius_, (radius_ + 0.5f) * (radius_ + 0.5f), antialiased_};
-  for (int py = y0; py < y1; ++py) {
-    for (int px = 0; px < width_; ++px) {
-      const size_t i = static_cast<size_t>(py) * static_cast<size_t>(width_) + px;
-      const uint64_t key = keys_[i];
-      const uint32_t rank = static_cast<uint32_t>(key);
-      if (rank == 0) continue;
-      const Record& rec = records[rank - 1];
-      const float dx = static_cast<float>(px) + 0.5f - rec.x;
-      const float dy = static_cast<float>(py) + 0.5f - rec.y, d2 = dx * dx + dy * dy;
-      const float3 p = points.positions[rec.index];
-      const float3 q = (camera_.view * float4{p, 1.0f}).xyz();
-      float3 color = own_colors ? points.colors[rec.index] : options_->points.color;
-      float3 normal = camera_to_world_ * normalize(float3{0, 0, 0} - q);
-      if (sprites) {
-        normal = normalize(camera_to_world_ * spriteNormal(q, dx / radius_, -dy / radius_));
-        const float world_radius =
-            sphereDepth(camera_, p, radius_, height_, camera_to_world_).world_radius;
-        color = color * irradiance(lights_, normal, p + normal * world_radius);
-      }
-      const bool centre = test.centre(d2, px, py, rec.x, rec.y);
-      // A covered centre counts at least half (the pixel holding a tiny point).
-      const float coverage =
-          antialiased_ ? std::clamp(radius_ + 0.5f - std::sqrt(d2), centre ? 0.5f : 0.0f, 1.0f)
-                       : 1.0f;
-      writePixel(frame, i, color, coverage);
-      if (!frame.coverage.empty())
-        frame.coverage[i] =
-            std::max(frame.coverage[i], static_cast<uint8_t>(std::lround(coverage * 255.0f)));
-      if (!centre) continue;
-      frame.depth[i] = std::bit_cast<float>(static_cast<uint32_t>(key >> 32));
-      if (!frame.triangle_id.empty()) frame.triangle_id[i] = kNoTriangle;
-      if (!frame.normal.empty()) frame.normal[i] = normal;
+void PointPass::splatFlat(PixelSpan rows, PixelSpan cols, float x, float y, uint64_t key,
+                          uint32_t color) {
+  // Without branches on coverage or depth (they mispredict about half the time): every
+  // candidate pixel stores, the old value where the point does not win.
+  const float r2 = radius_ * radius_;
+  const int hx = floorToInt(x), hy = floorToInt(y);
+  for (int py = rows.first; py <= rows.last; ++py) {
+    const float dy = static_cast<float>(py) + 0.5f - y, dy2 = dy * dy;
+    const size_t row = static_cast<size_t>(py) * static_cast<size_t>(width_);
+    uint64_t* keys = &keys_[row];
+    uint32_t* colors = &win_color_[row];
+    for (int px = cols.first; px <= cols.last; ++px) {
+      const float dx = static_cast<float>(px) + 0.5f - x;
+      const bool inside = (dx * dx + dy2 <= r2) | ((px == hx) & (py == hy));
+      const uint64_t old = keys[px];
+      // All ones where the point wins: masks, as the compiler keeps `?:` here as branches.
+      const uint64_t wins = uint64_t{0} - static_cast<uint64_t>(inside & (key < old));
+      keys[px] = old ^ ((old ^ key) & wins);
+      colors[px] ^= (colors[px] ^ color) & static_cast<uint32_t>(wins);
     }
   }
 }
 
-void PointPass::writePixel(Frame& frame, size_t i, float3 color, float coverage) {
-  if (coverage >= 1.0f) {
+uint8_t PointPass::coverageByte(bool centre, float d2) const {
+  if (!antialiased_) return 255;
+  // A covered centre counts at least half (the pixel holding a tiny point), an uncovered one
+  // less: the centre is covered exactly where the byte is 128 or more.
+  const float coverage = std::clamp(radius_ + 0.5f - std::sqrt(d2), centre ? 0.5f : 0.0f, 1.0f);
+  return static_cast<uint8_t>(std::min(centre ? 255L : 127L, std::lround(coverage * 255.0f)));
+}
+
+void PointPass::resolveBand(int band, Frame& frame) {
+  const int y0 = band * kPointBandRows, y1 = std::min(height_, y0 + kPointBandRows);
+  const Record* records = &records_[band_start_[band]];
+  const bool sprites = options_->points.sprites;
+  const float3 facing = camera_to_world_.col[2];  // flat discs face the camera
+  const size_t begin = static_cast<size_t>(y0) * static_cast<size_t>(width_);
+  const size_t end = static_cast<size_t>(y1) * static_cast<size_t>(width_);
+  for (size_t i = begin; i < end; ++i) {
+    const uint64_t key = keys_[i];
+    const uint32_t rank = static_cast<uint32_t>(key);
+    if (rank == 0) continue;
+    const uint8_t coverage = antialiased_ ? win_coverage_[i] : 255;
+    float3 normal = facing;
+    if (sprites) {
+      const int px = static_cast<int>(i % static_cast<size_t>(width_));
+      const int py = static_cast<int>(i / static_cast<size_t>(width_));
+      const float3 color = spriteColor(records[rank - 1], px, py, normal);
+      writePixel(frame, i, color, coverage);
+    } else if (coverage == 255) {
+      frame.color[i] = win_color_[i];
+    } else {
+      const uint32_t c = win_color_[i];
+      writePixel(frame, i,
+                 {decodeSrgb8(static_cast<uint8_t>(c)), decodeSrgb8(static_cast<uint8_t>(c >> 8)),
+                  decodeSrgb8(static_cast<uint8_t>(c >> 16))},
+                 coverage);
+    }
+    if (!frame.coverage.empty()) frame.coverage[i] = std::max(frame.coverage[i], coverage);
+    if (coverage < 128) continue;  // the centre is not covered
+    frame.depth[i] = std::bit_cast<float>(static_cast<uint32_t>(key >> 32));
+    if (!frame.triangle_id.empty()) frame.triangle_id[i] = kNoTriangle;
+    if (!frame.normal.empty()) frame.normal[i] = normal;
+  }
+}
+
+float3 PointPass::spriteColor(const Record& rec, int px, int py, float3& normal) const {
+  const PointList& points = scene_->points;
+  const float dx = static_cast<float>(px) + 0.5f - rec.x;
+  const float dy = static_cast<float>(py) + 0.5f - rec.y;
+  const float3 p = points.positions[rec.index];
+  const float3 q = (camera_.view * float4{p, 1.0f}).xyz();
+  normal = normalize(camera_to_world_ * spriteNormal(q, dx / radius_, -dy / radius_));
+  const float world_radius =
+      sphereDepth(camera_, p, radius_, height_, camera_to_world_).world_radius;
+  const float3 albedo =
+      points.colors.size() == points.size() ? points.colors[rec.index] : options_->points.color;
+  return albedo * irradiance(lights_, normal, p + normal * world_radius);
+}
+
+void PointPass::writePixel(Frame& frame, size_t i, float3 color, uint8_t coverage) {
+  if (coverage == 255) {
     frame.color[i] = packSrgba8(float4{color, 1.0f});
     return;
   }
   // As the line pass blends (lines.cpp): in linear light, over the frame's colour.
+  const float a = static_cast<float>(coverage) * (1.0f / 255.0f);
   const uint32_t old = frame.color[i];
   uint32_t mixed = old & 0xff000000u;
   for (int k = 0; k < 3; ++k) {
     const float under = decodeSrgb8(static_cast<uint8_t>(old >> (8 * k)));
-    mixed |= static_cast<uint32_t>(encodeSrgb8(under + (color[k] - under) * coverage)) << (8 * k);
+    mixed |= static_cast<uint32_t>(encodeSrgb8(under + (color[k] - under) * a)) << (8 * k);
   }
   frame.color[i] = mixed;
 }

@@ -28,10 +28,11 @@
 // disc whose centre is off the image still draws its pixels on it.
 //
 // AOVs where a point covers the pixel centre: depth is its window depth (with sprites, that of
-// the sphere's surface); the normal (when asked) the sphere's world normal with sprites, the one
-// facing the eye without; the id AOV is set to kNoTriangle, the background's: points have no
-// triangle index. Colour: the point's own (PointList::colors), else RenderOptions::points.color;
-// flat discs are unlit like lines, sprites are lit by the scene's lights (lights.h irradiance).
+// the sphere's surface); the normal (when asked) the sphere's world normal with sprites, the
+// camera's backward axis without (a flat disc faces the camera); the id AOV is set to kNoTriangle,
+// the background's: points have no triangle index. Colour: the point's own (PointList::colors),
+// else RenderOptions::points.color; flat discs are unlit like lines, sprites are lit by the scene's
+// lights (lights.h irradiance).
 #pragma once
 
 #include <cstdint>
@@ -48,9 +49,16 @@
 
 namespace tessera::render {
 
-// Rows per band: a band's keys (1920 x 32 x 8 bytes) stay in a core's L2; a 3-pixel point
-// straddles two bands one time in sixteen.
+// Rows per band: a band's keys, colours and coverage (1920 x 32 x 13 bytes, 800 KB) stay in a
+// Zen 4 core's 1 MB L2; a 3-pixel point straddles two bands one time in sixteen. 16 rows were
+// 5% slower on the points bench scene (twice the bands for the place stage to scatter into).
 constexpr int kPointBandRows = 32;
+
+// Pixels [first, last] along one axis; empty when first > last.
+struct PixelSpan {
+  int first = 1, last = 0;
+  bool empty() const { return first > last; }
+};
 
 // How world points map to window points.
 struct PointCamera {
@@ -85,7 +93,14 @@ class PointPass {
   void placeChunk(size_t chunk);
   void splatBand(int band, Frame& frame);
   void resolveBand(int band, Frame& frame);
-  static void writePixel(Frame& frame, size_t i, float3 color, float coverage);
+  // Flat discs without antialiasing (the common case): pixels rows x cols of the disc about
+  // (x, y).
+  void splatFlat(PixelSpan rows, PixelSpan cols, float x, float y, uint64_t key, uint32_t color);
+  uint8_t coverageByte(bool centre, float d2) const;
+  // A sprite's lit colour at pixel (px, py) and its world normal there.
+  float3 spriteColor(const Record& rec, int px, int py, float3& normal) const;
+  // `coverage` 255: the colour; less: blended over the frame's in linear light.
+  static void writePixel(Frame& frame, size_t i, float3 color, uint8_t coverage);
 
   // This frame's inputs.
   const Scene* scene_ = nullptr;
@@ -100,7 +115,11 @@ class PointPass {
   std::vector<uint32_t> counts_;    // [chunk * bands_ + band]: then where the chunk's records start
   std::vector<size_t> band_start_;  // bands_ + 1 entries
   std::vector<Record> records_;
-  std::vector<uint64_t> keys_;  // per pixel
+  std::vector<uint32_t> record_colors_;  // beside records_: the point's colour, packed sRGB
+  // Per pixel: the least key, and that point's packed colour and coverage (255: whole).
+  std::vector<uint64_t> keys_;
+  std::vector<uint32_t> win_color_;
+  std::vector<uint8_t> win_coverage_;
 };
 
 }  // namespace tessera::render
