@@ -272,3 +272,23 @@ TEST(Lines, WidthThreeCoversThreePixelsAcross) {
     }
   }
 }
+
+TEST(Points, NonlinearProjectionsMapTheCentreThroughTheModeWithDistanceAsDepth) {
+  Scene scene;
+  scene.camera.position = {0, 0, 0};
+  scene.camera.target = {0, 0, -1};
+  scene.camera.fov_y_degrees = 90;
+  scene.camera.near_z = 1;
+  scene.camera.far_z = 11;
+  scene.points.positions = {{0, 0, -6}};  // straight ahead, 6 away: depth (6 - 1) / 10
+  RenderOptions options = pointOptions(3.0f, 64, 32);
+  options.projection = Projection::kSpherical;
+  const Frame f = render(scene, options, 2);
+  // The centre maps to window (32, 16), a pixel corner: the four pixels around it.
+  EXPECT_EQ(countColor(f, kWhite), 4);
+  for (int y : {15, 16})
+    for (int x : {31, 32}) {
+      EXPECT_EQ(f.colorAt(x, y), kWhite) << x << "," << y;
+      EXPECT_NEAR(f.depthAt(x, y), 0.5f, 1e-6f);
+    }
+}
