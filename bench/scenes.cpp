@@ -157,6 +157,51 @@ BenchScene makeInstancesScene(Shading shading, bool flattened) {
   return b;
 }
 
+std::vector<std::string> extraSceneNames() {
+  return {"instances-flat", "points"};
+}
+
+BenchScene makePointCloudScene() {
+  constexpr int kColumns = 4000, kRows = 2500;
+  static_assert(size_t{kColumns} * kRows == kCloudPoints);
+  BenchScene b;
+  b.name = "points";
+  PointList& points = b.scene.points;
+  points.positions.resize(kCloudPoints);
+  points.colors.resize(kCloudPoints);
+  // A 32-bit integer hash (Wellons' lowbias32) to [0, 1): the jitter and the roughness.
+  auto hash = [](uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return static_cast<float>(x >> 8) * (1.0f / 16777216.0f);
+  };
+  for (int r = 0; r < kRows; ++r) {
+    for (int c = 0; c < kColumns; ++c) {
+      const uint32_t i = static_cast<uint32_t>(r) * kColumns + static_cast<uint32_t>(c);
+      const float x = (static_cast<float>(c) + hash(2 * i)) / kColumns * 4.0f - 2.0f;
+      const float z = (static_cast<float>(r) + hash(2 * i + 1)) / kRows * 2.5f - 1.25f;
+      const float h = 0.18f * std::sin(2.5f * x) * std::cos(3.0f * z) +
+                      0.06f * std::sin(9.0f * x + 5.0f * z) + 0.01f * hash(i ^ 0x9e3779b9u);
+      points.positions[i] = {x, h, z};
+      const float t = std::clamp((h + 0.25f) / 0.5f, 0.0f, 1.0f);  // low: blue-green, high: sand
+      points.colors[i] = {0.05f + 0.75f * t * t, 0.25f + 0.45f * t, 0.35f * (1.0f - t) + 0.2f * t};
+    }
+  }
+  for (const float3& p : points.positions) b.bounds.add(p);
+  b.scene.background = srgbColor(0.2f, 0.2f, 0.2f);
+  b.scene.camera.position = {0.0f, 1.3f, 2.2f};
+  b.scene.camera.target = {0.0f, -0.3f, -0.3f};
+  b.scene.camera.fov_y_degrees = 45.0f;
+  b.scene.camera.near_z = 0.5f;
+  b.scene.camera.far_z = 8.0f;
+  b.scene.lights.push_back(Light::directional(normalize(float3{-1, -1.5f, -0.5f}), float3(1.0f)));
+  b.fixed_view = true;
+  return b;
+}
+
 bool isBuiltinScene(const std::string& name) {
   const std::vector<std::string> names = builtinSceneNames();
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -175,6 +220,7 @@ Expected<BenchScene> makeBuiltinScene(const std::string& name, Shading shading) 
   if (name == "instances") return makeInstancesScene(shading, /*flattened=*/false);
   // Not in the list (10 million triangles a frame): for the comparison in docs/perf.md.
   if (name == "instances-flat") return makeInstancesScene(shading, /*flattened=*/true);
+  if (name == "points") return makePointCloudScene();
   if (name == "textured") {
     Material material;
     material.base_color = {1, 1, 1, 1};

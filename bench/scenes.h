@@ -25,6 +25,7 @@ inline constexpr size_t kDenseTriangles = 1'000'000;
 inline constexpr size_t kFillLayers = 10;
 inline constexpr size_t kFillTriangles = 2 * kFillLayers;
 inline constexpr size_t kTexturedTriangles = 16'128;
+inline constexpr size_t kCloudPoints = 10'000'000;
 
 // How far the model turns between two frames, in degrees.
 inline constexpr float kTurnDegreesPerFrame = 2.0f;
@@ -45,9 +46,17 @@ struct BenchScene {
 // scene), or (`flattened`) the same triangles as one mesh, for the comparison in docs/perf.md.
 BenchScene makeInstancesScene(Shading shading, bool flattened);
 
+// A terrain of kCloudPoints coloured points (no triangles): a jittered 4000 x 2500 grid over
+// 4 x 2.5 units, heights from a few waves and a hash, coloured by height, under its own camera
+// and light (the point pass's scene in docs/perf.md). The same points every time.
+BenchScene makePointCloudScene();
+
 // The names of the built-in scenes, in the order a full run takes them.
 std::vector<std::string> builtinSceneNames();
 bool isBuiltinScene(const std::string& name);
+// Scenes made by name but left out of a full run: instances-flat (10 million triangles), points
+// (makePointCloudScene, which llvmpipe's reference does not draw).
+std::vector<std::string> extraSceneNames();
 
 // A built-in scene:
 //   cube      the unit cube (12 triangles)
@@ -55,6 +64,7 @@ bool isBuiltinScene(const std::string& name);
 //   dense     a UV sphere of 1,000,000 small triangles
 //   fill      ten screen-covering quads at different depths drawn back to front (overdraw 10)
 //   textured  a UV sphere (16,128 triangles) with a procedural checker texture
+// and the extraSceneNames().
 // Every object gets `shading` and back faces culled. An unknown name or a missing bunny is an
 // error naming what to do.
 Expected<BenchScene> makeBuiltinScene(const std::string& name, Shading shading);

@@ -21,8 +21,8 @@
 #include <tessera/model/model_scene.h>
 #include <tessera/render/cpu_renderer.h>
 
-#include "bench/scenes.h"
 #include <tessera/model/camera_setup.h>
+#include "bench/scenes.h"
 
 using namespace tessera;
 
@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
   // `tessera bench` (hashing a 1080p frame takes a millisecond or two, long enough for the
   // workers to go to sleep).
   const bool hash_frames = std::getenv("TESSERA_NOHASH") == nullptr;
-  std::vector<double> total, vertex, setup, tiles;
+  std::vector<double> total, vertex, setup, tiles, overlay;
   uint64_t hash = 14695981039346656037ull;  // FNV-1a over every frame's colour
   for (int i = 0; i < frames; ++i) {
     bench::poseForFrame(b, i);
@@ -112,19 +112,21 @@ int main(int argc, char** argv) {
     vertex.push_back(s.vertex_ms);
     setup.push_back(s.setup_ms);
     tiles.push_back(s.tiles_ms);
+    overlay.push_back(s.lines_ms);
     if (hash_frames)
       for (uint32_t c : frame.color) hash = (hash ^ c) * 1099511628211ull;
   }
   std::printf(
       "%s %dx%d, %d workers, %s, %dx msaa, %d frames: total %.3f ms (vertex %.3f, setup %.3f, "
-      "tiles %.3f), hash %016llx\n",
+      "tiles %.3f, points and lines %.3f), hash %016llx\n",
       name.c_str(), width, height, renderer.workerCount(), renderer.simdName(), msaa, frames,
-      median(total), median(vertex), median(setup), median(tiles),
+      median(total), median(vertex), median(setup), median(tiles), median(overlay),
       static_cast<unsigned long long>(hash));
   const PipelineStats& s = renderer.lastStats();
-  std::printf("last frame: %zu triangles set up; culled before the vertex stage: %zu instances, "
-              "%zu clusters outside, %zu clusters facing away, %zu triangles\n",
-              s.triangles_setup, s.instances_culled, s.clusters_culled, s.clusters_facing,
-              s.triangles_skipped);
+  std::printf(
+      "last frame: %zu triangles set up; culled before the vertex stage: %zu instances, "
+      "%zu clusters outside, %zu clusters facing away, %zu triangles\n",
+      s.triangles_setup, s.instances_culled, s.clusters_culled, s.clusters_facing,
+      s.triangles_skipped);
   return 0;
 }

@@ -153,9 +153,10 @@ class CliDocs : public ::testing::Test {
       }
       const RunResult r = tessera::test::runInFolder(dir_, TESSERA_EXE, c.line);
       EXPECT_EQ(r.exit_code, 0) << file << ": tessera " << c.line << "\n" << r.err;
-      if (const std::string out = expectedOutput(c); !out.empty())
+      if (const std::string out = expectedOutput(c); !out.empty()) {
         EXPECT_TRUE(fs::exists(dir_ / out))
             << file << ": tessera " << c.line << " wrote no " << out;
+      }
       ++ran[c.words.at(0)];
     }
     return ran;

@@ -1,6 +1,7 @@
 // End-to-end tests of f3d's names on `tessera render`: --up with any signed axis, the camera's
-// azimuth and elevation, --color, and the aliases (--bg-color, -x/--axis) that go through the
-// same flag table as the rest, so help and "did you mean" know them.
+// azimuth and elevation, --color, the aliases (--bg-color, -x/--axis) that go through the
+// same flag table as the rest, so help and "did you mean" know them, and the point and line
+// flags (--point-size, --point-sprites, --line-width, on view and bench too).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -262,6 +263,32 @@ TEST_F(CliF3d, GridDrawsAGroundUnderTheModel) {
   // (A pixel at the box's anti-aliased edge whose centre is the background may take a line.)
   ASSERT_GT(reds, 200);
   EXPECT_LT(red_changed * 20, reds) << "the grid shows through the box, which stands on it";
+}
+
+TEST_F(CliF3d, PointAndLineFlagsOnRenderViewAndBench) {
+  tessera::test::writeFile(dir_ / "quad.obj",
+                           "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+  RunResult r =
+      run("render quad.obj --resolution 20,20 --point-size 4.5 --point-sprites --line-width=2 "
+          "-o p.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* command : {"render", "view", "bench"}) {
+    r = run(std::string(command) + " --help");
+    for (const char* name : {"--point-size PIXELS", "--point-sprites", "--line-width PIXELS"})
+      EXPECT_NE(r.out.find(name), std::string::npos) << command << " " << name;
+    // 0, below 0, above 64, NaN and words: one line saying what is wrong, exit 2.
+    for (const char* flag : {"--point-size", "--line-width"}) {
+      for (const char* bad : {"0", "-1", "65", "nan", "wide"}) {
+        r = run(std::string(command) + " quad.obj " + flag + " " + bad);
+        EXPECT_EQ(r.exit_code, 2) << command << " " << flag << " " << bad;
+        const std::string first_line = r.err.substr(0, r.err.find('\n'));
+        EXPECT_NE(first_line.find(std::string("flag '") + flag + "'"), std::string::npos) << r.err;
+        EXPECT_NE(first_line.find("above 0 and up to 64, not '" + std::string(bad) + "'"),
+                  std::string::npos)
+            << r.err;
+      }
+    }
+  }
 }
 
 }  // namespace

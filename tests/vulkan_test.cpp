@@ -544,3 +544,51 @@ TEST(VulkanCli, DeviceOutOfRangeFails) {
 }
 
 #endif  // TESSERA_EXE
+
+namespace {
+
+// Pixels whose colour is exactly `color`.
+int countColor(const Frame& f, uint32_t color) {
+  int n = 0;
+  for (uint32_t c : f.color) n += c == color;
+  return n;
+}
+
+}  // namespace
+
+// Both Vulkan backends draw Scene::points and Scene::lines (at line_width) on their read-back
+// frame with the CPU's passes: the same pixels as the CPU backend, with and without triangles.
+TEST(VulkanPoints, BothBackendsDrawPointsAndWideLinesAsTheCpu) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr compute = makeCompute();
+  RasterPtr raster = makeRaster();
+  ASSERT_TRUE(compute && raster);
+  constexpr uint32_t kMagenta = 0xffff00ffu, kGreen = 0xff00ff00u;
+  for (bool with_cube : {true, false}) {
+    Scene scene = with_cube ? cubeScene() : Scene{};
+    scene.camera.position = {0, 0, 5};
+    for (int i = 0; i < 7; ++i) {
+      // In front of the cube (z 1.5) and behind it (z -1.5): the latter hidden where it is.
+      scene.points.positions.push_back({-1.2f + 0.4f * i, 0.3f, i % 2 ? 1.5f : -1.5f});
+      scene.points.colors.push_back({1, 0, 1});
+    }
+    scene.lines.add({-2, -0.9f, 1.2f}, {2, -0.9f, 1.2f}, {0, 1, 0});
+    RenderOptions o = options();
+    o.points.size = 5;
+    o.line_width = 3;
+    const Frame cpu = renderCpu(scene, o);
+    const int points = countColor(cpu, kMagenta), lines = countColor(cpu, kGreen);
+    EXPECT_GT(points, with_cube ? 50 : 100);
+    EXPECT_GT(lines, 100);
+    for (Backend* gpu :
+         {static_cast<Backend*>(compute.get()), static_cast<Backend*>(raster.get())}) {
+      const Frame frame =
+          gpu == compute.get() ? renderWith(*compute, scene, o) : renderWith(*raster, scene, o);
+      int same = 0;
+      for (size_t i = 0; i < cpu.color.size(); ++i)
+        same +=
+            (cpu.color[i] == kMagenta || cpu.color[i] == kGreen) && frame.color[i] == cpu.color[i];
+      EXPECT_GE(same, (points + lines) * 98 / 100) << (with_cube ? "cube" : "no objects");
+    }
+  }
+}

@@ -22,6 +22,7 @@
 #include "commands.h"
 #include "flags.h"
 #include "light_flags.h"
+#include "point_flags.h"
 #include "view_setup.h"
 
 namespace tessera::cli {
@@ -53,6 +54,7 @@ struct BenchSettings {
   std::string versus;  // "" or "llvmpipe"
   io::LoadBudget budget;
   LightSettings lights;  // --light, --ambient: in place of every scene's own lights
+  PointSettings points;  // --point-size, --point-sprites, --line-width
 };
 
 struct Timing {
@@ -131,12 +133,15 @@ std::string fixed(double value, int decimals) {
 // A built-in scene by name, or else a model file; an error names the argument.
 Expected<bench::BenchScene> openScene(const std::string& arg, Shading shading,
                                       const io::LoadBudget& budget) {
-  if (bench::isBuiltinScene(arg)) return bench::makeBuiltinScene(arg, shading);
+  const std::vector<std::string> extra = bench::extraSceneNames();
+  if (bench::isBuiltinScene(arg) || std::find(extra.begin(), extra.end(), arg) != extra.end())
+    return bench::makeBuiltinScene(arg, shading);
   std::error_code error;
   if (!std::filesystem::exists(arg, error)) {
     std::string known;
     for (const std::string& n : bench::builtinSceneNames())
       known += (known.empty() ? "" : ", ") + n;
+    for (const std::string& n : extra) known += ", " + n;
     return makeError("'" + arg + "' is neither a built-in scene (" + known + ") nor a model file");
   }
   Expected<bench::BenchScene> scene = bench::loadModelScene(arg, shading, budget);
@@ -232,6 +237,7 @@ void addBenchFlags(FlagSet& flags, BenchSettings& s, bool& resolution_given) {
   flags.addSwitch("all", &s.all, "every built-in scene at every standard resolution (the default)");
   addBudgetFlags(flags, s.budget);
   addLightFlags(flags, s.lights);
+  addPointFlags(flags, s.points, "the width in pixels of the scenes' lines, up to 64 (default 1)");
 }
 
 // Every scene is built or loaded before anything is timed, so a bad argument fails at once.
@@ -455,6 +461,7 @@ int runBench(const std::vector<std::string>& args) {
   run.options.lines = false;
   run.options.msaa = s.msaa;
   run.options.projection = s.camera.projectionMode();
+  applyPointSettings(s.points, run.options);
   if (!s.json) printHeader(run);
   for (bench::BenchScene& b : *scenes) {
     bool reference_loaded = false;

@@ -26,6 +26,7 @@
 #include "diagnostics_output.h"
 #include "flags.h"
 #include "light_flags.h"
+#include "point_flags.h"
 #include "progress.h"
 #include "sampling_flags.h"
 #include "surface_flags.h"
@@ -66,10 +67,10 @@ struct RenderSettings {
   std::string visibility = "z-buffer";
   bool edges = false;
   float3 edge_color{0, 0, 0};  // sRGB
-  float line_width = 1.0f;
-  LightSettings lights;    // --light, --ambient
-  ProgressFlags progress;  // --quiet, --progress
-  SurfaceSettings surface;  // --grid, --no-background, --opacity
+  PointSettings points;        // --point-size, --point-sprites, --line-width
+  LightSettings lights;        // --light, --ambient
+  ProgressFlags progress;      // --quiet, --progress
+  SurfaceSettings surface;     // --grid, --no-background, --opacity
 };
 
 enum class OutputKind { kPng, kVideo, kSequence };  // kVideo: .gif or .mp4
@@ -104,7 +105,7 @@ std::string parseSrgbColor(const std::string& v, float3& out) {
   return "";
 }
 
-// --visibility, --edges, --edge-color, --line-width (docs/usage.md).
+// --visibility, --edges, --edge-color; --point-size, --point-sprites, --line-width (docs/usage.md).
 void addVisibilityFlags(FlagSet& flags, RenderSettings& s) {
   flags.addChoice("visibility", &s.visibility, {"z-buffer", "painter"},
                   "z-buffer, or painter: no depth test, triangles drawn back to front by their "
@@ -113,15 +114,8 @@ void addVisibilityFlags(FlagSet& flags, RenderSettings& s) {
                   "draw every polygon's outline (cpu backend, perspective projection)");
   flags.addCustom("edge-color", "R,G,B", "the edges' colour, sRGB 0..1 (default 0,0,0)",
                   [&](const std::string& v) { return parseSrgbColor(v, s.edge_color); });
-  flags.addCustom("line-width", "PIXELS", "the edges' width in pixels, up to 64 (default 1)",
-                  [&](const std::string& v) -> std::string {
-                    float w;
-                    if (!parseFloatStrict(v, w) || !(w > 0.0f && w <= 64.0f))
-                      return "the width must be a number of pixels above 0 and up to 64, not '" +
-                             v + "'";
-                    s.line_width = w;
-                    return "";
-                  });
+  addPointFlags(flags, s.points,
+                "the width in pixels of the model's lines and of the edges, up to 64 (default 1)");
 }
 
 void addRenderFlags(FlagSet& flags, RenderSettings& s) {
@@ -353,7 +347,8 @@ RenderOptions renderOptions(const RenderSettings& s, bool diagnostics, SamplingS
   if (s.visibility == "painter") options.visibility = Visibility::kPainter;
   options.edges.show = s.edges;
   for (int i = 0; i < 3; ++i) options.edges.color[i] = srgbToLinear(s.edge_color[i]);
-  options.edges.width = s.line_width;
+  applyPointSettings(s.points, options);
+  options.edges.width = s.points.line_width;
   options.opacity = s.surface.opacity;
   // The id, depth and normal AOVs are the pixel centre's: one sample, no jitter. Coverage is
   // frame 0's (not jittered) at the --msaa count.

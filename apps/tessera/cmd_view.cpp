@@ -25,6 +25,7 @@
 #include "commands.h"
 #include "flags.h"
 #include "light_flags.h"
+#include "point_flags.h"
 
 #ifdef TESSERA_HAS_VIEWER
 #include <tessera/viewer/animation_player.h>
@@ -54,6 +55,7 @@ struct ViewSettings {
   int msaa = 4;  // what `tessera render` makes by default
   io::LoadBudget budget;
   LightSettings lights;      // --light, --ambient
+  PointSettings points;      // --point-size, --point-sprites, --line-width
   int animation_index = -1;  // --animation-index: the clip space plays; -1: the first, if any
   CameraSettings camera;     // --camera-index, --camera-orthographic (the rest unused)
 };
@@ -258,6 +260,7 @@ int runView(const std::vector<std::string>& args) {
   flags.addString("texture", &s.texture, "an image used as the albedo of every material");
   addBudgetFlags(flags, s.budget);
   addLightFlags(flags, s.lights);
+  addPointFlags(flags, s.points, "the width in pixels of the model's lines, up to 64 (default 1)");
   flags.addInt("animation-index", &s.animation_index,
                "the model's animation the space bar plays (glTF, from 0; default 0)", 0, 1000000);
   flags.addInt("camera-index", &s.camera.camera_index,
@@ -363,6 +366,9 @@ int runView(const std::vector<std::string>& args) {
   options.world_axes = s.axes;
   options.fullscreen = s.fullscreen;
   options.msaa = s.msaa;
+  options.points.size = s.points.points.size;
+  options.points.sprites = s.points.points.sprites;
+  options.line_width = s.points.line_width;
   options.view_direction = threeQuarterDirection({0, 1, 0});
   if (Expected<void> ran = viewer::runViewer(options, **backend, hooks, model_path); !ran) {
     printError("view", ran.error().message);

@@ -4,7 +4,8 @@
 //   setup:   parallel over fixed chunks of triangles (assembly, cull, clip, setup, bin per chunk)
 //   raster:  parallel over 64x64 tiles; each tile reads the chunks' bins in chunk order
 //   resolve: in the same tile job, shade each visible pixel once and write the frame
-//   lines:   on the calling thread, after every tile
+//   points:  after every tile, over the worker pool (point_pass.h)
+//   lines:   on the calling thread, after the points
 //
 // Where the chunks end depends on the worker count (chunk_layout.h), but they cover the scene's
 // triangles in order, and each tile is processed by one worker that reads the chunks in order:
@@ -33,6 +34,7 @@
 #include "render/line_pass.h"
 #include "render/msaa.h"
 #include "render/painter.h"
+#include "render/point_pass.h"
 #include "render/raster.h"
 #include "render/ray_renderer.h"
 #include "render/replication.h"
@@ -87,6 +89,7 @@ struct CpuRenderer::State {
   std::vector<uint8_t> tile_empty;                     // this frame's: no triangle binned
   PainterOrder painter;                                // RenderOptions::visibility kPainter
   LinePass line_pass;
+  PointPass point_pass;
   PipelineStats stats;
   RayRenderer rays;             // the nonlinear projections
   DiagnosticsPass diagnostics;  // RenderOptions::diagnostics
@@ -100,29 +103,8 @@ struct CpuRenderer::State {
                          const TileGrid& grid, bool with_centre, bool plain, Frame& frame);
 };
 
-namespace {
-
-Isa chooseIsa(SimdLevel level) {
-  const Isa best = detectIsa();
-  switch (level) {
-    case SimdLevel::kAuto:
-      return best;
-    case SimdLevel::kScalar:
-      return Isa::kScalar;
-    case SimdLevel::kSse2:
-      return best >= Isa::kSse2 ? Isa::kSse2 : best;
-    case SimdLevel::kAvx2:
-      return best >= Isa::kAvx2 ? Isa::kAvx2 : best;
-    case SimdLevel::kAvx512:
-      return best;
-  }
-  return best;
-}
-
-}  // namespace
-
 CpuRenderer::CpuRenderer(int workers, SimdLevel simd)
-    : state_(std::make_unique<State>(workers, chooseIsa(simd))) {}
+    : state_(std::make_unique<State>(workers, isaFor(simd))) {}
 CpuRenderer::~CpuRenderer() = default;
 
 int CpuRenderer::workerCount() const {
@@ -416,8 +398,9 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     return;
   }
   const bool draws_lines = LinePass::wanted(scene, options);
-  frame.resize(options.width, options.height, options.depth || draws_lines, options.ids,
-               options.normals, options.coverage);
+  const bool draws_points = PointPass::wanted(scene);
+  frame.resize(options.width, options.height, options.depth || draws_lines || draws_points,
+               options.ids, options.normals, options.coverage);
 
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
   const float4x4 projection = jitteredProjection(scene.camera.projection(aspect), options.jitter,
@@ -426,7 +409,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   // With MSAA the pixel centres are a layer of their own, rasterized only for what reads them.
   const bool sampled = options.msaa > 1;
   const bool with_centre =
-      sampled && (options.depth || options.ids || options.normals || draws_lines);
+      sampled && (options.depth || options.ids || options.normals || draws_lines || draws_points);
   const int32_t sample_reach = sampled ? kSampleReach : 0;
   if (sampled) {
     s.shifts.clear();
@@ -574,7 +557,11 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
 
   if (needsComposite(scene, options))
     compositeOverBackground(scene.background, options.opacity, frame);
-  // Lines.
+  // Points, then lines (which the points hide).
+  if (draws_points)
+    s.point_pass.draw(scene, options,
+                      PointCamera::perspective(view_projection, scene.camera.view()), sampled,
+                      s.pool, frame);
   if (draws_lines) s.line_pass.draw(scene, s.objects, options, view_projection, sampled, frame);
 
   const Clock::time_point t_lines = Clock::now();

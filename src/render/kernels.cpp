@@ -15,6 +15,23 @@ Isa detectIsa() {
 #endif
 }
 
+Isa isaFor(SimdLevel level) {
+  const Isa best = detectIsa();
+  switch (level) {
+    case SimdLevel::kAuto:
+      return best;
+    case SimdLevel::kScalar:
+      return Isa::kScalar;
+    case SimdLevel::kSse2:
+      return best >= Isa::kSse2 ? Isa::kSse2 : best;
+    case SimdLevel::kAvx2:
+      return best >= Isa::kAvx2 ? Isa::kAvx2 : best;
+    case SimdLevel::kAvx512:
+      return best;
+  }
+  return best;
+}
+
 const char* isaName(Isa isa) {
   switch (isa) {
     case Isa::kScalar:

@@ -4,6 +4,8 @@
 // produces the same bits.
 #pragma once
 
+#include <tessera/render/cpu_renderer.h>
+
 #include "render/msaa.h"
 #include "render/painter.h"
 #include "render/raster.h"
@@ -18,6 +20,8 @@ enum class Isa { kScalar, kSse2, kAvx2, kAvx512 };
 
 // The best one this CPU runs.
 Isa detectIsa();
+// The one CpuRenderer runs at `level`: that one where this CPU has it, else the best it has.
+Isa isaFor(SimdLevel level);
 const char* isaName(Isa isa);
 
 // Rasterizes the triangles binned to `tile_index`, chunk by chunk in submission order, into the

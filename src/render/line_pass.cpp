@@ -66,9 +66,9 @@ void EdgeLines::build(const Scene& scene, const std::vector<ObjectTransforms>& o
   }
 }
 
-void sceneLines(const Scene& scene, const std::vector<ObjectTransforms>& objects, LineList& lines) {
-  lines.points.assign(scene.lines.points.begin(), scene.lines.points.end());
-  lines.colors.assign(scene.lines.colors.begin(), scene.lines.colors.end());
+void axisLines(const Scene& scene, const std::vector<ObjectTransforms>& objects, LineList& lines) {
+  lines.points.clear();
+  lines.colors.clear();
   if (scene.show_world_axes) appendAxes(lines, float4x4::identity(), scene.world_axes_length);
   for (size_t i = 0; i < scene.objects.size(); ++i)
     if (scene.objects[i].show_axes)
@@ -85,8 +85,9 @@ bool LinePass::wanted(const Scene& scene, const RenderOptions& options) {
 void LinePass::draw(const Scene& scene, const std::vector<ObjectTransforms>& objects,
                     const RenderOptions& options, const float4x4& view_projection, bool antialiased,
                     Frame& frame) {
-  sceneLines(scene, objects, lines_);
-  drawLines(lines_, view_projection, frame, antialiased);
+  drawLines(scene.lines, view_projection, frame, antialiased, LineStyle{options.line_width});
+  axisLines(scene, objects, axes_);
+  drawLines(axes_, view_projection, frame, antialiased);
   if (!options.edges.show) return;
   edges_.build(scene, objects, options.edges.color, edge_lines_);
   const LineStyle style{options.edges.width, kEdgeDepthPull,

@@ -39,9 +39,10 @@ class EdgeLines {
   std::vector<uint64_t> edges_;
 };
 
-// Replaces `lines` with the scene's line lists, then the world axes and the axes of the objects
-// that ask for them (objects[i].model: object i's frame).
-void sceneLines(const Scene& scene, const std::vector<ObjectTransforms>& objects, LineList& lines);
+// Replaces `lines` with the world axes and the axes of the objects that ask for them
+// (objects[i].model: object i's frame). The scene's own lines are drawn apart, at
+// RenderOptions::line_width.
+void axisLines(const Scene& scene, const std::vector<ObjectTransforms>& objects, LineList& lines);
 
 class LinePass {
  public:
@@ -53,7 +54,7 @@ class LinePass {
             Frame& frame);
 
  private:
-  LineList lines_, edge_lines_;  // reused frame after frame
+  LineList axes_, edge_lines_;  // reused frame after frame
   EdgeLines edges_;
 };
 

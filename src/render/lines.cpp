@@ -7,6 +7,18 @@
 
 namespace tessera::render {
 
+uint32_t blendOver(uint32_t under, float3 color, float a) {
+  // Alpha too, for a transparent background (composite.h).
+  const float under_alpha = static_cast<float>(under >> 24);
+  uint32_t mixed = static_cast<uint32_t>(std::lround(under_alpha + (255.0f - under_alpha) * a))
+                   << 24;
+  for (int k = 0; k < 3; ++k) {
+    const float below = decodeSrgb8(static_cast<uint8_t>(under >> (8 * k)));
+    mixed |= static_cast<uint32_t>(encodeSrgb8(below + (color[k] - below) * a)) << (8 * k);
+  }
+  return mixed;
+}
+
 void appendAxes(LineList& lines, const float4x4& m, float length) {
   const float3 origin = (m * float4{0, 0, 0, 1}).xyz();
   const float3 colors[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -53,17 +65,7 @@ void blendPixel(Frame& frame, int x, int y, float z, float3 color, float a) {
   if (x < 0 || y < 0 || x >= frame.width || y >= frame.height || a <= 0.0f) return;
   const size_t index = static_cast<size_t>(y) * frame.width + x;
   if (!(z < frame.depth[index])) return;
-  const uint32_t old = frame.color[index];
-  // Over what is there: alpha too, for a transparent background (composite.h).
-  const uint32_t old_alpha = old >> 24;
-  uint32_t mixed = static_cast<uint32_t>(std::lround(static_cast<float>(old_alpha) +
-                                                     (255.0f - static_cast<float>(old_alpha)) * a))
-                   << 24;
-  for (int k = 0; k < 3; ++k) {
-    const float under = decodeSrgb8(static_cast<uint8_t>(old >> (8 * k)));
-    mixed |= static_cast<uint32_t>(encodeSrgb8(under + (color[k] - under) * a)) << (8 * k);
-  }
-  frame.color[index] = mixed;
+  frame.color[index] = blendOver(frame.color[index], color, a);
 }
 
 }  // namespace
@@ -164,7 +166,7 @@ void drawLines(const LineList& lines, const float4x4& view_projection, Frame& fr
 }
 
 void drawRayLines(const LineList& lines, const float4x4& view, const RayLines& mode, Frame& frame,
-                  bool antialiased) {
+                  bool antialiased, float width) {
   // Pieces short enough that the curve between their ends is within a fraction of a pixel of the
   // chord at the image sizes in use; a piece whose ends land on both sides of a seam is skipped.
   constexpr int kPieces = 256;
@@ -189,7 +191,7 @@ void drawRayLines(const LineList& lines, const float4x4& view, const RayLines& m
       const float3 q{static_cast<float>(sx), static_cast<float>(sy),
                      static_cast<float>((distance - mode.near) / (mode.far - mode.near))};
       if (have_last && std::fabs(q.x - last.x) < seam)
-        drawWindowSegment(frame, last, q, lines.colors[i / 2], antialiased);
+        drawWindowSegment(frame, last, q, lines.colors[i / 2], antialiased, width);
       last = q;
       have_last = true;
     }

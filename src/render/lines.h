@@ -9,6 +9,10 @@
 
 namespace tessera::render {
 
+// `color` (linear RGB) over the packed sRGB pixel `under` with weight `a` (0..1), in linear light:
+// the colour mixed, and the alpha `a` over under's (so a line over a transparent background shows).
+uint32_t blendOver(uint32_t under, float3 color, float a);
+
 // Appends the X (red), Y (green) and Z (blue) axes of `frame_matrix` from its origin, each
 // `length` long in the frame's own units.
 void appendAxes(LineList& lines, const float4x4& frame_matrix, float length);
@@ -37,7 +41,8 @@ struct RayLines {
   double fov_y_radians = 1;
   double near = 0.1, far = 100;
 };
+// `width` in pixels, as LineStyle::width.
 void drawRayLines(const LineList& lines, const float4x4& view, const RayLines& mode, Frame& frame,
-                  bool antialiased = false);
+                  bool antialiased = false, float width = 1.0f);
 
 }  // namespace tessera::render

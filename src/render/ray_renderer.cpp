@@ -12,6 +12,7 @@
 #include "render/clip.h"
 #include "render/line_pass.h"
 #include "render/lines.h"
+#include "render/point_pass.h"
 #include "render/ray_setup.h"
 #include "render/resolve.h"
 
@@ -70,8 +71,8 @@ void RayRenderer::transform(const Scene& scene, const RenderOptions& options, Wo
     const VertexJob& job = vertex_jobs_[j];
     const Object& object = scene.objects[job.object];
     kernels.transform_vertices(*object.mesh, objects_[job.object], viewport,
-                               litPerVertex(object, lights_) ? &lighting : nullptr, job.first, job.count,
-                               vertices_);
+                               litPerVertex(object, lights_) ? &lighting : nullptr, job.first,
+                               job.count, vertices_);
   });
   const size_t chunk_size =
       std::max(kMinTrianglesPerChunk, (triangle_total + kMaxChunks - 1) / kMaxChunks);
@@ -101,17 +102,18 @@ void RayRenderer::setupChunk(const Scene& scene, const RenderOptions& options, i
     if (!object.mesh || t >= object_end) continue;
     const Mesh& mesh = *object.mesh;
     const size_t vertex_count = mesh.vertexCount();
-    const SetupContext ctx =
-        objectSetupContext(lights_, object, xf.model, options.width, options.height,
-                           options.normals, 0);
+    const SetupContext ctx = objectSetupContext(lights_, object, xf.model, options.width,
+                                                options.height, options.normals, 0);
     rctx.cull = object.cull;
     const bool has_materials = mesh.triangle_materials.size() == mesh.triangleCount();
     const bool needs_face_normal =
         object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;
     const MeshVertices corners{
-        nullptr, vertices_.normal.data() + xf.vertex_base,
+        nullptr,
+        vertices_.normal.data() + xf.vertex_base,
         litPerVertex(object, lights_) ? vertices_.lit.data() + xf.vertex_base : nullptr,
-        ctx.has_uv ? mesh.uvs.data() : nullptr, ctx.has_color ? mesh.colors.data() : nullptr,
+        ctx.has_uv ? mesh.uvs.data() : nullptr,
+        ctx.has_color ? mesh.colors.data() : nullptr,
         mesh.positions.data()};
     for (const size_t stop = std::min(end, object_end); t < stop; ++t) {
       const size_t local = t - xf.triangle_base;
@@ -144,13 +146,14 @@ void RayRenderer::setupChunk(const Scene& scene, const RenderOptions& options, i
                         chunk.shade[record], chunk.extras[record]);
       const RayTriangle& r = chunk.ray[record];
       for (const int16_t* box : {r.box[0], r.box[1]})
-        if (box[0] <= box[2]) chunk.bins.add(grid_, PixelBox{box[0], box[1], box[2], box[3]}, record);
+        if (box[0] <= box[2])
+          chunk.bins.add(grid_, PixelBox{box[0], box[1], box[2], box[3]}, record);
     }
   }
 }
 
-void RayRenderer::renderTile(const Scene& scene, const RenderOptions& options, int tile,
-                             int worker, bool with_centre, Frame& frame) {
+void RayRenderer::renderTile(const Scene& scene, const RenderOptions& options, int tile, int worker,
+                             bool with_centre, Frame& frame) {
   const int tx = tile % grid_.columns, ty = tile / grid_.columns;
   const int x0 = tx * kTileSize, y0 = ty * kTileSize;
   const int width = std::min(kTileSize, options.width - x0);
@@ -163,8 +166,8 @@ void RayRenderer::renderTile(const Scene& scene, const RenderOptions& options, i
     visibility.clear(x0, y0, width, height);
     kernels_->raster_ray_tile(chunks_, chunk_count_, tile, rays_.centre(), options.width, depth,
                               visibility);
-    kernels_->shade_ray_tile(visibility, chunks_, chunk_count_, lights_, options.normals, background, rays_,
-                 nullptr, out);
+    kernels_->shade_ray_tile(visibility, chunks_, chunk_count_, lights_, options.normals,
+                             background, rays_, nullptr, out);
     resolveTile(visibility, out, chunks_, frame);
     if (options.coverage) resolveCoverage(visibility, nullptr, 1, frame);
     return;
@@ -180,8 +183,8 @@ void RayRenderer::renderTile(const Scene& scene, const RenderOptions& options, i
   }
   kernels_->combine_samples(st, samples, with_centre);
   const MsaaShading msaa{&st, samples, samplePattern(samples).data(), scene.background.xyz()};
-  kernels_->shade_ray_tile(*st.primary, chunks_, chunk_count_, lights_, options.normals, background, rays_,
-               &msaa, out);
+  kernels_->shade_ray_tile(*st.primary, chunks_, chunk_count_, lights_, options.normals, background,
+                           rays_, &msaa, out);
   resolveTile(with_centre ? st.layer(samples) : *st.primary, out, chunks_, frame);
   if (options.coverage) resolveCoverage(*st.primary, st.covered, samples, frame);
 }
@@ -198,10 +201,11 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       options.lines && (!scene.lines.points.empty() || scene.show_world_axes ||
                         std::any_of(scene.objects.begin(), scene.objects.end(),
                                     [](const Object& o) { return o.show_axes; }));
-  frame.resize(options.width, options.height, options.depth || draws_lines, options.ids,
-               options.normals, options.coverage);
-  const bool with_centre =
-      options.msaa > 1 && (options.depth || options.ids || options.normals || draws_lines);
+  const bool draws_points = PointPass::wanted(scene);
+  frame.resize(options.width, options.height, options.depth || draws_lines || draws_points,
+               options.ids, options.normals, options.coverage);
+  const bool with_centre = options.msaa > 1 && (options.depth || options.ids || options.normals ||
+                                                draws_lines || draws_points);
 
   using Clock = std::chrono::steady_clock;
   auto ms = [](Clock::time_point a, Clock::time_point b) {
@@ -218,9 +222,8 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const Clock::time_point t_vertex = Clock::now();
 
   grid_ = TileGrid::forViewport(options.width, options.height);
-  pool.parallelFor(chunk_count_, [&](size_t c, int) {
-    setupChunk(scene, options, pool.size(), chunks_[c]);
-  });
+  pool.parallelFor(chunk_count_,
+                   [&](size_t c, int) { setupChunk(scene, options, pool.size(), chunks_[c]); });
   const Clock::time_point t_setup = Clock::now();
 
   tile_empty_.assign(static_cast<size_t>(grid_.tileCount()), 1);
@@ -247,11 +250,16 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
 
   if (needsComposite(scene, options))
     compositeOverBackground(scene.background, options.opacity, frame);
+  const RayLines mode{options.projection,
+                      static_cast<double>(scene.camera.fov_y_degrees) * std::numbers::pi / 180.0,
+                      scene.camera.near_z, scene.camera.far_z};
+  if (draws_points)
+    points_.draw(scene, options, {options.projection, {}, scene.camera.view(), mode},
+                 options.msaa > 1, pool, frame);
   if (draws_lines) {
-    sceneLines(scene, objects_, lines_);
-    const RayLines mode{options.projection,
-                        static_cast<double>(scene.camera.fov_y_degrees) * std::numbers::pi / 180.0,
-                        scene.camera.near_z, scene.camera.far_z};
+    drawRayLines(scene.lines, scene.camera.view(), mode, frame, options.msaa > 1,
+                 options.line_width);
+    axisLines(scene, objects_, lines_);
     drawRayLines(lines_, scene.camera.view(), mode, frame, options.msaa > 1);
   }
   const Clock::time_point t_lines = Clock::now();

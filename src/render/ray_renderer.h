@@ -6,6 +6,7 @@
 //            binning into 64x64 tiles
 //   tiles:   per tile: each pixel's (each sample's) ray against the tile's triangles in submission
 //            order, shading from the rays' barycentrics, the resolve (ray_kernel.h)
+//   points:  the point pass (point_pass.h) through the same mapping
 //   lines:   the line pass through the same mapping
 //
 // No clipping: a ray meets a triangle or not, in front of the eye or not, and hits nearer than
@@ -26,6 +27,7 @@
 #include "render/bin.h"
 #include "render/kernels.h"
 #include "render/msaa.h"
+#include "render/point_pass.h"
 #include "render/shade.h"
 #include "render/vertex.h"
 #include "render/worker_pool.h"
@@ -62,7 +64,8 @@ class RayRenderer {
   std::vector<std::unique_ptr<TileVisibility>> tiles_;  // one per worker
   std::vector<std::unique_ptr<ShadedTile>> shaded_;     // one per worker
   std::vector<std::unique_ptr<SampleTiles>> sampled_;   // one per worker, made for MSAA
-  LineList lines_;
+  LineList lines_;                                      // the axes
+  PointPass points_;
   LightRig lights_;  // this frame's
 };
 

@@ -61,6 +61,7 @@ class Viewer {
                 SamplingModes(options.msaa, options.jitter, options.temporal)) {
     stats_ = options.stats;
     world_axes_ = options.world_axes;
+    frames_.setPointStyle(options.points, options.line_width);
   }
 
   Expected<void> open(const fs::path& font_path);

@@ -93,6 +93,7 @@ constexpr int kMaxRounds = 4;
 
 struct ComputeBackend::State {
   std::unique_ptr<Context> context;
+  SceneOverlay overlay;  // points and lines on the read-back frame
   VulkanOptions vulkan_options;
   bool atomic64 = false;
   bool fp64 = false;
@@ -152,9 +153,9 @@ ComputeBackend::State::~State() {
   pipelines.destroy(c);
   if (timestamps) c.vk.vkDestroyQueryPool(device, timestamps, nullptr);
   destroySceneBuffers(c, scene_buffers);
-  for (Buffer* b : {&transformed, &raster_records, &shade_records, &extra_base, &counters,
-                    &visible_list, &tiles, &bin_entries, &segments, &visibility, &output, &rays,
-                    &diagnostics})
+  for (Buffer* b :
+       {&transformed, &raster_records, &shade_records, &extra_base, &counters, &visible_list,
+        &tiles, &bin_entries, &segments, &visibility, &output, &rays, &diagnostics})
     c.destroyBuffer(*b);
 }
 
@@ -282,7 +283,6 @@ void ComputeBackend::State::writeDescriptors() {
   c.vk.vkUpdateDescriptorSets(c.device, static_cast<uint32_t>(writes.size()), writes.data(), 0,
                               nullptr);
 }
-
 
 Expected<void> ComputeBackend::State::recordAndRun(const RenderOptions& options) {
   Context& c = *context;
@@ -453,8 +453,7 @@ void ComputeBackend::State::fillDiagnostics(const Scene& scene, bool diagnostic_
   in.triangles_in = packed.triangle_count;
   in.bin_overflow = entries_dropped;
   // The CPU's stages: setup includes binning; the tile stage clears, rasterizes and shades.
-  in.times = {t.transform, t.setup + t.bin, t.clear + t.raster + t.shade, lines_ms,
-              t.diagnostics};
+  in.times = {t.transform, t.setup + t.bin, t.clear + t.raster + t.shade, lines_ms, t.diagnostics};
   fillComputeDiagnostics(scene, in, triangle_bases, frame);
 }
 
@@ -507,10 +506,10 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
     for (size_t p = 0; p < n; ++p) frame.coverage[p] = static_cast<uint8_t>(coverage[p]);
   }
   const auto lines_start = std::chrono::steady_clock::now();
-  drawSceneLines(scene, options, packed, frame);
-  const double lines_ms = std::chrono::duration<double, std::milli>(
-                              std::chrono::steady_clock::now() - lines_start)
-                              .count();
+  drawSceneOverlay(scene, options, packed, overlay, frame);
+  const double lines_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - lines_start)
+          .count();
 
   stats.triangles_in = packed.triangle_count;
   stats.triangles_culled = counted->culled;

@@ -63,6 +63,7 @@ float halfToFloat(uint16_t h) {
 
 struct RasterBackend::State {
   std::unique_ptr<Context> context;
+  SceneOverlay overlay;  // points and lines on the read-back frame
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
   VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
   VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
@@ -358,10 +359,10 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
 
   readResults(samples, aov_pass_needed, frame);
   const auto lines_start = std::chrono::steady_clock::now();
-  drawSceneLines(scene, options, packed, frame);
-  const double lines_ms = std::chrono::duration<double, std::milli>(
-                              std::chrono::steady_clock::now() - lines_start)
-                              .count();
+  drawSceneOverlay(scene, options, packed, overlay, frame);
+  const double lines_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - lines_start)
+          .count();
   readTimings();
   if (options.diagnostics) {
     // The render pass (vertex, raster, fragment) and its copies are one span: the tile stage's.

@@ -43,13 +43,18 @@ bool drawsLines(const Scene& scene, const RenderOptions& options) {
                                        [](const Object& o) { return o.show_axes; }));
 }
 
+// Whether the overlays test the frame's depth (and so need it, at the pixel centres).
+bool drawsOverDepth(const Scene& scene, const RenderOptions& options) {
+  return drawsLines(scene, options) || render::PointPass::wanted(scene);
+}
+
 // The compute backend's visibility layers: the pixel centre first when the frame's centre AOVs
 // (depth, ids, normals, or the depth the lines test against) need it and the pattern does not
 // sample it, then the samples in pattern order.
 void fillSampling(const Scene& scene, const RenderOptions& options, GpuFrameConstants& f) {
   const std::span<const SamplePosition> pattern = samplePattern(options.msaa);
   const bool centre = pattern.size() > 1 && (options.depth || options.ids || options.normals ||
-                                             drawsLines(scene, options));
+                                             drawsOverDepth(scene, options));
   f.samples = static_cast<uint32_t>(pattern.size());
   f.first_sample_layer = centre ? 1u : 0u;
   f.layers = f.samples + f.first_sample_layer;
@@ -354,7 +359,7 @@ void appendSceneDescriptors(const SceneBuffers& buffers,
 }
 
 void resizeFrame(const Scene& scene, const RenderOptions& options, Frame& frame) {
-  frame.resize(options.width, options.height, options.depth || drawsLines(scene, options),
+  frame.resize(options.width, options.height, options.depth || drawsOverDepth(scene, options),
                options.ids, options.normals, options.coverage);
 }
 
@@ -393,28 +398,41 @@ Expected<void> renderIntoFrame(const Scene& scene, const RenderOptions& options,
   return result;
 }
 
-void drawSceneLines(const Scene& scene, const RenderOptions& options, const PackedScene& packed,
-                    Frame& frame) {
+void drawSceneOverlay(const Scene& scene, const RenderOptions& options, const PackedScene& packed,
+                      SceneOverlay& overlay, Frame& frame) {
+  const bool antialiased = options.msaa > 1;
+  const bool perspective = options.projection == Projection::kPerspective;
   if (needsComposite(scene, options))
     compositeOverBackground(scene.background, options.opacity, frame);
-  if (!drawsLines(scene, options)) return;
-  LineList lines;
-  lines.points.assign(scene.lines.points.begin(), scene.lines.points.end());
-  lines.colors.assign(scene.lines.colors.begin(), scene.lines.colors.end());
-  if (scene.show_world_axes)
-    render::appendAxes(lines, float4x4::identity(), scene.world_axes_length);
-  for (size_t i = 0; i < scene.objects.size(); ++i)
-    if (scene.objects[i].show_axes)
-      render::appendAxes(lines, packed.models[i], scene.objects[i].axes_length);
-  if (options.projection == Projection::kPerspective) {
-    render::drawLines(lines, packed.view_projection, frame, /*antialiased=*/options.msaa > 1);
-    return;
-  }
-  // The nonlinear projections' lines: the CPU's, through the same mapping (packed.view_projection
-  // is the view matrix then).
+  // The nonlinear projections' points and lines: the CPU's, through the same mapping
+  // (packed.view_projection is the view matrix then).
   const double fov = static_cast<double>(scene.camera.fov_y_degrees) * std::numbers::pi / 180.0;
   const render::RayLines mode{options.projection, fov, scene.camera.near_z, scene.camera.far_z};
-  render::drawRayLines(lines, packed.view_projection, mode, frame, options.msaa > 1);
+  if (render::PointPass::wanted(scene)) {
+    if (!overlay.pool) overlay.pool = std::make_unique<render::WorkerPool>(0);
+    const render::PointCamera camera =
+        perspective ? render::PointCamera::perspective(packed.view_projection, scene.camera.view())
+                    : render::PointCamera{options.projection, {}, packed.view_projection, mode};
+    overlay.points.draw(scene, options, camera, antialiased, *overlay.pool, frame);
+  }
+  if (!drawsLines(scene, options)) return;
+  LineList& axes = overlay.axes;
+  axes.points.clear();
+  axes.colors.clear();
+  if (scene.show_world_axes)
+    render::appendAxes(axes, float4x4::identity(), scene.world_axes_length);
+  for (size_t i = 0; i < scene.objects.size(); ++i)
+    if (scene.objects[i].show_axes)
+      render::appendAxes(axes, packed.models[i], scene.objects[i].axes_length);
+  if (perspective) {
+    render::drawLines(scene.lines, packed.view_projection, frame, antialiased,
+                      render::LineStyle{options.line_width});
+    render::drawLines(axes, packed.view_projection, frame, antialiased);
+    return;
+  }
+  render::drawRayLines(scene.lines, packed.view_projection, mode, frame, antialiased,
+                       options.line_width);
+  render::drawRayLines(axes, packed.view_projection, mode, frame, antialiased);
 }
 
 }  // namespace tessera::vulkan

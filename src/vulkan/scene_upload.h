@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -14,6 +15,8 @@
 #include <tessera/render/options.h>
 #include <tessera/scene/scene.h>
 
+#include "render/point_pass.h"
+#include "render/worker_pool.h"
 #include "vulkan/context.h"
 #include "vulkan/gpu_types.h"
 
@@ -58,8 +61,8 @@ void destroySceneBuffers(Context& context, SceneBuffers& buffers);
 void appendSceneDescriptors(const SceneBuffers& buffers,
                             std::vector<VkDescriptorBufferInfo>& infos);
 
-// Sizes the frame as the CPU renderer does: colour always; depth when asked for or when lines
-// are drawn (they are depth-tested); ids, normals and coverage when asked for.
+// Sizes the frame as the CPU renderer does: colour always; depth when asked for or when lines or
+// points are drawn (they are depth-tested); ids, normals and coverage when asked for.
 void resizeFrame(const Scene& scene, const RenderOptions& options, Frame& frame);
 // Copies the results the frame holds buffers for (words of `pixels` each: colour, depth bits, id;
 // then three floats a pixel of normal, when `normals` is given).
@@ -72,9 +75,17 @@ void clearFrame(Frame& frame);
 Expected<void> renderIntoFrame(const Scene& scene, const RenderOptions& options, Frame& frame,
                                const std::function<Expected<void>()>& draw);
 
-// On the finished frame: the composite over the background (composite.h), then the CPU's line
-// pass (scene lines, world and object axes).
-void drawSceneLines(const Scene& scene, const RenderOptions& options, const PackedScene& packed,
-                    Frame& frame);
+// What the CPU's passes draw on a backend's read-back frame; kept by the backend, so that its
+// buffers are reused frame to frame.
+struct SceneOverlay {
+  render::PointPass points;
+  std::unique_ptr<render::WorkerPool> pool;  // made for the first frame with points
+  LineList axes;
+};
+// On the finished frame: the composite over the background (composite.h), the CPU's point pass
+// (point_pass.h), then its line pass (scene lines at RenderOptions::line_width, world and object
+// axes).
+void drawSceneOverlay(const Scene& scene, const RenderOptions& options, const PackedScene& packed,
+                      SceneOverlay& overlay, Frame& frame);
 
 }  // namespace tessera::vulkan

@@ -25,7 +25,7 @@ struct PipelineStats {
   double vertex_ms = 0;  // vertex stage (scenes transformed once per worker: the longest copy)
   double setup_ms = 0;   // assembly, cull, clip, setup and binning
   double tiles_ms = 0;   // raster, shade and resolve
-  double lines_ms = 0;   // the line pass
+  double lines_ms = 0;   // the point pass and the line pass
 };
 
 // The instruction set of the raster kernel. Every choice gives the same image; kAuto takes the

@@ -23,6 +23,11 @@ class FrameRenderer {
   // that a frame without a view measures nothing.
   void setDiagnostics(bool on) { options_.diagnostics = on; }
   bool diagnostics() const { return options_.diagnostics; }
+  // How Scene::points and Scene::lines are drawn (RenderOptions::points, line_width).
+  void setPointStyle(const PointOptions& points, float line_width) {
+    options_.points = points;
+    options_.line_width = line_width;
+  }
   SamplingModes& sampling() { return sampling_; }
   const SamplingModes& sampling() const { return sampling_; }
 

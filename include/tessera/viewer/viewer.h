@@ -10,6 +10,7 @@
 
 #include <tessera/base/expected.h>
 #include <tessera/render/backend.h>
+#include <tessera/render/options.h>
 #include <tessera/render/projection.h>
 #include <tessera/scene/scene.h>
 #include <tessera/viewer/scene_loader.h>
@@ -32,6 +33,8 @@ struct ViewerOptions {
   bool jitter = false;   // sub-pixel jitter at start (F10)
   bool temporal = true;  // temporal reprojection of the jittered frames (Shift+F12)
   float3 view_direction{0.6f, 0.45f, 1.0f};  // from the model towards the camera at start/reset
+  PointOptions points;                       // Scene::points (--point-size, --point-sprites)
+  float line_width = 1.0f;                   // Scene::lines, in pixels (--line-width)
 };
 
 struct ViewerHooks {
