@@ -1,14 +1,17 @@
 #!/usr/bin/env python3
 """Writes the rendering section of docs/perf.md and its plots from what bench/run_all.sh measured.
 
-usage: bench/report.py RESULTS_DIR OUTPUT_MD
+usage: bench/report.py RESULTS_DIR OUTPUT_MD [OTHER_RESULTS_DIR...]
 
 RESULTS_DIR holds matrix.jsonl, scaling.jsonl, variants.jsonl and spheres.jsonl (the output of
 `tessera bench --json --vs llvmpipe`, one object per line), machine.json and, if run_all.sh
 measured them, corelatency.jsonl (tessera_corelatency --json, with "when" added) and msaa.jsonl
 (the bunny at 1x and 4x MSAA, with "round" added). Only the text
 between the BEGIN and END markers of OUTPUT_MD is replaced (the rest of the page belongs to
-others); a page without them gets the section after its title.
+others); a page without them gets the section after its title. Each OTHER_RESULTS_DIR holds another
+machine's run of the same commands (bench/run_all.sh with OUT=docs/perf/avx2, say: a machine of
+another instruction set); its matrix, MSAA and shading rows are tabled after the main machine's,
+each with its machine, and the worst row is named for every machine.
 """
 import json
 import os
@@ -207,10 +210,65 @@ def msaa_rows(rows):
     return table, summary, four
 
 
+def widest_kernels(machine):
+    return ("AVX-512" if "avx512f" in machine["simd"] else
+            "AVX2 (this CPU has no AVX-512)" if "avx2" in machine["simd"] else "SSE2")
+
+
+def worst_row(matrix, msaa_row, variants):
+    """The (name, ratio) of the matrix row, MSAA row or shading variant furthest below 5x."""
+    rows = [(f"{r['scene']} at {r['resolution']}", r["ratio"]) for r in matrix]
+    if msaa_row:
+        rows.append(("bunny at 1920x1080, 4x MSAA", msaa_row["ratio"]))
+    rows += [(f"bunny at 1920x1080, {r['shading']}, back faces {r['back_faces']}", r["ratio"])
+             for r in variants]
+    return min(rows, key=lambda item: item[1]) if rows else None
+
+
+def other_machine(w, results, output):
+    """Another machine's matrix (its own run of bench/run_all.sh), tabled with its machine."""
+    with open(os.path.join(results, "machine.json")) as f:
+        machine = json.load(f)
+    matrix = sorted(read_lines(os.path.join(results, "matrix.jsonl")), key=scene_key)
+    variants_path = os.path.join(results, "variants.jsonl")
+    variants = read_lines(variants_path) if os.path.exists(variants_path) else []
+    msaa_path = os.path.join(results, "msaa.jsonl")
+    _, msaa_summary, msaa_row = msaa_rows(
+        read_lines(msaa_path) if os.path.exists(msaa_path) else [])
+    best = widest_kernels(machine)
+    rel = os.path.relpath(results, os.path.dirname(output) or ".")
+    w(f"### The same matrix on {machine['cpu']} with {best.split(' ')[0]}")
+    w("")
+    w(f"Measured {machine['date']} at commit `{machine['commit']}` on {machine['cpu']} "
+      f"({', '.join(machine['simd'])}; tessera's tile kernels: {best}), {machine['cores']} cores, "
+      f"{machine['frames']} timed frames per row, the 1-minute load average "
+      f"{machine['load_before']:.2f} at the start and {machine['load_after']:.2f} at the end; raw "
+      f"results in [`{rel}/`]({rel}/).")
+    w("")
+    w("| scene | resolution | shading | tessera ms | llvmpipe ms | ratio |")
+    w("|---|---|---|---:|---:|---:|")
+    for r in matrix:
+        w(f"| {r['scene']} | {r['resolution']} | {r['shading']} | {ms(r['median_ms'])} | "
+          f"{ms(r['llvmpipe_median_ms'])} | {r['ratio']:.2f} |")
+    if msaa_row:
+        w(f"| bunny | 1920x1080 | {msaa_row.get('shading', 'gouraud')}, 4x MSAA | "
+          f"{ms(msaa_row['median_ms'])} | {ms(msaa_row['llvmpipe_median_ms'])} | "
+          f"{msaa_row['ratio']:.2f} |")
+    for r in variants:
+        w(f"| bunny | 1920x1080 | {r['shading']}, back faces {r['back_faces']} | "
+          f"{ms(r['median_ms'])} | {ms(r['llvmpipe_median_ms'])} | {r['ratio']:.2f} |")
+    w("")
+    worst = worst_row(matrix, msaa_row, variants)
+    if worst:
+        w(f"Worst row on this machine: {worst[0]}, {worst[1]:.2f}x llvmpipe (the target is 5x on "
+          "every row).")
+        w("")
+
+
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) < 3:
         sys.exit(__doc__)
-    results, output = sys.argv[1], sys.argv[2]
+    results, output, others = sys.argv[1], sys.argv[2], sys.argv[3:]
     matrix = sorted(read_lines(os.path.join(results, "matrix.jsonl")), key=scene_key)
     scaling = read_lines(os.path.join(results, "scaling.jsonl"))
     variants = read_lines(os.path.join(results, "variants.jsonl"))
@@ -268,8 +326,7 @@ def main():
     w("| | |")
     w("|---|---|")
     w(f"| CPU | {machine['cpu']} ({', '.join(machine['simd'])}) |")
-    best = ("AVX-512" if "avx512f" in machine["simd"] else
-            "AVX2 (this CPU has no AVX-512)" if "avx2" in machine["simd"] else "SSE2")
+    best = widest_kernels(machine)
     w(f"| tessera's tile kernels | {best}, chosen at run time |")
     w(f"| cores | {machine['cores']} |")
     w(f"| compiler | {machine['compiler']} (CMake Release: -O3) |")
@@ -304,13 +361,9 @@ def main():
     slower = [r for r in matrix if r["ratio"] < 1.0]
     w("")
     # The speed target (issue 21) is met by its worst row, not by its best: name it.
-    rows = [(f"{r['scene']} at {r['resolution']}", r["ratio"]) for r in matrix]
-    if msaa_row:
-        rows.append(("bunny at 1920x1080, 4x MSAA", msaa_row["ratio"]))
-    rows += [(f"bunny at 1920x1080, {r['shading']}, back faces {r['back_faces']}", r["ratio"])
-             for r in variants]
-    if rows:
-        name, ratio = min(rows, key=lambda item: item[1])
+    worst = worst_row(matrix, msaa_row, variants)
+    if worst:
+        name, ratio = worst
         w(f"Worst row of the matrix, this table's and the shading variants' below: {name}, "
           f"{ratio:.2f}x llvmpipe (the target is 5x on every row; this machine's widest kernels: "
           f"{best}).")
@@ -325,6 +378,8 @@ def main():
     w("")
     w(f"![frame time against resolution]({rel}/frame_time_vs_resolution.png)")
     w("")
+    for other in others:
+        other_machine(w, other, output)
     w("### Triangle count: UV spheres at 1920x1080")
     w("")
     w("`bench/sphere_obj.py` writes spheres of 4k^2 triangles as OBJ files; each is timed with "

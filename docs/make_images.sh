@@ -66,3 +66,10 @@ python3 "$(dirname "$0")/animated_scene.py" "$tmp/orbit"
   --shading flat -o "$out/animation.gif"
 # A ground grid under a model (--grid; glmark2-data's horse, read through assimp).
 "$tessera" render /usr/share/glmark2/models/horse.3ds --grid --resolution 480,300 -o "$out/grid.png"
+# A PLY point cloud (20,000 points on a sphere, scripts/point_cloud_ply.py) as discs and as sprites.
+python3 "$root/scripts/point_cloud_ply.py" "$tmp/sphere.ply" 20000
+"$tessera" render "$tmp/sphere.ply" --resolution 300,220 --point-size 3 -o "$tmp/discs.png"
+"$tessera" render "$tmp/sphere.ply" --resolution 300,220 --point-size 5 --point-sprites \
+  -o "$tmp/sprites.png"
+ffmpeg -loglevel error -y -i "$tmp/discs.png" -i "$tmp/sprites.png" -filter_complex hstack=inputs=2 \
+  "$out/points_ply.png"
