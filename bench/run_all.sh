@@ -18,7 +18,9 @@ cd "$(dirname "$0")/.."
 
 build=${BUILD_DIR:-build}
 frames=${FRAMES:-30}
-out=docs/perf
+# OUT: where this run's results go. docs/perf is the page's main machine; a run on a machine of
+# another instruction set goes beside it (OUT=docs/perf/avx2) and is tabled after the main one.
+out=${OUT:-docs/perf}
 python=/usr/bin/python3
 [ -x "$python" ] || python=python3
 "$python" -c "import matplotlib" 2>/dev/null ||
@@ -114,5 +116,10 @@ json.dump({
     "frames": $frames, "load_before": float("$load_before"), "load_after": float("$load_after"),
 }, open(sys.argv[1], "w"), indent=2)
 EOF
-"$python" bench/report.py "$out" docs/perf.md
+# The main machine's results, then every other machine's kept beside them (docs/perf/*/).
+others=()
+for dir in docs/perf/*/; do
+  [ -f "$dir/matrix.jsonl" ] && others+=("${dir%/}")
+done
+"$python" bench/report.py docs/perf docs/perf.md "${others[@]}"
 echo "run_all: updated docs/perf.md and $out/" >&2

@@ -11,16 +11,12 @@
 #include <tessera/render/diagnostics.h>
 #include <tessera/scene/scene.h>
 
+#include "render_test_scenes.h"
+
 namespace tessera::diagnostics_test {
 
 // A camera that maps object coordinates straight to clip space (x, y, z in NDC, w = 1).
-inline Scene clipSpaceScene() {
-  Scene scene;
-  scene.camera.view_override = float4x4::identity();
-  scene.camera.projection_override = float4x4::identity();
-  scene.ambient = float3(1.0f);
-  return scene;
-}
+using test::clipSpaceScene;
 
 // An axis-aligned rectangle in window pixels (y down) at NDC depth z, as two triangles.
 inline void addRect(Mesh& m, float x0, float y0, float x1, float y1, float z, int width,

@@ -9,20 +9,13 @@
 #include <tessera/render/cpu_renderer.h>
 #include <tessera/scene/scene.h>
 
+#include "render_test_scenes.h"
+
 namespace tessera::test {
 
-// Object coordinates are clip coordinates (w = 1), given as window positions in 1/256 pixel: on a
-// power-of-two viewport every such position maps back to itself exactly, so the test knows the
-// snapped vertices.
-inline Scene clipSpaceScene() {
-  Scene scene;
-  scene.camera.view_override = float4x4::identity();
-  scene.camera.projection_override = float4x4::identity();
-  scene.ambient = float3(1.0f);
-  scene.background = {0, 0, 0, 1};
-  return scene;
-}
-
+// Object coordinates are clip coordinates (clipSpaceScene, render_test_scenes.h), given as window
+// positions in 1/256 pixel: on a power-of-two viewport every such position maps back to itself
+// exactly, so the test knows the snapped vertices.
 struct SubPixel {
   int64_t x, y;  // 1/256 pixel, y down
 };

@@ -70,6 +70,10 @@ class GraphBuilder {
   Expected<ElementReader> reader(int accessor_index, const std::string& role,
                                  std::initializer_list<int> allowed_types,
                                  std::initializer_list<int> allowed_components);
+  // The primitive's `indices` accessor (scalar unsigned bytes, shorts or ints), or none when it
+  // has no indices.
+  Expected<std::optional<ElementReader>> indexReader(const tinygltf::Primitive& primitive,
+                                                     const std::string& where);
   Expected<std::vector<uint8_t>> densify(const tinygltf::Accessor& accessor,
                                          const std::string& what, size_t element);
   std::optional<ElementReader> optionalAttribute(const tinygltf::Primitive& primitive,

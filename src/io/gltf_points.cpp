@@ -63,15 +63,9 @@ Expected<void> GraphBuilder::readPointsOrLines(const tinygltf::Primitive& primit
   Expected<ElementReader> positions = reader(position_it->second, "POSITION of " + where, {3}, {});
   if (!positions) return positions.error();
   const size_t vertex_count = positions->count;
-  std::optional<ElementReader> indices;
-  if (primitive.indices >= 0) {
-    Expected<ElementReader> read =
-        reader(primitive.indices, "indices of " + where, {1},
-               {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
-    if (!read) return read.error();
-    indices = *read;
-  }
+  Expected<std::optional<ElementReader>> read_indices = indexReader(primitive, where);
+  if (!read_indices) return read_indices.error();
+  const std::optional<ElementReader> indices = *read_indices;
   const size_t corners = indices ? indices->count : vertex_count;
   Expected<void> fatal;
   const std::optional<ElementReader> colors =

@@ -103,10 +103,7 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
                             false};
     corner_count = indices->count;
   } else if (primitive.indices >= 0) {
-    Expected<ElementReader> read =
-        reader(primitive.indices, "indices of " + where, {1},
-               {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
+    Expected<std::optional<ElementReader>> read = indexReader(primitive, where);
     if (!read) return read.error();
     indices = *read;
     corner_count = indices->count;

@@ -193,4 +193,15 @@ std::optional<ElementReader> GraphBuilder::optionalAttribute(
   return *attribute;
 }
 
+Expected<std::optional<ElementReader>> GraphBuilder::indexReader(
+    const tinygltf::Primitive& primitive, const std::string& where) {
+  if (primitive.indices < 0) return std::optional<ElementReader>{};
+  Expected<ElementReader> read =
+      reader(primitive.indices, "indices of " + where, {1},
+             {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+              TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
+  if (!read) return read.error();
+  return std::optional<ElementReader>{*read};
+}
+
 }  // namespace tessera::io::gltf
