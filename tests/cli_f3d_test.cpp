@@ -203,8 +203,9 @@ TEST_F(CliF3d, AliasesShareTheFlagTable) {
 // straight (not premultiplied) colour at its anti-aliased edge; refused for GIF and for AOVs.
 TEST_F(CliF3d, NoBackgroundWritesAnRgbaPngWithTheModelsCoverage) {
   tessera::test::writeFile(dir_ / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
-  RunResult r = run("render tri.obj --shading unlit --color 1,1,1 --resolution 48,48 "
-                    "--no-background -o clear.png");
+  RunResult r =
+      run("render tri.obj --shading unlit --color 1,1,1 --resolution 48,48 "
+          "--no-background -o clear.png");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const DecodedPng png = decode("clear.png");
   ASSERT_EQ(png.channels, 4);
@@ -232,8 +233,9 @@ TEST_F(CliF3d, NoBackgroundWritesAnRgbaPngWithTheModelsCoverage) {
 TEST_F(CliF3d, OpacityMixesTheModelWithTheBackground) {
   tessera::test::writeFile(dir_ / "quad.obj",
                            "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
-  const std::string common = "render quad.obj --shading unlit --color 1,1,1 --bg-color 0,0,0 "
-                             "--resolution 20,20 ";
+  const std::string common =
+      "render quad.obj --shading unlit --color 1,1,1 --bg-color 0,0,0 "
+      "--resolution 20,20 ";
   ASSERT_EQ(run(common + "--opacity 0.5 -o half.png").exit_code, 0);
   EXPECT_EQ(decode("half.png").rgb(10, 10), (std::array<int, 3>{188, 188, 188}));  // linear 0.5
   ASSERT_EQ(run(common + "--opacity 0 -o none.png").exit_code, 0);

@@ -129,6 +129,32 @@ TEST_F(ViewerWindow, LoadsAModelInTheBackgroundAndKeysChangeTheView) {
   EXPECT_EQ(viewer_->waitExit(), 0);
 }
 
+// --grid (f3d's -g): the same model with a ground grid under it; the grid's lines change the
+// background around the model's foot.
+TEST_F(ViewerWindow, GridDrawsAGroundUnderTheModel) {
+  std::string why;
+  if (!startX(why)) GTEST_SKIP() << why;
+  std::ofstream(dir_ / "tetra.obj")
+      << "v 0.5 0.5 0.5\nv 1.5 0.5 0.5\nv 0.5 1.5 0.5\nv 0.5 0.5 1.5\n"
+         "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  DecodedPng shots[2];
+  for (int grid = 0; grid < 2; ++grid) {
+    std::vector<std::string> args{"tetra.obj", "-w", "200", "-h", "200", "-workers", "1"};
+    if (grid) args.push_back("--grid");
+    startViewer(args);
+    ASSERT_TRUE(viewer_->waitForLine("tessera view: showing tetra.obj"))
+        << viewer_->output() << slurp(dir_ / "viewer.err");
+    const std::string window = findWindow();
+    ASSERT_FALSE(window.empty());
+    xdotool({"mousemove", "--window", window, "100", "100"});
+    shots[grid] = screenshot();
+    ASSERT_EQ(shots[grid].width, 200);
+    xdotool({"key", "Escape"});
+    EXPECT_EQ(viewer_->waitExit(), 0);
+  }
+  EXPECT_GT(countDifferent(shots[0], shots[1], 0, 0, 200, 200), 200) << "no grid drawn";
+}
+
 TEST_F(ViewerWindow, TheWindowStaysLiveWhileAModelLoads) {
   std::string why;
   if (!startX(why)) GTEST_SKIP() << why;

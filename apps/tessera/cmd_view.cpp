@@ -13,6 +13,7 @@
 #include <tessera/io/image_loader.h>
 #include <tessera/io/model_loader.h>
 #include <tessera/model/camera_setup.h>
+#include <tessera/model/ground_grid.h>
 #include <tessera/model/model_scene.h>
 #include <tessera/render/projection.h>
 #include <tessera/render/sampling.h>
@@ -47,6 +48,7 @@ struct ViewSettings {
   std::string projection = "perspective";
   bool stats = false;
   bool axes = false;
+  bool grid = false;
   bool fullscreen = false;
   int workers = 0;
   std::string texture;
@@ -106,6 +108,7 @@ struct ViewLoad {
   // Whether the model last loaded brings its own lights (its file's or --light's): the default
   // rig, fixed to the view, is placed only when it does not.
   std::shared_ptr<std::atomic<bool>> own_lights;
+  bool grid = false;  // --grid: a ground grid under each model loaded, across +Y
 };
 
 // The start model loaded before the window opened, taken (once) by the viewer's first load.
@@ -135,6 +138,7 @@ Expected<viewer::LoadedScene> loadViewScene(const ViewLoad& load,
       makeModelScene(std::move(*model), path, load.scene_settings, &loaded.graph);
   if (!scene) return scene.error();
   loaded.scene = std::move(*scene);
+  if (load.grid) model::appendGroundGrid(loaded.scene.bounds(), {0, 1, 0}, loaded.scene.lines);
   addViewLights(loaded.scene);
   applyLights(loaded.scene, lights, load.lights);
   load.own_lights->store(!lights.empty());
@@ -255,6 +259,7 @@ int runView(const std::vector<std::string>& args) {
                   "projection at start (default perspective; F4 cycles them)");
   flags.addSwitch("stats", &s.stats, "show the stats overlay at start (F1 toggles it)");
   flags.addSwitch("axes", &s.axes, "show the world axes at start (F2 toggles them)");
+  flags.addSwitch("grid|g", &s.grid, "draw a ground grid under the model, across +Y (f3d's -g)");
   flags.addSwitch("fullscreen", &s.fullscreen, "fill the screen");
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
   flags.addString("texture", &s.texture, "an image used as the albedo of every material");
@@ -335,8 +340,12 @@ int runView(const std::vector<std::string>& args) {
     scene_settings.albedo = std::make_shared<const Texture>(std::move(*texture));
   }
 
-  ViewLoad load{scene_settings, s.budget, s.lights, s.animation_index,
-                std::make_shared<std::atomic<bool>>(false)};
+  ViewLoad load{scene_settings,
+                s.budget,
+                s.lights,
+                s.animation_index,
+                std::make_shared<std::atomic<bool>>(false),
+                s.grid};
   // --animation-index and --camera-index are checked against the model before the window opens;
   // the viewer's first load then takes this scene.
   auto preloaded = std::make_shared<PreloadedScene>();
