@@ -187,7 +187,8 @@ BenchScene makePointCloudScene() {
                       0.06f * std::sin(9.0f * x + 5.0f * z) + 0.01f * hash(i ^ 0x9e3779b9u);
       points.positions[i] = {x, h, z};
       const float t = std::clamp((h + 0.25f) / 0.5f, 0.0f, 1.0f);  // low: blue-green, high: sand
-      points.colors[i] = {0.05f + 0.75f * t * t, 0.25f + 0.45f * t, 0.35f * (1.0f - t) + 0.2f * t};
+      points.colors[i] = packSrgba8(
+          {0.05f + 0.75f * t * t, 0.25f + 0.45f * t, 0.35f * (1.0f - t) + 0.2f * t, 1.0f});
     }
   }
   for (const float3& p : points.positions) b.bounds.add(p);

@@ -54,8 +54,8 @@ inline void writeFile(const std::filesystem::path& path, const uint8_t* data, si
   std::abort();
 }
 
-// What the renderer relies on: indices in range, attribute arrays empty or one per vertex,
-// materials present and indexed in range, normals finite.
+// What the renderer relies on: something to draw, indices in range, attribute arrays empty or one
+// per vertex, materials present and indexed in range, normals, points and line ends finite.
 inline void checkModel(const Expected<io::Model>& loaded) {
   if (!loaded) {
     if (loaded.error().message.empty()) broken("an error without a message");
@@ -66,7 +66,18 @@ inline void checkModel(const Expected<io::Model>& loaded) {
   const Mesh& mesh = flattened;
   const size_t vertices = mesh.vertexCount();
   if (mesh.indices.size() % 3 != 0) broken("index count not a multiple of 3");
-  if (mesh.triangleCount() == 0) broken("a model without triangles");
+  if (mesh.triangleCount() == 0 && model.points.empty() && model.lines.points.empty())
+    broken("a model with nothing to draw");
+  // Points and lines: finite (the loaders drop the others), colours one per point or none, one
+  // colour per segment.
+  for (const float3& p : model.points.positions)
+    if (!isFinite(p)) broken("a non-finite point");
+  if (!model.points.colors.empty() && model.points.colors.size() != model.points.size())
+    broken("point colours not one per point");
+  if (model.lines.points.size() != 2 * model.lines.colors.size())
+    broken("line colours not one per segment");
+  for (const float3& p : model.lines.points)
+    if (!isFinite(p)) broken("a non-finite line end");
   for (uint32_t index : mesh.indices)
     if (index >= vertices) broken("index past the vertices");
   if (mesh.normals.size() != vertices) broken("normals not one per vertex");

@@ -32,6 +32,13 @@ using PointFiles = GltfFiles;
 
 const float3 kDefaultGrey = Material{}.base_color.xyz();
 
+// A point's packed sRGB colour in linear light, and the most 8-bit quantizing moves it there.
+float3 linearOf(uint32_t packed) {
+  return {decodeSrgb8(static_cast<uint8_t>(packed)), decodeSrgb8(static_cast<uint8_t>(packed >> 8)),
+          decodeSrgb8(static_cast<uint8_t>(packed >> 16))};
+}
+constexpr float kPacked = 0.005f;
+
 // ---- OBJ ----
 
 TEST_F(PointFiles, ObjPointElementsArePointsWithSrgbColoursDecoded) {
@@ -47,8 +54,8 @@ TEST_F(PointFiles, ObjPointElementsArePointsWithSrgbColoursDecoded) {
   expectNear3(model->points.positions[1], {7, 8, 9});
   expectNear3(model->points.positions[2], {4, 5, 6});  // -2: relative to the three before it
   ASSERT_EQ(model->points.colors.size(), 3u);
-  expectNear3(model->points.colors[0], {1, srgbToLinear(0.5f), 0});
-  expectNear3(model->points.colors[1], float3(srgbToLinear(0.2f)));
+  expectNear3(linearOf(model->points.colors[0]), {1, srgbToLinear(0.5f), 0}, kPacked);
+  expectNear3(linearOf(model->points.colors[1]), float3(srgbToLinear(0.2f)), kPacked);
   EXPECT_TRUE(model->lines.points.empty());
   EXPECT_EQ(model->mesh.triangleCount(), 0u);
 }
@@ -166,7 +173,8 @@ TEST_F(PointFiles, GltfPointAndLineModesArePlacedAtEveryNodesWorldMatrix) {
   expectNear3(model->points.positions[2], {10, 1, 0});
   expectNear3(model->points.positions[4], {11, 5, 0});  // the child: (10, 5, 0) + (1, 0, 0)
   ASSERT_EQ(model->points.colors.size(), 6u);
-  expectNear3(model->points.colors[1], {0, 1, 0});  // COLOR_0, no material: white factor
+  expectNear3(linearOf(model->points.colors[1]), {0, 1, 0},
+              kPacked);  // COLOR_0, no material: white factor
   // Per instance: LINES 2 segments, LINE_LOOP 3, LINE_STRIP 2.
   ASSERT_EQ(model->lines.colors.size(), 14u);
   const std::vector<float3>& ends = model->lines.points;
@@ -208,8 +216,8 @@ void expectPlyCloud(const Expected<Model>& model) {
   expectNear3(model->points.positions[0], {0.5f, 0, 0});
   expectNear3(model->points.positions[2], {0, 0, -2});
   ASSERT_EQ(model->points.colors.size(), 3u);
-  expectNear3(model->points.colors[0], {1, srgbToLinear(128 / 255.0f), 0}, 1e-4f);
-  expectNear3(model->points.colors[2], {0, 0, 1});
+  expectNear3(linearOf(model->points.colors[0]), {1, srgbToLinear(128 / 255.0f), 0}, kPacked);
+  expectNear3(linearOf(model->points.colors[2]), {0, 0, 1}, kPacked);
   EXPECT_EQ(flattenedMesh(*model).triangleCount(), 0u);
 }
 
@@ -253,7 +261,7 @@ TEST_F(PointFiles, BigEndianPlyOfDoublesWithFloatColoursIsAPointCloud) {
   ASSERT_TRUE(model) << model.error().message;
   ASSERT_EQ(model->points.size(), 1u);
   expectNear3(model->points.positions[0], {1.5f, -2, 3});
-  expectNear3(model->points.colors[0], {srgbToLinear(0.5f), 0, 1});
+  expectNear3(linearOf(model->points.colors[0]), {srgbToLinear(0.5f), 0, 1}, kPacked);
   EXPECT_TRUE(anyWarningContains(*model, "1 points at a NaN or infinite position"))
       << allWarnings(*model);
 }
@@ -316,7 +324,7 @@ TEST(PointTestModels, PlyPointsAndAc3dLinesFromAssimpsTestModels) {
   ASSERT_TRUE(ply) << ply.error().message;
   ASSERT_EQ(ply->points.size(), 4u);
   ASSERT_EQ(ply->points.colors.size(), 4u);
-  expectNear3(ply->points.colors[1], {1, 0, 1});
+  expectNear3(linearOf(ply->points.colors[1]), {1, 0, 1}, kPacked);
   expectNear3(ply->points.positions[1], {0, 0, 1});
   // AC3D's line surfaces through assimp: an open polyline of 5 references (the last repeats
   // the first) and a closed one of 4: four segments each.

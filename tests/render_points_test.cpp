@@ -19,6 +19,11 @@ namespace {
 constexpr int kW = 32, kH = 32;
 constexpr uint32_t kWhite = 0xffffffffu, kBlack = 0xff000000u;
 
+// A linear colour as PointList keeps it.
+uint32_t packed(float3 linear) {
+  return packSrgba8(float4{linear, 1.0f});
+}
+
 RenderOptions pointOptions(float size, int width = kW, int height = kH) {
   RenderOptions options;
   options.width = width;
@@ -102,7 +107,7 @@ TEST(Points, TheNearerOfTwoWinsInEitherOrderAndTiesGoToTheLowerIndex) {
     for (int i = 0; i < 2; ++i) {
       const bool near = (i == 0) == near_first;
       addPoint(scene, near ? 10.5f : 11.5f, 10.5f, near ? -0.2f : 0.3f);
-      scene.points.colors.push_back(near ? float3{0, 1, 0} : float3{0, 0, 1});
+      scene.points.colors.push_back(packed(near ? float3{0, 1, 0} : float3{0, 0, 1}));
     }
     const Frame f = render(scene, pointOptions(5.0f));
     EXPECT_EQ(f.colorAt(10, 10), 0xff00ff00u) << near_first;
@@ -115,7 +120,7 @@ TEST(Points, TheNearerOfTwoWinsInEitherOrderAndTiesGoToTheLowerIndex) {
     const float xs[2] = {first == 0 ? 10.5f : 11.5f, first == 0 ? 11.5f : 10.5f};
     for (int i = 0; i < 2; ++i) {
       addPoint(scene, xs[i], 10.5f, 0.0f);
-      scene.points.colors.push_back(i == 0 ? float3{1, 0, 0} : float3{0, 0, 1});
+      scene.points.colors.push_back(packed(i == 0 ? float3{1, 0, 0} : float3{0, 0, 1}));
     }
     const Frame f = render(scene, pointOptions(5.0f));
     EXPECT_EQ(f.colorAt(10, 10), 0xff0000ffu) << first;
@@ -132,7 +137,7 @@ TEST(Points, OwnColoursOrTheDefaultColour) {
   Frame f = render(scene, options);
   EXPECT_EQ(f.colorAt(5, 5), 0xffff0000u);
   EXPECT_EQ(f.colorAt(20, 20), 0xffff0000u);
-  scene.points.colors = {{1, 0, 0}, {0, 1, 0}};
+  scene.points.colors = {packed({1, 0, 0}), packed({0, 1, 0})};
   f = render(scene, options);
   EXPECT_EQ(f.colorAt(5, 5), 0xff0000ffu);
   EXPECT_EQ(f.colorAt(20, 20), 0xff00ff00u);
@@ -171,7 +176,7 @@ TEST(Points, SameImageForAnyWorkerCount) {
     const float z = i % 3 == 0 ? 0.25f : unit(rng) * 2.0f - 1.0f;
     scene.points.positions.push_back(
         windowToNdc(unit(rng) * kSize, unit(rng) * kSize, z, kSize, kSize));
-    scene.points.colors.push_back({unit(rng), unit(rng), unit(rng)});
+    scene.points.colors.push_back(packed({unit(rng), unit(rng), unit(rng)}));
   }
   for (int msaa : {1, 4}) {
     for (bool sprites : {false, true}) {

@@ -18,6 +18,8 @@
 #include <sstream>
 #include <string>
 
+#include <tessera/scene/color.h>
+
 #include "vulkan_fixtures.h"
 
 using namespace tessera;
@@ -570,7 +572,7 @@ TEST(VulkanPoints, BothBackendsDrawPointsAndWideLinesAsTheCpu) {
     for (int i = 0; i < 7; ++i) {
       // In front of the cube (z 1.5) and behind it (z -1.5): the latter hidden where it is.
       scene.points.positions.push_back({-1.2f + 0.4f * i, 0.3f, i % 2 ? 1.5f : -1.5f});
-      scene.points.colors.push_back({1, 0, 1});
+      scene.points.colors.push_back(packSrgba8({1, 0, 1, 1}));
     }
     scene.lines.add({-2, -0.9f, 1.2f}, {2, -0.9f, 1.2f}, {0, 1, 0});
     RenderOptions o = options();

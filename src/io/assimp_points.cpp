@@ -64,11 +64,12 @@ float3 SceneBuilder::lineColor(unsigned material) const {
                 unitChannel(diffuse.b, fallback.z)};
 }
 
-// One instance of `mesh` at `world`. Points without vertex colours get (-1, -1, -1) for now
-// (placePointsAndLines gives them white, or drops every colour when no point has one).
+// One instance of `mesh` at `world`. Points without vertex colours get 0 for now (a packed colour
+// is never 0: its alpha is 255); placePointsAndLines gives them white, or drops every colour when
+// no point has one.
 void SceneBuilder::placeMesh(const aiMesh& mesh, const float4x4& world, size_t& dropped) {
   const aiColor4D* colors = mesh.mColors[0];
-  const float3 no_color{-1, -1, -1};
+  constexpr uint32_t kNoColor = 0;
   auto addPoint = [&](unsigned v) {
     const float3 p = worldPoint(world, mesh.mVertices[v]);
     if (!isFinite(p)) {
@@ -76,7 +77,8 @@ void SceneBuilder::placeMesh(const aiMesh& mesh, const float4x4& world, size_t& 
       return;
     }
     model_.points.positions.push_back(p);
-    model_.points.colors.push_back(colors ? vertexColor(colors[v]) : no_color);
+    model_.points.colors.push_back(colors ? packSrgba8(float4{vertexColor(colors[v]), 1.0f})
+                                          : kNoColor);
   };
   if (mesh.mNumFaces == 0) {
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) addPoint(v);
@@ -120,13 +122,13 @@ void SceneBuilder::placePointsAndLines(
   }
   // PointList's colours are one per point or none: white for points of a colourless mesh beside
   // coloured ones, none at all (the renderer's point colour) when no mesh has any.
-  std::vector<float3>& colors = model_.points.colors;
-  const bool any = std::any_of(colors.begin(), colors.end(), [](float3 c) { return c.x >= 0; });
+  std::vector<uint32_t>& colors = model_.points.colors;
+  const bool any = std::any_of(colors.begin(), colors.end(), [](uint32_t c) { return c != 0; });
   if (!any)
     colors.clear();
   else
-    for (float3& c : colors)
-      if (c.x < 0) c = float3{1, 1, 1};
+    for (uint32_t& c : colors)
+      if (c == 0) c = 0xffffffffu;
   if (dropped > 0)
     warn(std::to_string(dropped) +
          " points or line segments at a NaN or infinite position are not drawn");

@@ -8,6 +8,8 @@
 #include <string>
 #include <utility>
 
+#include <tessera/scene/color.h>
+
 #include "gltf_builder.h"
 #include "tinygltf_include.h"
 
@@ -97,7 +99,7 @@ Expected<void> GraphBuilder::readPointsOrLines(const tinygltf::Primitive& primit
       Expected<size_t> v = vertexAt(c);
       if (!v) return v.error();
       out.points.positions.push_back(position(*v));
-      out.points.colors.push_back(color(*v));
+      out.points.colors.push_back(packSrgba8(float4{color(*v), 1.0f}));
     }
     return {};
   }

@@ -14,14 +14,16 @@ float3 positionAt(const tinyobj::attrib_t& attrib, size_t i) {
   return float3{attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]};
 }
 
-// An sRGB-encoded `v` colour, linear; a channel that is not finite is white.
-float3 pointColor(const tinyobj::attrib_t& attrib, size_t i) {
-  float3 rgb;
+// An sRGB-encoded `v` colour as PointList packs it (8-bit sRGB); a channel that is not finite is
+// white.
+uint32_t pointColor(const tinyobj::attrib_t& attrib, size_t i) {
+  uint32_t packed = 0xff000000u;
   for (int c = 0; c < 3; ++c) {
     const float value = attrib.colors[3 * i + static_cast<size_t>(c)];
-    rgb[c] = std::isfinite(value) ? srgbToLinear(std::clamp(value, 0.0f, 1.0f)) : 1.0f;
+    const float unit = std::isfinite(value) ? std::clamp(value, 0.0f, 1.0f) : 1.0f;
+    packed |= static_cast<uint32_t>(std::lround(unit * 255.0f)) << (8 * c);
   }
-  return rgb;
+  return packed;
 }
 
 // Per `usemtl` name of the scan: the segment colour, the material's Kd when its MTL block set one,

@@ -201,16 +201,14 @@ std::optional<Expected<Model>> readPlyPointCloud(std::span<const uint8_t> bytes,
   points.positions.reserve(header->count);
   const bool colored = layout.colored();
   if (colored) points.colors.reserve(header->count);
-  // 8-bit channels, the usual case, decode through a table.
-  std::array<float, 256> decoded;
-  for (int i = 0; i < 256; ++i) decoded[static_cast<size_t>(i)] = srgbToLinear(i / 255.0f);
+  // Channels as sRGB bytes (PointList's packed colours): 8-bit ones, the usual case, as they are.
   const auto& ps = header->properties;
-  auto channel = [&](const std::vector<double>& values, int i) {
+  auto channel = [&](const std::vector<double>& values, int i) -> uint32_t {
     const auto p = static_cast<size_t>(layout.index[static_cast<size_t>(i)]);
     const double value = values[p];
     if (ps[p].bytes == 1 && !ps[p].is_signed && value >= 0 && value <= 255)
-      return decoded[static_cast<size_t>(value)];
-    return srgbToLinear(unitChannel(value, ps[p]));
+      return static_cast<uint32_t>(value);
+    return static_cast<uint32_t>(std::lround(unitChannel(value, ps[p]) * 255.0f));
   };
   // A double past float's range is not finite as a position (and its conversion undefined).
   auto coordinate = [&](const std::vector<double>& values, int i) {
@@ -229,8 +227,8 @@ std::optional<Expected<Model>> readPlyPointCloud(std::span<const uint8_t> bytes,
         }
         points.positions.push_back(p);
         if (colored)
-          points.colors.push_back(
-              float3{channel(values, 3), channel(values, 4), channel(values, 5)});
+          points.colors.push_back(0xff000000u | channel(values, 3) | channel(values, 4) << 8 |
+                                  channel(values, 5) << 16);
       });
   if (!read) return Expected<Model>(read.error());
   if (dropped > 0)

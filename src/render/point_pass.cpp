@@ -22,12 +22,6 @@ struct ProjectedBlock {
   uint32_t depth[kBlock];  // window depth bits, kHidden when not drawn
 };
 
-// packSrgba8 of an opaque colour, inlined: the place stage encodes every point's colour.
-uint32_t packOpaque(float3 c) {
-  return 0xff000000u | uint32_t{encodeSrgb8(c.x)} | uint32_t{encodeSrgb8(c.y)} << 8 |
-         uint32_t{encodeSrgb8(c.z)} << 16;
-}
-
 uint32_t depthBits(float z) {
   return std::bit_cast<uint32_t>(z + 0.0f);  // -0 as +0: window depth orders as its bits
 }
@@ -189,13 +183,13 @@ void PointPass::countChunk(size_t chunk) {
 }
 
 void PointPass::placeChunk(size_t chunk) {
-  const std::vector<float3>& colors = scene_->points.colors;
+  const std::vector<uint32_t>& colors = scene_->points.colors;
   const bool own_colors = colors.size() == scene_->points.size();
   const uint32_t default_color = packSrgba8(float4{options_->points.color, 1.0f});
   uint32_t* next = &counts_[chunk * static_cast<size_t>(bands_)];  // each band's next slot
   forEachVisible(camera_, scene_->points, chunk, width_, height_, radius_, antialiased_,
                  [&](size_t index, float x, float y, uint32_t depth, PixelSpan rows) {
-                   const uint32_t color = own_colors ? packOpaque(colors[index]) : default_color;
+                   const uint32_t color = own_colors ? colors[index] : default_color;
                    for (int b = rows.first / kPointBandRows; b <= rows.last / kPointBandRows; ++b) {
                      const size_t slot = band_start_[b] + next[b]++;
                      records_[slot] = Record{x, y, depth, static_cast<uint32_t>(index)};
@@ -382,8 +376,12 @@ float3 PointPass::spriteColor(const Record& rec, int px, int py, float3& normal)
   normal = normalize(camera_to_world_ * spriteNormal(q, dx / radius_, -dy / radius_));
   const float world_radius =
       sphereDepth(camera_, p, radius_, height_, camera_to_world_).world_radius;
-  const float3 albedo =
-      points.colors.size() == points.size() ? points.colors[rec.index] : options_->points.color;
+  float3 albedo = options_->points.color;
+  if (points.colors.size() == points.size()) {
+    const uint32_t c = points.colors[rec.index];
+    albedo = {decodeSrgb8(static_cast<uint8_t>(c)), decodeSrgb8(static_cast<uint8_t>(c >> 8)),
+              decodeSrgb8(static_cast<uint8_t>(c >> 16))};
+  }
   return albedo * irradiance(lights_, normal, p + normal * world_radius);
 }
 
