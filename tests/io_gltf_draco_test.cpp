@@ -368,6 +368,15 @@ TEST_F(GltfFiles, KhronosDracoSampleLoadsWithoutWarnings) {
   EXPECT_EQ(io::flattenedMesh(*model).triangleCount(), 110336u);
 }
 
+// Found by the glTF fuzz target: a Draco POSITION accessor declared VEC2, with a three-value
+// min and max, had its decoded points read three floats apart, past the decoded bytes (the
+// min/max check). Now the bytes are read as decoded and the file is the attribute's clear error;
+// the sanitizer run (scripts/sanitize.sh) runs this test under ASan.
+TEST_F(GltfFiles, DracoPositionDeclaredVec2IsAClearErrorNotAnOverread) {
+  Expected<Model> model = loadGltf(fs::path(TESSERA_TEST_DATA_DIR) / "draco_vec2_position.glb");
+  expectErrorContains(model, "has 2 components per element");
+}
+
 #else  // !TESSERA_HAS_DRACO
 
 TEST_F(GltfFiles, DracoPrimitiveLoadsAsTheUncompressedMeshInTheDecodersOrder) {

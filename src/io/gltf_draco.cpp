@@ -75,12 +75,16 @@ bool convertAttribute(const draco::PointAttribute& attribute, size_t points, int
 void checkBounds(const tinygltf::Accessor& accessor, const DecodedAccessor& decoded,
                  const std::string& what, std::vector<std::string>& warnings) {
   if (decoded.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT || accessor.minValues.size() < 3 ||
-      accessor.maxValues.size() < 3)
+      accessor.maxValues.size() < 3 || decoded.count == 0)
     return;
+  // The components per element as decoded (the accessor's type, which a file may get wrong: only
+  // those the bytes hold are read).
+  const size_t components = decoded.bytes.size() / (decoded.count * sizeof(float));
+  if (components < 3) return;
   for (size_t i = 0; i < decoded.count; ++i) {
     for (size_t c = 0; c < 3; ++c) {
       float v;
-      std::memcpy(&v, decoded.bytes.data() + (3 * i + c) * sizeof(float), sizeof v);
+      std::memcpy(&v, decoded.bytes.data() + (components * i + c) * sizeof(float), sizeof v);
       const double lo = accessor.minValues[c], hi = accessor.maxValues[c];
       const double slack = 1e-5 * std::max({1.0, std::abs(lo), std::abs(hi)});
       if (std::isfinite(v) && (v < lo - slack || v > hi + slack)) {
