@@ -19,8 +19,8 @@ namespace tessera::diagnostics_test {
 using test::clipSpaceScene;
 
 // An axis-aligned rectangle in window pixels (y down) at NDC depth z, as two triangles.
-inline void addRect(Mesh& m, float x0, float y0, float x1, float y1, float z, int width,
-                    int height, uint16_t material = 0) {
+inline void addRect(Mesh& m, float x0, float y0, float x1, float y1, float z, int width, int height,
+                    uint16_t material = 0) {
   const uint32_t base = static_cast<uint32_t>(m.positions.size());
   auto ndc = [&](float x, float y) {
     return float3{2.0f * x / width - 1.0f, 1.0f - 2.0f * y / height, z};
@@ -91,18 +91,27 @@ inline void expectOccupancySceneCounts(const FrameDiagnostics& d) {
 inline Mesh cullReasonMesh() {
   Mesh m;
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {nan, 0, 0},
-                 {3, 0, 0}, {4, 1, 0}, {3, 1, 0},            // beyond the right plane
-                 {-1, -1, -3}, {1, -1, 0.5f}, {0, 1, 0.5f},  // crosses the near plane
+  m.positions = {{-1, -1, 0},
+                 {1, -1, 0},
+                 {0, 1, 0},
+                 {nan, 0, 0},
+                 {3, 0, 0},
+                 {4, 1, 0},
+                 {3, 1, 0},  // beyond the right plane
+                 {-1, -1, -3},
+                 {1, -1, 0.5f},
+                 {0, 1, 0.5f},  // crosses the near plane
                  // window x 35.10..35.39, y 28.51..28.80: no pixel centre in its box
-                 {0.097f, 0.1f, 0}, {0.106f, 0.1f, 0}, {0.097f, 0.109f, 0}};
-  m.indices = {0, 1, 3,     // non-finite
-               4, 5, 6,     // frustum
-               0, 0, 1,     // degenerate
-               0, 2, 1,     // back-facing, culled
-               7, 8, 9,     // clipped into two pieces
+                 {0.097f, 0.1f, 0},
+                 {0.106f, 0.1f, 0},
+                 {0.097f, 0.109f, 0}};
+  m.indices = {0,  1,  3,   // non-finite
+               4,  5,  6,   // frustum
+               0,  0,  1,   // degenerate
+               0,  2,  1,   // back-facing, culled
+               7,  8,  9,   // clipped into two pieces
                10, 11, 12,  // no pixel centre
-               0, 1, 2};    // drawn
+               0,  1,  2};  // drawn
   return m;
 }
 

@@ -70,6 +70,10 @@ class GraphBuilder {
   Expected<ElementReader> reader(int accessor_index, const std::string& role,
                                  std::initializer_list<int> allowed_types,
                                  std::initializer_list<int> allowed_components);
+  // The primitive's COLOR_0 (RGB or RGBA; floats, or normalized bytes or shorts), or none.
+  std::optional<ElementReader> colorAttribute(const tinygltf::Primitive& primitive,
+                                              const std::string& where, size_t vertex_count,
+                                              Expected<void>& fatal);
   // The primitive's `indices` accessor (scalar unsigned bytes, shorts or ints), or none when it
   // has no indices.
   Expected<std::optional<ElementReader>> indexReader(const tinygltf::Primitive& primitive,

@@ -70,11 +70,7 @@ Expected<void> GraphBuilder::readPointsOrLines(const tinygltf::Primitive& primit
   const std::optional<ElementReader> indices = *read_indices;
   const size_t corners = indices ? indices->count : vertex_count;
   Expected<void> fatal;
-  const std::optional<ElementReader> colors =
-      optionalAttribute(primitive, "COLOR_0", where, vertex_count, {3, 4},
-                        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                        fatal);
+  const std::optional<ElementReader> colors = colorAttribute(primitive, where, vertex_count, fatal);
   if (!fatal) return fatal;
   const float3 base = baseColorOf(primitive.material);
 

@@ -150,11 +150,7 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   if (!uvs && model_.materials[*material].albedo)
     warn(where + ": its material has a texture but the primitive has no TEXCOORD_" +
          std::to_string(uv_set));
-  const std::optional<ElementReader> colors =
-      optionalAttribute(primitive, "COLOR_0", where, vertex_count, {3, 4},
-                        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                        fatal);
+  const std::optional<ElementReader> colors = colorAttribute(primitive, where, vertex_count, fatal);
   if (!fatal) return fatal;
 
   // Each vertex of this primitive is emitted once, on first use. The remap is stamped per

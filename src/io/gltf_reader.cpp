@@ -204,4 +204,14 @@ Expected<std::optional<ElementReader>> GraphBuilder::indexReader(
   return std::optional<ElementReader>{*read};
 }
 
+std::optional<ElementReader> GraphBuilder::colorAttribute(const tinygltf::Primitive& primitive,
+                                                          const std::string& where,
+                                                          size_t vertex_count,
+                                                          Expected<void>& fatal) {
+  return optionalAttribute(primitive, "COLOR_0", where, vertex_count, {3, 4},
+                           {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                           fatal);
+}
+
 }  // namespace tessera::io::gltf

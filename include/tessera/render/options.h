@@ -25,8 +25,8 @@ struct EdgeOptions {
 // How Scene::points are drawn by the point pass (render/point_pass.h), after the triangles,
 // depth-tested against them and writing depth.
 struct PointOptions {
-  float size = 3.0f;             // pixels across, above 0 (`--point-size`)
-  bool sprites = false;          // shaded spheres instead of flat discs (`--point-sprites`)
+  float size = 3.0f;               // pixels across, above 0 (`--point-size`)
+  bool sprites = false;            // shaded spheres instead of flat discs (`--point-sprites`)
   float3 color{1.0f, 1.0f, 1.0f};  // linear RGB, for points without colours of their own
 };
 
