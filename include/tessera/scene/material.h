@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <initializer_list>
 #include <memory>
 #include <vector>
@@ -11,10 +12,33 @@
 
 namespace tessera {
 
+// glTF's alphaMode: opaque, cut at alpha_cutoff, or blended over what lies behind.
+enum class AlphaMode : uint8_t { kOpaque, kMask, kBlend };
+
+// A texture of a material (null: none) with the sampler it is read through.
+struct TextureSlot {
+  std::shared_ptr<const Texture> texture;
+  Sampler sampler;
+  explicit operator bool() const { return texture != nullptr; }
+};
+
+// glTF 2.0's metallic-roughness material (and what OBJ's MTL maps onto it, docs/formats.md). The
+// Lambert shading modes read base_color and albedo only; Shading::kPbr reads all of it.
 struct Material {
   float4 base_color{0.8f, 0.8f, 0.8f, 1.0f};  // linear RGBA
-  std::shared_ptr<const Texture> albedo;      // optional; multiplies base_color
-  Sampler sampler;
+  std::shared_ptr<const Texture> albedo;      // optional; multiplies base_color (sRGB texels)
+  Sampler sampler;                            // albedo's
+  float metallic = 0.0f;   // glTF's default is 1; a material that says nothing is a dielectric
+  float roughness = 1.0f;  // perceptual roughness (alpha = roughness^2)
+  TextureSlot metallic_roughness;  // linear; G = roughness, B = metallic, multiplying the factors
+  TextureSlot normal;              // tangent space, linear; normal_scale scales its X and Y
+  float normal_scale = 1.0f;
+  TextureSlot occlusion;  // linear; R, mixed by occlusion_strength
+  float occlusion_strength = 1.0f;
+  TextureSlot emissive;                     // sRGB; multiplies emissive_factor
+  float3 emissive_factor{0.0f, 0.0f, 0.0f};  // linear
+  AlphaMode alpha_mode = AlphaMode::kOpaque;
+  float alpha_cutoff = 0.5f;
   // Both faces are meant to be seen (glTF `doubleSided`). The renderer culls per Object
   // (Object::cull); a caller chooses that from its materials (io::Model::cull_back_faces).
   bool double_sided = false;

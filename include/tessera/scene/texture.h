@@ -14,9 +14,25 @@ namespace tessera {
 enum class TextureFilter { kNearest, kBilinear, kTrilinear };
 enum class TextureWrap { kRepeat, kClamp };
 
+// KHR_texture_transform: uv' = T(offset) * R(rotation) * S(scale) * uv, in the extension's
+// convention (rotation in radians, counter-clockwise in UV space with v pointing down the image).
+struct TextureTransform {
+  float2 offset{0.0f, 0.0f};
+  float rotation = 0.0f;
+  float2 scale{1.0f, 1.0f};
+  bool identity() const {
+    return offset.x == 0.0f && offset.y == 0.0f && rotation == 0.0f && scale.x == 1.0f &&
+           scale.y == 1.0f;
+  }
+};
+
+// How a material reads one of its textures: glTF's sampler, and its textureInfo's texture
+// coordinate set and transform.
 struct Sampler {
   TextureFilter filter = TextureFilter::kTrilinear;
   TextureWrap wrap = TextureWrap::kRepeat;
+  TextureTransform transform;  // identity unless the file says KHR_texture_transform
+  int texcoord = 0;            // TEXCOORD_<n>
 };
 
 struct TextureLevel {
