@@ -235,12 +235,8 @@ viewer::ViewerHooks viewHooks(const ViewSettings& s, const ViewLoad& load,
 
 #endif
 
-}  // namespace
-
-int runView(const std::vector<std::string>& args) {
-  ViewSettings s;
-  FlagSet flags("tessera view [MODEL] [--width 800] [--height 600] [--fps 60] [--fov 50] [flags]",
-                /*single_dash=*/true);
+// The flags of `tessera view`, into `s`.
+void addViewFlags(FlagSet& flags, ViewSettings& s) {
   flags.addInt("w|width", &s.width, "window width (default 800)", 1, 16384);
   flags.addInt("h|height", &s.height, "window height (default 600)", 1, 16384);
   flags.addInt("fps", &s.fps, "most frames a second while anything moves (default 60)", 1, 1000);
@@ -284,21 +280,57 @@ int runView(const std::vector<std::string>& args) {
         s.msaa = static_cast<int>(n);
         return "";
       });
+}
 
+// `tessera view --help`: the flags, then the mouse and the keys.
+void printViewHelp(const FlagSet& flags) {
+  std::cout << flags.usage()
+            << "\nMouse: left drag orbits, wheel zooms, middle or shift + left drag pans.\n"
+               "Keys: 1 front, 3 right, 7 top, 9 isometric, Enter resets the camera,\n"
+               "F1 stats, F2 world axes, F3 object axes, F4 cycles the projection\n"
+               "(perspective, cylindrical, spherical, stereographic, fisheye),\n"
+               "F5 / F6 store / compare the frame's CRC, F10 sub-pixel jitter,\n"
+               "F11 cycles the analysis view (off, tile field, density), F12 screenshot,\n"
+               "Shift+F1 tile heatmap, Shift+F2 32-bit commit path (vulkan),\n"
+               "Shift+F3 cycles MSAA 1/2/4/8, Shift+F12 temporal reprojection (on with\n"
+               "jitter), space plays or pauses the animation, H lists the keys in the\n"
+               "window, Escape quits.\n"
+               "Drop a model file on the window to load it.\n";
+}
+
+#ifdef TESSERA_HAS_VIEWER
+// The viewer's options from the flags; `fov`: the perspective view angle.
+viewer::ViewerOptions viewerOptions(const ViewSettings& s, Projection projection, float fov) {
+  viewer::ViewerOptions options;
+  options.width = s.width;
+  options.height = s.height;
+  options.fps = s.fps;
+  // Perspective takes -fov when it is a perspective angle; every mode takes it where it fits.
+  options.fov_y_degrees = fov;
+  if (s.has_fov) options.view_angle = s.fov;
+  options.projection = projection;
+  options.stats = s.stats;
+  options.world_axes = s.axes;
+  options.fullscreen = s.fullscreen;
+  options.msaa = s.msaa;
+  options.points.size = s.points.points.size;
+  options.points.sprites = s.points.points.sprites;
+  options.line_width = s.points.line_width;
+  options.view_direction = threeQuarterDirection({0, 1, 0});
+  return options;
+}
+#endif
+
+}  // namespace
+
+int runView(const std::vector<std::string>& args) {
+  ViewSettings s;
+  FlagSet flags("tessera view [MODEL] [--width 800] [--height 600] [--fps 60] [--fov 50] [flags]",
+                /*single_dash=*/true);
+  addViewFlags(flags, s);
   Expected<std::vector<std::string>> positional = flags.parse(args);
   if (flags.helpRequested()) {
-    std::cout << flags.usage()
-              << "\nMouse: left drag orbits, wheel zooms, middle or shift + left drag pans.\n"
-                 "Keys: 1 front, 3 right, 7 top, 9 isometric, Enter resets the camera,\n"
-                 "F1 stats, F2 world axes, F3 object axes, F4 cycles the projection\n"
-                 "(perspective, cylindrical, spherical, stereographic, fisheye),\n"
-                 "F5 / F6 store / compare the frame's CRC, F10 sub-pixel jitter,\n"
-                 "F11 cycles the analysis view (off, tile field, density), F12 screenshot,\n"
-                 "Shift+F1 tile heatmap, Shift+F2 32-bit commit path (vulkan),\n"
-                 "Shift+F3 cycles MSAA 1/2/4/8, Shift+F12 temporal reprojection (on with\n"
-                 "jitter), space plays or pauses the animation, H lists the keys in the\n"
-                 "window, Escape quits.\n"
-                 "Drop a model file on the window to load it.\n";
+    printViewHelp(flags);
     return kExitOk;
   }
   auto usageError = [&](const std::string& message) {
@@ -363,22 +395,7 @@ int runView(const std::vector<std::string>& args) {
 
   const float fov = s.has_fov && isPerspectiveFov(s.fov) ? s.fov : 50.0f;
   const viewer::ViewerHooks hooks = viewHooks(s, load, preloaded, fov);
-  viewer::ViewerOptions options;
-  options.width = s.width;
-  options.height = s.height;
-  options.fps = s.fps;
-  // Perspective takes -fov when it is a perspective angle; every mode takes it where it fits.
-  options.fov_y_degrees = fov;
-  if (s.has_fov) options.view_angle = s.fov;
-  options.projection = projection;
-  options.stats = s.stats;
-  options.world_axes = s.axes;
-  options.fullscreen = s.fullscreen;
-  options.msaa = s.msaa;
-  options.points.size = s.points.points.size;
-  options.points.sprites = s.points.points.sprites;
-  options.line_width = s.points.line_width;
-  options.view_direction = threeQuarterDirection({0, 1, 0});
+  const viewer::ViewerOptions options = viewerOptions(s, projection, fov);
   if (Expected<void> ran = viewer::runViewer(options, **backend, hooks, model_path); !ran) {
     printError("view", ran.error().message);
     return kExitFailure;
