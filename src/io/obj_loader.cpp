@@ -346,6 +346,22 @@ Expected<void> buildMesh(const ObjParts& parts, const MeshChoices& choices, size
   return {};
 }
 
+// The simplest honest rule: unless every corner has a usable normal from the file, generate
+// smooth, area-weighted normals for the whole mesh (mixing given and generated normals would shade
+// the seam between them). Warns when the file's normals are left out.
+bool useFileNormals(const std::string& name, const CornerUse& use, size_t normal_count,
+                    std::vector<std::string>& warnings) {
+  if (use.all_normals && !use.normals_usable)
+    warnings.push_back(name +
+                       ": some normals are zero or not finite; smooth normals were generated for "
+                       "the whole mesh");
+  else if (!use.all_normals && normal_count > 0)
+    warnings.push_back(name +
+                       ": some faces have no normals; smooth normals were generated for the "
+                       "whole mesh");
+  return use.all_normals && use.normals_usable;
+}
+
 Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
   const std::string name = path.string();
   Expected<RegularFile> file = openRegularFile(path, kMaxObjBytes, "OBJ");
@@ -403,22 +419,10 @@ Expected<Model> loadObjChecked(const fs::path& path, const LoadBudget& budget) {
 
   Expected<CornerUse> use = checkCorners(attrib, shapes, locate);
   if (!use) return use.error();
-  const bool all_normals = use->all_normals, normals_usable = use->normals_usable;
-  const size_t normal_count = attrib.normals.size() / 3;
   if (corner_count > std::numeric_limits<uint32_t>::max())
     return makeError(name + ": too many face corners (" + std::to_string(corner_count) + ")");
-  // The simplest honest rule: unless every corner has a usable normal from the file, generate
-  // smooth, area-weighted normals for the whole mesh (mixing given and generated normals would
-  // shade the seam between them).
-  const bool use_file_normals = all_normals && normals_usable;
-  if (all_normals && !normals_usable)
-    model.warnings.push_back(name +
-                             ": some normals are zero or not finite; smooth normals were "
-                             "generated for the whole mesh");
-  else if (!all_normals && normal_count > 0)
-    model.warnings.push_back(name +
-                             ": some faces have no normals; smooth normals were generated "
-                             "for the whole mesh");
+  const bool use_file_normals =
+      useFileNormals(name, *use, attrib.normals.size() / 3, model.warnings);
   const bool has_colors = !attrib.colors.empty() && attrib.colors.size() == attrib.vertices.size();
 
   const ObjParts parts{name, folder, attrib, shapes, library_materials, reader, locate, budget};
