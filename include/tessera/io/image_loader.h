@@ -1,10 +1,12 @@
-// Texture and image decoding (stb_image: PNG, JPEG, BMP, TGA).
+// Texture and image decoding (stb_image: PNG, JPEG, BMP, TGA; Radiance .hdr for environments).
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 
 #include <tessera/base/expected.h>
+#include <tessera/scene/environment.h>
 #include <tessera/scene/texture.h>
 
 namespace tessera::io {
@@ -31,6 +33,15 @@ Expected<Texture> loadTexture(const std::filesystem::path& path, bool srgb = tru
 // Decodes an image held in memory (glTF buffers, data: URIs); `name` is used in messages.
 Expected<Texture> decodeTexture(const unsigned char* data, size_t size, const std::string& name,
                                 bool srgb = true, uint64_t max_pixels = kDefaultMaxTexturePixels);
+
+// Decodes a Radiance .hdr file (RGBE, as HDRI sites publish equirectangular environments) to
+// linear radiance, for --hdri; refused like a texture over `max_pixels`, and when it is not an
+// .hdr or holds a value that is not a finite, non-negative radiance.
+Expected<EnvironmentImage> loadEnvironmentImage(const std::filesystem::path& path,
+                                                uint64_t max_pixels = kDefaultMaxTexturePixels);
+Expected<EnvironmentImage> decodeEnvironmentImage(const unsigned char* data, size_t size,
+                                                  const std::string& name,
+                                                  uint64_t max_pixels = kDefaultMaxTexturePixels);
 
 // The message for an image over the per-texture budget.
 std::string texturePixelsOverBudget(const std::string& name, ImageSize size, uint64_t max_pixels);
