@@ -10,6 +10,8 @@
 #include <tessera/io/image_loader.h>
 #include <tessera/scene/environment.h>
 
+#include "run_process.h"
+#include "stb_image_write.h"
 #include "temp_folder.h"
 
 namespace tessera {
@@ -153,6 +155,31 @@ TEST_F(HdrFiles, DecodesRgbeToLinearRadiance) {
   expectNear3(image->at(0, 0), {1.0f, 0.5f, 0.25f}, 1e-6f);
   expectNear3(image->at(1, 0), {8.0f, 8.0f, 8.0f}, 1e-6f);
   expectNear3(image->at(3, 1), {1.0f, 0.5f, 0.25f}, 1e-6f);
+}
+
+// stb_image_write writes scanlines of 8 pixels or more run-length encoded, as most .hdr files are.
+TEST_F(HdrFiles, ReadsRunLengthEncodedScanlinesAndRefusesThemTruncated) {
+  const int width = 64, height = 32;
+  std::vector<float> rgb;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (float value : {x < 32 ? 1.0f : 4.0f, 0.25f * static_cast<float>(y % 4), 0.5f})
+        rgb.push_back(value);
+  const std::filesystem::path path = root_ / "rle.hdr";
+  ASSERT_NE(stbi_write_hdr(path.string().c_str(), width, height, 3, rgb.data()), 0);
+  Expected<EnvironmentImage> image = io::loadEnvironmentImage(path);
+  ASSERT_TRUE(image) << image.error().message;
+  ASSERT_EQ(image->width, width);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; x += 9)
+      expectNear3(image->at(x, y), {x < 32 ? 1.0f : 4.0f, 0.25f * static_cast<float>(y % 4), 0.5f},
+                  0.01f);
+  std::string bytes = test::slurp(path);
+  bytes.resize(bytes.size() - 10);
+  Expected<EnvironmentImage> truncated = io::loadEnvironmentImage(write("cut.hdr", bytes));
+  ASSERT_FALSE(truncated);
+  EXPECT_NE(truncated.error().message.find("truncated"), std::string::npos)
+      << truncated.error().message;
 }
 
 TEST_F(HdrFiles, WhatIsNotAnHdrImageIsAClearError) {
