@@ -9,7 +9,7 @@
 set -euo pipefail
 seconds="${1:-30}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
-formats=(obj mtl stl gltf assimp)
+formats=(obj mtl stl gltf hdr assimp)
 
 source "$root/scripts/asan_build.sh"
 build=$(configure_asan_build "$root")

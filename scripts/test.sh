@@ -4,7 +4,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/scripts/setup.sh"
 cd "$root"
-# The loaders' fuzzers (OBJ, MTL, STL, glTF, assimp's), 20 s each with ASan and UBSan, one per
+# The loaders' fuzzers (OBJ, MTL, STL, glTF, .hdr, assimp's), 20 s each with ASan and UBSan, one per
 # core at a time, in the clang build (build-asan/) the sanitizer run then reuses: the loaders
 # compile once for both (scripts/asan_build.sh).
 "$root/fuzz/run_all.sh" 20
