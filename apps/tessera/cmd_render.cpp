@@ -324,6 +324,12 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
   addViewLights(scene);
   applyLights(scene, lights, s.lights);
   applySurface(s.surface, bounds, s.camera.upAxis(), scene);
+  if (Expected<void> lit =
+          applyEnvironment(s.surface, s.budget.texturePixels(), s.camera.upAxis(), scene);
+      !lit) {
+    printError("render", lit.error().message);
+    return kExitFailure;
+  }
   if (s.axes) {
     scene.show_world_axes = true;
     scene.world_axes_length = std::max(bounds.radius(), 1e-6f);

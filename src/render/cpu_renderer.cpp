@@ -555,8 +555,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const Clock::time_point t_tiles = Clock::now();
   if (replicable) s.replication.record(replicate, elapsed_ms(t_start, t_tiles));
 
-  if (needsComposite(scene, options))
-    compositeOverBackground(scene.background, options.opacity, frame);
+  compositeFrame(scene, options, frame);
   // Points, then lines (which the points hide).
   if (draws_points)
     s.point_pass.draw(scene, options,

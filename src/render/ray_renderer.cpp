@@ -248,8 +248,7 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   });
   const Clock::time_point t_tiles = Clock::now();
 
-  if (needsComposite(scene, options))
-    compositeOverBackground(scene.background, options.opacity, frame);
+  compositeFrame(scene, options, frame);
   const RayLines mode{options.projection,
                       static_cast<double>(scene.camera.fov_y_degrees) * std::numbers::pi / 180.0,
                       scene.camera.near_z, scene.camera.far_z};

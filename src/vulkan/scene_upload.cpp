@@ -402,8 +402,7 @@ void drawSceneOverlay(const Scene& scene, const RenderOptions& options, const Pa
                       SceneOverlay& overlay, Frame& frame) {
   const bool antialiased = options.msaa > 1;
   const bool perspective = options.projection == Projection::kPerspective;
-  if (needsComposite(scene, options))
-    compositeOverBackground(scene.background, options.opacity, frame);
+  compositeFrame(scene, options, frame);
   // The nonlinear projections' points and lines: the CPU's, through the same mapping
   // (packed.view_projection is the view matrix then).
   const double fov = static_cast<double>(scene.camera.fov_y_degrees) * std::numbers::pi / 180.0;

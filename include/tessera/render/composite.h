@@ -28,6 +28,17 @@ RenderOptions withCompositeInputs(const Scene& scene, const RenderOptions& optio
 // the surface's premultiplied by its alpha; straightAlpha undoes that for a PNG.
 void compositeOverBackground(float4 background, float opacity, Frame& frame);
 
+// With scene.environment_background (and an environment): every pixel's background becomes the
+// environment's radiance along the pixel centre's view ray (projection.h's rays for
+// options.projection, turned into the world by the camera; an orthographic camera's rays are all
+// its view axis), in the proportion compositeOverBackground left the plain background in: with
+// coverage c and opacity o, R becomes R + (1 - c o) (E - B). Run after compositeOverBackground.
+void compositeEnvironment(const Scene& scene, const RenderOptions& options, Frame& frame);
+
+// What every backend runs after its triangles: compositeOverBackground and then
+// compositeEnvironment, where needsComposite says the frame needs them.
+void compositeFrame(const Scene& scene, const RenderOptions& options, Frame& frame);
+
 // RGBA8 pixels whose colour is premultiplied by alpha in linear light, made straight as PNG
 // stores them: each channel decoded, divided by alpha and encoded again; alpha 0 gives black.
 void straightAlpha(std::span<uint32_t> pixels);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <tessera/math/math.h>
+#include <tessera/scene/environment.h>
 #include <tessera/scene/material.h>
 #include <tessera/scene/mesh.h>
 #include <tessera/scene/texture.h>
@@ -169,6 +170,14 @@ struct Scene {
   float3 ambient{0.15f, 0.15f, 0.15f};  // linear irradiance added to every light (see Light)
   Camera camera;
   float4 background{0.0f, 0.0f, 0.0f, 1.0f};  // linear RGBA
+  // Image-based light around the scene (--hdri), prepared once per image; null: none. With
+  // environment_background the image replaces `background` behind the triangles, seen along
+  // each pixel's view ray (compositeEnvironment).
+  std::shared_ptr<const Environment> environment;
+  bool environment_background = false;
+  // World directions into the environment image's frame (whose up is +Y): a model with another up
+  // axis sees its sky above it.
+  float3x3 world_to_environment;  // identity unless set
   LineList lines;
   PointList points;
   bool show_world_axes = false;

@@ -29,6 +29,9 @@ struct TextureTransform {
 // How a material reads one of its textures: glTF's sampler, and its textureInfo's texture
 // coordinate set and transform.
 struct Sampler {
+  Sampler() = default;
+  Sampler(TextureFilter f, TextureWrap w) : filter(f), wrap(w) {}
+
   TextureFilter filter = TextureFilter::kTrilinear;
   TextureWrap wrap = TextureWrap::kRepeat;
   TextureTransform transform;  // identity unless the file says KHR_texture_transform
