@@ -9,9 +9,11 @@
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "decode.h"
 #include "run_process.h"
+#include "stb_image_write.h"
 #include "temp_folder.h"
 
 namespace fs = std::filesystem;
@@ -241,6 +243,49 @@ TEST_F(CliF3d, OpacityMixesTheModelWithTheBackground) {
   ASSERT_EQ(run(common + "--opacity 0 -o none.png").exit_code, 0);
   EXPECT_EQ(decode("none.png").rgb(10, 10), (std::array<int, 3>{0, 0, 0}));
   EXPECT_EQ(run(common + "--opacity 1.5 -o bad.png").exit_code, 2);
+}
+
+// --hdri and --hdri-background: a sky (blue above the horizon, green below) behind a small white
+// triangle; the flags' refusals leave no file.
+TEST_F(CliF3d, HdriBackgroundShowsTheSkyAboveAndTheGroundBelow) {
+  tessera::test::writeFile(dir_ / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+  std::vector<float> rgb;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 32; ++x)
+      for (float v : {0.0f, y < 8 ? 0.0f : 1.0f, y < 8 ? 1.0f : 0.0f}) rgb.push_back(v);
+  ASSERT_NE(stbi_write_hdr((dir_ / "sky.hdr").string().c_str(), 32, 16, 3, rgb.data()), 0);
+  RunResult r =
+      run("render tri.obj --resolution 64,64 --camera-position 0,0,6 --camera-focal-point 0,0,0 "
+          "--camera-view-angle 60 --hdri sky.hdr --hdri-background -o sky.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const DecodedPng png = decode("sky.png");
+  EXPECT_EQ(png.rgb(2, 1), (std::array<int, 3>{0, 0, 255}));   // up: the sky
+  EXPECT_EQ(png.rgb(2, 62), (std::array<int, 3>{0, 255, 0}));  // down: the ground
+  // The same with +Z up: the sky turns with the model.
+  ASSERT_EQ(run("render tri.obj --up +Z --resolution 64,64 --camera-position 0,-6,0 "
+                "--camera-focal-point 0,0,0 --camera-view-angle 60 --hdri sky.hdr --hdri-skybox "
+                "-o z.png")
+                .exit_code,
+            0);
+  EXPECT_EQ(decode("z.png").rgb(2, 1), (std::array<int, 3>{0, 0, 255}));
+  EXPECT_EQ(decode("z.png").rgb(2, 62), (std::array<int, 3>{0, 255, 0}));
+  // Without --hdri-background the image lights but is not seen.
+  ASSERT_EQ(
+      run("render tri.obj --resolution 64,64 --bg-color 1,0,0 --hdri sky.hdr -o lit.png").exit_code,
+      0);
+  EXPECT_EQ(decode("lit.png").rgb(2, 1), (std::array<int, 3>{255, 0, 0}));
+  r = run("render tri.obj --hdri-background -o a.png");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--hdri PATH"), std::string::npos) << r.err;
+  EXPECT_EQ(
+      run("render tri.obj --hdri sky.hdr --hdri-background --no-background -o b.png").exit_code, 2);
+  tessera::test::writeFile(dir_ / "fake.hdr", "not an image");
+  r = run("render tri.obj --hdri fake.hdr -o c.png");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("not a Radiance .hdr image"), std::string::npos) << r.err;
+  EXPECT_EQ(run("render tri.obj --hdri missing.hdr -o d.png").exit_code, 1);
+  for (const char* name : {"a.png", "b.png", "c.png", "d.png"})
+    EXPECT_FALSE(fs::exists(dir_ / name));
 }
 
 // --grid: lines under the model, across the up axis; seen below a model viewed from above.

@@ -191,3 +191,60 @@ TEST(GroundGrid, LiesUnderTheModelAcrossTheUpAxis) {
   model::appendGroundGrid(Bounds{}, {0, 1, 0}, none);
   EXPECT_TRUE(none.points.empty());
 }
+
+// ---- The environment behind the model (--hdri-background) ----
+
+namespace {
+
+// A 64 x 32 panorama: `sky` above the horizon, `ground` below.
+std::shared_ptr<const Environment> skyEnvironment(float3 sky, float3 ground) {
+  EnvironmentImage image;
+  image.width = 64;
+  image.height = 32;
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) image.texels.push_back(y < 16 ? sky : ground);
+  return std::make_shared<const Environment>(std::move(image));
+}
+
+}  // namespace
+
+TEST(Composite, EnvironmentBackgroundShowsTheSkyAboveAndTheGroundBelow) {
+  Scene scene;
+  scene.camera.position = {0, 0, 0};
+  scene.camera.target = {0, 0, -1};
+  scene.camera.fov_y_degrees = 90.0f;
+  scene.environment = skyEnvironment({1, 1, 1}, {0, 0, 0});
+  scene.environment_background = true;
+  // The same picture with +Z up: the camera looks along -Y and the environment is turned so.
+  Scene z_up = scene;
+  z_up.camera.target = {0, -1, 0};
+  z_up.camera.up = {0, 0, 1};
+  z_up.world_to_environment.col[0] = {1, 0, 0};
+  z_up.world_to_environment.col[1] = {0, 0, -1};
+  z_up.world_to_environment.col[2] = {0, 1, 0};
+  for (const Scene* s : {&scene, &z_up}) {
+    const Frame frame = render(*s, optionsFor(kSize, kSize, 1));
+    for (int x = 0; x < kSize; x += 5) {
+      for (int y = 0; y <= 10; ++y) EXPECT_EQ(frame.colorAt(x, y), 0xffffffffu) << x << " " << y;
+      for (int y = 21; y < kSize; ++y) EXPECT_EQ(frame.colorAt(x, y), 0xff000000u) << x << " " << y;
+    }
+  }
+  // Without environment_background the environment lights but is not seen.
+  scene.environment_background = false;
+  const Frame plain = render(scene, optionsFor(kSize, kSize, 1));
+  EXPECT_EQ(plain.colorAt(0, 0), 0xff000000u);
+}
+
+// A pixel half covered by white over an environment of linear 0.5: 0.5 + 0.5 x 0.5 = 0.75
+// (code 225), the uncovered ones 0.5 (188); the plain background (black) is gone.
+TEST(Composite, EnvironmentFillsTheShareOfAPixelTheModelLeaves) {
+  Scene scene = halfColumnScene({0, 0, 0, 1});
+  scene.environment = skyEnvironment({0.5f, 0.5f, 0.5f}, {0.5f, 0.5f, 0.5f});
+  scene.environment_background = true;
+  const Frame frame = render(scene, optionsFor(kSize, kSize, 4));
+  for (int y = 0; y < kSize; y += 3) {
+    EXPECT_EQ(frame.colorAt(9, y), 0xffffffffu);
+    EXPECT_EQ(frame.colorAt(10, y), 0xffe1e1e1u) << y;
+    EXPECT_EQ(frame.colorAt(11, y), 0xffbcbcbcu) << y;
+  }
+}
