@@ -1,7 +1,8 @@
 // README.md's and docs/usage.md's example commands, run exactly as written, so the docs cannot
 // drift from the code again. Every `tessera ...` line of their ```sh blocks is run in a fresh
 // folder holding small stand-ins for the models and textures they name (model.obj, bunny.obj,
-// part.obj, room.obj: a box; orbit.gltf: an animated cube; wood.png: a texture). Lines that cannot
+// part.obj, room.obj: a box; orbit.gltf: an animated cube; wood.png: a texture; studio.hdr: an
+// environment). Lines that cannot
 // run here are skipped with the reason printed: the viewer (a window), Vulkan backends, built-in
 // benchmark scenes (minutes at 4K), MP4 without ffmpeg, and models no stand-in is made for.
 #include <gtest/gtest.h>
@@ -17,6 +18,7 @@
 
 #include "animated_cube_file.h"
 #include "run_process.h"
+#include "stb_image_write.h"
 #include "temp_folder.h"
 
 namespace fs = std::filesystem;
@@ -138,6 +140,12 @@ class CliDocs : public ::testing::Test {
     std::vector<uint32_t> wood(16 * 16);
     for (size_t i = 0; i < wood.size(); ++i) wood[i] = (i / 16 + i) % 2 ? 0xff2060a0u : 0xffffffffu;
     EXPECT_TRUE(tessera::io::writePngRgba8(dir_ / "wood.png", 16, 16, wood.data()));
+    // studio.hdr: a sky over a darker ground, 16 x 8.
+    std::vector<float> studio;
+    for (int i = 0; i < 16 * 8; ++i)
+      for (float v : {i < 64 ? 2.0f : 0.2f, i < 64 ? 2.0f : 0.2f, i < 64 ? 2.5f : 0.1f})
+        studio.push_back(v);
+    EXPECT_NE(stbi_write_hdr((dir_ / "studio.hdr").string().c_str(), 16, 8, 3, studio.data()), 0);
   }
   void TearDown() override { fs::remove_all(dir_); }
 
