@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake ninja-build pkg-config
   libgtest-dev libgmock-dev libbenchmark-dev
-  libtinyobjloader-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libassimp-dev libdraco-dev
+  libtinyobjloader-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libassimp-dev libdraco-dev libopenexr-dev
   libspng-dev libpng-dev zlib1g-dev libgif-dev libimagequant-dev
   ffmpeg glmark2-data libosmesa6-dev
   libsdl2-dev libsdl2-ttf-dev fonts-dejavu-core xvfb xauth xdotool

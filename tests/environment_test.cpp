@@ -10,6 +10,11 @@
 #include <tessera/io/image_loader.h>
 #include <tessera/scene/environment.h>
 
+#if TESSERA_HAS_OPENEXR
+#include <OpenEXR/ImfArray.h>
+#include <OpenEXR/ImfRgbaFile.h>
+#endif
+
 #include "run_process.h"
 #include "stb_image_write.h"
 #include "temp_folder.h"
@@ -181,6 +186,37 @@ TEST_F(HdrFiles, ReadsRunLengthEncodedScanlinesAndRefusesThemTruncated) {
   EXPECT_NE(truncated.error().message.find("truncated"), std::string::npos)
       << truncated.error().message;
 }
+
+#if TESSERA_HAS_OPENEXR
+TEST_F(HdrFiles, ReadsOpenExrImages) {
+  const int width = 8, height = 4;
+  Imf::Array2D<Imf::Rgba> pixels(height, width);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      pixels[y][x] = Imf::Rgba(x * 0.5f, y < 2 ? 3.0f : 0.0f, 0.25f, 1);
+  const std::filesystem::path path = root_ / "sky.exr";
+  {
+    Imf::RgbaOutputFile file(path.string().c_str(), width, height, Imf::WRITE_RGBA);
+    file.setFrameBuffer(&pixels[0][0], 1, width);
+    file.writePixels(height);
+  }
+  Expected<EnvironmentImage> image = io::loadEnvironmentImage(path);
+  ASSERT_TRUE(image) << image.error().message;
+  ASSERT_EQ(image->width, width);
+  ASSERT_EQ(image->height, height);
+  expectNear3(image->at(3, 0), {1.5f, 3.0f, 0.25f}, 1e-3f);
+  expectNear3(image->at(6, 3), {3.0f, 0.0f, 0.25f}, 1e-3f);
+  // Cut short, or over the budget: refused with a message.
+  std::string bytes = test::slurp(path);
+  bytes.resize(bytes.size() / 2);
+  Expected<EnvironmentImage> cut = io::loadEnvironmentImage(write("cut.exr", bytes));
+  ASSERT_FALSE(cut);
+  EXPECT_NE(cut.error().message.find("cut.exr"), std::string::npos) << cut.error().message;
+  Expected<EnvironmentImage> big = io::loadEnvironmentImage(path, /*max_pixels=*/16);
+  ASSERT_FALSE(big);
+  EXPECT_NE(big.error().message.find("--max-texture-pixels"), std::string::npos);
+}
+#endif
 
 TEST_F(HdrFiles, WhatIsNotAnHdrImageIsAClearError) {
   for (const auto& [name, bytes] :

@@ -1,6 +1,6 @@
-// Radiance .hdr images as environment light (--hdri). stb_image is compiled here a second time,
-// with static linkage and only its HDR decoder, so that the textures' decoder (image_loader.cpp)
-// keeps refusing what is not a PNG, JPEG, BMP or TGA file.
+// Radiance .hdr images as environment light (--hdri); OpenEXR ones are handed to exr_loader.cpp.
+// stb_image is compiled here a second time, with static linkage and only its HDR decoder, so that
+// the textures' decoder (image_loader.cpp) keeps refusing what is not a PNG, JPEG, BMP or TGA file.
 #include <climits>
 #include <cmath>
 #include <cstddef>
@@ -10,6 +10,7 @@
 
 #include <tessera/io/image_loader.h>
 
+#include "exr_loader.h"
 #include "model_paths.h"
 
 #define STB_IMAGE_IMPLEMENTATION
@@ -80,12 +81,14 @@ Expected<EnvironmentImage> decodeEnvironmentImage(const unsigned char* data, siz
   if (data == nullptr || size == 0) return makeError(name + ": empty file");
   if (size > static_cast<size_t>(INT_MAX))
     return makeError(name + ": " + std::to_string(size) + " bytes, over 2 GiB");
+  if (looksLikeExr(data, size)) return decodeExrEnvironment(data, size, name, max_pixels);
   const int length = static_cast<int>(size);
   ImageSize header;
   int channels = 0;
   if (!stbi_is_hdr_from_memory(data, length) ||
       !stbi_info_from_memory(data, length, &header.width, &header.height, &channels))
-    return makeError(name + ": not a Radiance .hdr image (an environment light must be one)");
+    return makeError(name +
+                     ": not a Radiance .hdr or OpenEXR image (an environment light must be one)");
   if (header.width < 2 || header.height < 1)
     return makeError(name + ": an environment image needs at least 2x1 pixels");
   if (header.pixels() > max_pixels)

@@ -34,9 +34,9 @@ Expected<Texture> loadTexture(const std::filesystem::path& path, bool srgb = tru
 Expected<Texture> decodeTexture(const unsigned char* data, size_t size, const std::string& name,
                                 bool srgb = true, uint64_t max_pixels = kDefaultMaxTexturePixels);
 
-// Decodes a Radiance .hdr file (RGBE, as HDRI sites publish equirectangular environments) to
-// linear radiance, for --hdri; refused like a texture over `max_pixels`, and when it is not an
-// .hdr or holds a value that is not a finite, non-negative radiance.
+// Decodes a Radiance .hdr file (RGBE, as HDRI sites publish equirectangular environments) or an
+// OpenEXR one (when built with OpenEXR) to linear radiance, for --hdri; refused like a texture over
+// `max_pixels`, and when it is neither or holds a value that is not a finite radiance.
 Expected<EnvironmentImage> loadEnvironmentImage(const std::filesystem::path& path,
                                                 uint64_t max_pixels = kDefaultMaxTexturePixels);
 Expected<EnvironmentImage> decodeEnvironmentImage(const unsigned char* data, size_t size,
