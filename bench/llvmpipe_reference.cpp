@@ -53,6 +53,11 @@ void toGl(const float3x3& m, float out[9]) {
 // The process-wide LP_NUM_THREADS llvmpipe was started with (-1: not yet).
 int g_llvmpipe_threads = -1;
 
+GLint glWrap(TextureWrap wrap) {
+  if (wrap == TextureWrap::kClamp) return GL_CLAMP_TO_EDGE;
+  return wrap == TextureWrap::kMirroredRepeat ? GL_MIRRORED_REPEAT : GL_REPEAT;
+}
+
 }  // namespace
 
 struct LlvmpipeReference::State {
@@ -181,28 +186,39 @@ struct LlvmpipeReference::State {
     }
 
     // Albedo textures: sRGB texels decode to linear before filtering, as tessera samples them;
-    // bilinear without mipmaps. GL's row 0 is t = 0, tessera's is v = 1: rows go in reversed.
+    // tessera's own mip levels where it filters trilinearly. GL's row 0 is t = 0, tessera's is
+    // v = 1: rows go in reversed. (Bench scenes have no texture transform.)
     for (const Material& material : object.materials) {
       GLuint texture = 0;
       if (material.albedo && material.albedo->width > 0 && material.albedo->height > 0) {
         const Texture& t = *material.albedo;
-        std::vector<uint32_t> rows(t.texels.size());
-        for (int y = 0; y < t.height; ++y)
-          std::copy_n(&t.texels[static_cast<size_t>(t.height - 1 - y) * t.width], t.width,
-                      &rows[static_cast<size_t>(y) * t.width]);
         glGenTextures(1, &texture);
         glBindTexture(GL_TEXTURE_2D, texture);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        glTexImage2D(GL_TEXTURE_2D, 0, t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, t.width, t.height, 0,
-                     GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+        const bool trilinear =
+            material.sampler.filter == TextureFilter::kTrilinear && !t.mips.empty();
+        const int levels = trilinear ? t.levelCount() : 1;
+        std::vector<uint32_t> rows;
+        for (int level = 0; level < levels; ++level) {
+          const int w = level == 0 ? t.width : t.mips[static_cast<size_t>(level - 1)].width;
+          const int h = level == 0 ? t.height : t.mips[static_cast<size_t>(level - 1)].height;
+          const std::vector<uint32_t>& texels =
+              level == 0 ? t.texels : t.mips[static_cast<size_t>(level - 1)].texels;
+          rows.resize(texels.size());
+          for (int y = 0; y < h; ++y)
+            std::copy_n(&texels[static_cast<size_t>(h - 1 - y) * w], w,
+                        &rows[static_cast<size_t>(y) * w]);
+          glTexImage2D(GL_TEXTURE_2D, level, t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, w, h, 0, GL_RGBA,
+                       GL_UNSIGNED_BYTE, rows.data());
+        }
         const GLint filter =
             material.sampler.filter == TextureFilter::kNearest ? GL_NEAREST : GL_LINEAR;
-        const GLint wrap =
-            material.sampler.wrap == TextureWrap::kClamp ? GL_CLAMP_TO_EDGE : GL_REPEAT;
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels - 1);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                        trilinear ? GL_LINEAR_MIPMAP_LINEAR : filter);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, glWrap(material.sampler.wrap_s));
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, glWrap(material.sampler.wrap_t));
       }
       g.textures.push_back(texture);
     }

@@ -225,8 +225,12 @@ Expected<BenchScene> makeBuiltinScene(const std::string& name, Shading shading) 
   if (name == "textured") {
     Material material;
     material.base_color = {1, 1, 1, 1};
-    material.albedo = std::make_shared<Texture>(makeCheckerTexture(512, 16));
-    material.sampler = {TextureFilter::kBilinear, TextureWrap::kRepeat};
+    // Mipmapped and trilinear: what glTF and OBJ textures are read with (the llvmpipe side
+    // takes the same levels and GL_LINEAR_MIPMAP_LINEAR).
+    Texture checker = makeCheckerTexture(512, 16);
+    generateMipmaps(checker);
+    material.albedo = std::make_shared<Texture>(std::move(checker));
+    material.sampler = {TextureFilter::kTrilinear, TextureWrap::kRepeat, TextureWrap::kRepeat};
     return singleObjectScene(name, makeUvSphere(kTexturedSegments, kTexturedRings), material,
                              shading);
   }

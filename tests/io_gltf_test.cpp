@@ -301,7 +301,8 @@ TEST_F(GltfFiles, BaseColorTextureIsDecodedAsSrgbWithItsSamplerAndVFlipped) {
   ASSERT_TRUE(material.albedo);
   EXPECT_TRUE(material.albedo->srgb);
   EXPECT_EQ(material.sampler.filter, TextureFilter::kNearest);
-  EXPECT_EQ(material.sampler.wrap, TextureWrap::kClamp);
+  EXPECT_EQ(material.sampler.wrap_s, TextureWrap::kClamp);
+  EXPECT_EQ(material.sampler.wrap_t, TextureWrap::kClamp);
   const std::vector<float2>& uvs = io::flattenedMesh(*model).uvs;
   ASSERT_EQ(uvs.size(), 3u);
   EXPECT_FLOAT_EQ(uvs[0].x, 0.25f);
@@ -313,23 +314,84 @@ TEST_F(GltfFiles, BaseColorTextureIsDecodedAsSrgbWithItsSamplerAndVFlipped) {
   EXPECT_TRUE(model->warnings.empty()) << allWarnings(*model);
 }
 
-TEST_F(GltfFiles, MirroredRepeatIsDrawnAsRepeatWithAWarningAndLinearIsBilinear) {
+// Each axis its own wrap mode, MIRRORED_REPEAT among them, with no warning; linear filtering
+// without a minification filter is trilinear (tessera's choice), with LINEAR bilinear.
+TEST_F(GltfFiles, WrapModesPerAxisMirroredRepeatAndTheFilter) {
   const std::vector<uint8_t> png = pngBytes(1, 1, {0xff808080});
-  GltfBuilder b;
-  const int p = b.positions(kTriangle);
-  const int uv = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, kFloat, "VEC2", 3);
-  Expected<Model> model = loadJson(b.json(
-      kOneNodeScene + "," + oneMesh(p, ",\"TEXCOORD_0\":" + std::to_string(uv), ",\"material\":0") +
-      ",\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}]"
-      ",\"textures\":[{\"source\":0,\"sampler\":0}]"
-      ",\"samplers\":[{\"magFilter\":9729,\"wrapS\":33648,\"wrapT\":33648}]"
-      ",\"images\":[{\"uri\":\"data:image/png;base64," +
-      base64(png) + "\"}]"));
+  struct Case {
+    const char* sampler;
+    TextureWrap s, t;
+    TextureFilter filter;
+  };
+  for (const Case& c :
+       {Case{"\"magFilter\":9729,\"wrapS\":33648,\"wrapT\":33071", TextureWrap::kMirroredRepeat,
+             TextureWrap::kClamp, TextureFilter::kTrilinear},
+        Case{"\"magFilter\":9729,\"minFilter\":9729,\"wrapT\":33648", TextureWrap::kRepeat,
+             TextureWrap::kMirroredRepeat, TextureFilter::kBilinear},
+        Case{"\"minFilter\":9984,\"wrapS\":33071", TextureWrap::kClamp, TextureWrap::kRepeat,
+             TextureFilter::kNearest}}) {
+    GltfBuilder b;
+    const int p = b.positions(kTriangle);
+    const int uv = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, kFloat, "VEC2", 3);
+    Expected<Model> model = loadJson(b.json(
+        kOneNodeScene + "," +
+        oneMesh(p, ",\"TEXCOORD_0\":" + std::to_string(uv), ",\"material\":0") +
+        ",\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}]"
+        ",\"textures\":[{\"source\":0,\"sampler\":0}]"
+        ",\"samplers\":[{" +
+        c.sampler + "}],\"images\":[{\"uri\":\"data:image/png;base64," + base64(png) + "\"}]"));
+    ASSERT_TRUE(model) << model.error().message;
+    const Sampler& sampler = model->materials[0].sampler;
+    EXPECT_EQ(sampler.wrap_s, c.s) << c.sampler;
+    EXPECT_EQ(sampler.wrap_t, c.t) << c.sampler;
+    EXPECT_EQ(sampler.filter, c.filter) << c.sampler;
+    EXPECT_TRUE(model->warnings.empty()) << allWarnings(*model);
+  }
+}
+
+// KHR_texture_transform on the baseColorTexture: offset, rotation, scale and texCoord read, the
+// extension required without a warning; a member that is not a finite number leaves the
+// transform out, with a warning naming the material.
+TEST_F(GltfFiles, TextureTransformIsReadAndANonFiniteOneIsLeftOutWithAWarning) {
+  const std::vector<uint8_t> png = pngBytes(1, 1, {0xff808080});
+  auto load = [&](const std::string& extension) {
+    GltfBuilder b;
+    const int p = b.positions(kTriangle);
+    const int uv = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, kFloat, "VEC2", 3);
+    return loadJson(
+        b.json(kOneNodeScene + "," +
+               oneMesh(p, ",\"TEXCOORD_0\":" + std::to_string(uv), ",\"material\":0") +
+               ",\"materials\":[{\"name\":\"moved\",\"pbrMetallicRoughness\":{\"baseColorTexture\":"
+               "{\"index\":0,\"extensions\":{\"KHR_texture_transform\":" +
+               extension +
+               "}}}}],\"textures\":[{\"source\":0}]"
+               ",\"extensionsUsed\":[\"KHR_texture_transform\"]"
+               ",\"extensionsRequired\":[\"KHR_texture_transform\"]"
+               ",\"images\":[{\"uri\":\"data:image/png;base64," +
+               base64(png) + "\"}]"));
+  };
+  Expected<Model> model =
+      load("{\"offset\":[0.5,-0.25],\"rotation\":0.75,\"scale\":[2,3],\"texCoord\":0}");
   ASSERT_TRUE(model) << model.error().message;
-  EXPECT_EQ(model->materials[0].sampler.wrap, TextureWrap::kRepeat);
-  EXPECT_EQ(model->materials[0].sampler.filter, TextureFilter::kBilinear);
-  EXPECT_TRUE(anyWarningContains(*model, "MIRRORED_REPEAT is drawn as REPEAT"))
-      << allWarnings(*model);
+  const TextureTransform& t = model->materials[0].sampler.transform;
+  EXPECT_EQ(t.offset.x, 0.5f);
+  EXPECT_EQ(t.offset.y, -0.25f);
+  EXPECT_EQ(t.rotation, 0.75f);
+  EXPECT_EQ(t.scale.x, 2.0f);
+  EXPECT_EQ(t.scale.y, 3.0f);
+  EXPECT_EQ(model->materials[0].sampler.texcoord, 0);
+  EXPECT_TRUE(model->warnings.empty()) << allWarnings(*model);
+  for (const char* bad : {"{\"offset\":[1e39,0]}", "{\"scale\":\"large\"}", "{\"rotation\":[1]}",
+                          "{\"offset\":[1]}"}) {
+    model = load(bad);
+    ASSERT_TRUE(model) << model.error().message;
+    EXPECT_TRUE(model->materials[0].albedo) << bad;
+    EXPECT_TRUE(model->materials[0].sampler.transform.identity()) << bad;
+    EXPECT_TRUE(anyWarningContains(*model,
+                                   "material 0 'moved' baseColorTexture: "
+                                   "KHR_texture_transform holds something other than"))
+        << bad << ": " << allWarnings(*model);
+  }
 }
 
 TEST_F(GltfFiles, ImageInAnExternalFileBeneathTheFolderIsLoaded) {

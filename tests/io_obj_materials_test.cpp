@@ -79,7 +79,8 @@ TEST_F(ObjMaterials, LoadsADiffuseTextureWithOptionsAndSpacesInItsName) {
   EXPECT_EQ(material.albedo->width, 2);
   EXPECT_EQ(material.albedo->texels[0], 0xff336699u);
   EXPECT_TRUE(material.albedo->srgb);
-  EXPECT_EQ(material.sampler.wrap, TextureWrap::kClamp);
+  EXPECT_EQ(material.sampler.wrap_s, TextureWrap::kClamp);
+  EXPECT_EQ(material.sampler.wrap_t, TextureWrap::kClamp);
   EXPECT_TRUE(model->warnings.empty());
 }
 

@@ -187,7 +187,7 @@ TEST(Shading, PerspectiveCorrectUvOnARecedingCheckerboard) {
   floor.indices = {0, 1, 2, 0, 2, 3};
   Object o = unlitObject(floor, CullMode::kBack);
   o.materials[0].albedo = texture;
-  o.materials[0].sampler = {TextureFilter::kNearest, TextureWrap::kClamp};
+  o.materials[0].sampler = {TextureFilter::kNearest, TextureWrap::kClamp, TextureWrap::kClamp};
   scene.objects.push_back(o);
   Frame f = renderScene(scene, kW, kH);
 
@@ -243,7 +243,8 @@ TEST(Shading, TrilinearFilteringAveragesAFineCheckerInTheDistance) {
     floor.indices = {0, 1, 2, 0, 2, 3};
     Object o = unlitObject(floor, CullMode::kBack);
     o.materials[0].albedo = t;
-    o.materials[0].sampler = {TextureFilter::kTrilinear, TextureWrap::kRepeat};
+    o.materials[0].sampler = {TextureFilter::kTrilinear, TextureWrap::kRepeat,
+                              TextureWrap::kRepeat};
     scene.objects.push_back(o);
     return renderScene(scene, kW, kH);
   };

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <tessera/scene/color.h>
@@ -136,19 +137,114 @@ TEST(Texture, NearestAndBilinearInLinearSpace) {
   t.width = 2;
   t.height = 1;
   t.texels = {0xff000000u, 0xffffffffu};  // black, white
-  Sampler nearest{TextureFilter::kNearest, TextureWrap::kClamp};
+  Sampler nearest{TextureFilter::kNearest, TextureWrap::kClamp, TextureWrap::kClamp};
   EXPECT_EQ(t.sample({0.25f, 0.5f}, nearest).x, 0.0f);
   EXPECT_EQ(t.sample({0.75f, 0.5f}, nearest).x, 1.0f);
-  Sampler bilinear{TextureFilter::kBilinear, TextureWrap::kClamp};
+  Sampler bilinear{TextureFilter::kBilinear, TextureWrap::kClamp, TextureWrap::kClamp};
   // Halfway between the texel centres: the average of the linear values, 0.5.
   EXPECT_NEAR(t.sample({0.5f, 0.5f}, bilinear).x, 0.5f, 1e-6f);
   // Clamp holds the edge texel; repeat wraps to the other side.
   EXPECT_EQ(t.sample({-3.0f, 0.5f}, nearest).x, 0.0f);
-  EXPECT_EQ(t.sample({-0.25f, 0.5f}, Sampler{TextureFilter::kNearest, TextureWrap::kRepeat}).x,
+  EXPECT_EQ(t.sample({-0.25f, 0.5f},
+                     Sampler{TextureFilter::kNearest, TextureWrap::kRepeat, TextureWrap::kRepeat})
+                .x,
             1.0f);
   // Non-finite coordinates do not crash.
   float4 v = t.sample({std::numeric_limits<float>::infinity(), 0.5f}, bilinear);
   EXPECT_TRUE(std::isfinite(v.x));
+}
+
+// OpenGL 4.6, table 8.20: MIRRORED_REPEAT reads texel (n - 1) - mirror((i mod 2n) - n), with
+// mirror(a) = a >= 0 ? a : -(1 + a); REPEAT i mod n; CLAMP_TO_EDGE clamps to [0, n - 1].
+TEST(Texture, WrapModesReadTheTexelsOpenGlSays) {
+  for (int n : {1, 3, 4, 7}) {
+    for (int i = -30; i <= 30; ++i) {
+      const int m = ((i % (2 * n)) + 2 * n) % (2 * n) - n;
+      const int mirror = m >= 0 ? m : -(1 + m);
+      EXPECT_EQ(wrapTexel(i, n, TextureWrap::kMirroredRepeat), (n - 1) - mirror) << i << " " << n;
+      EXPECT_EQ(wrapTexel(i, n, TextureWrap::kRepeat), ((i % n) + n) % n) << i << " " << n;
+      EXPECT_EQ(wrapTexel(i, n, TextureWrap::kClamp), std::clamp(i, 0, n - 1)) << i << " " << n;
+    }
+  }
+  // Near the int limits (texel positions of coordinates up to 65536 on 16384 texels).
+  EXPECT_EQ(wrapTexel(-(1 << 30), 3, TextureWrap::kMirroredRepeat),
+            wrapTexel(-(1 << 30) + 6 * 1000, 3, TextureWrap::kMirroredRepeat));
+}
+
+// A 4x2 texture, each texel its own red code; nearest sampling with S and T wrapped separately.
+TEST(Texture, SAndTWrapSeparatelyAndMirroredRepeatReflectsEachPeriod) {
+  Texture t;
+  t.width = 4;
+  t.height = 2;
+  t.srgb = false;
+  for (uint32_t i = 0; i < 8; ++i) t.texels.push_back(0xff000000u | (i * 10));
+  auto red = [&](float2 uv, TextureWrap s, TextureWrap w) {
+    Sampler sampler;
+    sampler.filter = TextureFilter::kNearest;
+    sampler.wrap_s = s;
+    sampler.wrap_t = w;
+    return static_cast<int>(std::lround(t.sample(uv, sampler).x * 255));
+  };
+  // Row 0 is the top (v in (0.5, 1)); u = 1.125 is texel 4: repeat reads 0, mirror 3, clamp 3.
+  EXPECT_EQ(red({1.125f, 0.75f}, TextureWrap::kRepeat, TextureWrap::kClamp), 0);
+  EXPECT_EQ(red({1.125f, 0.75f}, TextureWrap::kMirroredRepeat, TextureWrap::kClamp), 30);
+  EXPECT_EQ(red({1.375f, 0.75f}, TextureWrap::kMirroredRepeat, TextureWrap::kClamp), 20);
+  EXPECT_EQ(red({-0.125f, 0.75f}, TextureWrap::kMirroredRepeat, TextureWrap::kClamp), 0);
+  EXPECT_EQ(red({-0.375f, 0.75f}, TextureWrap::kMirroredRepeat, TextureWrap::kClamp), 10);
+  EXPECT_EQ(red({2.125f, 0.75f}, TextureWrap::kMirroredRepeat, TextureWrap::kClamp), 0);
+  // v = 1.25 is row -1 (above the top): T clamps to row 0, repeats to row 1, mirrors to row 0;
+  // v = -0.25 (row 2): clamp row 1, repeat row 0, mirror row 1. S is the same texel throughout.
+  EXPECT_EQ(red({0.375f, 1.25f}, TextureWrap::kRepeat, TextureWrap::kClamp), 10);
+  EXPECT_EQ(red({0.375f, 1.25f}, TextureWrap::kClamp, TextureWrap::kRepeat), 50);
+  EXPECT_EQ(red({0.375f, 1.25f}, TextureWrap::kClamp, TextureWrap::kMirroredRepeat), 10);
+  EXPECT_EQ(red({0.375f, -0.25f}, TextureWrap::kRepeat, TextureWrap::kClamp), 50);
+  EXPECT_EQ(red({0.375f, -0.25f}, TextureWrap::kClamp, TextureWrap::kRepeat), 10);
+  EXPECT_EQ(red({0.375f, -0.25f}, TextureWrap::kClamp, TextureWrap::kMirroredRepeat), 50);
+  // Bilinear at the seam of a mirrored axis blends a texel with itself: u = 1 reads texel 3 alone.
+  Sampler bilinear;
+  bilinear.filter = TextureFilter::kBilinear;
+  bilinear.wrap_s = TextureWrap::kMirroredRepeat;
+  bilinear.wrap_t = TextureWrap::kClamp;
+  EXPECT_NEAR(t.sample({1.0f, 0.75f}, bilinear).x, 30.0f / 255.0f, 1e-6f);
+}
+
+// KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv in glTF's coordinates (v down
+// from the top row); tessera's v is 1 - glTF's. Each case: a glTF uv, the transform, the texel
+// (column, row from the top) of a 4x4 texture it must land on.
+TEST(Texture, TransformMovesAKnownUvToTheTexelTheExtensionSays) {
+  Texture t;
+  t.width = t.height = 4;
+  t.srgb = false;
+  for (uint32_t i = 0; i < 16; ++i) t.texels.push_back(0xff000000u | (i * 15));
+  struct Case {
+    float2 uv;
+    TextureTransform transform;
+    int column, row;
+  };
+  const float quarter_turn = 1.5707963267948966f;
+  const Case cases[] = {
+      {{0.1f, 0.1f}, {{0.5f, 0.0f}, 0.0f, {1, 1}}, 2, 0},  // offset u: 0.6
+      {{0.1f, 0.1f}, {{0.0f, 0.5f}, 0.0f, {1, 1}}, 0, 2},  // offset v: 0.6 (down the image)
+      {{0.1f, 0.2f}, {{0.1f, 0.2f}, 0.0f, {2, 3}}, 1, 3},  // scale then offset: (0.3, 0.8)
+      // Rotation, counter-clockwise: (u, v) -> (cos u - sin v, sin u + cos v) = (-v, u) at a
+      // quarter turn; offset (1, 0) brings it back: (0.8, 0.1).
+      {{0.1f, 0.2f}, {{1.0f, 0.0f}, quarter_turn, {1, 1}}, 3, 0},
+      // All three: scale (2, 1) first, (0.3, 0.6) -> (0.6, 0.6); a quarter turn: (-0.6, 0.6);
+      // offset (0.75, 0.1): (0.15, 0.7).
+      {{0.3f, 0.6f}, {{0.75f, 0.1f}, quarter_turn, {2, 1}}, 0, 2},
+  };
+  Sampler nearest;
+  nearest.filter = TextureFilter::kNearest;
+  nearest.wrap_s = nearest.wrap_t = TextureWrap::kClamp;
+  for (const Case& c : cases) {
+    const float2 tessera_uv{c.uv.x, 1.0f - c.uv.y};
+    const float2 moved = c.transform.affine().apply(tessera_uv);
+    const int code = static_cast<int>(std::lround(t.sample(moved, nearest).x * 255));
+    EXPECT_EQ(code, (c.row * 4 + c.column) * 15)
+        << c.uv.x << "," << c.uv.y << " -> " << moved.x << "," << 1.0f - moved.y;
+  }
+  EXPECT_TRUE(TextureTransform{}.identity());
+  EXPECT_FALSE((TextureTransform{{0, 0}, std::nanf(""), {1, 1}}.finite()));
 }
 
 TEST(Camera, FrameBoundsSeesTheWholeModelWithNearAndFarAroundIt) {
@@ -183,7 +279,7 @@ TEST(Texture, MipChainAveragesInLinearLight) {
   // Half black, half white averages to linear 0.5: sRGB code 188, not 128.
   EXPECT_EQ(t.mips[1].texels[0] & 0xff, 188u);
   EXPECT_EQ(t.mips[1].texels[0] >> 24, 255u);
-  Sampler trilinear{TextureFilter::kTrilinear, TextureWrap::kRepeat};
+  Sampler trilinear{TextureFilter::kTrilinear, TextureWrap::kRepeat, TextureWrap::kRepeat};
   // Level of detail 0 is the bilinear sample of level 0; past the last level, its average.
   EXPECT_EQ(t.sampleLod({0.3f, 0.6f}, 0.0f, trilinear), t.sample({0.3f, 0.6f}, trilinear));
   EXPECT_NEAR(t.sampleLod({0.3f, 0.6f}, 9.0f, trilinear).x, 0.5f, 0.003f);

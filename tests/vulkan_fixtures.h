@@ -341,7 +341,7 @@ inline Scene texturedScene() {
   far_wall.transform.translation = {0.0f, 0.0f, -9.0f};
   far_wall.transform.rotation = quat::fromAxisAngle({1, 0, 0}, 1.3f);
   scene.objects.push_back(far_wall);
-  card.materials[0].sampler = {TextureFilter::kNearest, TextureWrap::kClamp};
+  card.materials[0].sampler = {TextureFilter::kNearest, TextureWrap::kClamp, TextureWrap::kClamp};
   card.transform.translation = {0.4f, 0.1f, -1.5f};
   card.transform.rotation = quat::fromAxisAngle({1, 0, 0}, 1.2f);
   scene.objects.push_back(card);

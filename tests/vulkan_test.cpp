@@ -62,6 +62,21 @@ TEST(VulkanCompute, MatchesCpuOnTexturedPlane) {
   expectComputeMatchesCpu("textured plane", texturedScene());
 }
 
+// Mirrored repeat, S and T wrapped differently, and KHR_texture_transform's offset, rotation
+// and scale (the trilinear wall's level of detail through them too).
+TEST(VulkanCompute, MatchesCpuOnMirroredAndTransformedTextures) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  Scene scene = texturedScene();
+  const TextureTransform moved{{0.3f, -0.2f}, 0.6f, {1.7f, 2.5f}};
+  for (Object& o : scene.objects) {
+    Sampler& s = o.materials[0].sampler;
+    s.wrap_s = TextureWrap::kMirroredRepeat;
+    s.wrap_t = s.filter == TextureFilter::kNearest ? TextureWrap::kClamp : TextureWrap::kRepeat;
+    if (s.filter != TextureFilter::kBilinear) s.transform = moved;
+  }
+  expectComputeMatchesCpu("mirrored and transformed textures", scene);
+}
+
 TEST(VulkanCompute, NormalAovMatchesCpu) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   const Scene scene = sphereScene(32, 16, Shading::kPhong);

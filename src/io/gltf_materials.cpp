@@ -73,40 +73,103 @@ Material MaterialTable::buildMaterial(size_t index) {
       return material;
     }
     material.albedo = image(static_cast<size_t>(texture.source), dropped);
-    if (texture.sampler >= 0 && static_cast<size_t>(texture.sampler) < gltf_.samplers.size())
-      material.sampler = sampler(static_cast<size_t>(texture.sampler));
-    else if (texture.sampler >= 0)
-      warn_("texture " + std::to_string(info.index) + " refers to sampler " +
-           std::to_string(texture.sampler) + ", which does not exist; the default is used");
+    material.sampler = readTextureInfoSampler(info, label + " baseColorTexture");
   }
   return material;
+}
+
+Sampler MaterialTable::textureInfoSampler(int texture_index, int tex_coord,
+                                          const tinygltf::ExtensionMap& extensions,
+                                          const std::string& label) {
+  Sampler sampler;
+  if (texture_index >= 0 && static_cast<size_t>(texture_index) < gltf_.textures.size()) {
+    const int index = gltf_.textures[static_cast<size_t>(texture_index)].sampler;
+    if (index >= 0 && static_cast<size_t>(index) < gltf_.samplers.size())
+      sampler = this->sampler(static_cast<size_t>(index));
+    else if (index >= 0)
+      warn_("texture " + std::to_string(texture_index) + " refers to sampler " +
+            std::to_string(index) + ", which does not exist; the default is used");
+  }
+  sampler.texcoord = tex_coord;
+  const auto found = extensions.find("KHR_texture_transform");
+  if (found != extensions.end()) readTextureTransform(found->second, label, sampler);
+  if (sampler.texcoord < 0) {
+    warn_(label + ": texCoord " + std::to_string(sampler.texcoord) +
+          " is not a set; TEXCOORD_0 is used");
+    sampler.texcoord = 0;
+  }
+  return sampler;
+}
+
+void MaterialTable::readTextureTransform(const tinygltf::Value& extension, const std::string& label,
+                                         Sampler& sampler) {
+  const std::string where = label + ": KHR_texture_transform";
+  if (!extension.IsObject()) {
+    warn_(where + " is not an object; the texture is drawn without it");
+    return;
+  }
+  bool sound = true;
+  // Numbers as floats; a missing member keeps its default, anything else makes it unsound.
+  auto number = [&](const tinygltf::Value& value, float& out) {
+    if (!value.IsNumber()) {
+      sound = false;
+      return;
+    }
+    out = static_cast<float>(value.GetNumberAsDouble());
+  };
+  auto pair = [&](const char* name, float2& out) {
+    if (!extension.Has(name)) return;
+    const tinygltf::Value& value = extension.Get(name);
+    if (!value.IsArray() || value.ArrayLen() != 2) {
+      sound = false;
+      return;
+    }
+    number(value.Get(0), out.x);
+    number(value.Get(1), out.y);
+  };
+  TextureTransform transform;
+  pair("offset", transform.offset);
+  pair("scale", transform.scale);
+  if (extension.Has("rotation")) number(extension.Get("rotation"), transform.rotation);
+  if (!sound || !transform.finite()) {
+    warn_(where +
+          " holds something other than finite numbers (offset and scale: two each, "
+          "rotation: one); the texture is drawn without the transform");
+  } else {
+    sampler.transform = transform;
+  }
+  if (extension.Has("texCoord")) {
+    const tinygltf::Value& value = extension.Get("texCoord");
+    if (value.IsNumber() && value.GetNumberAsDouble() >= 0.0 && value.GetNumberAsDouble() < 65536.0)
+      sampler.texcoord = value.GetNumberAsInt();
+    else
+      warn_(where + ": texCoord is not a set number; the textureInfo's is used");
+  }
 }
 
 Sampler MaterialTable::sampler(size_t index) {
   const tinygltf::Sampler& source = gltf_.samplers[index];
   Sampler sampler;
-  // tessera samples without mipmaps: the magnification filter says nearest or linear; without
-  // one, the minification filter's base does.
-  int filter = source.magFilter;
-  if (filter < 0 && source.minFilter >= 0)
-    filter = (source.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ||
-              source.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
-              source.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR)
-                 ? TINYGLTF_TEXTURE_FILTER_NEAREST
-                 : TINYGLTF_TEXTURE_FILTER_LINEAR;
-  sampler.filter = filter == TINYGLTF_TEXTURE_FILTER_NEAREST ? TextureFilter::kNearest
-                                                             : TextureFilter::kBilinear;
-  auto wrap = [&](int mode) {
+  // One filter for magnification and minification: the magnification filter says nearest or
+  // linear (without one, the minification filter's base does); linear is trilinear where
+  // minification uses mipmaps or is left to tessera.
+  const int mag = source.magFilter, min = source.minFilter;
+  const bool min_nearest = min == TINYGLTF_TEXTURE_FILTER_NEAREST ||
+                           min == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+                           min == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
+  const bool mipmapped =
+      min < 0 || (min != TINYGLTF_TEXTURE_FILTER_NEAREST && min != TINYGLTF_TEXTURE_FILTER_LINEAR);
+  if (mag >= 0 ? mag == TINYGLTF_TEXTURE_FILTER_NEAREST : min_nearest)
+    sampler.filter = TextureFilter::kNearest;
+  else
+    sampler.filter = mipmapped ? TextureFilter::kTrilinear : TextureFilter::kBilinear;
+  auto wrap = [](int mode) {
     if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return TextureWrap::kClamp;
-    if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT)
-      warn_("sampler " + std::to_string(index) + ": MIRRORED_REPEAT is drawn as REPEAT");
+    if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return TextureWrap::kMirroredRepeat;
     return TextureWrap::kRepeat;
   };
-  const TextureWrap s = wrap(source.wrapS), t = wrap(source.wrapT);
-  if (s != t)
-    warn_("sampler " + std::to_string(index) +
-         ": different wrap modes along s and t; tessera uses one, s's");
-  sampler.wrap = s;
+  sampler.wrap_s = wrap(source.wrapS);
+  sampler.wrap_t = wrap(source.wrapT);
   return sampler;
 }
 

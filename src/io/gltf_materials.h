@@ -19,7 +19,8 @@
 
 namespace tinygltf {
 class Model;
-}
+class Value;
+}  // namespace tinygltf
 
 namespace tessera::io::gltf {
 
@@ -39,7 +40,21 @@ class MaterialTable {
   // when its texture is over the budget.
   Expected<uint16_t> materialFor(int gltf_material, std::vector<Material>& materials);
 
+  // The sampler a textureInfo (baseColorTexture, normalTexture, ...: anything with index,
+  // texCoord and extensions) reads its texture through: the texture's glTF sampler, the texCoord
+  // and KHR_texture_transform (a warning, and the transform left out, when it holds other than
+  // finite numbers). `label` names the map in warnings ("material 3 'metal' normalTexture").
+  template <typename TextureInfo>
+  Sampler readTextureInfoSampler(const TextureInfo& info, const std::string& label) {
+    return textureInfoSampler(info.index, info.texCoord, info.extensions, label);
+  }
+
  private:
+  Sampler textureInfoSampler(int texture_index, int tex_coord,
+                             const std::map<std::string, tinygltf::Value>& extensions,
+                             const std::string& label);
+  void readTextureTransform(const tinygltf::Value& extension, const std::string& label,
+                            Sampler& sampler);
   Material buildMaterial(size_t index);
   Sampler sampler(size_t index);
   std::shared_ptr<const Texture> image(size_t index, const std::string& dropped);

@@ -138,12 +138,9 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   if (!fatal) return fatal;
   Expected<uint16_t> material = materials_.materialFor(primitive.material, model_.materials);
   if (!material) return material.error();
-  int uv_set = 0;
-  if (primitive.material >= 0 && static_cast<size_t>(primitive.material) < gltf_.materials.size()) {
-    const tinygltf::TextureInfo& info = gltf_.materials[static_cast<size_t>(primitive.material)]
-                                            .pbrMetallicRoughness.baseColorTexture;
-    if (info.index >= 0) uv_set = std::max(info.texCoord, 0);
-  }
+  // The mesh holds one set of texture coordinates: the base colour texture's.
+  const Material& drawn_with = model_.materials[*material];
+  const int uv_set = drawn_with.albedo ? drawn_with.sampler.texcoord : 0;
   const std::optional<ElementReader> uvs = optionalAttribute(
       primitive, "TEXCOORD_" + std::to_string(uv_set), where, vertex_count, {2}, {}, fatal);
   if (!fatal) return fatal;

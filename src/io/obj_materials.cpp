@@ -167,7 +167,8 @@ Material MaterialBuilder::build(const tinyobj::material_t& source, bool has_kd) 
     const tinyobj::texture_option_t& options = source.diffuse_texopt;
     const bool srgb = !equalsIgnoreCase(options.colorspace, "linear");
     material.albedo = texture(source.diffuse_texname, srgb, source.name);
-    material.sampler.wrap = options.clamp ? TextureWrap::kClamp : TextureWrap::kRepeat;
+    material.sampler.wrap_s = material.sampler.wrap_t =
+        options.clamp ? TextureWrap::kClamp : TextureWrap::kRepeat;
     bool moved = false;
     for (int i = 0; i < 3; ++i)
       moved |= options.origin_offset[i] != 0.0f || options.scale[i] != 1.0f;

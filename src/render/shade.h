@@ -33,6 +33,29 @@ struct Barycentrics {
 // Perspective-correct barycentrics at window point (x, y) from the 1/w-weighted planes.
 Barycentrics barycentricsAt(const ShadeTriangle& t, float x, float y);
 
+// Whether reading `texture` through `sampler` takes a level of detail: trilinear filtering of a
+// texture with mip levels.
+inline bool needsLod(const Texture& texture, const Sampler& sampler) {
+  return sampler.filter == TextureFilter::kTrilinear && !texture.mips.empty();
+}
+
+// The coefficients of lodLog2's series: 2 / ln 2 times 1, 1/3, 1/5, 1/7.
+inline constexpr float kLodLog2Series[4] = {2.8853900817779268f, 0.9617966939259756f,
+                                            0.5770780163555854f, 0.4121985831111324f};
+// log2 x for the level of detail, within 2e-5 for finite x > 0 (and 128 for +inf); one definition
+// that the eight-lane path repeats operation for operation (std::log2 has none in vector form).
+float lodLog2(float x);
+// The level of detail of a texture of width x height texels where the texture coordinates move
+// from uv to uv_right and uv_down at the next pixel centres: log2 of the longer screen axis's
+// footprint in texels (the OpenGL specification's scale factor rho, 8.14.1).
+float textureLod(float2 uv, float2 uv_right, float2 uv_down, float width, float height);
+
+// `texture` read through `sampler` at uv, the texture coordinates at this pixel before the
+// sampler's transform; uv_right and uv_down (the same at the next pixel centres) give the level of
+// detail where needsLod. Every map of a material is read through this.
+float4 sampleTexture(const Texture& texture, const Sampler& sampler, float2 uv, float2 uv_right,
+                     float2 uv_down);
+
 // The albedo texture of `t` at window point (x, y), with barycentrics b there. Trilinear
 // filtering takes its level of detail from the UVs at the next pixel centres right and down.
 float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Barycentrics& b,

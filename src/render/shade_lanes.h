@@ -1,9 +1,9 @@
 // Shading of eight lanes at a time, for the shading kernel (shade_kernel.h) and the resolve of
 // multisampled pixels (msaa_kernel.h); written once against eight-lane types (simd_lanes.h) and
 // compiled per instruction set (kernels_<isa>.cpp). Each lane does exactly the float operations, in
-// exactly the order, that shading one pixel takes, so every variant gives the same bits. Bilinear
-// texture samples are taken eight lanes at a time (sampleBilinear8); trilinear ones, and lanes
-// outside its common case, lane by lane through the one sampleAlbedo.
+// exactly the order, that shading one pixel takes, so every variant gives the same bits. Texture
+// samples are taken eight lanes at a time (texture_lanes.h); nearest ones, and lanes outside its
+// common case, lane by lane through the one sampleAlbedo.
 #pragma once
 
 #include <algorithm>
@@ -13,6 +13,7 @@
 
 #include "render/shade.h"
 #include "render/simd_lanes.h"
+#include "render/texture_lanes.h"
 
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
@@ -52,8 +53,9 @@ TESSERA_LANES_INLINE F32x8 localFactor8(const ShadeLight& light, const Vec3x8& n
   const Vec3x8 u{l.x * inv_d, l.y * inv_d, l.z * inv_d};
   const F32x8 cos_theta = (n.x * u.x + n.y * u.y) + n.z * u.z;
   const F32x8 window = clamp01(splat(1.0f) - d2 * d2 * splat(light.inv_range4));
-  const F32x8 cd = splat(0.0f) - ((splat(light.direction.x) * u.x + splat(light.direction.y) * u.y) +
-                                  splat(light.direction.z) * u.z);
+  const F32x8 cd =
+      splat(0.0f) - ((splat(light.direction.x) * u.x + splat(light.direction.y) * u.y) +
+                     splat(light.direction.z) * u.z);
   const F32x8 t = clamp01(cd * splat(light.spot_scale) + splat(light.spot_offset));
   return cos_theta * ((window * (t * t)) / d2);
 }
@@ -119,95 +121,48 @@ TESSERA_LANES_INLINE I32x16 encodeSrgb8x16(F32x16 linear) {
 }
 #endif
 
-// One channel of eight texels (bits `shift`..`shift + 7`) in linear light, as decodeTexel.
-TESSERA_LANES_INLINE F32x8 decodeChannel(I32x8 texels, int shift, bool srgb, const float* decode) {
-  const I32x8 code = shiftRight(texels, shift) & splat(int32_t{0xff});
-  return srgb ? gather(decode, code) : toFloat(code) / splat(255.0f);
-}
-
-// Texture::sample's bilinear filter (texture.cpp: sampleLevel) for the albedo of the lanes of
-// `mask`, eight lanes at a time with the same operations, for the common case: bilinear filtering
-// (or trilinear without mip levels), coordinates below 65536 (where sanitize is the identity) and
-// texel positions within one texture width or height of the texture (what repeat wraps without a
-// division). False, with nothing computed, when a lane falls outside that: the caller samples lane
+// The albedo of the lanes of `mask` at barycentrics b0, b1, b2 through sampleTexture8; `footprint`
+// gives the barycentrics at the next pixel centres right and down (false: it cannot, and trilinear
+// filtering is left to the caller). False, with nothing computed, when the caller must sample lane
 // by lane.
-TESSERA_LANES_INLINE bool sampleBilinear8(const ShadeTriangle& t, const ShadeExtras& e, I32x8 mask,
-                                          F32x8 b0, F32x8 b1, F32x8 b2, Vec3x8& albedo) {
+template <typename Footprint>
+TESSERA_LANES_INLINE bool sampleAlbedo8(const ShadeTriangle& t, const ShadeExtras& e, I32x8 mask,
+                                        F32x8 b0, F32x8 b1, F32x8 b2, Footprint footprint,
+                                        Vec3x8& albedo) {
   const Material& m = *t.material;
   const Texture& texture = *m.albedo;
-  const bool bilinear = m.sampler.filter == TextureFilter::kBilinear ||
-                        (m.sampler.filter == TextureFilter::kTrilinear && texture.mips.empty());
-  // Up to 16384 texels a side (what the image loader accepts), texel positions (below 65536
-  // times the size) and indices stay within int32.
-  constexpr int kMaxSide = 16384;
-  if (!bilinear || texture.width <= 0 || texture.height <= 0 || texture.width > kMaxSide ||
-      texture.height > kMaxSide)
-    return false;
+  if (!texture8Applies(texture, m.sampler)) return false;
   // uvAt: e.uv[0] * b0 + e.uv[1] * b1 + e.uv[2] * b2.
-  const F32x8 u = splat(e.uv[0].x) * b0 + splat(e.uv[1].x) * b1 + splat(e.uv[2].x) * b2;
-  const F32x8 v = splat(e.uv[0].y) * b0 + splat(e.uv[1].y) * b1 + splat(e.uv[2].y) * b2;
-  const F32x8 limit = splat(65536.0f), low = splat(-65536.0f);
-  if (any(mask & ~(lessThan(u, limit) & lessThan(low, u) & lessThan(v, limit) & lessThan(low, v))))
-    return false;
-  const int width = texture.width, height = texture.height;
-  const F32x8 sx = u * splat(static_cast<float>(width)) - splat(0.5f);
-  const F32x8 sy = (splat(1.0f) - v) * splat(static_cast<float>(height)) - splat(0.5f);
-  const F32x8 x0f = floorLanes(sx), y0f = floorLanes(sy);
-  const F32x8 tx = sx - x0f, ty = sy - y0f;
-  // Uncovered lanes may hold anything: they read texel 0.
-  const I32x8 x0 = select(mask, truncate(x0f), splat(int32_t{0}));
-  const I32x8 y0 = select(mask, truncate(y0f), splat(int32_t{0}));
-  const I32x8 w = splat(width), h = splat(height), one = splat(int32_t{1});
-  I32x8 xa, xb, ya, yb;
-  if (m.sampler.wrap == TextureWrap::kClamp) {
-    auto clampTo = [](I32x8 i, I32x8 size) {
-      const I32x8 zero = splat(int32_t{0}), last = size - splat(int32_t{1});
-      return select(lessThan(i, zero), zero, select(lessThan(last, i), last, i));
-    };
-    xa = clampTo(x0, w), xb = clampTo(x0 + one, w);
-    ya = clampTo(y0, h), yb = clampTo(y0 + one, h);
-  } else {
-    // Repeat, for i in [-size, 2 * size): one add or subtract of the size.
-    if (any(lessThan(x0, -w) | lessThan(w + w - one, x0 + one) | lessThan(y0, -h) |
-            lessThan(h + h - one, y0 + one)))
-      return false;
-    auto wrap = [](I32x8 i, I32x8 size) {
-      return select(lessThan(i, splat(int32_t{0})), i + size,
-                    select(lessThan(i, size), i, i - size));
-    };
-    xa = wrap(x0, w), xb = wrap(x0 + one, w);
-    ya = wrap(y0, h), yb = wrap(y0 + one, h);
+  auto uvAt8 = [&](F32x8 c0, F32x8 c1, F32x8 c2) {
+    return Uv8{splat(e.uv[0].x) * c0 + splat(e.uv[1].x) * c1 + splat(e.uv[2].x) * c2,
+               splat(e.uv[0].y) * c0 + splat(e.uv[1].y) * c1 + splat(e.uv[2].y) * c2};
+  };
+  const Uv8 uv = uvAt8(b0, b1, b2);
+  Uv8 right = uv, down = uv;
+  if (needsLod(texture, m.sampler)) {
+    Vec3x8 br, bd;
+    if (!footprint(br, bd)) return false;
+    right = uvAt8(br.x, br.y, br.z);
+    down = uvAt8(bd.x, bd.y, bd.z);
   }
-  const uint32_t* texels = texture.texels.data();
-  const I32x8 c00 = gatherWords(texels, ya * w + xa), c10 = gatherWords(texels, ya * w + xb);
-  const I32x8 c01 = gatherWords(texels, yb * w + xa), c11 = gatherWords(texels, yb * w + xb);
-  const float* decode = srgbDecodeTable();
-  F32x8 channel[3];
-  for (int k = 0; k < 3; ++k) {
-    // lerp(a, b, t) = a + (b - a) * t: across, then down.
-    const F32x8 t00 = decodeChannel(c00, 8 * k, texture.srgb, decode);
-    const F32x8 t10 = decodeChannel(c10, 8 * k, texture.srgb, decode);
-    const F32x8 t01 = decodeChannel(c01, 8 * k, texture.srgb, decode);
-    const F32x8 t11 = decodeChannel(c11, 8 * k, texture.srgb, decode);
-    const F32x8 top = t00 + (t10 - t00) * tx;
-    const F32x8 bottom = t01 + (t11 - t01) * tx;
-    channel[k] = top + (bottom - top) * ty;
-  }
-  albedo = {channel[0], channel[1], channel[2]};
+  F32x8 out[4];
+  if (!sampleTexture8(texture, m.sampler, mask, uv, right, down, 3, out)) return false;
+  albedo = {out[0], out[1], out[2]};
   return true;
 }
 
 // Shades the lanes of `mask` from triangle t at barycentrics b0, b1, b2, into `color` and, when
-// asked, `normal`; the other lanes keep what they hold. Lanes the eight-lane bilinear filter does
-// not take get their albedo from albedo_lane(l, Barycentrics) one at a time.
-template <typename AlbedoLane>
+// asked, `normal`; the other lanes keep what they hold. When the eight-lane texture filter does not
+// take the lanes, they get their albedo from albedo_lane(l, Barycentrics) one at a time.
+template <typename AlbedoLane, typename Footprint>
 TESSERA_LANES_INLINE void shadeLanesAt(const ShadeTriangle& t, const ShadeExtras& e,
-                                       const LightRig& lights, bool want_normals, F32x8 b0, F32x8 b1,
-                                       F32x8 b2, I32x8 mask, Vec3x8& color, Vec3x8& normal,
-                                       AlbedoLane albedo_lane) {
+                                       const LightRig& lights, bool want_normals, F32x8 b0,
+                                       F32x8 b1, F32x8 b2, I32x8 mask, Vec3x8& color,
+                                       Vec3x8& normal, AlbedoLane albedo_lane,
+                                       Footprint footprint) {
   Vec3x8 c = interpolate(t.color, b0, b1, b2);
   Vec3x8 albedo;
-  if (t.has_uv && sampleBilinear8(t, e, mask, b0, b1, b2, albedo)) {
+  if (t.has_uv && sampleAlbedo8(t, e, mask, b0, b1, b2, footprint, albedo)) {
     c = {c.x * albedo.x, c.y * albedo.y, c.z * albedo.z};
   } else if (t.has_uv) {
     for (int l = 0; l < 8; ++l) {
@@ -241,15 +196,26 @@ TESSERA_LANES_INLINE void shadeLanesAt(const ShadeTriangle& t, const ShadeExtras
 TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const ShadeExtras& e,
                                      const LightRig& lights, bool want_normals, F32x8 px, float py,
                                      I32x8 mask, Vec3x8& color, Vec3x8& normal) {
-  // Barycentrics exactly as barycentricsAt.
-  const F32x8 dx = px - splat(t.x0);
-  const float dy = py - t.y0;
-  const F32x8 inv_s = splat(1.0f) / (splat(t.inv_w0) + splat(t.sdx) * dx + splat(t.sdy * dy));
-  const F32x8 b1 = (splat(t.p1dx) * dx + splat(t.p1dy * dy)) * inv_s;
-  const F32x8 b2 = (splat(t.p2dx) * dx + splat(t.p2dy * dy)) * inv_s;
-  const F32x8 b0 = splat(1.0f) - b1 - b2;
-  shadeLanesAt(t, e, lights, want_normals, b0, b1, b2, mask, color, normal,
-               [&](int l, const Barycentrics& b) { return sampleAlbedo(t, e, b, lane(px, l), py); });
+  // Barycentrics exactly as barycentricsAt, at (px, py) and, for a level of detail, at the next
+  // pixel centres right and down.
+  auto barycentrics = [&](F32x8 x, float y, Vec3x8& b) {
+    const F32x8 dx = x - splat(t.x0);
+    const float dy = y - t.y0;
+    const F32x8 inv_s = splat(1.0f) / (splat(t.inv_w0) + splat(t.sdx) * dx + splat(t.sdy * dy));
+    b.y = (splat(t.p1dx) * dx + splat(t.p1dy * dy)) * inv_s;
+    b.z = (splat(t.p2dx) * dx + splat(t.p2dy * dy)) * inv_s;
+    b.x = splat(1.0f) - b.y - b.z;
+  };
+  Vec3x8 b;
+  barycentrics(px, py, b);
+  shadeLanesAt(
+      t, e, lights, want_normals, b.x, b.y, b.z, mask, color, normal,
+      [&](int l, const Barycentrics& at) { return sampleAlbedo(t, e, at, lane(px, l), py); },
+      [&](Vec3x8& right, Vec3x8& down) {
+        barycentrics(px + splat(1.0f), py, right);
+        barycentrics(px, py + 1.0f, down);
+        return true;
+      });
 }
 
 // The float fields from x0 to color[2], in order: what an untextured flat, Gouraud or unlit pixel

@@ -14,12 +14,6 @@ struct LevelView {
   const uint32_t* texels;
 };
 
-int wrapCoord(int i, int size, TextureWrap wrap) {
-  if (wrap == TextureWrap::kClamp) return i < 0 ? 0 : (i >= size ? size - 1 : i);
-  int m = i % size;
-  return m < 0 ? m + size : m;
-}
-
 // Texels i and i + 1 along an axis, wrapped; the common case (both inside) takes no division.
 void wrapPair(int i, int size, TextureWrap wrap, int& first, int& second) {
   if (i >= 0 && i + 1 < size) {
@@ -27,8 +21,8 @@ void wrapPair(int i, int size, TextureWrap wrap, int& first, int& second) {
     second = i + 1;
     return;
   }
-  first = wrapCoord(i, size, wrap);
-  second = wrapCoord(i + 1, size, wrap);
+  first = wrapTexel(i, size, wrap);
+  second = wrapTexel(i + 1, size, wrap);
 }
 
 inline __attribute__((always_inline)) float4 decodeTexel(uint32_t c, bool srgb,
@@ -47,7 +41,7 @@ float sanitize(float v) {
 }
 
 float4 sampleLevel(const LevelView& level, bool srgb, float2 uv, TextureFilter filter,
-                   TextureWrap wrap) {
+                   TextureWrap wrap_s, TextureWrap wrap_t) {
   const float* decode = srgbDecodeTable();
   // Texel space: x right, y down from the top row (v = 1 is the top edge).
   const float fx = sanitize(uv.x) * level.width;
@@ -56,8 +50,8 @@ float4 sampleLevel(const LevelView& level, bool srgb, float2 uv, TextureFilter f
     return decodeTexel(level.texels[static_cast<size_t>(y) * level.width + x], srgb, decode);
   };
   if (filter == TextureFilter::kNearest) {
-    return texel(wrapCoord(static_cast<int>(std::floor(fx)), level.width, wrap),
-                 wrapCoord(static_cast<int>(std::floor(fy)), level.height, wrap));
+    return texel(wrapTexel(static_cast<int>(std::floor(fx)), level.width, wrap_s),
+                 wrapTexel(static_cast<int>(std::floor(fy)), level.height, wrap_t));
   }
   // Bilinear between the four nearest texel centres, in linear space.
   const float sx = fx - 0.5f, sy = fy - 0.5f;
@@ -65,8 +59,8 @@ float4 sampleLevel(const LevelView& level, bool srgb, float2 uv, TextureFilter f
   const float tx = sx - x0f, ty = sy - y0f;
   const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
   int xa, xb, ya, yb;
-  wrapPair(x0, level.width, wrap, xa, xb);
-  wrapPair(y0, level.height, wrap, ya, yb);
+  wrapPair(x0, level.width, wrap_s, xa, xb);
+  wrapPair(y0, level.height, wrap_t, ya, yb);
   const float4 top = lerp(texel(xa, ya), texel(xb, ya), tx);
   const float4 bottom = lerp(texel(xa, yb), texel(xb, yb), tx);
   return lerp(top, bottom, ty);
@@ -80,11 +74,46 @@ LevelView levelView(const Texture& t, int level) {
 
 }  // namespace
 
+int wrapTexel(int i, int size, TextureWrap wrap) {
+  if (wrap == TextureWrap::kClamp) return i < 0 ? 0 : (i >= size ? size - 1 : i);
+  if (wrap == TextureWrap::kRepeat) {
+    const int m = i % size;
+    return m < 0 ? m + size : m;
+  }
+  // Mirrored: (size - 1) - mirror((i mod 2 size) - size), which is m below size and
+  // 2 size - 1 - m from there.
+  const int period = 2 * size;
+  int m = i % period;
+  if (m < 0) m += period;
+  return m < size ? m : period - 1 - m;
+}
+
+bool TextureTransform::finite() const {
+  return std::isfinite(offset.x) && std::isfinite(offset.y) && std::isfinite(rotation) &&
+         std::isfinite(scale.x) && std::isfinite(scale.y);
+}
+
+UvAffine TextureTransform::affine() const {
+  // The extension's matrix T(offset) R(rotation) S(scale), whose GLSL mat3s are column-major:
+  // rows (c sx, -s sy, ox) and (s sx, c sy, oy); taken to v' = 1 - v on both sides.
+  const double c = rotation == 0.0f ? 1.0 : std::cos(static_cast<double>(rotation));
+  const double s = rotation == 0.0f ? 0.0 : std::sin(static_cast<double>(rotation));
+  const double sx = scale.x, sy = scale.y, ox = offset.x, oy = offset.y;
+  UvAffine m;
+  m.m00 = static_cast<float>(c * sx);
+  m.m01 = static_cast<float>(s * sy);
+  m.m02 = static_cast<float>(ox - s * sy);
+  m.m10 = static_cast<float>(-s * sx);
+  m.m11 = static_cast<float>(c * sy);
+  m.m12 = static_cast<float>(1.0 - c * sy - oy);
+  return m;
+}
+
 float4 Texture::sample(float2 uv, const Sampler& sampler) const {
   if (width <= 0 || height <= 0) return {1, 1, 1, 1};
   const TextureFilter filter = sampler.filter == TextureFilter::kNearest ? TextureFilter::kNearest
                                                                          : TextureFilter::kBilinear;
-  return sampleLevel(levelView(*this, 0), srgb, uv, filter, sampler.wrap);
+  return sampleLevel(levelView(*this, 0), srgb, uv, filter, sampler.wrap_s, sampler.wrap_t);
 }
 
 float4 Texture::sampleLod(float2 uv, float lod, const Sampler& sampler) const {
@@ -94,15 +123,16 @@ float4 Texture::sampleLod(float2 uv, float lod, const Sampler& sampler) const {
   if (lod > static_cast<float>(last)) lod = static_cast<float>(last);
   if (sampler.filter != TextureFilter::kTrilinear) {
     const int level = static_cast<int>(lod + 0.5f);
-    return sampleLevel(levelView(*this, level), srgb, uv, sampler.filter, sampler.wrap);
+    return sampleLevel(levelView(*this, level), srgb, uv, sampler.filter, sampler.wrap_s,
+                       sampler.wrap_t);
   }
   const int lower = static_cast<int>(lod);
   const float blend = lod - static_cast<float>(lower);
-  const float4 a =
-      sampleLevel(levelView(*this, lower), srgb, uv, TextureFilter::kBilinear, sampler.wrap);
+  const float4 a = sampleLevel(levelView(*this, lower), srgb, uv, TextureFilter::kBilinear,
+                               sampler.wrap_s, sampler.wrap_t);
   if (blend == 0.0f || lower >= last) return a;
-  const float4 b =
-      sampleLevel(levelView(*this, lower + 1), srgb, uv, TextureFilter::kBilinear, sampler.wrap);
+  const float4 b = sampleLevel(levelView(*this, lower + 1), srgb, uv, TextureFilter::kBilinear,
+                               sampler.wrap_s, sampler.wrap_t);
   return lerp(a, b, blend);
 }
 

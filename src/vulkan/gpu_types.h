@@ -55,8 +55,12 @@ constexpr uint32_t kObjectHasTriangleMaterials = 8u;
 constexpr uint32_t kTexturePresent = 1u;
 constexpr uint32_t kTextureSrgb = 2u;
 constexpr uint32_t kTextureNearest = 4u;
-constexpr uint32_t kTextureClamp = 8u;
+constexpr uint32_t kTextureClampS = 8u;
 constexpr uint32_t kTextureTrilinear = 16u;  // and the texture has mip levels
+constexpr uint32_t kTextureClampT = 32u;
+constexpr uint32_t kTextureMirrorS = 64u;  // MIRRORED_REPEAT along s
+constexpr uint32_t kTextureMirrorT = 128u;
+constexpr uint32_t kTextureTransformed = 512u;  // uv_transform applies (Sampler::transform)
 
 // A texture in the texel buffer: a header (level count, then offset, width and height of each
 // level, offsets in words from the start of the buffer), then the levels' texels.
@@ -118,8 +122,9 @@ struct GpuMaterial {
   uint32_t texel_offset;  // the texture's header
   int32_t texture_width, texture_height;
   uint32_t texture_flags;
+  float uv_transform[2][4];  // rows of UvAffine (m00 m01 m02, m10 m11 m12), each padded
 };
-static_assert(sizeof(GpuMaterial) == 32);
+static_assert(sizeof(GpuMaterial) == 64);
 
 struct GpuVertex {
   float position[3];

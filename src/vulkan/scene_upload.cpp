@@ -85,6 +85,11 @@ bool levelIsWhole(int width, int height, const std::vector<uint32_t>& texels) {
   return width > 0 && height > 0 && texels.size() >= static_cast<size_t>(width) * height;
 }
 
+uint32_t wrapFlags(TextureWrap wrap, uint32_t clamp, uint32_t mirror) {
+  if (wrap == TextureWrap::kClamp) return clamp;
+  return wrap == TextureWrap::kMirroredRepeat ? mirror : 0u;
+}
+
 // Appends the texture (header, then every level) once per frame; returns its header's offset.
 uint32_t textureOffset(const Texture& texture, PackedScene& out) {
   auto found = out.texture_offsets.find(&texture);
@@ -184,7 +189,15 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
         if (material.sampler.filter == TextureFilter::kNearest) m.texture_flags |= kTextureNearest;
         if (material.sampler.filter == TextureFilter::kTrilinear && !texture->mips.empty())
           m.texture_flags |= kTextureTrilinear;
-        if (material.sampler.wrap == TextureWrap::kClamp) m.texture_flags |= kTextureClamp;
+        m.texture_flags |= wrapFlags(material.sampler.wrap_s, kTextureClampS, kTextureMirrorS) |
+                           wrapFlags(material.sampler.wrap_t, kTextureClampT, kTextureMirrorT);
+        if (!material.sampler.transform.identity()) {
+          m.texture_flags |= kTextureTransformed;
+          const UvAffine a = material.sampler.transform.affine();
+          const float rows[2][3] = {{a.m00, a.m01, a.m02}, {a.m10, a.m11, a.m12}};
+          for (int r = 0; r < 2; ++r)
+            for (int c = 0; c < 3; ++c) m.uv_transform[r][c] = rows[r][c];
+        }
       }
       out.materials.push_back(m);
     }

@@ -12,7 +12,19 @@ namespace tessera {
 // kTrilinear: bilinear in the two mip levels around the level of detail the pixel's screen-space
 // UV footprint asks for, blended (falls back to kBilinear on a texture without mip levels).
 enum class TextureFilter { kNearest, kBilinear, kTrilinear };
-enum class TextureWrap { kRepeat, kClamp };
+// Per axis, as OpenGL's REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT (the OpenGL 4.6 specification,
+// table 8.20: texel i of a size-n axis reads (n - 1) - mirror((i mod 2n) - n) when mirrored).
+enum class TextureWrap { kRepeat, kClamp, kMirroredRepeat };
+
+// A 2x3 affine map of texture coordinates: uv' = (m00 u + m01 v + m02, m10 u + m11 v + m12).
+struct UvAffine {
+  float m00 = 1.0f, m01 = 0.0f, m02 = 0.0f;
+  float m10 = 0.0f, m11 = 1.0f, m12 = 0.0f;
+  // The same operations, in the same order, as the eight-lane shading path.
+  float2 apply(float2 uv) const {
+    return {(m00 * uv.x + m01 * uv.y) + m02, (m10 * uv.x + m11 * uv.y) + m12};
+  }
+};
 
 // KHR_texture_transform: uv' = T(offset) * R(rotation) * S(scale) * uv, in the extension's
 // convention (rotation in radians, counter-clockwise in UV space with v pointing down the image).
@@ -24,18 +36,24 @@ struct TextureTransform {
     return offset.x == 0.0f && offset.y == 0.0f && rotation == 0.0f && scale.x == 1.0f &&
            scale.y == 1.0f;
   }
+  bool finite() const;
+  // The transform in tessera's texture coordinates (v = 0 at the bottom row, where the
+  // extension's v = 0 is the top row): uv' = affine().apply(uv).
+  UvAffine affine() const;
 };
 
 // How a material reads one of its textures: glTF's sampler, and its textureInfo's texture
 // coordinate set and transform.
 struct Sampler {
   Sampler() = default;
-  Sampler(TextureFilter f, TextureWrap w) : filter(f), wrap(w) {}
+  Sampler(TextureFilter f, TextureWrap s, TextureWrap t) : filter(f), wrap_s(s), wrap_t(t) {}
+  Sampler(TextureFilter f, TextureWrap w) : Sampler(f, w, w) {}
 
   TextureFilter filter = TextureFilter::kTrilinear;
-  TextureWrap wrap = TextureWrap::kRepeat;
-  TextureTransform transform;  // identity unless the file says KHR_texture_transform
-  int texcoord = 0;            // TEXCOORD_<n>
+  TextureWrap wrap_s = TextureWrap::kRepeat;  // along u
+  TextureWrap wrap_t = TextureWrap::kRepeat;  // along v
+  TextureTransform transform;                 // identity unless the file says KHR_texture_transform
+  int texcoord = 0;                           // TEXCOORD_<n>
 };
 
 struct TextureLevel {
@@ -52,13 +70,17 @@ struct Texture {
   std::vector<TextureLevel> mips;  // levels 1, 2, ... down to 1x1 (generateMipmaps); may be empty
 
   // Linear RGBA at texture coordinate `uv` (OpenGL convention: v = 0 is the bottom row), from
-  // level 0 (kTrilinear samples level 0 bilinearly).
+  // level 0 (kTrilinear samples level 0 bilinearly). `uv` is where the texture is read: the
+  // sampler's transform is the caller's (the shading's render::sampleTexture applies it).
   float4 sample(float2 uv, const Sampler& sampler) const;
   // The same at level of detail `lod` (0 = full size, 1 = half size, ...): kTrilinear blends the
   // two levels around it; the other filters use the nearest level.
   float4 sampleLod(float2 uv, float lod, const Sampler& sampler) const;
   int levelCount() const { return 1 + static_cast<int>(mips.size()); }
 };
+
+// Texel i of an axis of `size` texels wrapped into [0, size) (any int i, size > 0).
+int wrapTexel(int i, int size, TextureWrap wrap);
 
 // Fills texture.mips with a box-filtered chain (averaged in linear light for sRGB textures) down
 // to 1x1. Odd sizes round down; each level's texel averages the 2x2 (or fewer) texels above it.

@@ -17,8 +17,12 @@ const uint kObjectHasTriangleMaterials = 8u;
 const uint kTexturePresent = 1u;
 const uint kTextureSrgb = 2u;
 const uint kTextureNearest = 4u;
-const uint kTextureClamp = 8u;
+const uint kTextureClampS = 8u;
 const uint kTextureTrilinear = 16u;
+const uint kTextureClampT = 32u;
+const uint kTextureMirrorS = 64u;
+const uint kTextureMirrorT = 128u;
+const uint kTextureTransformed = 512u;
 const uint kShadeHasUv = 256u;
 
 // tessera::Shading and tessera::CullMode.
@@ -71,6 +75,7 @@ struct GpuMaterial {
   uint texel_offset;  // the texture's header: level count, then offset, width, height per level
   int texture_width, texture_height;
   uint texture_flags;
+  vec4 uv_transform[2];  // rows of the sampler's UvAffine (xyz)
 };
 
 struct GpuVertex {

@@ -65,14 +65,17 @@ void main() {
   const GpuMaterial material = objectMaterial(object, m);
   vec3 color = material.base_color.xyz * (gl_FrontFacing ? in_color_front : in_color_back);
   if ((material.texture_flags & kTexturePresent) != 0u && (object.flags & kObjectHasUv) != 0u) {
+    // The sampler's transform, and its linear part on the UV derivatives.
+    const vec2 uv = transformUv(material, in_uv);
     if ((material.texture_flags & kTextureTrilinear) != 0u) {
       // The level of detail from the UV footprint of the pixel, as the CPU's sampleAlbedo.
       const vec2 size = vec2(float(material.texture_width), float(material.texture_height));
-      const vec2 dx = uv_dx * size, dy = uv_dy * size;
+      const vec2 dx = (transformUv(material, in_uv + uv_dx) - uv) * size;
+      const vec2 dy = (transformUv(material, in_uv + uv_dy) - uv) * size;
       const float rho2 = max(dot(dx, dx), dot(dy, dy));
-      color *= sampleTextureTrilinear(material, in_uv, rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0).xyz;
+      color *= sampleTextureTrilinear(material, uv, rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0).xyz;
     } else {
-      color *= sampleTexture(material, in_uv).xyz;
+      color *= sampleTexture(material, uv).xyz;
     }
   }
 

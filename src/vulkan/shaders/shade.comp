@@ -92,11 +92,13 @@ vec2 uvAt(ShadeRecord s, vec3 b) {
 // pixels right and down.
 vec3 sampleAlbedo(uint slot, ShadeRecord s, vec3 b, ivec2 pixel, uint layer) {
   const GpuMaterial m = materials[s.material];
-  const vec2 uv = uvAt(s, b);
+  const vec2 uv = transformUv(m, uvAt(s, b));
   if ((m.texture_flags & kTextureTrilinear) == 0u) return sampleTexture(m, uv).xyz;
   const vec2 size = vec2(float(m.texture_width), float(m.texture_height));
-  precise vec2 du = uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(1, 0))) - uv;
-  precise vec2 dv = uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(0, 1))) - uv;
+  precise vec2 du =
+      transformUv(m, uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(1, 0)))) - uv;
+  precise vec2 dv =
+      transformUv(m, uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(0, 1)))) - uv;
   precise vec2 dx = du * size, dy = dv * size;
   precise float rho2 = max(dx.x * dx.x + dx.y * dx.y, dy.x * dy.x + dy.y * dy.y);
   const float lod = rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0;

@@ -63,11 +63,36 @@ TextureLevel textureLevel(GpuMaterial m, int level) {
   return TextureLevel(texels[h], int(texels[h + 1u]), int(texels[h + 2u]));
 }
 
-int wrapCoord(int i, int size, bool clamp_to_edge) {
-  if (clamp_to_edge) return i < 0 ? 0 : (i >= size ? size - 1 : i);
-  if (i >= 0) return i % size;
-  const int m = (-i) % size;  // GLSL leaves % of negative operands undefined
-  return m == 0 ? 0 : size - m;
+// tessera::wrapTexel. wrap: 0 repeat, 1 clamp to edge, 2 mirrored repeat.
+const int kWrapRepeat = 0;
+const int kWrapClamp = 1;
+const int kWrapMirror = 2;
+int wrapCoord(int i, int size, int wrap) {
+  if (wrap == kWrapClamp) return i < 0 ? 0 : (i >= size ? size - 1 : i);
+  const int period = wrap == kWrapMirror ? 2 * size : size;
+  // i mod period, never % of a negative operand (GLSL leaves that undefined).
+  const int m = i >= 0 ? i % period : period - 1 - ((-1 - i) % period);
+  return m < size ? m : period - 1 - m;
+}
+
+// The wrap modes along s and t of a material's texture.
+ivec2 textureWraps(GpuMaterial m) {
+  const uint f = m.texture_flags;
+  const int s = (f & kTextureClampS) != 0u
+                    ? kWrapClamp
+                    : ((f & kTextureMirrorS) != 0u ? kWrapMirror : kWrapRepeat);
+  const int t = (f & kTextureClampT) != 0u
+                    ? kWrapClamp
+                    : ((f & kTextureMirrorT) != 0u ? kWrapMirror : kWrapRepeat);
+  return ivec2(s, t);
+}
+
+// The sampler's transform (UvAffine::apply), where the material has one.
+vec2 transformUv(GpuMaterial m, vec2 uv) {
+  if ((m.texture_flags & kTextureTransformed) == 0u) return uv;
+  const vec3 a = m.uv_transform[0].xyz, b = m.uv_transform[1].xyz;
+  precise vec2 r = vec2((a.x * uv.x + a.y * uv.y) + a.z, (b.x * uv.x + b.y * uv.y) + b.z);
+  return r;
 }
 
 float decodeSrgb8(uint code) { return uintBitsToFloat(color_tables[code]); }
@@ -96,13 +121,13 @@ vec4 lerp4(vec4 a, vec4 b, float t) {
 }
 
 // sampleLevel: nearest or bilinear in one level.
-vec4 sampleLevel(TextureLevel level, bool srgb, vec2 uv, bool nearest, bool clamp_to_edge) {
+vec4 sampleLevel(TextureLevel level, bool srgb, vec2 uv, bool nearest, ivec2 wrap) {
   // Texel space: x right, y down from the top row (v = 1 is the top edge).
   precise float fx = sanitizeCoordinate(uv.x) * float(level.width);
   precise float fy = (1.0 - sanitizeCoordinate(uv.y)) * float(level.height);
   if (nearest) {
-    const int x = wrapCoord(int(floor(fx)), level.width, clamp_to_edge);
-    const int y = wrapCoord(int(floor(fy)), level.height, clamp_to_edge);
+    const int x = wrapCoord(int(floor(fx)), level.width, wrap.x);
+    const int y = wrapCoord(int(floor(fy)), level.height, wrap.y);
     return texelLinear(level, srgb, x, y);
   }
   // Bilinear between the four nearest texel centres, in linear space.
@@ -110,37 +135,36 @@ vec4 sampleLevel(TextureLevel level, bool srgb, vec2 uv, bool nearest, bool clam
   const float x0f = floor(sx), y0f = floor(sy);
   precise float tx = sx - x0f, ty = sy - y0f;
   const int x0 = int(x0f), y0 = int(y0f);
-  const int xa = wrapCoord(x0, level.width, clamp_to_edge);
-  const int xb = wrapCoord(x0 + 1, level.width, clamp_to_edge);
-  const int ya = wrapCoord(y0, level.height, clamp_to_edge);
-  const int yb = wrapCoord(y0 + 1, level.height, clamp_to_edge);
+  const int xa = wrapCoord(x0, level.width, wrap.x);
+  const int xb = wrapCoord(x0 + 1, level.width, wrap.x);
+  const int ya = wrapCoord(y0, level.height, wrap.y);
+  const int yb = wrapCoord(y0 + 1, level.height, wrap.y);
   const vec4 top = lerp4(texelLinear(level, srgb, xa, ya), texelLinear(level, srgb, xb, ya), tx);
   const vec4 bottom =
       lerp4(texelLinear(level, srgb, xa, yb), texelLinear(level, srgb, xb, yb), tx);
   return lerp4(top, bottom, ty);
 }
 
-// Texture::sample: level 0, nearest or bilinear.
+// Texture::sample: level 0, nearest or bilinear (uv after the sampler's transform).
 vec4 sampleTexture(GpuMaterial m, vec2 uv) {
   if (m.texture_width <= 0 || m.texture_height <= 0) return vec4(1.0);
   return sampleLevel(textureLevel(m, 0), (m.texture_flags & kTextureSrgb) != 0u, uv,
-                     (m.texture_flags & kTextureNearest) != 0u,
-                     (m.texture_flags & kTextureClamp) != 0u);
+                     (m.texture_flags & kTextureNearest) != 0u, textureWraps(m));
 }
 
 // Texture::sampleLod for a trilinear sampler: bilinear in the two levels around lod, blended.
 vec4 sampleTextureTrilinear(GpuMaterial m, vec2 uv, float lod) {
   if (m.texture_width <= 0 || m.texture_height <= 0) return vec4(1.0);
   const bool srgb = (m.texture_flags & kTextureSrgb) != 0u;
-  const bool clamp_to_edge = (m.texture_flags & kTextureClamp) != 0u;
+  const ivec2 wrap = textureWraps(m);
   const int last = textureLevelCount(m) - 1;
   if (!(lod > 0.0)) lod = 0.0;  // also catches NaN
   if (lod > float(last)) lod = float(last);
   const int lower = int(lod);
   precise float blend = lod - float(lower);
-  const vec4 a = sampleLevel(textureLevel(m, lower), srgb, uv, false, clamp_to_edge);
+  const vec4 a = sampleLevel(textureLevel(m, lower), srgb, uv, false, wrap);
   if (blend == 0.0 || lower >= last) return a;
-  const vec4 b = sampleLevel(textureLevel(m, lower + 1), srgb, uv, false, clamp_to_edge);
+  const vec4 b = sampleLevel(textureLevel(m, lower + 1), srgb, uv, false, wrap);
   return lerp4(a, b, blend);
 }
 

@@ -1,0 +1,162 @@
+// Texture sampling in the shading: the eight-lane path (render/texture_lanes.h) against the one
+// sampleTexture (render/shade.cpp) lane by lane, and textured scenes through every kernel variant
+// and worker count, bit for bit.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include <tessera/render/cpu_renderer.h>
+#include <tessera/scene/primitives.h>
+
+#include "render/shade.h"
+#include "render/texture_lanes.h"
+
+#include "render_test_scenes.h"
+
+using namespace tessera;
+using tessera::test::renderAt;
+using tessera::test::unlitObject;
+
+namespace {
+
+Sampler makeSampler(TextureFilter filter, TextureWrap s, TextureWrap t) {
+  Sampler sampler;
+  sampler.filter = filter;
+  sampler.wrap_s = s;
+  sampler.wrap_t = t;
+  return sampler;
+}
+
+// A texture of width x height texels of pseudo-random colours, with its mip chain.
+std::shared_ptr<Texture> noiseTexture(int width, int height, bool srgb, uint32_t seed) {
+  auto t = std::make_shared<Texture>();
+  t->width = width;
+  t->height = height;
+  t->srgb = srgb;
+  std::mt19937 rng(seed);
+  for (int i = 0; i < width * height; ++i) t->texels.push_back(static_cast<uint32_t>(rng()));
+  generateMipmaps(*t);
+  return t;
+}
+
+bool sameBits(float a, float b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+}  // namespace
+
+// Eight lanes at a time, every wrap mode on each axis, bilinear and trilinear, with and without
+// a transform, power-of-two and other sizes, coordinates over several periods and footprints
+// over every level: the same bits as sampleTexture, lane by lane.
+TEST(TextureLanes, EightLanesHaveTheBitsOfSampleTexture) {
+  using namespace tessera::render;
+  const std::shared_ptr<Texture> textures[] = {
+      noiseTexture(16, 8, true, 1), noiseTexture(13, 7, false, 2), noiseTexture(1, 5, true, 3)};
+  const TextureWrap wraps[] = {TextureWrap::kRepeat, TextureWrap::kClamp,
+                               TextureWrap::kMirroredRepeat};
+  const TextureTransform transforms[] = {TextureTransform{},
+                                         TextureTransform{{0.25f, -1.5f}, 0.7f, {3.0f, 0.5f}}};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> coordinate(-3.0f, 4.0f), unit(-1.0f, 1.0f),
+      exponent(-5.0f, 1.0f);
+  int compared = 0, taken = 0;
+  for (const auto& texture : textures)
+    for (TextureFilter filter : {TextureFilter::kBilinear, TextureFilter::kTrilinear})
+      for (TextureWrap s : wraps)
+        for (TextureWrap t : wraps)
+          for (const TextureTransform& transform : transforms) {
+            Sampler sampler = makeSampler(filter, s, t);
+            sampler.transform = transform;
+            for (int round = 0; round < 16; ++round) {
+              alignas(32) float u[8], v[8], ur[8], vr[8], ud[8], vd[8];
+              alignas(32) int32_t mask[8];
+              for (int l = 0; l < 8; ++l) {
+                u[l] = coordinate(rng);
+                v[l] = coordinate(rng);
+                const float step = std::exp2(exponent(rng));
+                ur[l] = u[l] + step * unit(rng);
+                vr[l] = v[l] + step * unit(rng);
+                ud[l] = u[l] + step * unit(rng);
+                vd[l] = v[l] + step * unit(rng);
+                mask[l] = round % 4 == 3 && l % 3 == 0 ? 0 : -1;
+              }
+              const Uv8 uv{load<F32x8>(u), load<F32x8>(v)};
+              const Uv8 right{load<F32x8>(ur), load<F32x8>(vr)};
+              const Uv8 down{load<F32x8>(ud), load<F32x8>(vd)};
+              F32x8 out[4];
+              ASSERT_TRUE(texture8Applies(*texture, sampler));
+              if (!sampleTexture8(*texture, sampler, load<I32x8>(mask), uv, right, down, 4, out))
+                continue;
+              ++taken;
+              for (int l = 0; l < 8; ++l) {
+                if (!mask[l]) continue;
+                const float4 want =
+                    sampleTexture(*texture, sampler, {u[l], v[l]}, {ur[l], vr[l]}, {ud[l], vd[l]});
+                for (int k = 0; k < 4; ++k)
+                  EXPECT_TRUE(sameBits(lane(out[k], l), want[k]))
+                      << "lane " << l << " channel " << k << ": " << lane(out[k], l) << " vs "
+                      << want[k] << " texture " << texture->width << "x" << texture->height;
+                ++compared;
+              }
+            }
+          }
+  EXPECT_EQ(taken, 3 * 2 * 9 * 2 * 16);  // every coordinate here is below 65536
+  EXPECT_GT(compared, 1000);
+}
+
+// The same scene of textured objects (trilinear with mip levels, mirrored and clamped axes,
+// transforms, coordinates over many periods of a texture whose size is not a power of two, lit
+// per pixel and unlit) through every kernel variant and worker count, with and without MSAA.
+TEST(TextureLanes, TexturedSceneIsBitIdenticalForEverySimdLevelAndWorkerCount) {
+  Scene scene;
+  scene.camera.position = {0, 1.2f, 3.5f};
+  scene.camera.near_z = 0.2f;
+  scene.camera.far_z = 100;
+  scene.lights.push_back({normalize(float3{-1, -2, -1}), float3(0.9f)});
+  Object sphere;
+  sphere.mesh = std::make_shared<Mesh>(makeUvSphere(48, 24));
+  sphere.shading = Shading::kPhong;
+  sphere.materials[0].albedo = noiseTexture(64, 32, true, 11);
+  sphere.materials[0].sampler =
+      makeSampler(TextureFilter::kTrilinear, TextureWrap::kMirroredRepeat, TextureWrap::kRepeat);
+  sphere.materials[0].sampler.transform = {{0.1f, 0.3f}, 0.4f, {3.0f, 2.0f}};
+  scene.objects.push_back(sphere);
+  Mesh floor;
+  floor.positions = {{-30, -1, 20}, {30, -1, 20}, {30, -1, -60}, {-30, -1, -60}};
+  floor.uvs = {{-20, -20}, {25, -20}, {25, 40}, {-20, 40}};
+  floor.indices = {0, 1, 2, 0, 2, 3};
+  Object floor_object = unlitObject(floor, CullMode::kNone);
+  floor_object.materials[0].albedo = noiseTexture(24, 20, true, 12);
+  floor_object.materials[0].sampler =
+      makeSampler(TextureFilter::kTrilinear, TextureWrap::kRepeat, TextureWrap::kMirroredRepeat);
+  scene.objects.push_back(floor_object);
+  Mesh card = floor;
+  card.positions = {{-2, -0.5f, -1}, {-0.5f, -0.5f, -1}, {-0.5f, 1, -1}, {-2, 1, -1}};
+  card.uvs = {{-0.5f, -0.5f}, {1.5f, -0.5f}, {1.5f, 1.5f}, {-0.5f, 1.5f}};
+  Object card_object = unlitObject(card, CullMode::kNone);
+  card_object.materials[0].albedo = noiseTexture(32, 32, false, 13);
+  card_object.materials[0].sampler =
+      makeSampler(TextureFilter::kBilinear, TextureWrap::kClamp, TextureWrap::kMirroredRepeat);
+  scene.objects.push_back(card_object);
+
+  for (int msaa : {1, 4}) {
+    RenderOptions options;
+    options.width = 251;
+    options.height = 167;
+    options.msaa = msaa;
+    const Frame reference = renderAt(scene, options, SimdLevel::kScalar, 1);
+    int textured = 0;
+    for (int y = 0; y < options.height; ++y)
+      for (int x = 0; x < options.width; ++x) textured += reference.idAt(x, y) != kNoTriangle;
+    EXPECT_GT(textured, options.width * options.height / 2);
+    for (SimdLevel level :
+         {SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512, SimdLevel::kAuto}) {
+      for (int workers : {1, 3}) {
+        const Frame other = renderAt(scene, options, level, workers);
+        EXPECT_EQ(reference.color, other.color)
+            << "level " << static_cast<int>(level) << ", " << workers << " workers, msaa " << msaa;
+      }
+    }
+  }
+}
