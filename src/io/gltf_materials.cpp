@@ -59,6 +59,7 @@ Material MaterialTable::buildMaterial(size_t index) {
   } else {
     warn_(label + ": a baseColorFactor that is not 4 numbers is ignored");
   }
+  readPbr(source, label, material);
   const tinygltf::TextureInfo& info = source.pbrMetallicRoughness.baseColorTexture;
   if (info.index >= 0) {
     const std::string dropped = "; " + label + " is drawn without its texture";
@@ -80,6 +81,86 @@ Material MaterialTable::buildMaterial(size_t index) {
            std::to_string(texture.sampler) + ", which does not exist; the default is used");
   }
   return material;
+}
+
+namespace {
+
+// A factor from the file: finite and within [lo, hi], else the glTF default with a warning.
+float readFactor(double value, double lo, double hi, float fallback, const std::string& what,
+                 const Warn& warn) {
+  if (std::isfinite(value) && value >= lo && value <= hi) return toFloat(value);
+  warn(what + " " + std::to_string(value) + " is outside [" + std::to_string(lo) + ", " +
+       std::to_string(hi) + "]; the default " + std::to_string(fallback) + " is used");
+  return fallback;
+}
+
+}  // namespace
+
+TextureSlot MaterialTable::textureSlot(int index, int texcoord, bool srgb,
+                                       const std::string& what) {
+  TextureSlot slot;
+  if (index < 0) return slot;
+  const std::string dropped = "; " + what + " is left out";
+  if (static_cast<size_t>(index) >= gltf_.textures.size()) {
+    warn_(what + " uses texture " + std::to_string(index) + ", which does not exist" + dropped);
+    return slot;
+  }
+  const tinygltf::Texture& texture = gltf_.textures[static_cast<size_t>(index)];
+  if (texture.source < 0 || static_cast<size_t>(texture.source) >= gltf_.images.size()) {
+    warn_("texture " + std::to_string(index) + " has no usable image" + dropped);
+    return slot;
+  }
+  if (texcoord != 0)
+    warn_(what + " reads TEXCOORD_" + std::to_string(texcoord) +
+          "; tessera keeps TEXCOORD_0 only, which it uses");
+  slot.texture = image(static_cast<size_t>(texture.source), dropped, srgb);
+  if (texture.sampler >= 0 && static_cast<size_t>(texture.sampler) < gltf_.samplers.size())
+    slot.sampler = sampler(static_cast<size_t>(texture.sampler));
+  return slot;
+}
+
+void MaterialTable::readPbr(const tinygltf::Material& source, const std::string& label,
+                            Material& material) {
+  const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
+  material.metallic =
+      readFactor(pbr.metallicFactor, 0.0, 1.0, 1.0f, label + ": metallicFactor", warn_);
+  material.roughness =
+      readFactor(pbr.roughnessFactor, 0.0, 1.0, 1.0f, label + ": roughnessFactor", warn_);
+  material.metallic_roughness =
+      textureSlot(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false,
+                  label + "'s metallicRoughnessTexture");
+  material.normal = textureSlot(source.normalTexture.index, source.normalTexture.texCoord, false,
+                                label + "'s normalTexture");
+  if (material.normal && material.normal.texture->source_channels > 0 &&
+      material.normal.texture->source_channels < 3) {
+    warn_(label + "'s normalTexture is not an RGB image (" +
+          std::to_string(material.normal.texture->source_channels) + " channels); it is left out");
+    material.normal = {};
+  }
+  material.normal_scale = readFactor(source.normalTexture.scale, -1e6, 1e6, 1.0f,
+                                     label + ": normalTexture.scale", warn_);
+  material.occlusion = textureSlot(source.occlusionTexture.index, source.occlusionTexture.texCoord,
+                                   false, label + "'s occlusionTexture");
+  material.occlusion_strength = readFactor(source.occlusionTexture.strength, 0.0, 1.0, 1.0f,
+                                           label + ": occlusionTexture.strength", warn_);
+  material.emissive = textureSlot(source.emissiveTexture.index, source.emissiveTexture.texCoord,
+                                  true, label + "'s emissiveTexture");
+  if (source.emissiveFactor.size() == 3) {
+    for (int i = 0; i < 3; ++i)
+      material.emissive_factor[i] = readFactor(source.emissiveFactor[static_cast<size_t>(i)], 0.0,
+                                               1e6, 0.0f, label + ": emissiveFactor", warn_);
+  } else if (!source.emissiveFactor.empty()) {
+    warn_(label + ": an emissiveFactor that is not 3 numbers is ignored");
+  }
+  if (source.alphaMode == "MASK") {
+    material.alpha_mode = AlphaMode::kMask;
+  } else if (source.alphaMode == "BLEND") {
+    material.alpha_mode = AlphaMode::kBlend;
+  } else if (source.alphaMode != "OPAQUE" && !source.alphaMode.empty()) {
+    warn_(label + ": unknown alphaMode '" + source.alphaMode + "'; drawn opaque");
+  }
+  material.alpha_cutoff =
+      readFactor(source.alphaCutoff, 0.0, 1e6, 0.5f, label + ": alphaCutoff", warn_);
 }
 
 Sampler MaterialTable::sampler(size_t index) {
@@ -110,10 +191,11 @@ Sampler MaterialTable::sampler(size_t index) {
   return sampler;
 }
 
-std::shared_ptr<const Texture> MaterialTable::image(size_t index, const std::string& dropped) {
-  auto cached = images_.find(index);
+std::shared_ptr<const Texture> MaterialTable::image(size_t index, const std::string& dropped,
+                                                    bool srgb) {
+  auto cached = images_.find({index, srgb});
   if (cached != images_.end()) return cached->second;
-  std::shared_ptr<const Texture>& slot = images_[index];
+  std::shared_ptr<const Texture>& slot = images_[{index, srgb}];
   const tinygltf::Image& source = gltf_.images[index];
   const std::string label = name_ + " image " + std::to_string(index);
   Expected<MaterialTexture> decoded = MaterialTexture{nullptr, label + ": no image data"};
@@ -123,9 +205,9 @@ std::shared_ptr<const Texture> MaterialTable::image(size_t index, const std::str
       warn_(bytes.error().message.substr(name_.size() + 1) + dropped);
       return nullptr;
     }
-    decoded = textures_.decode(bytes->data(), bytes->size(), label, /*srgb=*/true);
+    decoded = textures_.decode(bytes->data(), bytes->size(), label, srgb);
   } else if (!source.image.empty()) {
-    decoded = textures_.decode(source.image.data(), source.image.size(), label, /*srgb=*/true);
+    decoded = textures_.decode(source.image.data(), source.image.size(), label, srgb);
   } else if (!source.uri.empty()) {
     const std::string reference = percentDecoded(source.uri);
     if (folder_.empty()) {
@@ -139,7 +221,7 @@ std::shared_ptr<const Texture> MaterialTable::image(size_t index, const std::str
             "' refused: " + path.error().message + dropped);
       return nullptr;
     }
-    decoded = textures_.load(*path, /*srgb=*/true);
+    decoded = textures_.load(*path, srgb);
   }
   if (!decoded) {
     if (!fatal_) fatal_ = decoded.error();

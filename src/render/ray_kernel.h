@@ -108,20 +108,30 @@ struct RayShading {
     const RayTriangle& r = chunk.ray[keyLocal(key)];
     F32x8 b0, b1, b2;
     rayBarycentrics8(r, d, b0, b1, b2);
-    shadeLanesAt(t, e, lights, want_normals, b0, b1, b2, mask, color, normal,
-                 [&](int l, const Barycentrics& b) {
-                   const int px = x + l;
-                   // A one-pixel-wide (or tall) image has no neighbour: the pixel itself.
-                   const int right = px + 1 < width ? px + 1 : std::max(px - 1, 0);
-                   const int down = y + 1 < height ? y + 1 : std::max(y - 1, 0);
-                   const size_t w = static_cast<size_t>(width);
-                   Barycentrics br, bd;
-                   rayBarycentrics(r, rayAt(rays.centre(), static_cast<size_t>(y) * w + right),
-                                   br.b0, br.b1, br.b2);
-                   rayBarycentrics(r, rayAt(rays.centre(), static_cast<size_t>(down) * w + px),
-                                   bd.b0, bd.b1, bd.b2);
-                   return sampleAlbedo(t, e, b, br, bd);
-                 });
+    // The barycentrics at the centre rays of the next pixels right and down of pixel x + l (or
+    // left and up at the image's edge: a one-pixel-wide image has no neighbour, the pixel itself).
+    auto neighbours = [&](int l, Barycentrics& br, Barycentrics& bd) {
+      const int px = x + l;
+      const int right = px + 1 < width ? px + 1 : std::max(px - 1, 0);
+      const int down = y + 1 < height ? y + 1 : std::max(y - 1, 0);
+      const size_t w = static_cast<size_t>(width);
+      rayBarycentrics(r, rayAt(rays.centre(), static_cast<size_t>(y) * w + right), br.b0, br.b1,
+                      br.b2);
+      rayBarycentrics(r, rayAt(rays.centre(), static_cast<size_t>(down) * w + px), bd.b0, bd.b1,
+                      bd.b2);
+    };
+    shadeLanesAt(
+        t, e, lights, want_normals, b0, b1, b2, mask, color, normal,
+        [&](int l, const Barycentrics& b) {
+          Barycentrics br, bd;
+          neighbours(l, br, bd);
+          return sampleAlbedo(t, e, b, br, bd);
+        },
+        [&](int l, const Barycentrics& b, const Texture& texture, const Sampler& sampler) {
+          Barycentrics br, bd;
+          neighbours(l, br, bd);
+          return sampleTexture(texture, sampler, e, b, br, bd);
+        });
   }
 };
 
