@@ -484,6 +484,22 @@ TEST_F(Cli, DataModelsMatchTheirReferenceImages) {
   }
 }
 
+// glTF is drawn with its metallic-roughness materials unless --shading says otherwise; other
+// formats keep smooth (per-pixel Lambert) shading.
+TEST_F(Cli, GltfDefaultsToPbrShadingAndObjToSmooth) {
+  auto crc = [&](const std::string& model, const std::string& flags) {
+    RunResult r =
+        run(std::string("render '") + TESSERA_TEST_DATA_DIR + "/" + model +
+            "' --resolution 60,40 --crc -o '" + (dir_ / "crc.png").string() + "' " + flags);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.out;
+  };
+  EXPECT_EQ(crc("scene.gltf", ""), crc("scene.gltf", "--shading pbr"));
+  EXPECT_NE(crc("scene.gltf", ""), crc("scene.gltf", "--shading smooth"));
+  EXPECT_EQ(crc("box_corner.obj", ""), crc("box_corner.obj", "--shading smooth"));
+  EXPECT_NE(crc("box_corner.obj", ""), crc("box_corner.obj", "--shading pbr"));
+}
+
 // A glTF quad in z = 0 facing +z (single-sided), seen by camera 0 from z = 4 and by camera 1
 // from z = -4, turned half about +y to look at its back.
 TEST_F(Cli, CameraIndexDrawsFromTheFilesCameraAndCountsThemPastTheEnd) {

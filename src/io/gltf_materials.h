@@ -19,6 +19,7 @@
 
 namespace tinygltf {
 class Model;
+struct Material;
 }
 
 namespace tessera::io::gltf {
