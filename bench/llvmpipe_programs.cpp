@@ -181,7 +181,8 @@ Expected<const Program*> ProgramCache::get(const ProgramKey& key) {
       "#version 120\n#define LIGHT_COUNT " + std::to_string(key.light_count) + "\n";
   if (key.shading == Shading::kFlat || key.shading == Shading::kGouraud)
     defines += "#define LIT_PER_VERTEX\n";
-  if (key.shading == Shading::kPhong) defines += "#define LIT_PER_PIXEL\n";
+  if (key.shading == Shading::kPhong || key.shading == Shading::kPbr)
+    defines += "#define LIT_PER_PIXEL\n";
   if (key.has_uv) defines += "#define HAS_UV\n";
   if (key.has_color) defines += "#define HAS_COLOR\n";
   if (key.two_sided) defines += "#define TWO_SIDED\n";

@@ -3,10 +3,10 @@
 // two builds can be checked for the same image while they are timed. For following the numbers
 // when changing a hot path; `tessera bench` is the yardstick.
 //   build/bench/tessera_stagetimes [scene] [workers] [frames] [width] [height] [simd] [msaa]
-//                                  [projection]
+//                                  [projection] [shading]
 //   simd: auto, scalar, sse2, avx2, avx512; msaa: 1, 2, 4, 8; projection: projection.h's names
-//   (the scene's camera and view angle in that mode). Defaults: bunny 2 40 1920 1080 auto 1
-//   perspective.
+//   (the scene's camera and view angle in that mode); shading: flat, smooth, gouraud, unlit, pbr.
+//   Defaults: bunny 2 40 1920 1080 auto 1 perspective gouraud.
 //   TESSERA_NOHASH=1 leaves the hash out (and the gap it makes between frames); TESSERA_NOCULL=1
 //   turns frustum and cluster culling off.
 #include <algorithm>
@@ -62,7 +62,8 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  Expected<bench::BenchScene> made = bench::makeBuiltinScene(name, Shading::kGouraud);
+  const Shading shading = model::shadingFromName(argc > 9 ? argv[9] : "gouraud");
+  Expected<bench::BenchScene> made = bench::makeBuiltinScene(name, shading);
   if (!made) {
     std::fprintf(stderr, "tessera_stagetimes: %s\n", made.error().message.c_str());
     return 1;

@@ -235,8 +235,9 @@ TEST_F(CliRender, FramingKeepsDepthPreciseForTinyAndHugeModels) {
   }
 }
 
-// The models in tests/data (tests/data/make_models.py), each rendered by the CLI on its defaults
-// and compared with its reference image: at most a code of rounding here and there.
+// The models in tests/data (tests/data/make_models.py), each rendered by the CLI (on its defaults
+// but for the shading) and compared with its reference image: at most a code of rounding here and
+// there.
 TEST_F(CliRender, DataModelsMatchTheirReferenceImages) {
   struct Case {
     const char* model;
@@ -244,8 +245,9 @@ TEST_F(CliRender, DataModelsMatchTheirReferenceImages) {
     const char* reference;
   };
   const Case cases[] = {
-      {"box_corner.obj", "--shading flat", "box_corner_obj"},    // MTL, map_Kd, two materials
-      {"scene.gltf", "", "scene_gltf"},                          // hierarchy, texture, strip
+      {"box_corner.obj", "--shading flat", "box_corner_obj"},  // MTL, map_Kd, two materials
+      // Smooth: the reference predates PBR, glTF's default shading since issue 19.
+      {"scene.gltf", "--shading smooth", "scene_gltf"},          // hierarchy, texture, strip
       {"pyramid.stl", "--up +Z --shading flat", "pyramid_stl"},  // binary with a 'solid' header
   };
   for (const Case& c : cases) {
@@ -256,6 +258,22 @@ TEST_F(CliRender, DataModelsMatchTheirReferenceImages) {
     EXPECT_TRUE(r.err.empty()) << c.model << " warned: " << r.err;
     tessera::test::expectMatchesReference(out, c.reference, {2, 6});
   }
+}
+
+// glTF is drawn with its metallic-roughness materials unless --shading says otherwise; other
+// formats keep smooth (per-pixel Lambert) shading.
+TEST_F(CliRender, GltfDefaultsToPbrShadingAndObjToSmooth) {
+  auto crc = [&](const std::string& model, const std::string& flags) {
+    RunResult r =
+        run(std::string("render '") + TESSERA_TEST_DATA_DIR + "/" + model +
+            "' --resolution 60,40 --crc -o '" + (dir_ / "crc.png").string() + "' " + flags);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.out;
+  };
+  EXPECT_EQ(crc("scene.gltf", ""), crc("scene.gltf", "--shading pbr"));
+  EXPECT_NE(crc("scene.gltf", ""), crc("scene.gltf", "--shading smooth"));
+  EXPECT_EQ(crc("box_corner.obj", ""), crc("box_corner.obj", "--shading smooth"));
+  EXPECT_NE(crc("box_corner.obj", ""), crc("box_corner.obj", "--shading pbr"));
 }
 
 // A glTF quad in z = 0 facing +z (single-sided), seen by camera 0 from z = 4 and by camera 1

@@ -206,8 +206,8 @@ void addBenchFlags(FlagSet& flags, BenchSettings& s, bool& resolution_given) {
   flags.addInt("frames", &s.frames, "timed frames per scene and resolution (default 20)", 1,
                100000);
   flags.addInt("warmup", &s.warmup, "untimed frames before them (default 2)", 0, 1000);
-  flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit"},
-                  "flat, smooth (per-pixel), gouraud (per-vertex) or unlit (default gouraud)");
+  flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit", "pbr"},
+                  "flat, smooth (per-pixel), gouraud (per-vertex), unlit or pbr (default gouraud)");
   flags.addChoice("backface-type", &s.backface, {"visible", "hidden"},
                   "draw or cull back faces (default hidden)");
   addCameraFlags(flags, s.camera);

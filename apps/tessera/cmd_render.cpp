@@ -45,7 +45,7 @@ struct RenderSettings {
   float3 background{0.2f, 0.2f, 0.2f};
   std::optional<float3> color;  // --color: the default material's, sRGB
   CameraSettings camera;
-  std::string shading = "smooth";
+  std::string shading;   // empty: defaultShading (pbr for glTF, else smooth)
   std::string backface;  // empty: the model says (glTF doubleSided), else visible
   std::string aov = "color";
   std::string backend = "cpu";
@@ -137,8 +137,9 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
                     return problem;
                   });
   addCameraFlags(flags, s.camera);
-  flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit"},
-                  "flat, smooth (per-pixel), gouraud (per-vertex) or unlit (default smooth)");
+  flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit", "pbr"},
+                  "flat, smooth (per-pixel), gouraud (per-vertex), unlit or pbr (glTF's "
+                  "metallic-roughness; default pbr for glTF, smooth for other formats)");
   flags.addChoice("backface-type", &s.backface, {"visible", "hidden"},
                   "draw or cull back faces (default: glTF materials say, else visible)");
   std::vector<std::string> aovs = {"color", "id", "depth", "normal", "coverage"};
@@ -285,7 +286,8 @@ int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, 
     return kExitFailure;
   }
 
-  scene_settings.shading = shadingFromName(s.shading);
+  scene_settings.shading =
+      s.shading.empty() ? defaultShading(model_path) : shadingFromName(s.shading);
   // Without the flag a glTF model's materials decide (doubleSided); other formats draw back faces.
   const bool cull_back =
       s.backface.empty() ? model->cull_back_faces.value_or(false) : s.backface == "hidden";

@@ -52,6 +52,7 @@ struct ViewSettings {
   bool fullscreen = false;
   int workers = 0;
   std::string texture;
+  std::string shading;  // empty: defaultShading of each model loaded
   std::string backend = "cpu";
   int device = -1;
   int msaa = 4;  // what `tessera render` makes by default
@@ -102,6 +103,7 @@ std::string checkViewCameraFlags(const ViewSettings& s, Projection projection, b
 // What every load of the viewer shares; the loading thread owns its copy.
 struct ViewLoad {
   ModelSceneSettings scene_settings;
+  std::string shading;  // --shading; empty: defaultShading of the file
   io::LoadBudget budget;
   LightSettings lights;
   int animation_index = -1;
@@ -134,8 +136,9 @@ Expected<viewer::LoadedScene> loadViewScene(const ViewLoad& load,
     std::cerr << "tessera view: warning: " << warning << "\n";
   const std::vector<Light> lights = model->lights;
   viewer::LoadedScene loaded;
-  Expected<Scene> scene =
-      makeModelScene(std::move(*model), path, load.scene_settings, &loaded.graph);
+  ModelSceneSettings settings = load.scene_settings;
+  settings.shading = load.shading.empty() ? defaultShading(path) : shadingFromName(load.shading);
+  Expected<Scene> scene = makeModelScene(std::move(*model), path, settings, &loaded.graph);
   if (!scene) return scene.error();
   loaded.scene = std::move(*scene);
   if (load.grid) model::appendGroundGrid(loaded.scene.bounds(), {0, 1, 0}, loaded.scene.lines);
@@ -259,6 +262,9 @@ void addViewFlags(FlagSet& flags, ViewSettings& s) {
   flags.addSwitch("fullscreen", &s.fullscreen, "fill the screen");
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
   flags.addString("texture", &s.texture, "an image used as the albedo of every material");
+  flags.addChoice("shading", &s.shading, {"flat", "smooth", "gouraud", "unlit", "pbr"},
+                  "flat, smooth (per-pixel), gouraud (per-vertex), unlit or pbr (default pbr for "
+                  "glTF, smooth for other formats)");
   addBudgetFlags(flags, s.budget);
   addLightFlags(flags, s.lights);
   addPointFlags(flags, s.points, "the width in pixels of the model's lines, up to 64 (default 1)");
@@ -372,11 +378,8 @@ int runView(const std::vector<std::string>& args) {
     scene_settings.albedo = std::make_shared<const Texture>(std::move(*texture));
   }
 
-  ViewLoad load{scene_settings,
-                s.budget,
-                s.lights,
-                s.animation_index,
-                std::make_shared<std::atomic<bool>>(false),
+  ViewLoad load{scene_settings, s.shading,         s.budget,
+                s.lights,       s.animation_index, std::make_shared<std::atomic<bool>>(false),
                 s.grid};
   // --animation-index and --camera-index are checked against the model before the window opens;
   // the viewer's first load then takes this scene.

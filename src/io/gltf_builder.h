@@ -109,6 +109,7 @@ class GraphBuilder {
   // The graph mesh of glTF mesh `mesh_index`, read on first use.
   Expected<int32_t> meshFor(size_t mesh_index);
   Expected<void> drawMesh(size_t mesh_index, Mesh& out);
+  void addTangents(Mesh& out);
   Expected<void> drawPrimitive(const tinygltf::Primitive& primitive, const std::string& where,
                                Mesh& out);
   // Whether the primitive's geometry comes from its Draco stream, decoded into draco_.
@@ -128,6 +129,10 @@ class GraphBuilder {
   std::vector<uint32_t> remap_stamp_, remap_vertex_;
   uint32_t stamp_ = 0;
   std::vector<std::pair<size_t, size_t>> generated_normal_ranges_;  // of the mesh being read
+  // Vertices of normal-mapped primitives without TANGENT: generateTangents' (of the mesh being
+  // read).
+  std::vector<std::pair<size_t, size_t>> generated_tangent_ranges_;
+  bool tangents_refused_ = false;  // a TANGENT of the mesh was unusable: no normal map on it
   std::map<int, size_t> skipped_by_mode_;
   std::map<size_t, PointsAndLines> mesh_points_;  // per glTF mesh, in its space, while placing
   std::set<std::string> warned_;

@@ -7,8 +7,8 @@
 #include <tessera/io/image_loader.h>
 
 #include "gltf_accessors.h"
-#include "load_budget.h"
 #include "gltf_transforms.h"
+#include "load_budget.h"
 #include "model_paths.h"
 #include "tinygltf_include.h"
 
@@ -26,14 +26,13 @@ constexpr size_t kMaxMaterials = size_t{1} << 16;
 Expected<uint16_t> MaterialTable::materialFor(int gltf_material, std::vector<Material>& materials) {
   if (gltf_material >= 0 && static_cast<size_t>(gltf_material) >= gltf_.materials.size()) {
     warn_("a primitive refers to material " + std::to_string(gltf_material) +
-         ", which does not exist; the default material is used");
+          ", which does not exist; the default material is used");
     gltf_material = -1;
   }
   auto found = material_index_.find(gltf_material);
   if (found != material_index_.end()) return found->second;
   if (materials.size() == kMaxMaterials)
-    return makeError(name_ + ": more than " + std::to_string(kMaxMaterials) +
-                     " materials in use");
+    return makeError(name_ + ": more than " + std::to_string(kMaxMaterials) + " materials in use");
   const auto index = static_cast<uint16_t>(materials.size());
   Material material =
       gltf_material < 0 ? Material{} : buildMaterial(static_cast<size_t>(gltf_material));
@@ -60,11 +59,15 @@ Material MaterialTable::buildMaterial(size_t index) {
     warn_(label + ": a baseColorFactor that is not 4 numbers is ignored");
   }
   const tinygltf::TextureInfo& info = source.pbrMetallicRoughness.baseColorTexture;
+  // Read once: its texCoord is the UV set every map of the material is read with.
+  const Sampler base_sampler =
+      info.index >= 0 ? readTextureInfoSampler(info, label + " baseColorTexture") : Sampler{};
+  readPbr(source, label, base_sampler.texcoord, material);
   if (info.index >= 0) {
     const std::string dropped = "; " + label + " is drawn without its texture";
     if (static_cast<size_t>(info.index) >= gltf_.textures.size()) {
       warn_(label + " uses texture " + std::to_string(info.index) + ", which does not exist" +
-           dropped);
+            dropped);
       return material;
     }
     const tinygltf::Texture& texture = gltf_.textures[static_cast<size_t>(info.index)];
@@ -73,7 +76,7 @@ Material MaterialTable::buildMaterial(size_t index) {
       return material;
     }
     material.albedo = image(static_cast<size_t>(texture.source), dropped);
-    material.sampler = readTextureInfoSampler(info, label + " baseColorTexture");
+    material.sampler = base_sampler;
   }
   return material;
 }
@@ -147,6 +150,86 @@ void MaterialTable::readTextureTransform(const tinygltf::Value& extension, const
   }
 }
 
+namespace {
+
+// A factor from the file: finite and within [lo, hi], else the glTF default with a warning.
+float readFactor(double value, double lo, double hi, float fallback, const std::string& what,
+                 const Warn& warn) {
+  if (std::isfinite(value) && value >= lo && value <= hi) return toFloat(value);
+  warn(what + " " + std::to_string(value) + " is outside [" + std::to_string(lo) + ", " +
+       std::to_string(hi) + "]; the default " + std::to_string(fallback) + " is used");
+  return fallback;
+}
+
+}  // namespace
+
+TextureSlot MaterialTable::textureSlot(int index, const Sampler& sampler, int uv_set, bool srgb,
+                                       const std::string& what) {
+  TextureSlot slot;
+  if (index < 0) return slot;
+  const std::string dropped = "; " + what + " is left out";
+  if (static_cast<size_t>(index) >= gltf_.textures.size()) {
+    warn_(what + " uses texture " + std::to_string(index) + ", which does not exist" + dropped);
+    return slot;
+  }
+  const tinygltf::Texture& texture = gltf_.textures[static_cast<size_t>(index)];
+  if (texture.source < 0 || static_cast<size_t>(texture.source) >= gltf_.images.size()) {
+    warn_("texture " + std::to_string(index) + " has no usable image" + dropped);
+    return slot;
+  }
+  if (sampler.texcoord != uv_set)
+    warn_(what + " reads TEXCOORD_" + std::to_string(sampler.texcoord) +
+          "; tessera keeps one set per primitive, the base colour's TEXCOORD_" +
+          std::to_string(uv_set) + ", which it uses");
+  slot.texture = image(static_cast<size_t>(texture.source), dropped, srgb);
+  slot.sampler = sampler;
+  slot.sampler.texcoord = uv_set;
+  return slot;
+}
+
+void MaterialTable::readPbr(const tinygltf::Material& source, const std::string& label, int uv_set,
+                            Material& material) {
+  const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
+  auto slot = [&](const auto& info, bool srgb, const std::string& what) {
+    return textureSlot(info.index, readTextureInfoSampler(info, what), uv_set, srgb, what);
+  };
+  material.metallic =
+      readFactor(pbr.metallicFactor, 0.0, 1.0, 1.0f, label + ": metallicFactor", warn_);
+  material.roughness =
+      readFactor(pbr.roughnessFactor, 0.0, 1.0, 1.0f, label + ": roughnessFactor", warn_);
+  material.metallic_roughness =
+      slot(pbr.metallicRoughnessTexture, false, label + "'s metallicRoughnessTexture");
+  material.normal = slot(source.normalTexture, false, label + "'s normalTexture");
+  if (material.normal && material.normal.texture->source_channels > 0 &&
+      material.normal.texture->source_channels < 3) {
+    warn_(label + "'s normalTexture is not an RGB image (" +
+          std::to_string(material.normal.texture->source_channels) + " channels); it is left out");
+    material.normal = {};
+  }
+  material.normal_scale = readFactor(source.normalTexture.scale, -1e6, 1e6, 1.0f,
+                                     label + ": normalTexture.scale", warn_);
+  material.occlusion = slot(source.occlusionTexture, false, label + "'s occlusionTexture");
+  material.occlusion_strength = readFactor(source.occlusionTexture.strength, 0.0, 1.0, 1.0f,
+                                           label + ": occlusionTexture.strength", warn_);
+  material.emissive = slot(source.emissiveTexture, true, label + "'s emissiveTexture");
+  if (source.emissiveFactor.size() == 3) {
+    for (int i = 0; i < 3; ++i)
+      material.emissive_factor[i] = readFactor(source.emissiveFactor[static_cast<size_t>(i)], 0.0,
+                                               1e6, 0.0f, label + ": emissiveFactor", warn_);
+  } else if (!source.emissiveFactor.empty()) {
+    warn_(label + ": an emissiveFactor that is not 3 numbers is ignored");
+  }
+  if (source.alphaMode == "MASK") {
+    material.alpha_mode = AlphaMode::kMask;
+  } else if (source.alphaMode == "BLEND") {
+    material.alpha_mode = AlphaMode::kBlend;
+  } else if (source.alphaMode != "OPAQUE" && !source.alphaMode.empty()) {
+    warn_(label + ": unknown alphaMode '" + source.alphaMode + "'; drawn opaque");
+  }
+  material.alpha_cutoff =
+      readFactor(source.alphaCutoff, 0.0, 1e6, 0.5f, label + ": alphaCutoff", warn_);
+}
+
 Sampler MaterialTable::sampler(size_t index) {
   const tinygltf::Sampler& source = gltf_.samplers[index];
   Sampler sampler;
@@ -173,10 +256,11 @@ Sampler MaterialTable::sampler(size_t index) {
   return sampler;
 }
 
-std::shared_ptr<const Texture> MaterialTable::image(size_t index, const std::string& dropped) {
-  auto cached = images_.find(index);
+std::shared_ptr<const Texture> MaterialTable::image(size_t index, const std::string& dropped,
+                                                    bool srgb) {
+  auto cached = images_.find({index, srgb});
   if (cached != images_.end()) return cached->second;
-  std::shared_ptr<const Texture>& slot = images_[index];
+  std::shared_ptr<const Texture>& slot = images_[{index, srgb}];
   const tinygltf::Image& source = gltf_.images[index];
   const std::string label = name_ + " image " + std::to_string(index);
   Expected<MaterialTexture> decoded = MaterialTexture{nullptr, label + ": no image data"};
@@ -186,9 +270,9 @@ std::shared_ptr<const Texture> MaterialTable::image(size_t index, const std::str
       warn_(bytes.error().message.substr(name_.size() + 1) + dropped);
       return nullptr;
     }
-    decoded = textures_.decode(bytes->data(), bytes->size(), label, /*srgb=*/true);
+    decoded = textures_.decode(bytes->data(), bytes->size(), label, srgb);
   } else if (!source.image.empty()) {
-    decoded = textures_.decode(source.image.data(), source.image.size(), label, /*srgb=*/true);
+    decoded = textures_.decode(source.image.data(), source.image.size(), label, srgb);
   } else if (!source.uri.empty()) {
     const std::string reference = percentDecoded(source.uri);
     if (folder_.empty()) {
@@ -202,7 +286,7 @@ std::shared_ptr<const Texture> MaterialTable::image(size_t index, const std::str
             "' refused: " + path.error().message + dropped);
       return nullptr;
     }
-    decoded = textures_.load(*path, /*srgb=*/true);
+    decoded = textures_.load(*path, srgb);
   }
   if (!decoded) {
     if (!fatal_) fatal_ = decoded.error();

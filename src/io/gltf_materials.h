@@ -20,6 +20,7 @@
 namespace tinygltf {
 class Model;
 class Value;
+struct Material;
 }  // namespace tinygltf
 
 namespace tessera::io::gltf {
@@ -57,14 +58,23 @@ class MaterialTable {
                             Sampler& sampler);
   Material buildMaterial(size_t index);
   Sampler sampler(size_t index);
-  std::shared_ptr<const Texture> image(size_t index, const std::string& dropped);
+  // `srgb`: colour (base colour, emissive) or data (the other maps): decoded once each way used.
+  std::shared_ptr<const Texture> image(size_t index, const std::string& dropped, bool srgb = true);
+  // A textureInfo's texture as a slot read through `sampler` (readTextureInfoSampler's) on UV set
+  // `uv_set`, the one the primitive keeps; empty, with a warning, when unusable.
+  TextureSlot textureSlot(int index, const Sampler& sampler, int uv_set, bool srgb,
+                          const std::string& what);
+  // metallicFactor ... alphaCutoff and their maps, read on UV set `uv_set` (the one a primitive
+  // keeps: the base colour texture's, gltf_primitives.cpp), into `material`.
+  void readPbr(const tinygltf::Material& source, const std::string& label, int uv_set,
+               Material& material);
 
   const tinygltf::Model& gltf_;
   const std::string name_;
   const std::filesystem::path folder_;
   Warn warn_, warn_about_;
   std::map<int, uint16_t> material_index_;
-  std::map<size_t, std::shared_ptr<const Texture>> images_;
+  std::map<std::pair<size_t, bool>, std::shared_ptr<const Texture>> images_;  // (image, srgb)
   TextureBudget textures_;
   std::optional<Error> fatal_;  // a texture over the budget
 };

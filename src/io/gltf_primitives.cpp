@@ -45,6 +45,8 @@ Expected<int32_t> GraphBuilder::meshFor(size_t mesh_index) {
 Expected<void> GraphBuilder::drawMesh(size_t mesh_index, Mesh& out) {
   const tinygltf::Mesh& mesh = gltf_.meshes[mesh_index];
   generated_normal_ranges_.clear();
+  generated_tangent_ranges_.clear();
+  tangents_refused_ = false;
   for (size_t p = 0; p < mesh.primitives.size(); ++p) {
     const std::string where =
         "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
@@ -66,7 +68,32 @@ Expected<void> GraphBuilder::drawMesh(size_t mesh_index, Mesh& out) {
   }
   if (!out.uvs.empty()) out.uvs.resize(out.positions.size(), float2{0, 0});
   if (!out.colors.empty()) out.colors.resize(out.positions.size(), float4{1, 1, 1, 1});
+  addTangents(out);
   return {};
+}
+
+// The mesh's tangents: the file's where it gave them, generated (generateTangents: not full
+// MikkTSpace) for normal-mapped primitives without; none at all when a TANGENT was unusable (its
+// normal map is left out: the renderer draws normal maps only with tangents).
+void GraphBuilder::addTangents(Mesh& out) {
+  if (tangents_refused_ || out.uvs.size() != out.positions.size()) {
+    out.tangents.clear();
+    return;
+  }
+  if (out.tangents.empty()) return;
+  out.tangents.resize(out.positions.size(), float4{1, 0, 0, 1});
+  if (generated_tangent_ranges_.empty()) return;
+  Mesh shape;
+  shape.positions = out.positions;
+  shape.normals = out.normals;
+  shape.uvs = out.uvs;
+  shape.indices = out.indices;
+  generateTangents(shape);
+  if (shape.tangents.size() != out.tangents.size()) return;
+  for (auto [begin, end] : generated_tangent_ranges_)
+    std::copy(shape.tangents.begin() + static_cast<std::ptrdiff_t>(begin),
+              shape.tangents.begin() + static_cast<std::ptrdiff_t>(end),
+              out.tangents.begin() + static_cast<std::ptrdiff_t>(begin));
 }
 
 Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
@@ -149,6 +176,17 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
          std::to_string(uv_set));
   const std::optional<ElementReader> colors = colorAttribute(primitive, where, vertex_count, fatal);
   if (!fatal) return fatal;
+  // Tangents for the material's normal map: the file's (VEC4, one per vertex), else generated.
+  const bool has_tangent = primitive.attributes.count("TANGENT") != 0;
+  const std::optional<ElementReader> tangents =
+      optionalAttribute(primitive, "TANGENT", where, vertex_count, {4}, {}, fatal);
+  if (!fatal) return fatal;
+  const bool normal_mapped = uvs && model_.materials[*material].normal;
+  if (has_tangent && !tangents && normal_mapped) {
+    warn(where + ": its TANGENT is unusable; the normal map is left out");
+    tangents_refused_ = true;
+  }
+  const bool keep_tangents = tangents || normal_mapped || !out.tangents.empty();
 
   // Each vertex of this primitive is emitted once, on first use. The remap is stamped per
   // primitive so it never needs clearing.
@@ -160,6 +198,7 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   const size_t first_vertex = out.positions.size();
   if (uvs) out.uvs.resize(first_vertex, float2{0, 0});
   if (colors) out.colors.resize(first_vertex, float4{1, 1, 1, 1});
+  if (keep_tangents) out.tangents.resize(first_vertex, float4{1, 0, 0, 1});
   bool normals_usable = normals.has_value();
 
   auto vertexOf = [&](size_t corner) -> Expected<uint32_t> {
@@ -187,6 +226,12 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
       out.colors.push_back({colors->component(local, 0), colors->component(local, 1),
                             colors->component(local, 2),
                             colors->components == 4 ? colors->component(local, 3) : 1.0f});
+    if (keep_tangents)
+      out.tangents.push_back(tangents ? float4{tangents->component(local, 0),
+                                               tangents->component(local, 1),
+                                               tangents->component(local, 2),
+                                               tangents->component(local, 3) < 0.0f ? -1.0f : 1.0f}
+                                      : float4{1, 0, 0, 1});
     return vertex;
   };
 
@@ -214,6 +259,11 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   }
   if (uvs) out.uvs.resize(out.positions.size(), float2{0, 0});
   if (colors) out.colors.resize(out.positions.size(), float4{1, 1, 1, 1});
+  if (keep_tangents) {
+    out.tangents.resize(out.positions.size(), float4{1, 0, 0, 1});
+    if (!tangents && normal_mapped)
+      generated_tangent_ranges_.push_back({first_vertex, out.positions.size()});
+  }
   stored_triangles_ += triangle_count;
   stored_vertices_ += out.positions.size() - first_vertex;
   if (!normals_usable) {

@@ -139,7 +139,9 @@ Expected<Texture> decodeTexture(const unsigned char* data, size_t size, const st
                                           &decoded.height, &channels, 4));
   if (pixels && (decoded.width != header->width || decoded.height != header->height))
     return makeError(name + ": the image's header and data disagree about its size");
-  return toTexture(std::move(pixels), decoded, srgb, name);
+  Expected<Texture> texture = toTexture(std::move(pixels), decoded, srgb, name);
+  if (texture) texture->source_channels = channels;
+  return texture;
 }
 
 }  // namespace tessera::io

@@ -177,7 +177,42 @@ Material MaterialBuilder::build(const tinyobj::material_t& source, bool has_kd) 
                           "': texture offset and scale (-o, -s) are not supported; ignored");
   }
   material.base_color = float4{kd, alpha};
+  buildPbr(source, material);
   return material;
+}
+
+// MTL onto the metallic-roughness model (docs/formats.md): Pm metallic; Pr roughness, else from
+// the Phong exponent Ns (alpha^2 = 2 / (Ns + 2), Walter et al.'s Blinn-Phong match; no specular
+// Ks: rough); Ke (x map_Ke, sRGB) emission; norm, else map_Bump when it is an RGB image, the
+// tangent-space normal map. Only --shading pbr reads these.
+void MaterialBuilder::buildPbr(const tinyobj::material_t& source, Material& material) {
+  auto finite = [](float value, float fallback) { return std::isfinite(value) ? value : fallback; };
+  material.metallic = std::clamp(finite(source.metallic, 0.0f), 0.0f, 1.0f);
+  const float ns = std::max(finite(source.shininess, 1.0f), 0.0f);
+  const bool no_specular =
+      source.specular[0] == 0.0f && source.specular[1] == 0.0f && source.specular[2] == 0.0f;
+  material.roughness = no_specular ? 1.0f : std::sqrt(std::sqrt(2.0f / (ns + 2.0f)));
+  if (source.roughness > 0.0f) material.roughness = std::min(finite(source.roughness, 1.0f), 1.0f);
+  for (int i = 0; i < 3; ++i)
+    material.emissive_factor[i] = std::max(finite(source.emission[i], 0.0f), 0.0f);
+  if (!source.emissive_texname.empty()) {
+    material.emissive.texture = texture(source.emissive_texname, /*srgb=*/true, source.name);
+    if (material.emissive_factor.x == 0.0f && material.emissive_factor.y == 0.0f &&
+        material.emissive_factor.z == 0.0f)
+      material.emissive_factor = {1.0f, 1.0f, 1.0f};
+  }
+  const std::string& normal =
+      !source.normal_texname.empty() ? source.normal_texname : source.bump_texname;
+  if (normal.empty()) return;
+  std::shared_ptr<const Texture> map = texture(normal, /*srgb=*/false, source.name);
+  if (map && map->source_channels > 0 && map->source_channels < 3) {
+    warnings_.push_back(obj_name_ + ": material '" + source.name + "': '" + normal +
+                        "' is not an RGB image (a height map?); it is not used as a normal map");
+    return;
+  }
+  material.normal.texture = map;
+  material.normal_scale =
+      source.normal_texname.empty() ? finite(source.bump_texopt.bump_multiplier, 1.0f) : 1.0f;
 }
 
 std::shared_ptr<const Texture> MaterialBuilder::texture(const std::string& reference, bool srgb,

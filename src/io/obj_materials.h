@@ -82,6 +82,7 @@ class MaterialBuilder {
   Material build(const tinyobj::material_t& source, bool has_kd);
 
  private:
+  void buildPbr(const tinyobj::material_t& source, Material& material);
   std::shared_ptr<const Texture> texture(const std::string& reference, bool srgb,
                                          const std::string& material_name);
 

@@ -1,6 +1,7 @@
 #include <tessera/model/model_scene.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <utility>
@@ -14,7 +15,14 @@ Shading shadingFromName(const std::string& name) {
   if (name == "flat") return Shading::kFlat;
   if (name == "gouraud") return Shading::kGouraud;
   if (name == "unlit") return Shading::kUnlit;
+  if (name == "pbr") return Shading::kPbr;
   return Shading::kPhong;
+}
+
+Shading defaultShading(const std::filesystem::path& model) {
+  std::string extension = model.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".gltf" || extension == ".glb" ? Shading::kPbr : Shading::kPhong;
 }
 
 bool isDefaultMaterial(const Material& material) {

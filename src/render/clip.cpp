@@ -38,6 +38,7 @@ ClipVertex interpolate(const ClipVertex& inside, const ClipVertex& outside, floa
   v.uv = inside.uv + (outside.uv - inside.uv) * t;
   v.color = lerp(inside.color, outside.color, t);
   v.world = lerp(inside.world, outside.world, t);
+  v.tangent = lerp(inside.tangent, outside.tangent, t);
   return v;
 }
 

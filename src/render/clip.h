@@ -16,7 +16,8 @@ struct ClipVertex {
   float3 normal;
   float2 uv;
   float4 color;
-  float3 world;  // world position: point and spot lights
+  float3 world;      // world position: point and spot lights, kPbr
+  float4 tangent{};  // world tangent: kPbr with a normal map
 };
 
 enum ClipPlaneBit : uint32_t {

@@ -226,11 +226,16 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
       const uint32_t id = static_cast<uint32_t>(t);
       ++chunk.clipped;
       ClipVertex in[3];
+      const bool needs_world = needsWorld(lights, object.shading);
       for (int k = 0; k < 3; ++k) {
         in[k] = {vertices.clip(xf.vertex_base + idx[k]), vertices.normal[xf.vertex_base + idx[k]],
                  has_uv ? mesh.uvs[idx[k]] : float2{},
                  has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1},
-                 lights.local ? (xf.model * float4(mesh.positions[idx[k]], 1.0f)).xyz() : float3{}};
+                 needs_world ? (xf.model * float4(mesh.positions[idx[k]], 1.0f)).xyz() : float3{}};
+        if (ctx.tangents) {
+          const float4 t = ctx.tangents[idx[k]];
+          in[k].tangent = float4((xf.model * float4(t.xyz(), 0.0f)).xyz(), t.w * ctx.winding_sign);
+        }
       }
       ClipVertex polygon[kMaxClippedVertices];
       const int n = clipTriangle(in, cut, guard, polygon);
@@ -245,7 +250,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
         ++chunk.size;
         VertexAttributes a[3];
         for (int i = 0; i < 3; ++i)
-          a[i] = {fan[i]->normal, fan[i]->uv, fan[i]->color, false, fan[i]->world};
+          a[i] = {fan[i]->normal, fan[i]->uv, fan[i]->color, false, fan[i]->world, fan[i]->tangent};
         setupShade(ctx, sv, a, orientation, raster, face_normal(idx), id, material(local),
                    chunk.shade[record], chunk.extras[record]);
         chunk.bins.add(grid, raster, record);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include <tessera/math/mat.h>
 #include <tessera/math/vec.h>
 #include <tessera/scene/scene.h>
 
@@ -48,9 +49,20 @@ struct LightRig {
   float3 ambient{0, 0, 0};
   std::vector<ShadeLight> lights;
   bool local = false;  // a point or spot light: shading needs world positions
+  // The viewer, for view-dependent shading (Shading::kPbr): the camera's position, or for a
+  // parallel projection the unit direction towards it (eye_at_infinity).
+  float3 eye{0, 0, 0};
+  float3 toward_eye{0, 0, 1};
+  bool eye_at_infinity = false;
 
   void prepare(const Scene& scene) {
     ambient = scene.ambient;
+    // The camera's frame in world space: the inverse view matrix's last two columns. A
+    // projection whose w does not depend on z (m(3, 3) != 0) is a parallel one.
+    const float4x4 camera = inverse(scene.camera.view());
+    eye = camera.col[3].xyz();
+    toward_eye = normalize(camera.col[2].xyz());
+    eye_at_infinity = scene.camera.projection(1.0f)(3, 3) != 0.0f;
     lights.clear();
     local = false;
     for (const Light& light : scene.lights) {
@@ -74,6 +86,20 @@ inline float localFactor(const ShadeLight& light, float3 n, float3 p) {
   const float cd = -((light.direction.x * u.x + light.direction.y * u.y) + light.direction.z * u.z);
   const float t = std::clamp(cd * light.spot_scale + light.spot_offset, 0.0f, 1.0f);
   return cos_theta * ((window * (t * t)) / d2);
+}
+
+// What a point or spot light gives a surface at p per unit radiance before the incidence cosine
+// (1 / d^2, the range window and the cone), and in `u` the unit direction from p to the light:
+// localFactor is (n.u) times this, with the same operations.
+inline float localAttenuation(const ShadeLight& light, float3 p, float3& u) {
+  const float3 l = light.position - p;
+  const float d2 = (l.x * l.x + l.y * l.y) + l.z * l.z;
+  const float inv_d = 1.0f / std::sqrt(d2);
+  u = {l.x * inv_d, l.y * inv_d, l.z * inv_d};
+  const float window = std::clamp(1.0f - d2 * d2 * light.inv_range4, 0.0f, 1.0f);
+  const float cd = -((light.direction.x * u.x + light.direction.y * u.y) + light.direction.z * u.z);
+  const float t = std::clamp(cd * light.spot_scale + light.spot_offset, 0.0f, 1.0f);
+  return (window * (t * t)) / d2;
 }
 
 // Lambert irradiance at world point p with unit normal n: ambient plus every light. The vertex

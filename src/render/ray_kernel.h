@@ -108,22 +108,31 @@ struct RayShading {
     const RayTriangle& r = chunk.ray[keyLocal(key)];
     F32x8 b0, b1, b2;
     rayBarycentrics8(r, d, b0, b1, b2);
+    // The barycentrics at the centre rays of the next pixels right and down of pixel x + l (or
+    // left and up at the image's edge: a one-pixel-wide image has no neighbour, the pixel itself).
+    auto neighbours = [&](int l, Barycentrics& br, Barycentrics& bd) {
+      const int px = x + l;
+      const int right = px + 1 < width ? px + 1 : std::max(px - 1, 0);
+      const int down = y + 1 < height ? y + 1 : std::max(y - 1, 0);
+      const size_t w = static_cast<size_t>(width);
+      rayBarycentrics(r, rayAt(rays.centre(), static_cast<size_t>(y) * w + right), br.b0, br.b1,
+                      br.b2);
+      rayBarycentrics(r, rayAt(rays.centre(), static_cast<size_t>(down) * w + px), bd.b0, bd.b1,
+                      bd.b2);
+    };
     shadeLanesAt(
         t, e, lights, want_normals, b0, b1, b2, mask, color, normal,
         [&](int l, const Barycentrics& b) {
-          const int px = x + l;
-          // A one-pixel-wide (or tall) image has no neighbour: the pixel itself.
-          const int right = px + 1 < width ? px + 1 : std::max(px - 1, 0);
-          const int down = y + 1 < height ? y + 1 : std::max(y - 1, 0);
-          const size_t w = static_cast<size_t>(width);
           Barycentrics br, bd;
-          rayBarycentrics(r, rayAt(rays.centre(), static_cast<size_t>(y) * w + right), br.b0, br.b1,
-                          br.b2);
-          rayBarycentrics(r, rayAt(rays.centre(), static_cast<size_t>(down) * w + px), bd.b0, bd.b1,
-                          bd.b2);
+          neighbours(l, br, bd);
           return sampleAlbedo(t, e, b, br, bd);
         },
-        [](Vec3x8&, Vec3x8&) { return false; });
+        [](Vec3x8&, Vec3x8&) { return false; },
+        [&](int l, const Barycentrics& b, const Texture& texture, const Sampler& sampler) {
+          Barycentrics br, bd;
+          neighbours(l, br, bd);
+          return sampleTexture(texture, sampler, e, b, br, bd);
+        });
   }
 };
 
@@ -141,10 +150,10 @@ Vec3x8 shadeRayFragments(const RayShading& rs, int s, I32x8 keys, I32x8 first, i
     const RayTriangle& r = rs.chunks[keyChunk(key)].ray[keyLocal(key)];
     alignas(32) int32_t at_centre[8];
     for (int l = 0; l < 8; ++l)
-      at_centre[l] = lane(mine, l) && rayCovers(r, {lane(centre.x, l), lane(centre.y, l),
-                                                    lane(centre.z, l)})
-                         ? -1
-                         : 0;
+      at_centre[l] =
+          lane(mine, l) && rayCovers(r, {lane(centre.x, l), lane(centre.y, l), lane(centre.z, l)})
+              ? -1
+              : 0;
     const I32x8 c = load<I32x8>(at_centre);
     const Ray8 d{select(c, centre.x, sample.x), select(c, centre.y, sample.y),
                  select(c, centre.z, sample.z)};
@@ -154,8 +163,9 @@ Vec3x8 shadeRayFragments(const RayShading& rs, int s, I32x8 keys, I32x8 first, i
   return color;
 }
 
-void rasterRayTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
-                   const RayLayer& layer, int width, RayDepth depth, TileVisibility& tile) {
+void rasterRayTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                         int tile_index, const RayLayer& layer, int width, RayDepth depth,
+                         TileVisibility& tile) {
   for (size_t c = 0; c < chunk_count; ++c) {
     const TriangleChunk& chunk = chunks[c];
     for (const uint32_t* it = chunk.bins.begin(tile_index); it != chunk.bins.end(tile_index);
@@ -169,8 +179,8 @@ void rasterRayTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_
 }
 
 void shadeRayTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk>& chunks,
-                  size_t, const LightRig& lights, bool want_normals, uint32_t background,
-                  const RayTable& rays, const MsaaShading* msaa, ShadedTile& out) {
+                        size_t, const LightRig& lights, bool want_normals, uint32_t background,
+                        const RayTable& rays, const MsaaShading* msaa, ShadedTile& out) {
   const RayShading rs{lights, chunks, rays, rays.width(), rays.height()};
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const F32x8 zero = splat(0.0f);
@@ -202,11 +212,11 @@ void shadeRayTileKernel(const TileVisibility& tile, const std::vector<TriangleCh
       }
     }
     if (msaa)
-      resolveMixedRowWith(*msaa, tile, ty, linear,
-                          [&](int s, I32x8 keys, I32x8 first, int x, int y)
-                              __attribute__((always_inline)) {
-                                return shadeRayFragments(rs, s, keys, first, x, y);
-                              });
+      resolveMixedRowWith(
+          *msaa, tile, ty,
+          linear, [&](int s, I32x8 keys, I32x8 first, int x, int y) __attribute__((always_inline)) {
+            return shadeRayFragments(rs, s, keys, first, x, y);
+          });
     encodeShadedRow(tile, ty, linear, background, out);
   }
 }

@@ -91,6 +91,11 @@ struct MeshCorners {
   float3 world(int k, const float4x4& model) const {
     return (model * float4(vertices.position[index[k]], 1.0f)).xyz();
   }
+  // World tangent (a direction: the model's upper 3x3) from the object-space one.
+  float4 tangent(int k, const SetupContext& ctx) const {
+    const float4 t = ctx.tangents[index[k]];
+    return float4((*ctx.model * float4(t.xyz(), 0.0f)).xyz(), t.w * ctx.winding_sign);
+  }
 };
 
 // A clipped triangle's corners: the clipper's output.
@@ -105,6 +110,7 @@ struct ClippedCorners {
   float3 color(int k) const { return a[k].color.xyz(); }
   const float3* lit(int) const { return nullptr; }
   float3 world(int k, const float4x4&) const { return a[k].world; }
+  float4 tangent(int k, const SetupContext&) const { return a[k].tangent; }
 };
 
 bool isZero(float3 n) {
@@ -156,7 +162,8 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
   // normal AOV, UVs for textured meshes.
   const LightRig& lights = *ctx.lights;
   // World positions matter only to point and spot lights.
-  const auto world = [&](int i) { return lights.local ? corners.world(i, *ctx.model) : float3{}; };
+  const bool needs_world = needsWorld(lights, ctx.shading);
+  const auto world = [&](int i) { return needs_world ? corners.world(i, *ctx.model) : float3{}; };
   switch (ctx.shading) {
     case Shading::kFlat: {
       const float3 n = flatNormal();
@@ -185,6 +192,23 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
           shade.color[k] = albedo(i) * irradiance(lights, n, world(i));
         }
       }
+      break;
+    case Shading::kPbr:
+      // The base colour (factor x vertex colour); the maps and the BRDF are per pixel.
+      for (int k = 0; k < 3; ++k) {
+        const int i = o.order[k];
+        extras.normal[k] = vertexNormal(i);
+        extras.world[k] = world(i);
+        shade.color[k] = albedo(i);
+        if (ctx.tangents) {
+          // Drawn back faces flip the whole frame (normal, tangent and bitangent: the relief
+          // seen from behind), as the Khronos sample viewer does.
+          const float4 t = corners.tangent(i, ctx);
+          extras.tangent[k] = float4(t.xyz() * flip, t.w * flip);
+        }
+      }
+      shade.pbr_flags = static_cast<uint8_t>((ctx.has_uv ? kPbrUv : 0) |
+                                             (ctx.has_uv && ctx.tangents ? kPbrTangents : 0));
       break;
     case Shading::kPhong:
     case Shading::kUnlit:

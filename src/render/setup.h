@@ -74,6 +74,7 @@ struct ShadeTriangle {
   uint32_t triangle_id;  // index in the scene's triangle list
   Shading shading;
   bool has_uv;  // sample the albedo texture (the mesh has UVs and the material a texture)
+  uint8_t pbr_flags;  // kPbr only: kPbrUv, kPbrTangents (in the padding: the record stays 88 bytes)
   // Perspective-correct barycentrics at window point p, with d = p - (x0, y0):
   //   s = inv_w0 + sdx*d.x + sdy*d.y;  b1 = (p1dx*d.x + p1dy*d.y) / s;  b2 = (...) / s;  b0 =
   //   1-b1-b2
@@ -84,12 +85,17 @@ struct ShadeTriangle {
   float3 color[3];
 };
 
-// What only Phong, textured and normal-AOV pixels read, in an array beside the ShadeTriangles:
+// ShadeTriangle::pbr_flags: the mesh has UVs (the material's maps apply) and tangents (so does its
+// normal map).
+constexpr uint8_t kPbrUv = 1, kPbrTangents = 2;
+
+// What only Phong, PBR, textured and normal-AOV pixels read, in an array beside the ShadeTriangles:
 // records of untextured flat and Gouraud triangles stay 88 bytes, written and read whole.
 struct ShadeExtras {
   float3 normal[3];  // world shading normals, facing the viewer for drawn back faces
   float2 uv[3];
-  float3 world[3];  // world positions: Phong pixels lit by point and spot lights
+  float3 world[3];    // world positions: Phong pixels lit by point and spot lights, PBR pixels
+  float4 tangent[3];  // PBR with a normal map: world tangent, w the bitangent's sign (Mesh)
 };
 
 struct SetupContext {
@@ -102,6 +108,9 @@ struct SetupContext {
   bool has_uv = false;
   bool has_color = false;
   bool want_normals = false;  // the normal AOV is asked for
+  // kPbr objects whose materials have a normal map: the mesh's tangents (object space), else null.
+  const float4* tangents = nullptr;
+  float winding_sign = 1.0f;  // sign of det(model): a mirrored object flips the bitangent
   // How far (1/256 pixel) a sample may lie from its pixel's centre: 0 with one sample at the
   // centre, kSampleReach with MSAA. Boxes then hold every pixel a sample of which may be covered.
   int32_t sample_reach = 0;
@@ -126,6 +135,13 @@ inline SetupContext objectSetupContext(const LightRig& lights, const Object& obj
   }
   ctx.want_normals = want_normals;
   ctx.sample_reach = sample_reach;
+  const Mesh* mesh = object.mesh.get();
+  if (object.shading == Shading::kPbr && mesh && ctx.has_uv &&
+      mesh->tangents.size() == mesh->vertexCount() && mesh->normals.size() == mesh->vertexCount() &&
+      std::any_of(object.materials.begin(), object.materials.end(),
+                  [](const Material& m) { return m.normal.texture != nullptr; }))
+    ctx.tangents = mesh->tangents.data();
+  ctx.winding_sign = determinant(upper3x3(model)) < 0.0f ? -1.0f : 1.0f;
   return ctx;
 }
 
@@ -224,8 +240,14 @@ struct VertexAttributes {
   float2 uv;
   float4 color;
   bool unit_normal;  // `normal` is unit length or zero already (not interpolated by clipping)
-  float3 world;      // world position (read only with point or spot lights)
+  float3 world;      // world position (read only with point or spot lights, and for kPbr)
+  float4 tangent{};  // world tangent (read only when SetupContext::tangents is set)
 };
+
+// Whether setup writes world positions: point and spot lights, and the view vector of kPbr.
+inline bool needsWorld(const LightRig& lights, Shading shading) {
+  return lights.local || shading == Shading::kPbr;
+}
 
 // An object's vertices, indexed by mesh vertex: an unclipped triangle's corners are read from
 // here, and only for what its shading mode uses.

@@ -65,8 +65,16 @@ float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Bar
 float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Barycentrics& b,
                     const Barycentrics& right, const Barycentrics& down);
 
+// Any texture of t's material (`texture` read through `sampler`: the PBR maps) at barycentrics b,
+// RGBA as the texture holds it (linear; sRGB textures decoded). The same filtering and level of
+// detail as sampleAlbedo, from the barycentrics at window point (x, y)'s neighbours or those given.
+float4 sampleTexture(const Texture& texture, const Sampler& sampler, const ShadeTriangle& t,
+                     const ShadeExtras& extras, const Barycentrics& b, float x, float y);
+float4 sampleTexture(const Texture& texture, const Sampler& sampler, const ShadeExtras& extras,
+                     const Barycentrics& b, const Barycentrics& right, const Barycentrics& down);
+
 // True when every pixel's colour is its triangle's interpolated vertex colours: no object is
-// textured or Phong-shaded and the normal AOV is not asked for.
+// textured, Phong- or PBR-shaded and the normal AOV is not asked for.
 bool plainShading(const Scene& scene, bool want_normals);
 
 // `plain`: plainShading(scene, want_normals).

@@ -55,6 +55,20 @@ void SceneGraph::updateWorld() {
 
 void SceneGraph::prepareMeshes() {
   if (world.size() != nodes.size()) updateWorld();
+  // A normal map needs tangents: generated for meshes whose file gave none (OBJ; glTF's loader
+  // makes its own).
+  for (GraphMesh& m : meshes) {
+    const Mesh& mesh = *m.mesh;
+    const bool mapped = std::any_of(m.materials.begin(), m.materials.end(),
+                                    [](const Material& material) { return bool(material.normal); });
+    if (!mapped || !mesh.tangents.empty() || mesh.uvs.size() != mesh.vertexCount() ||
+        mesh.normals.size() != mesh.vertexCount())
+      continue;
+    auto with_tangents = std::make_shared<Mesh>(mesh);
+    generateTangents(*with_tangents);
+    m.mesh = std::move(with_tangents);
+    m.clusters = nullptr;
+  }
   for (GraphMesh& m : meshes)
     if (!m.clusters) m.clusters = buildClusters(*m.mesh);
   for (size_t i = 0; i < nodes.size(); ++i) {
@@ -106,6 +120,15 @@ Mesh SceneGraph::flatten() const {
       if (mesh.uvs.size() == mesh.vertexCount())
         out.uvs.insert(out.uvs.end(), mesh.uvs.begin(), mesh.uvs.end());
       out.uvs.resize(out.positions.size(), float2{0, 0});
+    }
+    if (!mesh.tangents.empty() || !out.tangents.empty()) {
+      // Directions: the model's upper 3x3; a mirror flips the bitangent's sign.
+      out.tangents.resize(base, float4{1, 0, 0, 1});
+      if (mesh.tangents.size() == mesh.vertexCount())
+        for (const float4& t : mesh.tangents)
+          out.tangents.push_back(
+              float4(safeNormalize((m * float4(t.xyz(), 0.0f)).xyz()), mirror ? -t.w : t.w));
+      out.tangents.resize(out.positions.size(), float4{1, 0, 0, 1});
     }
     if (!mesh.colors.empty() || !out.colors.empty()) {
       out.colors.resize(base, float4{1, 1, 1, 1});

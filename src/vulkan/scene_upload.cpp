@@ -171,7 +171,10 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
     gpu.material_base = static_cast<uint32_t>(out.materials.size());
     gpu.material_count = static_cast<uint32_t>(object.materials.size());
     gpu.cull = static_cast<uint32_t>(object.cull);
-    gpu.shading = static_cast<uint32_t>(object.shading);
+    // The compute shaders have no PBR yet: kPbr objects are drawn per-pixel Lambert
+    // (docs/vulkan.md).
+    gpu.shading =
+        static_cast<uint32_t>(object.shading == Shading::kPbr ? Shading::kPhong : object.shading);
     out.models.push_back(xf.model);
 
     for (const Material& material : object.materials) {

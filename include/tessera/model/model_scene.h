@@ -33,8 +33,12 @@ bool isDefaultMaterial(const Material& material);
 // Whether any material the model draws with is the loader's default.
 bool hasDefaultMaterial(const io::Model& model);
 
-// "flat", "smooth" (per-pixel), "gouraud" (per-vertex) or "unlit".
+// "flat", "smooth" (per-pixel), "gouraud" (per-vertex), "unlit" or "pbr".
 Shading shadingFromName(const std::string& name);
+
+// The shading a model is drawn with when the user names none: kPbr for glTF (.gltf, .glb), whose
+// materials are metallic-roughness ones; kPhong (smooth) for the other formats.
+Shading defaultShading(const std::filesystem::path& model);
 
 // The model's instances as the scene's objects (instantiate, graph.h), in its own coordinates:
 // one object for OBJ and STL; Model::points and Model::lines become Scene::points and

@@ -33,6 +33,9 @@ struct Mesh {
   std::vector<float3> normals;    // empty: generate them (generateSmoothNormals) or draw flat
   std::vector<float2> uvs;        // empty: no texture coordinates
   std::vector<float4> colors;     // linear RGBA; empty: white
+  // Tangent space for normal maps (glTF's TANGENT): xyz along +u, unit; w = +-1, the bitangent is
+  // cross(normal, xyz) * w (along +v). Empty: none (generateTangents makes them).
+  std::vector<float4> tangents;
   std::vector<uint32_t> indices;  // three per triangle
   std::vector<uint16_t> triangle_materials;  // one per triangle, index into Object::materials;
                                              // empty: material 0 everywhere
@@ -54,5 +57,11 @@ float3 safeNormalize(float3 v);
 // Smooth, area-weighted vertex normals (each face adds its unnormalized cross product).
 // Vertices that no finite, non-degenerate face touches get (0, 0, 1).
 void generateSmoothNormals(Mesh& mesh);
+
+// Per-vertex tangents from the UV derivatives of the triangles around each vertex (their
+// object-space dP/du, summed area-weighted, made orthogonal to the vertex normal; the handedness
+// from dP/dv). Not full MikkTSpace (no splitting of vertices whose triangles disagree); for a
+// mesh whose file has no tangents. Needs normals and UVs (else leaves tangents empty).
+void generateTangents(Mesh& mesh);
 
 }  // namespace tessera

@@ -19,6 +19,9 @@ enum class Shading : uint8_t {
   kGouraud,  // lighting per vertex, interpolated
   kPhong,    // normals interpolated, lighting per pixel
   kUnlit,    // albedo only
+  // glTF's metallic-roughness BRDF per pixel (render/pbr.h): every map and factor of the Material,
+  // view-dependent. The Vulkan backends draw it as kPhong (docs/vulkan.md).
+  kPbr,
 };
 
 enum class CullMode : uint8_t { kBack, kFront, kNone };
