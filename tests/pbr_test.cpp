@@ -442,5 +442,69 @@ TEST(PbrShading, PixelMatchesTheScalarReference) {
   EXPECT_GT(compared, 10);
 }
 
+// ---- Environment light (--hdri) ----
+
+// A 64 x 32 environment: `sky` above the horizon, `ground` below.
+std::shared_ptr<const Environment> skyEnvironment(float3 sky, float3 ground) {
+  EnvironmentImage image;
+  image.width = 64;
+  image.height = 32;
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) image.texels.push_back(y < 16 ? sky : ground);
+  return std::make_shared<const Environment>(std::move(image));
+}
+
+// The white furnace: a white, rough dielectric under a uniform white environment returns
+// at most what comes in (and nearly all of it: it is white), from every side; a smooth white metal
+// reflects the environment.
+TEST(PbrEnvironment, WhiteFurnaceAndAMetalMirror) {
+  Scene scene;
+  scene.environment = skyEnvironment({1, 1, 1}, {1, 1, 1});
+  scene.camera.position = {0, 0, 10};
+  LightRig rig;
+  rig.prepare(scene);
+  ASSERT_NE(rig.environment, nullptr);
+  PbrSurface rough;
+  rough.roughness = 1.0f;
+  for (float3 n : {float3{0, 0, 1}, normalize(float3{1, 0, 1}), normalize(float3{0, 1, 0.2f}),
+                   normalize(float3{-1, -2, 0.5f})}) {
+    const float3 c = shadePbr(rig, rough, n, {0, 0, 0});
+    EXPECT_LE(c.x, 1.0f + 2e-3f) << n.x << "," << n.y << "," << n.z;
+    EXPECT_GT(c.x, 0.9f);
+  }
+  // A mirror-like metal in a sky over black ground: the sky where its reflection points up, the
+  // ground where it points down.
+  scene.environment = skyEnvironment({1, 1, 1}, {0, 0, 0});
+  rig.prepare(scene);
+  PbrSurface metal;
+  metal.metallic = 1.0f;
+  metal.roughness = 0.0f;
+  const float3 up_facing = normalize(float3{0, 1, 1});     // v = +Z reflects to +Y
+  const float3 down_facing = normalize(float3{0, -1, 1});  // ... to -Y
+  EXPECT_GT(shadePbr(rig, metal, up_facing, {0, 0, 0}).x, 0.95f);
+  EXPECT_LT(shadePbr(rig, metal, down_facing, {0, 0, 0}).x, 0.05f);
+  // Without the environment the uniform ambient is back.
+  scene.environment = nullptr;
+  scene.ambient = {0, 0, 0};
+  rig.prepare(scene);
+  EXPECT_EQ(shadePbr(rig, metal, up_facing, {0, 0, 0}).x, 0.0f);
+}
+
+TEST(PbrEnvironment, LitImageIsBitIdenticalForEverySimdLevelAndMatchesTheReference) {
+  Scene scene = pbrQuadScene(pbrQuad({1, 0}, {0, 1}));
+  scene.camera = {};
+  scene.camera.position = {0.2f, 0.3f, 2.5f};
+  scene.environment = skyEnvironment({0.9f, 0.8f, 1.2f}, {0.1f, 0.2f, 0.05f});
+  RenderOptions options;
+  options.width = options.height = 48;
+  const Frame scalar = test::renderAt(scene, options, SimdLevel::kScalar, 1);
+  for (SimdLevel level : {SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512, SimdLevel::kAuto})
+    EXPECT_EQ(scalar.color, test::renderAt(scene, options, level, 2).color) << int(level);
+  // The environment changes the picture (the sky is brighter than the 0.1 ambient it replaces).
+  Scene plain = scene;
+  plain.environment = nullptr;
+  EXPECT_GT(maxDifference(scalar, test::renderAt(plain, options, SimdLevel::kAuto, 1)), 20);
+}
+
 }  // namespace
 }  // namespace tessera::render

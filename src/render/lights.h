@@ -54,9 +54,15 @@ struct LightRig {
   float3 eye{0, 0, 0};
   float3 toward_eye{0, 0, 1};
   bool eye_at_infinity = false;
+  // Image-based light (Scene::environment, --hdri): PBR pixels take it in place of `ambient`.
+  const Environment* environment = nullptr;
+  float3x3 world_to_environment;
 
   void prepare(const Scene& scene) {
     ambient = scene.ambient;
+    environment = scene.environment && !scene.environment->empty() ? scene.environment.get()
+                                                                   : nullptr;
+    world_to_environment = scene.world_to_environment;
     // The camera's frame in world space: the inverse view matrix's last two columns. A
     // projection whose w does not depend on z (m(3, 3) != 0) is a parallel one.
     const float4x4 camera = inverse(scene.camera.view());

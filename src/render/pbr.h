@@ -124,6 +124,16 @@ inline float3 pbrAmbient(const PbrLobes& s, float3 ambient, float occlusion, flo
           (occlusion * ambient.z) * ((1.0f - fa.z) * s.c_diff.z + fa.z)};
 }
 
+// With an environment (LightRig::environment, --hdri) the uniform ambient gives way to image-based
+// light, the split sum of Karis 2013 as the Khronos sample viewer evaluates it: with r = v
+// reflected about n, kS = Fa above and (A, B) = splitSumBrdf(n.v, roughness),
+//   FssEss = kS A + B,   ambient' = ao (E_d(n) c_diff (1 - FssEss) + E_s(r, roughness) FssEss),
+// E_d the environment's irradiance over pi and E_s its GGX-prefiltered radiance
+// (environment.h). A white dielectric in a uniform environment of radiance L returns at most L; a
+// smooth metal reflects the environment times its split-sum Fresnel.
+float3 pbrEnvironment(const PbrLobes& s, const LightRig& rig, float occlusion, float3 n, float3 v,
+                      float nv);
+
 // The unit vector from world point p towards the viewer (LightRig::eye).
 inline float3 viewVector(const LightRig& rig, float3 p) {
   if (rig.eye_at_infinity) return rig.toward_eye;

@@ -230,6 +230,24 @@ TESSERA_LANES_INLINE Vec3x8 pbrAmbient8(const PbrLobes8& s, float3 ambient, F32x
           (occlusion * splat(ambient.z)) * ((one - a.z) * s.c_diff.z + a.z)};
 }
 
+// As pbrEnvironment, lane by lane (the environment's tables are read per lane anyway).
+TESSERA_LANES_INLINE Vec3x8 pbrEnvironment8(const PbrLobes8& s, const LightRig& rig,
+                                            F32x8 occlusion, const Vec3x8& n, const Vec3x8& v,
+                                            F32x8 nv) {
+  alignas(32) float out[3][8];
+  for (int l = 0; l < 8; ++l) {
+    const PbrLobes lobes{{lane(s.c_diff.x, l), lane(s.c_diff.y, l), lane(s.c_diff.z, l)},
+                         {lane(s.f0.x, l), lane(s.f0.y, l), lane(s.f0.z, l)},
+                         lane(s.roughness, l),
+                         lane(s.a2, l)};
+    const float3 c =
+        pbrEnvironment(lobes, rig, lane(occlusion, l), {lane(n.x, l), lane(n.y, l), lane(n.z, l)},
+                       {lane(v.x, l), lane(v.y, l), lane(v.z, l)}, lane(nv, l));
+    out[0][l] = c.x, out[1][l] = c.y, out[2][l] = c.z;
+  }
+  return {load<F32x8>(out[0]), load<F32x8>(out[1]), load<F32x8>(out[2])};
+}
+
 // As viewVector.
 TESSERA_LANES_INLINE Vec3x8 viewVector8(const LightRig& rig, const Vec3x8& p) {
   if (rig.eye_at_infinity)
@@ -259,7 +277,8 @@ TESSERA_LANES_INLINE Vec3x8 shadePbr8(const LightRig& rig, const PbrLobes8& s, F
                                       const Vec3x8& emissive, const Vec3x8& n, const Vec3x8& p) {
   const Vec3x8 v = viewVector8(rig, p);
   const F32x8 nv = absLanes(dot8(n, v));
-  Vec3x8 c = pbrAmbient8(s, rig.ambient, occlusion, nv);
+  Vec3x8 c = rig.environment ? pbrEnvironment8(s, rig, occlusion, n, v, nv)
+                             : pbrAmbient8(s, rig.ambient, occlusion, nv);
   for (const ShadeLight& light : rig.lights) {
     Vec3x8 l;
     F32x8 nl, f;

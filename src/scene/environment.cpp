@@ -183,6 +183,7 @@ float3 equirectDirection(float2 uv) {
 
 float3 sampleEquirect(const EnvironmentImage& image, float3 d) {
   const float2 uv = equirectUv(d);
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return {0, 0, 0};  // a NaN direction
   const float fx = uv.x * static_cast<float>(image.width) - 0.5f;
   const float fy = std::clamp(uv.y * static_cast<float>(image.height) - 0.5f, 0.0f,
                               static_cast<float>(image.height - 1));
@@ -216,7 +217,8 @@ float3 Environment::diffuse(float3 n) const {
 }
 
 float3 Environment::specular(float3 r, float roughness) const {
-  const float lod = std::clamp(roughness, 0.0f, 1.0f) * (kSpecularLevels - 1);
+  // fmax and fmin take a NaN to the bound: a lane nobody stores may hold one.
+  const float lod = std::fmin(std::fmax(roughness, 0.0f), 1.0f) * (kSpecularLevels - 1);
   const int lower = std::min(static_cast<int>(lod), kSpecularLevels - 2);
   const float t = lod - static_cast<float>(lower);
   return sampleEquirect(specular_[lower], r) * (1.0f - t) +
@@ -268,8 +270,9 @@ struct BrdfLut {
 
 float2 splitSumBrdf(float n_dot_v, float roughness) {
   static const BrdfLut lut;
-  const float fx = std::clamp(n_dot_v, 0.0f, 1.0f) * (kLutSize - 1);
-  const float fy = std::clamp(roughness, 0.0f, 1.0f) * (kLutSize - 1);
+  // fmax and fmin take a NaN to the bound: a lane nobody stores may hold one.
+  const float fx = std::fmin(std::fmax(n_dot_v, 0.0f), 1.0f) * (kLutSize - 1);
+  const float fy = std::fmin(std::fmax(roughness, 0.0f), 1.0f) * (kLutSize - 1);
   const int x0 = std::min(static_cast<int>(fx), kLutSize - 2);
   const int y0 = std::min(static_cast<int>(fy), kLutSize - 2);
   const float tx = fx - static_cast<float>(x0), ty = fy - static_cast<float>(y0);
