@@ -45,6 +45,12 @@ ffmpeg -loglevel error -y -i "$tmp/panorama.png" -i "$tmp/fisheye.png" \
   --camera-focal-point 0,0,0 --light point:-1.6,1.2,1.6:1,0.7,0.45:4 \
   --light spot:1.8,2.2,1.6:-1.3,-2.5,-1.4:8,14:0.45,0.65,1:8 --ambient 0.02,0.02,0.02 \
   -o "$out/lights.png"
+# PBR: Debian assimp-data's ClearCoat test (the base layer), smooth (Lambert) against pbr.
+clearcoat=/usr/share/assimp/models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf
+"$tessera" render "$clearcoat" --resolution 480,480 --shading smooth -o "$tmp/smooth.png"
+"$tessera" render "$clearcoat" --resolution 480,480 -o "$tmp/pbr.png"
+ffmpeg -loglevel error -y -i "$tmp/smooth.png" -i "$tmp/pbr.png" -filter_complex hstack=inputs=2 \
+  "$out/pbr.png"
 ls -la "$out"
 # The painter's algorithm against the z-buffer (a sphere pierced by a blade), and --edges on a
 # quad-faced sphere and a cube (docs/painter_scene.py writes both scenes).
