@@ -226,12 +226,13 @@ TEST(Texture, TransformMovesAKnownUvToTheTexelTheExtensionSays) {
       {{0.1f, 0.1f}, {{0.5f, 0.0f}, 0.0f, {1, 1}}, 2, 0},  // offset u: 0.6
       {{0.1f, 0.1f}, {{0.0f, 0.5f}, 0.0f, {1, 1}}, 0, 2},  // offset v: 0.6 (down the image)
       {{0.1f, 0.2f}, {{0.1f, 0.2f}, 0.0f, {2, 3}}, 1, 3},  // scale then offset: (0.3, 0.8)
-      // Rotation, counter-clockwise: (u, v) -> (cos u - sin v, sin u + cos v) = (-v, u) at a
-      // quarter turn; offset (1, 0) brings it back: (0.8, 0.1).
-      {{0.1f, 0.2f}, {{1.0f, 0.0f}, quarter_turn, {1, 1}}, 3, 0},
-      // All three: scale (2, 1) first, (0.3, 0.6) -> (0.6, 0.6); a quarter turn: (-0.6, 0.6);
-      // offset (0.75, 0.1): (0.15, 0.7).
-      {{0.3f, 0.6f}, {{0.75f, 0.1f}, quarter_turn, {2, 1}}, 0, 2},
+      // Rotation: (u, v) -> (cos u + sin v, -sin u + cos v) = (v, -u) at a quarter turn (the
+      // direction the sample model TextureTransformTest marks green); offset (0, 1) brings it
+      // back: (0.2, 0.9).
+      {{0.1f, 0.2f}, {{0.0f, 1.0f}, quarter_turn, {1, 1}}, 0, 3},
+      // All three: scale (2, 1) first, (0.3, 0.6) -> (0.6, 0.6); a quarter turn: (0.6, -0.6);
+      // offset (0.1, 0.75): (0.7, 0.15).
+      {{0.3f, 0.6f}, {{0.1f, 0.75f}, quarter_turn, {2, 1}}, 2, 0},
   };
   Sampler nearest;
   nearest.filter = TextureFilter::kNearest;

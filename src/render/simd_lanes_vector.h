@@ -153,18 +153,30 @@ TESSERA_LANES_INLINE I32x8 shiftLeft(I32x8 a, int n) {
 TESSERA_LANES_INLINE I32x8 truncate(F32x8 a) {
   return __builtin_convertvector(a, I32x8);
 }
+// table[index[l]] for every lane (each index must be valid, whatever the lane holds): one
+// gather instruction with AVX2 (GCC does not turn the lane loop into one by itself).
 TESSERA_LANES_INLINE F32x8 gather(const float* table, I32x8 index) {
+#if defined(__AVX2__)
+  return reinterpret_cast<F32x8>(
+      _mm256_i32gather_ps(table, reinterpret_cast<__m256i>(index), sizeof(float)));
+#else
   F32x8 r;
   for (int l = 0; l < 8; ++l) r[l] = table[index[l]];
   return r;
+#endif
 }
 TESSERA_LANES_INLINE I32x8 lessThan(I32x8 a, I32x8 b) {
   return a < b;
 }
 TESSERA_LANES_INLINE I32x8 gatherWords(const uint32_t* table, I32x8 index) {
+#if defined(__AVX2__)
+  return reinterpret_cast<I32x8>(_mm256_i32gather_epi32(
+      reinterpret_cast<const int*>(table), reinterpret_cast<__m256i>(index), sizeof(uint32_t)));
+#else
   I32x8 r;
   for (int l = 0; l < 8; ++l) r[l] = static_cast<int32_t>(table[index[l]]);
   return r;
+#endif
 }
 TESSERA_LANES_INLINE F32x8 floorLanes(F32x8 a) {
   for (int l = 0; l < 8; ++l) a[l] = __builtin_floorf(a[l]);  // one vroundps where there is one

@@ -94,16 +94,18 @@ bool TextureTransform::finite() const {
 }
 
 UvAffine TextureTransform::affine() const {
-  // The extension's matrix T(offset) R(rotation) S(scale), whose GLSL mat3s are column-major:
-  // rows (c sx, -s sy, ox) and (s sx, c sy, oy); taken to v' = 1 - v on both sides.
+  // The extension's T(offset) R(rotation) S(scale) with the rotation's rows (c, s) and (-s, c),
+  // its README's mat3 read row by row: rows (c sx, s sy, ox) and (-s sx, c sy, oy). (Read as
+  // GLSL's column-major mat3 it would turn the other way, which Khronos' TextureTransformTest
+  // marks red.) Then taken to v' = 1 - v on both sides.
   const double c = rotation == 0.0f ? 1.0 : std::cos(static_cast<double>(rotation));
   const double s = rotation == 0.0f ? 0.0 : std::sin(static_cast<double>(rotation));
   const double sx = scale.x, sy = scale.y, ox = offset.x, oy = offset.y;
   UvAffine m;
   m.m00 = static_cast<float>(c * sx);
-  m.m01 = static_cast<float>(s * sy);
-  m.m02 = static_cast<float>(ox - s * sy);
-  m.m10 = static_cast<float>(-s * sx);
+  m.m01 = static_cast<float>(-s * sy);
+  m.m02 = static_cast<float>(s * sy + ox);
+  m.m10 = static_cast<float>(s * sx);
   m.m11 = static_cast<float>(c * sy);
   m.m12 = static_cast<float>(1.0 - c * sy - oy);
   return m;
