@@ -63,48 +63,80 @@ TESSERA_LANES_INLINE bool coversCentre(const RasterTriangle& t, const RasterWide
   return true;
 }
 
+// The lanes of `lanes` whose pixel centre (x + l, y) passes the edge tests of their triangle
+// (keys): the exact test, as the Vulkan backend's. Small triangles (the pixel lies in the record's
+// box, where their edge values fit in int32: RasterTriangle::small) take it in lanes from their
+// records' first twelve words, loaded eight records at a time and transposed; large ones lane by
+// lane in 64 bits.
+TESSERA_LANES_INLINE I32x8 centresCovered(const std::vector<TriangleChunk>& chunks, I32x8 keys,
+                                          I32x8 lanes, int x, int y) {
+  if (!any(lanes)) return lanes;
+  alignas(32) uint32_t key[8];
+  store(key, select(lanes, keys, splat(lane(keys, firstLane(lanes)))));
+  const RasterTriangle* records[8];
+  for (int l = 0; l < 8; ++l) records[l] = &chunks[keyChunk(key[l])].raster[keyLocal(key[l])];
+  // corner[3], a[3], b[0..1]; then b[2] and min_x | min_y << 16; then max_x | max_y_small << 16
+  // (kSmallBit: the sign bit) and x0.
+  F32x8 w[8], b2, box, ends, unused;
+  for (int l = 0; l < 8; ++l) w[l] = load<F32x8>(records[l]);
+  transpose8x8(w);
+  const float* at8[8];
+  const float* at10[8];
+  for (int l = 0; l < 8; ++l) {
+    at8[l] = reinterpret_cast<const float*>(records[l]) + 8;
+    at10[l] = reinterpret_cast<const float*>(records[l]) + 10;
+  }
+  loadPairs(at8, b2, box);
+  loadPairs(at10, ends, unused);
+  const I32x8 min_x = shiftRight(shiftLeft(bitsOf(box), 16), 16);
+  const I32x8 min_y = shiftRight(bitsOf(box), 16);
+  const I32x8 dx = (splat(x) + iota() - min_x) * splat(kSubpixelOne);
+  const I32x8 dy = (splat(y) - min_y) * splat(kSubpixelOne);
+  const I32x8 e0 = bitsOf(w[0]) + bitsOf(w[3]) * dx + bitsOf(w[6]) * dy;
+  const I32x8 e1 = bitsOf(w[1]) + bitsOf(w[4]) * dx + bitsOf(w[7]) * dy;
+  const I32x8 e2 = bitsOf(w[2]) + bitsOf(w[5]) * dx + bitsOf(b2) * dy;
+  const I32x8 small = lessThan(bitsOf(ends), splat(int32_t{0}));
+  I32x8 covered = lanes & small & nonNegative(e0 | e1 | e2);
+  const I32x8 large = lanes & ~small;
+  if (any(large)) {
+    alignas(32) int32_t wanted[8], inside[8];
+    store(wanted, large);
+    store(inside, covered);
+    for (int l = 0; l < 8; ++l)
+      if (wanted[l] &&
+          coversCentre(*records[l], chunks[keyChunk(key[l])].wide[keyLocal(key[l])], x + l, y))
+        inside[l] = -1;
+    covered = load<I32x8>(inside);
+  }
+  return covered;
+}
+
+// Sample s of row y in pixels: x from the pixel's left edge, y from the top of the image.
+TESSERA_LANES_INLINE float sampleX(const MsaaShading& m, int s) {
+  return static_cast<float>(m.positions[s].x) * (1.0f / static_cast<float>(kSubpixelOne));
+}
+TESSERA_LANES_INLINE float sampleY(const MsaaShading& m, int s, int y) {
+  return static_cast<float>(y) +
+         static_cast<float>(m.positions[s].y) * (1.0f / static_cast<float>(kSubpixelOne));
+}
+
 // The sample-s fragments of eight pixels (the lanes of `first`: pixels whose sample s holds a
 // triangle that no earlier sample holds), shaded from their own triangles (keys), each at the
 // pixel centre when the centre passes the triangle's edge tests and otherwise at sample s (the
-// triangle's first in pattern order, the nearest the centre it holds).
+// triangle's first in pattern order, the nearest the centre it holds): each triangle once for its
+// lanes at the centre and once for those at the sample.
 TESSERA_LANES_INLINE Vec3x8 shadeSampleFragments(const MsaaShading& m, int s, I32x8 keys,
                                                  I32x8 first, int x, int y,
                                                  const std::vector<TriangleChunk>& chunks,
-                                                 const LightRig& lights, bool plain) {
+                                                 const LightRig& lights) {
   alignas(32) uint32_t key[8];
-  alignas(32) int32_t valid[8];
   store(key, keys);
-  store(valid, first);
-  constexpr float kToPixels = 1.0f / static_cast<float>(kSubpixelOne);
-  const float sample_x = static_cast<float>(m.positions[s].x) * kToPixels;
-  const float sample_y = static_cast<float>(y) + static_cast<float>(m.positions[s].y) * kToPixels;
-  const float centre_y = static_cast<float>(y) + 0.5f;
-  // Every lane starts at its centre with a valid lane's triangle (the other lanes keep that:
-  // computed, not used); the valid lanes then take their own triangle and shading point.
-  alignas(32) float px[8], py[8];
-  alignas(32) int32_t at_centre[8];
-  store(px, toFloat(splat(x) + iota()) + splat(0.5f));
-  store(py, splat(centre_y));
-  store(at_centre, splat(int32_t{-1}));
-  const uint32_t borrowed = key[firstLane(first)];
-  const ShadeTriangle* records[8];
-  const ShadeTriangle* borrowed_record = &chunks[keyChunk(borrowed)].shade[keyLocal(borrowed)];
-  for (int l = 0; l < 8; ++l) records[l] = borrowed_record;
-  for (int l = 0; l < 8; ++l) {
-    if (!valid[l]) continue;
-    const uint32_t k = key[l];
-    const TriangleChunk& chunk = chunks[keyChunk(k)];
-    records[l] = &chunk.shade[keyLocal(k)];
-    if (coversCentre(chunk.raster[keyLocal(k)], chunk.wide[keyLocal(k)], x + l, y)) continue;
-    at_centre[l] = 0;
-    px[l] = static_cast<float>(x + l) + sample_x;
-    py[l] = sample_y;
-  }
-  if (plain) return shadeMixed(records, load<F32x8>(px), load<F32x8>(py));
-  // Otherwise each triangle once for its lanes at the centre and once for those at the sample.
+  const F32x8 column = toFloat(splat(x) + iota());
+  const F32x8 centre_x = column + splat(0.5f), sample_x = column + splat(sampleX(m, s));
+  const float centre_y = static_cast<float>(y) + 0.5f, sample_y = sampleY(m, s, y);
   const F32x8 zero = splat(0.0f);
   Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
-  const I32x8 centre_lanes = load<I32x8>(at_centre);
+  const I32x8 centre = centresCovered(chunks, keys, first, x, y);
   I32x8 todo = first;
   while (any(todo)) {
     const uint32_t k = key[firstLane(todo)];
@@ -112,14 +144,108 @@ TESSERA_LANES_INLINE Vec3x8 shadeSampleFragments(const MsaaShading& m, int s, I3
     const TriangleChunk& chunk = chunks[keyChunk(k)];
     const ShadeTriangle& t = chunk.shade[keyLocal(k)];
     const ShadeExtras& e = chunk.extras[keyLocal(k)];
-    if (any(mine & centre_lanes))
-      shadeLanes(t, e, lights, false, load<F32x8>(px), centre_y, mine & centre_lanes, color, normal);
-    if (any(mine & ~centre_lanes))
-      shadeLanes(t, e, lights, false, load<F32x8>(px), sample_y, mine & ~centre_lanes, color,
-                 normal);
+    const I32x8 at_centre = mine & centre;
+    if (any(at_centre))
+      shadeLanes(t, e, lights, false, centre_x, centre_y, at_centre, color, normal);
+    if (any(mine & ~at_centre))
+      shadeLanes(t, e, lights, false, sample_x, sample_y, mine & ~at_centre, color, normal);
     todo = todo & ~mine;
   }
   return color;
+}
+
+// The shading records of the lanes' keys (chunk_records: each chunk's first record); lanes
+// outside `valid` (at least one lane) borrow the first valid lane's (computed, not used).
+TESSERA_LANES_INLINE void laneRecords(const ShadeTriangle* const* chunk_records, I32x8 keys,
+                                      I32x8 valid, const ShadeTriangle* records[8]) {
+  alignas(32) uint32_t key[8];
+  store(key, select(valid, keys, splat(lane(keys, firstLane(valid)))));
+  for (int l = 0; l < 8; ++l) records[l] = chunk_records[keyChunk(key[l])] + keyLocal(key[l]);
+}
+
+// Eight plain fragments (shadeMixed's case), lane l from records[l] in pixel x + l (column: x + l)
+// of row y: at the pixel centre where `at_centre`, else at the lane's sample, sample_dx right of
+// column and at sample_y. One evaluation for the eight.
+TESSERA_LANES_INLINE Vec3x8 shadePlainFragments(const ShadeTriangle* const records[8], F32x8 column,
+                                                int y, F32x8 sample_dx, F32x8 sample_y,
+                                                I32x8 at_centre) {
+  F32x8 f[kPlainFields];
+  loadPlainFields(records, f);
+  F32x8 c0, c1, c2, s0, s1, s2;
+  plainBarycentrics(f, column + splat(0.5f), splat(static_cast<float>(y) + 0.5f), c0, c1, c2);
+  plainBarycentrics(f, column + sample_dx, sample_y, s0, s1, s2);
+  return plainColor(f, select(at_centre, c0, s0), select(at_centre, c1, s1),
+                    select(at_centre, c2, s2));
+}
+
+// The linear colours of pixels x .. x + 7 of row y (tile offset i; chunk_records as laneRecords)
+// when every triangle is plain and some of the eight are mixed, each fragment shaded where
+// shadeSampleFragments shades it. Sample 0's triangles are shaded for
+// every lane at once (at the centre in the pixels that are not mixed: the one-sample colour), then
+// the later samples' new triangles in rounds, each round taking per lane its earliest sample not
+// yet shaded (mostly one round: a mixed pixel mostly holds two triangles). Each mixed pixel sums,
+// as resolveMixedRowWith does and in its order, its uncovered samples' background and each triangle
+// weighted by the samples it holds, over the sample count.
+TESSERA_LANES_INLINE Vec3x8 shadePlainSampled(const MsaaShading& m,
+                                              const std::vector<TriangleChunk>& chunks,
+                                              const ShadeTriangle* const* chunk_records, int i,
+                                              int x, int y, I32x8 mixed) {
+  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
+  const I32x8 zero = splat(int32_t{0});
+  I32x8 keys[kMaxSamples], held[kMaxSamples], pending[kMaxSamples];
+  I32x8 background = zero, any_pending = zero;
+  for (int s = 0; s < m.samples; ++s)
+    keys[s] = load<I32x8>(m.tiles->layers[static_cast<size_t>(s)]->key + i);
+  for (int s = 0; s < m.samples; ++s) {
+    background = background - equal(keys[s], empty);
+    pending[s] = mixed & ~equal(keys[s], empty);
+    for (int r = 0; r < s; ++r) pending[s] = pending[s] & ~equal(keys[s], keys[r]);
+    held[s] = zero;
+    for (int r = s; r < m.samples; ++r) held[s] = held[s] - equal(keys[r], keys[s]);
+    if (s > 0) any_pending = any_pending | pending[s];
+  }
+  const F32x8 bg_weight = toFloat(background);
+  Vec3x8 sum{splat(m.background.x) * bg_weight, splat(m.background.y) * bg_weight,
+             splat(m.background.z) * bg_weight};
+  const F32x8 column = toFloat(splat(x) + iota());
+  const ShadeTriangle* records[8];
+  Vec3x8 sample0{sum};
+  const I32x8 valid = ~equal(keys[0], empty);
+  if (any(valid)) {
+    laneRecords(chunk_records, keys[0], valid, records);
+    const I32x8 at_centre = ~mixed | centresCovered(chunks, keys[0], pending[0], x, y);
+    sample0 = shadePlainFragments(records, column, y, splat(sampleX(m, 0)), splat(sampleY(m, 0, y)),
+                                  at_centre);
+    const F32x8 weight = toFloat(held[0]);
+    sum = {select(pending[0], sum.x + sample0.x * weight, sum.x),
+           select(pending[0], sum.y + sample0.y * weight, sum.y),
+           select(pending[0], sum.z + sample0.z * weight, sum.z)};
+  }
+  while (any(any_pending)) {
+    I32x8 key = zero, weight = zero, taken = zero;
+    F32x8 sample_dx = splat(0.0f), sample_y = splat(0.0f);
+    any_pending = zero;
+    for (int s = 1; s < m.samples; ++s) {
+      const I32x8 take = pending[s] & ~taken;
+      key = select(take, keys[s], key);
+      weight = select(take, held[s], weight);
+      sample_dx = select(take, splat(sampleX(m, s)), sample_dx);
+      sample_y = select(take, splat(sampleY(m, s, y)), sample_y);
+      taken = taken | take;
+      pending[s] = pending[s] & ~take;
+      any_pending = any_pending | pending[s];
+    }
+    laneRecords(chunk_records, key, taken, records);
+    const Vec3x8 c = shadePlainFragments(records, column, y, sample_dx, sample_y,
+                                         centresCovered(chunks, key, taken, x, y));
+    const F32x8 w = toFloat(weight);
+    sum = {select(taken, sum.x + c.x * w, sum.x), select(taken, sum.y + c.y * w, sum.y),
+           select(taken, sum.z + c.z * w, sum.z)};
+  }
+  const F32x8 inv_samples = splat(1.0f / static_cast<float>(m.samples));
+  return {select(mixed, sum.x * inv_samples, sample0.x),
+          select(mixed, sum.y * inv_samples, sample0.y),
+          select(mixed, sum.z * inv_samples, sample0.z)};
 }
 
 // Replaces the linear colours of row ty's mixed pixels by their resolve, eight pixels at a time:
@@ -166,16 +292,16 @@ TESSERA_LANES_INLINE void resolveMixedRowWith(const MsaaShading& m, const TileVi
   }
 }
 
-// The resolve of the perspective path: fragments shaded from the screen-space planes.
+// The resolve of the perspective path when some triangle is not plain (shadePlainSampled is
+// the plain one): fragments shaded from the screen-space planes.
 void resolveMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
-                     const std::vector<TriangleChunk>& chunks, const LightRig& lights, bool plain,
+                     const std::vector<TriangleChunk>& chunks, const LightRig& lights,
                      float linear[3][kTileSize]) {
-  resolveMixedRowWith(m, tile, ty, linear,
-                      [&](int s, I32x8 keys, I32x8 first, int x, int y)
-                          __attribute__((always_inline)) {
-                            return shadeSampleFragments(m, s, keys, first, x, y, chunks, lights,
-                                                        plain);
-                          });
+  resolveMixedRowWith(
+      m, tile, ty,
+      linear, [&](int s, I32x8 keys, I32x8 first, int x, int y) __attribute__((always_inline)) {
+        return shadeSampleFragments(m, s, keys, first, x, y, chunks, lights);
+      });
 }
 
 }  // namespace

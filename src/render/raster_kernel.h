@@ -417,9 +417,70 @@ TESSERA_LANES_INLINE void rasterSample(const RasterTriangle& t, const RasterWide
   rasterTriangle<kRule>(moved, moved_wide, key, tile);
 }
 
+// What rasterSmallSamples keeps per layer: the edge offsets of its samples, the depth plane's
+// origin of the moved triangle (rasterSample), and whether Hi-Z leaves it anything to draw.
+struct SampleLayerEdges {
+  I32x8 offset[kMaxSamples + 1][3];
+  float x0[kMaxSamples + 1], y0[kMaxSamples + 1];
+  bool drawn[kMaxSamples + 1];
+};
+
+// rasterNarrow for every layer at once: a small triangle at most four pixels wide, two rows a
+// step (lanes 0-3 row y, lanes 4-7 row y + 1), each layer's edge values the centre's plus its
+// offset and its depth as rasterSample forms it (rasterNarrow's operations: the same bits).
+template <DepthRule kRule>
+TESSERA_LANES_INLINE void rasterNarrowSamples(const RasterTriangle& t, uint32_t key,
+                                              TileVisibility* const* layers,
+                                              const SampleLayerEdges& le, int layer_count,
+                                              int x_begin, int x_end, int y_begin, int y_end) {
+  const TileVisibility& tile = *layers[0];
+  const I32x8 column = iota() & splat(int32_t{3});
+  const I32x8 second_row = shiftRight(iota(), 2);  // 0 for lanes 0-3, 1 for lanes 4-7
+  I32x8 edge[3];
+  int32_t step_y[3];
+  for (int k = 0; k < 3; ++k) {
+    // Fits with every layer's offset: smallBox allows for the samples and a row past the box.
+    edge[k] = splat(smallEdgeAt(t, k, x_begin, y_begin)) + splat(t.a[k] * kSubpixelOne) * column +
+              splat(t.b[k] * kSubpixelOne) * second_row;
+    step_y[k] = 2 * t.b[k] * kSubpixelOne;
+  }
+  const I32x8 in_columns = lessOrEqual(column, splat(x_end - x_begin));
+  const F32x8 centre_x = toFloat(splat(x_begin) + column) + splat(0.5f);
+  F32x8 dz[kMaxSamples + 1];
+  for (int i = 0; i < layer_count; ++i) dz[i] = splat(t.dzdx) * (centre_x - splat(le.x0[i]));
+  F32x8 centre_y = toFloat(splat(y_begin) + second_row) + splat(0.5f);
+  const F32x8 z0 = splat(t.z0), dzdy = splat(t.dzdy);
+  int offset = (y_begin - tile.y0) * kTileSize + (x_begin - tile.x0);
+  for (int y = y_begin; y <= y_end; y += 2) {
+    if (y != y_begin) {
+      for (int k = 0; k < 3; ++k) edge[k] = edge[k] + splat(step_y[k]);
+      centre_y = centre_y + splat(2.0f);
+      offset += 2 * kTileSize;
+    }
+    const I32x8 in_box = in_columns & (y < y_end ? splat(int32_t{-1}) : ~second_row);
+    for (int i = 0; i < layer_count; ++i) {
+      if (!le.drawn[i]) continue;
+      const I32x8 covered = nonNegative((edge[0] + le.offset[i][0]) | (edge[1] + le.offset[i][1]) |
+                                        (edge[2] + le.offset[i][2])) &
+                            in_box;
+      if (!any(covered)) continue;
+      float* depth = layers[i]->depth + offset;
+      uint32_t* keys = layers[i]->key + offset;
+      const F32x8 z = (z0 + dzdy * (centre_y - splat(le.y0[i]))) + dz[i];
+      const F32x8 stored = load2x4<F32x8>(depth, depth + kTileSize);
+      const I32x8 pass = kRule == DepthRule::kLatest ? covered : covered & lessThan(z, stored);
+      store2x4(depth, depth + kTileSize, select(pass, z, stored));
+      store2x4(
+          keys, keys + kTileSize,
+          select(pass, splat(static_cast<int32_t>(key)), load2x4<I32x8>(keys, keys + kTileSize)));
+    }
+  }
+}
+
 // A small triangle into every layer at once: rasterSmall's walk over its box, eight pixels at a
-// time, with each layer's edge values the centre's plus that sample's a * dx + b * dy (within
-// int32: smallBox with the sample reach) and its depth as rasterSample forms it (the same bits).
+// time (rasterNarrowSamples' two rows of four when it is at most four pixels wide), with each
+// layer's edge values the centre's plus that sample's a * dx + b * dy (within int32: smallBox
+// with the sample reach) and its depth as rasterSample forms it (the same bits).
 template <DepthRule kRule>
 TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t key,
                                              TileVisibility* const* layers,
@@ -430,25 +491,28 @@ TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t k
   const int y_begin = std::max<int>(t.min_y, tile.y0);
   const int y_end = std::min(t.maxY(), tile.y0 + tile.height - 1);
   if (x_begin > x_end || y_begin > y_end) return;
-  // Per layer: the edge offsets, the depth plane's origin, and whether Hi-Z hides it there.
-  I32x8 offset[kMaxSamples + 1][3];
-  float x0[kMaxSamples + 1], y0[kMaxSamples + 1];
-  bool drawn[kMaxSamples + 1];
+  SampleLayerEdges le;
   int drawn_count = 0;
   for (int i = 0; i < layer_count; ++i) {
-    for (int k = 0; k < 3; ++k) offset[i][k] = splat(t.a[k] * shifts[i].dx + t.b[k] * shifts[i].dy);
-    x0[i] = t.x0 - shifts[i].pixels_x;
-    y0[i] = t.y0 - shifts[i].pixels_y;
-    drawn[i] = true;
+    for (int k = 0; k < 3; ++k)
+      le.offset[i][k] = splat(t.a[k] * shifts[i].dx + t.b[k] * shifts[i].dy);
+    le.x0[i] = t.x0 - shifts[i].pixels_x;
+    le.y0[i] = t.y0 - shifts[i].pixels_y;
+    le.drawn[i] = true;
     if (kRule == DepthRule::kNearest && layers[i]->hiz_bounded) {
       RasterTriangle moved = t;
-      moved.x0 = x0[i];
-      moved.y0 = y0[i];
-      drawn[i] = !hiddenByHiZ(moved, *layers[i], x_begin, x_end, y_begin, y_end);
+      moved.x0 = le.x0[i];
+      moved.y0 = le.y0[i];
+      le.drawn[i] = !hiddenByHiZ(moved, *layers[i], x_begin, x_end, y_begin, y_end);
     }
-    drawn_count += drawn[i];
+    drawn_count += le.drawn[i];
   }
   if (drawn_count == 0) return;
+  // Two rows or more, as rasterTriangle's choice of rasterNarrow.
+  if (x_end - x_begin < 4 && y_end > y_begin) {
+    rasterNarrowSamples<kRule>(t, key, layers, le, layer_count, x_begin, x_end, y_begin, y_end);
+    return;
+  }
   const F32x8 dzdx = splat(t.dzdx);
   walkSmallBox(
       t, tile, x_begin, x_end, y_begin, y_end,
@@ -456,14 +520,14 @@ TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t k
           __attribute__((always_inline)) {
             const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
             for (int i = 0; i < layer_count; ++i) {
-              if (!drawn[i]) continue;
-              const I32x8 covered =
-                  nonNegative((e0 + offset[i][0]) | (e1 + offset[i][1]) | (e2 + offset[i][2])) &
-                  in_range;
+              if (!le.drawn[i]) continue;
+              const I32x8 covered = nonNegative((e0 + le.offset[i][0]) | (e1 + le.offset[i][1]) |
+                                                (e2 + le.offset[i][2])) &
+                                    in_range;
               if (!any(covered)) continue;
               // rowDepth and depthAcross8 of the moved triangle (rasterSample).
-              const float z_row = t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - y0[i]);
-              depthTestRow8<kRule>(key, z_row, dzdx * (centre - splat(x0[i])), x, covered,
+              const float z_row = t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - le.y0[i]);
+              depthTestRow8<kRule>(key, z_row, dzdx * (centre - splat(le.x0[i])), x, covered,
                                    layers[i]->depth + row_offset, layers[i]->key + row_offset);
             }
           });

@@ -15,9 +15,12 @@ namespace {  // one private copy per translation unit, each compiled for its ins
 // take one evaluation; those of several are shaded lane by lane from their own records when every
 // triangle is plain (`plain`: untextured, not Phong, no normal AOV), else each triangle is
 // evaluated once for the eight and the results merged in registers.
-void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk>& chunks,
-                     size_t chunk_count, const LightRig& lights, bool want_normals, bool plain,
-                     uint32_t background, const MsaaShading* msaa, ShadedTile& out) {
+// `kSampled`: msaa is given (an instance of its own, so one sample pays nothing for it).
+template <bool kSampled>
+TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
+                                    const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                                    const LightRig& lights, bool want_normals, bool plain,
+                                    uint32_t background, const MsaaShading* msaa, ShadedTile& out) {
   const ShadeTriangle* records[kMaxChunks];
   const ShadeExtras* extras[kMaxChunks];
   for (size_t c = 0; c < chunk_count; ++c) {
@@ -40,7 +43,10 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
       const F32x8 px = toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f);
       Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
       const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
-      if (plain && any(covered & ~equal(keys, splat(static_cast<int32_t>(first))))) {
+      const I32x8 mixed = kSampled ? load<I32x8>(msaa->tiles->mixed + i) : splat(int32_t{0});
+      if (kSampled && plain && any(mixed)) {
+        color = shadePlainSampled(*msaa, chunks, records, i, tile.x0 + tx, tile.y0 + ty, mixed);
+      } else if (plain && any(covered & ~equal(keys, splat(static_cast<int32_t>(first))))) {
         // Uncovered lanes borrow a covered lane's record; their result is not stored. Chunks and
         // byte offsets (below 2 GiB: kMaxTrianglesPerChunk) are formed in lanes, then read back
         // one lane at a time.
@@ -74,9 +80,18 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
         store(out.normal_z + i, normal.z);
       }
     }
-    if (msaa) resolveMixedRow(*msaa, tile, ty, chunks, lights, plain, linear);
+    if (kSampled && !plain) resolveMixedRow(*msaa, tile, ty, chunks, lights, linear);
     encodeShadedRow(tile, ty, linear, background, out);
   }
+}
+
+void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk>& chunks,
+                     size_t chunk_count, const LightRig& lights, bool want_normals, bool plain,
+                     uint32_t background, const MsaaShading* msaa, ShadedTile& out) {
+  if (msaa)
+    shadeTile<true>(tile, chunks, chunk_count, lights, want_normals, plain, background, msaa, out);
+  else
+    shadeTile<false>(tile, chunks, chunk_count, lights, want_normals, plain, background, msaa, out);
 }
 
 }  // namespace

@@ -472,12 +472,10 @@ static_assert(offsetof(ShadeTriangle, color) == offsetof(ShadeTriangle, x0) + 9 
 static_assert(sizeof(ShadeTriangle) >= offsetof(ShadeTriangle, x0) + 16 * sizeof(float),
               "shadeMixed reads 16 floats from x0 eight at a time");
 
-// Eight pixels owned by several triangles, all untextured and not Phong-shaded (colour = the
-// interpolated vertex colours): lane l is shaded from its own triangle's record, whose fields
-// are loaded eight records at a time and transposed into lanes. The same operations per lane as
-// shadeLanes, so the same bits; one evaluation instead of one per triangle.
-TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F32x8 px, F32x8 py) {
-  F32x8 f[kPlainFields];
+// The kPlainFields floats of eight records, transposed into lanes: f[0..8] x0, y0, inv_w0, p1dx,
+// p1dy, p2dx, p2dy, sdx, sdy, then f[9..17] color[0..2].xyz.
+TESSERA_LANES_INLINE void loadPlainFields(const ShadeTriangle* const records[8],
+                                          F32x8 f[kPlainFields]) {
   for (int block = 0; block < 2; ++block) {
     for (int l = 0; l < 8; ++l) f[block * 8 + l] = load<F32x8>(&records[l]->x0 + block * 8);
     transpose8x8(f + block * 8);
@@ -485,15 +483,36 @@ TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F3
   const float* last_two[8];
   for (int l = 0; l < 8; ++l) last_two[l] = &records[l]->x0 + 16;
   loadPairs(last_two, f[16], f[17]);
-  // f: x0, y0, inv_w0, p1dx, p1dy, p2dx, p2dy, sdx, sdy, then color[0..2].xyz.
+}
+
+// Perspective-correct barycentrics of the lanes' triangles (loadPlainFields) at (px, py), with
+// shadeLanes' operations.
+TESSERA_LANES_INLINE void plainBarycentrics(const F32x8 f[kPlainFields], F32x8 px, F32x8 py,
+                                            F32x8& b0, F32x8& b1, F32x8& b2) {
   const F32x8 dx = px - f[0];
   const F32x8 dy = py - f[1];
   const F32x8 inv_s = splat(1.0f) / (f[2] + f[7] * dx + f[8] * dy);
-  const F32x8 b1 = (f[3] * dx + f[4] * dy) * inv_s;
-  const F32x8 b2 = (f[5] * dx + f[6] * dy) * inv_s;
-  const F32x8 b0 = splat(1.0f) - b1 - b2;
+  b1 = (f[3] * dx + f[4] * dy) * inv_s;
+  b2 = (f[5] * dx + f[6] * dy) * inv_s;
+  b0 = splat(1.0f) - b1 - b2;
+}
+
+// The interpolated vertex colours of the lanes' triangles at barycentrics b0, b1, b2.
+TESSERA_LANES_INLINE Vec3x8 plainColor(const F32x8 f[kPlainFields], F32x8 b0, F32x8 b1, F32x8 b2) {
   return {f[9] * b0 + f[12] * b1 + f[15] * b2, f[10] * b0 + f[13] * b1 + f[16] * b2,
           f[11] * b0 + f[14] * b1 + f[17] * b2};
+}
+
+// Eight pixels owned by several triangles, all untextured and not Phong-shaded (colour = the
+// interpolated vertex colours): lane l is shaded from its own triangle's record, whose fields
+// are loaded eight records at a time and transposed into lanes. The same operations per lane as
+// shadeLanes, so the same bits; one evaluation instead of one per triangle.
+TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F32x8 px, F32x8 py) {
+  F32x8 f[kPlainFields];
+  loadPlainFields(records, f);
+  F32x8 b0, b1, b2;
+  plainBarycentrics(f, px, py, b0, b1, b2);
+  return plainColor(f, b0, b1, b2);
 }
 
 // Encodes row ty of the tile's linear colours to sRGB into out.rgba, whole; the background where
