@@ -11,6 +11,7 @@
 #include <tessera/render/composite.h>
 #include <tessera/scene/color.h>
 
+#include "environment_test_scenes.h"
 #include "msaa_test_scenes.h"
 
 using namespace tessera;
@@ -194,19 +195,7 @@ TEST(GroundGrid, LiesUnderTheModelAcrossTheUpAxis) {
 
 // ---- The environment behind the model (--hdri-background) ----
 
-namespace {
-
-// A 64 x 32 panorama: `sky` above the horizon, `ground` below.
-std::shared_ptr<const Environment> skyEnvironment(float3 sky, float3 ground) {
-  EnvironmentImage image;
-  image.width = 64;
-  image.height = 32;
-  for (int y = 0; y < 32; ++y)
-    for (int x = 0; x < 64; ++x) image.texels.push_back(y < 16 ? sky : ground);
-  return std::make_shared<const Environment>(std::move(image));
-}
-
-}  // namespace
+using test::skyEnvironment;
 
 TEST(Composite, EnvironmentBackgroundShowsTheSkyAboveAndTheGroundBelow) {
   Scene scene;

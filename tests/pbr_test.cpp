@@ -13,6 +13,7 @@
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
 
+#include "environment_test_scenes.h"
 #include "render_test_scenes.h"
 
 namespace tessera::render {
@@ -444,15 +445,7 @@ TEST(PbrShading, PixelMatchesTheScalarReference) {
 
 // ---- Environment light (--hdri) ----
 
-// A 64 x 32 environment: `sky` above the horizon, `ground` below.
-std::shared_ptr<const Environment> skyEnvironment(float3 sky, float3 ground) {
-  EnvironmentImage image;
-  image.width = 64;
-  image.height = 32;
-  for (int y = 0; y < 32; ++y)
-    for (int x = 0; x < 64; ++x) image.texels.push_back(y < 16 ? sky : ground);
-  return std::make_shared<const Environment>(std::move(image));
-}
+using test::skyEnvironment;
 
 // The white furnace: a white, rough dielectric under a uniform white environment returns
 // at most what comes in (and nearly all of it: it is white), from every side; a smooth white metal

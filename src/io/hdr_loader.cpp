@@ -13,20 +13,9 @@
 #include "exr_loader.h"
 #include "model_paths.h"
 
-#define STB_IMAGE_IMPLEMENTATION
-#define STB_IMAGE_STATIC
+// A second static stb_image, with its HDR decoder only.
 #define STBI_ONLY_HDR
-#define STBI_MAX_DIMENSIONS (1 << 24)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wdouble-promotion"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#include <stb_image.h>
-#pragma GCC diagnostic pop
+#include "stb_image_private.h"
 
 namespace tessera::io {
 

@@ -11,28 +11,12 @@
 
 #include "model_paths.h"
 
-// stb_image is compiled here only, with static linkage, so another translation unit (a glTF
-// loader bundling its own copy) cannot collide with it. Only the formats textures come in are
-// built: less code that a hostile file can reach.
-#define STB_IMAGE_IMPLEMENTATION
-#define STB_IMAGE_STATIC
+// stb_image for textures: only the formats they come in.
 #define STBI_ONLY_PNG
 #define STBI_ONLY_JPEG
 #define STBI_ONLY_BMP
 #define STBI_ONLY_TGA
-// stb's own limit stays far above any budget, so that its header scan reports an image's true
-// size and the budget check below is what refuses it, with its own message.
-#define STBI_MAX_DIMENSIONS (1 << 24)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wdouble-promotion"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#include <stb_image.h>
-#pragma GCC diagnostic pop
+#include "stb_image_private.h"
 
 namespace tessera::io {
 
@@ -82,8 +66,7 @@ Expected<void> checkSize(ImageSize size, uint64_t max_pixels, const std::string&
   return {};
 }
 
-Expected<Texture> toTexture(StbiPixels pixels, ImageSize size, bool srgb,
-                            const std::string& name) {
+Expected<Texture> toTexture(StbiPixels pixels, ImageSize size, bool srgb, const std::string& name) {
   if (!pixels) return makeError(name + ": cannot decode the image: " + failureReason());
   Texture texture;
   texture.width = size.width;
