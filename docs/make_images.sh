@@ -51,7 +51,6 @@ clearcoat=/usr/share/assimp/models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf
 "$tessera" render "$clearcoat" --resolution 480,480 -o "$tmp/pbr.png"
 ffmpeg -loglevel error -y -i "$tmp/smooth.png" -i "$tmp/pbr.png" -filter_complex hstack=inputs=2 \
   "$out/pbr.png"
-ls -la "$out"
 # The painter's algorithm against the z-buffer (a sphere pierced by a blade), and --edges on a
 # quad-faced sphere and a cube (docs/painter_scene.py writes both scenes).
 python3 "$root/docs/painter_scene.py" "$tmp/painter"
