@@ -223,7 +223,9 @@ TEST_F(HdrFiles, WhatIsNotAnHdrImageIsAClearError) {
        {std::pair<std::string, std::string>{"empty.hdr", ""},
         {"text.hdr", "hello, this is not an image\n"},
         {"png.hdr", std::string("\x89PNG\r\n\x1a\n", 8) + std::string(40, '\0')},
-        {"truncated.hdr", hdrFile(4, 2, std::string(7, '\x40'))}}) {
+        {"truncated.hdr", hdrFile(4, 2, std::string(7, '\x40'))},
+        // Exponent 255: 255 x 2^119 per channel, whose sums would be infinite.
+        {"huge.hdr", hdrFile(4, 2, std::string(32, '\xff'))}}) {
     Expected<EnvironmentImage> image = io::loadEnvironmentImage(write(name, bytes));
     ASSERT_FALSE(image) << name;
     EXPECT_NE(image.error().message.find(name), std::string::npos) << image.error().message;

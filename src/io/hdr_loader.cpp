@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,6 +25,15 @@ namespace {
 struct StbiFree {
   void operator()(float* pixels) const { stbi_image_free(pixels); }
 };
+
+// RGBE reaches 2^120: sums of such values (the irradiance, the prefiltered levels) would be
+// infinite. No scene's light is within orders of magnitude of this (the sun is about 1e5).
+constexpr float kMaxRadiance = 1e9f;
+
+bool plausibleRadiance(float3 t) {
+  return t.x >= 0.0f && t.y >= 0.0f && t.z >= 0.0f && t.x <= kMaxRadiance && t.y <= kMaxRadiance &&
+         t.z <= kMaxRadiance;  // false for NaN too
+}
 
 // Whether the scanlines of a `width` x `height` RGBE image fit in the bytes after its header.
 // stb_image reads zeros past the end of its data, so a truncated file would decode to a silently
@@ -99,9 +109,9 @@ Expected<EnvironmentImage> decodeEnvironmentImage(const unsigned char* data, siz
     texel = {p[0], p[1], p[2]};
     p += 3;
     // RGBE holds neither: a decoder's mistake would be a silently wrong light.
-    if (!std::isfinite(texel.x) || !std::isfinite(texel.y) || !std::isfinite(texel.z) ||
-        texel.x < 0.0f || texel.y < 0.0f || texel.z < 0.0f)
-      return makeError(name + ": the .hdr image holds a negative or non-finite radiance");
+    if (!plausibleRadiance(texel))
+      return makeError(name + ": the .hdr image holds a radiance that is negative, not finite or " +
+                       "above " + std::to_string(static_cast<int64_t>(kMaxRadiance)));
   }
   return image;
 }
