@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the pictures in docs/images with tessera itself. Needs a build (scripts/setup.sh),
-# ffmpeg (to put the AOVs side by side) and the Stanford bunny from Debian's glmark2-data.
+# ffmpeg (to put the AOVs side by side), the Stanford bunny from Debian's glmark2-data, Debian's
+# assimp-testmodels and blender-data (an environment image).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 tessera="$root/build/apps/tessera/tessera"
@@ -45,12 +46,16 @@ ffmpeg -loglevel error -y -i "$tmp/panorama.png" -i "$tmp/fisheye.png" \
   --camera-focal-point 0,0,0 --light point:-1.6,1.2,1.6:1,0.7,0.45:4 \
   --light spot:1.8,2.2,1.6:-1.3,-2.5,-1.4:8,14:0.45,0.65,1:8 --ambient 0.02,0.02,0.02 \
   -o "$out/lights.png"
-# PBR: Debian assimp-data's ClearCoat test (the base layer), smooth (Lambert) against pbr.
+# PBR: Debian assimp-data's ClearCoat test (the base layer), smooth (Lambert) against pbr, and
+# pbr lit by Blender's studio environment (Debian's blender-data), shown behind it.
 clearcoat=/usr/share/assimp/models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf
+studio=/usr/share/blender/datafiles/studiolights/world/studio.exr
 "$tessera" render "$clearcoat" --resolution 480,480 --shading smooth -o "$tmp/smooth.png"
 "$tessera" render "$clearcoat" --resolution 480,480 -o "$tmp/pbr.png"
-ffmpeg -loglevel error -y -i "$tmp/smooth.png" -i "$tmp/pbr.png" -filter_complex hstack=inputs=2 \
-  "$out/pbr.png"
+"$tessera" render "$clearcoat" --resolution 480,480 --hdri "$studio" --hdri-background \
+  -o "$tmp/pbr_hdri.png"
+ffmpeg -loglevel error -y -i "$tmp/smooth.png" -i "$tmp/pbr.png" -i "$tmp/pbr_hdri.png" \
+  -filter_complex hstack=inputs=3 "$out/pbr.png"
 # The painter's algorithm against the z-buffer (a sphere pierced by a blade), and --edges on a
 # quad-faced sphere and a cube (docs/painter_scene.py writes both scenes).
 python3 "$root/docs/painter_scene.py" "$tmp/painter"
