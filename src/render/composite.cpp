@@ -52,8 +52,9 @@ namespace {
 
 // The environment's direction of camera-space direction d (the camera looks down -Z).
 float3 environmentDirection(const float3x3& camera_to_environment, const double d[3]) {
-  return normalize(camera_to_environment * float3{static_cast<float>(d[0]), static_cast<float>(d[1]),
-                                            static_cast<float>(d[2])});
+  return normalize(camera_to_environment * float3{static_cast<float>(d[0]),
+                                                  static_cast<float>(d[1]),
+                                                  static_cast<float>(d[2])});
 }
 
 }  // namespace

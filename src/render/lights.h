@@ -60,8 +60,8 @@ struct LightRig {
 
   void prepare(const Scene& scene) {
     ambient = scene.ambient;
-    environment = scene.environment && !scene.environment->empty() ? scene.environment.get()
-                                                                   : nullptr;
+    environment =
+        scene.environment && !scene.environment->empty() ? scene.environment.get() : nullptr;
     world_to_environment = scene.world_to_environment;
     // The camera's frame in world space: the inverse view matrix's last two columns. A
     // projection whose w does not depend on z (m(3, 3) != 0) is a parallel one.

@@ -73,7 +73,7 @@ struct ShadeTriangle {
   const Material* material;
   uint32_t triangle_id;  // index in the scene's triangle list
   Shading shading;
-  bool has_uv;  // sample the albedo texture (the mesh has UVs and the material a texture)
+  bool has_uv;        // sample the albedo texture (the mesh has UVs and the material a texture)
   uint8_t pbr_flags;  // kPbr only: kPbrUv, kPbrTangents (in the padding: the record stays 88 bytes)
   // Perspective-correct barycentrics at window point p, with d = p - (x0, y0):
   //   s = inv_w0 + sdx*d.x + sdy*d.y;  b1 = (p1dx*d.x + p1dy*d.y) / s;  b2 = (...) / s;  b0 =

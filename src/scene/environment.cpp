@@ -8,7 +8,6 @@
 namespace tessera {
 namespace {
 
-
 // The nine real spherical harmonics of bands 0 to 2 at unit direction d.
 std::array<float, 9> shBasis(float3 d) {
   return {0.282095f,

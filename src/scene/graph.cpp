@@ -89,7 +89,8 @@ size_t SceneGraph::instanceCount() const {
 size_t SceneGraph::drawnTriangleCount() const {
   size_t count = 0;
   for (const GraphNode& node : nodes)
-    if (node.mesh != kNoIndex) count += meshes[static_cast<size_t>(node.mesh)].mesh->triangleCount();
+    if (node.mesh != kNoIndex)
+      count += meshes[static_cast<size_t>(node.mesh)].mesh->triangleCount();
   return count;
 }
 
@@ -157,8 +158,7 @@ Bounds SceneGraph::bounds() const {
 Expected<Camera> SceneGraph::camera(size_t index, float aspect, const Bounds& scene_bounds) const {
   if (index >= cameras.size())
     return makeError("camera " + std::to_string(index) + " does not exist: the scene has " +
-                     std::to_string(cameras.size()) + " camera" +
-                     (cameras.size() == 1 ? "" : "s"));
+                     std::to_string(cameras.size()) + " camera" + (cameras.size() == 1 ? "" : "s"));
   const GraphCamera& c = cameras[index];
   if (!c.skipped.empty())
     return makeError("camera " + std::to_string(index) + " was skipped: it has " + c.skipped);

@@ -35,7 +35,7 @@ struct Material {
   float normal_scale = 1.0f;
   TextureSlot occlusion;  // linear; R, mixed by occlusion_strength
   float occlusion_strength = 1.0f;
-  TextureSlot emissive;                     // sRGB; multiplies emissive_factor
+  TextureSlot emissive;                      // sRGB; multiplies emissive_factor
   float3 emissive_factor{0.0f, 0.0f, 0.0f};  // linear
   AlphaMode alpha_mode = AlphaMode::kOpaque;
   float alpha_cutoff = 0.5f;

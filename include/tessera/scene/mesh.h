@@ -30,13 +30,13 @@ struct Bounds {
 
 struct Mesh {
   std::vector<float3> positions;
-  std::vector<float3> normals;    // empty: generate them (generateSmoothNormals) or draw flat
-  std::vector<float2> uvs;        // empty: no texture coordinates
-  std::vector<float4> colors;     // linear RGBA; empty: white
+  std::vector<float3> normals;  // empty: generate them (generateSmoothNormals) or draw flat
+  std::vector<float2> uvs;      // empty: no texture coordinates
+  std::vector<float4> colors;   // linear RGBA; empty: white
   // Tangent space for normal maps (glTF's TANGENT): xyz along +u, unit; w = +-1, the bitangent is
   // cross(normal, xyz) * w (along +v). Empty: none (generateTangents makes them).
   std::vector<float4> tangents;
-  std::vector<uint32_t> indices;  // three per triangle
+  std::vector<uint32_t> indices;             // three per triangle
   std::vector<uint16_t> triangle_materials;  // one per triangle, index into Object::materials;
                                              // empty: material 0 everywhere
   // One per triangle: which of its edges are polygon outline (kAllTriangleEdges' bits), for

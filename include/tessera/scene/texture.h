@@ -65,8 +65,8 @@ struct TextureLevel {
 struct Texture {
   int width = 0;
   int height = 0;
-  std::vector<uint32_t> texels;    // RGBA8, R in the low byte, row 0 at the top (v = 1 is row 0)
-  bool srgb = true;                // texels are sRGB-encoded colour (decode to linear on sampling)
+  std::vector<uint32_t> texels;  // RGBA8, R in the low byte, row 0 at the top (v = 1 is row 0)
+  bool srgb = true;              // texels are sRGB-encoded colour (decode to linear on sampling)
   int source_channels = 0;  // the image file's channels (1 grey ... 4 RGBA); 0: not from a file
   std::vector<TextureLevel> mips;  // levels 1, 2, ... down to 1x1 (generateMipmaps); may be empty
 
