@@ -18,7 +18,7 @@ configure_asan_build() {  # root
   if [ ! -f "$build/CMakeCache.txt" ] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
   cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER=clang++ \
     -DCMAKE_BUILD_TYPE=None "-DCMAKE_CXX_FLAGS=-O1 -g1 -fno-omit-frame-pointer" \
-    -DTESSERA_SANITIZE=ON -DTESSERA_FUZZ=ON -DTESSERA_VULKAN=OFF -DTESSERA_BENCH=OFF \
+    -DTESSERA_SANITIZE=ON -DTESSERA_FUZZ=ON -DTESSERA_VULKAN=OFF -DTESSERA_BENCH=OFF -DTESSERA_LEAN_KERNELS=ON \
     -DTESSERA_VIEWER=OFF -DTESSERA_OSMESA=OFF -DTESSERA_TEST_COMPILE_OPTIONS=-O0 \
     >"$build/logs/configure.log" 2>&1 || { cat "$build/logs/configure.log" >&2; return 1; }
   echo "$build"

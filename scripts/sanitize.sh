@@ -40,7 +40,7 @@ configure() {  # folder, compiler, extra cmake arguments...
   if [ ! -f "$build/CMakeCache.txt" ] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
   cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$compiler" -DCMAKE_BUILD_TYPE=None \
     "-DCMAKE_CXX_FLAGS=-O1 -g1 -fno-omit-frame-pointer" \
-    -DTESSERA_VULKAN=OFF -DTESSERA_BENCH=OFF "$@" \
+    -DTESSERA_VULKAN=OFF -DTESSERA_BENCH=OFF -DTESSERA_LEAN_KERNELS=ON "$@" \
     >"$build/logs/configure.log" 2>&1 || { cat "$build/logs/configure.log" >&2; exit 1; }
 }
 

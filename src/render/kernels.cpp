@@ -51,12 +51,20 @@ Kernels kernelsFor(Isa isa) {
     case Isa::kScalar:
       return kKernelsScalar;
 #if defined(__x86_64__) || defined(__i386__)
+#if TESSERA_LEAN_KERNELS  // sanitizer builds: CMakeLists.txt's TESSERA_LEAN_KERNELS
+    case Isa::kSse2:
+      return kKernelsScalar;
+    case Isa::kAvx2:
+    case Isa::kAvx512:
+      return kKernelsAvx2;
+#else
     case Isa::kSse2:
       return kKernelsSse2;
     case Isa::kAvx2:
       return kKernelsAvx2;
     case Isa::kAvx512:
       return kKernelsAvx512;
+#endif
 #else
     default:
       return kKernelsScalar;
