@@ -12,6 +12,8 @@
 #include <tessera/math/vec.h>
 #include <tessera/scene/scene.h>
 
+#include "render/tone.h"
+
 namespace tessera::render {
 
 struct ShadeLight {
@@ -57,9 +59,11 @@ struct LightRig {
   // Image-based light (Scene::environment, --hdri): PBR pixels take it in place of `ambient`.
   const Environment* environment = nullptr;
   float3x3 world_to_environment;
+  ToneCurve tone;  // applied to every shaded colour (tone.h)
 
   void prepare(const Scene& scene) {
     ambient = scene.ambient;
+    tone = ToneCurve::of(scene);
     environment =
         scene.environment && !scene.environment->empty() ? scene.environment.get() : nullptr;
     world_to_environment = scene.world_to_environment;
