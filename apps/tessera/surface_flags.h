@@ -16,14 +16,22 @@
 
 namespace tessera::cli {
 
+// --tone-mapping and --exposure (render and view): Scene::tone_mapping and Scene::exposure.
+struct ToneSettings {
+  std::string tone_mapping = "none";  // none, aces, pbr-neutral
+  float exposure = 0.0f;              // stops
+};
+
+void addToneFlags(FlagSet& flags, ToneSettings& s);
+void applyTone(const ToneSettings& s, Scene& scene);
+
 struct SurfaceSettings {
   bool grid = false;
   bool no_background = false;
   float opacity = 1.0f;
   std::string hdri;              // an equirectangular .hdr: the light around the model
   bool hdri_background = false;  // shown behind the model (f3d's --hdri-skybox)
-  std::string tone_mapping = "none";  // none, aces, pbr-neutral (Scene::tone_mapping)
-  float exposure = 0.0f;              // stops
+  ToneSettings tone;
 };
 
 void addSurfaceFlags(FlagSet& flags, SurfaceSettings& s);
