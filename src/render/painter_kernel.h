@@ -11,16 +11,21 @@
 namespace tessera::render {
 namespace {  // one private copy per translation unit, as raster_kernel.h
 
-// Calls draw(raster, wide, key) for every record binned to the tile, in the painter's order.
+// Calls draw(raster, wide, key) for every record binned to the tile, in the painter's order, and
+// for a masked one (alphaMode MASK) rasterMasked into the layers (mask_kernel.h).
 template <typename Draw>
 TESSERA_LANES_INLINE void walkPainterBins(const std::vector<TriangleChunk>& chunks,
                                           const std::vector<PainterSlice>& slices, int tile_index,
-                                          Draw draw) {
+                                          TileVisibility* const* layers, const SampleShift* shifts,
+                                          int layer_count, Draw draw) {
   for (const PainterSlice& slice : slices) {
     const uint32_t* end = slice.bins.end(tile_index);
     for (const uint32_t* it = slice.bins.begin(tile_index); it != end; ++it) {
       const TriangleChunk& chunk = chunks[keyChunk(*it)];
-      draw(chunk.raster[keyLocal(*it)], chunk.wide[keyLocal(*it)], *it);
+      if (chunk.any_masked && chunk.masked[keyLocal(*it)])
+        rasterMasked<true>(chunk, keyLocal(*it), *it, layers, shifts, layer_count);
+      else
+        draw(chunk.raster[keyLocal(*it)], chunk.wide[keyLocal(*it)], *it);
     }
   }
 }
@@ -28,7 +33,9 @@ TESSERA_LANES_INLINE void walkPainterBins(const std::vector<TriangleChunk>& chun
 void rasterPainterTileKernel(const std::vector<TriangleChunk>& chunks,
                              const std::vector<PainterSlice>& slices, int tile_index,
                              TileVisibility& tile) {
-  walkPainterBins(chunks, slices, tile_index,
+  TileVisibility* const layers[1] = {&tile};
+  const SampleShift centre[1] = {};
+  walkPainterBins(chunks, slices, tile_index, layers, centre, 1,
                   [&](const RasterTriangle& t, const RasterWide& w, uint32_t key) {
                     rasterTriangle<DepthRule::kLatest>(t, w, key, tile);
                   });
@@ -39,7 +46,8 @@ void rasterPainterTileSamplesKernel(const std::vector<TriangleChunk>& chunks,
                                     TileVisibility* const* layers, const SampleShift* shifts,
                                     int layer_count) {
   walkPainterBins(
-      chunks, slices, tile_index, [&](const RasterTriangle& t, const RasterWide& w, uint32_t key) {
+      chunks, slices, tile_index, layers, shifts, layer_count,
+      [&](const RasterTriangle& t, const RasterWide& w, uint32_t key) {
         rasterTriangleSamples<DepthRule::kLatest>(t, w, key, layers, shifts, layer_count);
       });
 }

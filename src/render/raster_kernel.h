@@ -15,6 +15,7 @@
 #include <cstdint>
 
 #include "render/bin.h"
+#include "render/mask_kernel.h"
 #include "render/raster.h"
 #include "render/simd_lanes.h"
 
@@ -311,10 +312,11 @@ TESSERA_LANES_INLINE bool advance(const std::vector<TriangleChunk>& chunks, size
   return false;
 }
 
-// Calls draw(raster, wide, key) for every triangle binned to the tile, in submission order.
-template <typename Draw>
+// Calls draw(raster, wide, key) for every triangle binned to the tile, in submission order;
+// masked(chunk, record, key) for those whose material is alphaMode MASK (mask_kernel.h).
+template <typename Draw, typename Masked>
 TESSERA_LANES_INLINE void walkTileBins(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
-                                       int tile_index, Draw draw) {
+                                       int tile_index, Draw draw, Masked masked) {
   // Every chunk's list for this tile, all at once (each is a line or two, written by setup on
   // either core), and where the next tile's lists are kept, which this worker most likely takes
   // next: walked one after another, each list was a miss of its own.
@@ -352,17 +354,25 @@ TESSERA_LANES_INLINE void walkTileBins(const std::vector<TriangleChunk>& chunks,
       ahead_valid = advance(chunks, chunk_count, tile_index, ahead);
     }
     const TriangleChunk& chunk = chunks[at.chunk];
-    draw(chunk.raster[*at.it], chunk.wide[*at.it],
-         makeKey(static_cast<uint32_t>(at.chunk), *at.it));
+    const uint32_t key = makeKey(static_cast<uint32_t>(at.chunk), *at.it);
+    if (chunk.any_masked && chunk.masked[*at.it])
+      masked(chunk, *at.it, key);
+    else
+      draw(chunk.raster[*at.it], chunk.wide[*at.it], key);
   } while (advance(chunks, chunk_count, tile_index, at));
 }
 
 void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
                       TileVisibility& tile) {
+  TileVisibility* const layers[1] = {&tile};
+  const SampleShift centre[1] = {};
   walkTileBins(
       chunks, chunk_count, tile_index,
       [&](const RasterTriangle& t, const RasterWide& w, uint32_t key)
-          __attribute__((always_inline)) { rasterTriangle(t, w, key, tile); });
+          __attribute__((always_inline)) { rasterTriangle(t, w, key, tile); },
+      [&](const TriangleChunk& chunk, uint32_t record, uint32_t key) {
+        rasterMasked<false>(chunk, record, key, layers, centre, 1);
+      });
 }
 
 // A triangle's coverage and depth at one sample of every pixel: the triangle moved by the
@@ -552,7 +562,10 @@ void rasterTileSamplesKernel(const std::vector<TriangleChunk>& chunks, size_t ch
   walkTileBins(
       chunks, chunk_count, tile_index,
       [&](const RasterTriangle& t, const RasterWide& w, uint32_t key) __attribute__((
-          always_inline)) { rasterTriangleSamples(t, w, key, layers, shifts, layer_count); });
+          always_inline)) { rasterTriangleSamples(t, w, key, layers, shifts, layer_count); },
+      [&](const TriangleChunk& chunk, uint32_t record, uint32_t key) {
+        rasterMasked<false>(chunk, record, key, layers, shifts, layer_count);
+      });
 }
 
 }  // namespace

@@ -63,6 +63,8 @@ constexpr uint32_t kTextureClampT = 32u;
 constexpr uint32_t kTextureMirrorS = 64u;  // MIRRORED_REPEAT along s
 constexpr uint32_t kTextureMirrorT = 128u;
 constexpr uint32_t kTextureTransformed = 512u;  // uv_transform applies (Sampler::transform)
+// alphaMode MASK: the raster backend discards where alpha < uv_transform[0][3] (the cutoff)
+constexpr uint32_t kMaterialMask = 1024u;
 
 // A texture in the texel buffer: a header (level count, then offset, width and height of each
 // level, offsets in words from the start of the buffer), then the levels' texels.

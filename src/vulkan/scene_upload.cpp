@@ -203,6 +203,10 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
             for (int c = 0; c < 3; ++c) m.uv_transform[r][c] = rows[r][c];
         }
       }
+      if (material.alpha_mode == AlphaMode::kMask) {
+        m.texture_flags |= kMaterialMask;
+        m.uv_transform[0][3] = material.alpha_cutoff;
+      }
       out.materials.push_back(m);
     }
 

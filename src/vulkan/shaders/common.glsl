@@ -24,6 +24,7 @@ const uint kTextureClampT = 32u;
 const uint kTextureMirrorS = 64u;
 const uint kTextureMirrorT = 128u;
 const uint kTextureTransformed = 512u;
+const uint kMaterialMask = 1024u;  // alphaMode MASK, cutoff in uv_transform[0].w
 const uint kShadeHasUv = 256u;
 
 // tessera::Shading and tessera::CullMode.

@@ -64,6 +64,7 @@ void main() {
   const uint m = (object.flags & kObjectHasTriangleMaterials) != 0u ? triangle_materials[t] : 0u;
   const GpuMaterial material = objectMaterial(object, m);
   vec3 color = material.base_color.xyz * (gl_FrontFacing ? in_color_front : in_color_back);
+  float alpha = material.base_color.w;
   if ((material.texture_flags & kTexturePresent) != 0u && (object.flags & kObjectHasUv) != 0u) {
     // The sampler's transform, and its linear part on the UV derivatives.
     const vec2 uv = transformUv(material, in_uv);
@@ -73,11 +74,18 @@ void main() {
       const vec2 dx = (transformUv(material, in_uv + uv_dx) - uv) * size;
       const vec2 dy = (transformUv(material, in_uv + uv_dy) - uv) * size;
       const float rho2 = max(dot(dx, dx), dot(dy, dy));
-      color *= sampleTextureTrilinear(material, uv, rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0).xyz;
+      const vec4 texel = sampleTextureTrilinear(material, uv, rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0);
+      color *= texel.xyz;
+      alpha *= texel.w;
     } else {
-      color *= sampleTexture(material, uv).xyz;
+      const vec4 texel = sampleTexture(material, uv);
+      color *= texel.xyz;
+      alpha *= texel.w;
     }
   }
+  // alphaMode MASK (the CPU's mask_kernel.h): kept where alpha reaches the cutoff.
+  if ((material.texture_flags & kMaterialMask) != 0u && !(alpha >= material.uv_transform[0].w))
+    discard;
 
   vec3 normal = face_normal;
   if (shading != kShadingFlat) {
