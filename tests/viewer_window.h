@@ -376,6 +376,23 @@ class ViewerWindow : public ::testing::Test {
     return png;
   }
 
+  // One screenshot of `tessera view MODEL ARGS...` (a model in the working folder), the pointer
+  // in the middle of the window, then Escape.
+  DecodedPng shotOfModel(const std::string& model, const std::vector<std::string>& args) {
+    std::vector<std::string> argv{model};
+    argv.insert(argv.end(), args.begin(), args.end());
+    startViewer(argv);
+    EXPECT_TRUE(viewer_->waitForLine("tessera view: showing " + model))
+        << viewer_->output() << slurp(dir_ / "viewer.err");
+    const std::string window = findWindow();
+    EXPECT_FALSE(window.empty());
+    xdotool({"mousemove", "--window", window, "100", "100"});
+    DecodedPng shot = screenshot();
+    xdotool({"key", "Escape"});
+    EXPECT_EQ(viewer_->waitExit(), 0);
+    return shot;
+  }
+
   fs::path dir_;
   std::string display_;
   std::unique_ptr<Process> xserver_;

@@ -130,29 +130,23 @@ TEST_F(ViewerWindow, LoadsAModelInTheBackgroundAndKeysChangeTheView) {
   EXPECT_EQ(viewer_->waitExit(), 0);
 }
 
+// A tetrahedron away from the origin, for the tests that compare two views of one model.
+constexpr const char* kOffsetTetrahedron =
+    "v 0.5 0.5 0.5\nv 1.5 0.5 0.5\nv 0.5 1.5 0.5\nv 0.5 0.5 1.5\n"
+    "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+
 // --grid (f3d's -g): the same model with a ground grid under it; the grid's lines change the
 // background around the model's foot.
 TEST_F(ViewerWindow, GridDrawsAGroundUnderTheModel) {
   std::string why;
   if (!startX(why)) GTEST_SKIP() << why;
-  std::ofstream(dir_ / "tetra.obj")
-      << "v 0.5 0.5 0.5\nv 1.5 0.5 0.5\nv 0.5 1.5 0.5\nv 0.5 0.5 1.5\n"
-         "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
-  DecodedPng shots[2];
-  for (int grid = 0; grid < 2; ++grid) {
-    std::vector<std::string> args{"tetra.obj", "-w", "200", "-h", "200", "-workers", "1"};
-    if (grid) args.push_back("--grid");
-    startViewer(args);
-    ASSERT_TRUE(viewer_->waitForLine("tessera view: showing tetra.obj"))
-        << viewer_->output() << slurp(dir_ / "viewer.err");
-    const std::string window = findWindow();
-    ASSERT_FALSE(window.empty());
-    xdotool({"mousemove", "--window", window, "100", "100"});
-    shots[grid] = screenshot();
-    ASSERT_EQ(shots[grid].width, 200);
-    xdotool({"key", "Escape"});
-    EXPECT_EQ(viewer_->waitExit(), 0);
-  }
+  std::ofstream(dir_ / "tetra.obj") << kOffsetTetrahedron;
+  const std::vector<std::string> args{"-w", "200", "-h", "200", "-workers", "1"};
+  std::vector<std::string> with_grid = args;
+  with_grid.push_back("--grid");
+  const DecodedPng shots[2] = {shotOfModel("tetra.obj", args), shotOfModel("tetra.obj", with_grid)};
+  ASSERT_EQ(shots[0].width, 200);
+  ASSERT_EQ(shots[1].width, 200);
   EXPECT_GT(countDifferent(shots[0], shots[1], 0, 0, 200, 200), 200) << "no grid drawn";
 }
 
@@ -161,24 +155,13 @@ TEST_F(ViewerWindow, GridDrawsAGroundUnderTheModel) {
 TEST_F(ViewerWindow, ExposureDarkensTheModelNotTheBackground) {
   std::string why;
   if (!startX(why)) GTEST_SKIP() << why;
-  std::ofstream(dir_ / "tetra.obj")
-      << "v 0.5 0.5 0.5\nv 1.5 0.5 0.5\nv 0.5 1.5 0.5\nv 0.5 0.5 1.5\n"
-         "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
-  DecodedPng shots[2];
-  for (int dim = 0; dim < 2; ++dim) {
-    std::vector<std::string> args{"tetra.obj", "-w", "200", "-h", "200", "-workers", "1"};
-    if (dim) args.insert(args.end(), {"--exposure", "-2", "--tone-mapping", "pbr-neutral"});
-    startViewer(args);
-    ASSERT_TRUE(viewer_->waitForLine("tessera view: showing tetra.obj"))
-        << viewer_->output() << slurp(dir_ / "viewer.err");
-    const std::string window = findWindow();
-    ASSERT_FALSE(window.empty());
-    xdotool({"mousemove", "--window", window, "100", "100"});
-    shots[dim] = screenshot();
-    ASSERT_EQ(shots[dim].width, 200);
-    xdotool({"key", "Escape"});
-    EXPECT_EQ(viewer_->waitExit(), 0);
-  }
+  std::ofstream(dir_ / "tetra.obj") << kOffsetTetrahedron;
+  const std::vector<std::string> args{"-w", "200", "-h", "200", "-workers", "1"};
+  std::vector<std::string> dimmed = args;
+  dimmed.insert(dimmed.end(), {"--exposure", "-2", "--tone-mapping", "pbr-neutral"});
+  const DecodedPng shots[2] = {shotOfModel("tetra.obj", args), shotOfModel("tetra.obj", dimmed)};
+  ASSERT_EQ(shots[0].width, 200);
+  ASSERT_EQ(shots[1].width, 200);
   const std::array<int, 3> background = shots[0].rgb(2, 2);
   EXPECT_EQ(shots[1].rgb(2, 2), background);
   int model = 0, darker = 0;
