@@ -15,6 +15,8 @@
 namespace tessera::render {
 
 class ShadowMaps;  // shadow_map.h
+// ShadowMaps::visibility, for the kernels (which then need not see shadow_map.h): compiled once.
+float shadowVisibility(const ShadowMaps& maps, int shadow, float3 p, float3 n);
 
 struct ShadeLight {
   LightType type;

@@ -13,7 +13,6 @@
 
 #include "render/pbr.h"
 #include "render/shade.h"
-#include "render/shadow_map.h"
 #include "render/simd_lanes.h"
 #include "render/texture_lanes.h"
 
@@ -70,9 +69,9 @@ TESSERA_LANES_INLINE F32x8 shadowed8(const LightRig& rig, const ShadeLight& ligh
   if (!rig.shadows || light.shadow < 0 || !any(lit)) return f;
   alignas(32) float visible[8];
   for (int l = 0; l < 8; ++l)
-    visible[l] = lane(lit, l) ? rig.shadows->visibility(light.shadow,
-                                                        {lane(p.x, l), lane(p.y, l), lane(p.z, l)},
-                                                        {lane(n.x, l), lane(n.y, l), lane(n.z, l)})
+    visible[l] = lane(lit, l) ? shadowVisibility(*rig.shadows, light.shadow,
+                                                 {lane(p.x, l), lane(p.y, l), lane(p.z, l)},
+                                                 {lane(n.x, l), lane(n.y, l), lane(n.z, l)})
                               : 1.0f;
   return f * load<F32x8>(visible);
 }

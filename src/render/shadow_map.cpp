@@ -74,16 +74,36 @@ void rasterizeTriangle(const ShadowOptions& options, float depth_unit, const Map
                                 static_cast<double>(kMaxSlopeTexels * depth_unit));
   const double bias = options.constant_bias * depth_unit + options.slope_bias * slope;
   const double sign = area > 0 ? 1.0 : -1.0;
+  // Edge i at (px, py): ea[i] * px + eb[i] * py + ec[i], >= 0 inside (either winding).
+  const MapVertex* from[3] = {&b, &c, &a};
+  const MapVertex* to[3] = {&c, &a, &b};
+  double ea[3], eb[3], ec[3];
+  for (int i = 0; i < 3; ++i) {
+    const double du = to[i]->u - from[i]->u, dv = to[i]->v - from[i]->v;
+    ea[i] = -dv * sign;
+    eb[i] = du * sign;
+    ec[i] = (dv * from[i]->u - du * from[i]->v) * sign;
+  }
   for (int y = static_cast<int>(min_v); y <= static_cast<int>(max_v); ++y) {
     const double py = y + 0.5;
+    // The row's span: where each edge's value, linear in px, is >= 0; a pixel wider on each
+    // side, then the exact test per pixel.
+    double lo = min_u, hi = max_u;
+    for (int i = 0; i < 3; ++i) {
+      const double at = eb[i] * py + ec[i];
+      if (ea[i] > 0)
+        lo = std::max(lo, std::floor(-at / ea[i] - 0.5) - 1.0);
+      else if (ea[i] < 0)
+        hi = std::min(hi, std::ceil(-at / ea[i] - 0.5) + 1.0);
+      else if (at < 0)
+        hi = lo - 1.0;
+    }
     float* row = view.depth.data() + static_cast<size_t>(y) * static_cast<size_t>(view.size);
-    for (int x = static_cast<int>(min_u); x <= static_cast<int>(max_u); ++x) {
+    for (int x = static_cast<int>(lo); x <= static_cast<int>(hi); ++x) {
       const double px = x + 0.5;
-      // Edge functions, each >= 0 inside for a positive area.
-      const double w0 = ((c.u - b.u) * (py - b.v) - (c.v - b.v) * (px - b.u)) * sign;
-      const double w1 = ((a.u - c.u) * (py - c.v) - (a.v - c.v) * (px - c.u)) * sign;
-      const double w2 = ((b.u - a.u) * (py - a.v) - (b.v - a.v) * (px - a.u)) * sign;
-      if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+      if (ea[0] * px + eb[0] * py + ec[0] < 0 || ea[1] * px + eb[1] * py + ec[1] < 0 ||
+          ea[2] * px + eb[2] * py + ec[2] < 0)
+        continue;
       const float z = static_cast<float>(a.z + dzdu * (px - a.u) + dzdv * (py - a.v) + bias);
       row[x] = std::min(row[x], z);
     }
@@ -118,7 +138,7 @@ bool ShadowView::project(float3 p, float3& out) const {
 
 void renderShadowView(const Scene& scene, const ShadowOptions& options, ShadowView& view) {
   view.depth.assign(static_cast<size_t>(view.size) * static_cast<size_t>(view.size), kInf);
-  std::vector<float3> light_space;
+  std::vector<float3>& light_space = view.light_space;
   for (const Object& object : scene.objects) {
     if (!object.mesh) continue;
     const Mesh& mesh = *object.mesh;
@@ -157,10 +177,13 @@ void renderShadowView(const Scene& scene, const ShadowOptions& options, ShadowVi
 ShadowView& ShadowMaps::nextView(int size) {
   if (static_cast<size_t>(view_count_) == views_.size()) views_.emplace_back();
   ShadowView& view = views_[static_cast<size_t>(view_count_++)];
-  std::vector<float> depth = std::move(view.depth);  // keeps its memory
+  // A new frame's view keeps the memory of the last one's.
+  std::vector<float> depth = std::move(view.depth);
+  std::vector<float3> light_space = std::move(view.light_space);
   view = ShadowView{};
   view.size = size;
   view.depth = std::move(depth);
+  view.light_space = std::move(light_space);
   return view;
 }
 
@@ -279,6 +302,10 @@ void ShadowMaps::build(const Scene& scene, const ShadowOptions& options, bool om
   pool.parallelFor(static_cast<size_t>(view_count_),
                    [&](size_t v, int) { renderShadowView(scene, options, views_[v]); });
   rig.shadows = this;
+}
+
+float shadowVisibility(const ShadowMaps& maps, int shadow, float3 p, float3 n) {
+  return maps.visibility(shadow, p, n);
 }
 
 float ShadowMaps::visibility(int shadow, float3 p, float3 n) const {

@@ -45,7 +45,8 @@ struct ShadowView {
   float texel_world = 1;   // a texel's size in world units (perspective: per unit of ld)
   float reach = 0;         // a cascade serves view depths (or distances) up to this
   int size = 0;
-  std::vector<float> depth;  // size * size, +inf where nothing is
+  std::vector<float> depth;         // size * size, +inf where nothing is
+  std::vector<float3> light_space;  // renderShadowView's: an object's vertices in light space
 
   // p in map coordinates (u, v in texels, z window depth); false behind a perspective map's near
   // plane.
