@@ -55,58 +55,62 @@ MapVertex toMap(const ShadowView& view, float3 l) {
           view.z_a - view.z_b * inv_d};
 }
 
-// One triangle into the map: pixel centres inside it (either winding) keep the nearest depth,
-// plus the slope-scaled bias.
+// One triangle into rows [row_begin, row_end) of the map: pixel centres inside it (either
+// winding, with a hair of slack so that no centre on a shared edge falls between two triangles)
+// keep the nearest depth, plus the slope-scaled bias.
 void rasterizeTriangle(const ShadowOptions& options, float depth_unit, const MapVertex& a,
-                       const MapVertex& b, const MapVertex& c, ShadowView& view) {
+                       const MapVertex& b, const MapVertex& c, int row_begin, int row_end,
+                       ShadowView& view) {
+  const double min_v = std::max<double>(row_begin, std::floor(std::min({a.v, b.v, c.v}) - 0.5));
+  const double max_v = std::min<double>(row_end - 1, std::ceil(std::max({a.v, b.v, c.v}) - 0.5));
+  if (min_v > max_v) return;
   const double e1u = b.u - a.u, e1v = b.v - a.v, e2u = c.u - a.u, e2v = c.v - a.v;
   const double area = e1u * e2v - e1v * e2u;
   if (!(std::fabs(area) > 1e-12) || !std::isfinite(area)) return;
   const double size = view.size;
   const double min_u = std::max(0.0, std::floor(std::min({a.u, b.u, c.u}) - 0.5));
   const double max_u = std::min(size - 1.0, std::ceil(std::max({a.u, b.u, c.u}) - 0.5));
-  const double min_v = std::max(0.0, std::floor(std::min({a.v, b.v, c.v}) - 0.5));
-  const double max_v = std::min(size - 1.0, std::ceil(std::max({a.v, b.v, c.v}) - 0.5));
-  if (min_u > max_u || min_v > max_v) return;
+  if (min_u > max_u) return;
   const double dzdu = ((b.z - a.z) * e2v - (c.z - a.z) * e1v) / area;
   const double dzdv = ((c.z - a.z) * e1u - (b.z - a.z) * e2u) / area;
   const double slope = std::min(std::max(std::fabs(dzdu), std::fabs(dzdv)),
                                 static_cast<double>(kMaxSlopeTexels * depth_unit));
   const double bias = options.constant_bias * depth_unit + options.slope_bias * slope;
   const double sign = area > 0 ? 1.0 : -1.0;
-  // Edge i at (px, py): ea[i] * px + eb[i] * py + ec[i], >= 0 inside (either winding).
+  // Edge i at (px, py): ea[i] * px + eb[i] * py + ec[i], >= 0 inside.
   const MapVertex* from[3] = {&b, &c, &a};
   const MapVertex* to[3] = {&c, &a, &b};
-  double ea[3], eb[3], ec[3];
+  // Edge i is >= 0 where px >= (or <=, as ea[i] < 0) -(eb[i] * py + ec[i]) / ea[i]: the row's
+  // crossing is cross_b[i] * py + cross_c[i].
+  double ea[3], cross_b[3], cross_c[3], eb[3], ec[3];
   for (int i = 0; i < 3; ++i) {
     const double du = to[i]->u - from[i]->u, dv = to[i]->v - from[i]->v;
     ea[i] = -dv * sign;
     eb[i] = du * sign;
     ec[i] = (dv * from[i]->u - du * from[i]->v) * sign;
+    const double inv = ea[i] != 0 ? -1.0 / ea[i] : 0.0;
+    cross_b[i] = eb[i] * inv;
+    cross_c[i] = ec[i] * inv - 0.5;
   }
+  constexpr double kSlack = 1e-7;  // pixels
   for (int y = static_cast<int>(min_v); y <= static_cast<int>(max_v); ++y) {
     const double py = y + 0.5;
-    // The row's span: where each edge's value, linear in px, is >= 0; a pixel wider on each
-    // side, then the exact test per pixel.
+    // The row's span: where each edge's value, linear in px, is >= 0.
     double lo = min_u, hi = max_u;
     for (int i = 0; i < 3; ++i) {
-      const double at = eb[i] * py + ec[i];
+      const double cross = cross_b[i] * py + cross_c[i];
       if (ea[i] > 0)
-        lo = std::max(lo, std::floor(-at / ea[i] - 0.5) - 1.0);
+        lo = std::max(lo, std::ceil(cross - kSlack));
       else if (ea[i] < 0)
-        hi = std::min(hi, std::ceil(-at / ea[i] - 0.5) + 1.0);
-      else if (at < 0)
-        hi = lo - 1.0;
+        hi = std::min(hi, std::floor(cross + kSlack));
+      else if (eb[i] * py + ec[i] < 0)
+        hi = -1.0;
     }
+    if (lo > hi) continue;
     float* row = view.depth.data() + static_cast<size_t>(y) * static_cast<size_t>(view.size);
-    for (int x = static_cast<int>(lo); x <= static_cast<int>(hi); ++x) {
-      const double px = x + 0.5;
-      if (ea[0] * px + eb[0] * py + ec[0] < 0 || ea[1] * px + eb[1] * py + ec[1] < 0 ||
-          ea[2] * px + eb[2] * py + ec[2] < 0)
-        continue;
-      const float z = static_cast<float>(a.z + dzdu * (px - a.u) + dzdv * (py - a.v) + bias);
-      row[x] = std::min(row[x], z);
-    }
+    const double z_row = a.z + dzdv * (py - a.v) + bias - dzdu * a.u;
+    for (int x = static_cast<int>(lo); x <= static_cast<int>(hi); ++x)
+      row[x] = std::min(row[x], static_cast<float>(z_row + dzdu * (x + 0.5)));
   }
 }
 
@@ -136,42 +140,82 @@ bool ShadowView::project(float3 p, float3& out) const {
   return true;
 }
 
-void renderShadowView(const Scene& scene, const ShadowOptions& options, ShadowView& view) {
-  view.depth.assign(static_cast<size_t>(view.size) * static_cast<size_t>(view.size), kInf);
-  std::vector<float3>& light_space = view.light_space;
+void transformShadowView(const Scene& scene, ShadowView& view) {
+  size_t total = 0;
+  for (const Object& object : scene.objects)
+    if (object.mesh) total += object.mesh->positions.size();
+  view.light_space.resize(total);
+  view.depth.resize(static_cast<size_t>(view.size) * static_cast<size_t>(view.size));
+  size_t base = 0;
+  for (const Object& object : scene.objects) {
+    if (!object.mesh) continue;
+    const float4x4 model = object.transform.matrix();
+    // Orthographic maps keep map coordinates (u, v, z) here already; perspective ones light
+    // space, which renderShadowRows clips at the near plane first.
+    for (const float3& p : object.mesh->positions) {
+      const float3 l = toLight(view, (model * float4{p, 1.0f}).xyz());
+      if (view.perspective) {
+        view.light_space[base++] = l;
+      } else {
+        const MapVertex m = toMap(view, l);
+        view.light_space[base++] = {m.u, m.v, m.z};
+      }
+    }
+  }
+}
+
+void renderShadowRows(const Scene& scene, const ShadowOptions& options, int row_begin,
+                      int row_end, ShadowView& view) {
+  const size_t size = static_cast<size_t>(view.size);
+  std::fill(view.depth.begin() + static_cast<ptrdiff_t>(static_cast<size_t>(row_begin) * size),
+            view.depth.begin() + static_cast<ptrdiff_t>(static_cast<size_t>(row_end) * size),
+            kInf);
+  size_t base = 0;
   for (const Object& object : scene.objects) {
     if (!object.mesh) continue;
     const Mesh& mesh = *object.mesh;
-    const float4x4 model = object.transform.matrix();
-    light_space.resize(mesh.positions.size());
-    for (size_t i = 0; i < mesh.positions.size(); ++i)
-      light_space[i] = toLight(view, (model * float4{mesh.positions[i], 1.0f}).xyz());
+    const float3* light_space = view.light_space.data() + base;
+    const size_t count_v = mesh.positions.size();
+    base += count_v;
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
       float3 corners[3];
       bool valid = true;
       for (int k = 0; k < 3; ++k) {
         const uint32_t index = mesh.indices[t + static_cast<size_t>(k)];
-        valid = valid && index < light_space.size() && finite3(light_space[index]);
+        valid = valid && index < count_v && finite3(light_space[index]);
         if (valid) corners[k] = light_space[index];
       }
       if (!valid) continue;
-      float3 polygon[4];
-      const int count = view.perspective ? clipNear(corners, 3, view.near_d, polygon) : 3;
-      if (!view.perspective) std::copy(corners, corners + 3, polygon);
-      if (count < 3) continue;
-      // One texel's depth at 45 degrees, at the polygon's first corner (perspective: it shrinks
-      // with distance as the texels grow).
-      float depth_unit = view.texel_world * view.z_b;
-      if (view.perspective) {
-        const float d = polygon[0].z;
-        depth_unit = view.z_b / (d * d) * (view.texel_world * d);
+      if (!view.perspective) {
+        // Rows outside the band: nothing to do (the common case, so tested first).
+        if (std::max({corners[0].y, corners[1].y, corners[2].y}) < row_begin - 1.0f ||
+            std::min({corners[0].y, corners[1].y, corners[2].y}) > row_end + 1.0f)
+          continue;
+        const MapVertex m[3] = {{corners[0].x, corners[0].y, corners[0].z},
+                                {corners[1].x, corners[1].y, corners[1].z},
+                                {corners[2].x, corners[2].y, corners[2].z}};
+        rasterizeTriangle(options, view.texel_world * view.z_b, m[0], m[1], m[2], row_begin,
+                          row_end, view);
+        continue;
       }
+      float3 polygon[4];
+      const int count = clipNear(corners, 3, view.near_d, polygon);
+      if (count < 3) continue;
+      // One texel's depth at 45 degrees (orthographic: texel_world * z_b), at the polygon's
+      // first corner: it shrinks with distance as the texels grow.
+      const float d = polygon[0].z;
+      const float depth_unit = view.z_b / (d * d) * (view.texel_world * d);
       MapVertex m[4];
       for (int k = 0; k < count; ++k) m[k] = toMap(view, polygon[k]);
       for (int k = 1; k + 1 < count; ++k)
-        rasterizeTriangle(options, depth_unit, m[0], m[k], m[k + 1], view);
+        rasterizeTriangle(options, depth_unit, m[0], m[k], m[k + 1], row_begin, row_end, view);
     }
   }
+}
+
+void renderShadowView(const Scene& scene, const ShadowOptions& options, ShadowView& view) {
+  transformShadowView(scene, view);
+  renderShadowRows(scene, options, 0, view.size, view);
 }
 
 ShadowView& ShadowMaps::nextView(int size) {
@@ -298,9 +342,17 @@ void ShadowMaps::build(const Scene& scene, const ShadowOptions& options, bool om
     rig.lights[i].shadow = static_cast<int>(lights_.size());
     lights_.push_back(maps);
   }
-  // One map per worker, whole: the same depths for any worker count.
+  // Each map's vertices, then its rows in kBands bands, each band whole on one worker: a texel
+  // keeps the least depth of its triangles, which no order or split changes.
   pool.parallelFor(static_cast<size_t>(view_count_),
-                   [&](size_t v, int) { renderShadowView(scene, options, views_[v]); });
+                   [&](size_t v, int) { transformShadowView(scene, views_[v]); });
+  constexpr int kBands = 4;
+  pool.parallelFor(static_cast<size_t>(view_count_ * kBands), [&](size_t job, int) {
+    ShadowView& view = views_[job / kBands];
+    const int band = static_cast<int>(job % kBands);
+    renderShadowRows(scene, options, view.size * band / kBands, view.size * (band + 1) / kBands,
+                     view);
+  });
   rig.shadows = this;
 }
 
@@ -330,8 +382,7 @@ float ShadowMaps::visibility(int shadow, float3 p, float3 n) const {
     float occluded = 0.0f;
     for (int j = 0; j < 4; ++j) {
       const float* row = view.depth.data() + static_cast<size_t>(iy - 1 + j) * view.size;
-      for (int k = 0; k < 4; ++k)
-        if (m.z > row[ix - 1 + k]) occluded += wx[k] * wy[j];
+      for (int k = 0; k < 4; ++k) occluded += m.z > row[ix - 1 + k] ? wx[k] * wy[j] : 0.0f;
     }
     return 1.0f - occluded * (1.0f / 9.0f);
   }

@@ -46,7 +46,9 @@ struct ShadowView {
   float reach = 0;         // a cascade serves view depths (or distances) up to this
   int size = 0;
   std::vector<float> depth;         // size * size, +inf where nothing is
-  std::vector<float3> light_space;  // renderShadowView's: an object's vertices in light space
+  // Every object's vertices, objects one after another: light space (perspective maps) or
+  // map coordinates (orthographic ones).
+  std::vector<float3> light_space;
 
   // p in map coordinates (u, v in texels, z window depth); false behind a perspective map's near
   // plane.
@@ -88,7 +90,13 @@ class ShadowMaps {
   float normal_offset_ = 1.0f;  // texels
 };
 
-// Rasterizes every object's triangles into `view` (cleared first); exposed for the tests.
+// Every object's vertices into view.light_space, objects one after another; sizes the map.
+void transformShadowView(const Scene& scene, ShadowView& view);
+// Clears rows [row_begin, row_end) of the map and rasterizes every triangle into them (after
+// transformShadowView). Bands of rows may be rendered at once, each by one worker.
+void renderShadowRows(const Scene& scene, const ShadowOptions& options, int row_begin,
+                      int row_end, ShadowView& view);
+// Both, for the whole map.
 void renderShadowView(const Scene& scene, const ShadowOptions& options, ShadowView& view);
 
 }  // namespace tessera::render
