@@ -14,6 +14,8 @@
 
 #include "render_test_scenes.h"
 
+#include "allocation_counter.h"  // allocationsAfterWarmUp
+
 namespace tessera {
 namespace {
 
@@ -273,6 +275,26 @@ TEST(Shadows, NonlinearProjectionsShadowToo) {
   for (size_t i = 0; i < plain.color.size(); ++i)
     darker += channelDifference(plain.color[i], shadowed.color[i]) > 40;
   EXPECT_GT(darker, 100);
+}
+
+TEST(Shadows, FramesAfterWarmUpAllocateNothing) {
+  Scene scene = boxOnFloor();
+  scene.lights.push_back(
+      Light::spot({-3, 4, 0}, normalize(float3{3.5f, -4, 0}), {1, 1, 1}, 10.0f, 0.5f, 0.8f));
+  CpuRenderer renderer(2);
+  RenderOptions o = options(true, 128);
+  o.shadows.map_size = 256;
+  Frame frame;
+  // The light turns and the camera moves frame to frame; one frame is spherical.
+  const size_t allocations = allocationsAfterWarmUp([&] {
+    for (int i = 0; i < 3; ++i) {
+      scene.lights[0].direction = normalize(float3{1, -2, 0.2f * static_cast<float>(i)});
+      scene.camera.position.x = 0.5f + 0.1f * static_cast<float>(i);
+      o.projection = i == 2 ? Projection::kSpherical : Projection::kPerspective;
+      renderer.render(scene, o, frame);
+    }
+  });
+  EXPECT_EQ(allocations, 0u);
 }
 
 }  // namespace
