@@ -275,6 +275,21 @@ TEST(Shadows, NonlinearProjectionsShadowToo) {
   for (size_t i = 0; i < plain.color.size(); ++i)
     darker += channelDifference(plain.color[i], shadowed.color[i]) > 40;
   EXPECT_GT(darker, 100);
+  // A floor point in the box's shadow and one in the light, at their pixels of the equirectangular
+  // mapping (ARCHITECTURE.md, Projections: theta = u s, phi = v s, s half the view angle).
+  auto pixelOf = [&](float3 world) {
+    const float3 d = (scene.camera.view() * float4{world, 1.0f}).xyz();
+    const float s = radians(scene.camera.fov_y_degrees) * 0.5f;
+    const float u = std::atan2(d.x, -d.z) / s, v = std::asin(d.y / length(d)) / s;
+    const int x = static_cast<int>((u + 1.0f) * 0.5f * 256);
+    const int y = static_cast<int>((1.0f - v) * 0.5f * 256);
+    return static_cast<size_t>(y) * 256 + static_cast<size_t>(x);
+  };
+  const size_t hidden = pixelOf({0.75f, 0, 0}), open = pixelOf({2.0f, 0, 1.2f});
+  EXPECT_GT(channelDifference(plain.color[hidden], shadowed.color[hidden]), 40);
+  EXPECT_EQ(plain.color[open], shadowed.color[open]);
+  for (size_t i : {hidden, open}) EXPECT_LE(plain.triangle_id[i], 2u) << "not the floor: " << i;
+  EXPECT_NE(plain.triangle_id[open], kNoTriangle);
 }
 
 TEST(Shadows, FramesAfterWarmUpAllocateNothing) {
