@@ -85,7 +85,8 @@ int green(const Frame& f, int x, int y) {
 int channelDifference(uint32_t a, uint32_t b) {
   int d = 0;
   for (int s = 0; s < 24; s += 8)
-    d = std::max(d, std::abs(static_cast<int>((a >> s) & 0xff) - static_cast<int>((b >> s) & 0xff)));
+    d = std::max(d,
+                 std::abs(static_cast<int>((a >> s) & 0xff) - static_cast<int>((b >> s) & 0xff)));
   return d;
 }
 
@@ -218,8 +219,8 @@ TEST(Shadows, NoAcneOnTheLitSideOfASphere) {
 TEST(Shadows, SpotLightCastsAShadow) {
   Scene scene = boxOnFloor();
   const float3 position{-3, 4, 0};
-  scene.lights = {Light::spot(position, normalize(float3{3.5f, -4, 0}), {1, 1, 1}, 20.0f, 0.5f,
-                              0.8f)};
+  scene.lights = {
+      Light::spot(position, normalize(float3{3.5f, -4, 0}), {1, 1, 1}, 20.0f, 0.5f, 0.8f)};
   const Frame shadowed = render(scene, options(true, 512));
   const Frame plain = render(scene, options(false, 512));
   // (0.8, 0, 0) sees the light through the box; (-1.5, 0, 1.5) past it.

@@ -68,7 +68,7 @@ class RayRenderer {
   std::vector<std::unique_ptr<SampleTiles>> sampled_;   // one per worker, made for MSAA
   LineList lines_;                                      // the axes
   PointPass points_;
-  LightRig lights_;  // this frame's
+  LightRig lights_;                // this frame's
   ShadowMaps* shadows_ = nullptr;  // this frame's (render's argument)
 };
 

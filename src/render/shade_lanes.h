@@ -434,8 +434,7 @@ TESSERA_LANES_INLINE void shadeLanesAt(const ShadeTriangle& t, const ShadeExtras
   } else if (t.shading == Shading::kPhong || (want_normals && t.shading != Shading::kFlat)) {
     const Vec3x8 n = normalize8(interpolate(e.normal, b0, b1, b2));
     if (t.shading == Shading::kPhong) {
-      const Vec3x8 p =
-          lights.local || lights.shadows ? interpolate(e.world, b0, b1, b2) : Vec3x8{};
+      const Vec3x8 p = lights.local || lights.shadows ? interpolate(e.world, b0, b1, b2) : Vec3x8{};
       const Vec3x8 e = irradiance8(lights, n, p);
       c = {c.x * e.x, c.y * e.y, c.z * e.z};
     }

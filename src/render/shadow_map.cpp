@@ -164,12 +164,11 @@ void transformShadowView(const Scene& scene, ShadowView& view) {
   }
 }
 
-void renderShadowRows(const Scene& scene, const ShadowOptions& options, int row_begin,
-                      int row_end, ShadowView& view) {
+void renderShadowRows(const Scene& scene, const ShadowOptions& options, int row_begin, int row_end,
+                      ShadowView& view) {
   const size_t size = static_cast<size_t>(view.size);
   std::fill(view.depth.begin() + static_cast<ptrdiff_t>(static_cast<size_t>(row_begin) * size),
-            view.depth.begin() + static_cast<ptrdiff_t>(static_cast<size_t>(row_end) * size),
-            kInf);
+            view.depth.begin() + static_cast<ptrdiff_t>(static_cast<size_t>(row_end) * size), kInf);
   size_t base = 0;
   for (const Object& object : scene.objects) {
     if (!object.mesh) continue;
@@ -248,8 +247,8 @@ void ShadowMaps::fitCascades(const Scene& scene, const Light& light, const Bound
     far_c[i] = f.xyz() / f.w;
   }
   auto depthOf = [&](float3 p) { return omni ? length(p - eye_) : dot(p - eye_, eye_forward_); };
-  const float near_d = omni ? std::max(camera.near_z, 0.0f)
-                            : depthOf((near_c[0] + near_c[3]) * 0.5f);
+  const float near_d =
+      omni ? std::max(camera.near_z, 0.0f) : depthOf((near_c[0] + near_c[3]) * 0.5f);
   const float far_full = omni ? camera.far_z : depthOf((far_c[0] + far_c[3]) * 0.5f);
   float scene_far = near_d;
   for (const float3& c : box) scene_far = std::max(scene_far, depthOf(c));

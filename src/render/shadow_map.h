@@ -38,14 +38,14 @@ struct LightRig;
 struct ShadowView {
   bool perspective = false;
   float3 origin{0, 0, 0}, right{1, 0, 0}, up{0, 1, 0}, forward{0, 0, -1};
-  float cx = 0, cy = 0;   // orthographic: the map's centre in light space
-  float scale = 1;        // texels per light-space unit (orthographic) or per unit of lx / ld
+  float cx = 0, cy = 0;    // orthographic: the map's centre in light space
+  float scale = 1;         // texels per light-space unit (orthographic) or per unit of lx / ld
   float z_a = 0, z_b = 1;  // depth: (ld - z_a) * z_b (orthographic); z_a - z_b / ld (perspective)
   float near_d = 0;        // perspective: the near plane's ld
   float texel_world = 1;   // a texel's size in world units (perspective: per unit of ld)
   float reach = 0;         // a cascade serves view depths (or distances) up to this
   int size = 0;
-  std::vector<float> depth;         // size * size, +inf where nothing is
+  std::vector<float> depth;  // size * size, +inf where nothing is
   // Every object's vertices, objects one after another: light space (perspective maps) or
   // map coordinates (orthographic ones).
   std::vector<float3> light_space;
@@ -94,8 +94,8 @@ class ShadowMaps {
 void transformShadowView(const Scene& scene, ShadowView& view);
 // Clears rows [row_begin, row_end) of the map and rasterizes every triangle into them (after
 // transformShadowView). Bands of rows may be rendered at once, each by one worker.
-void renderShadowRows(const Scene& scene, const ShadowOptions& options, int row_begin,
-                      int row_end, ShadowView& view);
+void renderShadowRows(const Scene& scene, const ShadowOptions& options, int row_begin, int row_end,
+                      ShadowView& view);
 // Both, for the whole map.
 void renderShadowView(const Scene& scene, const ShadowOptions& options, ShadowView& view);
 

@@ -339,7 +339,7 @@ void Viewer::drawKeyList(int pixel_width, int pixel_height) {
   for (const KeyHelp& help : keyList()) rows.emplace_back(help.keys, help.action);
   rows.emplace_back("", "");
   rows.emplace_back("now", frames_.describeProjection() + ", " + sampling().describe() +
-                              (frames_.shadows() ? ", shadows" : ""));
+                               (frames_.shadows() ? ", shadows" : ""));
   text_.drawTable(renderer_.get(), rows, pixel_width, pixel_height);
 }
 
