@@ -288,6 +288,38 @@ TEST_F(CliF3d, HdriBackgroundShowsTheSkyAboveAndTheGroundBelow) {
     EXPECT_FALSE(fs::exists(dir_ / name));
 }
 
+// --exposure and --tone-mapping: on the shaded model and on the --hdri sky, not on the plain
+// background; bad values are a usage error and leave no file.
+TEST_F(CliF3d, ExposureAndToneMappingActOnTheModelAndTheSky) {
+  tessera::test::writeFile(dir_ / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+  std::vector<float> rgb;
+  for (int i = 0; i < 32 * 16; ++i)
+    for (float v : {0.0f, 0.0f, 1.0f}) rgb.push_back(v);
+  ASSERT_NE(stbi_write_hdr((dir_ / "blue.hdr").string().c_str(), 32, 16, 3, rgb.data()), 0);
+  const std::string common =
+      "render tri.obj --shading unlit --color 1,1,1 --resolution 64,64 --camera-position 0,0,4 "
+      "--camera-focal-point 0,0,0 --camera-view-angle 60 ";
+  RunResult r = run(common + "--hdri blue.hdr --hdri-background --exposure -1 -o dim.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const DecodedPng dim = decode("dim.png");
+  EXPECT_EQ(dim.rgb(2, 1), (std::array<int, 3>{0, 0, 188}));  // linear 0.5
+  EXPECT_EQ(dim.rgb(32, 36), (std::array<int, 3>{188, 188, 188}));
+  // Khronos PBR Neutral takes white (1.0) to 0.869 (sRGB 240) and keeps it grey.
+  ASSERT_EQ(run(common + "--bg-color 0,0,1 --tone-mapping pbr-neutral -o neutral.png").exit_code, 0);
+  const DecodedPng neutral = decode("neutral.png");
+  EXPECT_EQ(neutral.rgb(32, 36), (std::array<int, 3>{240, 240, 240}));
+  EXPECT_EQ(neutral.rgb(2, 1), (std::array<int, 3>{0, 0, 255}));  // the background as given
+  for (const char* bad : {"--tone-mapping filmic", "--tone-mapping", "--exposure nan",
+                          "--exposure 21", "--exposure bright"}) {
+    r = run(common + bad + " -o bad.png");
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find(std::string(bad).substr(0, std::string(bad).find(' '))),
+              std::string::npos)
+        << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "bad.png"));
+}
+
 // --grid: lines under the model, across the up axis; seen below a model viewed from above.
 TEST_F(CliF3d, GridDrawsAGroundUnderTheModel) {
   tessera::test::writeFile(dir_ / "m.mtl", kMtl);

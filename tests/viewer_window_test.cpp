@@ -8,6 +8,7 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -153,6 +154,43 @@ TEST_F(ViewerWindow, GridDrawsAGroundUnderTheModel) {
     EXPECT_EQ(viewer_->waitExit(), 0);
   }
   EXPECT_GT(countDifferent(shots[0], shots[1], 0, 0, 200, 200), 200) << "no grid drawn";
+}
+
+// --exposure and --tone-mapping on the viewer: two stops down darkens the model, not the
+// background (a display colour).
+TEST_F(ViewerWindow, ExposureDarkensTheModelNotTheBackground) {
+  std::string why;
+  if (!startX(why)) GTEST_SKIP() << why;
+  std::ofstream(dir_ / "tetra.obj")
+      << "v 0.5 0.5 0.5\nv 1.5 0.5 0.5\nv 0.5 1.5 0.5\nv 0.5 0.5 1.5\n"
+         "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  DecodedPng shots[2];
+  for (int dim = 0; dim < 2; ++dim) {
+    std::vector<std::string> args{"tetra.obj", "-w", "200", "-h", "200", "-workers", "1"};
+    if (dim) args.insert(args.end(), {"--exposure", "-2", "--tone-mapping", "pbr-neutral"});
+    startViewer(args);
+    ASSERT_TRUE(viewer_->waitForLine("tessera view: showing tetra.obj"))
+        << viewer_->output() << slurp(dir_ / "viewer.err");
+    const std::string window = findWindow();
+    ASSERT_FALSE(window.empty());
+    xdotool({"mousemove", "--window", window, "100", "100"});
+    shots[dim] = screenshot();
+    ASSERT_EQ(shots[dim].width, 200);
+    xdotool({"key", "Escape"});
+    EXPECT_EQ(viewer_->waitExit(), 0);
+  }
+  const std::array<int, 3> background = shots[0].rgb(2, 2);
+  EXPECT_EQ(shots[1].rgb(2, 2), background);
+  int model = 0, darker = 0;
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 200; ++x) {
+      if (shots[0].rgb(x, y) == background) continue;
+      ++model;
+      const auto a = shots[0].rgb(x, y), b = shots[1].rgb(x, y);
+      darker += b[0] + b[1] + b[2] < a[0] + a[1] + a[2];
+    }
+  ASSERT_GT(model, 500) << "the model is not in view";
+  EXPECT_GT(darker * 10, model * 9) << "the exposure left the model as it was";
 }
 
 TEST_F(ViewerWindow, TheWindowStaysLiveWhileAModelLoads) {

@@ -81,3 +81,27 @@ TEST(VulkanLights, ClippedTrianglesAreLitAtTheirOwnCorners) {
   expectComputeParity("point + spot, clipped, compute",
                       compare(cpu, renderWith(*compute, scene, options())));
 }
+
+// The display transform (--tone-mapping, --exposure) in the shaders, as the CPU applies it: per
+// shaded fragment, before the resolve and the sRGB encode.
+TEST(VulkanLights, ToneMappingAndExposureMatchTheCpu) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr compute = makeCompute();
+  RasterPtr raster = makeRaster();
+  ASSERT_TRUE(compute && raster);
+  for (ToneMapping mapping : {ToneMapping::kAces, ToneMapping::kPbrNeutral}) {
+    Scene scene = pointAndSpotScene();
+    scene.tone_mapping = mapping;
+    scene.exposure = 1.5f;
+    const Frame cpu = renderCpu(scene, options());
+    const std::string name = mapping == ToneMapping::kAces ? "aces" : "pbr-neutral";
+    expectComputeParity((name + ", compute").c_str(), compare(cpu, renderWith(*compute, scene, options())));
+    const Parity p = compare(cpu, renderWith(*raster, scene, options()));
+    expectRasterParity((name + ", raster").c_str(), p);
+    EXPECT_GE(p.colorRatio(), 0.99) << name << ": colours within 2/255";
+    Scene plain = scene;
+    plain.tone_mapping = ToneMapping::kNone;
+    plain.exposure = 0.0f;
+    EXPECT_NE(renderCpu(plain, options()).color, cpu.color) << name;
+  }
+}

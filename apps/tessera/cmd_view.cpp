@@ -27,6 +27,7 @@
 #include "flags.h"
 #include "light_flags.h"
 #include "point_flags.h"
+#include "surface_flags.h"
 
 #ifdef TESSERA_HAS_VIEWER
 #include <tessera/viewer/animation_player.h>
@@ -61,6 +62,7 @@ struct ViewSettings {
   PointSettings points;      // --point-size, --point-sprites, --line-width
   int animation_index = -1;  // --animation-index: the clip space plays; -1: the first, if any
   CameraSettings camera;     // --camera-index, --camera-orthographic (the rest unused)
+  ToneSettings tone;         // --tone-mapping, --exposure
 };
 
 bool isPerspectiveFov(float fov) {
@@ -111,6 +113,7 @@ struct ViewLoad {
   // rig, fixed to the view, is placed only when it does not.
   std::shared_ptr<std::atomic<bool>> own_lights;
   bool grid = false;  // --grid: a ground grid under each model loaded, across +Y
+  ToneSettings tone;  // --tone-mapping, --exposure
 };
 
 // The start model loaded before the window opened, taken (once) by the viewer's first load.
@@ -144,6 +147,7 @@ Expected<viewer::LoadedScene> loadViewScene(const ViewLoad& load,
   if (load.grid) model::appendGroundGrid(loaded.scene.bounds(), {0, 1, 0}, loaded.scene.lines);
   addViewLights(loaded.scene);
   applyLights(loaded.scene, lights, load.lights);
+  applyTone(load.tone, loaded.scene);
   load.own_lights->store(!lights.empty());
   const size_t clips = loaded.graph.animations.size();
   const int wanted = std::max(load.animation_index, 0);
@@ -259,6 +263,7 @@ void addViewFlags(FlagSet& flags, ViewSettings& s) {
   flags.addSwitch("stats", &s.stats, "show the stats overlay at start (F1 toggles it)");
   flags.addSwitch("axes", &s.axes, "show the world axes at start (F2 toggles them)");
   flags.addSwitch("grid|g", &s.grid, "draw a ground grid under the model, across +Y (f3d's -g)");
+  addToneFlags(flags, s.tone);
   flags.addSwitch("fullscreen", &s.fullscreen, "fill the screen");
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
   flags.addString("texture", &s.texture, "an image used as the albedo of every material");
@@ -381,7 +386,7 @@ int runView(const std::vector<std::string>& args) {
 
   ViewLoad load{scene_settings, s.shading,         s.budget,
                 s.lights,       s.animation_index, std::make_shared<std::atomic<bool>>(false),
-                s.grid};
+                s.grid,         s.tone};
   // --animation-index and --camera-index are checked against the model before the window opens;
   // the viewer's first load then takes this scene.
   auto preloaded = std::make_shared<PreloadedScene>();

@@ -9,6 +9,22 @@
 
 namespace tessera::cli {
 
+void addToneFlags(FlagSet& flags, ToneSettings& s) {
+  flags.addChoice("tone-mapping", &s.tone_mapping, {"none", "aces", "pbr-neutral"},
+                  "map the shaded light into the display's range before the sRGB encode: none "
+                  "(clip at 1; default), aces (ACES filmic) or pbr-neutral (Khronos PBR Neutral)");
+  flags.addFloat("exposure", &s.exposure,
+                 "scale the shaded light by 2^EV before the tone mapping, in stops (default 0)",
+                 -20.0f, 20.0f);
+}
+
+void applyTone(const ToneSettings& s, Scene& scene) {
+  scene.tone_mapping = s.tone_mapping == "aces"          ? ToneMapping::kAces
+                       : s.tone_mapping == "pbr-neutral" ? ToneMapping::kPbrNeutral
+                                                         : ToneMapping::kNone;
+  scene.exposure = s.exposure;
+}
+
 void addSurfaceFlags(FlagSet& flags, SurfaceSettings& s) {
   flags.addSwitch("grid|g", &s.grid, "draw a ground grid under the model, across the up axis");
   flags.addSwitch("no-background", &s.no_background,
@@ -18,10 +34,11 @@ void addSurfaceFlags(FlagSet& flags, SurfaceSettings& s) {
                  "only: what lies behind it is not drawn)",
                  0.0f, 1.0f);
   flags.addString("hdri", &s.hdri,
-                  "an equirectangular Radiance .hdr image as the light around the model "
+                  "an equirectangular Radiance .hdr or OpenEXR .exr image as the light around the model "
                   "(image-based lighting in --shading pbr)");
   flags.addSwitch("hdri-background|hdri-skybox", &s.hdri_background,
                   "show the --hdri image behind the model");
+  addToneFlags(flags, s.tone);
 }
 
 std::string refuseSurface(const SurfaceSettings& s, bool png_output, const std::string& aov) {
@@ -39,6 +56,7 @@ std::string refuseSurface(const SurfaceSettings& s, bool png_output, const std::
 void applySurface(const SurfaceSettings& s, const Bounds& bounds, float3 up, Scene& scene) {
   if (s.grid) model::appendGroundGrid(bounds, up, scene.lines);
   if (s.no_background) scene.background = {0.0f, 0.0f, 0.0f, 0.0f};
+  applyTone(s.tone, scene);
 }
 
 namespace {

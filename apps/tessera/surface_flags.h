@@ -1,6 +1,7 @@
 // f3d's --grid, --no-background and --opacity on `render`: a ground grid under the model, a
 // transparent background in an RGBA PNG, and a see-through surface; and the environment light
-// around the model, --hdri (docs/usage.md).
+// around the model, --hdri, and the display transform, --tone-mapping and --exposure
+// (docs/usage.md).
 #pragma once
 
 #include <cstdint>
@@ -15,12 +16,22 @@
 
 namespace tessera::cli {
 
+// --tone-mapping and --exposure (render and view): Scene::tone_mapping and Scene::exposure.
+struct ToneSettings {
+  std::string tone_mapping = "none";  // none, aces, pbr-neutral
+  float exposure = 0.0f;              // stops
+};
+
+void addToneFlags(FlagSet& flags, ToneSettings& s);
+void applyTone(const ToneSettings& s, Scene& scene);
+
 struct SurfaceSettings {
   bool grid = false;
   bool no_background = false;
   float opacity = 1.0f;
   std::string hdri;              // an equirectangular .hdr: the light around the model
   bool hdri_background = false;  // shown behind the model (f3d's --hdri-skybox)
+  ToneSettings tone;
 };
 
 void addSurfaceFlags(FlagSet& flags, SurfaceSettings& s);
@@ -30,7 +41,8 @@ void addSurfaceFlags(FlagSet& flags, SurfaceSettings& s);
 // --hdri-background needs --hdri.
 std::string refuseSurface(const SurfaceSettings& s, bool png_output, const std::string& aov);
 
-// The grid (along `up`, under the model's `bounds`) and the transparent background, on the scene.
+// The grid (along `up`, under the model's `bounds`), the transparent background and the tone
+// mapping, on the scene.
 void applySurface(const SurfaceSettings& s, const Bounds& bounds, float3 up, Scene& scene);
 
 // --hdri's image read (within `max_pixels`) and prepared, its sky turned to `up`, on the scene.

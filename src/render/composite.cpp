@@ -8,6 +8,8 @@
 #include <tessera/scene/color.h>
 #include <tessera/scene/scene.h>
 
+#include "render/tone.h"
+
 namespace tessera {
 
 bool needsComposite(const Scene& scene, const RenderOptions& options) {
@@ -71,6 +73,8 @@ void compositeEnvironment(const Scene& scene, const RenderOptions& options, Fram
   const float3 bg{decode[bg_packed & 0xff], decode[(bg_packed >> 8) & 0xff],
                   decode[(bg_packed >> 16) & 0xff]};
   const EnvironmentImage& image = scene.environment->image();
+  // The sky through the same display transform as the shaded surfaces.
+  const render::ToneCurve tone = render::ToneCurve::of(scene);
   for (int y = 0; y < frame.height; ++y)
     for (int x = 0; x < frame.width; ++x) {
       const size_t i = static_cast<size_t>(y) * frame.width + x;
@@ -80,7 +84,8 @@ void compositeEnvironment(const Scene& scene, const RenderOptions& options, Fram
       if (!scene.camera.orthographic &&
           !rayDirection(options.projection, x + 0.5, y + 0.5, frame.width, frame.height, fov, d))
         continue;  // no ray (fisheye past 180 degrees): the plain background
-      const float3 e = sampleEquirect(image, environmentDirection(camera_to_environment, d));
+      const float3 e =
+          render::toneMap(tone, sampleEquirect(image, environmentDirection(camera_to_environment, d)));
       const uint32_t c = frame.color[i];
       uint32_t out = c & 0xff000000u;
       for (int k = 0; k < 3; ++k) {

@@ -12,6 +12,8 @@
 #include <tessera/math/vec.h>
 #include <tessera/scene/scene.h>
 
+#include "render/tone.h"
+
 namespace tessera::render {
 
 class ShadowMaps;  // shadow_map.h
@@ -62,12 +64,14 @@ struct LightRig {
   // Image-based light (Scene::environment, --hdri): PBR pixels take it in place of `ambient`.
   const Environment* environment = nullptr;
   float3x3 world_to_environment;
+  ToneCurve tone;  // applied to every shaded colour (tone.h)
   // This frame's shadow maps (RenderOptions::shadows; ShadowMaps::build sets it); null: none.
   // Per-pixel shading then takes world positions (setup.h: needsWorld).
   const ShadowMaps* shadows = nullptr;
 
   void prepare(const Scene& scene) {
     ambient = scene.ambient;
+    tone = ToneCurve::of(scene);
     environment =
         scene.environment && !scene.environment->empty() ? scene.environment.get() : nullptr;
     world_to_environment = scene.world_to_environment;

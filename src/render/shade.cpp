@@ -1,5 +1,7 @@
 #include "render/shade.h"
 
+#include "render/tone.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -102,7 +104,8 @@ float4 sampleTexture(const Texture& texture, const Sampler& sampler, const Shade
 }
 
 bool plainShading(const Scene& scene, bool want_normals) {
-  if (want_normals) return false;
+  // The plain paths interpolate vertex colours only; the tone curve is shadeLanesAt's.
+  if (want_normals || ToneCurve::of(scene).active()) return false;
   return std::none_of(scene.objects.begin(), scene.objects.end(), [](const Object& o) {
     const bool textured = o.mesh && !o.mesh->uvs.empty() &&
                           std::any_of(o.materials.begin(), o.materials.end(),

@@ -15,6 +15,7 @@
 #include "render/shade.h"
 #include "render/simd_lanes.h"
 #include "render/texture_lanes.h"
+#include "render/tone_lanes.h"
 
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
@@ -446,6 +447,7 @@ TESSERA_LANES_INLINE void shadeLanesAt(const ShadeTriangle& t, const ShadeExtras
               select(mask, splat(e.normal[0].y), normal.y),
               select(mask, splat(e.normal[0].z), normal.z)};
   }
+  if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
   color = {select(mask, c.x, color.x), select(mask, c.y, color.y), select(mask, c.z, color.z)};
 }
 

@@ -39,6 +39,8 @@ enum Binding : uint32_t {
 // GpuFrameConstants::flags
 constexpr uint32_t kFrameNormals = 1u;   // write the normal AOV
 constexpr uint32_t kFrameCoverage = 2u;  // write the coverage AOV
+// The tone curve (tessera::ToneMapping) in bits 8..9; ambient[3] holds 2^exposure.
+constexpr uint32_t kFrameToneShift = 8u;
 
 // Visibility layers per pixel (compute backend): the samples, and before them the pixel centre
 // when the frame's AOVs need it and the pattern has more than one sample (none of the standard

@@ -14,6 +14,7 @@
 #include "render/clip.h"
 #include "render/fixed_point.h"
 #include "render/lines.h"
+#include "render/tone.h"
 #include "render/vertex.h"
 
 namespace tessera::vulkan {
@@ -292,6 +293,9 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
   f.ambient[0] = scene.ambient.x;
   f.ambient[1] = scene.ambient.y;
   f.ambient[2] = scene.ambient.z;
+  const render::ToneCurve tone = render::ToneCurve::of(scene);
+  f.ambient[3] = tone.scale;
+  f.flags |= static_cast<uint32_t>(tone.mapping) << kFrameToneShift;
   fillSampling(scene, options, f);
   f.projection = static_cast<uint32_t>(options.projection);
   if (rays) {

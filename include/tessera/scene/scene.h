@@ -167,6 +167,11 @@ struct PointList {
   bool empty() const { return positions.empty(); }
 };
 
+// The display transform of the shaded colours, before the sRGB encode (--tone-mapping,
+// src/render/tone.h): none clips at 1; ACES is Stephen Hill's fit of the ACES RRT and sRGB ODT;
+// Khronos PBR Neutral keeps base colours as authored up to 0.76 and compresses the highlights.
+enum class ToneMapping : uint8_t { kNone, kAces, kPbrNeutral };
+
 struct Scene {
   std::vector<Object> objects;
   std::vector<Light> lights;
@@ -181,6 +186,10 @@ struct Scene {
   // World directions into the environment image's frame (whose up is +Y): a model with another up
   // axis sees its sky above it.
   float3x3 world_to_environment;  // identity unless set
+  // Applied to every shaded surface and to the environment background, not to the plain
+  // background colour, lines or points (display colours already).
+  ToneMapping tone_mapping = ToneMapping::kNone;
+  float exposure = 0.0f;  // stops: the shaded radiance is scaled by 2^exposure first
   LineList lines;
   PointList points;
   bool show_world_axes = false;

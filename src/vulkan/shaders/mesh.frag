@@ -89,6 +89,7 @@ void main() {
                          worldPosition(object.model, p2)) * (1.0 / 3.0);
   if (shading == kShadingFlat) color *= irradiance(normal, centre);
   if (shading == kShadingPhong) color *= irradiance(normal, in_world);
+  color = toneMap(color);
 
 #if TESSERA_MSAA
   out_linear = vec4(color, 1.0);

@@ -139,7 +139,7 @@ vec3 shadeAt(uint slot, ivec2 pixel, uint layer) {
     precise vec3 p = w0 * b.x + w1 * b.y + w2 * b.z;
     color = color * irradiance(normalAt(s, b), p);
   }
-  return color;
+  return toneMap(color);
 }
 
 #if TESSERA_RAY
