@@ -56,6 +56,14 @@ studio=/usr/share/blender/datafiles/studiolights/world/studio.exr
   -o "$tmp/pbr_hdri.png"
 ffmpeg -loglevel error -y -i "$tmp/smooth.png" -i "$tmp/pbr.png" -i "$tmp/pbr_hdri.png" \
   -filter_complex hstack=inputs=3 "$out/pbr.png"
+# Shadows: the projection room under a low sun, without and with --shadows.
+sun=(--camera-position 2.2,2.6,2.8 --camera-focal-point -0.3,0.6,-1.5
+  --background-color 0.45,0.62,0.85 --resolution 480,360
+  --light directional:0.5,-1,-0.35:1,0.95,0.85:0.9 --ambient 0.15,0.15,0.17)
+"$tessera" render "$tmp/room/room.obj" "${sun[@]}" -o "$tmp/sun.png"
+"$tessera" render "$tmp/room/room.obj" "${sun[@]}" --shadows -o "$tmp/sun_shadows.png"
+ffmpeg -loglevel error -y -i "$tmp/sun.png" -i "$tmp/sun_shadows.png" \
+  -filter_complex hstack=inputs=2 "$out/shadows.png"
 # The painter's algorithm against the z-buffer (a sphere pierced by a blade), and --edges on a
 # quad-faced sphere and a cube (docs/painter_scene.py writes both scenes).
 python3 "$root/docs/painter_scene.py" "$tmp/painter"

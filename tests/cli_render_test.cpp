@@ -362,3 +362,58 @@ TEST_F(CliRender, AssimpCameraSampleIsSeenFromItsCameras) {
   EXPECT_NEAR(orthographic.top_width, 150, 1);
   EXPECT_EQ(orthographic.top_width, orthographic.bottom_width);
 }
+
+// A unit box standing on a 10 x 10 floor, with vertex normals (smooth shading keeps its faces).
+std::string boxOnFloorObj() {
+  std::string obj = "v -5 0 -5\nv -5 0 5\nv 5 0 5\nv 5 0 -5\nvn 0 1 0\nf 1//1 2//1 3//1 4//1\n";
+  const char* normals = "vn 1 0 0\nvn -1 0 0\nvn 0 1 0\nvn 0 -1 0\nvn 0 0 1\nvn 0 0 -1\n";
+  obj += normals;
+  for (int i = 0; i < 8; ++i)
+    obj += std::string("v ") + (i & 1 ? "0.5" : "-0.5") + (i & 2 ? " 1" : " 0") +
+           (i & 4 ? " 0.5" : " -0.5") + "\n";
+  // Box corners are vertices 5..12; faces counter-clockwise from outside, normals 2..7.
+  obj +=
+      "f 6//2 8//2 12//2 10//2\nf 5//3 9//3 11//3 7//3\nf 7//4 11//4 12//4 8//4\n"
+      "f 5//5 6//5 10//5 9//5\nf 9//6 10//6 12//6 11//6\nf 5//7 7//7 8//7 6//7\n";
+  return obj;
+}
+
+TEST_F(CliRender, ShadowsDarkenWhatTheBoxHidesFromTheLight) {
+  writeFile("box.obj", boxOnFloorObj());
+  // Straight down on the floor; the light travels +x and down: the box's shadow is the floor
+  // from x = 0.5 to 1 (the pixels right of the image centre).
+  const std::string common =
+      "render box.obj --resolution 200,200 --camera-position 0.5,6,0 --camera-focal-point "
+      "0.5,0,0 --camera-view-up 0,0,-1 --camera-view-angle 50 --light directional:1,-2,0:1,1,1:0.6 "
+      "--ambient 0.1,0.1,0.1 ";
+  RunResult on = run(common + "--shadows -o on.png");
+  ASSERT_EQ(on.exit_code, 0) << on.err;
+  RunResult off = run(common + "-o off.png");
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  DecodedPng a, b;
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "on.png").string(), a));
+  ASSERT_TRUE(tessera::test::decodePng((dir_ / "off.png").string(), b));
+  // World x = 0.75 and x = -2 on the floor's z = 0 line: 200 px span 2 * 6 tan(25) units.
+  const float px_per_unit = 100.0f / (6.0f * std::tan(25.0f * 3.14159265f / 180.0f));
+  const int shadow_x = static_cast<int>(100 + 0.25f * px_per_unit);
+  const int lit_x = static_cast<int>(100 - 2.5f * px_per_unit);
+  EXPECT_LT(a.at(shadow_x, 100, 1) + 40, b.at(shadow_x, 100, 1));
+  EXPECT_GT(b.at(lit_x, 100, 1), 60);
+  EXPECT_EQ(a.at(lit_x, 100, 1), b.at(lit_x, 100, 1));
+}
+
+TEST_F(CliRender, ShadowsWithAVulkanBackendAreAClearError) {
+  // The Vulkan backends draw no shadow maps: refused (exit 1, as --edges) before anything is
+  // loaded or written, and so is bench.
+  writeFile("box.obj", boxOnFloorObj());
+  for (const char* backend : {"vulkan", "vulkan-raster"}) {
+    RunResult r = run(std::string("render box.obj --shadows --backend ") + backend + " -o out.png");
+    EXPECT_EQ(r.exit_code, 1) << backend;
+    EXPECT_NE(r.err.find("--shadows is drawn by the cpu backend only"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+  }
+  RunResult bench = run("bench box.obj --shadows --backend vulkan --frames 1");
+  EXPECT_EQ(bench.exit_code, 1);
+  EXPECT_NE(bench.err.find("--shadows is drawn by the cpu backend only"), std::string::npos)
+      << bench.err;
+}

@@ -264,7 +264,7 @@ TEST(InputState, WheelZoomsAndKeysMapAsInF3d) {
       {Key::kF10, Action::Type::kToggleJitter},     {Key::kH, Action::Type::kToggleKeyList},
       {Key::kF4, Action::Type::kCycleProjection},   {Key::kF5, Action::Type::kStoreCrc},
       {Key::kF6, Action::Type::kCompareCrc},        {Key::kF11, Action::Type::kCycleAnalysisView},
-      {Key::kSpace, Action::Type::kTogglePlayback},
+      {Key::kSpace, Action::Type::kTogglePlayback}, {Key::kS, Action::Type::kToggleShadows},
   };
   for (const auto& [k, type] : commands) {
     a = input.handle(key(k), 100.0f);
@@ -332,8 +332,9 @@ TEST(InputState, TheKeyListNamesEveryMappedKeyAndOnlyThose) {
           << "key " << i << (shift ? " with shift" : "") << " is unlisted";
     }
   }
-  // 1 3 7 9 Enter Escape H space F1-F6 F10-F12, Shift+F1, Shift+F2, Shift+F3, Shift+F12
-  EXPECT_EQ(mapped, 21);
+  // 1 3 7 9 Enter Escape H S space F1-F6 F10-F12, Shift+F1, Shift+F2, Shift+F3, Shift+F12
+  EXPECT_EQ(mapped, 22);
+  EXPECT_TRUE(listed(Key::kS, false));
   EXPECT_TRUE(listed(Key::kSpace, false));
   EXPECT_TRUE(listed(Key::kF5, false));
   EXPECT_TRUE(listed(Key::kF6, false));

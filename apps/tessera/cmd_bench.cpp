@@ -431,6 +431,8 @@ int runBench(const std::vector<std::string>& args) {
     return kExitFailure;
   };
   if (s.resolutions.empty()) s.resolutions = kStandardResolutions;
+  if (std::string refused = refuseShadows(s.lights, s.backend); !refused.empty())
+    return failure(Error{refused});
   // The view angle against the projection's range, at every size: a usage error before any work.
   for (const Resolution& r : s.resolutions)
     if (Expected<float> angle =
@@ -461,6 +463,7 @@ int runBench(const std::vector<std::string>& args) {
   run.options.lines = false;
   run.options.msaa = s.msaa;
   run.options.projection = s.camera.projectionMode();
+  run.options.shadows.enabled = s.lights.shadows;
   applyPointSettings(s.points, run.options);
   if (!s.json) printHeader(run);
   for (bench::BenchScene& b : *scenes) {

@@ -354,6 +354,7 @@ RenderOptions renderOptions(const RenderSettings& s, bool diagnostics, SamplingS
   options.projection = s.camera.projectionMode();
   if (s.visibility == "painter") options.visibility = Visibility::kPainter;
   options.edges.show = s.edges;
+  options.shadows.enabled = s.lights.shadows;
   for (int i = 0; i < 3; ++i) options.edges.color[i] = srgbToLinear(s.edge_color[i]);
   applyPointSettings(s.points, options);
   options.edges.width = s.points.line_width;
@@ -522,6 +523,10 @@ int runRender(const std::vector<std::string>& args) {
     return kExitFailure;
   }
   if (std::string refused = refuseVisibility(s, diagnostics); !refused.empty()) {
+    printError("render", refused);
+    return kExitFailure;
+  }
+  if (std::string refused = refuseShadows(s.lights, s.backend); !refused.empty()) {
     printError("render", refused);
     return kExitFailure;
   }

@@ -304,8 +304,8 @@ void printViewHelp(const FlagSet& flags) {
                "F11 cycles the analysis view (off, tile field, density), F12 screenshot,\n"
                "Shift+F1 tile heatmap, Shift+F2 32-bit commit path (vulkan),\n"
                "Shift+F3 cycles MSAA 1/2/4/8, Shift+F12 temporal reprojection (on with\n"
-               "jitter), space plays or pauses the animation, H lists the keys in the\n"
-               "window, Escape quits.\n"
+               "jitter), space plays or pauses the animation, S toggles shadows (cpu\n"
+               "backend), H lists the keys in the window, Escape quits.\n"
                "Drop a model file on the window to load it.\n";
 }
 
@@ -327,6 +327,7 @@ viewer::ViewerOptions viewerOptions(const ViewSettings& s, Projection projection
   options.points.size = s.points.points.size;
   options.points.sprites = s.points.points.sprites;
   options.line_width = s.points.line_width;
+  options.shadows = s.lights.shadows;
   options.view_direction = threeQuarterDirection({0, 1, 0});
   return options;
 }
@@ -395,6 +396,10 @@ int runView(const std::vector<std::string>& args) {
       return status;
   }
 
+  if (std::string refused = refuseShadows(s.lights, s.backend); !refused.empty()) {
+    printError("view", refused);
+    return kExitFailure;
+  }
   Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
   if (!backend) {
     printError("view", backend.error().message);

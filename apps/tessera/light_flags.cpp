@@ -137,6 +137,14 @@ void addLightFlags(FlagSet& flags, LightSettings& settings) {
                     settings.ambient_given = true;
                     return "";
                   });
+  flags.addSwitch("shadows", &settings.shadows,
+                  "shadow maps for directional and spot lights, on smooth and pbr shading (cpu "
+                  "backend)");
+}
+
+std::string refuseShadows(const LightSettings& settings, const std::string& backend) {
+  if (!settings.shadows || backend == "cpu") return "";
+  return "--shadows is drawn by the cpu backend only (use --backend cpu; docs/vulkan.md)";
 }
 
 void applyLights(Scene& scene, const std::vector<Light>& lights, const LightSettings& settings) {

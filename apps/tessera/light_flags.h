@@ -24,12 +24,16 @@ struct LightSettings {
   std::vector<Light> lights;  // --light, in order
   bool ambient_given = false;
   float3 ambient{0.08f, 0.08f, 0.08f};  // --ambient: linear irradiance (the default rig's)
+  bool shadows = false;                 // --shadows: shadow maps (RenderOptions::shadows)
 };
 
 // One --light value as a Light, or a message saying what is wrong with it.
 Expected<Light> parseLight(const std::string& text);
 
 void addLightFlags(FlagSet& flags, LightSettings& settings);
+
+// What --shadows cannot go with (a backend other than cpu, which draws no shadow maps), or "".
+std::string refuseShadows(const LightSettings& settings, const std::string& backend);
 
 // The scene's lights: `lights` (the file's, then the --light ones) when there are any, else the
 // default rig (addViewLights, already in `scene`); the ambient from --ambient when given.

@@ -41,6 +41,7 @@
 #include "render/resolve.h"
 #include "render/setup.h"
 #include "render/shade.h"
+#include "render/shadow_map.h"
 #include "render/vertex.h"
 #include "render/worker_pool.h"
 
@@ -94,6 +95,7 @@ struct CpuRenderer::State {
   RayRenderer rays;             // the nonlinear projections
   DiagnosticsPass diagnostics;  // RenderOptions::diagnostics
   LightRig lights;              // this frame's
+  ShadowMaps shadows;           // RenderOptions::shadows, this frame's
 
   void setupChunk(const Scene& scene, const VertexBuffer& vertices, const TileGrid& grid,
                   const GuardBand& guard, bool want_normals, int32_t sample_reach,
@@ -414,7 +416,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const bool painter = options.visibility == Visibility::kPainter;
   if (options.projection != Projection::kPerspective) {
     TESSERA_CHECK(!painter) << "the painter's algorithm draws the perspective projection only";
-    s.rays.render(scene, options, frame, s.pool, s.kernels, s.stats);
+    s.rays.render(scene, options, frame, s.pool, s.kernels, s.stats, s.shadows);
     if (options.diagnostics)
       s.diagnostics.run(s.pool, {}, 0, scene, TileGrid::forViewport(options.width, options.height),
                         false, s.stats, frame);
@@ -495,6 +497,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   if (s.vertex_buffers.size() < copies) s.vertex_buffers.resize(copies);
   for (size_t i = 0; i < copies; ++i) s.vertex_buffers[i].resize(vertex_total);
   s.lights.prepare(scene);
+  if (options.shadows.enabled)
+    s.shadows.build(scene, options.shadows, false, aspect, s.pool, s.lights);
   const VertexLighting lighting{s.lights.ambient, s.lights.lights};
   auto transformJob = [&](size_t j, VertexBuffer& out) {
     const VertexJob& job = s.vertex_jobs[j];

@@ -16,6 +16,10 @@
 
 namespace tessera::render {
 
+class ShadowMaps;  // shadow_map.h
+// ShadowMaps::visibility, for the kernels (which then need not see shadow_map.h): compiled once.
+float shadowVisibility(const ShadowMaps& maps, int shadow, float3 p, float3 n);
+
 struct ShadeLight {
   LightType type;
   float3 direction;  // directional, spot: unit, the way the light travels
@@ -25,6 +29,7 @@ struct ShadeLight {
   // Spot: t = clamp(dot(direction, -l) * spot_scale + spot_offset, 0, 1), attenuation t * t
   // (KHR_lights_punctual's recommended form). Point: scale 0, offset 1.
   float spot_scale, spot_offset;
+  int shadow = -1;  // this light's maps in LightRig::shadows (ShadowMaps::visibility); -1: none
 };
 
 // The spot's cone constants, as KHR_lights_punctual's implementation note writes them.
@@ -60,6 +65,9 @@ struct LightRig {
   const Environment* environment = nullptr;
   float3x3 world_to_environment;
   ToneCurve tone;  // applied to every shaded colour (tone.h)
+  // This frame's shadow maps (RenderOptions::shadows; ShadowMaps::build sets it); null: none.
+  // Per-pixel shading then takes world positions (setup.h: needsWorld).
+  const ShadowMaps* shadows = nullptr;
 
   void prepare(const Scene& scene) {
     ambient = scene.ambient;
@@ -75,6 +83,7 @@ struct LightRig {
     eye_at_infinity = scene.camera.projection(1.0f)(3, 3) != 0.0f;
     lights.clear();
     local = false;
+    shadows = nullptr;
     for (const Light& light : scene.lights) {
       lights.push_back(shadeLight(light));
       local = local || light.type != LightType::kDirectional;

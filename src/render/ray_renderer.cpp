@@ -66,6 +66,10 @@ void RayRenderer::transform(const Scene& scene, const RenderOptions& options, Wo
                                    static_cast<float>(options.height),
                                    makeGuardBand(options.width, options.height)};
   lights_.prepare(scene);
+  if (options.shadows.enabled)
+    shadows_->build(scene, options.shadows, true,
+                    static_cast<float>(options.width) / static_cast<float>(options.height), pool,
+                    lights_);
   const VertexLighting lighting{lights_.ambient, lights_.lights};
   pool.parallelFor(vertex_jobs_.size(), [&](size_t j, int) {
     const VertexJob& job = vertex_jobs_[j];
@@ -190,8 +194,10 @@ void RayRenderer::renderTile(const Scene& scene, const RenderOptions& options, i
 }
 
 void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame& frame,
-                         WorkerPool& pool, const Kernels& kernels, PipelineStats& stats) {
+                         WorkerPool& pool, const Kernels& kernels, PipelineStats& stats,
+                         ShadowMaps& shadows) {
   kernels_ = &kernels;
+  shadows_ = &shadows;
   const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
   TESSERA_CHECK(checkViewAngle(options.projection, scene.camera.fov_y_degrees, aspect).empty())
       << checkViewAngle(options.projection, scene.camera.fov_y_degrees, aspect);

@@ -29,6 +29,7 @@
 #include "render/msaa.h"
 #include "render/point_pass.h"
 #include "render/shade.h"
+#include "render/shadow_map.h"
 #include "render/vertex.h"
 #include "render/worker_pool.h"
 
@@ -36,8 +37,9 @@ namespace tessera::render {
 
 class RayRenderer {
  public:
+  // `shadows`: where this frame's shadow maps are rendered when options.shadows asks for them.
   void render(const Scene& scene, const RenderOptions& options, Frame& frame, WorkerPool& pool,
-              const Kernels& kernels, PipelineStats& stats);
+              const Kernels& kernels, PipelineStats& stats, ShadowMaps& shadows);
 
  private:
   struct VertexJob {
@@ -66,7 +68,8 @@ class RayRenderer {
   std::vector<std::unique_ptr<SampleTiles>> sampled_;   // one per worker, made for MSAA
   LineList lines_;                                      // the axes
   PointPass points_;
-  LightRig lights_;  // this frame's
+  LightRig lights_;                // this frame's
+  ShadowMaps* shadows_ = nullptr;  // this frame's (render's argument)
 };
 
 }  // namespace tessera::render

@@ -216,7 +216,7 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
       for (int k = 0; k < 3; ++k) {
         const int i = o.order[k];
         if (ctx.shading == Shading::kPhong || ctx.want_normals) extras.normal[k] = vertexNormal(i);
-        if (ctx.shading == Shading::kPhong && lights.local) extras.world[k] = world(i);
+        if (ctx.shading == Shading::kPhong && needs_world) extras.world[k] = world(i);
         shade.color[k] = albedo(i);
       }
       break;

@@ -244,9 +244,11 @@ struct VertexAttributes {
   float4 tangent{};  // world tangent (read only when SetupContext::tangents is set)
 };
 
-// Whether setup writes world positions: point and spot lights, and the view vector of kPbr.
+// Whether setup writes world positions: point and spot lights, the view vector of kPbr, and the
+// shadow maps' lookups of per-pixel shading.
 inline bool needsWorld(const LightRig& lights, Shading shading) {
-  return lights.local || shading == Shading::kPbr;
+  return lights.local || shading == Shading::kPbr ||
+         (lights.shadows != nullptr && shading == Shading::kPhong);
 }
 
 // An object's vertices, indexed by mesh vertex: an unclipped triangle's corners are read from

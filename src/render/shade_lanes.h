@@ -62,8 +62,23 @@ TESSERA_LANES_INLINE F32x8 localFactor8(const ShadeLight& light, const Vec3x8& n
   return cos_theta * ((window * (t * t)) / d2);
 }
 
+// f times the light's shadow-map visibility (ShadowMaps::visibility, scalar code compiled once:
+// the same bits on every instruction set) in the lanes of `lit`; f where the light has no map.
+// An unoccluded lane is multiplied by exactly 1.
+TESSERA_LANES_INLINE F32x8 shadowed8(const LightRig& rig, const ShadeLight& light, I32x8 lit,
+                                     F32x8 f, const Vec3x8& n, const Vec3x8& p) {
+  if (!rig.shadows || light.shadow < 0 || !any(lit)) return f;
+  alignas(32) float visible[8];
+  for (int l = 0; l < 8; ++l)
+    visible[l] = lane(lit, l) ? shadowVisibility(*rig.shadows, light.shadow,
+                                                 {lane(p.x, l), lane(p.y, l), lane(p.z, l)},
+                                                 {lane(n.x, l), lane(n.y, l), lane(n.z, l)})
+                              : 1.0f;
+  return f * load<F32x8>(visible);
+}
+
 // As render::irradiance: ambient plus every light, at world points p (read only when the rig has
-// a point or spot light).
+// a point or spot light, or shadow maps), times the shadow maps' visibility.
 TESSERA_LANES_INLINE Vec3x8 irradiance8(const LightRig& rig, const Vec3x8& n, const Vec3x8& p) {
   Vec3x8 e{splat(rig.ambient.x), splat(rig.ambient.y), splat(rig.ambient.z)};
   const F32x8 zero = splat(0.0f);
@@ -75,6 +90,7 @@ TESSERA_LANES_INLINE Vec3x8 irradiance8(const LightRig& rig, const Vec3x8& n, co
     else
       f = localFactor8(light, n, p);
     const I32x8 lit = positive(f);
+    f = shadowed8(rig, light, lit, f, n, p);
     e.x = e.x + select(lit, splat(light.radiance.x) * f, zero);
     e.y = e.y + select(lit, splat(light.radiance.y) * f, zero);
     e.z = e.z + select(lit, splat(light.radiance.z) * f, zero);
@@ -294,6 +310,7 @@ TESSERA_LANES_INLINE Vec3x8 shadePbr8(const LightRig& rig, const PbrLobes8& s, F
     }
     const I32x8 lit = positive(nl) & positive(f);
     if (!any(lit)) continue;
+    f = shadowed8(rig, light, lit, f, n, p);
     const Vec3x8 r = pbrResponse8(s, n, v, l, nl, nv);
     c = {select(lit, c.x + r.x * (splat(light.radiance.x) * f), c.x),
          select(lit, c.y + r.y * (splat(light.radiance.y) * f), c.y),
@@ -418,7 +435,7 @@ TESSERA_LANES_INLINE void shadeLanesAt(const ShadeTriangle& t, const ShadeExtras
   } else if (t.shading == Shading::kPhong || (want_normals && t.shading != Shading::kFlat)) {
     const Vec3x8 n = normalize8(interpolate(e.normal, b0, b1, b2));
     if (t.shading == Shading::kPhong) {
-      const Vec3x8 p = lights.local ? interpolate(e.world, b0, b1, b2) : Vec3x8{};
+      const Vec3x8 p = lights.local || lights.shadows ? interpolate(e.world, b0, b1, b2) : Vec3x8{};
       const Vec3x8 e = irradiance8(lights, n, p);
       c = {c.x * e.x, c.y * e.y, c.z * e.z};
     }

@@ -58,6 +58,8 @@ std::optional<Action> keyAction(Key key, bool shift) {
       return act(Action::Type::kToggleKeyList);
     case Key::kSpace:
       return act(Action::Type::kTogglePlayback);
+    case Key::kS:
+      return act(Action::Type::kToggleShadows);
     case Key::kF1:
       return act(Action::Type::kToggleStats);
     case Key::kF2:
@@ -107,6 +109,7 @@ const std::vector<KeyHelp>& keyList() {
       {"Shift+F3", "MSAA 1, 2, 4, 8 samples", {{Key::kF3, true}}},
       {"Shift+F12", "temporal reprojection", {{Key::kF12, true}}},
       {"space", "play / pause the animation", {{Key::kSpace}}},
+      {"S", "shadows (cpu backend)", {{Key::kS}}},
       {"H", "this list", {{Key::kH}}},
       {"Escape", "quit", {{Key::kEscape}}},
   };

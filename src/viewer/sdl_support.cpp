@@ -62,6 +62,8 @@ Key toKey(SDL_Keycode code) {
       return Key::kEscape;
     case SDLK_h:
       return Key::kH;
+    case SDLK_s:
+      return Key::kS;
     case SDLK_SPACE:
       return Key::kSpace;
     case SDLK_F1:

@@ -62,6 +62,7 @@ class Viewer {
     stats_ = options.stats;
     world_axes_ = options.world_axes;
     frames_.setPointStyle(options.points, options.line_width);
+    frames_.setShadows(options.shadows);
   }
 
   Expected<void> open(const fs::path& font_path);
@@ -289,6 +290,11 @@ void Viewer::handleAction(const Action& action) {
       sampling().toggleTemporal();
       view_changed_ = true;
       break;
+    case Action::Type::kToggleShadows:
+      frames_.setShadows(!frames_.shadows());
+      sampling().reset();
+      view_changed_ = true;
+      break;
     case Action::Type::kToggleKeyList:
       key_list_ = !key_list_;
       break;
@@ -332,7 +338,8 @@ void Viewer::drawKeyList(int pixel_width, int pixel_height) {
   std::vector<std::pair<std::string, std::string>> rows;
   for (const KeyHelp& help : keyList()) rows.emplace_back(help.keys, help.action);
   rows.emplace_back("", "");
-  rows.emplace_back("now", frames_.describeProjection() + ", " + sampling().describe());
+  rows.emplace_back("now", frames_.describeProjection() + ", " + sampling().describe() +
+                               (frames_.shadows() ? ", shadows" : ""));
   text_.drawTable(renderer_.get(), rows, pixel_width, pixel_height);
 }
 

@@ -30,6 +30,17 @@ struct PointOptions {
   float3 color{1.0f, 1.0f, 1.0f};  // linear RGB, for points without colours of their own
 };
 
+// Shadow maps for directional and spot lights (render/shadow_map.h), read by per-pixel shading
+// (Shading::kPhong and kPbr); flat and Gouraud surfaces and point lights stay unshadowed. CPU
+// backend only (`--shadows`). Biases are in texels of the map the receiver falls in.
+struct ShadowOptions {
+  bool enabled = false;
+  int map_size = 2048;         // texels across each map (each cascade of a directional light)
+  float constant_bias = 0.5f;  // depth of this many texels at 45 degrees
+  float slope_bias = 1.5f;     // times the caster's depth slope per texel (clamped to 4 texels)
+  float normal_offset = 1.0f;  // the receiver moved along its normal by this many texels
+};
+
 struct RenderOptions {
   int width = 480;
   int height = 480;
@@ -63,6 +74,7 @@ struct RenderOptions {
   // back faces by normal cones) before their vertices are transformed (perspective only). Never
   // changes the image; off for tests that compare with and without.
   bool frustum_cull = true;
+  ShadowOptions shadows;
 };
 
 // The options a backend renders `options` with: the diagnostics read the frame's centre depths

@@ -22,6 +22,8 @@ class FrameRenderer {
   // Whether frames fill Frame::diagnostics (a diagnostic view is shown); off by default, so
   // that a frame without a view measures nothing.
   void setDiagnostics(bool on) { options_.diagnostics = on; }
+  void setShadows(bool on) { options_.shadows.enabled = on; }
+  bool shadows() const { return options_.shadows.enabled; }
   bool diagnostics() const { return options_.diagnostics; }
   // How Scene::points and Scene::lines are drawn (RenderOptions::points, line_width).
   void setPointStyle(const PointOptions& points, float line_width) {

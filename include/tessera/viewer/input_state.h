@@ -21,6 +21,7 @@ enum class Key {
   kEnter,
   kEscape,
   kH,
+  kS,
   kSpace,
   kF1,
   kF2,
@@ -66,6 +67,7 @@ struct Action {
     kToggleTemporal,     // temporal reprojection of the jittered frames
     kToggleKeyList,      // the in-window list of keys
     kTogglePlayback,     // play or pause the model's animation
+    kToggleShadows,      // shadow maps (RenderOptions::shadows; the cpu backend draws them)
     kQuit,
   };
   Type type = Type::kOrbit;

@@ -32,6 +32,7 @@ struct ViewerOptions {
   int msaa = 4;          // samples per pixel at start (Shift+F3 cycles 1, 2, 4, 8)
   bool jitter = false;   // sub-pixel jitter at start (F10)
   bool temporal = true;  // temporal reprojection of the jittered frames (Shift+F12)
+  bool shadows = false;  // shadow maps at start (S; the cpu backend draws them)
   float3 view_direction{0.6f, 0.45f, 1.0f};  // from the model towards the camera at start/reset
   PointOptions points;                       // Scene::points (--point-size, --point-sprites)
   float line_width = 1.0f;                   // Scene::lines, in pixels (--line-width)
