@@ -98,9 +98,8 @@ struct alignas(128) TriangleChunk {
   PoolVector<ShadeTriangle> shade;
   PoolVector<ShadeExtras> extras;  // beside shade, written only where the shading reads them
   PoolVector<RayTriangle> ray;     // the nonlinear projections' raster records, beside shade
-  // Per record: its material is alphaMode MASK (raster_kernel.h's rasterMasked tests its alpha at
-  // every pixel or sample); read only when any_masked.
-  std::vector<uint8_t> masked;
+  // Some record's material may be alphaMode MASK (its ShadeTriangle's material says): the tile
+  // raster then looks at each record's (raster_kernel.h's walkTileBins, mask_kernel.h).
   bool any_masked = false;
   ChunkBins bins;
   size_t culled = 0;

@@ -144,7 +144,6 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
       chunk.wide.emplace_back();
       chunk.shade.emplace_back();
       chunk.extras.emplace_back();
-      chunk.masked.emplace_back();
     }
     return local;
   };
@@ -197,20 +196,11 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
     auto material = [&](size_t local) {
       return has_materials ? mesh.triangle_materials[local] : uint16_t{0};
     };
-    // alphaMode MASK: the raster tests the triangle's alpha (rasterMasked).
-    const bool any_mask = std::any_of(object.materials.begin(), object.materials.end(),
-                                      [](const Material& m) { return m.alpha_mode == AlphaMode::kMask; });
-    auto markMasked = [&](size_t local, uint32_t record) {
-      if (!any_mask) {
-        chunk.masked[record] = 0;
-        return;
-      }
-      const uint16_t m = material(local);
-      const bool masked =
-          object.materials[m < object.materials.size() ? m : 0].alpha_mode == AlphaMode::kMask;
-      chunk.masked[record] = masked;
-      chunk.any_masked = chunk.any_masked || masked;
-    };
+    // alphaMode MASK: the raster tests such triangles' alpha (rasterMasked), in the chunks that
+    // hold one.
+    if (std::any_of(object.materials.begin(), object.materials.end(),
+                    [](const Material& m) { return m.alpha_mode == AlphaMode::kMask; }))
+      chunk.any_masked = true;
     auto face_normal = [&](const uint32_t idx[3]) {
       if (!needs_face_normal) return float3{};
       const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
@@ -226,7 +216,6 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
       const uint32_t id = static_cast<uint32_t>(t);
       const uint32_t record = nextRecord();
       ++chunk.size;
-      markMasked(local, record);
       chunk.bins.add(grid, box, record);
       orient(area, orientation);
       ShadeTriangle& shade = batch.nextShade();
@@ -267,7 +256,6 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
         RasterTriangle& raster = chunk.raster[record];
         if (!setupRaster(ctx, sv, raster, chunk.wide[record], orientation)) continue;
         ++chunk.size;
-        markMasked(local, record);
         VertexAttributes a[3];
         for (int i = 0; i < 3; ++i)
           a[i] = {fan[i]->normal, fan[i]->uv, fan[i]->color, false, fan[i]->world, fan[i]->tangent};

@@ -18,6 +18,11 @@
 namespace tessera::render {
 namespace {  // one private copy per translation unit, as raster_kernel.h
 
+// Whether record `record` of `chunk` is drawn by rasterMasked: its material is alphaMode MASK.
+inline bool isMasked(const TriangleChunk& chunk, uint32_t record) {
+  return chunk.shade[record].material->alpha_mode == AlphaMode::kMask;
+}
+
 // Edge k of record t at the point (dx, dy) sub-pixels from the centre of pixel (x, y): the same
 // integer as the record's edge function there (a * px + b * py + c), for a small record from its
 // corner values, for a large one from its wide record's c.

@@ -22,7 +22,7 @@ TESSERA_LANES_INLINE void walkPainterBins(const std::vector<TriangleChunk>& chun
     const uint32_t* end = slice.bins.end(tile_index);
     for (const uint32_t* it = slice.bins.begin(tile_index); it != end; ++it) {
       const TriangleChunk& chunk = chunks[keyChunk(*it)];
-      if (chunk.any_masked && chunk.masked[keyLocal(*it)])
+      if (chunk.any_masked && isMasked(chunk, keyLocal(*it)))
         rasterMasked<true>(chunk, keyLocal(*it), *it, layers, shifts, layer_count);
       else
         draw(chunk.raster[keyLocal(*it)], chunk.wide[keyLocal(*it)], *it);

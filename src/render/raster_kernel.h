@@ -313,8 +313,9 @@ TESSERA_LANES_INLINE bool advance(const std::vector<TriangleChunk>& chunks, size
 }
 
 // Calls draw(raster, wide, key) for every triangle binned to the tile, in submission order;
-// masked(chunk, record, key) for those whose material is alphaMode MASK (mask_kernel.h).
-template <typename Draw, typename Masked>
+// with kMaybeMasked, masked(chunk, record, key) for those whose material is alphaMode MASK
+// (mask_kernel.h). Without it (no chunk holds one: anyMasked) the walk tests nothing per triangle.
+template <bool kMaybeMasked, typename Draw, typename Masked>
 TESSERA_LANES_INLINE void walkTileBins(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
                                        int tile_index, Draw draw, Masked masked) {
   // Every chunk's list for this tile, all at once (each is a line or two, written by setup on
@@ -355,24 +356,43 @@ TESSERA_LANES_INLINE void walkTileBins(const std::vector<TriangleChunk>& chunks,
     }
     const TriangleChunk& chunk = chunks[at.chunk];
     const uint32_t key = makeKey(static_cast<uint32_t>(at.chunk), *at.it);
-    if (chunk.any_masked && chunk.masked[*at.it])
+    if (kMaybeMasked && chunk.any_masked && isMasked(chunk, *at.it))
       masked(chunk, *at.it, key);
     else
       draw(chunk.raster[*at.it], chunk.wide[*at.it], key);
   } while (advance(chunks, chunk_count, tile_index, at));
 }
 
-void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
-                      TileVisibility& tile) {
-  TileVisibility* const layers[1] = {&tile};
-  const SampleShift centre[1] = {};
-  walkTileBins(
+// Whether any chunk holds a masked record this frame.
+TESSERA_LANES_INLINE bool anyMasked(const std::vector<TriangleChunk>& chunks, size_t chunk_count) {
+  for (size_t c = 0; c < chunk_count; ++c)
+    if (chunks[c].any_masked) return true;
+  return false;
+}
+
+// rasterTileKernel's walk for frames with masked records: a function of its own, so that the walk
+// without them compiles as it did before masks existed.
+template <bool kMaybeMasked>
+__attribute__((noinline)) void rasterTileWalk(const std::vector<TriangleChunk>& chunks,
+                                              size_t chunk_count, int tile_index,
+                                              TileVisibility& tile) {
+  walkTileBins<kMaybeMasked>(
       chunks, chunk_count, tile_index,
       [&](const RasterTriangle& t, const RasterWide& w, uint32_t key)
           __attribute__((always_inline)) { rasterTriangle(t, w, key, tile); },
       [&](const TriangleChunk& chunk, uint32_t record, uint32_t key) {
+        TileVisibility* const layers[1] = {&tile};
+        const SampleShift centre[1] = {};
         rasterMasked<false>(chunk, record, key, layers, centre, 1);
       });
+}
+
+void rasterTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count, int tile_index,
+                      TileVisibility& tile) {
+  if (anyMasked(chunks, chunk_count))
+    rasterTileWalk<true>(chunks, chunk_count, tile_index, tile);
+  else
+    rasterTileWalk<false>(chunks, chunk_count, tile_index, tile);
 }
 
 // A triangle's coverage and depth at one sample of every pixel: the triangle moved by the
@@ -559,13 +579,15 @@ TESSERA_LANES_INLINE void rasterTriangleSamples(const RasterTriangle& t, const R
 void rasterTileSamplesKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
                              int tile_index, TileVisibility* const* layers,
                              const SampleShift* shifts, int layer_count) {
-  walkTileBins(
-      chunks, chunk_count, tile_index,
-      [&](const RasterTriangle& t, const RasterWide& w, uint32_t key) __attribute__((
-          always_inline)) { rasterTriangleSamples(t, w, key, layers, shifts, layer_count); },
-      [&](const TriangleChunk& chunk, uint32_t record, uint32_t key) {
-        rasterMasked<false>(chunk, record, key, layers, shifts, layer_count);
-      });
+  auto draw = [&](const RasterTriangle& t, const RasterWide& w, uint32_t key) __attribute__((
+                  always_inline)) { rasterTriangleSamples(t, w, key, layers, shifts, layer_count); };
+  auto masked = [&](const TriangleChunk& chunk, uint32_t record, uint32_t key) {
+    rasterMasked<false>(chunk, record, key, layers, shifts, layer_count);
+  };
+  if (anyMasked(chunks, chunk_count))
+    walkTileBins<true>(chunks, chunk_count, tile_index, draw, masked);
+  else
+    walkTileBins<false>(chunks, chunk_count, tile_index, draw, masked);
 }
 
 }  // namespace
