@@ -305,7 +305,8 @@ TEST_F(CliF3d, ExposureAndToneMappingActOnTheModelAndTheSky) {
   EXPECT_EQ(dim.rgb(2, 1), (std::array<int, 3>{0, 0, 188}));  // linear 0.5
   EXPECT_EQ(dim.rgb(32, 36), (std::array<int, 3>{188, 188, 188}));
   // Khronos PBR Neutral takes white (1.0) to 0.869 (sRGB 240) and keeps it grey.
-  ASSERT_EQ(run(common + "--bg-color 0,0,1 --tone-mapping pbr-neutral -o neutral.png").exit_code, 0);
+  ASSERT_EQ(run(common + "--bg-color 0,0,1 --tone-mapping pbr-neutral -o neutral.png").exit_code,
+            0);
   const DecodedPng neutral = decode("neutral.png");
   EXPECT_EQ(neutral.rgb(32, 36), (std::array<int, 3>{240, 240, 240}));
   EXPECT_EQ(neutral.rgb(2, 1), (std::array<int, 3>{0, 0, 255}));  // the background as given
@@ -313,8 +314,7 @@ TEST_F(CliF3d, ExposureAndToneMappingActOnTheModelAndTheSky) {
                           "--exposure 21", "--exposure bright"}) {
     r = run(common + bad + " -o bad.png");
     EXPECT_EQ(r.exit_code, 2) << bad;
-    EXPECT_NE(r.err.find(std::string(bad).substr(0, std::string(bad).find(' '))),
-              std::string::npos)
+    EXPECT_NE(r.err.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos)
         << r.err;
   }
   EXPECT_FALSE(fs::exists(dir_ / "bad.png"));

@@ -46,10 +46,10 @@ TEST_F(CliSampleModels, ClearCoatTestDrawsItsBaseLayer) {
   const fs::path model = kSamples / "ClearCoat-glTF" / "ClearCoatTest.gltf";
   ASSERT_TRUE(fs::exists(model)) << model << ": scripts/setup.sh installs assimp-testmodels";
   const std::string out = (dir_ / "clearcoat.png").string();
-  tessera::test::RunResult r =
-      run("render '" + model.string() +
-          "' --resolution 240,300 --camera-position -2.1,0.3,30 --camera-focal-point -2.1,0.3,0 -o '" +
-          out + "'");
+  tessera::test::RunResult r = run(
+      "render '" + model.string() +
+      "' --resolution 240,300 --camera-position -2.1,0.3,30 --camera-focal-point -2.1,0.3,0 -o '" +
+      out + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   tessera::test::expectMatchesReference(out, "clearcoat_gltf", {2, 6});
 }
@@ -58,8 +58,7 @@ TEST_F(CliSampleModels, ClearCoatTestDrawsItsBaseLayer) {
 // fallback the file carries (the Cesium logo on every face), as glTF readers without the
 // extension must.
 TEST_F(CliSampleModels, SpecularGlossinessBoxDrawsItsFallback) {
-  const fs::path model =
-      kSamples / "BoxTextured-glTF-pbrSpecularGlossiness" / "BoxTextured.gltf";
+  const fs::path model = kSamples / "BoxTextured-glTF-pbrSpecularGlossiness" / "BoxTextured.gltf";
   ASSERT_TRUE(fs::exists(model)) << model << ": scripts/setup.sh installs assimp-testmodels";
   const std::string out = (dir_ / "specgloss.png").string();
   tessera::test::RunResult r =

@@ -79,8 +79,8 @@ TEST(ToneMapping, AcesMapsBlackToBlackGreyNearGreyAndClipsAtOne) {
 // An unlit quad of one colour over the whole frame, brighter than the display's white.
 Scene brightQuad(float3 color) {
   Scene scene = test::clipSpaceScene();
-  Object o = test::unlitObject(test::windowTriangle({-10, -10, 0.5f}, {70, -10, 0.5f},
-                                                    {-10, 70, 0.5f}, 16, 16));
+  Object o = test::unlitObject(
+      test::windowTriangle({-10, -10, 0.5f}, {70, -10, 0.5f}, {-10, 70, 0.5f}, 16, 16));
   o.materials[0].base_color = float4(color, 1.0f);
   scene.objects.push_back(o);
   return scene;

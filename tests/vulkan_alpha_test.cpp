@@ -43,7 +43,7 @@ TEST(VulkanAlpha, RasterCutsMaskedMaterialsAsTheCpuAndComputeDrawsThemOpaque) {
 
   ComputePtr compute = makeCompute();
   ASSERT_TRUE(compute);
-  expectComputeParity("mask drawn opaque, compute",
-                      compare(cpu_opaque, renderWith(*compute, maskedScene(AlphaMode::kMask),
-                                                     options())));
+  expectComputeParity(
+      "mask drawn opaque, compute",
+      compare(cpu_opaque, renderWith(*compute, maskedScene(AlphaMode::kMask), options())));
 }

@@ -95,7 +95,8 @@ TEST(VulkanLights, ToneMappingAndExposureMatchTheCpu) {
     scene.exposure = 1.5f;
     const Frame cpu = renderCpu(scene, options());
     const std::string name = mapping == ToneMapping::kAces ? "aces" : "pbr-neutral";
-    expectComputeParity((name + ", compute").c_str(), compare(cpu, renderWith(*compute, scene, options())));
+    expectComputeParity((name + ", compute").c_str(),
+                        compare(cpu, renderWith(*compute, scene, options())));
     const Parity p = compare(cpu, renderWith(*raster, scene, options()));
     expectRasterParity((name + ", raster").c_str(), p);
     EXPECT_GE(p.colorRatio(), 0.99) << name << ": colours within 2/255";

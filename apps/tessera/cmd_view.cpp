@@ -384,9 +384,14 @@ int runView(const std::vector<std::string>& args) {
     scene_settings.albedo = std::make_shared<const Texture>(std::move(*texture));
   }
 
-  ViewLoad load{scene_settings, s.shading,         s.budget,
-                s.lights,       s.animation_index, std::make_shared<std::atomic<bool>>(false),
-                s.grid,         s.tone};
+  ViewLoad load{scene_settings,
+                s.shading,
+                s.budget,
+                s.lights,
+                s.animation_index,
+                std::make_shared<std::atomic<bool>>(false),
+                s.grid,
+                s.tone};
   // --animation-index and --camera-index are checked against the model before the window opens;
   // the viewer's first load then takes this scene.
   auto preloaded = std::make_shared<PreloadedScene>();

@@ -33,9 +33,10 @@ void addSurfaceFlags(FlagSet& flags, SurfaceSettings& s) {
                  "the model's opacity over the background, 0..1 (default 1; the nearest surface "
                  "only: what lies behind it is not drawn)",
                  0.0f, 1.0f);
-  flags.addString("hdri", &s.hdri,
-                  "an equirectangular Radiance .hdr or OpenEXR .exr image as the light around the model "
-                  "(image-based lighting in --shading pbr)");
+  flags.addString(
+      "hdri", &s.hdri,
+      "an equirectangular Radiance .hdr or OpenEXR .exr image as the light around the model "
+      "(image-based lighting in --shading pbr)");
   flags.addSwitch("hdri-background|hdri-skybox", &s.hdri_background,
                   "show the --hdri image behind the model");
   addToneFlags(flags, s.tone);

@@ -45,11 +45,11 @@ void rasterPainterTileSamplesKernel(const std::vector<TriangleChunk>& chunks,
                                     const std::vector<PainterSlice>& slices, int tile_index,
                                     TileVisibility* const* layers, const SampleShift* shifts,
                                     int layer_count) {
-  walkPainterBins(
-      chunks, slices, tile_index, layers, shifts, layer_count,
-      [&](const RasterTriangle& t, const RasterWide& w, uint32_t key) {
-        rasterTriangleSamples<DepthRule::kLatest>(t, w, key, layers, shifts, layer_count);
-      });
+  walkPainterBins(chunks, slices, tile_index, layers, shifts, layer_count,
+                  [&](const RasterTriangle& t, const RasterWide& w, uint32_t key) {
+                    rasterTriangleSamples<DepthRule::kLatest>(t, w, key, layers, shifts,
+                                                              layer_count);
+                  });
 }
 
 }  // namespace

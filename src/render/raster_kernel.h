@@ -579,8 +579,10 @@ TESSERA_LANES_INLINE void rasterTriangleSamples(const RasterTriangle& t, const R
 void rasterTileSamplesKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
                              int tile_index, TileVisibility* const* layers,
                              const SampleShift* shifts, int layer_count) {
-  auto draw = [&](const RasterTriangle& t, const RasterWide& w, uint32_t key) __attribute__((
-                  always_inline)) { rasterTriangleSamples(t, w, key, layers, shifts, layer_count); };
+  auto draw = [&](const RasterTriangle& t, const RasterWide& w, uint32_t key)
+      __attribute__((always_inline)) {
+    rasterTriangleSamples(t, w, key, layers, shifts, layer_count);
+  };
   auto masked = [&](const TriangleChunk& chunk, uint32_t record, uint32_t key) {
     rasterMasked<false>(chunk, record, key, layers, shifts, layer_count);
   };
