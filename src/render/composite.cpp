@@ -84,8 +84,8 @@ void compositeEnvironment(const Scene& scene, const RenderOptions& options, Fram
       if (!scene.camera.orthographic &&
           !rayDirection(options.projection, x + 0.5, y + 0.5, frame.width, frame.height, fov, d))
         continue;  // no ray (fisheye past 180 degrees): the plain background
-      const float3 e =
-          render::toneMap(tone, sampleEquirect(image, environmentDirection(camera_to_environment, d)));
+      const float3 e = render::toneMap(
+          tone, sampleEquirect(image, environmentDirection(camera_to_environment, d)));
       const uint32_t c = frame.color[i];
       uint32_t out = c & 0xff000000u;
       for (int k = 0; k < 3; ++k) {

@@ -1,0 +1,77 @@
+// The CPU backend's state across frames (CpuRenderer::State), shared by the frame loop
+// (cpu_renderer.cpp) and the setup stage (chunk_setup.cpp).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <tessera/render/cpu_renderer.h>
+
+#include "render/bin.h"
+#include "render/cull.h"
+#include "render/diagnostics.h"
+#include "render/kernels.h"
+#include "render/line_pass.h"
+#include "render/msaa.h"
+#include "render/painter.h"
+#include "render/point_pass.h"
+#include "render/raster.h"
+#include "render/ray_renderer.h"
+#include "render/replication.h"
+#include "render/resolve.h"
+#include "render/setup.h"
+#include "render/shadow_map.h"
+#include "render/vertex.h"
+#include "render/worker_pool.h"
+
+namespace tessera {
+
+struct CpuRenderer::State {
+  State(int workers, render::Isa isa) : pool(workers), isa(isa), kernels(render::kernelsFor(isa)) {
+    transformed.resize(static_cast<size_t>(pool.size()));
+    for (int i = 0; i < pool.size(); ++i) {
+      tiles.push_back(std::make_unique<render::TileVisibility>());
+      shaded.push_back(std::make_unique<render::ShadedTile>());
+    }
+  }
+
+  render::WorkerPool pool;
+  render::Isa isa;
+  render::Kernels kernels;
+  std::vector<render::ObjectTransforms> objects;
+  render::FrustumCull cull;  // what each object draws this frame
+  std::vector<render::VertexJob> vertex_jobs;
+  // The vertex stage's output: one buffer, or one per worker (mayReplicate).
+  std::vector<render::VertexBuffer> vertex_buffers;
+  // Per worker, this frame (replicated scenes): its copy of the vertices is made, in how long.
+  struct alignas(64) WorkerCopy {
+    bool done = false;
+    double ms = 0;
+  };
+  std::vector<WorkerCopy> transformed;
+  render::ReplicationChoice replication;
+  std::vector<render::TriangleChunk> chunks;
+  size_t chunk_count = 0;
+  std::vector<std::unique_ptr<render::TileVisibility>> tiles;  // one per worker
+  std::vector<std::unique_ptr<render::ShadedTile>> shaded;     // one per worker
+  std::vector<std::unique_ptr<render::SampleTiles>> sampled;   // one per worker, made for MSAA
+  std::vector<render::SampleShift> shifts;                     // this frame's sample layers
+  std::vector<uint8_t> tile_empty;                             // this frame's: no triangle binned
+  render::PainterOrder painter;                                // RenderOptions::visibility kPainter
+  render::LinePass line_pass;
+  render::PointPass point_pass;
+  PipelineStats stats;
+  render::RayRenderer rays;             // the nonlinear projections
+  render::DiagnosticsPass diagnostics;  // RenderOptions::diagnostics
+  render::LightRig lights;              // this frame's
+  render::ShadowMaps shadows;           // RenderOptions::shadows, this frame's
+
+  void setupChunk(const Scene& scene, const render::VertexBuffer& vertices,
+                  const render::TileGrid& grid, const render::GuardBand& guard, bool want_normals,
+                  int32_t sample_reach, render::TriangleChunk& chunk) const;
+  // Raster, shade and resolve of one tile with several samples per pixel (msaa.h).
+  void renderSampledTile(const Scene& scene, const RenderOptions& options, int tile, int worker,
+                         const render::TileGrid& grid, bool with_centre, bool plain, Frame& frame);
+};
+
+}  // namespace tessera
