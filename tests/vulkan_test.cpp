@@ -41,22 +41,7 @@ TEST(VulkanCompute, MatchesCpuOnSpheres) {
   expectComputeMatchesCpu("sphere, Phong", sphereScene(48, 24, Shading::kPhong), {}, gpu.get());
 }
 
-// The Vulkan backends have no metallic-roughness BRDF yet: they draw kPbr objects per-pixel
-// Lambert, exactly as kPhong (docs/vulkan.md); the CPU draws them with the BRDF.
-TEST(VulkanCompute, DrawsPbrObjectsAsPhong) {
-  TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr gpu = makeCompute();
-  ASSERT_TRUE(gpu);
-  RasterPtr raster = makeRaster();
-  ASSERT_TRUE(raster);
-  const Scene phong = sphereScene(48, 24, Shading::kPhong);
-  Scene pbr = phong;
-  for (Object& o : pbr.objects) o.shading = Shading::kPbr;
-  const RenderOptions o = options();
-  EXPECT_EQ(renderWith(*gpu, pbr, o).color, renderWith(*gpu, phong, o).color);
-  EXPECT_EQ(renderWith(*raster, pbr, o).color, renderWith(*raster, phong, o).color);
-  EXPECT_NE(renderCpu(pbr, o).color, renderCpu(phong, o).color);
-}
+// kPbr: vulkan_pbr_test.cpp.
 
 TEST(VulkanCompute, MatchesCpuOnDenseMesh) {
   TESSERA_SKIP_WITHOUT_VULKAN();

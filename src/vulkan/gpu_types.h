@@ -52,6 +52,9 @@ constexpr uint32_t kObjectHasUv = 1u;
 constexpr uint32_t kObjectHasColor = 2u;
 constexpr uint32_t kObjectHasNormals = 4u;
 constexpr uint32_t kObjectHasTriangleMaterials = 8u;
+// kPbr with a normal map, UVs, normals and tangents: the vertices' tangents apply (the CPU's
+// SetupContext::tangents)
+constexpr uint32_t kObjectHasTangents = 16u;
 
 // GpuMaterial::texture_flags
 constexpr uint32_t kTexturePresent = 1u;
@@ -97,8 +100,12 @@ struct GpuFrameConstants {
   int32_t layer_x[kMaxVisibilityLayers], layer_y[kMaxVisibilityLayers];
   // The ray passes' depth: z = (distance - ray_near) * ray_inv_range (render/ray_setup.h).
   float ray_near, ray_inv_range;
+  // The viewer, for kPbr (render::LightRig): xyz the camera's position, w 1 for a parallel
+  // projection, whose unit direction towards the camera is toward_eye.
+  float eye[4];
+  float toward_eye[4];
 };
-static_assert(sizeof(GpuFrameConstants) == 208);
+static_assert(sizeof(GpuFrameConstants) == 240);
 
 // The CPU's render::ShadeLight (src/render/lights.h).
 struct GpuLight {
@@ -121,22 +128,44 @@ struct GpuObject {
 };
 static_assert(sizeof(GpuObject) == 288);
 
+// A texture of a material's slot: where its header is, its level 0 size (0 when it has no whole
+// texels: it samples as white) and its sampler's kTexture* flags.
+struct GpuTextureRef {
+  uint32_t texel_offset;
+  int32_t width, height;
+  uint32_t flags;
+};
+static_assert(sizeof(GpuTextureRef) == 16);
+
+// The material's PBR maps (GpuMaterial::maps), in this order.
+enum GpuPbrMap : uint32_t {
+  kMapMetallicRoughness = 0,
+  kMapNormal = 1,
+  kMapOcclusion = 2,
+  kMapEmissive = 3,
+  kPbrMapCount = 4,
+};
+
 struct GpuMaterial {
   float base_color[4];
   uint32_t texel_offset;  // the texture's header
   int32_t texture_width, texture_height;
   uint32_t texture_flags;
   float uv_transform[2][4];  // rows of UvAffine (m00 m01 m02, m10 m11 m12), each padded
+  float pbr[4];              // metallic, roughness, normal_scale, occlusion_strength
+  float emissive[4];         // xyz: emissive_factor
+  GpuTextureRef maps[kPbrMapCount];
 };
-static_assert(sizeof(GpuMaterial) == 64);
+static_assert(sizeof(GpuMaterial) == 160);
 
 struct GpuVertex {
   float position[3];
   float normal[3];
   float uv[2];
   float color[4];
+  float tangent[4];  // object space, w the bitangent's sign (kObjectHasTangents; else zero)
 };
-static_assert(sizeof(GpuVertex) == 48);
+static_assert(sizeof(GpuVertex) == 64);
 
 // The transform pass's output per vertex (the CPU's VertexBuffer entry).
 struct GpuTransformedVertex {
@@ -183,10 +212,17 @@ struct GpuShadeRecord {
   uint32_t material;  // index into the material buffer
   uint32_t shading;   // Shading | kShadeHasUv
   float world_z[3];
-  uint32_t pad;  // std430 rounds the struct to 16 bytes
+  uint32_t pad;  // std430 aligns the tangents to 16 bytes
+  // kPbr with tangents: the corners' world tangents (w the bitangent's sign), facing the viewer
+  // as the normals do (the CPU's ShadeExtras::tangent).
+  float tangent[3][4];
 };
 constexpr uint32_t kShadeHasUv = 1u << 8;
-static_assert(sizeof(GpuShadeRecord) == 176);
+// kPbr: the mesh has UVs (the material's maps apply) and tangents (so does its normal map); the
+// CPU's kPbrUv and kPbrTangents.
+constexpr uint32_t kShadePbrUv = 1u << 9;
+constexpr uint32_t kShadePbrTangents = 1u << 10;
+static_assert(sizeof(GpuShadeRecord) == 224);
 
 struct GpuCounters {
   uint32_t visible;  // records in the visible list

@@ -117,6 +117,75 @@ uint32_t textureOffset(const Texture& texture, PackedScene& out) {
   return header;
 }
 
+// A texture slot's reference and sampler flags (the albedo's, and each PBR map's).
+GpuTextureRef textureRef(const Texture& texture, const Sampler& sampler, PackedScene& out) {
+  GpuTextureRef ref{0, 0, 0, kTexturePresent};
+  if (levelIsWhole(texture.width, texture.height, texture.texels)) {
+    ref.texel_offset = textureOffset(texture, out);
+    ref.width = texture.width;
+    ref.height = texture.height;
+  }
+  if (texture.srgb) ref.flags |= kTextureSrgb;
+  if (sampler.filter == TextureFilter::kNearest) ref.flags |= kTextureNearest;
+  if (sampler.filter == TextureFilter::kTrilinear && !texture.mips.empty())
+    ref.flags |= kTextureTrilinear;
+  ref.flags |= wrapFlags(sampler.wrap_s, kTextureClampS, kTextureMirrorS) |
+               wrapFlags(sampler.wrap_t, kTextureClampT, kTextureMirrorT);
+  return ref;
+}
+
+GpuMaterial packMaterial(const Material& material, PackedScene& out) {
+  GpuMaterial m{};
+  for (int c = 0; c < 4; ++c) m.base_color[c] = material.base_color[c];
+  if (const Texture* texture = material.albedo.get()) {
+    const GpuTextureRef ref = textureRef(*texture, material.sampler, out);
+    m.texel_offset = ref.texel_offset;
+    m.texture_width = ref.width;
+    m.texture_height = ref.height;
+    m.texture_flags = ref.flags;
+    if (!material.sampler.transform.identity()) {
+      m.texture_flags |= kTextureTransformed;
+      const UvAffine a = material.sampler.transform.affine();
+      const float rows[2][3] = {{a.m00, a.m01, a.m02}, {a.m10, a.m11, a.m12}};
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 3; ++c) m.uv_transform[r][c] = rows[r][c];
+    }
+  }
+  if (material.alpha_mode == AlphaMode::kMask) {
+    m.texture_flags |= kMaterialMask;
+    m.uv_transform[0][3] = material.alpha_cutoff;
+  }
+  // kPbr's factors and maps. The maps take no KHR_texture_transform: the CPU's do not either
+  // (render/shade.cpp: sampleTexture of a TextureSlot).
+  m.pbr[0] = material.metallic;
+  m.pbr[1] = material.roughness;
+  m.pbr[2] = material.normal_scale;
+  m.pbr[3] = material.occlusion_strength;
+  m.emissive[0] = material.emissive_factor.x;
+  m.emissive[1] = material.emissive_factor.y;
+  m.emissive[2] = material.emissive_factor.z;
+  const TextureSlot* slots[kPbrMapCount] = {&material.metallic_roughness, &material.normal,
+                                            &material.occlusion, &material.emissive};
+  for (uint32_t i = 0; i < kPbrMapCount; ++i)
+    if (slots[i]->texture) m.maps[i] = textureRef(*slots[i]->texture, slots[i]->sampler, out);
+  return m;
+}
+
+// kPbr's viewer, as render::LightRig::prepare finds it: the camera's frame in world space is the
+// inverse view matrix's last two columns; a projection whose w does not depend on z is parallel.
+void fillViewer(const Scene& scene, GpuFrameConstants& f) {
+  const float4x4 camera = inverse(scene.camera.view());
+  const float3 eye = camera.col[3].xyz();
+  const float3 toward_eye = normalize(camera.col[2].xyz());
+  f.eye[0] = eye.x;
+  f.eye[1] = eye.y;
+  f.eye[2] = eye.z;
+  f.eye[3] = scene.camera.projection(1.0f)(3, 3) != 0.0f ? 1.0f : 0.0f;
+  f.toward_eye[0] = toward_eye.x;
+  f.toward_eye[1] = toward_eye.y;
+  f.toward_eye[2] = toward_eye.z;
+}
+
 }  // namespace
 
 Expected<void> packScene(const Scene& scene, const RenderOptions& options, IndexPolicy policy,
@@ -172,43 +241,11 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
     gpu.material_base = static_cast<uint32_t>(out.materials.size());
     gpu.material_count = static_cast<uint32_t>(object.materials.size());
     gpu.cull = static_cast<uint32_t>(object.cull);
-    // The compute shaders have no PBR yet: kPbr objects are drawn per-pixel Lambert
-    // (docs/vulkan.md).
-    gpu.shading =
-        static_cast<uint32_t>(object.shading == Shading::kPbr ? Shading::kPhong : object.shading);
+    gpu.shading = static_cast<uint32_t>(object.shading);
     out.models.push_back(xf.model);
 
-    for (const Material& material : object.materials) {
-      GpuMaterial m{};
-      for (int c = 0; c < 4; ++c) m.base_color[c] = material.base_color[c];
-      const Texture* texture = material.albedo.get();
-      if (texture) {
-        m.texture_flags = kTexturePresent;
-        if (levelIsWhole(texture->width, texture->height, texture->texels)) {
-          m.texel_offset = textureOffset(*texture, out);
-          m.texture_width = texture->width;
-          m.texture_height = texture->height;
-        }
-        if (texture->srgb) m.texture_flags |= kTextureSrgb;
-        if (material.sampler.filter == TextureFilter::kNearest) m.texture_flags |= kTextureNearest;
-        if (material.sampler.filter == TextureFilter::kTrilinear && !texture->mips.empty())
-          m.texture_flags |= kTextureTrilinear;
-        m.texture_flags |= wrapFlags(material.sampler.wrap_s, kTextureClampS, kTextureMirrorS) |
-                           wrapFlags(material.sampler.wrap_t, kTextureClampT, kTextureMirrorT);
-        if (!material.sampler.transform.identity()) {
-          m.texture_flags |= kTextureTransformed;
-          const UvAffine a = material.sampler.transform.affine();
-          const float rows[2][3] = {{a.m00, a.m01, a.m02}, {a.m10, a.m11, a.m12}};
-          for (int r = 0; r < 2; ++r)
-            for (int c = 0; c < 3; ++c) m.uv_transform[r][c] = rows[r][c];
-        }
-      }
-      if (material.alpha_mode == AlphaMode::kMask) {
-        m.texture_flags |= kMaterialMask;
-        m.uv_transform[0][3] = material.alpha_cutoff;
-      }
-      out.materials.push_back(m);
-    }
+    for (const Material& material : object.materials)
+      out.materials.push_back(packMaterial(material, out));
 
     if (object.mesh) {
       const Mesh& mesh = *object.mesh;
@@ -217,11 +254,18 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
       const bool has_uv = mesh.uvs.size() == count;
       const bool has_color = mesh.colors.size() == count;
       const bool has_materials = mesh.triangle_materials.size() == triangles;
+      // The CPU's SetupContext::tangents (render/setup.h: objectSetupContext).
+      const bool has_tangents =
+          object.shading == Shading::kPbr && has_uv && has_normals &&
+          mesh.tangents.size() == count &&
+          std::any_of(object.materials.begin(), object.materials.end(),
+                      [](const Material& m) { return m.normal.texture != nullptr; });
       gpu.vertex_count = static_cast<uint32_t>(count);
       gpu.triangle_count = static_cast<uint32_t>(triangles);
       gpu.flags = (has_uv ? kObjectHasUv : 0u) | (has_color ? kObjectHasColor : 0u) |
                   (has_normals ? kObjectHasNormals : 0u) |
-                  (has_materials ? kObjectHasTriangleMaterials : 0u);
+                  (has_materials ? kObjectHasTriangleMaterials : 0u) |
+                  (has_tangents ? kObjectHasTangents : 0u);
       for (size_t v = 0; v < count; ++v) {
         GpuVertex gv{};
         gv.position[0] = mesh.positions[v].x;
@@ -238,6 +282,8 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
         }
         const float4 color = has_color ? mesh.colors[v] : float4{1, 1, 1, 1};
         for (int c = 0; c < 4; ++c) gv.color[c] = color[c];
+        if (has_tangents)
+          for (int c = 0; c < 4; ++c) gv.tangent[c] = mesh.tangents[v][c];
         out.vertices.push_back(gv);
       }
       if (policy == IndexPolicy::kAsGiven) {
@@ -301,6 +347,7 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
   f.ambient[3] = tone.scale;
   f.flags |= static_cast<uint32_t>(tone.mapping) << kFrameToneShift;
   fillSampling(scene, options, f);
+  fillViewer(scene, f);
   f.projection = static_cast<uint32_t>(options.projection);
   if (rays) {
     f.view_half_angle = radians(scene.camera.fov_y_degrees) * 0.5f;

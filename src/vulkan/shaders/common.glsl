@@ -15,6 +15,7 @@ const uint kObjectHasUv = 1u;
 const uint kObjectHasColor = 2u;
 const uint kObjectHasNormals = 4u;
 const uint kObjectHasTriangleMaterials = 8u;
+const uint kObjectHasTangents = 16u;
 const uint kTexturePresent = 1u;
 const uint kTextureSrgb = 2u;
 const uint kTextureNearest = 4u;
@@ -26,12 +27,15 @@ const uint kTextureMirrorT = 128u;
 const uint kTextureTransformed = 512u;
 const uint kMaterialMask = 1024u;  // alphaMode MASK, cutoff in uv_transform[0].w
 const uint kShadeHasUv = 256u;
+const uint kShadePbrUv = 512u;
+const uint kShadePbrTangents = 1024u;
 
 // tessera::Shading and tessera::CullMode.
 const uint kShadingFlat = 0u;
 const uint kShadingGouraud = 1u;
 const uint kShadingPhong = 2u;
 const uint kShadingUnlit = 3u;
+const uint kShadingPbr = 4u;
 const uint kCullBack = 0u;
 const uint kCullFront = 1u;
 const uint kCullNone = 2u;
@@ -51,6 +55,8 @@ struct FrameConstants {
   int layer_x[kMaxVisibilityLayers];
   int layer_y[kMaxVisibilityLayers];
   float ray_near, ray_inv_range;  // the ray passes' depth: (distance - near) * inv_range
+  vec4 eye;         // kPbr's viewer: the camera's position; w = 1: a parallel projection
+  vec4 toward_eye;  // xyz: the unit direction towards the camera of a parallel projection
 };
 
 // gpu_types.h's GpuLight (the CPU's render::ShadeLight).
@@ -72,12 +78,28 @@ struct GpuObject {
   mat4 model;
 };
 
+// A material slot's texture (gpu_types.h: GpuTextureRef).
+struct TextureRef {
+  uint texel_offset;  // the texture's header: level count, then offset, width, height per level
+  int width, height;  // level 0; 0: no texels, samples as white
+  uint flags;         // kTexture*
+};
+
+// GpuMaterial::maps
+const int kMapMetallicRoughness = 0;
+const int kMapNormal = 1;
+const int kMapOcclusion = 2;
+const int kMapEmissive = 3;
+
 struct GpuMaterial {
   vec4 base_color;
-  uint texel_offset;  // the texture's header: level count, then offset, width, height per level
+  uint texel_offset;  // the albedo texture's header
   int texture_width, texture_height;
   uint texture_flags;
   vec4 uv_transform[2];  // rows of the sampler's UvAffine (xyz)
+  vec4 pbr;              // metallic, roughness, normal_scale, occlusion_strength
+  vec4 emissive;         // xyz: emissive_factor
+  TextureRef maps[4];    // metallic-roughness, normal, occlusion, emissive
 };
 
 struct GpuVertex {
@@ -85,6 +107,7 @@ struct GpuVertex {
   float normal[3];
   float uv[2];
   float color[4];
+  float tangent[4];  // object space; w: the bitangent's sign
 };
 
 layout(std430, set = 0, binding = 0) readonly buffer FrameBuffer {
@@ -110,6 +133,10 @@ vec3 vertexPosition(uint v) {
 }
 vec3 vertexNormal(uint v) {
   return vec3(vertices[v].normal[0], vertices[v].normal[1], vertices[v].normal[2]);
+}
+vec4 vertexTangent(uint v) {
+  return vec4(vertices[v].tangent[0], vertices[v].tangent[1], vertices[v].tangent[2],
+              vertices[v].tangent[3]);
 }
 vec2 vertexUv(uint v) { return vec2(vertices[v].uv[0], vertices[v].uv[1]); }
 vec4 vertexColor(uint v) {

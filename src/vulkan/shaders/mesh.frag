@@ -23,6 +23,8 @@ layout(location = 1) TESSERA_INTERPOLATION in vec2 in_uv;
 layout(location = 2) TESSERA_INTERPOLATION in vec3 in_color_front;
 layout(location = 3) TESSERA_INTERPOLATION in vec3 in_color_back;
 layout(location = 5) TESSERA_INTERPOLATION in vec3 in_world;
+layout(location = 6) TESSERA_INTERPOLATION in vec3 in_tangent;
+layout(location = 7) flat in float in_tangent_sign;
 #if TESSERA_MSAA
 // The UV at the pixel centre: its differences across the quad give the level of detail.
 layout(location = 4) in vec2 in_uv_centre;
@@ -38,9 +40,26 @@ layout(location = 1) out uint out_id;
 layout(location = 2) out vec4 out_normal;
 #endif
 
+// The triangle's UV at window point q (pixels, y down), perspective-correct, from its vertices'
+// zero-to-one clip positions: the barycentrics b with sum_i b_i (clip_i.xy - ndc(q) clip_i.w) = 0
+// (homogeneous rasterization, Olano and Greer 1997), normalized to sum 1.
+vec2 uvAtWindow(GpuObject object, vec3 p[3], vec2 uv[3], vec2 q) {
+  const vec2 ndc =
+      vec2(q.x / float(frame.width) * 2.0 - 1.0, 1.0 - q.y / float(frame.height) * 2.0);
+  const mat4 m = object.model_view_projection_zo;
+  vec2 r[3];
+  for (int k = 0; k < 3; ++k) {
+    const vec4 clip = m * vec4(p[k], 1.0);
+    r[k] = clip.xy - ndc * clip.w;
+  }
+  const vec3 b = vec3(r[1].x * r[2].y - r[1].y * r[2].x, r[2].x * r[0].y - r[2].y * r[0].x,
+                      r[0].x * r[1].y - r[0].y * r[1].x);
+  return (uv[0] * b.x + uv[1] * b.y + uv[2] * b.z) / (b.x + b.y + b.z);
+}
+
 void main() {
   // Derivatives first, in uniform control flow.
-  const vec2 uv_dx = dFdx(in_uv_centre), uv_dy = dFdy(in_uv_centre);
+  vec2 uv_dx = dFdx(in_uv_centre), uv_dy = dFdy(in_uv_centre);
   const GpuObject object = objects[draw.object];
   const uint t = object.triangle_base + uint(gl_PrimitiveID);
   const float flip = gl_FrontFacing ? 1.0 : -1.0;
@@ -50,6 +69,17 @@ void main() {
   const vec3 p0 = vertexPosition(object.vertex_base + i0);
   const vec3 p1 = vertexPosition(object.vertex_base + i1);
   const vec3 p2 = vertexPosition(object.vertex_base + i2);
+  if (object.shading == kShadingPbr && (object.flags & kObjectHasUv) != 0u) {
+    // kPbr's trilinear maps (and albedo): the UV steps to the next pixel centres right and down,
+    // as the CPU takes them, rather than the quad's differences (a backward one on odd pixels:
+    // up to 29/255 from the CPU near a sphere's poles in VulkanPbr.MapsAndTangentsMatchCpu...).
+    const vec3 p[3] = vec3[3](p0, p1, p2);
+    const vec2 uv[3] = vec2[3](vertexUv(object.vertex_base + i0), vertexUv(object.vertex_base + i1),
+                               vertexUv(object.vertex_base + i2));
+    const vec2 centre = uvAtWindow(object, p, uv, gl_FragCoord.xy);
+    uv_dx = uvAtWindow(object, p, uv, gl_FragCoord.xy + vec2(1.0, 0.0)) - centre;
+    uv_dy = uvAtWindow(object, p, uv, gl_FragCoord.xy + vec2(0.0, 1.0)) - centre;
+  }
   precise vec3 e1 = p1 - p0;
   precise vec3 e2 = p2 - p0;
   precise vec3 edge_cross = vec3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
@@ -57,9 +87,12 @@ void main() {
   const vec3 face_normal =
       normalizeAsCpu(multiply3x3(object.normal_matrix, edge_cross) * object.winding_sign) * flip;
 
-  // Without vertex normals the CPU lights every pixel with the face normal.
+  // Without vertex normals the CPU lights every pixel with the face normal (kPbr: through the
+  // BRDF still, the face normal its shading normal).
   uint shading = object.shading;
-  if (shading != kShadingUnlit && (object.flags & kObjectHasNormals) == 0u) shading = kShadingFlat;
+  if (shading != kShadingUnlit && shading != kShadingPbr &&
+      (object.flags & kObjectHasNormals) == 0u)
+    shading = kShadingFlat;
 
   const uint m = (object.flags & kObjectHasTriangleMaterials) != 0u ? triangle_materials[t] : 0u;
   const GpuMaterial material = objectMaterial(object, m);
@@ -97,6 +130,15 @@ void main() {
                          worldPosition(object.model, p2)) * (1.0 / 3.0);
   if (shading == kShadingFlat) color *= irradiance(normal, centre);
   if (shading == kShadingPhong) color *= irradiance(normal, in_world);
+  if (shading == kShadingPbr) {
+    // The maps' level of detail from the UVs at the next pixels, as the albedo's.
+    const UvFootprint f = UvFootprint(in_uv, in_uv + uv_dx, in_uv + uv_dy);
+    // Drawn back faces flip the whole tangent frame, as the CPU's setup does.
+    if ((object.flags & kObjectHasTangents) != 0u && hasMap(material, kMapNormal))
+      normal = normalMapped(material, normal, in_tangent * flip, in_tangent_sign * flip, f);
+    color = shadePbrMaterial(material, color, normal, in_world, (object.flags & kObjectHasUv) != 0u,
+                             f);
+  }
   color = toneMap(color);
 
 #if TESSERA_MSAA

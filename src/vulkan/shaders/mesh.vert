@@ -11,6 +11,7 @@ layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec4 in_color;
+layout(location = 4) in vec4 in_tangent;  // kObjectHasTangents
 
 layout(location = 0) out vec3 out_normal;
 layout(location = 1) out vec2 out_uv;
@@ -22,7 +23,11 @@ layout(location = 3) out vec3 out_color_back;
 // The UV again, for the multisample pass's derivatives: its copy at location 1 is interpolated at
 // the centroid, whose screen-space differences do not give the footprint.
 layout(location = 4) out vec2 out_uv_centre;
-layout(location = 5) out vec3 out_world;  // world position: point and spot lights
+layout(location = 5) out vec3 out_world;  // world position: point and spot lights, kPbr
+// kPbr with tangents: the world tangent, and the bitangent's sign of the triangle's first vertex
+// (the provoking one), as the CPU takes its corner 0's.
+layout(location = 6) out vec3 out_tangent;
+layout(location = 7) flat out float out_tangent_sign;
 
 void main() {
   const GpuObject object = objects[draw.object];
@@ -45,6 +50,16 @@ void main() {
       object.shading == kShadingGouraud && (object.flags & kObjectHasNormals) != 0u;
   const vec3 world = worldPosition(object.model, p);
   out_world = world;
+  out_tangent = vec3(0.0);
+  out_tangent_sign = 1.0;
+  if ((object.flags & kObjectHasTangents) != 0u) {
+    // A direction: the model's upper 3x3; a mirroring model flips the bitangent.
+    const mat4 model = object.model;
+    precise vec3 t =
+        model[0].xyz * in_tangent.x + model[1].xyz * in_tangent.y + model[2].xyz * in_tangent.z;
+    out_tangent = t;
+    out_tangent_sign = in_tangent.w * object.winding_sign < 0.0 ? -1.0 : 1.0;
+  }
   out_color_front = gouraud ? color * irradiance(normal, world) : color;
   out_color_back = gouraud ? color * irradiance(-normal, world) : color;
 }

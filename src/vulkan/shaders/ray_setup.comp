@@ -23,7 +23,7 @@ const uint kCylindrical = 1u;
 const uint kSpherical = 2u;
 const uint kFisheye = 4u;
 
-const float kPi = 3.14159265358979;
+// kPi: pbr.glsl (through shading.glsl).
 const float kHalfPi = 1.57079632679490;
 // Added to the cone's radius: float directions and float trig (NIR's asin and atan are
 // polynomial approximations good to about 1e-5).

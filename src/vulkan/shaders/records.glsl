@@ -34,6 +34,7 @@ struct ShadeRecord {
   uint material;  // index into the material buffer
   uint shading;   // Shading | kShadeHasUv
   float world_z[3];  // the corners' world z (world positions: Phong with point and spot lights)
+  vec4 tangent[3];   // kPbr with kShadePbrTangents: world tangents, w the bitangent's sign
 };
 
 struct Counters {

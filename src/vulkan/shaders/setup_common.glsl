@@ -19,12 +19,14 @@ struct TriangleContext {
   uint shading;
   bool has_uv;
   bool has_color;
+  bool tangents;  // kObjectHasTangents
   bool clipped;
   vec3 face_normal;  // world space, unnormalized
   vec3 normal[3];    // the source vertices' attributes
   vec3 world[3];     // their world positions
   vec2 uv[3];
   vec4 color[3];
+  vec4 tangent[3];  // kObjectHasTangents: world tangents, w the bitangent's sign
 };
 
 vec3 weighted3(vec3 values[3], vec3 w) {
@@ -61,6 +63,7 @@ TriangleContext triangleContext(uint t, GpuObject object, uint idx[3]) {
   ctx.shading = object.shading;
   ctx.has_uv = (object.flags & kObjectHasUv) != 0u;
   ctx.has_color = (object.flags & kObjectHasColor) != 0u;
+  ctx.tangents = (object.flags & kObjectHasTangents) != 0u;
   vec3 p[3];
   for (int k = 0; k < 3; ++k) {
     const uint g = object.vertex_base + idx[k];
@@ -69,6 +72,16 @@ TriangleContext triangleContext(uint t, GpuObject object, uint idx[3]) {
     ctx.color[k] = ctx.has_color ? vertexColor(g) : vec4(1.0);
     p[k] = vertexPosition(g);
     ctx.world[k] = worldPosition(object.model, p[k]);
+    ctx.tangent[k] = vec4(0.0);
+    if ((object.flags & kObjectHasTangents) != 0u) {
+      // A direction: the model's upper 3x3 (the CPU's model * float4(t, 0)); a mirroring model
+      // flips the bitangent.
+      const vec4 t = vertexTangent(g);
+      precise vec3 world_t = object.model[0].xyz * t.x + object.model[1].xyz * t.y +
+                             object.model[2].xyz * t.z;
+      precise float w = t.w * object.winding_sign;
+      ctx.tangent[k] = vec4(world_t, w);
+    }
   }
   precise vec3 e1 = p[1] - p[0];
   precise vec3 e2 = p[2] - p[0];
@@ -116,10 +129,17 @@ void setupShadeCorners(TriangleContext ctx, ClipVertex v[3], int order[3], bool 
         albedo * (ctx.shading == kShadingGouraud ? irradiance(n, world[source]) : flat_irradiance);
     shade.color[k] = vec4(lit, world[source].y);
     shade.world_z[k] = world[source].z;
+    // kPbr: drawn back faces flip the whole tangent frame, as the normal (the CPU's setupShade).
+    vec4 tangent = ctx.clipped ? weighted4(ctx.tangent, v[source].weights) : ctx.tangent[source];
+    precise vec4 facing_tangent = tangent * flip;
+    shade.tangent[k] = facing_tangent;
   }
   shade.triangle_id = ctx.triangle;
   shade.material = ctx.material;
+  const bool tangents = ctx.has_uv && ctx.tangents;
   shade.shading =
-      ctx.shading | (ctx.has_uv && (material.texture_flags & kTexturePresent) != 0u ? kShadeHasUv
-                                                                                     : 0u);
+      ctx.shading |
+      (ctx.has_uv && (material.texture_flags & kTexturePresent) != 0u ? kShadeHasUv : 0u) |
+      (ctx.shading == kShadingPbr && ctx.has_uv ? kShadePbrUv : 0u) |
+      (ctx.shading == kShadingPbr && tangents ? kShadePbrTangents : 0u);
 }

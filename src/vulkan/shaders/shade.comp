@@ -126,18 +126,49 @@ vec3 normalAt(ShadeRecord s, vec3 b) {
   return normalizeAsCpu(s.normal[0].xyz * b.x + s.normal[1].xyz * b.y + s.normal[2].xyz * b.z);
 }
 
+// The world position at barycentrics b (from the corners' spare floats).
+vec3 worldAt(ShadeRecord s, vec3 b) {
+  const vec3 w0 = vec3(s.normal[0].w, s.color[0].w, s.world_z[0]);
+  const vec3 w1 = vec3(s.normal[1].w, s.color[1].w, s.world_z[1]);
+  const vec3 w2 = vec3(s.normal[2].w, s.color[2].w, s.world_z[2]);
+  precise vec3 p = w0 * b.x + w1 * b.y + w2 * b.z;
+  return p;
+}
+
+// kPbr: the UVs of a point and of the same point of the next pixels right and down (the maps'
+// trilinear level of detail, as sampleAlbedo's).
+UvFootprint footprintAt(uint slot, ShadeRecord s, vec3 b, ivec2 pixel, uint layer) {
+  UvFootprint f;
+  f.uv = uvAt(s, b);
+  f.right = uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(1, 0)));
+  f.down = uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(0, 1)));
+  return f;
+}
+
+// kPbr's shading normal: the interpolated one, perturbed by the material's normal map when the
+// mesh has tangents (shade_lanes.h: shadePbrLanes).
+vec3 pbrNormalAt(ShadeRecord s, vec3 b, UvFootprint f) {
+  const vec3 n = normalAt(s, b);
+  const GpuMaterial m = materials[s.material];
+  if ((s.shading & kShadePbrTangents) == 0u || !hasMap(m, kMapNormal)) return n;
+  precise vec3 tangent = s.tangent[0].xyz * b.x + s.tangent[1].xyz * b.y + s.tangent[2].xyz * b.z;
+  return normalMapped(m, n, tangent, s.tangent[0].w < 0.0 ? -1.0 : 1.0, f);
+}
+
 // The linear colour of record `slot` at a point of pixel (x, y).
 vec3 shadeAt(uint slot, ivec2 pixel, uint layer) {
   const ShadeRecord s = shade_records[slot];
   const vec3 b = pointBarycentrics(slot, s, pixel, layer);
   precise vec3 color = s.color[0].xyz * b.x + s.color[1].xyz * b.y + s.color[2].xyz * b.z;
   if ((s.shading & kShadeHasUv) != 0u) color = color * sampleAlbedo(slot, s, b, pixel, layer);
-  if ((s.shading & 255u) == kShadingPhong) {
-    const vec3 w0 = vec3(s.normal[0].w, s.color[0].w, s.world_z[0]);
-    const vec3 w1 = vec3(s.normal[1].w, s.color[1].w, s.world_z[1]);
-    const vec3 w2 = vec3(s.normal[2].w, s.color[2].w, s.world_z[2]);
-    precise vec3 p = w0 * b.x + w1 * b.y + w2 * b.z;
-    color = color * irradiance(normalAt(s, b), p);
+  if ((s.shading & 255u) == kShadingPbr) {
+    const bool maps = (s.shading & kShadePbrUv) != 0u;
+    const UvFootprint f = maps ? footprintAt(slot, s, b, pixel, layer)
+                               : UvFootprint(vec2(0.0), vec2(0.0), vec2(0.0));
+    color = shadePbrMaterial(materials[s.material], color, pbrNormalAt(s, b, f), worldAt(s, b),
+                             maps, f);
+  } else if ((s.shading & 255u) == kShadingPhong) {
+    color = color * irradiance(normalAt(s, b), worldAt(s, b));
   }
   return toneMap(color);
 }
@@ -219,7 +250,12 @@ void main() {
     const ShadeRecord s = shade_records[slot];
     output_words[n + pixel] = floatBitsToUint(depthFromOrdered(layerDepth(pixel, 0u)));
     output_words[2u * n + pixel] = s.triangle_id + 1u;
-    if (normals) normal = normalAt(s, pointBarycentrics(slot, s, ivec2(x, y), kCentre));
+    if (normals) {
+      const vec3 b = pointBarycentrics(slot, s, ivec2(x, y), kCentre);
+      normal = (s.shading & 255u) == kShadingPbr && (s.shading & kShadePbrUv) != 0u
+                   ? pbrNormalAt(s, b, footprintAt(slot, s, b, ivec2(x, y), kCentre))
+                   : normalAt(s, b);
+    }
   }
   if (normals) {
     output_words[3u * n + 3u * pixel] = floatBitsToUint(normal.x);

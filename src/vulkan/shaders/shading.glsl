@@ -57,9 +57,14 @@ struct TextureLevel {
   int width, height;
 };
 
-int textureLevelCount(GpuMaterial m) { return int(texels[m.texel_offset]); }
-TextureLevel textureLevel(GpuMaterial m, int level) {
-  const uint h = m.texel_offset + 1u + 3u * uint(level);
+// The albedo slot of a material as a TextureRef.
+TextureRef albedoTexture(GpuMaterial m) {
+  return TextureRef(m.texel_offset, m.texture_width, m.texture_height, m.texture_flags);
+}
+
+int textureLevelCount(TextureRef t) { return int(texels[t.texel_offset]); }
+TextureLevel textureLevel(TextureRef t, int level) {
+  const uint h = t.texel_offset + 1u + 3u * uint(level);
   return TextureLevel(texels[h], int(texels[h + 1u]), int(texels[h + 2u]));
 }
 
@@ -75,9 +80,8 @@ int wrapCoord(int i, int size, int wrap) {
   return m < size ? m : period - 1 - m;
 }
 
-// The wrap modes along s and t of a material's texture.
-ivec2 textureWraps(GpuMaterial m) {
-  const uint f = m.texture_flags;
+// The wrap modes along s and t of a sampler's kTexture* flags.
+ivec2 textureWraps(uint f) {
   const int s = (f & kTextureClampS) != 0u
                     ? kWrapClamp
                     : ((f & kTextureMirrorS) != 0u ? kWrapMirror : kWrapRepeat);
@@ -146,26 +150,30 @@ vec4 sampleLevel(TextureLevel level, bool srgb, vec2 uv, bool nearest, ivec2 wra
 }
 
 // Texture::sample: level 0, nearest or bilinear (uv after the sampler's transform).
-vec4 sampleTexture(GpuMaterial m, vec2 uv) {
-  if (m.texture_width <= 0 || m.texture_height <= 0) return vec4(1.0);
-  return sampleLevel(textureLevel(m, 0), (m.texture_flags & kTextureSrgb) != 0u, uv,
-                     (m.texture_flags & kTextureNearest) != 0u, textureWraps(m));
+vec4 sampleTexture(TextureRef t, vec2 uv) {
+  if (t.width <= 0 || t.height <= 0) return vec4(1.0);
+  return sampleLevel(textureLevel(t, 0), (t.flags & kTextureSrgb) != 0u, uv,
+                     (t.flags & kTextureNearest) != 0u, textureWraps(t.flags));
 }
+vec4 sampleTexture(GpuMaterial m, vec2 uv) { return sampleTexture(albedoTexture(m), uv); }
 
 // Texture::sampleLod for a trilinear sampler: bilinear in the two levels around lod, blended.
-vec4 sampleTextureTrilinear(GpuMaterial m, vec2 uv, float lod) {
-  if (m.texture_width <= 0 || m.texture_height <= 0) return vec4(1.0);
-  const bool srgb = (m.texture_flags & kTextureSrgb) != 0u;
-  const ivec2 wrap = textureWraps(m);
-  const int last = textureLevelCount(m) - 1;
+vec4 sampleTextureTrilinear(TextureRef t, vec2 uv, float lod) {
+  if (t.width <= 0 || t.height <= 0) return vec4(1.0);
+  const bool srgb = (t.flags & kTextureSrgb) != 0u;
+  const ivec2 wrap = textureWraps(t.flags);
+  const int last = textureLevelCount(t) - 1;
   if (!(lod > 0.0)) lod = 0.0;  // also catches NaN
   if (lod > float(last)) lod = float(last);
   const int lower = int(lod);
   precise float blend = lod - float(lower);
-  const vec4 a = sampleLevel(textureLevel(m, lower), srgb, uv, false, wrap);
+  const vec4 a = sampleLevel(textureLevel(t, lower), srgb, uv, false, wrap);
   if (blend == 0.0 || lower >= last) return a;
-  const vec4 b = sampleLevel(textureLevel(m, lower + 1), srgb, uv, false, wrap);
+  const vec4 b = sampleLevel(textureLevel(t, lower + 1), srgb, uv, false, wrap);
   return lerp4(a, b, blend);
+}
+vec4 sampleTextureTrilinear(GpuMaterial m, vec2 uv, float lod) {
+  return sampleTextureTrilinear(albedoTexture(m), uv, lod);
 }
 
 // ---- output (src/scene/color.cpp) ----
@@ -240,3 +248,6 @@ vec3 toneMap(vec3 color) {
   precise float lift = peak * (1.0 - g);
   return c * s + lift;
 }
+
+// The metallic-roughness BRDF (kPbr), shared by both backends.
+#include "pbr.glsl"

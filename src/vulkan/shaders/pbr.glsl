@@ -1,0 +1,204 @@
+// glTF 2.0's metallic-roughness BRDF (Shading::kPbr) for both Vulkan backends: the CPU's
+// src/render/pbr.h (scalar reference) and src/render/shade_lanes.h (shadePbrLanes, normalMapped)
+// with the same float operations in the same order (precise: no fused multiply-adds). The maths
+// and its sources are described at the top of pbr.h. Differences from the CPU: no image-based
+// light (a scene with an environment lights its kPbr pixels with the uniform ambient only) and no
+// shadows (docs/vulkan.md). Included by shading.glsl; needs what it defines.
+
+const float kPi = 3.14159265358979;
+const float kMinRoughness = 0.03;  // render/pbr.h: kMinRoughness
+const float kDielectricF0 = 0.04;
+
+// The BRDF's per-pixel constants (render::PbrLobes).
+struct PbrLobes {
+  vec3 c_diff, f0;
+  float roughness;  // clamped
+  float a2;         // alpha^2 = roughness^4
+};
+
+// std::clamp(v, lo, hi): NaN stays NaN.
+float clampAsCpu(float v, float lo, float hi) { return v < lo ? lo : (hi < v ? hi : v); }
+
+float dot3(vec3 a, vec3 b) {
+  precise float d = (a.x * b.x + a.y * b.y) + a.z * b.z;
+  return d;
+}
+
+// render::pbrLobes
+PbrLobes pbrLobes(vec3 base, float metallic, float roughness) {
+  const float m = clampAsCpu(metallic, 0.0, 1.0);
+  const float r = clampAsCpu(roughness, kMinRoughness, 1.0);
+  precise float alpha = r * r;
+  precise float dielectric = 1.0 - m;
+  precise float f0_dielectric = kDielectricF0 * dielectric;
+  precise vec3 c_diff = base * dielectric;
+  precise vec3 f0 = vec3(f0_dielectric) + base * m;
+  precise float a2 = alpha * alpha;
+  return PbrLobes(c_diff, f0, r, a2);
+}
+
+// (1 - x)^5, Schlick's weight.
+float schlickWeight(float x) {
+  precise float k = 1.0 - x;
+  precise float k2 = k * k;
+  precise float w = (k2 * k2) * k;
+  return w;
+}
+
+// render::pbrResponse: pi f(l, v) for unit n, v, l with nl = n.l > 0 and nv = |n.v|.
+vec3 pbrResponse(PbrLobes s, vec3 n, vec3 v, vec3 l, float nl, float nv) {
+  precise float hx = l.x + v.x, hy = l.y + v.y, hz = l.z + v.z;
+  precise float h2 = (hx * hx + hy * hy) + hz * hz;
+  // l = -v has no half vector: no specular.
+  precise float inv_h = h2 > 0.0 ? 1.0 / sqrt(h2) : 0.0;
+  precise vec3 h = vec3(hx * inv_h, hy * inv_h, hz * inv_h);
+  const float nh = dot3(n, h), vh = dot3(v, h);
+  const float fw = schlickWeight(vh);
+  // GGX (Trowbridge-Reitz) distribution with its Heaviside factor.
+  precise float dd = (nh * nh) * (s.a2 - 1.0) + 1.0;
+  precise float d = nh > 0.0 ? s.a2 / ((kPi * dd) * dd) : 0.0;
+  // Smith's height-correlated visibility (Heitz 2014).
+  precise float one_minus_a2 = 1.0 - s.a2;
+  precise float gv = nl * sqrt((nv * nv) * one_minus_a2 + s.a2);
+  precise float gl = nv * sqrt((nl * nl) * one_minus_a2 + s.a2);
+  precise float spec = kPi * (d * (0.5 / (gv + gl)));
+  precise vec3 f = s.f0 + (vec3(1.0) - s.f0) * fw;
+  precise vec3 r = (vec3(1.0) - f) * s.c_diff + f * spec;
+  return r;
+}
+
+// render::pbrAmbient: the uniform ambient's reflection, Schlick's Fresnel at n.v with a
+// roughness-dependent F90 (Fdez-Aguera 2019); occlusion darkens this term only.
+vec3 pbrAmbient(PbrLobes s, vec3 ambient, float occlusion, float nv) {
+  const float fw = schlickWeight(nv);
+  precise float f90 = 1.0 - s.roughness;
+  // std::max(f90, f0): f90 < f0 ? f0 : f90.
+  const vec3 f90v = vec3(f90 < s.f0.x ? s.f0.x : f90, f90 < s.f0.y ? s.f0.y : f90,
+                         f90 < s.f0.z ? s.f0.z : f90);
+  precise vec3 fa = s.f0 + (f90v - s.f0) * fw;
+  precise vec3 r = (ambient * occlusion) * ((vec3(1.0) - fa) * s.c_diff + fa);
+  return r;
+}
+
+// render::viewVector: the unit vector from world point p towards the viewer.
+vec3 viewVector(vec3 p) {
+  if (frame.eye.w != 0.0) return frame.toward_eye.xyz;
+  precise vec3 d = frame.eye.xyz - p;
+  precise float len2 = (d.x * d.x + d.y * d.y) + d.z * d.z;
+  precise float inv = len2 > 0.0 ? 1.0 / sqrt(len2) : 0.0;
+  precise vec3 v = d * inv;
+  return v;
+}
+
+// render::localAttenuation: a point or spot light's 1 / d^2, range window and cone at p, and in u
+// the unit direction from p to the light.
+float localAttenuation(Light light, vec3 p, out vec3 u) {
+  precise vec3 l = light.position.xyz - p;
+  precise float d2 = (l.x * l.x + l.y * l.y) + l.z * l.z;
+  precise float inv_d = 1.0 / sqrt(d2);
+  precise vec3 unit = l * inv_d;
+  u = unit;
+  precise float window = clamp(1.0 - d2 * d2 * light.color.w, 0.0, 1.0);
+  const vec3 d = light.direction.xyz;
+  precise float cd = -((d.x * unit.x + d.y * unit.y) + d.z * unit.z);
+  precise float t = clamp(cd * light.position.w + light.spot.x, 0.0, 1.0);
+  precise float a = (window * (t * t)) / d2;
+  return a;
+}
+
+// render::shadePbr: ambient, every light in order, then the emission; n the unit shading normal,
+// p the world position.
+vec3 shadePbr(PbrLobes s, float occlusion, vec3 emissive, vec3 n, vec3 p) {
+  const vec3 v = viewVector(p);
+  const float nv = abs(dot3(n, v));
+  precise vec3 c = pbrAmbient(s, frame.ambient.xyz, occlusion, nv);
+  for (uint i = 0u; i < frame.light_count; ++i) {
+    const Light light = lights[i];
+    vec3 l;
+    float nl, f;
+    if (light.direction.w == 0.0) {
+      l = -light.direction.xyz;
+      nl = dot3(n, l);
+      f = nl;
+    } else {
+      const float attenuation = localAttenuation(light, p, l);
+      nl = dot3(n, l);
+      precise float lit = nl * attenuation;
+      f = lit;
+    }
+    if (!(nl > 0.0 && f > 0.0)) continue;
+    const vec3 r = pbrResponse(s, n, v, l, nl, nv);
+    c = c + r * (light.color.xyz * f);
+  }
+  precise vec3 result = c + emissive;
+  return result;
+}
+
+// ---- the material's maps ----
+
+// A point's UVs and those at the next pixels right and down (the trilinear level of detail).
+struct UvFootprint {
+  vec2 uv, right, down;
+};
+
+// One map of a material (render::sampleTexture for a TextureSlot: no KHR_texture_transform, as
+// the CPU's maps take none; trilinear samplers take their level of detail from the footprint).
+vec4 sampleMap(TextureRef t, UvFootprint f) {
+  if ((t.flags & kTextureTrilinear) == 0u) return sampleTexture(t, f.uv);
+  const vec2 size = vec2(float(t.width), float(t.height));
+  precise vec2 du = f.right - f.uv;
+  precise vec2 dv = f.down - f.uv;
+  precise vec2 dx = du * size, dy = dv * size;
+  precise float rx = dx.x * dx.x + dx.y * dx.y;
+  precise float ry = dy.x * dy.x + dy.y * dy.y;
+  const float rho2 = rx < ry ? ry : rx;
+  precise float lod = rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0;
+  return sampleTextureTrilinear(t, f.uv, lod);
+}
+
+bool hasMap(GpuMaterial m, int map) { return (m.maps[map].flags & kTexturePresent) != 0u; }
+
+// The normal map in the tangent frame (shade_lanes.h: normalMapped): the interpolated tangent made
+// orthogonal to the unit normal n, the bitangent cross(n, t) times the sign (glTF's TANGENT),
+// then normalize(t x' + b y' + n z') with (x', y', z') = 2 texel - 1, x' and y' times
+// normal_scale.
+vec3 normalMapped(GpuMaterial m, vec3 n, vec3 tangent, float sign, UvFootprint f) {
+  const float tn = dot3(n, tangent);
+  precise vec3 orthogonal = tangent - n * tn;
+  const vec3 t = normalizeAsCpu(orthogonal);
+  precise vec3 b = vec3(n.y * t.z - n.z * t.y, n.z * t.x - n.x * t.z, n.x * t.y - n.y * t.x) * sign;
+  const vec4 texel = sampleMap(m.maps[kMapNormal], f);
+  const float scale = m.pbr.z;
+  precise float x = (texel.x * 2.0 - 1.0) * scale;
+  precise float y = (texel.y * 2.0 - 1.0) * scale;
+  precise float z = texel.z * 2.0 - 1.0;
+  precise vec3 perturbed = (t * x + b * y) + n * z;
+  return normalizeAsCpu(perturbed);
+}
+
+// A PBR point's linear colour (shade_lanes.h: shadePbrLanes after the normal): base is the base
+// colour (factor x vertex colour x albedo texture), n the shading normal, p the world position;
+// `maps` says the mesh has UVs, so that the metallic-roughness (G roughness, B metallic),
+// occlusion (R) and emissive maps apply.
+vec3 shadePbrMaterial(GpuMaterial m, vec3 base, vec3 n, vec3 p, bool maps, UvFootprint f) {
+  float metallic = m.pbr.x, roughness = m.pbr.y, occlusion = 1.0;
+  if (maps && hasMap(m, kMapMetallicRoughness)) {
+    const vec4 texel = sampleMap(m.maps[kMapMetallicRoughness], f);
+    precise float r = roughness * texel.y;
+    precise float mt = metallic * texel.z;
+    roughness = r;
+    metallic = mt;
+  }
+  if (maps && hasMap(m, kMapOcclusion)) {
+    // glTF: 1 + strength (R - 1).
+    const vec4 texel = sampleMap(m.maps[kMapOcclusion], f);
+    precise float o = 1.0 + m.pbr.w * (texel.x - 1.0);
+    occlusion = o;
+  }
+  vec3 emissive = m.emissive.xyz;
+  if (maps && hasMap(m, kMapEmissive)) {
+    precise vec3 e = emissive * sampleMap(m.maps[kMapEmissive], f).xyz;
+    emissive = e;
+  }
+  return shadePbr(pbrLobes(base, metallic, roughness), occlusion, emissive, n, p);
+}
