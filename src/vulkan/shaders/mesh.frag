@@ -57,6 +57,32 @@ vec2 uvAtWindow(GpuObject object, vec3 p[3], vec2 uv[3], vec2 q) {
   return (uv[0] * b.x + uv[1] * b.y + uv[2] * b.z) / (b.x + b.y + b.z);
 }
 
+// kPbr's trilinear maps (and albedo) step the UV to the next pixel centres right and down, as
+// the CPU takes them, rather than by the quad's differences (a backward one on odd pixels: up to
+// 29/255 from the CPU near a sphere's poles in VulkanPbr.MapsAndTangentsMatchCpu...).
+void uvStepsToNextPixels(GpuObject object, uvec3 corner, out vec2 uv_dx, out vec2 uv_dy) {
+  vec3 p[3];
+  vec2 uv[3];
+  for (int k = 0; k < 3; ++k) {
+    p[k] = vertexPosition(object.vertex_base + corner[k]);
+    uv[k] = vertexUv(object.vertex_base + corner[k]);
+  }
+  const vec2 centre = uvAtWindow(object, p, uv, gl_FragCoord.xy);
+  uv_dx = uvAtWindow(object, p, uv, gl_FragCoord.xy + vec2(1.0, 0.0)) - centre;
+  uv_dy = uvAtWindow(object, p, uv, gl_FragCoord.xy + vec2(0.0, 1.0)) - centre;
+}
+
+// A kPbr fragment's linear colour from its base colour; `normal` (the interpolated one, facing
+// the viewer) becomes the shading normal. f: the maps' UVs and their level of detail's.
+vec3 shadePbrFragment(GpuObject object, GpuMaterial material, vec3 base, float flip, UvFootprint f,
+                      inout vec3 normal) {
+  // Drawn back faces flip the whole tangent frame, as the CPU's setup does.
+  if ((object.flags & kObjectHasTangents) != 0u && hasMap(material, kMapNormal))
+    normal = normalMapped(material, normal, in_tangent * flip, in_tangent_sign * flip, f);
+  return shadePbrMaterial(material, base, normal, in_world, (object.flags & kObjectHasUv) != 0u,
+                          f);
+}
+
 void main() {
   // Derivatives first, in uniform control flow.
   vec2 uv_dx = dFdx(in_uv_centre), uv_dy = dFdy(in_uv_centre);
@@ -69,17 +95,8 @@ void main() {
   const vec3 p0 = vertexPosition(object.vertex_base + i0);
   const vec3 p1 = vertexPosition(object.vertex_base + i1);
   const vec3 p2 = vertexPosition(object.vertex_base + i2);
-  if (object.shading == kShadingPbr && (object.flags & kObjectHasUv) != 0u) {
-    // kPbr's trilinear maps (and albedo): the UV steps to the next pixel centres right and down,
-    // as the CPU takes them, rather than the quad's differences (a backward one on odd pixels:
-    // up to 29/255 from the CPU near a sphere's poles in VulkanPbr.MapsAndTangentsMatchCpu...).
-    const vec3 p[3] = vec3[3](p0, p1, p2);
-    const vec2 uv[3] = vec2[3](vertexUv(object.vertex_base + i0), vertexUv(object.vertex_base + i1),
-                               vertexUv(object.vertex_base + i2));
-    const vec2 centre = uvAtWindow(object, p, uv, gl_FragCoord.xy);
-    uv_dx = uvAtWindow(object, p, uv, gl_FragCoord.xy + vec2(1.0, 0.0)) - centre;
-    uv_dy = uvAtWindow(object, p, uv, gl_FragCoord.xy + vec2(0.0, 1.0)) - centre;
-  }
+  if (object.shading == kShadingPbr && (object.flags & kObjectHasUv) != 0u)
+    uvStepsToNextPixels(object, uvec3(i0, i1, i2), uv_dx, uv_dy);
   precise vec3 e1 = p1 - p0;
   precise vec3 e2 = p2 - p0;
   precise vec3 edge_cross = vec3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
@@ -130,15 +147,9 @@ void main() {
                          worldPosition(object.model, p2)) * (1.0 / 3.0);
   if (shading == kShadingFlat) color *= irradiance(normal, centre);
   if (shading == kShadingPhong) color *= irradiance(normal, in_world);
-  if (shading == kShadingPbr) {
-    // The maps' level of detail from the UVs at the next pixels, as the albedo's.
-    const UvFootprint f = UvFootprint(in_uv, in_uv + uv_dx, in_uv + uv_dy);
-    // Drawn back faces flip the whole tangent frame, as the CPU's setup does.
-    if ((object.flags & kObjectHasTangents) != 0u && hasMap(material, kMapNormal))
-      normal = normalMapped(material, normal, in_tangent * flip, in_tangent_sign * flip, f);
-    color = shadePbrMaterial(material, color, normal, in_world, (object.flags & kObjectHasUv) != 0u,
-                             f);
-  }
+  if (shading == kShadingPbr)
+    color = shadePbrFragment(object, material, color, flip, UvFootprint(in_uv, in_uv + uv_dx,
+                                                                        in_uv + uv_dy), normal);
   color = toneMap(color);
 
 #if TESSERA_MSAA
