@@ -1,11 +1,13 @@
 // Shading::kPbr (glTF's metallic-roughness BRDF, src/render/pbr.h) on the two Vulkan backends,
 // held to the CPU renderer pixel by pixel: the factors, the four maps with their samplers, the
-// tangent frame of the normal map, directional, point and spot lights, the ambient term, emission
-// and the tone curve. Both backends do the CPU's float operations in its order (shaders/pbr.glsl),
-// so every pixel the two draw from the same triangle is within 2/255.
+// tangent frame of the normal map, directional, point and spot lights, the ambient term or the
+// environment's image-based light, emission and the tone curve. Both backends do the CPU's float
+// operations in its order (shaders/pbr.glsl, environment.glsl), so every pixel the two draw from
+// the same triangle is within 2/255.
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <string>
 
 #include "environment_test_scenes.h"
 #include "vulkan_fixtures.h"
@@ -307,21 +309,36 @@ TEST(VulkanPbr, ComputeSphericalProjectionMatchesCpu) {
   expectPbrParity("maps, spherical, compute", gpu, cpu, 0.0001);
 }
 
-// Image-based light is CPU-only (docs/vulkan.md): with an environment the Vulkan backends light
-// PBR pixels with the uniform ambient, exactly as without one; the CPU takes the image instead.
-TEST(VulkanPbr, EnvironmentLightsPbrWithTheAmbientOnly) {
+// Image-based light (--hdri): the environment's SH irradiance, its prefiltered chain along the
+// reflected view ray and the split-sum table, in the environment's frame, in place of the ambient.
+TEST(VulkanPbr, EnvironmentLightMatchesCpuOnBothBackends) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   ComputePtr compute = makeCompute();
   ASSERT_TRUE(compute);
   RasterPtr raster = makeRaster();
   ASSERT_TRUE(raster);
-  const Scene plain = sphereRowScene();
-  Scene lit = plain;
-  lit.environment = test::skyEnvironment({0.9f, 0.7f, 0.4f}, {0.1f, 0.2f, 0.1f});
   const RenderOptions o = pbrOptions();
-  EXPECT_EQ(renderWith(*compute, lit, o).color, renderWith(*compute, plain, o).color);
-  EXPECT_EQ(renderWith(*raster, lit, o).color, renderWith(*raster, plain, o).color);
-  EXPECT_NE(renderCpu(lit, o).color, renderCpu(plain, o).color);
+  const struct {
+    const char* what;
+    Scene scene;
+  } scenes[] = {{"environment, sphere row", sphereRowScene()},
+                {"environment, maps", mappedScene()}};
+  for (const auto& [what, plain] : scenes) {
+    Scene scene = plain;
+    scene.environment = test::skyEnvironment({0.9f, 0.7f, 0.4f}, {0.1f, 0.2f, 0.1f});
+    // A quarter turn about +Z into the environment's frame: the horizon stands upright.
+    scene.world_to_environment = float3x3{{float3{0, 1, 0}, float3{-1, 0, 0}, float3{0, 0, 1}}};
+    const Frame cpu = renderCpu(scene, o);
+    const Frame gpu = renderWith(*compute, scene, o);
+    expectPbrParity((std::string(what) + ", compute").c_str(), gpu, cpu, 0.0);
+    expectPbrParity((std::string(what) + ", raster").c_str(), renderWith(*raster, scene, o), cpu,
+                    0.01);
+    // The environment lights, in its own frame: without it, or unturned, the image is another one.
+    EXPECT_NE(gpu.color, renderWith(*compute, plain, o).color) << what;
+    Scene unturned = scene;
+    unturned.world_to_environment = float3x3{};
+    EXPECT_NE(gpu.color, renderWith(*compute, unturned, o).color) << what;
+  }
 }
 
 // vulkan-raster's multisample pass shades PBR at the hardware's centroid, not the contract's

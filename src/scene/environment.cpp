@@ -226,7 +226,7 @@ float3 Environment::specular(float3 r, float roughness) const {
 
 namespace {
 
-constexpr int kLutSize = 32;
+constexpr int kLutSize = kSplitSumTableSize;
 constexpr uint32_t kLutSamples = 512;
 
 // One entry of the split-sum table: the integral over GGX half vectors of the glTF specular
@@ -265,10 +265,19 @@ struct BrdfLut {
   }
 };
 
+const BrdfLut& brdfLut() {
+  static const BrdfLut lut;
+  return lut;
+}
+
 }  // namespace
 
+const float2* splitSumTable() {
+  return brdfLut().entries.data();
+}
+
 float2 splitSumBrdf(float n_dot_v, float roughness) {
-  static const BrdfLut lut;
+  const BrdfLut& lut = brdfLut();
   // fmax and fmin take a NaN to the bound: a lane nobody stores may hold one.
   const float fx = std::fmin(std::fmax(n_dot_v, 0.0f), 1.0f) * (kLutSize - 1);
   const float fy = std::fmin(std::fmax(roughness, 0.0f), 1.0f) * (kLutSize - 1);

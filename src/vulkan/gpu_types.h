@@ -104,8 +104,24 @@ struct GpuFrameConstants {
   // projection, whose unit direction towards the camera is toward_eye.
   float eye[4];
   float toward_eye[4];
+  // kPbr's image-based light: 1 + the word offset of the environment block in the texel buffer
+  // (GpuEnvironmentBlock), 0 when the scene has none.
+  uint32_t environment;
+  uint32_t pad[3];
 };
-static_assert(sizeof(GpuFrameConstants) == 240);
+static_assert(sizeof(GpuFrameConstants) == 256);
+
+// The environment block (Scene::environment, for kPbr; shaders/environment.glsl), in the texel
+// buffer as float bits: the irradiance's nine SH coefficients (RGB each), world_to_environment
+// (three columns), per level of the specular chain its texels' offset, width and height, the
+// split-sum table (kSplitSumTableSize^2 pairs), then each level's texels (RGB floats).
+enum GpuEnvironmentBlock : uint32_t {
+  kEnvironmentSh = 0,
+  kEnvironmentMatrix = 27,
+  kEnvironmentLevels = 36,  // 3 words a level, Environment::kSpecularLevels of them
+  kEnvironmentSplitSum = 54,
+  kEnvironmentHeaderWords = 54 + 2 * 32 * 32,
+};
 
 // The CPU's render::ShadeLight (src/render/lights.h).
 struct GpuLight {

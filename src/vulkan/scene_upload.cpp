@@ -171,6 +171,47 @@ GpuMaterial packMaterial(const Material& material, PackedScene& out) {
   return m;
 }
 
+uint32_t floatWord(float f) {
+  uint32_t w;
+  std::memcpy(&w, &f, sizeof w);
+  return w;
+}
+
+// Appends the environment block (GpuEnvironmentBlock) when a kPbr object will take the scene's
+// environment; returns 1 + its offset, or 0.
+uint32_t appendEnvironment(const Scene& scene, PackedScene& out) {
+  const Environment* environment = scene.environment.get();
+  if (!environment || environment->empty() ||
+      std::none_of(scene.objects.begin(), scene.objects.end(),
+                   [](const Object& o) { return o.shading == Shading::kPbr; }))
+    return 0;
+  const size_t base = out.texels.size();
+  out.texels.resize(base + kEnvironmentHeaderWords);
+  uint32_t* header = out.texels.data() + base;
+  for (int k = 0; k < 9; ++k)
+    for (int c = 0; c < 3; ++c)
+      header[kEnvironmentSh + 3 * k + c] = floatWord(environment->irradianceSh()[k][c]);
+  for (int col = 0; col < 3; ++col)
+    for (int r = 0; r < 3; ++r)
+      header[kEnvironmentMatrix + 3 * col + r] = floatWord(scene.world_to_environment.col[col][r]);
+  const float2* table = splitSumTable();
+  for (int i = 0; i < kSplitSumTableSize * kSplitSumTableSize; ++i) {
+    header[kEnvironmentSplitSum + 2 * i] = floatWord(table[i].x);
+    header[kEnvironmentSplitSum + 2 * i + 1] = floatWord(table[i].y);
+  }
+  for (int level = 0; level < Environment::kSpecularLevels; ++level) {
+    const EnvironmentImage& image = environment->specularLevel(level);
+    const size_t h = base + kEnvironmentLevels + 3 * static_cast<size_t>(level);
+    out.texels[h] = static_cast<uint32_t>(out.texels.size());
+    out.texels[h + 1] = static_cast<uint32_t>(image.width);
+    out.texels[h + 2] = static_cast<uint32_t>(image.height);
+    for (const float3& texel : image.texels)
+      out.texels.insert(out.texels.end(),
+                        {floatWord(texel.x), floatWord(texel.y), floatWord(texel.z)});
+  }
+  return static_cast<uint32_t>(base) + 1;
+}
+
 // kPbr's viewer, as render::LightRig::prepare finds it: the camera's frame in world space is the
 // inverse view matrix's last two columns; a projection whose w does not depend on z is parallel.
 void fillViewer(const Scene& scene, GpuFrameConstants& f) {
@@ -348,6 +389,7 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
   f.flags |= static_cast<uint32_t>(tone.mapping) << kFrameToneShift;
   fillSampling(scene, options, f);
   fillViewer(scene, f);
+  f.environment = appendEnvironment(scene, out);
   f.projection = static_cast<uint32_t>(options.projection);
   if (rays) {
     f.view_half_angle = radians(scene.camera.fov_y_degrees) * 0.5f;

@@ -54,6 +54,9 @@ class Environment {
   // The image as the background shows it (scaled by the intensity).
   const EnvironmentImage& image() const { return specular_.front(); }
   const std::array<float3, 9>& irradianceSh() const { return sh_; }
+  // Level i of the specular chain (roughness i / (kSpecularLevels - 1)), level 0 the image: for a
+  // GPU port of specular().
+  const EnvironmentImage& specularLevel(int i) const { return specular_[static_cast<size_t>(i)]; }
 
  private:
   std::array<float3, 9> sh_{};              // irradiance / pi, bands 0 to 2
@@ -64,5 +67,9 @@ class Environment {
 // correlated Smith visibility): the specular reflectance of a lobe is F0 * x + y, for n.v in
 // [0, 1] and perceptual roughness in [0, 1]; bilinear in a 32 x 32 table computed once.
 float2 splitSumBrdf(float n_dot_v, float roughness);
+// The table splitSumBrdf interpolates: kSplitSumTableSize rows (roughness 0 to 1), each of
+// kSplitSumTableSize columns (n.v 0 to 1), for a GPU port of it.
+constexpr int kSplitSumTableSize = 32;
+const float2* splitSumTable();
 
 }  // namespace tessera

@@ -57,6 +57,8 @@ struct FrameConstants {
   float ray_near, ray_inv_range;  // the ray passes' depth: (distance - near) * inv_range
   vec4 eye;         // kPbr's viewer: the camera's position; w = 1: a parallel projection
   vec4 toward_eye;  // xyz: the unit direction towards the camera of a parallel projection
+  uint environment;  // 1 + the environment block's offset in the texels; 0: none
+  uint environment_pad0, environment_pad1, environment_pad2;
 };
 
 // gpu_types.h's GpuLight (the CPU's render::ShadeLight).

@@ -1,9 +1,9 @@
 // glTF 2.0's metallic-roughness BRDF (Shading::kPbr) for both Vulkan backends: the CPU's
 // src/render/pbr.h (scalar reference) and src/render/shade_lanes.h (shadePbrLanes, normalMapped)
 // with the same float operations in the same order (precise: no fused multiply-adds). The maths
-// and its sources are described at the top of pbr.h. Differences from the CPU: no image-based
-// light (a scene with an environment lights its kPbr pixels with the uniform ambient only) and no
-// shadows (docs/vulkan.md). Included by shading.glsl; needs what it defines.
+// and its sources are described at the top of pbr.h; the environment's in environment.glsl. No
+// shadows, as for every shading mode (docs/vulkan.md). Included by shading.glsl; needs what it
+// defines.
 
 const float kPi = 3.14159265358979;
 const float kMinRoughness = 0.03;  // render/pbr.h: kMinRoughness
@@ -80,6 +80,8 @@ vec3 pbrAmbient(PbrLobes s, vec3 ambient, float occlusion, float nv) {
   return r;
 }
 
+#include "environment.glsl"
+
 // render::viewVector: the unit vector from world point p towards the viewer.
 vec3 viewVector(vec3 p) {
   if (frame.eye.w != 0.0) return frame.toward_eye.xyz;
@@ -111,7 +113,8 @@ float localAttenuation(Light light, vec3 p, out vec3 u) {
 vec3 shadePbr(PbrLobes s, float occlusion, vec3 emissive, vec3 n, vec3 p) {
   const vec3 v = viewVector(p);
   const float nv = abs(dot3(n, v));
-  precise vec3 c = pbrAmbient(s, frame.ambient.xyz, occlusion, nv);
+  precise vec3 c = frame.environment != 0u ? pbrEnvironment(s, occlusion, n, v, nv)
+                                            : pbrAmbient(s, frame.ambient.xyz, occlusion, nv);
   for (uint i = 0u; i < frame.light_count; ++i) {
     const Light light = lights[i];
     vec3 l;
