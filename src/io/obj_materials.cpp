@@ -177,6 +177,8 @@ Material MaterialBuilder::build(const tinyobj::material_t& source, bool has_kd) 
                           "': texture offset and scale (-o, -s) are not supported; ignored");
   }
   material.base_color = float4{kd, alpha};
+  // A dissolve below 1 is a see-through material: glTF's alphaMode BLEND.
+  if (alpha < 1.0f) material.alpha_mode = AlphaMode::kBlend;
   buildPbr(source, material);
   return material;
 }

@@ -102,6 +102,9 @@ struct alignas(128) TriangleChunk {
   // raster then looks at each record's (raster_kernel.h's walkTileBins, mask_kernel.h).
   bool any_masked = false;
   ChunkBins bins;
+  // Records whose material is alphaMode BLEND, in submission order: left out of `bins` for the
+  // transparent pass (blend.h).
+  std::vector<uint32_t> blended;
   size_t culled = 0;
   size_t clipped = 0;
   // Diagnostics: why `culled` were culled (the cull kernel's drops only when count_reasons is

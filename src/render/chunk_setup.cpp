@@ -8,6 +8,7 @@
 
 #include <tessera/base/check.h>
 
+#include "render/blend.h"
 #include "render/clip.h"
 #include "render/cpu_renderer_state.h"
 #include "render/fixed_point.h"
@@ -26,6 +27,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
   chunk.cull_reasons = {};
   chunk.clip_splits = 0;
   chunk.any_masked = false;
+  chunk.blended.clear();
 
   const size_t begin = chunk.first_triangle, end = begin + chunk.triangle_count;
   size_t object_index = objectHolding(objects, begin);
@@ -98,6 +100,16 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
     if (std::any_of(object.materials.begin(), object.materials.end(),
                     [](const Material& m) { return m.alpha_mode == AlphaMode::kMask; }))
       chunk.any_masked = true;
+    // alphaMode BLEND: such triangles wait for the transparent pass (blend.h), out of the bins.
+    const bool any_blended = std::any_of(object.materials.begin(), object.materials.end(),
+                                         [](const Material& m) { return isBlended(m); });
+    auto bin = [&](const auto& box, uint32_t record, const ShadeTriangle& shade)
+        __attribute__((always_inline)) {
+      if (any_blended && isBlended(*shade.material))
+        chunk.blended.push_back(record);
+      else
+        chunk.bins.add(grid, box, record);
+    };
     auto face_normal = [&](const uint32_t idx[3]) {
       if (!needs_face_normal) return float3{};
       const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
@@ -113,13 +125,13 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
       const uint32_t id = static_cast<uint32_t>(t);
       const uint32_t record = nextRecord();
       ++chunk.size;
-      chunk.bins.add(grid, box, record);
       orient(area, orientation);
       ShadeTriangle& shade = batch.nextShade();
       if (!plainGouraudCorners(ctx, plain_gouraud, mesh_vertices, idx, orientation, id,
                                material(local), shade))
         setupShadeCorners(ctx, mesh_vertices, idx, orientation, face_normal(idx), id,
                           material(local), shade, chunk.extras[record]);
+      bin(box, record, shade);
       batch.push(mesh_vertices.screen[idx[0]], mesh_vertices.screen[idx[1]],
                  mesh_vertices.screen[idx[2]], area, record);
       if (batch.full()) flush();
@@ -158,7 +170,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
           a[i] = {fan[i]->normal, fan[i]->uv, fan[i]->color, false, fan[i]->world, fan[i]->tangent};
         setupShade(ctx, sv, a, orientation, raster, face_normal(idx), id, material(local),
                    chunk.shade[record], chunk.extras[record]);
-        chunk.bins.add(grid, raster, record);
+        bin(raster, record, chunk.shade[record]);
         ++pieces;
       }
       if (pieces == 0) {

@@ -54,6 +54,18 @@ const PipelineStats& CpuRenderer::lastStats() const {
   return state_->stats;
 }
 
+void CpuRenderer::State::blendTile(const RenderOptions& options, int tile, int worker,
+                                   const TileVisibility* const* layers, Frame& frame) {
+  if (blend.empty() || blend.bins().count(tile) == 0) return;
+  const int samples = options.msaa;
+  const SampleShift centre[1] = {};
+  BlendTile& out = *blend_tiles[static_cast<size_t>(worker)];
+  out.begin(layers[0]->x0, layers[0]->y0, samples, frame);
+  kernels.blend_tile(chunks, blend.bins(), tile, layers, samples > 1 ? shifts.data() : centre,
+                     samples, lights, out);
+  out.finish();
+}
+
 void CpuRenderer::State::renderSampledTile(const Scene& scene, const RenderOptions& options,
                                            int tile, int worker, const TileGrid& grid,
                                            bool with_centre, bool plain, Frame& frame) {
@@ -82,6 +94,7 @@ void CpuRenderer::State::renderSampledTile(const Scene& scene, const RenderOptio
   // The AOVs are the centre layer's: the same as one sample gives.
   resolveTile(with_centre ? *layers[options.msaa] : *st.primary, out, chunks, frame);
   if (options.coverage) resolveCoverage(*st.primary, st.covered, options.msaa, frame);
+  blendTile(options, tile, worker, layers, frame);
 }
 
 void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
@@ -222,6 +235,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   });
   if (painter)
     s.painter.build(s.pool, s.chunks, s.chunk_count, scene, s.objects, s.vertex_buffers[0], grid);
+  s.blend.build(s.chunks, s.chunk_count, s.objects, grid);
 
   const Clock::time_point t_setup = Clock::now();
 
@@ -231,6 +245,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   s.tile_empty.assign(static_cast<size_t>(grid.tileCount()), 1);
   for (size_t c = 0; c < s.chunk_count; ++c)
     for (uint32_t tile : s.chunks[c].bins.usedTiles()) s.tile_empty[tile] = 0;
+  if (!s.blend.empty())
+    for (uint32_t tile : s.blend.bins().usedTiles()) s.tile_empty[tile] = 0;
   const bool plain = plainShading(scene, options.normals);
   const uint32_t background = packSrgba8(scene.background);
   s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile_index, int worker) {
@@ -264,6 +280,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
                          background, nullptr, shaded);
     resolveTile(visibility, shaded, s.chunks, frame);
     if (options.coverage) resolveCoverage(visibility, nullptr, 1, frame);
+    const TileVisibility* const layers[1] = {&visibility};
+    s.blendTile(options, tile, worker, layers, frame);
   });
 
   const Clock::time_point t_tiles = Clock::now();

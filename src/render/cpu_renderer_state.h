@@ -8,6 +8,7 @@
 #include <tessera/render/cpu_renderer.h>
 
 #include "render/bin.h"
+#include "render/blend.h"
 #include "render/cull.h"
 #include "render/diagnostics.h"
 #include "render/kernels.h"
@@ -32,6 +33,7 @@ struct CpuRenderer::State {
     for (int i = 0; i < pool.size(); ++i) {
       tiles.push_back(std::make_unique<render::TileVisibility>());
       shaded.push_back(std::make_unique<render::ShadedTile>());
+      blend_tiles.push_back(std::make_unique<render::BlendTile>());
     }
   }
 
@@ -58,6 +60,8 @@ struct CpuRenderer::State {
   std::vector<render::SampleShift> shifts;                     // this frame's sample layers
   std::vector<uint8_t> tile_empty;                             // this frame's: no triangle binned
   render::PainterOrder painter;                                // RenderOptions::visibility kPainter
+  render::BlendOrder blend;                                    // alphaMode BLEND, this frame's
+  std::vector<std::unique_ptr<render::BlendTile>> blend_tiles;  // one per worker
   render::LinePass line_pass;
   render::PointPass point_pass;
   PipelineStats stats;
@@ -69,6 +73,10 @@ struct CpuRenderer::State {
   void setupChunk(const Scene& scene, const render::VertexBuffer& vertices,
                   const render::TileGrid& grid, const render::GuardBand& guard, bool want_normals,
                   int32_t sample_reach, render::TriangleChunk& chunk) const;
+  // The transparent pass over one resolved tile (blend.h), when some blended record is binned to
+  // it: `layers` hold the opaque depths of the samples, one layer without MSAA.
+  void blendTile(const RenderOptions& options, int tile, int worker,
+                 const render::TileVisibility* const* layers, Frame& frame);
   // Raster, shade and resolve of one tile with several samples per pixel (msaa.h).
   void renderSampledTile(const Scene& scene, const RenderOptions& options, int tile, int worker,
                          const render::TileGrid& grid, bool with_centre, bool plain, Frame& frame);

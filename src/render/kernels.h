@@ -6,6 +6,7 @@
 
 #include <tessera/render/cpu_renderer.h>
 
+#include "render/blend.h"
 #include "render/msaa.h"
 #include "render/painter.h"
 #include "render/raster.h"
@@ -70,6 +71,14 @@ using RasterPainterTileSamplesFn = void (*)(const std::vector<TriangleChunk>& ch
                                             TileVisibility* const* layers,
                                             const SampleShift* shifts, int layer_count);
 
+// The transparent pass over one resolved tile (blend_kernel.h): the blended records binned to the
+// tile in `bins`, in order, over the samples of `layers` (their opaque depths; one layer at the
+// pixel centres without MSAA, whose samples lie at shifts[i]) into `out`.
+using BlendTileFn = void (*)(const std::vector<TriangleChunk>& chunks, const ChunkBins& bins,
+                             int tile_index, const TileVisibility* const* layers,
+                             const SampleShift* shifts, int samples, const LightRig& lights,
+                             BlendTile& out);
+
 // Every kernel compiled for one instruction set.
 struct Kernels {
   TransformVerticesFn transform_vertices;   // vertex_kernel.h
@@ -83,6 +92,7 @@ struct Kernels {
   ShadeRayTileFn shade_ray_tile;            // ray_kernel.h
   RasterPainterTileFn raster_painter_tile;  // painter_kernel.h
   RasterPainterTileSamplesFn raster_painter_tile_samples;
+  BlendTileFn blend_tile;  // blend_kernel.h
 };
 
 Kernels kernelsFor(Isa isa);
@@ -93,7 +103,7 @@ Kernels kernelsFor(Isa isa);
   Kernels {                                                                                        \
     transformVerticesKernel, cullGroupKernel, setupBatchKernel, rasterTileKernel, shadeTileKernel, \
         rasterTileSamplesKernel, combineSamplesKernel, rasterRayTileKernel, shadeRayTileKernel,    \
-        rasterPainterTileKernel, rasterPainterTileSamplesKernel                                    \
+        rasterPainterTileKernel, rasterPainterTileSamplesKernel, blendTileKernel                   \
   }
 
 // One table per instruction set, defined in kernels_<isa>.cpp.

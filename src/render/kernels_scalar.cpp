@@ -1,5 +1,6 @@
 // The kernels compiled for scalar (CMakeLists.txt gives this file its flags).
 #define TESSERA_SIMD_SCALAR 1  // the lanes are plain arrays
+#include "render/blend_kernel.h"
 #include "render/kernels.h"
 #include "render/painter_kernel.h"
 #include "render/raster_kernel.h"

@@ -1,4 +1,5 @@
 // The kernels compiled for sse2 (CMakeLists.txt gives this file its flags).
+#include "render/blend_kernel.h"
 #include "render/kernels.h"
 #include "render/painter_kernel.h"
 #include "render/raster_kernel.h"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "render/blend.h"
 #include "render/clip.h"
 #include "render/raster.h"
 
@@ -30,10 +31,11 @@ void PainterOrder::build(WorkerPool& pool, const std::vector<TriangleChunk>& chu
                          const std::vector<ObjectTransforms>& objects, const VertexBuffer& vertices,
                          const TileGrid& grid) {
   first_.resize(chunk_count);
-  size_t total = 0;
+  size_t total = 0, blended = 0;
   for (size_t c = 0; c < chunk_count; ++c) {
     first_[c] = total;
     total += chunks[c].size;
+    blended += chunks[c].blended.size();
   }
   order_.resize(total);
 
@@ -43,6 +45,12 @@ void PainterOrder::build(WorkerPool& pool, const std::vector<TriangleChunk>& chu
     size_t object = chunk.size > 0 ? objectHolding(objects, chunk.shade[0].triangle_id) : 0;
     for (size_t local = 0; local < chunk.size; ++local) {
       const uint32_t id = chunk.shade[local].triangle_id;
+      // alphaMode BLEND records are the transparent pass's (blend.h): sorted past every key,
+      // then dropped.
+      if (!chunk.blended.empty() && isBlended(*chunk.shade[local].material)) {
+        order_[first_[c] + local] = ~uint64_t{0};
+        continue;
+      }
       while (object + 1 < objects.size() && objects[object + 1].triangle_base <= id) ++object;
       const ObjectTransforms& xf = objects[object];
       const uint32_t* idx = &scene.objects[object].mesh->indices[(id - xf.triangle_base) * 3];
@@ -55,6 +63,8 @@ void PainterOrder::build(WorkerPool& pool, const std::vector<TriangleChunk>& chu
     }
   });
   sort(pool);
+  order_.resize(total - blended);
+  total = order_.size();
 
   // Bins, in the sorted order: slice after slice.
   const size_t slice_count = static_cast<size_t>(pool.size());
