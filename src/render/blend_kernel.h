@@ -47,10 +47,7 @@ TESSERA_LANES_INLINE void blendRecord(const TriangleChunk& chunk, uint32_t recor
   const ShadeTriangle& s = chunk.shade[record];
   const ShadeExtras& e = chunk.extras[record];
   const TileVisibility& tile = *layers[0];
-  const int x_begin = std::max<int>(t.min_x, tile.x0);
-  const int x_end = std::min(static_cast<int>(t.max_x), tile.x0 + tile.width - 1);
-  const int y_begin = std::max<int>(t.min_y, tile.y0);
-  const int y_end = std::min(t.maxY(), tile.y0 + tile.height - 1);
+  const auto [x_begin, x_end, y_begin, y_end] = tileSpan(t, tile);
   const F32x8 zero = splat(0.0f);
   for (int y = y_begin; y <= y_end; ++y) {
     const float py = static_cast<float>(y) + 0.5f;

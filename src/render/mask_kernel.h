@@ -35,6 +35,16 @@ inline int64_t maskedEdgeAt(const RasterTriangle& t, const RasterWide& w, int k,
          int64_t{t.b[k]} * (int64_t{y} * kSubpixelOne + kSubpixelHalf + dy) + w.c[k];
 }
 
+// The pixels of record t's box inside the tile: [x_begin, x_end] x [y_begin, y_end].
+struct TileSpan {
+  int x_begin, x_end, y_begin, y_end;
+};
+inline TileSpan tileSpan(const RasterTriangle& t, const TileVisibility& tile) {
+  return {std::max<int>(t.min_x, tile.x0),
+          std::min(static_cast<int>(t.max_x), tile.x0 + tile.width - 1),
+          std::max<int>(t.min_y, tile.y0), std::min(t.maxY(), tile.y0 + tile.height - 1)};
+}
+
 // The triangle's alpha at window point (px, py): base colour alpha times the albedo's.
 inline float maskedAlpha(const ShadeTriangle& s, const ShadeExtras& e, float px, float py) {
   const Material& m = *s.material;
@@ -57,11 +67,7 @@ void rasterMasked(const TriangleChunk& chunk, uint32_t record, uint32_t key,
   const RasterWide& w = chunk.wide[record];
   const ShadeTriangle& s = chunk.shade[record];
   const ShadeExtras& e = chunk.extras[record];
-  const TileVisibility& tile = *layers[0];
-  const int x_begin = std::max<int>(t.min_x, tile.x0);
-  const int x_end = std::min(static_cast<int>(t.max_x), tile.x0 + tile.width - 1);
-  const int y_begin = std::max<int>(t.min_y, tile.y0);
-  const int y_end = std::min(t.maxY(), tile.y0 + tile.height - 1);
+  const auto [x_begin, x_end, y_begin, y_end] = tileSpan(t, *layers[0]);
   const float cutoff = s.material->alpha_cutoff;
   for (int i = 0; i < layer_count; ++i) {
     const SampleShift& shift = shifts[i];
