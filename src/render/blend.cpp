@@ -26,6 +26,10 @@ float recordDepth(const RasterTriangle& t) {
 void BlendOrder::build(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
                        const std::vector<ObjectTransforms>& objects, const TileGrid& grid) {
   order_.clear();
+  // A frame without blended records (most) pays one look at each chunk.
+  if (std::all_of(chunks.begin(), chunks.begin() + static_cast<ptrdiff_t>(chunk_count),
+                  [](const TriangleChunk& c) { return c.blended.empty(); }))
+    return;
   object_sum_.assign(objects.size(), 0.0);
   object_count_.assign(objects.size(), 0);
   for (size_t c = 0; c < chunk_count; ++c) {
