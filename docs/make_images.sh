@@ -64,6 +64,24 @@ sun=(--camera-position 2.2,2.6,2.8 --camera-focal-point -0.3,0.6,-1.5
 "$tessera" render "$tmp/room/room.obj" "${sun[@]}" --shadows -o "$tmp/sun_shadows.png"
 ffmpeg -loglevel error -y -i "$tmp/sun.png" -i "$tmp/sun_shadows.png" \
   -filter_complex hstack=inputs=2 "$out/shadows.png"
+# Materials and light on one model: the room's bunny made gold metal (Pm 1, Pr 0.3) and its plinth
+# rough, under a low sun: smooth (Lambert), pbr, pbr + --shadows, pbr + --shadows + --hdri (a sky
+# written by docs/sky_hdr.py).
+sed -e 's/^Kd 0.95 0.95 0.95$/Kd 1.0 0.78 0.34\nPm 1\nPr 0.3/' \
+  -e 's/^Kd 0.55 0.5 0.6$/Kd 0.55 0.5 0.6\nPr 0.6/' "$tmp/room/room.mtl" >"$tmp/gold.mtl"
+mv "$tmp/gold.mtl" "$tmp/room/room.mtl"
+python3 "$root/docs/sky_hdr.py" "$tmp/sky.hdr" 256
+gold=(--camera-position 2.2,2.6,2.8 --camera-focal-point -0.3,0.6,-1.5
+  --background-color 0.45,0.62,0.85 --resolution 400,300
+  --light directional:0.5,-1,-0.35:1,0.95,0.85:2.5 --ambient 0.15,0.15,0.17)
+"$tessera" render "$tmp/room/room.obj" "${gold[@]}" --shading smooth -o "$tmp/m_smooth.png"
+"$tessera" render "$tmp/room/room.obj" "${gold[@]}" --shading pbr -o "$tmp/m_pbr.png"
+"$tessera" render "$tmp/room/room.obj" "${gold[@]}" --shading pbr --shadows -o "$tmp/m_shadows.png"
+"$tessera" render "$tmp/room/room.obj" "${gold[@]}" --shading pbr --shadows --hdri "$tmp/sky.hdr" \
+  -o "$tmp/m_hdri.png"
+ffmpeg -loglevel error -y -i "$tmp/m_smooth.png" -i "$tmp/m_pbr.png" -i "$tmp/m_shadows.png" \
+  -i "$tmp/m_hdri.png" -filter_complex "[0][1]hstack[t];[2][3]hstack[b];[t][b]vstack" \
+  "$out/materials.png"
 # The painter's algorithm against the z-buffer (a sphere pierced by a blade), and --edges on a
 # quad-faced sphere and a cube (docs/painter_scene.py writes both scenes).
 python3 "$root/docs/painter_scene.py" "$tmp/painter"

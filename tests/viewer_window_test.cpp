@@ -13,6 +13,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <tessera/io/image_writer.h>
@@ -148,6 +149,43 @@ TEST_F(ViewerWindow, GridDrawsAGroundUnderTheModel) {
   ASSERT_EQ(shots[0].width, 200);
   ASSERT_EQ(shots[1].width, 200);
   EXPECT_GT(countDifferent(shots[0], shots[1], 0, 0, 200, 200), 200) << "no grid drawn";
+}
+
+// A 32x16 equirectangular Radiance .hdr, flat RGBE scanlines: blue sky above the horizon, green
+// ground below.
+void writeSkyHdr(const fs::path& path) {
+  std::ofstream out(path, std::ios::binary);
+  out << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 16 +X 32\n";
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 32; ++x) {
+      const char blue[4] = {0, 0, static_cast<char>(128), static_cast<char>(129)};
+      const char green[4] = {0, static_cast<char>(128), 0, static_cast<char>(129)};
+      out.write(y < 8 ? blue : green, 4);
+    }
+}
+
+// --hdri and --hdri-background on the viewer: the sky is seen behind the model from its
+// three-quarter view from above (the horizon near the top of the window: blue above it, green
+// below).
+TEST_F(ViewerWindow, HdriBackgroundShowsTheSkyBehindTheModel) {
+  std::string why;
+  if (!startX(why)) GTEST_SKIP() << why;
+  std::ofstream(dir_ / "tetra.obj") << kOffsetTetrahedron;
+  writeSkyHdr(dir_ / "sky.hdr");
+  const std::vector<std::string> args{"-w",       "200", "-h",        "200",
+                                      "-workers", "1",   "--shading", "pbr"};
+  std::vector<std::string> sky = args;
+  sky.insert(sky.end(), {"--hdri", "sky.hdr", "--hdri-background"});
+  const DecodedPng shots[2] = {shotOfModel("tetra.obj", args), shotOfModel("tetra.obj", sky)};
+  ASSERT_EQ(shots[0].width, 200);
+  ASSERT_EQ(shots[1].width, 200);
+  const std::array<int, 3> top = shots[1].rgb(100, 2), bottom = shots[1].rgb(100, 197);
+  EXPECT_GT(top[2], 200) << "not the sky at the top";
+  EXPECT_LT(top[0], 30) << "not the sky at the top";
+  EXPECT_GT(top[2], top[1]) << "not the sky at the top";
+  EXPECT_GT(bottom[1], 200) << "not the ground at the bottom";
+  EXPECT_LT(bottom[0] + bottom[2], 60) << "not the ground at the bottom";
+  EXPECT_NE(shots[0].rgb(100, 2), top) << "the background was already the sky's";
 }
 
 // --exposure and --tone-mapping on the viewer: two stops down darkens the model, not the
@@ -440,6 +478,16 @@ TEST(ViewerErrors, ABadProjectionOrViewAngleIsAUsageErrorNamingTheChoicesOrTheRa
     EXPECT_EQ(status, 1) << args[1] << ": " << err;
     EXPECT_NE(err.find("cannot open a window"), std::string::npos) << err;
   }
+}
+
+TEST(ViewerErrors, AnHdriThatCannotBeReadStopsBeforeTheWindowOpens) {
+  auto [status, err] = runWithoutWindow({"--hdri", "/nonexistent/sky.hdr"}, {});
+  EXPECT_EQ(status, 1);
+  EXPECT_NE(err.find("/nonexistent/sky.hdr"), std::string::npos) << err;
+  EXPECT_EQ(err.find("cannot open a window"), std::string::npos) << err;
+  std::tie(status, err) = runWithoutWindow({"--hdri-background"}, {});
+  EXPECT_EQ(status, 2);
+  EXPECT_NE(err.find("--hdri PATH"), std::string::npos) << err;
 }
 
 TEST(ViewerErrors, BadFlagsAreAUsageErrorWithStatus2) {

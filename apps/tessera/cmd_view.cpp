@@ -63,6 +63,8 @@ struct ViewSettings {
   int animation_index = -1;  // --animation-index: the clip space plays; -1: the first, if any
   CameraSettings camera;     // --camera-index, --camera-orthographic (the rest unused)
   ToneSettings tone;         // --tone-mapping, --exposure
+  std::string hdri;          // --hdri: the environment light of every model shown
+  bool hdri_background = false;
 };
 
 bool isPerspectiveFov(float fov) {
@@ -114,7 +116,19 @@ struct ViewLoad {
   std::shared_ptr<std::atomic<bool>> own_lights;
   bool grid = false;  // --grid: a ground grid under each model loaded, across +Y
   ToneSettings tone;  // --tone-mapping, --exposure
+  // --hdri, read once before the window opens and shared by every model loaded (the viewer's
+  // up is +Y); null without it.
+  std::shared_ptr<const Environment> environment;
+  bool environment_background = false;
+  float3x3 world_to_environment;
 };
+
+// --hdri's light (and --hdri-background) on a scene the viewer shows.
+void applyViewEnvironment(const ViewLoad& load, Scene& scene) {
+  scene.environment = load.environment;
+  scene.environment_background = load.environment_background;
+  scene.world_to_environment = load.world_to_environment;
+}
 
 // The start model loaded before the window opened, taken (once) by the viewer's first load.
 struct PreloadedScene {
@@ -148,6 +162,7 @@ Expected<viewer::LoadedScene> loadViewScene(const ViewLoad& load,
   addViewLights(loaded.scene);
   applyLights(loaded.scene, lights, load.lights);
   applyTone(load.tone, loaded.scene);
+  applyViewEnvironment(load, loaded.scene);
   load.own_lights->store(!lights.empty());
   const size_t clips = loaded.graph.animations.size();
   const int wanted = std::max(load.animation_index, 0);
@@ -222,11 +237,13 @@ viewer::ViewerHooks viewHooks(const ViewSettings& s, const ViewLoad& load,
     }
     return loadViewScene(load, path);
   };
-  hooks.default_scene = [scene_settings = load.scene_settings] {
-    ModelSceneSettings cube_settings = scene_settings;
+  hooks.default_scene = [load] {
+    ModelSceneSettings cube_settings = load.scene_settings;
     cube_settings.shading = Shading::kFlat;
     cube_settings.cull = CullMode::kBack;
-    return makeModelScene(cubeModel(), "cube", cube_settings).value();
+    Scene scene = makeModelScene(cubeModel(), "cube", cube_settings).value();
+    applyViewEnvironment(load, scene);
+    return scene;
   };
   hooks.place_lights = [own_lights = load.own_lights, light_settings = s.lights](Scene& scene) {
     if (own_lights->load()) return;
@@ -264,6 +281,11 @@ void addViewFlags(FlagSet& flags, ViewSettings& s) {
   flags.addSwitch("axes", &s.axes, "show the world axes at start (F2 toggles them)");
   flags.addSwitch("grid|g", &s.grid, "draw a ground grid under the model, across +Y (f3d's -g)");
   addToneFlags(flags, s.tone);
+  flags.addString("hdri", &s.hdri,
+                  "an equirectangular Radiance .hdr or OpenEXR .exr image as the light around "
+                  "the model (image-based lighting in --shading pbr)");
+  flags.addSwitch("hdri-background|hdri-skybox", &s.hdri_background,
+                  "show the --hdri image behind the model");
   flags.addSwitch("fullscreen", &s.fullscreen, "fill the screen");
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
   flags.addString("texture", &s.texture, "an image used as the albedo of every material");
@@ -358,6 +380,8 @@ int runView(const std::vector<std::string>& args) {
     return usageError("-fov: " + range);
   if (std::string wrong = checkViewCameraFlags(s, projection, positional->empty()); !wrong.empty())
     return usageError(wrong);
+  if (s.hdri_background && s.hdri.empty())
+    return usageError("--hdri-background needs an image: --hdri PATH");
 #ifndef TESSERA_HAS_VIEWER
   printError("view",
              "this tessera was built without the viewer (it needs SDL2 and SDL2_ttf: install "
@@ -391,7 +415,24 @@ int runView(const std::vector<std::string>& args) {
                 s.animation_index,
                 std::make_shared<std::atomic<bool>>(false),
                 s.grid,
-                s.tone};
+                s.tone,
+                nullptr,
+                false,
+                float3x3{}};
+  if (!s.hdri.empty()) {
+    Scene lit;  // applyEnvironment's image, prepared once for every load
+    SurfaceSettings surface;
+    surface.hdri = s.hdri;
+    surface.hdri_background = s.hdri_background;
+    if (Expected<void> read = applyEnvironment(surface, s.budget.texturePixels(), {0, 1, 0}, lit);
+        !read) {
+      printError("view", read.error().message);
+      return kExitFailure;
+    }
+    load.environment = lit.environment;
+    load.environment_background = lit.environment_background;
+    load.world_to_environment = lit.world_to_environment;
+  }
   // --animation-index and --camera-index are checked against the model before the window opens;
   // the viewer's first load then takes this scene.
   auto preloaded = std::make_shared<PreloadedScene>();
