@@ -11,18 +11,16 @@
 
 #include <tessera/scene/color.h>
 
+#include "render/environment_lanes.h"
 #include "render/pbr.h"
 #include "render/shade.h"
 #include "render/simd_lanes.h"
 #include "render/texture_lanes.h"
 #include "render/tone_lanes.h"
+#include "render/vec3_lanes.h"
 
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
-
-struct Vec3x8 {
-  F32x8 x, y, z;
-};
 
 TESSERA_LANES_INLINE Vec3x8 interpolate(const float3 v[3], F32x8 b0, F32x8 b1, F32x8 b2) {
   return {splat(v[0].x) * b0 + splat(v[1].x) * b1 + splat(v[2].x) * b2,
@@ -171,20 +169,6 @@ TESSERA_LANES_INLINE bool sampleAlbedo8(const ShadeTriangle& t, const ShadeExtra
 
 // The metallic-roughness BRDF of render/pbr.h, lane by lane with the same operations.
 
-// As std::clamp(v, lo, hi).
-TESSERA_LANES_INLINE F32x8 clampLanes(F32x8 v, float lo, float hi) {
-  return select(lessThan(v, splat(lo)), splat(lo), select(lessThan(splat(hi), v), splat(hi), v));
-}
-
-// As std::fabs: the sign bit cleared.
-TESSERA_LANES_INLINE F32x8 absLanes(F32x8 v) {
-  return fromBits(bitsOf(v) & splat(int32_t{0x7fffffff}));
-}
-
-TESSERA_LANES_INLINE F32x8 dot8(const Vec3x8& a, const Vec3x8& b) {
-  return (a.x * b.x + a.y * b.y) + a.z * b.z;
-}
-
 struct PbrLobes8 {
   Vec3x8 c_diff, f0;
   F32x8 roughness, a2;
@@ -247,22 +231,34 @@ TESSERA_LANES_INLINE Vec3x8 pbrAmbient8(const PbrLobes8& s, float3 ambient, F32x
           (occlusion * splat(ambient.z)) * ((one - a.z) * s.c_diff.z + a.z)};
 }
 
-// As pbrEnvironment, lane by lane (the environment's tables are read per lane anyway).
+// As pbrEnvironment.
 TESSERA_LANES_INLINE Vec3x8 pbrEnvironment8(const PbrLobes8& s, const LightRig& rig,
                                             F32x8 occlusion, const Vec3x8& n, const Vec3x8& v,
                                             F32x8 nv) {
-  alignas(32) float out[3][8];
-  for (int l = 0; l < 8; ++l) {
-    const PbrLobes lobes{{lane(s.c_diff.x, l), lane(s.c_diff.y, l), lane(s.c_diff.z, l)},
-                         {lane(s.f0.x, l), lane(s.f0.y, l), lane(s.f0.z, l)},
-                         lane(s.roughness, l),
-                         lane(s.a2, l)};
-    const float3 c =
-        pbrEnvironment(lobes, rig, lane(occlusion, l), {lane(n.x, l), lane(n.y, l), lane(n.z, l)},
-                       {lane(v.x, l), lane(v.y, l), lane(v.z, l)}, lane(nv, l));
-    out[0][l] = c.x, out[1][l] = c.y, out[2][l] = c.z;
-  }
-  return {load<F32x8>(out[0]), load<F32x8>(out[1]), load<F32x8>(out[2])};
+  const F32x8 one = splat(1.0f), two_nv = splat(2.0f) * dot8(n, v);
+  const Vec3x8 r{two_nv * n.x - v.x, two_nv * n.y - v.y, two_nv * n.z - v.z};
+  // float3x3 * float3: the columns times the components, summed left to right.
+  const float3x3& m = rig.world_to_environment;
+  auto turn = [&m](const Vec3x8& d) -> Vec3x8 {
+    return {(splat(m.col[0].x) * d.x + splat(m.col[1].x) * d.y) + splat(m.col[2].x) * d.z,
+            (splat(m.col[0].y) * d.x + splat(m.col[1].y) * d.y) + splat(m.col[2].y) * d.z,
+            (splat(m.col[0].z) * d.x + splat(m.col[1].z) * d.y) + splat(m.col[2].z) * d.z};
+  };
+  const Environment& environment = *rig.environment;
+  const Vec3x8 e_d = environmentDiffuse8(environment, turn(n));
+  const Vec3x8 e_s = environmentSpecular8(environment, turn(r), s.roughness);
+  F32x8 ab_x, ab_y;
+  splitSumBrdf8(nv, s.roughness, ab_x, ab_y);
+  const F32x8 fw = schlickWeight8(nv);
+  const F32x8 f90 = one - s.roughness;
+  auto lobe = [&](F32x8 f0, F32x8 c_diff, F32x8 diffuse, F32x8 specular) {
+    // std::max(f90, f0): f90 < f0 ? f0 : f90.
+    const F32x8 ks = f0 + (blend(maskLess(f90, f0), f0, f90) - f0) * fw;
+    const F32x8 fss_ess = ks * ab_x + ab_y;
+    return occlusion * (diffuse * (c_diff * (one - fss_ess)) + specular * fss_ess);
+  };
+  return {lobe(s.f0.x, s.c_diff.x, e_d.x, e_s.x), lobe(s.f0.y, s.c_diff.y, e_d.y, e_s.y),
+          lobe(s.f0.z, s.c_diff.z, e_d.z, e_s.z)};
 }
 
 // As viewVector.

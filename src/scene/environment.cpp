@@ -167,10 +167,27 @@ EnvironmentImage prefilterLevel(const std::vector<EnvironmentImage>& pyramid, in
 
 }  // namespace
 
+float atan2Series(float y, float x) {
+  const float ax = std::fabs(x), ay = std::fabs(y);
+  const bool steep = ax < ay;
+  const float big = steep ? ay : ax, small = steep ? ax : ay;
+  const float a = big > 0.0f ? small / big : 0.0f;
+  const float s = a * a;
+  float p = kAtanSeries[7];
+  for (int i = 6; i >= 0; --i) p = p * s + kAtanSeries[i];
+  float r = p * a;
+  if (steep) r = 0.5f * kPi - r;
+  if (x < 0.0f) r = kPi - r;
+  if (y < 0.0f) r = -r;
+  return r;
+}
+
 float2 equirectUv(float3 d) {
-  float u = std::atan2(d.x, -d.z) / (2.0f * kPi);
+  float u = atan2Series(d.x, -d.z) / (2.0f * kPi);
   if (u < 0.0f) u += 1.0f;
-  const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
+  // acos(y) = atan2(sin, cos), the sine from (1 - y)(1 + y), exact near y = +-1.
+  const float y = std::clamp(d.y, -1.0f, 1.0f);
+  const float v = atan2Series(std::sqrt((1.0f - y) * (1.0f + y)), y) / kPi;
   return {u, v};
 }
 
@@ -181,8 +198,8 @@ float3 equirectDirection(float2 uv) {
 }
 
 float3 sampleEquirect(const EnvironmentImage& image, float3 d) {
+  if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z)) return {0, 0, 0};
   const float2 uv = equirectUv(d);
-  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return {0, 0, 0};  // a NaN direction
   const float fx = uv.x * static_cast<float>(image.width) - 0.5f;
   const float fy = std::clamp(uv.y * static_cast<float>(image.height) - 0.5f, 0.0f,
                               static_cast<float>(image.height - 1));

@@ -27,12 +27,23 @@ struct EnvironmentImage {
   }
 };
 
+// equirectUv's arctangent, so that the eight-lane shading code (src/render/environment_lanes.h)
+// takes the same float operations as the scalar one, where libm's atan2 and acos would not: atan(a)
+// for a in [0, 1] is a times this degree-7 polynomial in a^2 (a least-squares fit on Chebyshev
+// nodes; within 1.2e-7 rad of atan, about a float's step at pi / 2).
+inline constexpr float kAtanSeries[8] = {
+    0.9999992251396179f,  -0.33329537510871887f, 0.19943080842494965f,  -0.13892041146755219f,
+    0.09601656347513199f, -0.05538169667124748f, 0.021509254351258278f, -0.003960257396101952f};
+// atan2(y, x) through kAtanSeries, in [-pi, pi]; 0 for (0, 0).
+float atan2Series(float y, float x);
+
 // The image coordinates (u, v in [0, 1], v = 0 at the top row) that unit direction `d` looks at,
 // and the direction at (u, v).
 float2 equirectUv(float3 d);
 float3 equirectDirection(float2 uv);
 
-// Radiance of `image` in direction `d` (unit), bilinear, wrapping around horizontally.
+// Radiance of `image` in direction `d` (unit), bilinear, wrapping around horizontally; zero for a
+// direction that is not finite.
 float3 sampleEquirect(const EnvironmentImage& image, float3 d);
 
 class Environment {
