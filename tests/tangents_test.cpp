@@ -1,6 +1,11 @@
 // generateTangents (tangents.h): MikkTSpace's rules on meshes small enough to work out by hand
 // (angle weighting, a mirrored UV seam, degenerate triangles), a UV sphere against its analytic
 // dP/du, and the glTF loader's use of it for a normal-mapped primitive without TANGENT.
+//
+// No comparison with a file's exported tangents: the one glTF with TANGENT among the installed
+// sample models, AnimatedMorphCube, has no TEXCOORD (there is no dP/du to compute) and gives
+// (1, 0, 0, 1) at all 24 vertices, along the normal itself on the +-x faces: placeholders, not
+// MikkTSpace output (which always lies across the normal).
 #include <tessera/scene/tangents.h>
 
 #include <gtest/gtest.h>

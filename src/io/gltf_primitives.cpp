@@ -85,7 +85,9 @@ void GraphBuilder::addTangents(Mesh& out) {
   }
   if (out.tangents.empty()) return;
   out.tangents.resize(out.positions.size(), float4{1, 0, 0, 1});
-  if (!generated_tangent_ranges_.empty()) generateTangents(out, generated_tangent_ranges_);
+  // Split vertices count against the budget of the meshes read after this one.
+  if (!generated_tangent_ranges_.empty())
+    stored_vertices_ += generateTangents(out, generated_tangent_ranges_).split_vertices;
 }
 
 Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,

@@ -55,9 +55,17 @@ bool notZero(float x) {
   return std::fabs(x) > FLT_MIN;
 }
 
+// `x` at unit length, or zero: the direct path when its squared length is a normal float (most
+// calls), safeNormalize (which rescales) for huge, tiny or non-finite ones.
+float3 unitOrZero(float3 x) {
+  const float length2 = dot(x, x);
+  if (length2 > FLT_MIN && length2 < FLT_MAX) return x * (1.0f / std::sqrt(length2));
+  return safeNormalize(x);
+}
+
 // `x` projected across the unit normal `n`, normalised; a zero vector stays zero.
 float3 acrossNormal(float3 x, float3 n) {
-  return safeNormalize(x - n * dot(n, x));
+  return unitOrZero(x - n * dot(n, x));
 }
 
 // A unit tangent where no UV gradient gives one: +x across the normal, else +y.
@@ -160,8 +168,8 @@ void triangleGradient(const Mesh& mesh, Triangle& t) {
   if (!notZero(det)) return;
   // dP/du and dP/dv times det (Cramer's rule on d1 = Pu s1.x + Pv s1.y, d2 = Pu s2.x + Pv s2.y).
   const float sign = t.positive ? 1.0f : -1.0f;
-  t.tangent = safeNormalize((d1 * s2.y - d2 * s1.y) * sign);
-  const float3 bitangent = safeNormalize((d2 * s1.x - d1 * s2.x) * sign);
+  t.tangent = unitOrZero((d1 * s2.y - d2 * s1.y) * sign);
+  const float3 bitangent = unitOrZero((d2 * s1.x - d1 * s2.x) * sign);
   t.gradient = length(t.tangent) > 0.0f && length(bitangent) > 0.0f;
 }
 
@@ -299,7 +307,7 @@ class CornerTangents {
   CornerTangents(const Work& work, size_t welded_count) : work_(work) {
     group_tangent_.resize(work.groups.size());
     for (size_t g = 0; g < work.groups.size(); ++g) {
-      const float3 t = safeNormalize(work.groups[g].sum);  // zero: replaced in of()
+      const float3 t = unitOrZero(work.groups[g].sum);  // zero: replaced in of()
       group_tangent_[g] = float4(t, work.groups[g].positive ? 1.0f : -1.0f);
     }
     first_group_.assign(welded_count, kNone);
