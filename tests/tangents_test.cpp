@@ -167,6 +167,36 @@ TEST(Tangents, TriangleWithoutGradientTakesItsNeighbours) {
   }
 }
 
+// generateTangents(mesh, ranges) (a glTF mesh whose other primitives gave TANGENT): triangles
+// outside the ranges keep their vertices' tangents, and so do the vertices.
+TEST(Tangents, RangesLeaveTheOtherVerticesAlone) {
+  Mesh mesh = mirroredStrip();
+  // A second strip, vertices 6 to 11, with tangents of its own.
+  const Mesh strip = mirroredStrip();
+  for (size_t v = 0; v < strip.vertexCount(); ++v) {
+    mesh.positions.push_back(strip.positions[v] + float3{0, 0, 1});
+    mesh.normals.push_back(strip.normals[v]);
+    mesh.uvs.push_back(strip.uvs[v]);
+    mesh.colors.push_back(strip.colors[v]);
+  }
+  for (uint32_t i : strip.indices) mesh.indices.push_back(i + 6);
+  const float4 given{0, 1, 0, -1};
+  mesh.tangents.assign(12, given);
+  const VertexRange first_strip{0, 6};
+  const TangentReport report = generateTangents(mesh, std::span(&first_strip, 1));
+  EXPECT_EQ(report.split_vertices, 2u);
+  ASSERT_EQ(mesh.vertexCount(), 14u);
+  for (size_t v = 6; v < 12; ++v) EXPECT_EQ(mesh.tangents[v], given) << "vertex " << v;
+  for (size_t t = 4; t < 8; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = mesh.indices[3 * t + static_cast<size_t>(k)];
+      EXPECT_GE(v, 6u);
+      EXPECT_LT(v, 12u);
+    }
+  EXPECT_EQ(cornerTangent(mesh, 0, 0).w, -1.0f);
+  EXPECT_EQ(cornerTangent(mesh, 2, 0).w, 1.0f);
+}
+
 // On makeUvSphere's sphere (u = phi around +y, v up towards +y) the tangent follows the surface's
 // dP/du: along the parallels, the way u grows, with the bitangent up (sign +1).
 TEST(Tangents, UvSphereFollowsItsParallels) {
