@@ -13,6 +13,7 @@
 #include <tessera/render/cpu_renderer.h>
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
+#include <tessera/scene/tangents.h>
 
 #include <tessera/model/camera_setup.h>
 #include "bench/scenes.h"
@@ -225,6 +226,21 @@ void BM_TransformVertices(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(mesh.vertexCount()));
 }
 BENCHMARK(BM_TransformVertices)->Unit(benchmark::kMicrosecond);
+
+// MikkTSpace tangents (generateTangents) of a 1M-triangle UV sphere: the load-time cost of a
+// normal-mapped mesh without tangents (the copy of the mesh each iteration is not timed).
+void BM_GenerateTangents(benchmark::State& state) {
+  static const Mesh sphere = makeUvSphere(1000, 500);
+  for (auto _ : state) {
+    state.PauseTiming();
+    Mesh mesh = sphere;
+    state.ResumeTiming();
+    generateTangents(mesh);
+    benchmark::DoNotOptimize(mesh.tangents.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(sphere.triangleCount()));
+}
+BENCHMARK(BM_GenerateTangents)->Unit(benchmark::kMillisecond);
 
 // Setup of every triangle with its vertices inside the guard band (culled ones included).
 void BM_SetupRaster(benchmark::State& state) {

@@ -13,6 +13,7 @@
 #include <tessera/math/quat.h>
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
+#include <tessera/scene/tangents.h>
 
 #include "environment_test_scenes.h"
 #include "render_test_scenes.h"

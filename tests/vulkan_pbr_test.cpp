@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <string>
 
+#include <tessera/scene/tangents.h>
+
 #include "environment_test_scenes.h"
 #include "vulkan_fixtures.h"
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <utility>
 
+#include <tessera/scene/tangents.h>
+
 #include "gltf_builder.h"
 #include "gltf_draco.h"
 #include "gltf_transforms.h"
@@ -72,9 +74,10 @@ Expected<void> GraphBuilder::drawMesh(size_t mesh_index, Mesh& out) {
   return {};
 }
 
-// The mesh's tangents: the file's where it gave them, generated (generateTangents: not full
-// MikkTSpace) for normal-mapped primitives without; none at all when a TANGENT was unusable (its
-// normal map is left out: the renderer draws normal maps only with tangents).
+// The mesh's tangents: the file's where it gave them, generated (generateTangents: MikkTSpace)
+// for normal-mapped primitives without; none at all when a TANGENT was unusable (its normal map
+// is left out: the renderer draws normal maps only with tangents). Generating may split vertices
+// of those primitives (a mirrored UV seam): they are added at the end of the mesh.
 void GraphBuilder::addTangents(Mesh& out) {
   if (tangents_refused_ || out.uvs.size() != out.positions.size()) {
     out.tangents.clear();
@@ -82,18 +85,9 @@ void GraphBuilder::addTangents(Mesh& out) {
   }
   if (out.tangents.empty()) return;
   out.tangents.resize(out.positions.size(), float4{1, 0, 0, 1});
-  if (generated_tangent_ranges_.empty()) return;
-  Mesh shape;
-  shape.positions = out.positions;
-  shape.normals = out.normals;
-  shape.uvs = out.uvs;
-  shape.indices = out.indices;
-  generateTangents(shape);
-  if (shape.tangents.size() != out.tangents.size()) return;
-  for (auto [begin, end] : generated_tangent_ranges_)
-    std::copy(shape.tangents.begin() + static_cast<std::ptrdiff_t>(begin),
-              shape.tangents.begin() + static_cast<std::ptrdiff_t>(end),
-              out.tangents.begin() + static_cast<std::ptrdiff_t>(begin));
+  // Split vertices count against the budget of the meshes read after this one.
+  if (!generated_tangent_ranges_.empty())
+    stored_vertices_ += generateTangents(out, generated_tangent_ranges_).split_vertices;
 }
 
 Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,

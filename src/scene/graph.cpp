@@ -5,6 +5,7 @@
 #include <string>
 
 #include <tessera/scene/clusters.h>
+#include <tessera/scene/tangents.h>
 
 namespace tessera {
 

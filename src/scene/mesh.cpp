@@ -79,40 +79,4 @@ void generateSmoothNormals(Mesh& mesh) {
   }
 }
 
-void generateTangents(Mesh& mesh) {
-  const size_t vertex_count = mesh.positions.size();
-  mesh.tangents.clear();
-  if (mesh.normals.size() != vertex_count || mesh.uvs.size() != vertex_count) return;
-  // Each triangle adds its dP/du and dP/dv (from its edges and their UV differences) to its
-  // corners.
-  std::vector<float3> du(vertex_count, float3{}), dv(vertex_count, float3{});
-  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-    const uint32_t i[3] = {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]};
-    if (i[0] >= vertex_count || i[1] >= vertex_count || i[2] >= vertex_count) continue;
-    const float3 e1 = mesh.positions[i[1]] - mesh.positions[i[0]];
-    const float3 e2 = mesh.positions[i[2]] - mesh.positions[i[0]];
-    const float2 d1 = mesh.uvs[i[1]] - mesh.uvs[i[0]], d2 = mesh.uvs[i[2]] - mesh.uvs[i[0]];
-    const float det = d1.x * d2.y - d2.x * d1.y;
-    if (!(std::fabs(det) > 0.0f)) continue;
-    const float inv = 1.0f / det;
-    const float3 tu = (e1 * d2.y - e2 * d1.y) * inv, tv = (e2 * d1.x - e1 * d2.x) * inv;
-    if (!isFinite(tu) || !isFinite(tv)) continue;
-    for (uint32_t k : i) {
-      du[k] += tu;
-      dv[k] += tv;
-    }
-  }
-  mesh.tangents.resize(vertex_count);
-  for (size_t v = 0; v < vertex_count; ++v) {
-    const float3 n = mesh.normals[v];
-    float3 t = safeNormalize(du[v] - n * dot(n, du[v]));
-    // No UV gradient here: any direction across the normal.
-    if (length(t) == 0.0f)
-      t = safeNormalize(std::fabs(n.x) < 0.9f ? cross(n, float3{1, 0, 0})
-                                              : cross(n, float3{0, 1, 0}));
-    const float w = dot(cross(n, t), dv[v]) < 0.0f ? -1.0f : 1.0f;
-    mesh.tangents[v] = float4(t, w);
-  }
-}
-
 }  // namespace tessera

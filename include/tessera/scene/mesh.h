@@ -28,13 +28,15 @@ struct Bounds {
   float radius() const { return empty() ? 0.0f : 0.5f * length(extent()); }
 };
 
+// Per-vertex arrays: positions, normals, uvs, colors, tangents; generateTangents copies each when
+// it splits a vertex (a new one must be added there: src/scene/tangents.cpp, copyVertex).
 struct Mesh {
   std::vector<float3> positions;
   std::vector<float3> normals;  // empty: generate them (generateSmoothNormals) or draw flat
   std::vector<float2> uvs;      // empty: no texture coordinates
   std::vector<float4> colors;   // linear RGBA; empty: white
   // Tangent space for normal maps (glTF's TANGENT): xyz along +u, unit; w = +-1, the bitangent is
-  // cross(normal, xyz) * w (along +v). Empty: none (generateTangents makes them).
+  // cross(normal, xyz) * w (along +v). Empty: none (generateTangents, tangents.h, makes them).
   std::vector<float4> tangents;
   std::vector<uint32_t> indices;             // three per triangle
   std::vector<uint16_t> triangle_materials;  // one per triangle, index into Object::materials;
@@ -58,10 +60,6 @@ float3 safeNormalize(float3 v);
 // Vertices that no finite, non-degenerate face touches get (0, 0, 1).
 void generateSmoothNormals(Mesh& mesh);
 
-// Per-vertex tangents from the UV derivatives of the triangles around each vertex (their
-// object-space dP/du, summed area-weighted, made orthogonal to the vertex normal; the handedness
-// from dP/dv). Not full MikkTSpace (no splitting of vertices whose triangles disagree); for a
-// mesh whose file has no tangents. Needs normals and UVs (else leaves tangents empty).
-void generateTangents(Mesh& mesh);
+// Tangents for normal maps: generateTangents (tangents.h, MikkTSpace).
 
 }  // namespace tessera
