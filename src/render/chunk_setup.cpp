@@ -87,7 +87,8 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
         litPerVertex(object, lights) ? vertices.lit.data() + xf.vertex_base : nullptr,
         has_uv ? mesh.uvs.data() : nullptr,
         has_color ? mesh.colors.data() : nullptr,
-        mesh.positions.data()};
+        mesh.positions.data(),
+        meshUv1(ctx, mesh)};
     const uint16_t* outcodes = vertices.outcode.data() + xf.vertex_base;
     const PlainGouraud plain_gouraud = plainGouraudFor(ctx, mesh_vertices, has_materials);
 
@@ -153,6 +154,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
           const float4 t = ctx.tangents[idx[k]];
           in[k].tangent = float4((xf.model * float4(t.xyz(), 0.0f)).xyz(), t.w * ctx.winding_sign);
         }
+        if (ctx.uv1) in[k].uv1 = mesh_vertices.uv1[idx[k]];
       }
       ClipVertex polygon[kMaxClippedVertices];
       const int n = clipTriangle(in, cut, guard, polygon);
@@ -167,7 +169,8 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
         ++chunk.size;
         VertexAttributes a[3];
         for (int i = 0; i < 3; ++i)
-          a[i] = {fan[i]->normal, fan[i]->uv, fan[i]->color, false, fan[i]->world, fan[i]->tangent};
+          a[i] = {fan[i]->normal, fan[i]->uv,      fan[i]->color, false,
+                  fan[i]->world,  fan[i]->tangent, fan[i]->uv1};
         setupShade(ctx, sv, a, orientation, raster, face_normal(idx), id, material(local),
                    chunk.shade[record], chunk.extras[record]);
         bin(raster, record, chunk.shade[record]);

@@ -118,7 +118,8 @@ void RayRenderer::setupChunk(const Scene& scene, const RenderOptions& options, i
         litPerVertex(object, lights_) ? vertices_.lit.data() + xf.vertex_base : nullptr,
         ctx.has_uv ? mesh.uvs.data() : nullptr,
         ctx.has_color ? mesh.colors.data() : nullptr,
-        mesh.positions.data()};
+        mesh.positions.data(),
+        meshUv1(ctx, mesh)};
     for (const size_t stop = std::min(end, object_end); t < stop; ++t) {
       const size_t local = t - xf.triangle_base;
       const uint32_t* idx = &mesh.indices[local * 3];

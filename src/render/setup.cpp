@@ -86,6 +86,7 @@ struct MeshCorners {
   const ScreenVertex& screen(int k) const { return vertices.screen[index[k]]; }
   float3 unitNormal(int k) const { return vertices.normal[index[k]]; }  // unit or zero already
   float2 uv(int k) const { return vertices.uv[index[k]]; }
+  float2 uv1(int k) const { return vertices.uv1[index[k]]; }
   float3 color(int k) const { return vertices.color[index[k]].xyz(); }
   const float3* lit(int k) const { return vertices.lit ? &vertices.lit[index[k]] : nullptr; }
   float3 world(int k, const float4x4& model) const {
@@ -107,6 +108,7 @@ struct ClippedCorners {
   // Interpolated by the clipper: no longer unit.
   float3 unitNormal(int k) const { return a[k].unit_normal ? a[k].normal : normalize(a[k].normal); }
   float2 uv(int k) const { return a[k].uv; }
+  float2 uv1(int k) const { return a[k].uv1; }
   float3 color(int k) const { return a[k].color.xyz(); }
   const float3* lit(int) const { return nullptr; }
   float3 world(int k, const float4x4&) const { return a[k].world; }
@@ -223,6 +225,8 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
   }
   if (ctx.has_uv)
     for (int k = 0; k < 3; ++k) extras.uv[k] = corners.uv(o.order[k]);
+  if (ctx.uv1)
+    for (int k = 0; k < 3; ++k) extras.uv1[k] = corners.uv1(o.order[k]);
   shade.material = &m;
   shade.triangle_id = triangle_id;
   shade.shading = ctx.shading;

@@ -79,10 +79,12 @@ void generateSmoothNormals(Mesh& mesh) {
   }
 }
 
-void generateTangents(Mesh& mesh) {
+void generateTangents(Mesh& mesh, int uv_set) {
   const size_t vertex_count = mesh.positions.size();
   mesh.tangents.clear();
-  if (mesh.normals.size() != vertex_count || mesh.uvs.size() != vertex_count) return;
+  const std::vector<float2>& uvs =
+      uv_set == 1 && mesh.uvs1.size() == vertex_count ? mesh.uvs1 : mesh.uvs;
+  if (mesh.normals.size() != vertex_count || uvs.size() != vertex_count) return;
   // Each triangle adds its dP/du and dP/dv (from its edges and their UV differences) to its
   // corners.
   std::vector<float3> du(vertex_count, float3{}), dv(vertex_count, float3{});
@@ -91,7 +93,7 @@ void generateTangents(Mesh& mesh) {
     if (i[0] >= vertex_count || i[1] >= vertex_count || i[2] >= vertex_count) continue;
     const float3 e1 = mesh.positions[i[1]] - mesh.positions[i[0]];
     const float3 e2 = mesh.positions[i[2]] - mesh.positions[i[0]];
-    const float2 d1 = mesh.uvs[i[1]] - mesh.uvs[i[0]], d2 = mesh.uvs[i[2]] - mesh.uvs[i[0]];
+    const float2 d1 = uvs[i[1]] - uvs[i[0]], d2 = uvs[i[2]] - uvs[i[0]];
     const float det = d1.x * d2.y - d2.x * d1.y;
     if (!(std::fabs(det) > 0.0f)) continue;
     const float inv = 1.0f / det;

@@ -31,8 +31,11 @@ struct Bounds {
 struct Mesh {
   std::vector<float3> positions;
   std::vector<float3> normals;  // empty: generate them (generateSmoothNormals) or draw flat
-  std::vector<float2> uvs;      // empty: no texture coordinates
-  std::vector<float4> colors;   // linear RGBA; empty: white
+  std::vector<float2> uvs;      // TEXCOORD_0; empty: no texture coordinates
+  // TEXCOORD_1 (glTF); empty: none, and a map that reads set 1 reads `uvs` instead. Only a glTF
+  // primitive whose material reads set 1 fills it.
+  std::vector<float2> uvs1;
+  std::vector<float4> colors;  // linear RGBA; empty: white
   // Tangent space for normal maps (glTF's TANGENT): xyz along +u, unit; w = +-1, the bitangent is
   // cross(normal, xyz) * w (along +v). Empty: none (generateTangents makes them).
   std::vector<float4> tangents;
@@ -61,7 +64,8 @@ void generateSmoothNormals(Mesh& mesh);
 // Per-vertex tangents from the UV derivatives of the triangles around each vertex (their
 // object-space dP/du, summed area-weighted, made orthogonal to the vertex normal; the handedness
 // from dP/dv). Not full MikkTSpace (no splitting of vertices whose triangles disagree); for a
-// mesh whose file has no tangents. Needs normals and UVs (else leaves tangents empty).
-void generateTangents(Mesh& mesh);
+// mesh whose file has no tangents. Needs normals and UVs (else leaves tangents empty). `uv_set`
+// 1 takes the derivatives from uvs1 (the normal map's set), where the mesh has it.
+void generateTangents(Mesh& mesh, int uv_set = 0);
 
 }  // namespace tessera

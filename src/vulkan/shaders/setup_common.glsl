@@ -25,6 +25,7 @@ struct TriangleContext {
   vec3 normal[3];    // the source vertices' attributes
   vec3 world[3];     // their world positions
   vec2 uv[3];
+  vec2 uv1[3];  // TEXCOORD_1 (set 0 where the mesh has none)
   vec4 color[3];
   vec4 tangent[3];  // kObjectHasTangents: world tangents, w the bitangent's sign
 };
@@ -69,6 +70,7 @@ TriangleContext triangleContext(uint t, GpuObject object, uint idx[3]) {
     const uint g = object.vertex_base + idx[k];
     ctx.normal[k] = transformed[g].normal;
     ctx.uv[k] = ctx.has_uv ? vertexUv(g) : vec2(0.0);
+    ctx.uv1[k] = ctx.has_uv ? vertexUv1(g) : vec2(0.0);
     ctx.color[k] = ctx.has_color ? vertexColor(g) : vec4(1.0);
     p[k] = vertexPosition(g);
     ctx.world[k] = worldPosition(object.model, p[k]);
@@ -113,10 +115,12 @@ void setupShadeCorners(TriangleContext ctx, ClipVertex v[3], int order[3], bool 
     const int source = order[k];
     vec3 vertex_normal = ctx.normal[source];
     vec2 uv = ctx.uv[source];
+    vec2 uv1 = ctx.uv1[source];
     vec4 color = ctx.color[source];
     if (ctx.clipped) {
       vertex_normal = weighted3(ctx.normal, v[source].weights);
       uv = weighted2(ctx.uv, v[source].weights);
+      uv1 = weighted2(ctx.uv1, v[source].weights);
       color = weighted4(ctx.color, v[source].weights);
     }
     precise vec3 n = ctx.shading == kShadingFlat ? flat_normal
@@ -124,6 +128,7 @@ void setupShadeCorners(TriangleContext ctx, ClipVertex v[3], int order[3], bool 
     if (n.x == 0.0 && n.y == 0.0 && n.z == 0.0) n = flat_normal;
     shade.normal[k] = vec4(n, world[source].x);
     shade.uv[k] = uv;
+    shade.uv1[k] = uv1;
     precise vec3 albedo = ctx.has_color ? base * color.xyz : base;
     precise vec3 lit =
         albedo * (ctx.shading == kShadingGouraud ? irradiance(n, world[source]) : flat_irradiance);
