@@ -180,7 +180,8 @@ vec3 shadeAt(uint slot, ivec2 pixel, uint layer) {
   if ((s.shading & 255u) == kShadingPbr) {
     const bool maps = (s.shading & kShadePbrUv) != 0u;
     const UvFootprint f = maps ? footprintAt(slot, s, b, pixel, layer)
-                               : UvFootprint(vec2(0.0), vec2(0.0), vec2(0.0));
+                               : UvFootprint(vec2(0.0), vec2(0.0), vec2(0.0), vec2(0.0), vec2(0.0),
+                                             vec2(0.0));
     color = shadePbrMaterial(materials[s.material], color, pbrNormalAt(s, b, f), worldAt(s, b),
                              maps, f);
   } else if ((s.shading & 255u) == kShadingPhong) {
