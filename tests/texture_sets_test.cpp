@@ -1,7 +1,8 @@
 // glTF materials whose textures each have their own textureInfo (issue 19): each map read through
 // its own texture coordinate set (TEXCOORD_0 or TEXCOORD_1) and its own KHR_texture_transform, as
 // the glTF 2.0 specification and the extension say; bad sets fall back to TEXCOORD_0 with a
-// warning; a mirrored double-sided quad shades as the unmirrored one.
+// warning; a mirrored double-sided quad shades as the unmirrored one, from a glTF node or as a
+// library Object whose mesh keeps its winding.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -234,6 +235,43 @@ TEST_F(TextureSets, MirroredDoubleSidedQuadShadesAsTheUnmirroredOne) {
       worst = std::max(worst, std::abs(channel(a.color[i], k) - channel(b.color[i], k)));
   EXPECT_LE(worst, 1);
   expectNear3(b.normal[static_cast<size_t>(32 * kSize + 32)], {0, 0, 1}, 1e-4f);
+}
+
+// The same quad as a library Object drawn through a mirroring transform, its mesh's winding not
+// reversed (as SceneGraph does for glTF nodes): on screen its triangles wind clockwise, so they
+// are drawn as back faces, and every shading mode lights them from the viewer's side with the
+// vertex normal that faces the viewer, as the unmirrored quad.
+TEST(MirroredObject, DoubleSidedShadesTheSideFacingTheViewerInEveryMode) {
+  Mesh quad;
+  quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  quad.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  for (Shading shading : {Shading::kFlat, Shading::kGouraud, Shading::kPhong, Shading::kPbr}) {
+    Frame frames[2];
+    for (int mirrored = 0; mirrored < 2; ++mirrored) {
+      Scene scene;
+      Object object;
+      object.mesh = std::make_shared<Mesh>(quad);
+      object.shading = shading;
+      object.cull = CullMode::kNone;
+      object.transform.scale = {mirrored ? -1.0f : 1.0f, 1.0f, 1.0f};
+      scene.objects.push_back(object);
+      scene.lights = {
+          Light::directional(normalize(float3{0.0f, -0.5f, -1.0f}), float3(1.0f), 2.0f)};
+      scene.ambient = float3(0.0f);
+      scene.camera.position = {0, 0, 5};
+      RenderOptions o;
+      o.width = o.height = kSize;
+      o.normals = true;
+      CpuRenderer cpu(1);
+      cpu.render(scene, o, frames[mirrored]);
+    }
+    const size_t centre = 32 * kSize + 32;
+    EXPECT_GT(channel(frames[0].color[centre], 0), 100) << "shading " << static_cast<int>(shading);
+    EXPECT_EQ(frames[1].color[centre], frames[0].color[centre])
+        << "shading " << static_cast<int>(shading);
+    expectNear3(frames[1].normal[centre], {0, 0, 1}, 1e-5f);
+  }
 }
 
 }  // namespace

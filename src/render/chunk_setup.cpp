@@ -78,9 +78,10 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
 
     const SetupContext ctx = objectSetupContext(lights, object, xf.model, grid.width, grid.height,
                                                 want_normals, sample_reach);
-    // Flat shading lights the face; so do vertices of a mesh without normals.
-    const bool needs_face_normal =
-        object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;
+    // Flat shading lights the face; so do vertices of a mesh without normals. A mirrored object's
+    // triangles compare it with their vertex normals (setup.cpp: the normals' facing).
+    const bool needs_face_normal = object.shading == Shading::kFlat ||
+                                   mesh.normals.size() != vertex_count || xf.winding_sign < 0.0f;
     const MeshVertices mesh_vertices{
         vertices.screen.data() + xf.vertex_base,
         vertices.normal.data() + xf.vertex_base,
@@ -90,7 +91,9 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
         mesh.positions.data(),
         meshUv1(ctx, mesh)};
     const uint16_t* outcodes = vertices.outcode.data() + xf.vertex_base;
-    const PlainGouraud plain_gouraud = plainGouraudFor(ctx, mesh_vertices, has_materials);
+    PlainGouraud plain_gouraud = plainGouraudFor(ctx, mesh_vertices, has_materials);
+    // A mirrored object's front faces may show their vertex normals' back (setup.cpp).
+    if (xf.winding_sign < 0.0f) plain_gouraud.applies = false;
 
     // Read only for the triangles that survive the cull.
     auto material = [&](size_t local) {

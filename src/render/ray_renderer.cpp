@@ -110,8 +110,8 @@ void RayRenderer::setupChunk(const Scene& scene, const RenderOptions& options, i
                                                 options.height, options.normals, 0);
     rctx.cull = object.cull;
     const bool has_materials = mesh.triangle_materials.size() == mesh.triangleCount();
-    const bool needs_face_normal =
-        object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;
+    const bool needs_face_normal = object.shading == Shading::kFlat ||
+                                   mesh.normals.size() != vertex_count || xf.winding_sign < 0.0f;
     const MeshVertices corners{
         nullptr,
         vertices_.normal.data() + xf.vertex_base,

@@ -111,8 +111,21 @@ void main() {
   precise vec3 e2 = p2 - p0;
   precise vec3 edge_cross = vec3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
                                  e1.x * e2.y - e1.y * e2.x);
-  const vec3 face_normal =
-      normalizeAsCpu(multiply3x3(object.normal_matrix, edge_cross) * object.winding_sign) * flip;
+  precise vec3 winding_normal = multiply3x3(object.normal_matrix, edge_cross) * object.winding_sign;
+  const vec3 face_normal = normalizeAsCpu(winding_normal) * flip;
+  // The vertex normals face the viewer where the face does, unless a mirroring model's mesh (not
+  // turned inside out) has them on the other side of the face than its winding (the CPU's
+  // setupShadeCorners: normal_flip).
+  float normal_flip = flip;
+  if (object.winding_sign < 0.0 && (object.flags & kObjectHasNormals) != 0u) {
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < 3; ++k) {
+      const uint i = k == 0 ? i0 : (k == 1 ? i1 : i2);
+      sum += normalizeAsCpu(multiply3x3(object.normal_matrix,
+                                        vertexNormal(object.vertex_base + i)));
+    }
+    if (dot(sum, winding_normal) < 0.0) normal_flip = -flip;
+  }
 
   // Without vertex normals the CPU lights every pixel with the face normal (kPbr: through the
   // BRDF still, the face normal its shading normal).
@@ -123,7 +136,7 @@ void main() {
 
   const uint m = (object.flags & kObjectHasTriangleMaterials) != 0u ? triangle_materials[t] : 0u;
   const GpuMaterial material = objectMaterial(object, m);
-  vec3 color = material.base_color.xyz * (gl_FrontFacing ? in_color_front : in_color_back);
+  vec3 color = material.base_color.xyz * (normal_flip > 0.0 ? in_color_front : in_color_back);
   float alpha = material.base_color.w;
   if ((material.texture_flags & kTexturePresent) != 0u && (object.flags & kObjectHasUv) != 0u) {
     // The sampler's set and transform, and its linear part on the UV derivatives.
@@ -152,7 +165,7 @@ void main() {
 
   vec3 normal = face_normal;
   if (shading != kShadingFlat) {
-    normal = normalizeAsCpu(in_normal) * flip;
+    normal = normalizeAsCpu(in_normal) * normal_flip;
     if (dot(normal, normal) == 0.0) normal = face_normal;
   }
   // Flat faces are lit at their centroid, as the CPU does.
@@ -161,7 +174,7 @@ void main() {
   if (shading == kShadingFlat) color *= irradiance(normal, centre);
   if (shading == kShadingPhong) color *= irradiance(normal, in_world);
   if (shading == kShadingPbr)
-    color = shadePbrFragment(object, material, color, flip,
+    color = shadePbrFragment(object, material, color, normal_flip,
                              UvFootprint(in_uv, in_uv + uv_d[0], in_uv + uv_d[1], in_uv1,
                                          in_uv1 + uv_d[2], in_uv1 + uv_d[3]),
                              normal);
