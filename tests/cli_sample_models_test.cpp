@@ -67,4 +67,18 @@ TEST_F(CliSampleModels, SpecularGlossinessBoxDrawsItsFallback) {
   tessera::test::expectMatchesReference(out, "box_specular_glossiness_gltf", {2, 6});
 }
 
+// A box whose material reads its base colour through TEXCOORD_0 and its metallic-roughness map
+// (the same image) through TEXCOORD_1, as glTF lets each textureInfo choose: the texture's green
+// and white shapes on every face, each face's roughness from the other set, no warning.
+TEST_F(CliSampleModels, BoxTexcoordsReadsEachMapThroughItsOwnSet) {
+  const fs::path model = kSamples / "BoxTexcoords-glTF" / "boxTexcoords.gltf";
+  ASSERT_TRUE(fs::exists(model)) << model << ": scripts/setup.sh installs assimp-testmodels";
+  const std::string out = (dir_ / "box_texcoords.png").string();
+  tessera::test::RunResult r =
+      run("render '" + model.string() + "' --resolution 240,180 -o '" + out + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("TEXCOORD"), std::string::npos) << "warned: " << r.err;
+  tessera::test::expectMatchesReference(out, "box_texcoords_gltf", {2, 6});
+}
+
 }  // namespace

@@ -184,6 +184,38 @@ Scene mappedScene() {
   return scene;
 }
 
+// mappedScene with every texture on its own set and through its own KHR_texture_transform
+// (glTF's textureInfo per map): the albedo, normal and occlusion maps read TEXCOORD_1, the others
+// TEXCOORD_0. The quads' set 1 is their set 0 turned a quarter and stretched; the sphere has no
+// set 1 (those maps read set 0 there).
+Scene ownSetsScene() {
+  Scene scene = mappedScene();
+  for (Object& o : scene.objects) {
+    Material& m = o.materials[0];
+    m.sampler.texcoord = 1;
+    m.sampler.transform = {{0.1f, 0.2f}, 0.3f, {1.5f, 1.2f}};
+    m.normal.sampler.texcoord = 1;
+    // A mild scale: the normal map's bumps, steeper, would put a few highlight pixels (8 of 49152
+    // at scale 2 on the stretched set 1) past the raster backend's 2/255, whose UVs the hardware
+    // interpolates; the compute backend stays exact either way.
+    m.normal.sampler.transform = {{0.25f, 0.0f}, 0.5f, {1.2f, 1.0f}};
+    m.metallic_roughness.sampler.transform = {{0.3f, -0.2f}, -0.4f, {0.7f, 1.3f}};
+    // Bilinear: a nearest read's texel edge, moved by the transform, can fall where the raster
+    // backend's interpolated UV and the CPU's land on either side.
+    m.occlusion.sampler.filter = TextureFilter::kBilinear;
+    m.occlusion.sampler.texcoord = 1;
+    m.occlusion.sampler.transform = {{0.5f, 0.5f}, 0.0f, {0.5f, 0.5f}};
+    m.emissive.sampler.transform = {{-0.2f, 0.1f}, 1.0f, {1.0f, 1.0f}};
+  }
+  for (int i = 0; i < 2; ++i) {  // the quads
+    Mesh grid = *scene.objects[static_cast<size_t>(i)].mesh;
+    grid.uvs1.clear();
+    for (float2 uv : grid.uvs) grid.uvs1.push_back({uv.y * 1.5f, 1.0f - uv.x});
+    scene.objects[static_cast<size_t>(i)].mesh = std::make_shared<Mesh>(grid);
+  }
+  return scene;
+}
+
 }  // namespace
 
 TEST(VulkanPbr, SphereRowMatchesCpuOnBothBackends) {
@@ -215,6 +247,23 @@ TEST(VulkanPbr, MapsAndTangentsMatchCpuOnBothBackends) {
     for (Object& o : without.objects) (o.materials[0].*slot).texture = nullptr;
     EXPECT_NE(renderCpu(without, pbrOptions()).color, cpu.color);
   }
+}
+
+// Each map through its own texture coordinate set and KHR_texture_transform, on both backends.
+TEST(VulkanPbr, MapsWithTheirOwnSetsAndTransformsMatchCpuOnBothBackends) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr compute = makeCompute();
+  ASSERT_TRUE(compute);
+  RasterPtr raster = makeRaster();
+  ASSERT_TRUE(raster);
+  const Scene scene = ownSetsScene();
+  const Frame cpu = renderCpu(scene, pbrOptions());
+  const Frame gpu = renderWith(*compute, scene, pbrOptions());
+  expectPbrParity("own sets, compute", gpu, cpu, 0.0);
+  EXPECT_LE(comparePbr(gpu, cpu).max_channel_diff, 1);  // the compute backend: the CPU's operations
+  expectPbrParity("own sets, raster", renderWith(*raster, scene, pbrOptions()), cpu, 0.01);
+  // The sets and transforms matter: without them the CPU's image is another one.
+  EXPECT_NE(renderCpu(mappedScene(), pbrOptions()).color, cpu.color);
 }
 
 // The tone curve and exposure apply to PBR pixels as to the others.
@@ -387,9 +436,11 @@ TEST(VulkanPbr, RasterMsaaMatchesCpuWithinTheRasterTolerance) {
 }
 
 // A mirrored object (det(model) < 0) flips its bitangent: the tangent's sign times the model's.
-// The quad is mirrored in x and faces the camera with its normal's side; the CPU picks the lit
-// side of a two-sided triangle by its screen winding, which the mirror reverses, so its shading
-// normal points away from the camera and a light from behind lights it.
+// The quad is mirrored in x and faces the camera with its normal's side; the mirror reverses its
+// screen winding, so its triangles are drawn as back faces, but their vertex normals already face
+// the viewer (they point to the other side of the face than its winding) and are kept: the light
+// from the camera's side lights it (before issue 19's fix the CPU turned them away, and a light
+// from behind lit it).
 TEST(VulkanPbr, MirroredObjectFlipsItsBitangentAsTheCpu) {
   TESSERA_SKIP_WITHOUT_VULKAN();
   ComputePtr compute = makeCompute();
@@ -407,7 +458,7 @@ TEST(VulkanPbr, MirroredObjectFlipsItsBitangentAsTheCpu) {
   quad.transform.rotation = quat::fromAxisAngle({1, 0, 0}, 1.2f);
   quad.transform.scale = {-1.0f, 1.0f, 1.0f};
   scene.objects.push_back(quad);
-  scene.lights = {Light::directional(normalize(float3{0.2f, 0.5f, 1.0f}), float3(1.0f), 2.0f)};
+  scene.lights = {Light::directional(normalize(float3{0.2f, -0.5f, -1.0f}), float3(1.0f), 2.0f)};
   scene.ambient = float3(0.05f);
   scene.camera.position = {0.0f, 1.0f, 2.2f};
   scene.camera.target = {0.0f, 0.0f, 0.0f};
@@ -420,4 +471,33 @@ TEST(VulkanPbr, MirroredObjectFlipsItsBitangentAsTheCpu) {
   for (float4& t : flipped_grid.tangents) t.w = -t.w;
   flipped.objects[0].mesh = std::make_shared<Mesh>(flipped_grid);
   EXPECT_GT(comparePbr(renderCpu(flipped, pbrOptions()), cpu).max_channel_diff, 20);
+}
+
+// A double-sided quad drawn through a mirroring transform, its mesh's winding kept: its faces are
+// back faces on screen, lit on the side facing the viewer (the vertex normals turned when they
+// point to the other side of the face than its winding), by the CPU and both backends alike.
+TEST(VulkanPbr, MirroredDoubleSidedQuadMatchesCpuInEveryMode) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr compute = makeCompute();
+  ASSERT_TRUE(compute);
+  RasterPtr raster = makeRaster();
+  ASSERT_TRUE(raster);
+  for (Shading shading : {Shading::kGouraud, Shading::kPhong, Shading::kPbr}) {
+    Scene scene = mappedScene();
+    scene.objects.resize(1);
+    Object& quad = scene.objects[0];
+    quad.shading = shading;
+    quad.transform.rotation = quat::fromAxisAngle({1, 0, 0}, 1.2f);
+    quad.transform.scale = {-1.0f, 1.0f, 1.0f};
+    quad.transform.translation = {0.0f, 0.0f, 0.0f};
+    // Lambert modes without the mipmapped albedo: the raster backend takes their level of detail
+    // from the quad's derivatives, not the CPU's next pixels (3/255 here, mirrored or not).
+    if (shading != Shading::kPbr) quad.materials[0].albedo = nullptr;
+    const std::string what = "mirrored, shading " + std::to_string(static_cast<int>(shading));
+    const Frame cpu = renderCpu(scene, pbrOptions());
+    expectPbrParity((what + ", compute").c_str(), renderWith(*compute, scene, pbrOptions()), cpu,
+                    0.0);
+    expectPbrParity((what + ", raster").c_str(), renderWith(*raster, scene, pbrOptions()), cpu,
+                    0.01);
+  }
 }

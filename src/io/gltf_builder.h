@@ -112,6 +112,12 @@ class GraphBuilder {
   void addTangents(Mesh& out);
   Expected<void> drawPrimitive(const tinygltf::Primitive& primitive, const std::string& where,
                                Mesh& out);
+  struct UvReaders {
+    std::optional<ElementReader> set0, set1;  // TEXCOORD_0; TEXCOORD_1 when the material reads it
+    bool keep_set1 = false;                   // the primitive's vertices go into Mesh::uvs1
+  };
+  Expected<UvReaders> uvReaders(const tinygltf::Primitive& primitive, const Material& material,
+                                const std::string& where, size_t vertex_count, Mesh& out);
   // Whether the primitive's geometry comes from its Draco stream, decoded into draco_.
   Expected<bool> readDraco(const tinygltf::Primitive& primitive, const std::string& where);
 
@@ -130,8 +136,12 @@ class GraphBuilder {
   uint32_t stamp_ = 0;
   std::vector<std::pair<size_t, size_t>> generated_normal_ranges_;  // of the mesh being read
   // Vertices of normal-mapped primitives without TANGENT: generateTangents' (of the mesh being
-  // read).
-  std::vector<std::pair<size_t, size_t>> generated_tangent_ranges_;
+  // read), from the UV set of the primitive's normal map.
+  struct TangentRange {
+    size_t begin, end;
+    int uv_set;
+  };
+  std::vector<TangentRange> generated_tangent_ranges_;
   bool tangents_refused_ = false;  // a TANGENT of the mesh was unusable: no normal map on it
   std::map<int, size_t> skipped_by_mode_;
   std::map<size_t, PointsAndLines> mesh_points_;  // per glTF mesh, in its space, while placing

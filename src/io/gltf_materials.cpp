@@ -59,10 +59,9 @@ Material MaterialTable::buildMaterial(size_t index) {
     warn_(label + ": a baseColorFactor that is not 4 numbers is ignored");
   }
   const tinygltf::TextureInfo& info = source.pbrMetallicRoughness.baseColorTexture;
-  // Read once: its texCoord is the UV set every map of the material is read with.
   const Sampler base_sampler =
       info.index >= 0 ? readTextureInfoSampler(info, label + " baseColorTexture") : Sampler{};
-  readPbr(source, label, base_sampler.texcoord, material);
+  readPbr(source, label, material);
   if (info.index >= 0) {
     const std::string dropped = "; " + label + " is drawn without its texture";
     if (static_cast<size_t>(info.index) >= gltf_.textures.size()) {
@@ -96,9 +95,11 @@ Sampler MaterialTable::textureInfoSampler(int texture_index, int tex_coord,
   sampler.texcoord = tex_coord;
   const auto found = extensions.find("KHR_texture_transform");
   if (found != extensions.end()) readTextureTransform(found->second, label, sampler);
-  if (sampler.texcoord < 0) {
+  // Meshes keep TEXCOORD_0 and TEXCOORD_1 (Mesh::uvs, uvs1).
+  if (sampler.texcoord < 0 || sampler.texcoord > 1) {
     warn_(label + ": texCoord " + std::to_string(sampler.texcoord) +
-          " is not a set; TEXCOORD_0 is used");
+          (sampler.texcoord < 0 ? " is not a set" : " is past the two sets tessera reads") +
+          "; TEXCOORD_0 is used");
     sampler.texcoord = 0;
   }
   return sampler;
@@ -163,7 +164,7 @@ float readFactor(double value, double lo, double hi, float fallback, const std::
 
 }  // namespace
 
-TextureSlot MaterialTable::textureSlot(int index, const Sampler& sampler, int uv_set, bool srgb,
+TextureSlot MaterialTable::textureSlot(int index, const Sampler& sampler, bool srgb,
                                        const std::string& what) {
   TextureSlot slot;
   if (index < 0) return slot;
@@ -177,21 +178,16 @@ TextureSlot MaterialTable::textureSlot(int index, const Sampler& sampler, int uv
     warn_("texture " + std::to_string(index) + " has no usable image" + dropped);
     return slot;
   }
-  if (sampler.texcoord != uv_set)
-    warn_(what + " reads TEXCOORD_" + std::to_string(sampler.texcoord) +
-          "; tessera keeps one set per primitive, the base colour's TEXCOORD_" +
-          std::to_string(uv_set) + ", which it uses");
   slot.texture = image(static_cast<size_t>(texture.source), dropped, srgb);
   slot.sampler = sampler;
-  slot.sampler.texcoord = uv_set;
   return slot;
 }
 
-void MaterialTable::readPbr(const tinygltf::Material& source, const std::string& label, int uv_set,
+void MaterialTable::readPbr(const tinygltf::Material& source, const std::string& label,
                             Material& material) {
   const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
   auto slot = [&](const auto& info, bool srgb, const std::string& what) {
-    return textureSlot(info.index, readTextureInfoSampler(info, what), uv_set, srgb, what);
+    return textureSlot(info.index, readTextureInfoSampler(info, what), srgb, what);
   };
   material.metallic =
       readFactor(pbr.metallicFactor, 0.0, 1.0, 1.0f, label + ": metallicFactor", warn_);

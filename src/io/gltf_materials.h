@@ -60,14 +60,11 @@ class MaterialTable {
   Sampler sampler(size_t index);
   // `srgb`: colour (base colour, emissive) or data (the other maps): decoded once each way used.
   std::shared_ptr<const Texture> image(size_t index, const std::string& dropped, bool srgb = true);
-  // A textureInfo's texture as a slot read through `sampler` (readTextureInfoSampler's) on UV set
-  // `uv_set`, the one the primitive keeps; empty, with a warning, when unusable.
-  TextureSlot textureSlot(int index, const Sampler& sampler, int uv_set, bool srgb,
-                          const std::string& what);
-  // metallicFactor ... alphaCutoff and their maps, read on UV set `uv_set` (the one a primitive
-  // keeps: the base colour texture's, gltf_primitives.cpp), into `material`.
-  void readPbr(const tinygltf::Material& source, const std::string& label, int uv_set,
-               Material& material);
+  // A textureInfo's texture as a slot read through `sampler` (readTextureInfoSampler's: its own
+  // set, wrap, filter and transform); empty, with a warning, when unusable.
+  TextureSlot textureSlot(int index, const Sampler& sampler, bool srgb, const std::string& what);
+  // metallicFactor ... alphaCutoff and their maps, each map on its own UV set, into `material`.
+  void readPbr(const tinygltf::Material& source, const std::string& label, Material& material);
 
   const tinygltf::Model& gltf_;
   const std::string name_;

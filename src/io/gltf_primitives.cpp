@@ -69,6 +69,7 @@ Expected<void> GraphBuilder::drawMesh(size_t mesh_index, Mesh& out) {
                 out.normals.begin() + static_cast<std::ptrdiff_t>(begin));
   }
   if (!out.uvs.empty()) out.uvs.resize(out.positions.size(), float2{0, 0});
+  if (!out.uvs1.empty()) out.uvs1.resize(out.positions.size(), float2{0, 0});
   if (!out.colors.empty()) out.colors.resize(out.positions.size(), float4{1, 1, 1, 1});
   addTangents(out);
   return {};
@@ -85,9 +86,14 @@ void GraphBuilder::addTangents(Mesh& out) {
   }
   if (out.tangents.empty()) return;
   out.tangents.resize(out.positions.size(), float4{1, 0, 0, 1});
-  // Split vertices count against the budget of the meshes read after this one.
-  if (!generated_tangent_ranges_.empty())
-    stored_vertices_ += generateTangents(out, generated_tangent_ranges_).split_vertices;
+  // Each primitive's tangents from its normal map's UV set; split vertices count against the
+  // budget of the meshes read after this one.
+  for (int set = 0; set < 2; ++set) {
+    std::vector<VertexRange> ranges;
+    for (const TangentRange& r : generated_tangent_ranges_)
+      if (r.uv_set == set) ranges.push_back({r.begin, r.end});
+    if (!ranges.empty()) stored_vertices_ += generateTangents(out, ranges, set).split_vertices;
+  }
 }
 
 Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
@@ -159,15 +165,12 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   if (!fatal) return fatal;
   Expected<uint16_t> material = materials_.materialFor(primitive.material, model_.materials);
   if (!material) return material.error();
-  // The mesh holds one set of texture coordinates: the base colour texture's.
   const Material& drawn_with = model_.materials[*material];
-  const int uv_set = drawn_with.albedo ? drawn_with.sampler.texcoord : 0;
-  const std::optional<ElementReader> uvs = optionalAttribute(
-      primitive, "TEXCOORD_" + std::to_string(uv_set), where, vertex_count, {2}, {}, fatal);
-  if (!fatal) return fatal;
-  if (!uvs && model_.materials[*material].albedo)
-    warn(where + ": its material has a texture but the primitive has no TEXCOORD_" +
-         std::to_string(uv_set));
+  Expected<UvReaders> uv_readers = uvReaders(primitive, drawn_with, where, vertex_count, out);
+  if (!uv_readers) return uv_readers.error();
+  const std::optional<ElementReader>& uvs = uv_readers->set0;
+  const std::optional<ElementReader>& uvs1 = uv_readers->set1;
+  const bool keep_uvs = uvs || uvs1, keep_uvs1 = uv_readers->keep_set1;
   const std::optional<ElementReader> colors = colorAttribute(primitive, where, vertex_count, fatal);
   if (!fatal) return fatal;
   // Tangents for the material's normal map: the file's (VEC4, one per vertex), else generated.
@@ -175,7 +178,7 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   const std::optional<ElementReader> tangents =
       optionalAttribute(primitive, "TANGENT", where, vertex_count, {4}, {}, fatal);
   if (!fatal) return fatal;
-  const bool normal_mapped = uvs && model_.materials[*material].normal;
+  const bool normal_mapped = keep_uvs && model_.materials[*material].normal;
   if (has_tangent && !tangents && normal_mapped) {
     warn(where + ": its TANGENT is unusable; the normal map is left out");
     tangents_refused_ = true;
@@ -190,7 +193,7 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   }
   ++stamp_;
   const size_t first_vertex = out.positions.size();
-  if (uvs) out.uvs.resize(first_vertex, float2{0, 0});
+  if (keep_uvs) out.uvs.resize(first_vertex, float2{0, 0});
   if (colors) out.colors.resize(first_vertex, float4{1, 1, 1, 1});
   if (keep_tangents) out.tangents.resize(first_vertex, float4{1, 0, 0, 1});
   bool normals_usable = normals.has_value();
@@ -214,8 +217,13 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
       normals_usable &= normal.x != 0 || normal.y != 0 || normal.z != 0;
     }
     out.normals.push_back(normal);
-    if (uvs)  // glTF's v = 0 is the top of the image; tessera's is the bottom.
-      out.uvs.push_back({uvs->component(local, 0), 1.0f - uvs->component(local, 1)});
+    // glTF's v = 0 is the top of the image; tessera's is the bottom.
+    const float2 uv0 =
+        uvs ? float2{uvs->component(local, 0), 1.0f - uvs->component(local, 1)} : float2{0, 0};
+    if (keep_uvs) out.uvs.push_back(uv0);
+    if (keep_uvs1)  // set 0 where the primitive has no TEXCOORD_1
+      out.uvs1.push_back(uvs1 ? float2{uvs1->component(local, 0), 1.0f - uvs1->component(local, 1)}
+                              : uv0);
     if (colors)
       out.colors.push_back({colors->component(local, 0), colors->component(local, 1),
                             colors->component(local, 2),
@@ -251,12 +259,14 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
     out.triangle_materials.push_back(*material);
     if (!finite) ++model_.nonfinite_triangles;
   }
-  if (uvs) out.uvs.resize(out.positions.size(), float2{0, 0});
+  if (keep_uvs) out.uvs.resize(out.positions.size(), float2{0, 0});
+  if (keep_uvs1) out.uvs1.resize(out.positions.size(), float2{0, 0});
   if (colors) out.colors.resize(out.positions.size(), float4{1, 1, 1, 1});
   if (keep_tangents) {
     out.tangents.resize(out.positions.size(), float4{1, 0, 0, 1});
     if (!tangents && normal_mapped)
-      generated_tangent_ranges_.push_back({first_vertex, out.positions.size()});
+      generated_tangent_ranges_.push_back(
+          {first_vertex, out.positions.size(), drawn_with.normal.sampler.texcoord});
   }
   stored_triangles_ += triangle_count;
   stored_vertices_ += out.positions.size() - first_vertex;
@@ -266,6 +276,38 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
     generated_normal_ranges_.push_back({first_vertex, out.positions.size()});
   }
   return {};
+}
+
+// The primitive's texture coordinates: TEXCOORD_0 for Mesh::uvs, and TEXCOORD_1 for uvs1 when its
+// material reads set 1 (readsTexcoord1) or an earlier primitive of the mesh did. A primitive
+// without the set its material reads is drawn with TEXCOORD_0 there, with a warning. Makes `out`'s
+// uvs1 whole up to here (set 0 in its place) when this primitive starts it.
+Expected<GraphBuilder::UvReaders> GraphBuilder::uvReaders(const tinygltf::Primitive& primitive,
+                                                          const Material& material,
+                                                          const std::string& where,
+                                                          size_t vertex_count, Mesh& out) {
+  Expected<void> fatal;
+  UvReaders readers;
+  readers.set0 = optionalAttribute(primitive, "TEXCOORD_0", where, vertex_count, {2}, {}, fatal);
+  if (!fatal) return fatal.error();
+  const bool reads_set1 = readsTexcoord1(material);
+  if (reads_set1) {
+    readers.set1 = optionalAttribute(primitive, "TEXCOORD_1", where, vertex_count, {2}, {}, fatal);
+    if (!fatal) return fatal.error();
+    if (!readers.set1)
+      warn(where + ": its material reads TEXCOORD_1, which the primitive does not have; " +
+           "TEXCOORD_0 is read in its place");
+  }
+  const bool albedo_set1 = material.albedo && material.sampler.texcoord == 1;
+  if (material.albedo && !readers.set0 && !(albedo_set1 && readers.set1))
+    warn(where + ": its material has a texture but the primitive has no TEXCOORD_" +
+         std::to_string(albedo_set1 ? 1 : 0));
+  readers.keep_set1 = readers.set1 || reads_set1 || !out.uvs1.empty();
+  if (readers.keep_set1 && out.uvs1.empty() && !out.positions.empty()) {
+    out.uvs1 = out.uvs;
+    out.uvs1.resize(out.positions.size(), float2{0, 0});
+  }
+  return readers;
 }
 
 // KHR_draco_mesh_compression (gltf_draco.h): whether the primitive's geometry comes from its

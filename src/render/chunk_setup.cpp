@@ -78,18 +78,22 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
 
     const SetupContext ctx = objectSetupContext(lights, object, xf.model, grid.width, grid.height,
                                                 want_normals, sample_reach);
-    // Flat shading lights the face; so do vertices of a mesh without normals.
-    const bool needs_face_normal =
-        object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;
+    // Flat shading lights the face; so do vertices of a mesh without normals. A mirrored object's
+    // triangles compare it with their vertex normals (setup.cpp: the normals' facing).
+    const bool needs_face_normal = object.shading == Shading::kFlat ||
+                                   mesh.normals.size() != vertex_count || xf.winding_sign < 0.0f;
     const MeshVertices mesh_vertices{
         vertices.screen.data() + xf.vertex_base,
         vertices.normal.data() + xf.vertex_base,
         litPerVertex(object, lights) ? vertices.lit.data() + xf.vertex_base : nullptr,
         has_uv ? mesh.uvs.data() : nullptr,
         has_color ? mesh.colors.data() : nullptr,
-        mesh.positions.data()};
+        mesh.positions.data(),
+        meshUv1(ctx, mesh)};
     const uint16_t* outcodes = vertices.outcode.data() + xf.vertex_base;
-    const PlainGouraud plain_gouraud = plainGouraudFor(ctx, mesh_vertices, has_materials);
+    PlainGouraud plain_gouraud = plainGouraudFor(ctx, mesh_vertices, has_materials);
+    // A mirrored object's front faces may show their vertex normals' back (setup.cpp).
+    if (xf.winding_sign < 0.0f) plain_gouraud.applies = false;
 
     // Read only for the triangles that survive the cull.
     auto material = [&](size_t local) {
@@ -153,6 +157,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
           const float4 t = ctx.tangents[idx[k]];
           in[k].tangent = float4((xf.model * float4(t.xyz(), 0.0f)).xyz(), t.w * ctx.winding_sign);
         }
+        if (ctx.uv1) in[k].uv1 = mesh_vertices.uv1[idx[k]];
       }
       ClipVertex polygon[kMaxClippedVertices];
       const int n = clipTriangle(in, cut, guard, polygon);
@@ -167,7 +172,8 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
         ++chunk.size;
         VertexAttributes a[3];
         for (int i = 0; i < 3; ++i)
-          a[i] = {fan[i]->normal, fan[i]->uv, fan[i]->color, false, fan[i]->world, fan[i]->tangent};
+          a[i] = {fan[i]->normal, fan[i]->uv,      fan[i]->color, false,
+                  fan[i]->world,  fan[i]->tangent, fan[i]->uv1};
         setupShade(ctx, sv, a, orientation, raster, face_normal(idx), id, material(local),
                    chunk.shade[record], chunk.extras[record]);
         bin(raster, record, chunk.shade[record]);
@@ -181,8 +187,10 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
       }
     };
 
-    // One triangle through the same checks as the cull kernel.
-    auto drawOne = [&](size_t t) {
+    // One triangle through the same checks as the cull kernel. Inlined as the other lambdas:
+    // left to itself GCC stopped inlining it once drawClipped grew, and the per-triangle loop
+    // around drawWhole lost 12 instructions a triangle (bunny, callgrind).
+    auto drawOne = [&](size_t t) __attribute__((always_inline)) {
       const size_t local = t - xf.triangle_base;
       const uint32_t idx[3] = {mesh.indices[local * 3], mesh.indices[local * 3 + 1],
                                mesh.indices[local * 3 + 2]};

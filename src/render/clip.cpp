@@ -39,6 +39,7 @@ ClipVertex interpolate(const ClipVertex& inside, const ClipVertex& outside, floa
   v.color = lerp(inside.color, outside.color, t);
   v.world = lerp(inside.world, outside.world, t);
   v.tangent = lerp(inside.tangent, outside.tangent, t);
+  v.uv1 = inside.uv1 + (outside.uv1 - inside.uv1) * t;
   return v;
 }
 

@@ -18,6 +18,7 @@ struct ClipVertex {
   float4 color;
   float3 world;      // world position: point and spot lights, kPbr
   float4 tangent{};  // world tangent: kPbr with a normal map
+  float2 uv1{};      // TEXCOORD_1: materials that read it (SetupContext::uv1)
 };
 
 enum ClipPlaneBit : uint32_t {

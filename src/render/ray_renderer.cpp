@@ -110,15 +110,16 @@ void RayRenderer::setupChunk(const Scene& scene, const RenderOptions& options, i
                                                 options.height, options.normals, 0);
     rctx.cull = object.cull;
     const bool has_materials = mesh.triangle_materials.size() == mesh.triangleCount();
-    const bool needs_face_normal =
-        object.shading == Shading::kFlat || mesh.normals.size() != vertex_count;
+    const bool needs_face_normal = object.shading == Shading::kFlat ||
+                                   mesh.normals.size() != vertex_count || xf.winding_sign < 0.0f;
     const MeshVertices corners{
         nullptr,
         vertices_.normal.data() + xf.vertex_base,
         litPerVertex(object, lights_) ? vertices_.lit.data() + xf.vertex_base : nullptr,
         ctx.has_uv ? mesh.uvs.data() : nullptr,
         ctx.has_color ? mesh.colors.data() : nullptr,
-        mesh.positions.data()};
+        mesh.positions.data(),
+        meshUv1(ctx, mesh)};
     for (const size_t stop = std::min(end, object_end); t < stop; ++t) {
       const size_t local = t - xf.triangle_base;
       const uint32_t* idx = &mesh.indices[local * 3];

@@ -86,6 +86,7 @@ struct MeshCorners {
   const ScreenVertex& screen(int k) const { return vertices.screen[index[k]]; }
   float3 unitNormal(int k) const { return vertices.normal[index[k]]; }  // unit or zero already
   float2 uv(int k) const { return vertices.uv[index[k]]; }
+  float2 uv1(int k) const { return vertices.uv1[index[k]]; }
   float3 color(int k) const { return vertices.color[index[k]].xyz(); }
   const float3* lit(int k) const { return vertices.lit ? &vertices.lit[index[k]] : nullptr; }
   float3 world(int k, const float4x4& model) const {
@@ -107,6 +108,7 @@ struct ClippedCorners {
   // Interpolated by the clipper: no longer unit.
   float3 unitNormal(int k) const { return a[k].unit_normal ? a[k].normal : normalize(a[k].normal); }
   float2 uv(int k) const { return a[k].uv; }
+  float2 uv1(int k) const { return a[k].uv1; }
   float3 color(int k) const { return a[k].color.xyz(); }
   const float3* lit(int) const { return nullptr; }
   float3 world(int k, const float4x4&) const { return a[k].world; }
@@ -153,9 +155,18 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
     return isZero(n) ? float3{0, 0, flip} : n;
   };
   const auto albedo = [&](int i) { return ctx.has_color ? base * corners.color(i) : base; };
+  // The vertex normals face the viewer where the face does (flip), unless they point to the other
+  // side of the face than its winding does: a mirroring model whose mesh was not turned inside
+  // out (SceneGraph's mirrored copies are), whose front faces would else show the normals' back.
+  const float normal_flip =
+      ctx.winding_sign < 0.0f &&
+              dot(corners.unitNormal(0) + corners.unitNormal(1) + corners.unitNormal(2),
+                  face_normal) < 0.0f
+          ? -flip
+          : flip;
   // The vertex's shading normal, facing the viewer; the face's where the vertex has none.
   const auto vertexNormal = [&](int i) {
-    const float3 n = corners.unitNormal(i) * flip;
+    const float3 n = corners.unitNormal(i) * normal_flip;
     return isZero(n) ? flatNormal() : n;
   };
   // Only what the shading mode reads is written (shade_kernel.h): normals for Phong and the
@@ -182,7 +193,7 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
         const int i = o.order[k];
         // Facing the viewer, the shading normal is the vertex normal itself (flip = +1), so the
         // vertex stage's irradiance is its irradiance; NaN there marks a zero normal.
-        const float3* lit = o.back_facing ? nullptr : corners.lit(i);
+        const float3* lit = normal_flip < 0.0f ? nullptr : corners.lit(i);
         if (lit && !std::isnan(lit->x)) {
           if (ctx.want_normals) extras.normal[k] = vertexNormal(i);
           shade.color[k] = albedo(i) * *lit;
@@ -204,7 +215,7 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
           // Drawn back faces flip the whole frame (normal, tangent and bitangent: the relief
           // seen from behind), as the Khronos sample viewer does.
           const float4 t = corners.tangent(i, ctx);
-          extras.tangent[k] = float4(t.xyz() * flip, t.w * flip);
+          extras.tangent[k] = float4(t.xyz() * normal_flip, t.w * normal_flip);
         }
       }
       shade.pbr_flags = static_cast<uint8_t>((ctx.has_uv ? kPbrUv : 0) |
@@ -223,6 +234,8 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
   }
   if (ctx.has_uv)
     for (int k = 0; k < 3; ++k) extras.uv[k] = corners.uv(o.order[k]);
+  if (ctx.uv1)
+    for (int k = 0; k < 3; ++k) extras.uv1[k] = corners.uv1(o.order[k]);
   shade.material = &m;
   shade.triangle_id = triangle_id;
   shade.shading = ctx.shading;

@@ -92,8 +92,10 @@ constexpr uint8_t kPbrUv = 1, kPbrTangents = 2;
 // What only Phong, PBR, textured and normal-AOV pixels read, in an array beside the ShadeTriangles:
 // records of untextured flat and Gouraud triangles stay 88 bytes, written and read whole.
 struct ShadeExtras {
-  float3 normal[3];  // world shading normals, facing the viewer for drawn back faces
-  float2 uv[3];
+  float3 normal[3];   // world shading normals, facing the viewer for drawn back faces
+  float2 uv[3];       // TEXCOORD_0
+  float2 uv1[3];      // TEXCOORD_1 (set 0 where the mesh has none): written only when the
+                      // object's materials read it (SetupContext::uv1)
   float3 world[3];    // world positions: Phong pixels lit by point and spot lights, PBR pixels
   float4 tangent[3];  // PBR with a normal map: world tangent, w the bitangent's sign (Mesh)
 };
@@ -107,6 +109,9 @@ struct SetupContext {
   const float4x4* model = nullptr;  // the object's: world positions for point and spot lights
   bool has_uv = false;
   bool has_color = false;
+  // Some material of the object reads TEXCOORD_1 (readsTexcoord1) and the mesh has UVs: setup
+  // writes ShadeExtras::uv1 from MeshVertices::uv1.
+  bool uv1 = false;
   bool want_normals = false;  // the normal AOV is asked for
   // kPbr objects whose materials have a normal map: the mesh's tangents (object space), else null.
   const float4* tangents = nullptr;
@@ -135,6 +140,8 @@ inline SetupContext objectSetupContext(const LightRig& lights, const Object& obj
   }
   ctx.want_normals = want_normals;
   ctx.sample_reach = sample_reach;
+  ctx.uv1 = ctx.has_uv && std::any_of(object.materials.begin(), object.materials.end(),
+                                      [](const Material& m) { return readsTexcoord1(m); });
   const Mesh* mesh = object.mesh.get();
   if (object.shading == Shading::kPbr && mesh && ctx.has_uv &&
       mesh->tangents.size() == mesh->vertexCount() && mesh->normals.size() == mesh->vertexCount() &&
@@ -242,6 +249,7 @@ struct VertexAttributes {
   bool unit_normal;  // `normal` is unit length or zero already (not interpolated by clipping)
   float3 world;      // world position (read only with point or spot lights, and for kPbr)
   float4 tangent{};  // world tangent (read only when SetupContext::tangents is set)
+  float2 uv1{};      // read only when SetupContext::uv1
 };
 
 // Whether setup writes world positions: point and spot lights, the view vector of kPbr, and the
@@ -260,7 +268,14 @@ struct MeshVertices {
   const float2* uv;     // read only when ctx.has_uv
   const float4* color;  // read only when ctx.has_color
   const float3* position = nullptr;  // the mesh's (object space); read only with local lights
+  const float2* uv1 = nullptr;       // read only when ctx.uv1 (meshUv1: uvs1, else uvs)
 };
+
+// MeshVertices::uv1 of an object's mesh: its TEXCOORD_1, or its TEXCOORD_0 where it has none.
+inline const float2* meshUv1(const SetupContext& ctx, const Mesh& mesh) {
+  if (!ctx.uv1) return nullptr;
+  return mesh.uvs1.size() == mesh.vertexCount() ? mesh.uvs1.data() : mesh.uvs.data();
+}
 
 // `face_normal` is the world-space geometric normal (flat shading, and vertices without a normal);
 // zero when the caller knows it is not needed. Vertices are given in input order.

@@ -18,8 +18,8 @@ Barycentrics barycentricsAt(const ShadeTriangle& t, float x, float y) {
 
 namespace {
 
-float2 uvAt(const ShadeExtras& e, const Barycentrics& b) {
-  return e.uv[0] * b.b0 + e.uv[1] * b.b1 + e.uv[2] * b.b2;
+float2 uvAt(const float2 uv[3], const Barycentrics& b) {
+  return uv[0] * b.b0 + uv[1] * b.b1 + uv[2] * b.b2;
 }
 
 }  // namespace
@@ -67,7 +67,7 @@ float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Bar
   const Texture& texture = *t.material->albedo;
   const Sampler& sampler = t.material->sampler;
   if (!needsLod(texture, sampler)) {
-    const float2 uv = uvAt(extras, b);
+    const float2 uv = uvAt(uvSet(extras, sampler), b);
     return sampleTexture(texture, sampler, uv, uv, uv).xyz();
   }
   return sampleAlbedo(t, extras, b, barycentricsAt(t, x + 1.0f, y), barycentricsAt(t, x, y + 1.0f));
@@ -75,28 +75,40 @@ float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Bar
 
 float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Barycentrics& b,
                     const Barycentrics& right, const Barycentrics& down) {
-  return sampleTexture(*t.material->albedo, t.material->sampler, uvAt(extras, b),
-                       uvAt(extras, right), uvAt(extras, down))
+  const float2* uv = uvSet(extras, t.material->sampler);
+  return sampleTexture(*t.material->albedo, t.material->sampler, uvAt(uv, b), uvAt(uv, right),
+                       uvAt(uv, down))
       .xyz();
 }
 
 float4 sampleTexture(const Texture& texture, const Sampler& sampler, const ShadeTriangle& t,
                      const ShadeExtras& extras, const Barycentrics& b, float x, float y) {
-  if (sampler.filter != TextureFilter::kTrilinear || texture.mips.empty())
-    return texture.sample(uvAt(extras, b), sampler);
+  if (sampler.filter != TextureFilter::kTrilinear || texture.mips.empty()) {
+    const float2 uv = uvAt(uvSet(extras, sampler), b);
+    return texture.sample(sampler.transform.identity() ? uv : sampler.transform.affine().apply(uv),
+                          sampler);
+  }
   return sampleTexture(texture, sampler, extras, b, barycentricsAt(t, x + 1.0f, y),
                        barycentricsAt(t, x, y + 1.0f));
 }
 
 float4 sampleTexture(const Texture& texture, const Sampler& sampler, const ShadeExtras& extras,
                      const Barycentrics& b, const Barycentrics& right, const Barycentrics& down) {
-  const float2 uv = uvAt(extras, b);
+  // The sampler's set, through its KHR_texture_transform (as the albedo's: sampleTexture above).
+  const float2* corners = uvSet(extras, sampler);
+  const bool moved = !sampler.transform.identity();
+  const UvAffine affine = moved ? sampler.transform.affine() : UvAffine{};
+  auto at = [&](const Barycentrics& c) {
+    const float2 uv = uvAt(corners, c);
+    return moved ? affine.apply(uv) : uv;
+  };
+  const float2 uv = at(b);
   if (sampler.filter != TextureFilter::kTrilinear || texture.mips.empty())
     return texture.sample(uv, sampler);
   // The level of detail as sampleAlbedo: the larger screen-space footprint in texels.
   const float2 size{static_cast<float>(texture.width), static_cast<float>(texture.height)};
-  const float2 du = uvAt(extras, right) - uv;
-  const float2 dv = uvAt(extras, down) - uv;
+  const float2 du = at(right) - uv;
+  const float2 dv = at(down) - uv;
   const float2 dx{du.x * size.x, du.y * size.y}, dy{dv.x * size.x, dv.y * size.y};
   const float rho2 = std::max(dx.x * dx.x + dx.y * dx.y, dy.x * dy.x + dy.y * dy.y);
   const float lod = rho2 > 0.0f ? 0.5f * std::log2(rho2) : 0.0f;

@@ -30,6 +30,12 @@ struct Barycentrics {
   float b0, b1, b2;
 };
 
+// The corners' texture coordinates in the set `sampler` reads (Sampler::texcoord): ShadeExtras::uv
+// or uv1 (which setup writes for every object whose materials read set 1).
+inline const float2* uvSet(const ShadeExtras& e, const Sampler& sampler) {
+  return sampler.texcoord == 1 ? e.uv1 : e.uv;
+}
+
 // Perspective-correct barycentrics at window point (x, y) from the 1/w-weighted planes.
 Barycentrics barycentricsAt(const ShadeTriangle& t, float x, float y);
 
@@ -66,8 +72,9 @@ float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Bar
                     const Barycentrics& right, const Barycentrics& down);
 
 // Any texture of t's material (`texture` read through `sampler`: the PBR maps) at barycentrics b,
-// RGBA as the texture holds it (linear; sRGB textures decoded). The same filtering and level of
-// detail as sampleAlbedo, from the barycentrics at window point (x, y)'s neighbours or those given.
+// RGBA as the texture holds it (linear; sRGB textures decoded): in the sampler's UV set, through
+// its KHR_texture_transform. The same filtering and level of detail as sampleAlbedo, from the
+// barycentrics at window point (x, y)'s neighbours or those given.
 float4 sampleTexture(const Texture& texture, const Sampler& sampler, const ShadeTriangle& t,
                      const ShadeExtras& extras, const Barycentrics& b, float x, float y);
 float4 sampleTexture(const Texture& texture, const Sampler& sampler, const ShadeExtras& extras,

@@ -148,10 +148,11 @@ TESSERA_LANES_INLINE bool sampleAlbedo8(const ShadeTriangle& t, const ShadeExtra
   const Material& m = *t.material;
   const Texture& texture = *m.albedo;
   if (!texture8Applies(texture, m.sampler)) return false;
-  // uvAt: e.uv[0] * b0 + e.uv[1] * b1 + e.uv[2] * b2.
+  // uvAt: uv[0] * b0 + uv[1] * b1 + uv[2] * b2, in the sampler's set.
+  const float2* corners = uvSet(e, m.sampler);
   auto uvAt8 = [&](F32x8 c0, F32x8 c1, F32x8 c2) {
-    return Uv8{splat(e.uv[0].x) * c0 + splat(e.uv[1].x) * c1 + splat(e.uv[2].x) * c2,
-               splat(e.uv[0].y) * c0 + splat(e.uv[1].y) * c1 + splat(e.uv[2].y) * c2};
+    return Uv8{splat(corners[0].x) * c0 + splat(corners[1].x) * c1 + splat(corners[2].x) * c2,
+               splat(corners[0].y) * c0 + splat(corners[1].y) * c1 + splat(corners[2].y) * c2};
   };
   const Uv8 uv = uvAt8(b0, b1, b2);
   Uv8 right = uv, down = uv;

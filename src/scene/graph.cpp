@@ -66,7 +66,11 @@ void SceneGraph::prepareMeshes() {
         mesh.normals.size() != mesh.vertexCount())
       continue;
     auto with_tangents = std::make_shared<Mesh>(mesh);
-    generateTangents(*with_tangents);
+    // From the normal map's set (the first mapped material's: one set per mesh's tangents).
+    const auto normal_mapped =
+        std::find_if(m.materials.begin(), m.materials.end(),
+                     [](const Material& material) { return bool(material.normal); });
+    generateTangents(*with_tangents, normal_mapped->normal.sampler.texcoord);
     m.mesh = std::move(with_tangents);
     m.clusters = nullptr;
   }
@@ -122,6 +126,14 @@ Mesh SceneGraph::flatten() const {
       if (mesh.uvs.size() == mesh.vertexCount())
         out.uvs.insert(out.uvs.end(), mesh.uvs.begin(), mesh.uvs.end());
       out.uvs.resize(out.positions.size(), float2{0, 0});
+    }
+    // A mesh without set 1 gives set 0 in its place (what the renderer reads for it).
+    if (!mesh.uvs1.empty() || !out.uvs1.empty()) {
+      out.uvs1.resize(base, float2{0, 0});
+      const std::vector<float2>& set1 = mesh.uvs1.empty() ? mesh.uvs : mesh.uvs1;
+      if (set1.size() == mesh.vertexCount())
+        out.uvs1.insert(out.uvs1.end(), set1.begin(), set1.end());
+      out.uvs1.resize(out.positions.size(), float2{0, 0});
     }
     if (!mesh.tangents.empty() || !out.tangents.empty()) {
       // Directions: the model's upper 3x3; a mirror flips the bitangent's sign.

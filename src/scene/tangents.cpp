@@ -45,9 +45,9 @@ namespace {
 
 constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
 
-// Mesh's arrays: five per vertex (copyVertex copies each) and three per triangle. A new
+// Mesh's arrays: six per vertex (copyVertex copies each) and three per triangle. A new
 // per-vertex array (morph targets, joints and weights) must be copied there too.
-static_assert(sizeof(Mesh) == 8 * sizeof(std::vector<float>),
+static_assert(sizeof(Mesh) == 9 * sizeof(std::vector<float>),
               "a new Mesh array: if it is per vertex, copyVertex must copy it");
 
 // MikkTSpace's test for "not zero".
@@ -338,11 +338,16 @@ class CornerTangents {
 uint32_t copyVertex(Mesh& mesh, uint32_t v, float4 tangent) {
   const auto copy = static_cast<uint32_t>(mesh.positions.size());
   const bool colored = mesh.colors.size() == mesh.positions.size();
+  const bool second_set = mesh.uvs1.size() == mesh.positions.size();
   const float3 position = mesh.positions[v], normal = mesh.normals[v];
   const float2 uv = mesh.uvs[v];
   mesh.positions.push_back(position);
   mesh.normals.push_back(normal);
   mesh.uvs.push_back(uv);
+  if (second_set) {
+    const float2 uv1 = mesh.uvs1[v];
+    mesh.uvs1.push_back(uv1);
+  }
   if (colored) {
     const float4 color = mesh.colors[v];
     mesh.colors.push_back(color);
@@ -404,9 +409,28 @@ bool hasNormalsAndUvs(const Mesh& mesh) {
   return mesh.normals.size() == mesh.vertexCount() && mesh.uvs.size() == mesh.vertexCount();
 }
 
+// Set 1 as Mesh::uvs while it lives (the algorithm reads uvs; copyVertex copies both sets).
+class UvSetSwap {
+ public:
+  UvSetSwap(Mesh& mesh, int uv_set)
+      : mesh_(mesh), swapped_(uv_set == 1 && mesh.uvs1.size() == mesh.vertexCount()) {
+    if (swapped_) std::swap(mesh_.uvs, mesh_.uvs1);
+  }
+  ~UvSetSwap() {
+    if (swapped_) std::swap(mesh_.uvs, mesh_.uvs1);
+  }
+  UvSetSwap(const UvSetSwap&) = delete;
+  UvSetSwap& operator=(const UvSetSwap&) = delete;
+
+ private:
+  Mesh& mesh_;
+  bool swapped_;
+};
+
 }  // namespace
 
-TangentReport generateTangents(Mesh& mesh) {
+TangentReport generateTangents(Mesh& mesh, int uv_set) {
+  const UvSetSwap set(mesh, uv_set);
   if (!hasNormalsAndUvs(mesh)) {
     mesh.tangents.clear();
     return {};
@@ -415,7 +439,8 @@ TangentReport generateTangents(Mesh& mesh) {
   return generateSelected(mesh, std::vector<uint8_t>(mesh.vertexCount(), 1));
 }
 
-TangentReport generateTangents(Mesh& mesh, std::span<const VertexRange> ranges) {
+TangentReport generateTangents(Mesh& mesh, std::span<const VertexRange> ranges, int uv_set) {
+  const UvSetSwap set(mesh, uv_set);
   if (!hasNormalsAndUvs(mesh)) {
     mesh.tangents.clear();
     return {};

@@ -68,6 +68,9 @@ constexpr uint32_t kTextureMirrorT = 128u;
 constexpr uint32_t kTextureTransformed = 512u;  // uv_transform applies (Sampler::transform)
 // alphaMode MASK: the raster backend discards where alpha < uv_transform[0][3] (the cutoff)
 constexpr uint32_t kMaterialMask = 1024u;
+// The texture is read through TEXCOORD_1 (Sampler::texcoord == 1): GpuVertex::uv1, the shading
+// record's uv1.
+constexpr uint32_t kTextureSet1 = 2048u;
 
 // A texture in the texel buffer: a header (level count, then offset, width and height of each
 // level, offsets in words from the start of the buffer), then the levels' texels.
@@ -171,8 +174,10 @@ struct GpuMaterial {
   float pbr[4];              // metallic, roughness, normal_scale, occlusion_strength
   float emissive[4];         // xyz: emissive_factor
   GpuTextureRef maps[kPbrMapCount];
+  // Each map's KHR_texture_transform (its flags say kTextureTransformed): rows of UvAffine.
+  float map_transform[kPbrMapCount][2][4];
 };
-static_assert(sizeof(GpuMaterial) == 160);
+static_assert(sizeof(GpuMaterial) == 288);
 
 struct GpuVertex {
   float position[3];
@@ -180,8 +185,9 @@ struct GpuVertex {
   float uv[2];
   float color[4];
   float tangent[4];  // object space, w the bitangent's sign (kObjectHasTangents; else zero)
+  float uv1[2];      // TEXCOORD_1 (Mesh::uvs1), TEXCOORD_0 where the mesh has none
 };
-static_assert(sizeof(GpuVertex) == 64);
+static_assert(sizeof(GpuVertex) == 72);
 
 // The transform pass's output per vertex (the CPU's VertexBuffer entry).
 struct GpuTransformedVertex {
@@ -223,12 +229,13 @@ struct GpuShadeRecord {
   float normal[3][4];  // xyz
   float color[3][4];   // xyz: base x vertex colour, lit for flat and Gouraud
   float uv[3][2];
+  float uv1[3][2];  // TEXCOORD_1 (GpuVertex::uv1)
   float inv_w0, p1dx, p1dy, p2dx, p2dy, sdx, sdy;
   uint32_t triangle_id;
   uint32_t material;  // index into the material buffer
   uint32_t shading;   // Shading | kShadeHasUv
   float world_z[3];
-  uint32_t pad;  // std430 aligns the tangents to 16 bytes
+  uint32_t pad[3];  // std430 aligns the tangents to 16 bytes
   // kPbr with tangents: the corners' world tangents (w the bitangent's sign), facing the viewer
   // as the normals do (the CPU's ShadeExtras::tangent).
   float tangent[3][4];
@@ -238,7 +245,7 @@ constexpr uint32_t kShadeHasUv = 1u << 8;
 // CPU's kPbrUv and kPbrTangents.
 constexpr uint32_t kShadePbrUv = 1u << 9;
 constexpr uint32_t kShadePbrTangents = 1u << 10;
-static_assert(sizeof(GpuShadeRecord) == 224);
+static_assert(sizeof(GpuShadeRecord) == 256);
 
 struct GpuCounters {
   uint32_t visible;  // records in the visible list

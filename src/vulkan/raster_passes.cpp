@@ -205,12 +205,13 @@ namespace {
 // The fixed-function state the mesh pipelines share, filled in place (it points into itself).
 struct MeshPipelineState {
   VkVertexInputBindingDescription vertex_binding{0, sizeof(GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX};
-  VkVertexInputAttributeDescription vertex_attributes[5] = {
+  VkVertexInputAttributeDescription vertex_attributes[6] = {
       {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, position)},
       {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal)},
       {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv)},
       {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(GpuVertex, color)},
-      {4, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(GpuVertex, tangent)}};
+      {4, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(GpuVertex, tangent)},
+      {5, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv1)}};
   VkPipelineVertexInputStateCreateInfo vertex_input{};
   VkPipelineInputAssemblyStateCreateInfo assembly{};
   VkPipelineViewportStateCreateInfo viewport{};
@@ -226,7 +227,7 @@ struct MeshPipelineState {
     vertex_input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
     vertex_input.vertexBindingDescriptionCount = 1;
     vertex_input.pVertexBindingDescriptions = &vertex_binding;
-    vertex_input.vertexAttributeDescriptionCount = 5;
+    vertex_input.vertexAttributeDescriptionCount = 6;
     vertex_input.pVertexAttributeDescriptions = vertex_attributes;
     assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
     assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;

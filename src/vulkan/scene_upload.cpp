@@ -131,7 +131,17 @@ GpuTextureRef textureRef(const Texture& texture, const Sampler& sampler, PackedS
     ref.flags |= kTextureTrilinear;
   ref.flags |= wrapFlags(sampler.wrap_s, kTextureClampS, kTextureMirrorS) |
                wrapFlags(sampler.wrap_t, kTextureClampT, kTextureMirrorT);
+  if (sampler.texcoord == 1) ref.flags |= kTextureSet1;
+  if (!sampler.transform.identity()) ref.flags |= kTextureTransformed;
   return ref;
+}
+
+// A sampler's KHR_texture_transform as two rows of UvAffine (each padded to four floats).
+void packTransform(const Sampler& sampler, float rows[2][4]) {
+  const UvAffine a = sampler.transform.affine();
+  const float m[2][3] = {{a.m00, a.m01, a.m02}, {a.m10, a.m11, a.m12}};
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 3; ++c) rows[r][c] = m[r][c];
 }
 
 GpuMaterial packMaterial(const Material& material, PackedScene& out) {
@@ -143,20 +153,13 @@ GpuMaterial packMaterial(const Material& material, PackedScene& out) {
     m.texture_width = ref.width;
     m.texture_height = ref.height;
     m.texture_flags = ref.flags;
-    if (!material.sampler.transform.identity()) {
-      m.texture_flags |= kTextureTransformed;
-      const UvAffine a = material.sampler.transform.affine();
-      const float rows[2][3] = {{a.m00, a.m01, a.m02}, {a.m10, a.m11, a.m12}};
-      for (int r = 0; r < 2; ++r)
-        for (int c = 0; c < 3; ++c) m.uv_transform[r][c] = rows[r][c];
-    }
+    if (ref.flags & kTextureTransformed) packTransform(material.sampler, m.uv_transform);
   }
   if (material.alpha_mode == AlphaMode::kMask) {
     m.texture_flags |= kMaterialMask;
     m.uv_transform[0][3] = material.alpha_cutoff;
   }
-  // kPbr's factors and maps. The maps take no KHR_texture_transform: the CPU's do not either
-  // (render/shade.cpp: sampleTexture of a TextureSlot).
+  // kPbr's factors and maps, each map with its own set and KHR_texture_transform.
   m.pbr[0] = material.metallic;
   m.pbr[1] = material.roughness;
   m.pbr[2] = material.normal_scale;
@@ -166,8 +169,11 @@ GpuMaterial packMaterial(const Material& material, PackedScene& out) {
   m.emissive[2] = material.emissive_factor.z;
   const TextureSlot* slots[kPbrMapCount] = {&material.metallic_roughness, &material.normal,
                                             &material.occlusion, &material.emissive};
-  for (uint32_t i = 0; i < kPbrMapCount; ++i)
-    if (slots[i]->texture) m.maps[i] = textureRef(*slots[i]->texture, slots[i]->sampler, out);
+  for (uint32_t i = 0; i < kPbrMapCount; ++i) {
+    if (!slots[i]->texture) continue;
+    m.maps[i] = textureRef(*slots[i]->texture, slots[i]->sampler, out);
+    if (m.maps[i].flags & kTextureTransformed) packTransform(slots[i]->sampler, m.map_transform[i]);
+  }
   return m;
 }
 
@@ -293,6 +299,7 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
       const size_t count = mesh.vertexCount(), triangles = mesh.triangleCount();
       const bool has_normals = mesh.normals.size() == count;
       const bool has_uv = mesh.uvs.size() == count;
+      const bool has_uv1 = mesh.uvs1.size() == count;  // else set 0 in its place
       const bool has_color = mesh.colors.size() == count;
       const bool has_materials = mesh.triangle_materials.size() == triangles;
       // The CPU's SetupContext::tangents (render/setup.h: objectSetupContext).
@@ -320,6 +327,9 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
         if (has_uv) {
           gv.uv[0] = mesh.uvs[v].x;
           gv.uv[1] = mesh.uvs[v].y;
+          const float2 uv1 = has_uv1 ? mesh.uvs1[v] : mesh.uvs[v];
+          gv.uv1[0] = uv1.x;
+          gv.uv1[1] = uv1.y;
         }
         const float4 color = has_color ? mesh.colors[v] : float4{1, 1, 1, 1};
         for (int c = 0; c < 4; ++c) gv.color[c] = color[c];

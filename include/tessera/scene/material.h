@@ -47,6 +47,18 @@ struct Material {
   float density = 1.0f;
 };
 
+// Whether any texture of `m` (its albedo or a PBR map) is read through TEXCOORD_1.
+inline bool readsTexcoord1(const Material& m) {
+  auto reads = [](const std::shared_ptr<const Texture>& texture, const Sampler& sampler) {
+    return texture != nullptr && sampler.texcoord == 1;
+  };
+  return reads(m.albedo, m.sampler) ||
+         reads(m.metallic_roughness.texture, m.metallic_roughness.sampler) ||
+         reads(m.normal.texture, m.normal.sampler) ||
+         reads(m.occlusion.texture, m.occlusion.sampler) ||
+         reads(m.emissive.texture, m.emissive.sampler);
+}
+
 // A vector of materials whose copies share one array until one of them is changed (copy on
 // write): 10,000 instances of a mesh hold one list, not 10,000. Reads are as for a const
 // std::vector; a non-const access detaches the list first. Like std::vector, a list is not to be

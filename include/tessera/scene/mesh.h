@@ -33,8 +33,11 @@ struct Bounds {
 struct Mesh {
   std::vector<float3> positions;
   std::vector<float3> normals;  // empty: generate them (generateSmoothNormals) or draw flat
-  std::vector<float2> uvs;      // empty: no texture coordinates
-  std::vector<float4> colors;   // linear RGBA; empty: white
+  std::vector<float2> uvs;      // TEXCOORD_0; empty: no texture coordinates
+  // TEXCOORD_1 (glTF); empty: none, and a map that reads set 1 reads `uvs` instead. Only a glTF
+  // primitive whose material reads set 1 fills it.
+  std::vector<float2> uvs1;
+  std::vector<float4> colors;  // linear RGBA; empty: white
   // Tangent space for normal maps (glTF's TANGENT): xyz along +u, unit; w = +-1, the bitangent is
   // cross(normal, xyz) * w (along +v). Empty: none (generateTangents, tangents.h, makes them).
   std::vector<float4> tangents;

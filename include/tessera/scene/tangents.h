@@ -27,12 +27,13 @@ struct TangentReport {
 using VertexRange = std::pair<size_t, size_t>;
 
 // Per-vertex MikkTSpace tangents (Mesh::tangents: xyz unit and across the normal, w = +-1) for the
-// whole mesh. Needs normals and UVs, one per vertex (else clears tangents and does nothing else).
-// May add vertices (TangentReport::split_vertices) and rewrite indices to them.
-TangentReport generateTangents(Mesh& mesh);
+// whole mesh, from the UVs of set `uv_set` (1: Mesh::uvs1 where the mesh has it, else Mesh::uvs;
+// the normal map's set). Needs normals and UVs, one per vertex (else clears tangents and does
+// nothing else). May add vertices (TangentReport::split_vertices) and rewrite indices to them.
+TangentReport generateTangents(Mesh& mesh, int uv_set = 0);
 
 // The same for the triangles whose three corners lie in `ranges` (a glTF mesh's primitives
 // without TANGENT); the other vertices keep their tangents (resized to (1, 0, 0, 1) if missing).
-TangentReport generateTangents(Mesh& mesh, std::span<const VertexRange> ranges);
+TangentReport generateTangents(Mesh& mesh, std::span<const VertexRange> ranges, int uv_set = 0);
 
 }  // namespace tessera

@@ -53,7 +53,7 @@ struct Sampler {
   TextureWrap wrap_s = TextureWrap::kRepeat;  // along u
   TextureWrap wrap_t = TextureWrap::kRepeat;  // along v
   TextureTransform transform;                 // identity unless the file says KHR_texture_transform
-  int texcoord = 0;                           // TEXCOORD_<n>
+  int texcoord = 0;                           // TEXCOORD_<n>: 0 or 1 (Mesh::uvs, Mesh::uvs1)
 };
 
 struct TextureLevel {

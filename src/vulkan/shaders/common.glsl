@@ -26,6 +26,7 @@ const uint kTextureMirrorS = 64u;
 const uint kTextureMirrorT = 128u;
 const uint kTextureTransformed = 512u;
 const uint kMaterialMask = 1024u;  // alphaMode MASK, cutoff in uv_transform[0].w
+const uint kTextureSet1 = 2048u;   // read through TEXCOORD_1
 const uint kShadeHasUv = 256u;
 const uint kShadePbrUv = 512u;
 const uint kShadePbrTangents = 1024u;
@@ -102,6 +103,7 @@ struct GpuMaterial {
   vec4 pbr;              // metallic, roughness, normal_scale, occlusion_strength
   vec4 emissive;         // xyz: emissive_factor
   TextureRef maps[4];    // metallic-roughness, normal, occlusion, emissive
+  vec4 map_transform[8];  // map i's KHR_texture_transform: rows 2 i and 2 i + 1 (xyz)
 };
 
 struct GpuVertex {
@@ -110,6 +112,7 @@ struct GpuVertex {
   float uv[2];
   float color[4];
   float tangent[4];  // object space; w: the bitangent's sign
+  float uv1[2];      // TEXCOORD_1, or TEXCOORD_0 where the mesh has none
 };
 
 layout(std430, set = 0, binding = 0) readonly buffer FrameBuffer {
@@ -141,6 +144,7 @@ vec4 vertexTangent(uint v) {
               vertices[v].tangent[3]);
 }
 vec2 vertexUv(uint v) { return vec2(vertices[v].uv[0], vertices[v].uv[1]); }
+vec2 vertexUv1(uint v) { return vec2(vertices[v].uv1[0], vertices[v].uv1[1]); }
 vec4 vertexColor(uint v) {
   return vec4(vertices[v].color[0], vertices[v].color[1], vertices[v].color[2],
               vertices[v].color[3]);

@@ -25,11 +25,14 @@ layout(location = 3) TESSERA_INTERPOLATION in vec3 in_color_back;
 layout(location = 5) TESSERA_INTERPOLATION in vec3 in_world;
 layout(location = 6) TESSERA_INTERPOLATION in vec3 in_tangent;
 layout(location = 7) flat in float in_tangent_sign;
+layout(location = 8) TESSERA_INTERPOLATION in vec2 in_uv1;  // TEXCOORD_1
 #if TESSERA_MSAA
 // The UV at the pixel centre: its differences across the quad give the level of detail.
 layout(location = 4) in vec2 in_uv_centre;
+layout(location = 9) in vec2 in_uv1_centre;
 #else
 #define in_uv_centre in_uv
+#define in_uv1_centre in_uv1
 #endif
 
 #if TESSERA_MSAA
@@ -60,16 +63,22 @@ vec2 uvAtWindow(GpuObject object, vec3 p[3], vec2 uv[3], vec2 q) {
 // kPbr's trilinear maps (and albedo) step the UV to the next pixel centres right and down, as
 // the CPU takes them, rather than by the quad's differences (a backward one on odd pixels: up to
 // 29/255 from the CPU near a sphere's poles in VulkanPbr.MapsAndTangentsMatchCpu...).
-void uvStepsToNextPixels(GpuObject object, uvec3 corner, out vec2 uv_dx, out vec2 uv_dy) {
+// The same for both sets: uv_d[0], uv_d[1] are set 0's steps right and down, uv_d[2], uv_d[3] set
+// 1's.
+void uvStepsToNextPixels(GpuObject object, uvec3 corner, inout vec2 uv_d[4]) {
   vec3 p[3];
-  vec2 uv[3];
+  vec2 uv[3], uv1[3];
   for (int k = 0; k < 3; ++k) {
     p[k] = vertexPosition(object.vertex_base + corner[k]);
     uv[k] = vertexUv(object.vertex_base + corner[k]);
+    uv1[k] = vertexUv1(object.vertex_base + corner[k]);
   }
   const vec2 centre = uvAtWindow(object, p, uv, gl_FragCoord.xy);
-  uv_dx = uvAtWindow(object, p, uv, gl_FragCoord.xy + vec2(1.0, 0.0)) - centre;
-  uv_dy = uvAtWindow(object, p, uv, gl_FragCoord.xy + vec2(0.0, 1.0)) - centre;
+  uv_d[0] = uvAtWindow(object, p, uv, gl_FragCoord.xy + vec2(1.0, 0.0)) - centre;
+  uv_d[1] = uvAtWindow(object, p, uv, gl_FragCoord.xy + vec2(0.0, 1.0)) - centre;
+  const vec2 centre1 = uvAtWindow(object, p, uv1, gl_FragCoord.xy);
+  uv_d[2] = uvAtWindow(object, p, uv1, gl_FragCoord.xy + vec2(1.0, 0.0)) - centre1;
+  uv_d[3] = uvAtWindow(object, p, uv1, gl_FragCoord.xy + vec2(0.0, 1.0)) - centre1;
 }
 
 // A kPbr fragment's linear colour from its base colour; `normal` (the interpolated one, facing
@@ -84,8 +93,9 @@ vec3 shadePbrFragment(GpuObject object, GpuMaterial material, vec3 base, float f
 }
 
 void main() {
-  // Derivatives first, in uniform control flow.
-  vec2 uv_dx = dFdx(in_uv_centre), uv_dy = dFdy(in_uv_centre);
+  // Derivatives first, in uniform control flow: set 0's right and down, then set 1's.
+  vec2 uv_d[4] = vec2[4](dFdx(in_uv_centre), dFdy(in_uv_centre), dFdx(in_uv1_centre),
+                         dFdy(in_uv1_centre));
   const GpuObject object = objects[draw.object];
   const uint t = object.triangle_base + uint(gl_PrimitiveID);
   const float flip = gl_FrontFacing ? 1.0 : -1.0;
@@ -96,13 +106,26 @@ void main() {
   const vec3 p1 = vertexPosition(object.vertex_base + i1);
   const vec3 p2 = vertexPosition(object.vertex_base + i2);
   if (object.shading == kShadingPbr && (object.flags & kObjectHasUv) != 0u)
-    uvStepsToNextPixels(object, uvec3(i0, i1, i2), uv_dx, uv_dy);
+    uvStepsToNextPixels(object, uvec3(i0, i1, i2), uv_d);
   precise vec3 e1 = p1 - p0;
   precise vec3 e2 = p2 - p0;
   precise vec3 edge_cross = vec3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
                                  e1.x * e2.y - e1.y * e2.x);
-  const vec3 face_normal =
-      normalizeAsCpu(multiply3x3(object.normal_matrix, edge_cross) * object.winding_sign) * flip;
+  precise vec3 winding_normal = multiply3x3(object.normal_matrix, edge_cross) * object.winding_sign;
+  const vec3 face_normal = normalizeAsCpu(winding_normal) * flip;
+  // The vertex normals face the viewer where the face does, unless a mirroring model's mesh (not
+  // turned inside out) has them on the other side of the face than its winding (the CPU's
+  // setupShadeCorners: normal_flip).
+  float normal_flip = flip;
+  if (object.winding_sign < 0.0 && (object.flags & kObjectHasNormals) != 0u) {
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < 3; ++k) {
+      const uint i = k == 0 ? i0 : (k == 1 ? i1 : i2);
+      sum += normalizeAsCpu(multiply3x3(object.normal_matrix,
+                                        vertexNormal(object.vertex_base + i)));
+    }
+    if (dot(sum, winding_normal) < 0.0) normal_flip = -flip;
+  }
 
   // Without vertex normals the CPU lights every pixel with the face normal (kPbr: through the
   // BRDF still, the face normal its shading normal).
@@ -113,16 +136,19 @@ void main() {
 
   const uint m = (object.flags & kObjectHasTriangleMaterials) != 0u ? triangle_materials[t] : 0u;
   const GpuMaterial material = objectMaterial(object, m);
-  vec3 color = material.base_color.xyz * (gl_FrontFacing ? in_color_front : in_color_back);
+  vec3 color = material.base_color.xyz * (normal_flip > 0.0 ? in_color_front : in_color_back);
   float alpha = material.base_color.w;
   if ((material.texture_flags & kTexturePresent) != 0u && (object.flags & kObjectHasUv) != 0u) {
-    // The sampler's transform, and its linear part on the UV derivatives.
-    const vec2 uv = transformUv(material, in_uv);
+    // The sampler's set and transform, and its linear part on the UV derivatives.
+    const bool set1 = (material.texture_flags & kTextureSet1) != 0u;
+    const vec2 in_uv_a = set1 ? in_uv1 : in_uv;
+    const vec2 uv_dx = set1 ? uv_d[2] : uv_d[0], uv_dy = set1 ? uv_d[3] : uv_d[1];
+    const vec2 uv = transformUv(material, in_uv_a);
     if ((material.texture_flags & kTextureTrilinear) != 0u) {
       // The level of detail from the UV footprint of the pixel, as the CPU's sampleAlbedo.
       const vec2 size = vec2(float(material.texture_width), float(material.texture_height));
-      const vec2 dx = (transformUv(material, in_uv + uv_dx) - uv) * size;
-      const vec2 dy = (transformUv(material, in_uv + uv_dy) - uv) * size;
+      const vec2 dx = (transformUv(material, in_uv_a + uv_dx) - uv) * size;
+      const vec2 dy = (transformUv(material, in_uv_a + uv_dy) - uv) * size;
       const float rho2 = max(dot(dx, dx), dot(dy, dy));
       const vec4 texel = sampleTextureTrilinear(material, uv, rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0);
       color *= texel.xyz;
@@ -139,7 +165,7 @@ void main() {
 
   vec3 normal = face_normal;
   if (shading != kShadingFlat) {
-    normal = normalizeAsCpu(in_normal) * flip;
+    normal = normalizeAsCpu(in_normal) * normal_flip;
     if (dot(normal, normal) == 0.0) normal = face_normal;
   }
   // Flat faces are lit at their centroid, as the CPU does.
@@ -148,8 +174,10 @@ void main() {
   if (shading == kShadingFlat) color *= irradiance(normal, centre);
   if (shading == kShadingPhong) color *= irradiance(normal, in_world);
   if (shading == kShadingPbr)
-    color = shadePbrFragment(object, material, color, flip, UvFootprint(in_uv, in_uv + uv_dx,
-                                                                        in_uv + uv_dy), normal);
+    color = shadePbrFragment(object, material, color, normal_flip,
+                             UvFootprint(in_uv, in_uv + uv_d[0], in_uv + uv_d[1], in_uv1,
+                                         in_uv1 + uv_d[2], in_uv1 + uv_d[3]),
+                             normal);
   color = toneMap(color);
 
 #if TESSERA_MSAA

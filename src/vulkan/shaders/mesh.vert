@@ -12,6 +12,7 @@ layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec4 in_color;
 layout(location = 4) in vec4 in_tangent;  // kObjectHasTangents
+layout(location = 5) in vec2 in_uv1;      // TEXCOORD_1 (TEXCOORD_0 where the mesh has none)
 
 layout(location = 0) out vec3 out_normal;
 layout(location = 1) out vec2 out_uv;
@@ -28,6 +29,8 @@ layout(location = 5) out vec3 out_world;  // world position: point and spot ligh
 // (the provoking one), as the CPU takes its corner 0's.
 layout(location = 6) out vec3 out_tangent;
 layout(location = 7) flat out float out_tangent_sign;
+layout(location = 8) out vec2 out_uv1;         // as out_uv, for TEXCOORD_1
+layout(location = 9) out vec2 out_uv1_centre;  // as out_uv_centre
 
 void main() {
   const GpuObject object = objects[draw.object];
@@ -45,6 +48,8 @@ void main() {
   out_normal = normal;
   out_uv = (object.flags & kObjectHasUv) != 0u ? in_uv : vec2(0.0);
   out_uv_centre = out_uv;
+  out_uv1 = (object.flags & kObjectHasUv) != 0u ? in_uv1 : vec2(0.0);
+  out_uv1_centre = out_uv1;
   const vec3 color = (object.flags & kObjectHasColor) != 0u ? in_color.xyz : vec3(1.0);
   const bool gouraud =
       object.shading == kShadingGouraud && (object.flags & kObjectHasNormals) != 0u;

@@ -139,24 +139,31 @@ vec3 shadePbr(PbrLobes s, float occlusion, vec3 emissive, vec3 n, vec3 p) {
 
 // ---- the material's maps ----
 
-// A point's UVs and those at the next pixels right and down (the trilinear level of detail).
+// A point's UVs and those at the next pixels right and down (the trilinear level of detail), in
+// set 0 (TEXCOORD_0) and set 1 (TEXCOORD_1).
 struct UvFootprint {
   vec2 uv, right, down;
+  vec2 uv1, right1, down1;
 };
 
-// One map of a material (render::sampleTexture for a TextureSlot: no KHR_texture_transform, as
-// the CPU's maps take none; trilinear samplers take their level of detail from the footprint).
-vec4 sampleMap(TextureRef t, UvFootprint f) {
-  if ((t.flags & kTextureTrilinear) == 0u) return sampleTexture(t, f.uv);
+// Map `map` of a material (render::sampleTexture for a TextureSlot): in the map's own set, through
+// its own KHR_texture_transform; trilinear samplers take their level of detail from the footprint.
+vec4 sampleMap(GpuMaterial m, int map, UvFootprint f) {
+  const TextureRef t = m.maps[map];
+  const bool set1 = (t.flags & kTextureSet1) != 0u;
+  const vec2 uv = transformMapUv(m, map, set1 ? f.uv1 : f.uv);
+  if ((t.flags & kTextureTrilinear) == 0u) return sampleTexture(t, uv);
+  const vec2 right = transformMapUv(m, map, set1 ? f.right1 : f.right);
+  const vec2 down = transformMapUv(m, map, set1 ? f.down1 : f.down);
   const vec2 size = vec2(float(t.width), float(t.height));
-  precise vec2 du = f.right - f.uv;
-  precise vec2 dv = f.down - f.uv;
+  precise vec2 du = right - uv;
+  precise vec2 dv = down - uv;
   precise vec2 dx = du * size, dy = dv * size;
   precise float rx = dx.x * dx.x + dx.y * dx.y;
   precise float ry = dy.x * dy.x + dy.y * dy.y;
   const float rho2 = rx < ry ? ry : rx;
   precise float lod = rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0;
-  return sampleTextureTrilinear(t, f.uv, lod);
+  return sampleTextureTrilinear(t, uv, lod);
 }
 
 bool hasMap(GpuMaterial m, int map) { return (m.maps[map].flags & kTexturePresent) != 0u; }
@@ -170,7 +177,7 @@ vec3 normalMapped(GpuMaterial m, vec3 n, vec3 tangent, float sign, UvFootprint f
   precise vec3 orthogonal = tangent - n * tn;
   const vec3 t = normalizeAsCpu(orthogonal);
   precise vec3 b = vec3(n.y * t.z - n.z * t.y, n.z * t.x - n.x * t.z, n.x * t.y - n.y * t.x) * sign;
-  const vec4 texel = sampleMap(m.maps[kMapNormal], f);
+  const vec4 texel = sampleMap(m, kMapNormal, f);
   const float scale = m.pbr.z;
   precise float x = (texel.x * 2.0 - 1.0) * scale;
   precise float y = (texel.y * 2.0 - 1.0) * scale;
@@ -186,7 +193,7 @@ vec3 normalMapped(GpuMaterial m, vec3 n, vec3 tangent, float sign, UvFootprint f
 vec3 shadePbrMaterial(GpuMaterial m, vec3 base, vec3 n, vec3 p, bool maps, UvFootprint f) {
   float metallic = m.pbr.x, roughness = m.pbr.y, occlusion = 1.0;
   if (maps && hasMap(m, kMapMetallicRoughness)) {
-    const vec4 texel = sampleMap(m.maps[kMapMetallicRoughness], f);
+    const vec4 texel = sampleMap(m, kMapMetallicRoughness, f);
     precise float r = roughness * texel.y;
     precise float mt = metallic * texel.z;
     roughness = r;
@@ -194,13 +201,13 @@ vec3 shadePbrMaterial(GpuMaterial m, vec3 base, vec3 n, vec3 p, bool maps, UvFoo
   }
   if (maps && hasMap(m, kMapOcclusion)) {
     // glTF: 1 + strength (R - 1).
-    const vec4 texel = sampleMap(m.maps[kMapOcclusion], f);
+    const vec4 texel = sampleMap(m, kMapOcclusion, f);
     precise float o = 1.0 + m.pbr.w * (texel.x - 1.0);
     occlusion = o;
   }
   vec3 emissive = m.emissive.xyz;
   if (maps && hasMap(m, kMapEmissive)) {
-    precise vec3 e = emissive * sampleMap(m.maps[kMapEmissive], f).xyz;
+    precise vec3 e = emissive * sampleMap(m, kMapEmissive, f).xyz;
     emissive = e;
   }
   return shadePbr(pbrLobes(base, metallic, roughness), occlusion, emissive, n, p);

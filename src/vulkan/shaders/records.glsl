@@ -29,6 +29,7 @@ struct ShadeRecord {
   vec4 normal[3];
   vec4 color[3];  // xyz: base colour x vertex colour, already lit for flat and Gouraud; w: world y
   vec2 uv[3];
+  vec2 uv1[3];  // TEXCOORD_1 (the vertices' uv1)
   float inv_w0, p1dx, p1dy, p2dx, p2dy, sdx, sdy;
   uint triangle_id;
   uint material;  // index into the material buffer

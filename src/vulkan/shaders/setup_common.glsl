@@ -21,10 +21,12 @@ struct TriangleContext {
   bool has_color;
   bool tangents;  // kObjectHasTangents
   bool clipped;
+  bool mirrored;  // the model's determinant is negative
   vec3 face_normal;  // world space, unnormalized
   vec3 normal[3];    // the source vertices' attributes
   vec3 world[3];     // their world positions
   vec2 uv[3];
+  vec2 uv1[3];  // TEXCOORD_1 (set 0 where the mesh has none)
   vec4 color[3];
   vec4 tangent[3];  // kObjectHasTangents: world tangents, w the bitangent's sign
 };
@@ -64,11 +66,13 @@ TriangleContext triangleContext(uint t, GpuObject object, uint idx[3]) {
   ctx.has_uv = (object.flags & kObjectHasUv) != 0u;
   ctx.has_color = (object.flags & kObjectHasColor) != 0u;
   ctx.tangents = (object.flags & kObjectHasTangents) != 0u;
+  ctx.mirrored = object.winding_sign < 0.0;
   vec3 p[3];
   for (int k = 0; k < 3; ++k) {
     const uint g = object.vertex_base + idx[k];
     ctx.normal[k] = transformed[g].normal;
     ctx.uv[k] = ctx.has_uv ? vertexUv(g) : vec2(0.0);
+    ctx.uv1[k] = ctx.has_uv ? vertexUv1(g) : vec2(0.0);
     ctx.color[k] = ctx.has_color ? vertexColor(g) : vec4(1.0);
     p[k] = vertexPosition(g);
     ctx.world[k] = worldPosition(object.model, p[k]);
@@ -109,21 +113,34 @@ void setupShadeCorners(TriangleContext ctx, ClipVertex v[3], int order[3], bool 
   precise vec3 centre = (world[0] + world[1] + world[2]) * (1.0 / 3.0);
   const vec3 flat_irradiance =
       ctx.shading == kShadingFlat ? irradiance(flat_normal, centre) : vec3(1.0);
+  // The vertex normals face the viewer where the face does, unless a mirroring model's mesh (not
+  // turned inside out) has them on the other side of the face than its winding (the CPU's
+  // setupShadeCorners: normal_flip).
+  float normal_flip = flip;
+  if (ctx.mirrored) {
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < 3; ++k)
+      sum += normalizeAsCpu(ctx.clipped ? weighted3(ctx.normal, v[k].weights) : ctx.normal[k]);
+    if (dot(sum, ctx.face_normal) < 0.0) normal_flip = -flip;
+  }
   for (int k = 0; k < 3; ++k) {
     const int source = order[k];
     vec3 vertex_normal = ctx.normal[source];
     vec2 uv = ctx.uv[source];
+    vec2 uv1 = ctx.uv1[source];
     vec4 color = ctx.color[source];
     if (ctx.clipped) {
       vertex_normal = weighted3(ctx.normal, v[source].weights);
       uv = weighted2(ctx.uv, v[source].weights);
+      uv1 = weighted2(ctx.uv1, v[source].weights);
       color = weighted4(ctx.color, v[source].weights);
     }
     precise vec3 n = ctx.shading == kShadingFlat ? flat_normal
-                                                 : normalizeAsCpu(vertex_normal) * flip;
+                                                 : normalizeAsCpu(vertex_normal) * normal_flip;
     if (n.x == 0.0 && n.y == 0.0 && n.z == 0.0) n = flat_normal;
     shade.normal[k] = vec4(n, world[source].x);
     shade.uv[k] = uv;
+    shade.uv1[k] = uv1;
     precise vec3 albedo = ctx.has_color ? base * color.xyz : base;
     precise vec3 lit =
         albedo * (ctx.shading == kShadingGouraud ? irradiance(n, world[source]) : flat_irradiance);
@@ -131,7 +148,7 @@ void setupShadeCorners(TriangleContext ctx, ClipVertex v[3], int order[3], bool 
     shade.world_z[k] = world[source].z;
     // kPbr: drawn back faces flip the whole tangent frame, as the normal (the CPU's setupShade).
     vec4 tangent = ctx.clipped ? weighted4(ctx.tangent, v[source].weights) : ctx.tangent[source];
-    precise vec4 facing_tangent = tangent * flip;
+    precise vec4 facing_tangent = tangent * normal_flip;
     shade.tangent[k] = facing_tangent;
   }
   shade.triangle_id = ctx.triangle;

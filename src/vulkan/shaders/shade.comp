@@ -87,18 +87,29 @@ vec2 uvAt(ShadeRecord s, vec3 b) {
   precise vec2 uv = s.uv[0] * b.x + s.uv[1] * b.y + s.uv[2] * b.z;
   return uv;
 }
+vec2 uv1At(ShadeRecord s, vec3 b) {
+  precise vec2 uv = s.uv1[0] * b.x + s.uv1[1] * b.y + s.uv1[2] * b.z;
+  return uv;
+}
+// In the set of a texture with flags `flags` (kTextureSet1: TEXCOORD_1).
+vec2 uvAt(ShadeRecord s, vec3 b, uint flags) {
+  return (flags & kTextureSet1) != 0u ? uv1At(s, b) : uvAt(s, b);
+}
 
 // render::sampleAlbedo: trilinear filtering takes its level of detail from the UVs at the next
 // pixels right and down.
 vec3 sampleAlbedo(uint slot, ShadeRecord s, vec3 b, ivec2 pixel, uint layer) {
   const GpuMaterial m = materials[s.material];
-  const vec2 uv = transformUv(m, uvAt(s, b));
+  const uint flags = m.texture_flags;
+  const vec2 uv = transformUv(m, uvAt(s, b, flags));
   if ((m.texture_flags & kTextureTrilinear) == 0u) return sampleTexture(m, uv).xyz;
   const vec2 size = vec2(float(m.texture_width), float(m.texture_height));
   precise vec2 du =
-      transformUv(m, uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(1, 0)))) - uv;
+      transformUv(m, uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(1, 0)), flags)) -
+      uv;
   precise vec2 dv =
-      transformUv(m, uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(0, 1)))) - uv;
+      transformUv(m, uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(0, 1)), flags)) -
+      uv;
   precise vec2 dx = du * size, dy = dv * size;
   precise float rho2 = max(dx.x * dx.x + dx.y * dx.y, dy.x * dy.x + dy.y * dy.y);
   const float lod = rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0;
@@ -139,9 +150,14 @@ vec3 worldAt(ShadeRecord s, vec3 b) {
 // trilinear level of detail, as sampleAlbedo's).
 UvFootprint footprintAt(uint slot, ShadeRecord s, vec3 b, ivec2 pixel, uint layer) {
   UvFootprint f;
+  const vec3 right = neighbourBarycentrics(slot, s, pixel, layer, ivec2(1, 0));
+  const vec3 down = neighbourBarycentrics(slot, s, pixel, layer, ivec2(0, 1));
   f.uv = uvAt(s, b);
-  f.right = uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(1, 0)));
-  f.down = uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(0, 1)));
+  f.right = uvAt(s, right);
+  f.down = uvAt(s, down);
+  f.uv1 = uv1At(s, b);
+  f.right1 = uv1At(s, right);
+  f.down1 = uv1At(s, down);
   return f;
 }
 
@@ -164,7 +180,8 @@ vec3 shadeAt(uint slot, ivec2 pixel, uint layer) {
   if ((s.shading & 255u) == kShadingPbr) {
     const bool maps = (s.shading & kShadePbrUv) != 0u;
     const UvFootprint f = maps ? footprintAt(slot, s, b, pixel, layer)
-                               : UvFootprint(vec2(0.0), vec2(0.0), vec2(0.0));
+                               : UvFootprint(vec2(0.0), vec2(0.0), vec2(0.0), vec2(0.0), vec2(0.0),
+                                             vec2(0.0));
     color = shadePbrMaterial(materials[s.material], color, pbrNormalAt(s, b, f), worldAt(s, b),
                              maps, f);
   } else if ((s.shading & 255u) == kShadingPhong) {

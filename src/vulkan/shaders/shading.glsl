@@ -91,12 +91,22 @@ ivec2 textureWraps(uint f) {
   return ivec2(s, t);
 }
 
+// UvAffine::apply with rows a and b.
+vec2 applyAffine(vec3 a, vec3 b, vec2 uv) {
+  precise vec2 r = vec2((a.x * uv.x + a.y * uv.y) + a.z, (b.x * uv.x + b.y * uv.y) + b.z);
+  return r;
+}
+
 // The sampler's transform (UvAffine::apply), where the material has one.
 vec2 transformUv(GpuMaterial m, vec2 uv) {
   if ((m.texture_flags & kTextureTransformed) == 0u) return uv;
-  const vec3 a = m.uv_transform[0].xyz, b = m.uv_transform[1].xyz;
-  precise vec2 r = vec2((a.x * uv.x + a.y * uv.y) + a.z, (b.x * uv.x + b.y * uv.y) + b.z);
-  return r;
+  return applyAffine(m.uv_transform[0].xyz, m.uv_transform[1].xyz, uv);
+}
+
+// PBR map `map`'s own transform, where it has one.
+vec2 transformMapUv(GpuMaterial m, int map, vec2 uv) {
+  if ((m.maps[map].flags & kTextureTransformed) == 0u) return uv;
+  return applyAffine(m.map_transform[2 * map].xyz, m.map_transform[2 * map + 1].xyz, uv);
 }
 
 float decodeSrgb8(uint code) { return uintBitsToFloat(color_tables[code]); }
