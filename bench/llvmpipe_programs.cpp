@@ -274,6 +274,10 @@ Expected<const Program*> ProgramCache::get(const ProgramKey& key) {
   if (key.framebuffer_encodes_srgb) defines += "#define FRAMEBUFFER_ENCODES_SRGB\n";
   if (key.local_lights) defines += "#define LOCAL_LIGHTS\n";
   if (pbr || (key.local_lights && key.light_count > 0)) defines += "#define WORLD_POSITION\n";
+  // The shared GLSL marks its arithmetic `precise` so that the Vulkan backends keep the CPU's
+  // bits; the reference lets llvmpipe contract and reorder as it would an ordinary shader (the
+  // images stay within 1/255: bench_reference_test), so it is not timed with a handicap.
+  if (pbr || tone) defines += "#define precise\n";
   if (pbr) defines += "#define PBR\n";
   if (tone) defines += "#define TONE_CURVE " + std::to_string(key.tone_curve) + "\n";
   Expected<GLuint> vs = compileShader(GL_VERTEX_SHADER, defines + kLighting + kVertexShader);

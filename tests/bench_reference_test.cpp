@@ -122,12 +122,12 @@ TEST_F(Reference, ShadingModelsMatchTessera) {
 
 // How close llvmpipe's PBR (and tone-mapped) images come to tessera's, over the pixels both
 // cover, per 8-bit sRGB channel: the mean and the largest difference. The two evaluate the same
-// formulas in the same order (pbr_brdf.glsl mirrors render/pbr.h, tone_curve.glsl render/tone.h)
-// from inputs that differ in their last bits (llvmpipe interpolates the normal and the world
-// position its own way and normalizes with its own rsqrt): untextured, they are at most 1 code
-// apart (measured: mean 0.013 on the bunny, at most 0.002 on the sphere). The checker texture
-// adds the two bilinear filters' disagreement where a pixel straddles a sharp checker edge
-// (measured: mean 0.09 to 0.15, max 4), as for the Lambert modes.
+// formulas (pbr_brdf.glsl mirrors render/pbr.h, tone_curve.glsl render/tone.h; llvmpipe free to
+// fuse multiply-adds) from inputs that differ in their last bits (llvmpipe interpolates the
+// normal and the world position its own way and normalizes with its own rsqrt): untextured, they
+// are at most 1 code apart (measured: mean 0.013 on the bunny, at most 0.002 on the sphere). The
+// checker texture adds the two bilinear filters' disagreement where a pixel straddles a sharp
+// checker edge (measured: mean 0.09 to 0.15, max 4), as for the Lambert modes.
 constexpr double kPlainMeanTolerance = 0.05;
 constexpr int kPlainMaxTolerance = 2;
 constexpr double kTexturedMeanTolerance = 0.25;
