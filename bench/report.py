@@ -478,9 +478,13 @@ def main():
       "clip, setup, bin, raster, shade and the sRGB resolve into `Frame::color`.")
     w("- llvmpipe draws with GLSL 1.20 shaders that implement tessera's lighting (Lambert from "
       "directional, point and spot lights plus ambient; Gouraud per vertex, smooth per fragment, flat from face "
-      "normals in a de-indexed copy of the mesh) and encode sRGB in the fragment shader; indexed "
+      "normals in a de-indexed copy of the mesh) and encode sRGB in the fragment shader; "
+      "`--shading pbr` rows run glTF's metallic-roughness BRDF per fragment in GLSL 4.50, from the "
+      "source the Vulkan backends use (`src/vulkan/shaders/pbr_brdf.glsl`), in linear light before "
+      "the encode; indexed "
       "meshes use `glDrawElements` from VBOs; each frame ends with `glFinish()` before the clock "
-      "stops. `tests/bench_test.cpp` checks that the two images agree (coverage and colour).")
+      "stops. `tests/bench_reference_test.cpp` checks that the two images agree (coverage and "
+      "colour; PBR: mean and largest channel difference).")
     w("- The fill scene is drawn back to front, so llvmpipe shades every layer of every pixel "
       "(its early depth test cannot reject them), while tessera's visibility buffer shades each "
       "pixel once: this scene measures exactly that design difference.")
