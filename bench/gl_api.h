@@ -80,8 +80,10 @@ namespace tessera::bench {
   X(glTexParameteri)                  \
   X(glUniform1f)                      \
   X(glUniform1i)                      \
+  X(glUniform2f)                      \
   X(glUniform3f)                      \
   X(glUniform3fv)                     \
+  X(glUniform4f)                      \
   X(glUniform4fv)                     \
   X(glUniformMatrix3fv)               \
   X(glUniformMatrix4fv)               \
@@ -167,8 +169,10 @@ std::string loadGlApi();
 #define glTexParameteri ::tessera::bench::glApi().glTexParameteri
 #define glUniform1f ::tessera::bench::glApi().glUniform1f
 #define glUniform1i ::tessera::bench::glApi().glUniform1i
+#define glUniform2f ::tessera::bench::glApi().glUniform2f
 #define glUniform3f ::tessera::bench::glApi().glUniform3f
 #define glUniform3fv ::tessera::bench::glApi().glUniform3fv
+#define glUniform4f ::tessera::bench::glApi().glUniform4f
 #define glUniform4fv ::tessera::bench::glApi().glUniform4fv
 #define glUniformMatrix3fv ::tessera::bench::glApi().glUniformMatrix3fv
 #define glUniformMatrix4fv ::tessera::bench::glApi().glUniformMatrix4fv

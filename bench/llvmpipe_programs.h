@@ -1,5 +1,7 @@
-// The llvmpipe reference's OpenGL side that is not about the scene: the GLSL 1.20 programs that
-// implement tessera's lighting, one per combination of what a draw needs, and the GL error check.
+// The llvmpipe reference's OpenGL side that is not about the scene: the GLSL programs that
+// implement tessera's shading (GLSL 1.20 for the Lambert modes; 4.50 compatibility for PBR and the
+// tone curves, whose source they share with the Vulkan backends), one per combination of what a
+// draw needs, and the GL error check.
 // Private to llvmpipe_reference.cpp; built only with TESSERA_OSMESA. Needs a current context.
 #pragma once
 
@@ -30,9 +32,12 @@ struct ProgramKey {
   // multisample resolve averages in linear light); false: the shader encodes sRGB itself.
   bool framebuffer_encodes_srgb = false;
   bool local_lights = false;  // a point or spot light: world positions are interpolated
+  // The display transform after the shading (render/tone.h): -1 none, else the exposure's scale
+  // (a uniform) then this tessera::ToneMapping curve (0: the scale alone).
+  int tone_curve = -1;
   auto tie() const {
     return std::tie(shading, has_uv, has_color, two_sided, light_count, framebuffer_encodes_srgb,
-                    local_lights);
+                    local_lights, tone_curve);
   }
   bool operator<(const ProgramKey& o) const { return tie() < o.tie(); }
 };
@@ -41,6 +46,9 @@ struct Program {
   GLuint id = 0;
   GLint model_view_projection, normal_matrix, normal_sign, ambient, light_direction, light_color,
       base_color, albedo, light_position = -1, light_params = -1, model = -1;
+  // PBR: the eye (w = 1) or the direction towards it (w = 0), metallic and roughness, emission.
+  GLint eye = -1, metal_rough = -1, emissive = -1;
+  GLint tone_scale = -1;  // 2^exposure, when tone_curve >= 0
 };
 
 // The programs of one context, compiled on first use and kept until release().
@@ -52,6 +60,11 @@ class ProgramCache {
  private:
   std::map<ProgramKey, Program> programs_;
 };
+
+// The programs' PBR reads a material's factors and its base colour texture: an error when a PBR
+// object of `scene` has one of glTF's other maps, which the reference would leave out (not the
+// same work or image as tessera's).
+Expected<void> checkPbrMaps(const Scene& scene);
 
 // glGetError after `what`: an error naming it and the GL error, or success. Clears every error.
 Expected<void> checkGl(const char* what);

@@ -50,6 +50,31 @@ void toGl(const float3x3& m, float out[9]) {
     for (int r = 0; r < 3; ++r) out[c * 3 + r] = m(r, c);
 }
 
+// Points the attributes at the object's buffer (and binds its indices).
+void bindVertexArrays(const GpuObject& g) {
+  glBindBuffer(GL_ARRAY_BUFFER, g.vertex_buffer);
+  glEnableVertexAttribArray(kPosition);
+  glVertexAttribPointer(kPosition, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glEnableVertexAttribArray(kNormal);
+  glVertexAttribPointer(kNormal, 3, GL_FLOAT, GL_FALSE, 0,
+                        reinterpret_cast<const void*>(g.normal_offset));
+  if (g.has_uv) {
+    glEnableVertexAttribArray(kUv);
+    glVertexAttribPointer(kUv, 2, GL_FLOAT, GL_FALSE, 0,
+                          reinterpret_cast<const void*>(g.uv_offset));
+  } else {
+    glDisableVertexAttribArray(kUv);
+  }
+  if (g.has_color) {
+    glEnableVertexAttribArray(kColor);
+    glVertexAttribPointer(kColor, 4, GL_FLOAT, GL_FALSE, 0,
+                          reinterpret_cast<const void*>(g.color_offset));
+  } else {
+    glDisableVertexAttribArray(kColor);
+  }
+  if (g.indexed) glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.index_buffer);
+}
+
 // The process-wide LP_NUM_THREADS llvmpipe was started with (-1: not yet).
 int g_llvmpipe_threads = -1;
 
@@ -69,6 +94,7 @@ struct LlvmpipeReference::State {
   ProgramCache programs;
   std::vector<GpuObject> objects;
   size_t light_count = 0;  // the shaders of the current scene are compiled for this many lights
+  int tone_curve = -1;     // and for this display transform (ProgramKey::tone_curve)
   int samples = 1;
   MultisampleTarget multisample;   // allocated when samples > 1
   std::vector<uint32_t> resolved;  // the last multisampled frame, resolved, rows top-down
@@ -258,28 +284,12 @@ struct LlvmpipeReference::State {
     }
     float model_matrix[16];
     toGl(model, model_matrix);
+    // PBR's view vector: render::LightRig::prepare's eye, from the inverse view matrix.
+    const float4x4 camera = inverse(view);
+    const bool eye_at_infinity = projection(3, 3) != 0.0f;
+    const float3 eye = eye_at_infinity ? normalize(camera.col[2].xyz()) : camera.col[3].xyz();
 
-    glBindBuffer(GL_ARRAY_BUFFER, g.vertex_buffer);
-    glEnableVertexAttribArray(kPosition);
-    glVertexAttribPointer(kPosition, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-    glEnableVertexAttribArray(kNormal);
-    glVertexAttribPointer(kNormal, 3, GL_FLOAT, GL_FALSE, 0,
-                          reinterpret_cast<const void*>(g.normal_offset));
-    if (g.has_uv) {
-      glEnableVertexAttribArray(kUv);
-      glVertexAttribPointer(kUv, 2, GL_FLOAT, GL_FALSE, 0,
-                            reinterpret_cast<const void*>(g.uv_offset));
-    } else {
-      glDisableVertexAttribArray(kUv);
-    }
-    if (g.has_color) {
-      glEnableVertexAttribArray(kColor);
-      glVertexAttribPointer(kColor, 4, GL_FLOAT, GL_FALSE, 0,
-                            reinterpret_cast<const void*>(g.color_offset));
-    } else {
-      glDisableVertexAttribArray(kColor);
-    }
-    if (g.indexed) glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.index_buffer);
+    bindVertexArrays(g);
 
     for (const DrawRange& range : g.ranges) {
       const Material& material =
@@ -296,9 +306,16 @@ struct LlvmpipeReference::State {
         if (p.light_position >= 0) {
           glUniform4fv(p.light_position, light_count, light_position);
           glUniform4fv(p.light_params, light_count, light_params);
-          glUniformMatrix4fv(p.model, 1, GL_FALSE, model_matrix);
         }
       }
+      if (p.model >= 0) glUniformMatrix4fv(p.model, 1, GL_FALSE, model_matrix);
+      if (p.eye >= 0) {
+        glUniform4f(p.eye, eye.x, eye.y, eye.z, eye_at_infinity ? 0.0f : 1.0f);
+        glUniform2f(p.metal_rough, material.metallic, material.roughness);
+        glUniform3f(p.emissive, material.emissive_factor.x, material.emissive_factor.y,
+                    material.emissive_factor.z);
+      }
+      if (p.tone_scale >= 0) glUniform1f(p.tone_scale, render::ToneCurve::of(scene).scale);
       glUniform3f(p.base_color, material.base_color.x, material.base_color.y,
                   material.base_color.z);
       if (range.texture) {
@@ -430,8 +447,11 @@ Expected<void> LlvmpipeReference::setScene(const Scene& scene) {
   if (scene.lights.size() > static_cast<size_t>(kMaxLights))
     return makeError("the OpenGL reference takes at most " + std::to_string(kMaxLights) +
                      " lights; the scene has " + std::to_string(scene.lights.size()));
+  if (Expected<void> drawable = checkPbrMaps(scene); !drawable) return drawable;
   s.releaseScene();
   s.light_count = scene.lights.size();
+  const render::ToneCurve tone = render::ToneCurve::of(scene);
+  s.tone_curve = tone.active() ? static_cast<int>(tone.mapping) : -1;
   const int light_count = static_cast<int>(scene.lights.size());
   const bool local_lights =
       std::any_of(scene.lights.begin(), scene.lights.end(),
@@ -446,6 +466,7 @@ Expected<void> LlvmpipeReference::setScene(const Scene& scene) {
       range.key = {object.shading, range.texture != 0, g.has_color, object.cull != CullMode::kBack,
                    light_count};
       range.key.local_lights = local_lights;
+      range.key.tone_curve = s.tone_curve;
     }
   }
   if (Expected<void> linked = s.linkPrograms(); !linked) return linked;
@@ -459,6 +480,9 @@ void LlvmpipeReference::render(const Scene& scene) {
   s.makeCurrent();
   TESSERA_CHECK(scene.lights.size() == s.light_count)
       << "the shaders were compiled for " << s.light_count << " lights";
+  const render::ToneCurve tone = render::ToneCurve::of(scene);
+  TESSERA_CHECK((tone.active() ? static_cast<int>(tone.mapping) : -1) == s.tone_curve)
+      << "the shaders were compiled for another tone curve";
   const float4 bg = scene.background;
   if (s.samples > 1) {
     s.multisample.bindForDrawing();

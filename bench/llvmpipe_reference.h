@@ -1,9 +1,10 @@
 // The reference `tessera bench --vs llvmpipe` measures against: the same scene drawn through
 // Mesa's OpenGL in an off-screen OSMesa context, which renders with llvmpipe. Same triangles,
-// camera matrices, lights and lighting model (GLSL 1.20: flat, Gouraud, per-pixel Phong, unlit),
-// the same back-face culling and depth test, from buffers uploaded once; every frame ends with
-// glFinish (single-sampled) or with the resolved image read back (multisampled, setSamples).
-// Built only with TESSERA_OSMESA; otherwise create() says so.
+// camera matrices, lights and lighting model (GLSL 1.20: flat, Gouraud, per-pixel Phong, unlit;
+// GLSL 4.50: glTF's PBR per pixel), the same tone curve and exposure, the same back-face culling
+// and depth test, from buffers uploaded once; every frame ends with glFinish (single-sampled) or
+// with the resolved image read back (multisampled, setSamples). Built only with TESSERA_OSMESA;
+// otherwise create() says so.
 #pragma once
 
 #include <cstdint>
@@ -34,8 +35,9 @@ class LlvmpipeReference {
   bool isLlvmpipe() const;              // the renderer string says llvmpipe
   int threads() const;                  // the LP_NUM_THREADS it was created with
 
-  // Uploads the scene's meshes and textures into buffers and compiles its shaders; replaces the
-  // previous scene. Errors: more lights than the shaders take, a GL failure.
+  // Uploads the scene's meshes and textures into buffers and compiles its shaders (for its lights
+  // and its tone curve: render() takes the scene with the same); replaces the previous scene.
+  // Errors: more lights than the shaders take, a PBR map it does not draw, a GL failure.
   Expected<void> setScene(const Scene& scene);
   // Sizes the colour and depth buffers.
   Expected<void> setResolution(int width, int height);

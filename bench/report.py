@@ -215,12 +215,22 @@ def widest_kernels(machine):
             "AVX2 (this CPU has no AVX-512)" if "avx2" in machine["simd"] else "SSE2")
 
 
+def shading_label(r):
+    """A row's shading, with its tone curve and light count when the row records them."""
+    label = r["shading"]
+    if r.get("tone_mapping", "none") != "none":
+        label += f", {r['tone_mapping']} tone mapping"
+    if "lights" in r:
+        label += f", {r['lights']} light{'' if r['lights'] == 1 else 's'}"
+    return label
+
+
 def worst_row(matrix, msaa_row, variants):
     """The (name, ratio) of the matrix row, MSAA row or shading variant furthest below 5x."""
     rows = [(f"{r['scene']} at {r['resolution']}", r["ratio"]) for r in matrix]
     if msaa_row:
         rows.append(("bunny at 1920x1080, 4x MSAA", msaa_row["ratio"]))
-    rows += [(f"bunny at 1920x1080, {r['shading']}, back faces {r['back_faces']}", r["ratio"])
+    rows += [(f"bunny at 1920x1080, {shading_label(r)}, back faces {r['back_faces']}", r["ratio"])
              for r in variants]
     return min(rows, key=lambda item: item[1]) if rows else None
 
@@ -255,7 +265,7 @@ def other_machine(w, results, output):
           f"{ms(msaa_row['median_ms'])} | {ms(msaa_row['llvmpipe_median_ms'])} | "
           f"{msaa_row['ratio']:.2f} |")
     for r in variants:
-        w(f"| bunny | 1920x1080 | {r['shading']}, back faces {r['back_faces']} | "
+        w(f"| bunny | 1920x1080 | {shading_label(r)}, back faces {r['back_faces']} | "
           f"{ms(r['median_ms'])} | {ms(r['llvmpipe_median_ms'])} | {r['ratio']:.2f} |")
     w("")
     worst = worst_row(matrix, msaa_row, variants)
@@ -437,7 +447,7 @@ def main():
     base = next((r for r in matrix if r["scene"] == "bunny" and r["resolution"] == "1920x1080"),
                 None)
     for r in ([base] if base else []) + variants:
-        w(f"| {r['shading']} | {r['back_faces']} | {ms(r['median_ms'])} | {ms(r['llvmpipe_median_ms'])} | "
+        w(f"| {shading_label(r)} | {r['back_faces']} | {ms(r['median_ms'])} | {ms(r['llvmpipe_median_ms'])} | "
           f"{r['ratio']:.2f} |")
     w("")
     if msaa_table:
@@ -468,9 +478,13 @@ def main():
       "clip, setup, bin, raster, shade and the sRGB resolve into `Frame::color`.")
     w("- llvmpipe draws with GLSL 1.20 shaders that implement tessera's lighting (Lambert from "
       "directional, point and spot lights plus ambient; Gouraud per vertex, smooth per fragment, flat from face "
-      "normals in a de-indexed copy of the mesh) and encode sRGB in the fragment shader; indexed "
+      "normals in a de-indexed copy of the mesh) and encode sRGB in the fragment shader; "
+      "`--shading pbr` rows run glTF's metallic-roughness BRDF per fragment in GLSL 4.50, from the "
+      "source the Vulkan backends use (`src/vulkan/shaders/pbr_brdf.glsl`), in linear light before "
+      "the encode; indexed "
       "meshes use `glDrawElements` from VBOs; each frame ends with `glFinish()` before the clock "
-      "stops. `tests/bench_test.cpp` checks that the two images agree (coverage and colour).")
+      "stops. `tests/bench_reference_test.cpp` checks that the two images agree (coverage and "
+      "colour; PBR: mean and largest channel difference).")
     w("- The fill scene is drawn back to front, so llvmpipe shades every layer of every pixel "
       "(its early depth test cannot reject them), while tessera's visibility buffer shades each "
       "pixel once: this scene measures exactly that design difference.")

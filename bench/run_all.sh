@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates docs/perf.md from a fresh measurement: builds tessera (Release), runs every built-in
 # scene at every standard resolution beside llvmpipe, the bunny at 1080p with 1 and 2 workers,
-# with other shading and culling and with 4x MSAA against 1x (llvmpipe at the same sample count),
-# and UV spheres of 1k to 1M triangles at 1080p; then writes the raw results (docs/perf/*.jsonl),
+# with other shading (PBR too) and culling and with 4x MSAA against 1x (llvmpipe at the same
+# sample count), and UV spheres of 1k to 1M triangles at 1080p; then writes the raw results (docs/perf/*.jsonl),
 # the plots (docs/perf/*.png) and the rendering section of docs/perf.md (between bench/report.py's
 # markers; the rest of the page is left alone).
 #
@@ -80,6 +80,10 @@ done > "$out/scaling.jsonl"
   bench --resolution 1920,1080 --shading smooth bunny
   bench --resolution 1920,1080 --backface-type visible bunny
   bench --resolution 1920,1080 --shading flat bunny
+  # glTF's BRDF per pixel on both sides (llvmpipe: the same GLSL as the Vulkan backends'): under
+  # the bench's two view lights, and under one directional light (issue 19's PBR row).
+  bench --resolution 1920,1080 --shading pbr bunny
+  bench --resolution 1920,1080 --shading pbr --light directional:-0.4,-0.6,-1 bunny
 } > "$out/variants.jsonl"
 echo "run_all: the bunny at 1920x1080 with 1x and 4x MSAA, three rounds" >&2
 # The cost of 4x MSAA is the 4x median over the 1x median: each round measures the two back to

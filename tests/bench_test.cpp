@@ -330,3 +330,34 @@ TEST_F(BenchCli, VersusLlvmpipeAddsTheReference) {
   EXPECT_NE(j.value("reference", "").find("llvmpipe"), std::string::npos);
   EXPECT_EQ(j.value("workers", 0), 1);
 }
+
+TEST_F(BenchCli, ToneMappingChangesTheFrameAndIsReported) {
+  RunResult plain = run("--json --crc --frames 1 --warmup 0 --resolution 64,48 --shading pbr cube");
+  RunResult toned =
+      run("--json --crc --frames 1 --warmup 0 --resolution 64,48 --shading pbr --tone-mapping aces "
+          "--exposure 1 cube");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  ASSERT_EQ(toned.exit_code, 0) << toned.err;
+  nlohmann::json a = nlohmann::json::parse(plain.out, nullptr, false);
+  nlohmann::json b = nlohmann::json::parse(toned.out, nullptr, false);
+  ASSERT_TRUE(a.is_object() && b.is_object()) << plain.out << toned.out;
+  EXPECT_EQ(a.value("tone_mapping", ""), "none");
+  EXPECT_EQ(b.value("tone_mapping", ""), "aces");
+  EXPECT_EQ(b.value("exposure", 0.0), 1.0);
+  EXPECT_EQ(b.value("shading", ""), "pbr");
+  EXPECT_GE(b.value("lights", 0), 1);
+  EXPECT_NE(a.value("crc32", ""), b.value("crc32", ""));  // the curve reached tessera's frame
+  EXPECT_EQ(run("--frames 1 --tone-mapping filmic cube").exit_code, 2);
+}
+
+TEST_F(BenchCli, VersusLlvmpipeDrawsPbrWithTheToneCurve) {
+  if (!bench::llvmpipeReferenceBuilt()) GTEST_SKIP() << "built without OSMesa";
+  RunResult r =
+      run("--json --frames 1 --warmup 0 --resolution 64,48 --workers 1 --vs llvmpipe --shading pbr "
+          "--tone-mapping pbr-neutral cube");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+  ASSERT_TRUE(j.is_object()) << r.out;
+  EXPECT_EQ(j.value("tone_mapping", ""), "pbr-neutral");
+  ASSERT_TRUE(j.contains("ratio") && j["ratio"].is_number());
+}

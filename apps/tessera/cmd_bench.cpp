@@ -23,6 +23,7 @@
 #include "flags.h"
 #include "light_flags.h"
 #include "point_flags.h"
+#include "surface_flags.h"
 #include "view_setup.h"
 
 namespace tessera::cli {
@@ -55,6 +56,7 @@ struct BenchSettings {
   io::LoadBudget budget;
   LightSettings lights;  // --light, --ambient: in place of every scene's own lights
   PointSettings points;  // --point-size, --point-sprites, --line-width
+  ToneSettings tone;     // --tone-mapping, --exposure: on every scene, for tessera and llvmpipe
 };
 
 struct Timing {
@@ -230,7 +232,7 @@ void addBenchFlags(FlagSet& flags, BenchSettings& s, bool& resolution_given) {
                   "time the same frames on Mesa's llvmpipe too (needs a build with OSMesa)");
   flags.addSwitch("json", &s.json,
                   "print one JSON object per line: scene, resolution, width, height, triangles, "
-                  "frames, msaa, median_ms... and llvmpipe_median_ms, ratio with --vs");
+                  "lights, frames, msaa, median_ms... and llvmpipe_median_ms, ratio with --vs");
   flags.addSwitch("crc", &s.crc,
                   "print the CRC-32 of the last timed frame's RGBA8 pixels for each scene and "
                   "resolution (crc32 SCENE WxH HEX; a crc32 field with --json)");
@@ -238,11 +240,13 @@ void addBenchFlags(FlagSet& flags, BenchSettings& s, bool& resolution_given) {
   addBudgetFlags(flags, s.budget);
   addLightFlags(flags, s.lights);
   addPointFlags(flags, s.points, "the width in pixels of the scenes' lines, up to 64 (default 1)");
+  addToneFlags(flags, s.tone);
 }
 
 // Every scene is built or loaded before anything is timed, so a bad argument fails at once.
 Expected<std::vector<bench::BenchScene>> openScenes(const std::vector<std::string>& args,
                                                     Shading shading, CullMode cull,
+                                                    const ToneSettings& tone,
                                                     const io::LoadBudget& budget) {
   std::vector<bench::BenchScene> scenes;
   for (const std::string& arg : args) {
@@ -251,6 +255,7 @@ Expected<std::vector<bench::BenchScene>> openScenes(const std::vector<std::strin
     for (const std::string& warning : scene->warnings)
       std::cerr << "tessera bench: warning: " << warning << "\n";
     for (Object& object : scene->scene.objects) object.cull = cull;
+    applyTone(tone, scene->scene);
     scenes.push_back(std::move(*scene));
   }
   return scenes;
@@ -338,9 +343,11 @@ void printMeasured(const BenchRun& run, const bench::BenchScene& b, Resolution r
   if (s.json) {
     std::cout << "{\"scene\": " << jsonString(b.name) << ", \"resolution\": \"" << size
               << "\", \"width\": " << resolution.width << ", \"height\": " << resolution.height
-              << ", \"triangles\": " << triangles << ", \"frames\": " << s.frames
-              << ", \"warmup_frames\": " << s.warmup << ", \"msaa\": " << s.msaa
-              << ", \"shading\": \"" << s.shading << "\", \"back_faces\": \""
+              << ", \"triangles\": " << triangles << ", \"lights\": " << b.scene.lights.size()
+              << ", \"frames\": " << s.frames << ", \"warmup_frames\": " << s.warmup
+              << ", \"msaa\": " << s.msaa << ", \"shading\": \"" << s.shading
+              << "\", \"tone_mapping\": \"" << s.tone.tone_mapping
+              << "\", \"exposure\": " << fixed(s.tone.exposure, 2) << ", \"back_faces\": \""
               << (run.cull == CullMode::kBack ? "culled" : "drawn")
               << "\", \"backend\": " << jsonString(run.renderer.name())
               << ", \"workers\": " << run.workers
@@ -380,9 +387,10 @@ void printHeader(const BenchRun& run) {
   const BenchSettings& s = run.settings;
   std::cout << "# tessera bench: backend " << run.renderer.name() << ", " << run.workers
             << (run.workers == 1 ? " worker" : " workers") << ", " << s.shading << " shading, "
-            << (run.cull == CullMode::kBack ? "back faces culled" : "back faces drawn") << ", "
-            << s.msaa << (s.msaa == 1 ? " sample" : " samples") << " per pixel, " << s.warmup
-            << " warm-up + " << s.frames << " timed frames, median\n";
+            << "tone mapping " << s.tone.tone_mapping << ", exposure " << fixed(s.tone.exposure, 2)
+            << ", " << (run.cull == CullMode::kBack ? "back faces culled" : "back faces drawn")
+            << ", " << s.msaa << (s.msaa == 1 ? " sample" : " samples") << " per pixel, "
+            << s.warmup << " warm-up + " << s.frames << " timed frames, median\n";
   if (run.reference)
     std::cout << "# reference: " << run.reference->renderer() << ", " << run.reference->version()
               << ", LP_NUM_THREADS=" << run.reference->threads() << "\n";
@@ -445,7 +453,7 @@ int runBench(const std::vector<std::string>& args) {
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   Expected<std::vector<bench::BenchScene>> scenes =
       openScenes(positional->empty() ? bench::builtinSceneNames() : *positional,
-                 shadingFromName(s.shading), cull, s.budget);
+                 shadingFromName(s.shading), cull, s.tone, s.budget);
   if (!scenes) return failure(scenes.error());
   std::unique_ptr<bench::LlvmpipeReference> reference;
   if (s.versus == "llvmpipe") {
