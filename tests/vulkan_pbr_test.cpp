@@ -65,6 +65,23 @@ void expectPbrParity(const char* what, const Frame& gpu, const Frame& cpu, doubl
       << what;
 }
 
+// Both Vulkan backends, made once per test.
+struct Backends {
+  ComputePtr compute = makeCompute();
+  RasterPtr raster = makeRaster();
+
+  // The two backends' images of `scene` held to the PBR parity with the CPU's (the compute
+  // backend: the CPU's coverage; the raster one: 1% of pixels may belong to another triangle);
+  // returns the CPU's image.
+  Frame expectMatchCpu(const std::string& what, const Scene& scene,
+                       const RenderOptions& o = pbrOptions()) const {
+    const Frame cpu = renderCpu(scene, o);
+    expectPbrParity((what + ", compute").c_str(), renderWith(*compute, scene, o), cpu, 0.0);
+    expectPbrParity((what + ", raster").c_str(), renderWith(*raster, scene, o), cpu, 0.01);
+    return cpu;
+  }
+};
+
 // Six spheres: dielectric and metal (rows) at roughness 0.2, 0.6 and 1.0 (columns), under a sun,
 // a point light and the ambient.
 Scene sphereRowScene() {
@@ -220,26 +237,17 @@ Scene ownSetsScene() {
 
 TEST(VulkanPbr, SphereRowMatchesCpuOnBothBackends) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr compute = makeCompute();
-  ASSERT_TRUE(compute);
-  RasterPtr raster = makeRaster();
-  ASSERT_TRUE(raster);
-  const Scene scene = sphereRowScene();
-  const Frame cpu = renderCpu(scene, pbrOptions());
-  expectPbrParity("sphere row, compute", renderWith(*compute, scene, pbrOptions()), cpu, 0.0);
-  expectPbrParity("sphere row, raster", renderWith(*raster, scene, pbrOptions()), cpu, 0.01);
+  const Backends gpu;
+  ASSERT_TRUE(gpu.compute && gpu.raster);
+  gpu.expectMatchCpu("sphere row", sphereRowScene());
 }
 
 TEST(VulkanPbr, MapsAndTangentsMatchCpuOnBothBackends) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr compute = makeCompute();
-  ASSERT_TRUE(compute);
-  RasterPtr raster = makeRaster();
-  ASSERT_TRUE(raster);
+  const Backends gpu;
+  ASSERT_TRUE(gpu.compute && gpu.raster);
   const Scene scene = mappedScene();
-  const Frame cpu = renderCpu(scene, pbrOptions());
-  expectPbrParity("maps, compute", renderWith(*compute, scene, pbrOptions()), cpu, 0.0);
-  expectPbrParity("maps, raster", renderWith(*raster, scene, pbrOptions()), cpu, 0.01);
+  const Frame cpu = gpu.expectMatchCpu("maps", scene);
   // Each map matters: without it the CPU's image is another one.
   for (TextureSlot Material::*slot : {&Material::metallic_roughness, &Material::normal,
                                       &Material::occlusion, &Material::emissive}) {
@@ -252,16 +260,12 @@ TEST(VulkanPbr, MapsAndTangentsMatchCpuOnBothBackends) {
 // Each map through its own texture coordinate set and KHR_texture_transform, on both backends.
 TEST(VulkanPbr, MapsWithTheirOwnSetsAndTransformsMatchCpuOnBothBackends) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr compute = makeCompute();
-  ASSERT_TRUE(compute);
-  RasterPtr raster = makeRaster();
-  ASSERT_TRUE(raster);
+  const Backends gpu;
+  ASSERT_TRUE(gpu.compute && gpu.raster);
   const Scene scene = ownSetsScene();
-  const Frame cpu = renderCpu(scene, pbrOptions());
-  const Frame gpu = renderWith(*compute, scene, pbrOptions());
-  expectPbrParity("own sets, compute", gpu, cpu, 0.0);
-  EXPECT_LE(comparePbr(gpu, cpu).max_channel_diff, 1);  // the compute backend: the CPU's operations
-  expectPbrParity("own sets, raster", renderWith(*raster, scene, pbrOptions()), cpu, 0.01);
+  const Frame cpu = gpu.expectMatchCpu("own sets", scene);
+  // The compute backend: the CPU's operations.
+  EXPECT_LE(comparePbr(renderWith(*gpu.compute, scene, pbrOptions()), cpu).max_channel_diff, 1);
   // The sets and transforms matter: without them the CPU's image is another one.
   EXPECT_NE(renderCpu(mappedScene(), pbrOptions()).color, cpu.color);
 }
@@ -269,16 +273,12 @@ TEST(VulkanPbr, MapsWithTheirOwnSetsAndTransformsMatchCpuOnBothBackends) {
 // The tone curve and exposure apply to PBR pixels as to the others.
 TEST(VulkanPbr, ToneMappedPbrMatchesCpu) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr compute = makeCompute();
-  ASSERT_TRUE(compute);
-  RasterPtr raster = makeRaster();
-  ASSERT_TRUE(raster);
+  const Backends gpu;
+  ASSERT_TRUE(gpu.compute && gpu.raster);
   Scene scene = sphereRowScene();
   scene.tone_mapping = ToneMapping::kAces;
   scene.exposure = 0.5f;
-  const Frame cpu = renderCpu(scene, pbrOptions());
-  expectPbrParity("aces, compute", renderWith(*compute, scene, pbrOptions()), cpu, 0.0);
-  expectPbrParity("aces, raster", renderWith(*raster, scene, pbrOptions()), cpu, 0.01);
+  gpu.expectMatchCpu("aces", scene);
 }
 
 // The normal AOV of a PBR pixel is its shading normal, the normal map's included.
@@ -364,10 +364,8 @@ TEST(VulkanPbr, ComputeSphericalProjectionMatchesCpu) {
 // reflected view ray and the split-sum table, in the environment's frame, in place of the ambient.
 TEST(VulkanPbr, EnvironmentLightMatchesCpuOnBothBackends) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr compute = makeCompute();
-  ASSERT_TRUE(compute);
-  RasterPtr raster = makeRaster();
-  ASSERT_TRUE(raster);
+  const Backends gpu;
+  ASSERT_TRUE(gpu.compute && gpu.raster);
   const RenderOptions o = pbrOptions();
   const struct {
     const char* what;
@@ -379,16 +377,13 @@ TEST(VulkanPbr, EnvironmentLightMatchesCpuOnBothBackends) {
     scene.environment = test::skyEnvironment({0.9f, 0.7f, 0.4f}, {0.1f, 0.2f, 0.1f});
     // A quarter turn about +Z into the environment's frame: the horizon stands upright.
     scene.world_to_environment = float3x3{{float3{0, 1, 0}, float3{-1, 0, 0}, float3{0, 0, 1}}};
-    const Frame cpu = renderCpu(scene, o);
-    const Frame gpu = renderWith(*compute, scene, o);
-    expectPbrParity((std::string(what) + ", compute").c_str(), gpu, cpu, 0.0);
-    expectPbrParity((std::string(what) + ", raster").c_str(), renderWith(*raster, scene, o), cpu,
-                    0.01);
+    gpu.expectMatchCpu(what, scene, o);
     // The environment lights, in its own frame: without it, or unturned, the image is another one.
-    EXPECT_NE(gpu.color, renderWith(*compute, plain, o).color) << what;
+    const Frame lit = renderWith(*gpu.compute, scene, o);
+    EXPECT_NE(lit.color, renderWith(*gpu.compute, plain, o).color) << what;
     Scene unturned = scene;
     unturned.world_to_environment = float3x3{};
-    EXPECT_NE(gpu.color, renderWith(*compute, unturned, o).color) << what;
+    EXPECT_NE(lit.color, renderWith(*gpu.compute, unturned, o).color) << what;
   }
 }
 
@@ -443,10 +438,8 @@ TEST(VulkanPbr, RasterMsaaMatchesCpuWithinTheRasterTolerance) {
 // from behind lit it).
 TEST(VulkanPbr, MirroredObjectFlipsItsBitangentAsTheCpu) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr compute = makeCompute();
-  ASSERT_TRUE(compute);
-  RasterPtr raster = makeRaster();
-  ASSERT_TRUE(raster);
+  const Backends gpu;
+  ASSERT_TRUE(gpu.compute && gpu.raster);
   Mesh grid = makeGrid(2, 0.8f, 2.0f);
   generateTangents(grid);
   Scene scene;
@@ -462,9 +455,7 @@ TEST(VulkanPbr, MirroredObjectFlipsItsBitangentAsTheCpu) {
   scene.ambient = float3(0.05f);
   scene.camera.position = {0.0f, 1.0f, 2.2f};
   scene.camera.target = {0.0f, 0.0f, 0.0f};
-  const Frame cpu = renderCpu(scene, pbrOptions());
-  expectPbrParity("mirrored, compute", renderWith(*compute, scene, pbrOptions()), cpu, 0.0);
-  expectPbrParity("mirrored, raster", renderWith(*raster, scene, pbrOptions()), cpu, 0.01);
+  const Frame cpu = gpu.expectMatchCpu("mirrored", scene);
   // The sign matters here: with the tangents' flipped the CPU's image is another one.
   Scene flipped = scene;
   Mesh flipped_grid = grid;
@@ -478,10 +469,8 @@ TEST(VulkanPbr, MirroredObjectFlipsItsBitangentAsTheCpu) {
 // point to the other side of the face than its winding), by the CPU and both backends alike.
 TEST(VulkanPbr, MirroredDoubleSidedQuadMatchesCpuInEveryMode) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  ComputePtr compute = makeCompute();
-  ASSERT_TRUE(compute);
-  RasterPtr raster = makeRaster();
-  ASSERT_TRUE(raster);
+  const Backends gpu;
+  ASSERT_TRUE(gpu.compute && gpu.raster);
   for (Shading shading : {Shading::kGouraud, Shading::kPhong, Shading::kPbr}) {
     Scene scene = mappedScene();
     scene.objects.resize(1);
@@ -493,11 +482,6 @@ TEST(VulkanPbr, MirroredDoubleSidedQuadMatchesCpuInEveryMode) {
     // Lambert modes without the mipmapped albedo: the raster backend takes their level of detail
     // from the quad's derivatives, not the CPU's next pixels (3/255 here, mirrored or not).
     if (shading != Shading::kPbr) quad.materials[0].albedo = nullptr;
-    const std::string what = "mirrored, shading " + std::to_string(static_cast<int>(shading));
-    const Frame cpu = renderCpu(scene, pbrOptions());
-    expectPbrParity((what + ", compute").c_str(), renderWith(*compute, scene, pbrOptions()), cpu,
-                    0.0);
-    expectPbrParity((what + ", raster").c_str(), renderWith(*raster, scene, pbrOptions()), cpu,
-                    0.01);
+    gpu.expectMatchCpu("mirrored, shading " + std::to_string(static_cast<int>(shading)), scene);
   }
 }
