@@ -99,14 +99,14 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
     auto material = [&](size_t local) {
       return has_materials ? mesh.triangle_materials[local] : uint16_t{0};
     };
-    // alphaMode MASK: the raster tests such triangles' alpha (rasterMasked), in the chunks that
-    // hold one.
-    if (std::any_of(object.materials.begin(), object.materials.end(),
-                    [](const Material& m) { return m.alpha_mode == AlphaMode::kMask; }))
-      chunk.any_masked = true;
-    // alphaMode BLEND: such triangles wait for the transparent pass (blend.h), out of the bins.
-    const bool any_blended = std::any_of(object.materials.begin(), object.materials.end(),
-                                         [](const Material& m) { return isBlended(m); });
+    // One look at the object's materials. alphaMode MASK: the raster tests such triangles' alpha
+    // (rasterMasked), in the chunks that hold one. BLEND: such triangles wait for the transparent
+    // pass (blend.h), out of the bins.
+    bool any_blended = false;
+    for (const Material& m : object.materials) {
+      chunk.any_masked |= m.alpha_mode == AlphaMode::kMask;
+      any_blended |= isBlended(m);
+    }
     auto bin = [&](const auto& box, uint32_t record, const ShadeTriangle& shade)
         __attribute__((always_inline)) {
       if (any_blended && isBlended(*shade.material))
