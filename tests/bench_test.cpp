@@ -350,6 +350,34 @@ TEST_F(BenchCli, ToneMappingChangesTheFrameAndIsReported) {
   EXPECT_EQ(run("--frames 1 --tone-mapping filmic cube").exit_code, 2);
 }
 
+// --hdri lights tessera's PBR frames with the image (a 4x2 sky, flat RGBE: bright orange above,
+// black below) and is reported; llvmpipe draws no environment light, and an unreadable image stops
+// the bench before anything is timed.
+TEST_F(BenchCli, HdriLightsTheFrameAndIsReported) {
+  {
+    std::ofstream sky(dir_ / "sky.hdr", std::ios::binary);
+    sky << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n";
+    for (int i = 0; i < 8; ++i) sky.write(i < 4 ? "\x80\x40\x10\x82" : "\0\0\0\0", 4);
+  }
+  const std::string common = "--json --crc --frames 1 --warmup 0 --resolution 64,48 --shading pbr ";
+  RunResult plain = run(common + "cube");
+  RunResult lit = run(common + "--hdri sky.hdr cube");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  ASSERT_EQ(lit.exit_code, 0) << lit.err;
+  nlohmann::json a = nlohmann::json::parse(plain.out, nullptr, false);
+  nlohmann::json b = nlohmann::json::parse(lit.out, nullptr, false);
+  ASSERT_TRUE(a.is_object() && b.is_object()) << plain.out << lit.out;
+  EXPECT_EQ(a.value("hdri", "?"), "");
+  EXPECT_EQ(b.value("hdri", ""), "sky.hdr");
+  EXPECT_NE(a.value("crc32", ""), b.value("crc32", ""));  // the image reached tessera's frame
+  RunResult versus = run("--frames 1 --hdri sky.hdr --vs llvmpipe cube");
+  EXPECT_EQ(versus.exit_code, 2);
+  EXPECT_NE(versus.err.find("leave out --hdri"), std::string::npos) << versus.err;
+  RunResult missing = run("--frames 1 --hdri missing.hdr cube");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.err.find("missing.hdr"), std::string::npos) << missing.err;
+}
+
 TEST_F(BenchCli, VersusLlvmpipeDrawsPbrWithTheToneCurve) {
   if (!bench::llvmpipeReferenceBuilt()) GTEST_SKIP() << "built without OSMesa";
   RunResult r =

@@ -57,6 +57,7 @@ struct BenchSettings {
   LightSettings lights;  // --light, --ambient: in place of every scene's own lights
   PointSettings points;  // --point-size, --point-sprites, --line-width
   ToneSettings tone;     // --tone-mapping, --exposure: on every scene, for tessera and llvmpipe
+  std::string hdri;      // --hdri: the environment light of every scene (tessera only)
 };
 
 struct Timing {
@@ -241,13 +242,24 @@ void addBenchFlags(FlagSet& flags, BenchSettings& s, bool& resolution_given) {
   addLightFlags(flags, s.lights);
   addPointFlags(flags, s.points, "the width in pixels of the scenes' lines, up to 64 (default 1)");
   addToneFlags(flags, s.tone);
+  flags.addString("hdri", &s.hdri,
+                  "an equirectangular Radiance .hdr or OpenEXR .exr image lighting every scene "
+                  "(image-based light in --shading pbr; not with --vs llvmpipe)");
 }
 
 // Every scene is built or loaded before anything is timed, so a bad argument fails at once.
 Expected<std::vector<bench::BenchScene>> openScenes(const std::vector<std::string>& args,
                                                     Shading shading, CullMode cull,
-                                                    const ToneSettings& tone,
-                                                    const io::LoadBudget& budget) {
+                                                    const BenchSettings& s) {
+  // --hdri's image, read and prepared once for every scene (their up is +Y).
+  Scene lit;
+  SurfaceSettings surface;
+  surface.hdri = s.hdri;
+  if (Expected<void> read = applyEnvironment(surface, s.budget.texturePixels(), {0, 1, 0}, lit);
+      !read)
+    return read.error();
+  const ToneSettings& tone = s.tone;
+  const io::LoadBudget& budget = s.budget;
   std::vector<bench::BenchScene> scenes;
   for (const std::string& arg : args) {
     Expected<bench::BenchScene> scene = openScene(arg, shading, budget);
@@ -256,6 +268,8 @@ Expected<std::vector<bench::BenchScene>> openScenes(const std::vector<std::strin
       std::cerr << "tessera bench: warning: " << warning << "\n";
     for (Object& object : scene->scene.objects) object.cull = cull;
     applyTone(tone, scene->scene);
+    scene->scene.environment = lit.environment;
+    scene->scene.world_to_environment = lit.world_to_environment;
     scenes.push_back(std::move(*scene));
   }
   return scenes;
@@ -347,7 +361,8 @@ void printMeasured(const BenchRun& run, const bench::BenchScene& b, Resolution r
               << ", \"frames\": " << s.frames << ", \"warmup_frames\": " << s.warmup
               << ", \"msaa\": " << s.msaa << ", \"shading\": \"" << s.shading
               << "\", \"tone_mapping\": \"" << s.tone.tone_mapping
-              << "\", \"exposure\": " << fixed(s.tone.exposure, 2) << ", \"back_faces\": \""
+              << "\", \"exposure\": " << fixed(s.tone.exposure, 2)
+              << ", \"hdri\": " << jsonString(s.hdri) << ", \"back_faces\": \""
               << (run.cull == CullMode::kBack ? "culled" : "drawn")
               << "\", \"backend\": " << jsonString(run.renderer.name())
               << ", \"workers\": " << run.workers
@@ -388,9 +403,10 @@ void printHeader(const BenchRun& run) {
   std::cout << "# tessera bench: backend " << run.renderer.name() << ", " << run.workers
             << (run.workers == 1 ? " worker" : " workers") << ", " << s.shading << " shading, "
             << "tone mapping " << s.tone.tone_mapping << ", exposure " << fixed(s.tone.exposure, 2)
-            << ", " << (run.cull == CullMode::kBack ? "back faces culled" : "back faces drawn")
-            << ", " << s.msaa << (s.msaa == 1 ? " sample" : " samples") << " per pixel, "
-            << s.warmup << " warm-up + " << s.frames << " timed frames, median\n";
+            << (s.hdri.empty() ? "" : ", environment " + s.hdri) << ", "
+            << (run.cull == CullMode::kBack ? "back faces culled" : "back faces drawn") << ", "
+            << s.msaa << (s.msaa == 1 ? " sample" : " samples") << " per pixel, " << s.warmup
+            << " warm-up + " << s.frames << " timed frames, median\n";
   if (run.reference)
     std::cout << "# reference: " << run.reference->renderer() << ", " << run.reference->version()
               << ", LP_NUM_THREADS=" << run.reference->threads() << "\n";
@@ -428,6 +444,8 @@ int runBench(const std::vector<std::string>& args) {
     return usageError(
         "--vs llvmpipe draws the perspective projection only; leave it out for --projection " +
         s.camera.projection);
+  if (!s.hdri.empty() && s.versus == "llvmpipe")
+    return usageError("--vs llvmpipe draws no environment light: leave out --hdri");
   if (s.camera.explicitCamera()) {
     // The camera flags fail alike for every model: check them before any work.
     const Bounds unit{{-1, -1, -1}, {1, 1, 1}};
@@ -453,7 +471,7 @@ int runBench(const std::vector<std::string>& args) {
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   Expected<std::vector<bench::BenchScene>> scenes =
       openScenes(positional->empty() ? bench::builtinSceneNames() : *positional,
-                 shadingFromName(s.shading), cull, s.tone, s.budget);
+                 shadingFromName(s.shading), cull, s);
   if (!scenes) return failure(scenes.error());
   std::unique_ptr<bench::LlvmpipeReference> reference;
   if (s.versus == "llvmpipe") {
