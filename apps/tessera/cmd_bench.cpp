@@ -413,6 +413,25 @@ void printHeader(const BenchRun& run) {
   std::cout << std::flush;
 }
 
+// The flags against each other, before any work: "" or the usage error. `scenes_given`: scenes or
+// models were named.
+std::string checkBenchFlags(const BenchSettings& s, bool scenes_given, bool resolution_given) {
+  if (s.all && (scenes_given || resolution_given))
+    return "--all runs the full matrix: give no scene and no --resolution with it";
+  if (s.camera.projectionMode() != Projection::kPerspective && s.versus == "llvmpipe")
+    return "--vs llvmpipe draws the perspective projection only; leave it out for --projection " +
+           s.camera.projection;
+  if (!s.hdri.empty() && s.versus == "llvmpipe")
+    return "--vs llvmpipe draws no environment light: leave out --hdri";
+  if (s.camera.explicitCamera()) {
+    // The camera flags fail alike for every model.
+    const Bounds unit{{-1, -1, -1}, {1, 1, 1}};
+    if (Expected<Camera> camera = makeCamera(s.camera, unit, 1.0f); !camera)
+      return camera.error().message;
+  }
+  return "";
+}
+
 }  // namespace
 
 int runBench(const std::vector<std::string>& args) {
@@ -438,20 +457,9 @@ int runBench(const std::vector<std::string>& args) {
     return kExitUsage;
   };
   if (!positional) return usageError(positional.error().message);
-  if (s.all && (!positional->empty() || resolution_given))
-    return usageError("--all runs the full matrix: give no scene and no --resolution with it");
-  if (s.camera.projectionMode() != Projection::kPerspective && s.versus == "llvmpipe")
-    return usageError(
-        "--vs llvmpipe draws the perspective projection only; leave it out for --projection " +
-        s.camera.projection);
-  if (!s.hdri.empty() && s.versus == "llvmpipe")
-    return usageError("--vs llvmpipe draws no environment light: leave out --hdri");
-  if (s.camera.explicitCamera()) {
-    // The camera flags fail alike for every model: check them before any work.
-    const Bounds unit{{-1, -1, -1}, {1, 1, 1}};
-    if (Expected<Camera> camera = makeCamera(s.camera, unit, 1.0f); !camera)
-      return usageError(camera.error().message);
-  }
+  if (std::string wrong = checkBenchFlags(s, !positional->empty(), resolution_given);
+      !wrong.empty())
+    return usageError(wrong);
   auto failure = [](const Error& error) {
     printError("bench", error.message);
     return kExitFailure;
