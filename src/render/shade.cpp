@@ -83,10 +83,9 @@ float3 sampleAlbedo(const ShadeTriangle& t, const ShadeExtras& extras, const Bar
 
 float4 sampleTexture(const Texture& texture, const Sampler& sampler, const ShadeTriangle& t,
                      const ShadeExtras& extras, const Barycentrics& b, float x, float y) {
-  if (sampler.filter != TextureFilter::kTrilinear || texture.mips.empty()) {
+  if (!needsLod(texture, sampler)) {
     const float2 uv = uvAt(uvSet(extras, sampler), b);
-    return texture.sample(sampler.transform.identity() ? uv : sampler.transform.affine().apply(uv),
-                          sampler);
+    return sampleTexture(texture, sampler, uv, uv, uv);
   }
   return sampleTexture(texture, sampler, extras, b, barycentricsAt(t, x + 1.0f, y),
                        barycentricsAt(t, x, y + 1.0f));
@@ -94,25 +93,9 @@ float4 sampleTexture(const Texture& texture, const Sampler& sampler, const Shade
 
 float4 sampleTexture(const Texture& texture, const Sampler& sampler, const ShadeExtras& extras,
                      const Barycentrics& b, const Barycentrics& right, const Barycentrics& down) {
-  // The sampler's set, through its KHR_texture_transform (as the albedo's: sampleTexture above).
-  const float2* corners = uvSet(extras, sampler);
-  const bool moved = !sampler.transform.identity();
-  const UvAffine affine = moved ? sampler.transform.affine() : UvAffine{};
-  auto at = [&](const Barycentrics& c) {
-    const float2 uv = uvAt(corners, c);
-    return moved ? affine.apply(uv) : uv;
-  };
-  const float2 uv = at(b);
-  if (sampler.filter != TextureFilter::kTrilinear || texture.mips.empty())
-    return texture.sample(uv, sampler);
-  // The level of detail as sampleAlbedo: the larger screen-space footprint in texels.
-  const float2 size{static_cast<float>(texture.width), static_cast<float>(texture.height)};
-  const float2 du = at(right) - uv;
-  const float2 dv = at(down) - uv;
-  const float2 dx{du.x * size.x, du.y * size.y}, dy{dv.x * size.x, dv.y * size.y};
-  const float rho2 = std::max(dx.x * dx.x + dx.y * dx.y, dy.x * dy.x + dy.y * dy.y);
-  const float lod = rho2 > 0.0f ? 0.5f * std::log2(rho2) : 0.0f;
-  return texture.sampleLod(uv, lod, sampler);
+  // The sampler's set, then the albedo's sampling (its transform and level of detail).
+  const float2* uv = uvSet(extras, sampler);
+  return sampleTexture(texture, sampler, uvAt(uv, b), uvAt(uv, right), uvAt(uv, down));
 }
 
 bool plainShading(const Scene& scene, bool want_normals) {
