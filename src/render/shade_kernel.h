@@ -10,11 +10,37 @@
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
 
+// Each lane's triangle record (lanes outside `covered` take `first`'s): chunks and indices are
+// formed in lanes, then read back one lane at a time.
+template <typename Record>
+TESSERA_LANES_INLINE void laneRecords(I32x8 keys, I32x8 covered, uint32_t first,
+                                      const Record* const chunk_records[], const Record* lanes[8]) {
+  const I32x8 owner = select(covered, keys, splat(static_cast<int32_t>(first)));
+  alignas(32) uint32_t lane_chunk[8], lane_local[8];
+  store(lane_chunk, shiftRight(owner, kLocalKeyBits) & splat(int32_t{kMaxChunks - 1}));
+  store(lane_local, owner & splat(static_cast<int32_t>((1u << kLocalKeyBits) - 1)));
+  for (int l = 0; l < 8; ++l) lanes[l] = chunk_records[lane_chunk[l]] + lane_local[l];
+}
+
+// shadeTexturedMixed for eight pixels of keys `keys`; false where it does not apply.
+TESSERA_LANES_INLINE bool shadeTexturedMixedLanes(I32x8 keys, I32x8 covered, uint32_t first,
+                                                  const ShadeTriangle* const records[],
+                                                  const ShadeExtras* const extras[],
+                                                  const LightRig& lights, F32x8 px, float py,
+                                                  Vec3x8& color) {
+  const ShadeTriangle* lanes[8];
+  const ShadeExtras* lane_extras[8];
+  laneRecords(keys, covered, first, records, lanes);
+  laneRecords(keys, covered, first, extras, lane_extras);
+  return shadeTexturedMixed(lanes, lane_extras, covered, lights, px, splat(py), color);
+}
+
 // Shades the tile in pixel order, eight pixels of a row at a time, then encodes the row to sRGB
 // and stores it whole (no read-modify-write of partly written pixels). Eight pixels of one triangle
 // take one evaluation; those of several are shaded lane by lane from their own records when every
-// triangle is plain (`plain`: untextured, not Phong, no normal AOV), else each triangle is
-// evaluated once for the eight and the results merged in registers.
+// triangle is plain (`plain`: untextured, not Phong, no normal AOV) or when all are textured alike
+// without per-pixel lighting (shadeTexturedMixed: one texture filter for the eight), else each
+// triangle is evaluated once for the eight and the results merged in registers.
 // `kSampled`: msaa is given (an instance of its own, so one sample pays nothing for it).
 template <bool kSampled>
 TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
@@ -44,22 +70,18 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
       Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
       const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
       const I32x8 mixed = kSampled ? load<I32x8>(msaa->tiles->mixed + i) : splat(int32_t{0});
+      const bool several = any(covered & ~equal(keys, splat(static_cast<int32_t>(first))));
       if (kSampled && plain && any(mixed)) {
         color = shadePlainSampled(*msaa, chunks, records, i, tile.x0 + tx, tile.y0 + ty, mixed);
-      } else if (plain && any(covered & ~equal(keys, splat(static_cast<int32_t>(first))))) {
-        // Uncovered lanes borrow a covered lane's record; their result is not stored. Chunks and
-        // byte offsets (below 2 GiB: kMaxTrianglesPerChunk) are formed in lanes, then read back
-        // one lane at a time.
-        const I32x8 owner = select(covered, keys, splat(static_cast<int32_t>(first)));
-        alignas(32) uint32_t lane_chunk[8], lane_offset[8];
-        store(lane_chunk, shiftRight(owner, kLocalKeyBits) & splat(int32_t{kMaxChunks - 1}));
-        store(lane_offset, (owner & splat(static_cast<int32_t>((1u << kLocalKeyBits) - 1))) *
-                               splat(static_cast<int32_t>(sizeof(ShadeTriangle))));
+      } else if (several && plain) {
         const ShadeTriangle* lanes[8];
-        for (int l = 0; l < 8; ++l)
-          lanes[l] = reinterpret_cast<const ShadeTriangle*>(
-              reinterpret_cast<const char*>(records[lane_chunk[l]]) + lane_offset[l]);
+        laneRecords(keys, covered, first, records, lanes);
         color = shadeMixed(lanes, px, splat(py));
+      } else if (several && !want_normals &&
+                 texturedPlain(records[keyChunk(first)][keyLocal(first)]) &&
+                 shadeTexturedMixedLanes(keys, covered, first, records, extras, lights, px, py,
+                                         color)) {
+        // Every triangle of the eight textured alike: one texture evaluation (shade_lanes.h).
       } else {
         I32x8 todo = covered;
         do {

@@ -531,6 +531,67 @@ TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F3
   return plainColor(f, b0, b1, b2);
 }
 
+// Whether a pixel of triangle t gets its colour from the albedo texture and the interpolated
+// vertex colours alone (textured flat, Gouraud or unlit): what shadeTexturedMixed takes.
+TESSERA_LANES_INLINE bool texturedPlain(const ShadeTriangle& t) {
+  return t.has_uv && t.shading != Shading::kPhong && t.shading != Shading::kPbr;
+}
+
+// The texture coordinates of the lanes' triangles' corners in UV set `set`, transposed into lanes:
+// u0, v0, u1, v1, u2, v2 (eight floats read from each record: the set's six and two after them).
+static_assert(offsetof(ShadeExtras, uv1) == offsetof(ShadeExtras, uv) + 6 * sizeof(float) &&
+                  sizeof(ShadeExtras) >= offsetof(ShadeExtras, uv1) + 8 * sizeof(float),
+              "uvCorners8 reads eight floats from either UV set");
+TESSERA_LANES_INLINE void uvCorners8(const ShadeExtras* const extras[8], int set, F32x8 c[8]) {
+  for (int l = 0; l < 8; ++l) c[l] = load<F32x8>(&(set == 1 ? extras[l]->uv1 : extras[l]->uv)->x);
+  transpose8x8(c);
+}
+
+// Eight pixels owned by several triangles of one textured material that are all texturedPlain
+// (colour = interpolated vertex colours x albedo): each lane's barycentrics and texture
+// coordinates come from its own triangle's records (loaded eight at a time and transposed), and
+// the texture is filtered once for the eight lanes instead of once per triangle. The same
+// operations per lane as shadeLanes, so the same bits. False, with `color` untouched, where that
+// does not apply (mixed materials or shading, a filter sampleTexture8 does not take): the caller
+// shades triangle by triangle. Lanes outside `covered` hold a covered lane's records.
+TESSERA_LANES_INLINE bool shadeTexturedMixed(const ShadeTriangle* const records[8],
+                                             const ShadeExtras* const extras[8], I32x8 covered,
+                                             const LightRig& lights, F32x8 px, F32x8 py,
+                                             Vec3x8& color) {
+  const Material* material = records[0]->material;
+  for (int l = 0; l < 8; ++l)
+    if (records[l]->material != material || !texturedPlain(*records[l])) return false;
+  const Texture& texture = *material->albedo;
+  const Sampler& sampler = material->sampler;
+  if (!texture8Applies(texture, sampler)) return false;
+  F32x8 f[kPlainFields], corner[8];
+  loadPlainFields(records, f);
+  uvCorners8(extras, sampler.texcoord, corner);
+  F32x8 b0, b1, b2;
+  plainBarycentrics(f, px, py, b0, b1, b2);
+  // As sampleAlbedo8's uvAt8, with each lane's own corners.
+  auto uvAt8 = [&](F32x8 c0, F32x8 c1, F32x8 c2) {
+    return Uv8{corner[0] * c0 + corner[2] * c1 + corner[4] * c2,
+               corner[1] * c0 + corner[3] * c1 + corner[5] * c2};
+  };
+  const Uv8 uv = uvAt8(b0, b1, b2);
+  Uv8 right = uv, down = uv;
+  if (needsLod(texture, sampler)) {
+    F32x8 r0, r1, r2, d0, d1, d2;
+    plainBarycentrics(f, px + splat(1.0f), py, r0, r1, r2);
+    plainBarycentrics(f, px, py + splat(1.0f), d0, d1, d2);
+    right = uvAt8(r0, r1, r2);
+    down = uvAt8(d0, d1, d2);
+  }
+  F32x8 albedo[4];
+  if (!sampleTexture8(texture, sampler, covered, uv, right, down, 3, albedo)) return false;
+  Vec3x8 c = plainColor(f, b0, b1, b2);
+  c = {c.x * albedo[0], c.y * albedo[1], c.z * albedo[2]};
+  if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
+  color = c;
+  return true;
+}
+
 // Encodes row ty of the tile's linear colours to sRGB into out.rgba, whole; the background where
 // no triangle is.
 TESSERA_LANES_INLINE void encodeShadedRow(const TileVisibility& tile, int ty,

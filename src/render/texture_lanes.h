@@ -125,7 +125,7 @@ TESSERA_LANES_INLINE void bilinear8(const LevelLanes& level, bool srgb, const Sa
   const I32x8 row_a = ya * w, row_b = yb * w;
   const I32x8 c00 = gatherWords(texels, row_a + xa), c10 = gatherWords(texels, row_a + xb);
   const I32x8 c01 = gatherWords(texels, row_b + xa), c11 = gatherWords(texels, row_b + xb);
-  const float* decode = srgbDecodeTable();
+  const float* decode = kSrgbDecode.data();
   for (int k = 0; k < channels; ++k) {
     const bool encoded = srgb && k < 3;  // alpha is linear
     // lerp(a, b, t) = a + (b - a) * t: across, then down.

@@ -30,6 +30,12 @@ const float* srgbDecodeTable() {
   return t.decode.data();
 }
 
+const std::array<float, 256> kSrgbDecode = [] {
+  std::array<float, 256> values;
+  std::copy_n(srgbDecodeTable(), values.size(), values.begin());
+  return values;
+}();
+
 uint32_t packSrgba8(float4 linear) {
   float a = linear.w > 0.0f ? std::min(linear.w, 1.0f) : 0.0f;
   uint32_t alpha = static_cast<uint32_t>(a * 255.0f + 0.5f);

@@ -1,6 +1,7 @@
 // sRGB transfer functions (IEC 61966-2-1). Shading is linear; encoding happens once, at output.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include <tessera/math/vec.h>
@@ -13,6 +14,11 @@ float linearToSrgb(float linear);
 
 // The linear value of each 8-bit sRGB code.
 const float* srgbDecodeTable();
+// The same values in an object filled before main, for the shading kernels' inner loops: its
+// address is a constant, where a call to srgbDecodeTable() there makes the compiler store and
+// reload every vector register live across it. (Static initializers of other files call
+// srgbDecodeTable() instead: this one may not be filled yet when they run.)
+extern const std::array<float, 256> kSrgbDecode;
 inline float decodeSrgb8(uint8_t code) {
   return srgbDecodeTable()[code];
 }
