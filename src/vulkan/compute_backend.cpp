@@ -26,6 +26,7 @@
 
 #include "render/fixed_point.h"
 #include "vulkan/backend_diagnostics.h"
+#include "vulkan/compute_blend.h"
 #include "vulkan/compute_pipelines.h"
 #include "vulkan/context.h"
 #include "vulkan/descriptor_sets.h"
@@ -99,6 +100,8 @@ struct ComputeBackend::State {
   bool fp64 = false;
 
   ComputePipelines pipelines;
+  ComputeBlendPass blend;     // alphaMode BLEND: the transparent pass after shading
+  bool blend_active = false;  // this frame has blended records to draw
   VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
   VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
   VkQueryPool timestamps = VK_NULL_HANDLE;
@@ -151,6 +154,7 @@ ComputeBackend::State::~State() {
   VkDevice device = c.device;
   if (descriptor_pool) c.vk.vkDestroyDescriptorPool(device, descriptor_pool, nullptr);
   pipelines.destroy(c);
+  blend.destroy(c);
   if (timestamps) c.vk.vkDestroyQueryPool(device, timestamps, nullptr);
   destroySceneBuffers(c, scene_buffers);
   for (Buffer* b :
@@ -162,6 +166,8 @@ ComputeBackend::State::~State() {
 Expected<void> ComputeBackend::State::createPipelines() {
   Context& c = *context;
   if (Expected<void> r = pipelines.create(c, atomic64, fp64); !r) return r;
+  if (Expected<void> r = blend.create(c, pipelines.set_layout, sizeof(GpuPassConstants)); !r)
+    return r;
   if (Expected<void> r = allocateStorageSet(c, kComputeBindingCount, pipelines.set_layout,
                                             descriptor_pool, descriptor_set);
       !r)
@@ -366,6 +372,11 @@ void ComputeBackend::State::recordTilePasses(const PassRecorder& r, const Render
   vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, passes.shade);
   vk.vkCmdDispatch(cmd, (static_cast<uint32_t>(options.width) + 7) / 8,
                    (static_cast<uint32_t>(options.height) + 7) / 8, 1);
+  if (blend_active) {
+    // 6b. The transparent pass. Orders the shaded output before it reads and rewrites it.
+    r.computeToCompute();
+    blend.record(vk, cmd, descriptor_set, pipelines.layout, options.width, options.height);
+  }
   // Orders the output image, the counters and the tile counts before the host reads them
   // (after the fence).
   r.computeToHost();
@@ -475,6 +486,9 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   }
   if (Expected<void> r = packScene(scene, options, IndexPolicy::kAsGiven, packed); !r) return r;
   if (Expected<void> r = uploadScene(*context, packed, scene_buffers); !r) return r;
+  Expected<bool> blending = blend.prepare(*context, scene, options, packed);
+  if (!blending) return blending.error();
+  blend_active = *blending;
   const bool ray_passes = options.projection != Projection::kPerspective;
   if (Expected<void> r = pipelines.ensureRaster(*context, packed.frame.layers, ray_passes); !r)
     return r;

@@ -71,6 +71,9 @@ constexpr uint32_t kMaterialMask = 1024u;
 // The texture is read through TEXCOORD_1 (Sampler::texcoord == 1): GpuVertex::uv1, the shading
 // record's uv1.
 constexpr uint32_t kTextureSet1 = 2048u;
+// alphaMode BLEND: out of the compute backend's opaque passes (setup leaves it out of the visible
+// list), drawn by the transparent pass (blend_pass.glsl).
+constexpr uint32_t kMaterialBlend = 4096u;
 
 // A texture in the texel buffer: a header (level count, then offset, width and height of each
 // level, offsets in words from the start of the buffer), then the levels' texels.

@@ -27,6 +27,7 @@ const uint kTextureMirrorT = 128u;
 const uint kTextureTransformed = 512u;
 const uint kMaterialMask = 1024u;  // alphaMode MASK, cutoff in uv_transform[0].w
 const uint kTextureSet1 = 2048u;   // read through TEXCOORD_1
+const uint kMaterialBlend = 4096u;  // alphaMode BLEND: the transparent pass draws it
 const uint kShadeHasUv = 256u;
 const uint kShadePbrUv = 512u;
 const uint kShadePbrTangents = 1024u;
