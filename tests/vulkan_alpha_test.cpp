@@ -55,14 +55,15 @@ const float4 kRedHalf{1, 0, 0, 0.5f}, kBlueQuarter{0, 0, 1, 0.25f};
 
 // An opaque green quad at the back over columns [0, 48), a half-transparent red quad at NDC depth
 // 0.5 and a quarter-transparent blue one at 0.3 over columns [8, 64) and [0, 56): they overlap on
-// [8, 56). `red_first` submits red first.
-Scene blendScene(bool red_first) {
+// [8, 56). `red_first` submits red first. `edge` moves the three inner edges by that much of a
+// pixel (by different amounts: under MSAA, pixels the blended quads cover in part).
+Scene blendScene(bool red_first, float edge = 0.0f) {
   Scene scene = clipSpaceScene();
   scene.ambient = float3(1.0f);
   scene.background = {0, 0, 0, 1};
-  scene.objects.push_back(quad(0, 48, 0.8f, {0, 1, 0, 1}, AlphaMode::kOpaque));
-  Object red = quad(8, kBlendWidth, 0.5f, kRedHalf, AlphaMode::kBlend);
-  Object blue = quad(0, 56, 0.3f, kBlueQuarter, AlphaMode::kBlend);
+  scene.objects.push_back(quad(0, 48 - 0.5f * edge, 0.8f, {0, 1, 0, 1}, AlphaMode::kOpaque));
+  Object red = quad(8 + 0.4f * edge, kBlendWidth, 0.5f, kRedHalf, AlphaMode::kBlend);
+  Object blue = quad(0, 56 - 0.6f * edge, 0.3f, kBlueQuarter, AlphaMode::kBlend);
   scene.objects.push_back(red_first ? red : blue);
   scene.objects.push_back(red_first ? blue : red);
   return scene;
@@ -196,8 +197,10 @@ TEST(VulkanBlend, AnOpaqueSurfaceInFrontHidesTheBlendedOnes) {
 
 TEST(VulkanBlend, MsaaBlendsEachSampleAsTheCpu) {
   TESSERA_SKIP_WITHOUT_VULKAN();
-  const Scene scene = blendScene(false);
+  const Scene scene = blendScene(false, 1.0f);
   const Frame cpu = renderCpu(scene, blendOptions(4));
+  // The edges fall inside pixels: 4x differs from 1x there.
+  ASSERT_GT(compare(cpu, renderCpu(scene, blendOptions())).max_channel_diff, 20);
   ComputePtr compute = makeCompute();
   RasterPtr raster = makeRaster();
   ASSERT_TRUE(compute && raster);
@@ -206,7 +209,8 @@ TEST(VulkanBlend, MsaaBlendsEachSampleAsTheCpu) {
   expectMatchesCpu("blend 4x, compute", from_compute, cpu);
   expectMatchesCpu("blend 4x, raster", from_raster, cpu);
   for (const Frame* f : {&from_compute, &from_raster})
-    for (int x = 2; x < kBlendWidth; x += 5) expectOver("4x", *f, x, 9, expectedAt(x));
+    for (int x = 2; x < kBlendWidth; x += 5)
+      if (x != 8 && x != 47 && x != 55) expectOver("4x", *f, x, 9, expectedAt(x));
 }
 
 TEST(VulkanBlend, ASortedSphereAndCardMatchTheCpu) {

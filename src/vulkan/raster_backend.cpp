@@ -104,6 +104,8 @@ struct RasterBackend::State {
                   const VkPipeline pipelines[3], const VkClearValue* clears, uint32_t clear_count,
                   const VkPipeline* blend_pipelines = nullptr);
   void recordBlendDraws(VkCommandBuffer cmd, const VkPipeline blend_pipelines[3]);
+  void recordPasses(VkCommandBuffer cmd, int samples, int linear_samples, bool aov_pass_needed,
+                    const ReadbackLayout& layout);
   void recordCopy(VkCommandBuffer cmd, const Image& image, bool depth, VkDeviceSize offset);
   void resolveOnHost(int samples, Frame& frame);
   void readResults(int samples, bool aov_pass_ran, Frame& frame);
@@ -291,6 +293,33 @@ void RasterBackend::State::recordBlendDraws(VkCommandBuffer cmd,
   }
 }
 
+// The AOV pass (with its copies) when needed, then the linear pass when `linear_samples` > 0.
+void RasterBackend::State::recordPasses(VkCommandBuffer cmd, int samples, int linear_samples,
+                                        bool aov_pass_needed, const ReadbackLayout& layout) {
+  if (aov_pass_needed) {
+    VkClearValue clears[kAovAttachmentCount]{};
+    clears[kAovColor].color.uint32[0] = packed.frame.background;
+    clears[kAovDepth].depthStencil = {1.0f, 0};
+    recordPass(cmd, aov_pass, aov_targets.framebuffer, aov_pipelines, clears, kAovAttachmentCount);
+    if (linear_samples == 0) recordCopy(cmd, aov_targets.images[kAovColor], false, layout.color);
+    recordCopy(cmd, aov_targets.images[kAovId], false, layout.id);
+    recordCopy(cmd, aov_targets.images[kAovNormal], false, layout.normal);
+    recordCopy(cmd, aov_targets.images[kAovDepth], true, layout.depth);
+  }
+  if (linear_samples > 0) {
+    // Samples no triangle covers keep the background, in linear light, with alpha 0.
+    VkClearValue clears[kMsAttachmentCount]{};
+    const float* decode = srgbDecodeTable();
+    for (int k = 0; k < 3; ++k)
+      clears[kMsColor].color.float32[k] = decode[(packed.frame.background >> (8 * k)) & 255u];
+    clears[kMsDepth].depthStencil = {1.0f, 0};
+    recordPass(cmd, ms_pass, ms_targets.framebuffer, ms_pipelines, clears,
+               samples > 1 ? kMsAttachmentCount : kMsResolve,
+               blending ? ms_blend_pipelines : nullptr);
+    recordCopy(cmd, ms_targets.images[samples > 1 ? kMsResolve : kMsColor], false, layout.resolved);
+  }
+}
+
 // The render pass's outgoing dependency orders its attachment writes (and resolve) before this.
 void RasterBackend::State::recordCopy(VkCommandBuffer cmd, const Image& image, bool depth,
                                       VkDeviceSize offset) {
@@ -377,28 +406,7 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
   stats.samples = samples;
   const size_t pixels = static_cast<size_t>(options.width) * options.height;
   const ReadbackLayout layout = readbackLayout(pixels);
-  if (aov_pass_needed) {
-    VkClearValue clears[kAovAttachmentCount]{};
-    clears[kAovColor].color.uint32[0] = packed.frame.background;
-    clears[kAovDepth].depthStencil = {1.0f, 0};
-    recordPass(cmd, aov_pass, aov_targets.framebuffer, aov_pipelines, clears, kAovAttachmentCount);
-    if (linear_samples == 0) recordCopy(cmd, aov_targets.images[kAovColor], false, layout.color);
-    recordCopy(cmd, aov_targets.images[kAovId], false, layout.id);
-    recordCopy(cmd, aov_targets.images[kAovNormal], false, layout.normal);
-    recordCopy(cmd, aov_targets.images[kAovDepth], true, layout.depth);
-  }
-  if (linear_samples > 0) {
-    // Samples no triangle covers keep the background, in linear light, with alpha 0.
-    VkClearValue clears[kMsAttachmentCount]{};
-    const float* decode = srgbDecodeTable();
-    for (int k = 0; k < 3; ++k)
-      clears[kMsColor].color.float32[k] = decode[(packed.frame.background >> (8 * k)) & 255u];
-    clears[kMsDepth].depthStencil = {1.0f, 0};
-    recordPass(cmd, ms_pass, ms_targets.framebuffer, ms_pipelines, clears,
-               samples > 1 ? kMsAttachmentCount : kMsResolve,
-               blending ? ms_blend_pipelines : nullptr);
-    recordCopy(cmd, ms_targets.images[samples > 1 ? kMsResolve : kMsColor], false, layout.resolved);
-  }
+  recordPasses(cmd, samples, linear_samples, aov_pass_needed, layout);
   // Orders the copies' writes into the readback buffer before the host reads it (after the
   // fence).
   memoryBarrier(vk, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
