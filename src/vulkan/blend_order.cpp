@@ -10,9 +10,9 @@ using namespace render;
 
 namespace {
 
-bool objectBlends(const Object& object) {
+bool objectHas(const Object& object, AlphaMode mode) {
   return object.mesh && std::any_of(object.materials.begin(), object.materials.end(),
-                                    [](const Material& m) { return isBlended(m); });
+                                    [&](const Material& m) { return m.alpha_mode == mode; });
 }
 
 // The material of local triangle `local`, as setup picks it (an index past the list: the first).
@@ -26,19 +26,26 @@ const Material& triangleMaterial(const Object& object, size_t local) {
 }  // namespace
 
 void BlendDrawOrder::build(const Scene& scene, const RenderOptions& options,
-                           const float4x4& view_projection) {
+                           const float4x4& view_projection, AlphaMode mode) {
+  mode_ = mode;
   entries_.clear();
   found_.clear();
   records_.clear();
-  if (std::none_of(scene.objects.begin(), scene.objects.end(), objectBlends)) return;
+  if (std::none_of(scene.objects.begin(), scene.objects.end(),
+                   [&](const Object& o) { return objectHas(o, mode); }))
+    return;
   size_t triangle_base = 0;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const Object& object = scene.objects[i];
     ObjectTransforms xf = makeObjectTransforms(object, view_projection);
     xf.vertex_base = 0;
     xf.triangle_base = triangle_base;
-    if (objectBlends(object)) addObject(scene, i, xf, options);
+    if (objectHas(object, mode)) addObject(scene, i, xf, options);
     if (object.mesh) triangle_base += object.mesh->triangleCount();
+  }
+  if (mode != AlphaMode::kBlend) {
+    records_ = found_;
+    return;
   }
   sortBlendEntries(entries_, scene.objects.size(), object_sum_, object_entries_);
   records_.reserve(entries_.size());
@@ -74,7 +81,7 @@ void BlendDrawOrder::addObject(const Scene& scene, size_t object_index, const Ob
                       PixelBox{raster.min_x, raster.min_y, raster.max_x, raster.maxY()}});
   };
   for (size_t local = 0; local < mesh.triangleCount(); ++local) {
-    if (!isBlended(triangleMaterial(object, local))) continue;
+    if (triangleMaterial(object, local).alpha_mode != mode_) continue;
     const uint32_t idx[3] = {mesh.indices[local * 3], mesh.indices[local * 3 + 1],
                              mesh.indices[local * 3 + 2]};
     if (idx[0] >= vertex_count || idx[1] >= vertex_count || idx[2] >= vertex_count) continue;

@@ -30,8 +30,11 @@ struct BlendedRecord {
 class BlendDrawOrder {
  public:
   // Orders the blended records of `scene` as the CPU renderer would draw them with `options`;
-  // `view_projection` is the CPU's (PackedScene::view_projection, jitter included).
-  void build(const Scene& scene, const RenderOptions& options, const float4x4& view_projection);
+  // `view_projection` is the CPU's (PackedScene::view_projection, jitter included). With
+  // AlphaMode::kMask: the masked records instead, in submission order (the compute backend's
+  // MASK pass, whose depth commits do not depend on the order).
+  void build(const Scene& scene, const RenderOptions& options, const float4x4& view_projection,
+             AlphaMode mode = AlphaMode::kBlend);
   bool empty() const { return records_.empty(); }
   // In drawing order: objects farthest first, then their triangles farthest first.
   const std::vector<BlendedRecord>& records() const { return records_; }
@@ -39,6 +42,8 @@ class BlendDrawOrder {
  private:
   void addObject(const Scene& scene, size_t object_index, const render::ObjectTransforms& xf,
                  const RenderOptions& options);
+
+  AlphaMode mode_ = AlphaMode::kBlend;
 
   render::VertexBuffer vertices_;
   std::vector<render::BlendEntry> entries_;

@@ -3,14 +3,15 @@
 #include <algorithm>
 #include <cstring>
 
-#include "shaders/ShadeBlend.spv.h"
 #include "vulkan/descriptor_sets.h"
 #include "vulkan/gpu_types.h"
 
 namespace tessera::vulkan {
 
 Expected<void> ComputeBlendPass::create(Context& c, VkDescriptorSetLayout scene_set_layout,
-                                        uint32_t push_bytes) {
+                                        uint32_t push_bytes, std::span<const uint32_t> spirv,
+                                        AlphaMode mode) {
+  mode_ = mode;
   VkPipelineLayout single = VK_NULL_HANDLE;
   if (Expected<void> r =
           createStorageLayouts(c, 1, VK_SHADER_STAGE_COMPUTE_BIT, push_bytes, set_layout_, single);
@@ -30,7 +31,7 @@ Expected<void> ComputeBlendPass::create(Context& c, VkDescriptorSetLayout scene_
   layout_info.pPushConstantRanges = &push;
   TESSERA_VK_CHECK(c.vk.vkCreatePipelineLayout(c.device, &layout_info, nullptr, &layout_));
 
-  Expected<VkShaderModule> module = c.createShaderModule(spirv::kShadeBlend);
+  Expected<VkShaderModule> module = c.createShaderModule(spirv);
   if (!module) return module.error();
   VkComputePipelineCreateInfo create{};
   create.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
@@ -61,7 +62,7 @@ void ComputeBlendPass::destroy(Context& c) {
 Expected<bool> ComputeBlendPass::prepare(Context& c, const Scene& scene,
                                          const RenderOptions& options, const PackedScene& packed) {
   if (options.projection != Projection::kPerspective) return false;
-  order_.build(scene, options, packed.view_projection);
+  order_.build(scene, options, packed.view_projection, mode_);
   if (order_.empty()) return false;
   // The list: per tile an offset (tiles + 1 of them, from the start of the buffer), then the keys
   // of each tile's records in drawing order. Counted, then filled.

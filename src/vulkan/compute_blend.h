@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <tessera/base/expected.h>
@@ -18,12 +19,16 @@
 
 namespace tessera::vulkan {
 
+// With AlphaMode::kMask the same machinery runs the MASK pass (shaders/mask_pass.glsl): the masked
+// records, binned in submission order, commit their depth and key where the alpha test passes,
+// between the fine raster and shading.
 class ComputeBlendPass {
  public:
-  // The pass's pipeline over the backend's set 0 (`scene_set_layout`) and `push_bytes` of push
-  // constants, as the other passes' layout has them.
+  // The pass's pipeline (`spirv`: shade.comp's blend or mask variant) over the backend's set 0
+  // (`scene_set_layout`) and `push_bytes` of push constants, as the other passes' layout has them.
   Expected<void> create(Context& context, VkDescriptorSetLayout scene_set_layout,
-                        uint32_t push_bytes);
+                        uint32_t push_bytes, std::span<const uint32_t> spirv,
+                        AlphaMode mode = AlphaMode::kBlend);
   void destroy(Context& context);
   // Orders and bins this frame's blended records. False when there are none (or the projection is
   // a nonlinear one, where blended materials are drawn opaque): record() is then not called.
@@ -36,6 +41,7 @@ class ComputeBlendPass {
   size_t recordCount() const { return order_.records().size(); }
 
  private:
+  AlphaMode mode_ = AlphaMode::kBlend;
   VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline pipeline_ = VK_NULL_HANDLE;

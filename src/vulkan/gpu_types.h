@@ -39,6 +39,7 @@ enum Binding : uint32_t {
 // GpuFrameConstants::flags
 constexpr uint32_t kFrameNormals = 1u;   // write the normal AOV
 constexpr uint32_t kFrameCoverage = 2u;  // write the coverage AOV
+constexpr uint32_t kFrameMaskPass = 4u;  // masked records go to the MASK pass, not the raster
 // The tone curve (tessera::ToneMapping) in bits 8..9; ambient[3] holds 2^exposure.
 constexpr uint32_t kFrameToneShift = 8u;
 

@@ -9,6 +9,7 @@
 
 const uint kFrameNormals = 1u;
 const uint kFrameCoverage = 2u;
+const uint kFrameMaskPass = 4u;  // masked records go to the MASK pass (mask_pass.glsl)
 const uint kFrameToneShift = 8u;  // the tone curve's bits; frame.ambient.w: 2^exposure
 const int kMaxVisibilityLayers = 9;
 const uint kObjectHasUv = 1u;

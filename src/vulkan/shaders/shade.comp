@@ -23,6 +23,12 @@
 #ifndef TESSERA_BLEND_PASS
 #define TESSERA_BLEND_PASS 0
 #endif
+#ifndef TESSERA_MASK_PASS
+#define TESSERA_MASK_PASS 0
+#endif
+#if TESSERA_MASK_PASS
+#extension GL_EXT_shader_atomic_int64 : require
+#endif
 #include "common.glsl"
 #include "records.glsl"
 #include "shading.glsl"
@@ -253,6 +259,9 @@ uint resolveColor(uint pixel, int x, int y, out uint covered) {
 #if TESSERA_BLEND_PASS
 // The transparent pass's main(), on this file's shading (alphaMode BLEND).
 #include "blend_pass.glsl"
+#elif TESSERA_MASK_PASS
+// The MASK pass's main(), on this file's texture sampling (alphaMode MASK).
+#include "mask_pass.glsl"
 #else
 void main() {
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
