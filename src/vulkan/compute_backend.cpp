@@ -25,8 +25,6 @@
 #include <tessera/render/composite.h>
 
 #include "render/fixed_point.h"
-#include "shaders/ShadeBlend.spv.h"
-#include "shaders/ShadeMask.spv.h"
 #include "vulkan/backend_diagnostics.h"
 #include "vulkan/compute_blend.h"
 #include "vulkan/compute_pipelines.h"
@@ -102,10 +100,7 @@ struct ComputeBackend::State {
   bool fp64 = false;
 
   ComputePipelines pipelines;
-  ComputeBlendPass blend;     // alphaMode BLEND: the transparent pass after shading
-  bool blend_active = false;  // this frame has blended records to draw
-  ComputeBlendPass mask;      // alphaMode MASK (64-bit commits): after the fine raster
-  bool mask_active = false;
+  AlphaPasses alpha;  // alphaMode MASK and BLEND (compute_blend.h)
   VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
   VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
   VkQueryPool timestamps = VK_NULL_HANDLE;
@@ -145,9 +140,6 @@ struct ComputeBackend::State {
   void fillDiagnostics(const Scene& scene, bool diagnostic_passes, uint64_t entries_dropped,
                        double lines_ms, Frame& frame);
   Expected<void> renderFrame(const Scene& scene, const RenderOptions& options, Frame& frame);
-  // This frame's BLEND and MASK passes (compute_blend.h); setup leaves masked records to the
-  // MASK pass only when it runs (kFrameMaskPass).
-  Expected<void> prepareAlphaPasses(const Scene& scene, const RenderOptions& options);
   void readTimings(bool diagnostic_passes);
 };
 
@@ -161,8 +153,7 @@ ComputeBackend::State::~State() {
   VkDevice device = c.device;
   if (descriptor_pool) c.vk.vkDestroyDescriptorPool(device, descriptor_pool, nullptr);
   pipelines.destroy(c);
-  blend.destroy(c);
-  mask.destroy(c);
+  alpha.destroy(c);
   if (timestamps) c.vk.vkDestroyQueryPool(device, timestamps, nullptr);
   destroySceneBuffers(c, scene_buffers);
   for (Buffer* b :
@@ -174,15 +165,9 @@ ComputeBackend::State::~State() {
 Expected<void> ComputeBackend::State::createPipelines() {
   Context& c = *context;
   if (Expected<void> r = pipelines.create(c, atomic64, fp64); !r) return r;
-  if (Expected<void> r =
-          blend.create(c, pipelines.set_layout, sizeof(GpuPassConstants), spirv::kShadeBlend);
+  if (Expected<void> r = alpha.create(c, pipelines.set_layout, sizeof(GpuPassConstants), atomic64);
       !r)
     return r;
-  if (atomic64)
-    if (Expected<void> r = mask.create(c, pipelines.set_layout, sizeof(GpuPassConstants),
-                                       spirv::kShadeMask, AlphaMode::kMask);
-        !r)
-      return r;
   if (Expected<void> r = allocateStorageSet(c, kComputeBindingCount, pipelines.set_layout,
                                             descriptor_pool, descriptor_set);
       !r)
@@ -379,11 +364,11 @@ void ComputeBackend::State::recordTilePasses(const PassRecorder& r, const Render
     r.computeToCompute();
     r.dispatchIndirect(passes.raster_id[packed.frame.layers], kRasterDispatchOffset);
   }
-  if (mask_active) {
+  if (alpha.mask_active) {
     // 5b. The MASK pass. Orders the fine raster's commits before its own (atomics on the same
     // words: the barrier only keeps the passes from overlapping).
     r.computeToCompute();
-    mask.record(vk, cmd, descriptor_set, pipelines.layout, options.width, options.height);
+    alpha.mask.record(vk, cmd, descriptor_set, pipelines.layout, options.width, options.height);
   }
   // Orders the visibility buffer's commits before the shade pass reads it.
   r.computeToCompute();
@@ -393,10 +378,10 @@ void ComputeBackend::State::recordTilePasses(const PassRecorder& r, const Render
   vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, passes.shade);
   vk.vkCmdDispatch(cmd, (static_cast<uint32_t>(options.width) + 7) / 8,
                    (static_cast<uint32_t>(options.height) + 7) / 8, 1);
-  if (blend_active) {
+  if (alpha.blend_active) {
     // 6b. The transparent pass. Orders the shaded output before it reads and rewrites it.
     r.computeToCompute();
-    blend.record(vk, cmd, descriptor_set, pipelines.layout, options.width, options.height);
+    alpha.blend.record(vk, cmd, descriptor_set, pipelines.layout, options.width, options.height);
   }
   // Orders the output image, the counters and the tile counts before the host reads them
   // (after the fence).
@@ -416,20 +401,6 @@ void ComputeBackend::State::recordTilePasses(const PassRecorder& r, const Render
     r.computeToHost();
     r.timestamp(7);
   }
-}
-
-Expected<void> ComputeBackend::State::prepareAlphaPasses(const Scene& scene,
-                                                         const RenderOptions& options) {
-  Expected<bool> blending = blend.prepare(*context, scene, options, packed);
-  if (!blending) return blending.error();
-  blend_active = *blending;
-  mask_active = false;
-  if (!atomic64) return {};  // the 32-bit path draws masked materials opaque (docs/vulkan.md)
-  Expected<bool> masking = mask.prepare(*context, scene, options, packed);
-  if (!masking) return masking.error();
-  mask_active = *masking;
-  if (mask_active) packed.frame.flags |= kFrameMaskPass;
-  return {};
 }
 
 void ComputeBackend::State::readTimings(bool diagnostic_passes) {
@@ -521,7 +492,7 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   }
   if (Expected<void> r = packScene(scene, options, IndexPolicy::kAsGiven, packed); !r) return r;
   if (Expected<void> r = uploadScene(*context, packed, scene_buffers); !r) return r;
-  if (Expected<void> r = prepareAlphaPasses(scene, options); !r) return r;
+  if (Expected<void> r = alpha.prepare(*context, scene, options, atomic64, packed); !r) return r;
   const bool ray_passes = options.projection != Projection::kPerspective;
   if (Expected<void> r = pipelines.ensureRaster(*context, packed.frame.layers, ray_passes); !r)
     return r;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "shaders/ShadeBlend.spv.h"
+#include "shaders/ShadeMask.spv.h"
 #include "vulkan/descriptor_sets.h"
 #include "vulkan/gpu_types.h"
 
@@ -124,6 +126,33 @@ void ComputeBlendPass::record(const VulkanFunctions& vk, VkCommandBuffer cmd,
                    (static_cast<uint32_t>(height) + 7) / 8, 1);
   vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, rebind_layout, 0, 1, &scene_set,
                              0, nullptr);
+}
+
+Expected<void> AlphaPasses::create(Context& c, VkDescriptorSetLayout scene_set_layout,
+                                   uint32_t push_bytes, bool atomic64) {
+  if (Expected<void> r = blend.create(c, scene_set_layout, push_bytes, spirv::kShadeBlend); !r)
+    return r;
+  if (!atomic64) return {};
+  return mask.create(c, scene_set_layout, push_bytes, spirv::kShadeMask, AlphaMode::kMask);
+}
+
+void AlphaPasses::destroy(Context& c) {
+  blend.destroy(c);
+  mask.destroy(c);
+}
+
+Expected<void> AlphaPasses::prepare(Context& c, const Scene& scene, const RenderOptions& options,
+                                    bool atomic64, PackedScene& packed) {
+  Expected<bool> blending = blend.prepare(c, scene, options, packed);
+  if (!blending) return blending.error();
+  blend_active = *blending;
+  mask_active = false;
+  if (!atomic64) return {};  // the 32-bit path draws masked materials opaque (docs/vulkan.md)
+  Expected<bool> masking = mask.prepare(c, scene, options, packed);
+  if (!masking) return masking.error();
+  mask_active = *masking;
+  if (mask_active) packed.frame.flags |= kFrameMaskPass;
+  return {};
 }
 
 }  // namespace tessera::vulkan

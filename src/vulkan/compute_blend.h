@@ -53,4 +53,19 @@ class ComputeBlendPass {
   std::vector<uint32_t> words_;
 };
 
+// The compute backend's two alpha passes and whether this frame runs them.
+struct AlphaPasses {
+  ComputeBlendPass blend;  // alphaMode BLEND: the transparent pass after shading
+  ComputeBlendPass mask;   // alphaMode MASK: after the fine raster (64-bit commits only)
+  bool blend_active = false, mask_active = false;
+
+  Expected<void> create(Context& context, VkDescriptorSetLayout scene_set_layout,
+                        uint32_t push_bytes, bool atomic64);
+  void destroy(Context& context);
+  // This frame's lists; with a MASK pass, sets kFrameMaskPass in `packed` (setup then leaves the
+  // masked records to it). Without 64-bit commits masked materials are drawn opaque.
+  Expected<void> prepare(Context& context, const Scene& scene, const RenderOptions& options,
+                         bool atomic64, PackedScene& packed);
+};
+
 }  // namespace tessera::vulkan
