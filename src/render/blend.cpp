@@ -9,19 +9,31 @@
 
 namespace tessera::render {
 
-namespace {
-
-// The window depth of a record at the centre of its pixel box, from its depth plane: a number
-// that orders triangles as their distance does, including the pieces of a clipped one. Not below
-// 0 (a NaN counts as 0), so that the sort's comparisons are a strict order.
-float recordDepth(const RasterTriangle& t) {
+float blendRecordDepth(const RasterTriangle& t) {
   const float cx = 0.5f * static_cast<float>(t.min_x + t.max_x) + 0.5f;
   const float cy = 0.5f * static_cast<float>(t.min_y + t.maxY()) + 0.5f;
   const float z = t.z0 + t.dzdx * (cx - t.x0) + t.dzdy * (cy - t.y0);
   return z > 0.0f ? z : 0.0f;
 }
 
-}  // namespace
+void sortBlendEntries(std::vector<BlendEntry>& entries, size_t object_count,
+                      std::vector<double>& object_sum, std::vector<uint32_t>& object_entries) {
+  object_sum.assign(object_count, 0.0);
+  object_entries.assign(object_count, 0);
+  // Summed in submission order: the same sum for any chunk layout.
+  for (const BlendEntry& e : entries) {
+    object_sum[e.object] += e.depth;
+    ++object_entries[e.object];
+  }
+  for (BlendEntry& e : entries)
+    e.object_depth = static_cast<float>(object_sum[e.object] / object_entries[e.object]);
+  std::sort(entries.begin(), entries.end(), [](const BlendEntry& a, const BlendEntry& b) {
+    if (a.object_depth != b.object_depth) return a.object_depth > b.object_depth;
+    if (a.object != b.object) return a.object < b.object;
+    if (a.depth != b.depth) return a.depth > b.depth;
+    return a.key < b.key;
+  });
+}
 
 void BlendOrder::build(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
                        const std::vector<ObjectTransforms>& objects, const TileGrid& grid) {
@@ -30,8 +42,6 @@ void BlendOrder::build(const std::vector<TriangleChunk>& chunks, size_t chunk_co
   if (std::all_of(chunks.begin(), chunks.begin() + static_cast<ptrdiff_t>(chunk_count),
                   [](const TriangleChunk& c) { return c.blended.empty(); }))
     return;
-  object_sum_.assign(objects.size(), 0.0);
-  object_count_.assign(objects.size(), 0);
   for (size_t c = 0; c < chunk_count; ++c) {
     const TriangleChunk& chunk = chunks[c];
     size_t object = 0;
@@ -41,24 +51,14 @@ void BlendOrder::build(const std::vector<TriangleChunk>& chunks, size_t chunk_co
       if (object >= objects.size() || objects[object].triangle_base > id)
         object = objectHolding(objects, id);
       while (object + 1 < objects.size() && objects[object + 1].triangle_base <= id) ++object;
-      const float depth = recordDepth(chunk.raster[local]);
-      // Summed in submission order: the same sum for any chunk layout.
-      object_sum_[object] += depth;
-      ++object_count_[object];
+      const float depth = blendRecordDepth(chunk.raster[local]);
       order_.push_back(
           {0.0f, depth, static_cast<uint32_t>(object), makeKey(static_cast<uint32_t>(c), local)});
     }
   }
-  for (Entry& e : order_)
-    e.object_depth = static_cast<float>(object_sum_[e.object] / object_count_[e.object]);
-  std::sort(order_.begin(), order_.end(), [](const Entry& a, const Entry& b) {
-    if (a.object_depth != b.object_depth) return a.object_depth > b.object_depth;
-    if (a.object != b.object) return a.object < b.object;
-    if (a.depth != b.depth) return a.depth > b.depth;
-    return a.key < b.key;
-  });
+  sortBlendEntries(order_, objects.size(), object_sum_, object_count_);
   bins_.reset(grid.tileCount());
-  for (const Entry& e : order_)
+  for (const BlendEntry& e : order_)
     bins_.add(grid, chunks[keyChunk(e.key)].raster[keyLocal(e.key)], e.key);
 }
 

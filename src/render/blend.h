@@ -34,6 +34,27 @@ inline bool isBlended(const Material& material) {
   return material.alpha_mode == AlphaMode::kBlend;
 }
 
+// The depth by which the transparent pass orders a record: its window depth at the centre of its
+// pixel box, from its depth plane (a number that orders triangles as their distance does, clipped
+// pieces included). Not below 0 (a NaN counts as 0), so that the sort's comparisons are a strict
+// order.
+float blendRecordDepth(const RasterTriangle& t);
+
+// One blended record in the back-to-front sort.
+struct BlendEntry {
+  float object_depth;  // the mean of the object's, farthest first
+  float depth;         // the record's (blendRecordDepth), farthest first
+  uint32_t object;     // index into the frame's objects
+  uint32_t key;        // submission order breaks ties
+};
+
+// The back-to-front order of BlendOrder, for `entries` given in submission order (object indices
+// below `object_count`): sets each entry's object_depth to the mean of its object's depths (summed
+// in double, in the given order) and sorts. The Vulkan backends order their blended triangles with
+// it, so their drawing order is the CPU's. The scratch vectors only grow.
+void sortBlendEntries(std::vector<BlendEntry>& entries, size_t object_count,
+                      std::vector<double>& object_sum, std::vector<uint32_t>& object_entries);
+
 class BlendOrder {
  public:
   // Orders the blended records of chunks [0, chunk_count) and bins them (keys: raster.h's
@@ -48,13 +69,7 @@ class BlendOrder {
   uint32_t keyAt(size_t i) const { return order_[i].key; }
 
  private:
-  struct Entry {
-    float object_depth;  // the mean of the object's, farthest first
-    float depth;         // the triangle's, farthest first
-    uint32_t object;
-    uint32_t key;  // submission order breaks ties
-  };
-  std::vector<Entry> order_;
+  std::vector<BlendEntry> order_;
   std::vector<double> object_sum_;
   std::vector<uint32_t> object_count_;
   ChunkBins bins_;

@@ -26,6 +26,7 @@
 
 #include "render/fixed_point.h"
 #include "vulkan/backend_diagnostics.h"
+#include "vulkan/compute_blend.h"
 #include "vulkan/compute_pipelines.h"
 #include "vulkan/context.h"
 #include "vulkan/descriptor_sets.h"
@@ -99,6 +100,7 @@ struct ComputeBackend::State {
   bool fp64 = false;
 
   ComputePipelines pipelines;
+  AlphaPasses alpha;  // alphaMode MASK and BLEND (compute_blend.h)
   VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
   VkDescriptorSet descriptor_set = VK_NULL_HANDLE;
   VkQueryPool timestamps = VK_NULL_HANDLE;
@@ -151,6 +153,7 @@ ComputeBackend::State::~State() {
   VkDevice device = c.device;
   if (descriptor_pool) c.vk.vkDestroyDescriptorPool(device, descriptor_pool, nullptr);
   pipelines.destroy(c);
+  alpha.destroy(c);
   if (timestamps) c.vk.vkDestroyQueryPool(device, timestamps, nullptr);
   destroySceneBuffers(c, scene_buffers);
   for (Buffer* b :
@@ -162,6 +165,9 @@ ComputeBackend::State::~State() {
 Expected<void> ComputeBackend::State::createPipelines() {
   Context& c = *context;
   if (Expected<void> r = pipelines.create(c, atomic64, fp64); !r) return r;
+  if (Expected<void> r = alpha.create(c, pipelines.set_layout, sizeof(GpuPassConstants), atomic64);
+      !r)
+    return r;
   if (Expected<void> r = allocateStorageSet(c, kComputeBindingCount, pipelines.set_layout,
                                             descriptor_pool, descriptor_set);
       !r)
@@ -358,6 +364,12 @@ void ComputeBackend::State::recordTilePasses(const PassRecorder& r, const Render
     r.computeToCompute();
     r.dispatchIndirect(passes.raster_id[packed.frame.layers], kRasterDispatchOffset);
   }
+  if (alpha.mask_active) {
+    // 5b. The MASK pass. Orders the fine raster's commits before its own (atomics on the same
+    // words: the barrier only keeps the passes from overlapping).
+    r.computeToCompute();
+    alpha.mask.record(vk, cmd, descriptor_set, pipelines.layout, options.width, options.height);
+  }
   // Orders the visibility buffer's commits before the shade pass reads it.
   r.computeToCompute();
   r.timestamp(5);
@@ -366,6 +378,11 @@ void ComputeBackend::State::recordTilePasses(const PassRecorder& r, const Render
   vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, passes.shade);
   vk.vkCmdDispatch(cmd, (static_cast<uint32_t>(options.width) + 7) / 8,
                    (static_cast<uint32_t>(options.height) + 7) / 8, 1);
+  if (alpha.blend_active) {
+    // 6b. The transparent pass. Orders the shaded output before it reads and rewrites it.
+    r.computeToCompute();
+    alpha.blend.record(vk, cmd, descriptor_set, pipelines.layout, options.width, options.height);
+  }
   // Orders the output image, the counters and the tile counts before the host reads them
   // (after the fence).
   r.computeToHost();
@@ -475,6 +492,7 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   }
   if (Expected<void> r = packScene(scene, options, IndexPolicy::kAsGiven, packed); !r) return r;
   if (Expected<void> r = uploadScene(*context, packed, scene_buffers); !r) return r;
+  if (Expected<void> r = alpha.prepare(*context, scene, options, atomic64, packed); !r) return r;
   const bool ray_passes = options.projection != Projection::kPerspective;
   if (Expected<void> r = pipelines.ensureRaster(*context, packed.frame.layers, ray_passes); !r)
     return r;

@@ -39,6 +39,7 @@ enum Binding : uint32_t {
 // GpuFrameConstants::flags
 constexpr uint32_t kFrameNormals = 1u;   // write the normal AOV
 constexpr uint32_t kFrameCoverage = 2u;  // write the coverage AOV
+constexpr uint32_t kFrameMaskPass = 4u;  // masked records go to the MASK pass, not the raster
 // The tone curve (tessera::ToneMapping) in bits 8..9; ambient[3] holds 2^exposure.
 constexpr uint32_t kFrameToneShift = 8u;
 
@@ -71,6 +72,9 @@ constexpr uint32_t kMaterialMask = 1024u;
 // The texture is read through TEXCOORD_1 (Sampler::texcoord == 1): GpuVertex::uv1, the shading
 // record's uv1.
 constexpr uint32_t kTextureSet1 = 2048u;
+// alphaMode BLEND: out of the compute backend's opaque passes (setup leaves it out of the visible
+// list), drawn by the transparent pass (blend_pass.glsl).
+constexpr uint32_t kMaterialBlend = 4096u;
 
 // A texture in the texel buffer: a header (level count, then offset, width and height of each
 // level, offsets in words from the start of the buffer), then the levels' texels.

@@ -4,7 +4,10 @@
 //     into a mapped buffer; with MSAA it still gives the id, depth and normal AOVs (and the
 //     depth the lines are tested against), which are the pixel centre's at any sample count;
 //   - with options.msaa > 1, the multisample pass: the pipeline's own multisampling at the
-//     standard sample positions, resolved to linear colour and coverage, encoded on the host.
+//     standard sample positions, resolved to linear colour and coverage, encoded on the host;
+//   - with blended materials (alphaMode BLEND; raster_blend.h) the same pass (at one sample too)
+//     draws them after the opaque ones, back to front, blended in its linear colour; the AOV pass
+//     then gives the AOVs only.
 // Then the CPU's line pass draws the axes on the host.
 //
 // Window coordinates match the CPU's: the zero-to-one projection gives the same window z, and a
@@ -23,11 +26,13 @@
 #include <tessera/scene/color.h>
 
 #include "shaders/MeshFrag.spv.h"
+#include "shaders/MeshFragBlend.spv.h"
 #include "shaders/MeshFragMsaa.spv.h"
 #include "vulkan/backend_diagnostics.h"
 #include "vulkan/context.h"
 #include "vulkan/descriptor_sets.h"
 #include "vulkan/gpu_types.h"
+#include "vulkan/raster_blend.h"
 #include "vulkan/raster_passes.h"
 #include "vulkan/scene_upload.h"
 
@@ -74,6 +79,9 @@ struct RasterBackend::State {
   int ms_samples = 0;
   VkRenderPass ms_pass = VK_NULL_HANDLE;
   VkPipeline ms_pipelines[3] = {};
+  VkPipeline ms_blend_pipelines[3] = {};  // the transparent pass's, in the same pass
+  RasterBlendDraws blend;                 // this frame's blended triangles
+  bool blending = false;
   VkQueryPool timestamps = VK_NULL_HANDLE;
 
   PassTargets aov_targets, ms_targets;
@@ -93,7 +101,11 @@ struct RasterBackend::State {
   void destroyMultisamplePass();
   void writeDescriptors();
   void recordPass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer,
-                  const VkPipeline pipelines[3], const VkClearValue* clears, uint32_t clear_count);
+                  const VkPipeline pipelines[3], const VkClearValue* clears, uint32_t clear_count,
+                  const VkPipeline* blend_pipelines = nullptr);
+  void recordBlendDraws(VkCommandBuffer cmd, const VkPipeline blend_pipelines[3]);
+  void recordPasses(VkCommandBuffer cmd, int samples, int linear_samples, bool aov_pass_needed,
+                    const ReadbackLayout& layout);
   void recordCopy(VkCommandBuffer cmd, const Image& image, bool depth, VkDeviceSize offset);
   void resolveOnHost(int samples, Frame& frame);
   void readResults(int samples, bool aov_pass_ran, Frame& frame);
@@ -127,7 +139,8 @@ Expected<void> RasterBackend::State::createPipelines() {
   const VulkanFunctions& vk = c.vk;
   constexpr VkShaderStageFlags kStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
-  if (Expected<void> r = createStorageLayouts(c, kSceneBindingCount, kStages, sizeof(uint32_t),
+  // Push constants: the object; the transparent pass's first triangle (mesh.frag).
+  if (Expected<void> r = createStorageLayouts(c, kSceneBindingCount, kStages, 2 * sizeof(uint32_t),
                                               set_layout, pipeline_layout);
       !r)
     return r;
@@ -156,10 +169,11 @@ Expected<void> RasterBackend::State::createPipelines() {
 
 void RasterBackend::State::destroyMultisamplePass() {
   Context& c = *context;
-  for (VkPipeline& p : ms_pipelines) {
-    if (p) c.vk.vkDestroyPipeline(c.device, p, nullptr);
-    p = VK_NULL_HANDLE;
-  }
+  for (VkPipeline* list : {ms_pipelines, ms_blend_pipelines})
+    for (int i = 0; i < 3; ++i) {
+      if (list[i]) c.vk.vkDestroyPipeline(c.device, list[i], nullptr);
+      list[i] = VK_NULL_HANDLE;
+    }
   if (ms_pass) c.vk.vkDestroyRenderPass(c.device, ms_pass, nullptr);
   ms_pass = VK_NULL_HANDLE;
   ms_samples = 0;
@@ -177,6 +191,10 @@ Expected<void> RasterBackend::State::ensureMultisamplePass(int samples) {
                                              spirv::kMeshFragMsaa, ms_pipelines);
       !r)
     return r;
+  if (Expected<void> r = createMeshPipelines(c, pipeline_layout, ms_pass, samples, 1,
+                                             spirv::kMeshFragBlend, ms_blend_pipelines, true);
+      !r)
+    return r;
   ms_samples = samples;
   return {};
 }
@@ -186,10 +204,11 @@ Expected<void> RasterBackend::State::ensureTargets(int w, int h, int samples,
   Context& c = *context;
   if (aov_pass_needed && (aov_targets.width != w || aov_targets.height != h))
     if (Expected<void> r = createPassTargets(c, aov_pass, w, h, 1, aov_targets); !r) return r;
-  if (samples > 1) {
+  if (samples > 0) {  // the linear pass: MSAA, or blended materials at one sample
     if (Expected<void> r = ensureMultisamplePass(samples); !r) return r;
     if (ms_targets.width != w || ms_targets.height != h || ms_targets.samples != samples)
-      if (Expected<void> r = createPassTargets(c, ms_pass, w, h, samples, ms_targets); !r) return r;
+      if (Expected<void> r = createPassTargets(c, ms_pass, w, h, samples, ms_targets, true); !r)
+        return r;
   }
   const size_t pixels = static_cast<size_t>(w) * h;
   return c.ensureBuffer(readback, readbackLayout(pixels).total, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -213,7 +232,8 @@ void RasterBackend::State::writeDescriptors() {
 
 void RasterBackend::State::recordPass(VkCommandBuffer cmd, VkRenderPass pass,
                                       VkFramebuffer framebuffer, const VkPipeline pipelines[3],
-                                      const VkClearValue* clears, uint32_t clear_count) {
+                                      const VkClearValue* clears, uint32_t clear_count,
+                                      const VkPipeline* blend_pipelines) {
   const VulkanFunctions& vk = context->vk;
   const int width = packed.frame.width, height = packed.frame.height;
   VkRenderPassBeginInfo begin{};
@@ -251,7 +271,53 @@ void RasterBackend::State::recordPass(VkCommandBuffer cmd, VkRenderPass pass,
                         static_cast<int32_t>(object.vertex_base), 0);
     ++stats.draws;
   }
+  if (blend_pipelines) recordBlendDraws(cmd, blend_pipelines);
   vk.vkCmdEndRenderPass(cmd);
+}
+
+// After the opaque draws, in the same pass: the blended triangles' runs in drawing order.
+void RasterBackend::State::recordBlendDraws(VkCommandBuffer cmd,
+                                            const VkPipeline blend_pipelines[3]) {
+  const VulkanFunctions& vk = context->vk;
+  for (const RasterBlendRun& run : blend.runs()) {
+    const GpuObject& object = packed.objects[run.object];
+    vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                         blend_pipelines[std::min(object.cull, 2u)]);
+    const uint32_t push[2] = {run.object, run.first};
+    vk.vkCmdPushConstants(cmd, pipeline_layout,
+                          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                          sizeof(push), push);
+    vk.vkCmdDrawIndexed(cmd, run.count * 3, 1, run.first * 3,
+                        static_cast<int32_t>(object.vertex_base), 0);
+    ++stats.draws;
+  }
+}
+
+// The AOV pass (with its copies) when needed, then the linear pass when `linear_samples` > 0.
+void RasterBackend::State::recordPasses(VkCommandBuffer cmd, int samples, int linear_samples,
+                                        bool aov_pass_needed, const ReadbackLayout& layout) {
+  if (aov_pass_needed) {
+    VkClearValue clears[kAovAttachmentCount]{};
+    clears[kAovColor].color.uint32[0] = packed.frame.background;
+    clears[kAovDepth].depthStencil = {1.0f, 0};
+    recordPass(cmd, aov_pass, aov_targets.framebuffer, aov_pipelines, clears, kAovAttachmentCount);
+    if (linear_samples == 0) recordCopy(cmd, aov_targets.images[kAovColor], false, layout.color);
+    recordCopy(cmd, aov_targets.images[kAovId], false, layout.id);
+    recordCopy(cmd, aov_targets.images[kAovNormal], false, layout.normal);
+    recordCopy(cmd, aov_targets.images[kAovDepth], true, layout.depth);
+  }
+  if (linear_samples > 0) {
+    // Samples no triangle covers keep the background, in linear light, with alpha 0.
+    VkClearValue clears[kMsAttachmentCount]{};
+    const float* decode = srgbDecodeTable();
+    for (int k = 0; k < 3; ++k)
+      clears[kMsColor].color.float32[k] = decode[(packed.frame.background >> (8 * k)) & 255u];
+    clears[kMsDepth].depthStencil = {1.0f, 0};
+    recordPass(cmd, ms_pass, ms_targets.framebuffer, ms_pipelines, clears,
+               samples > 1 ? kMsAttachmentCount : kMsResolve,
+               blending ? ms_blend_pipelines : nullptr);
+    recordCopy(cmd, ms_targets.images[samples > 1 ? kMsResolve : kMsColor], false, layout.resolved);
+  }
 }
 
 // The render pass's outgoing dependency orders its attachment writes (and resolve) before this.
@@ -281,7 +347,12 @@ void RasterBackend::State::resolveOnHost(int samples, Frame& frame) {
     resolved_colors[p] = encodeSrgb8(halfToFloat(h[0])) |
                          static_cast<uint32_t>(encodeSrgb8(halfToFloat(h[1]))) << 8 |
                          static_cast<uint32_t>(encodeSrgb8(halfToFloat(h[2]))) << 16 | 255u << 24;
-    if (with_coverage) {
+    if (with_coverage && blending) {
+      // A + c (1 - A) per sample, averaged, as the CPU's transparent pass leaves the coverage
+      // (equal to the count's rounding below wherever nothing blended).
+      const float alpha = std::clamp(halfToFloat(h[3]), 0.0f, 1.0f);
+      frame.coverage[p] = static_cast<uint8_t>(std::lround(alpha * 255.0f));
+    } else if (with_coverage) {
       const long covered = std::lround(halfToFloat(h[3]) * static_cast<float>(samples));
       const int n = static_cast<int>(std::clamp<long>(covered, 0, samples));
       frame.coverage[p] = static_cast<uint8_t>((n * 255 + samples / 2) / samples);
@@ -310,11 +381,16 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
     return makeError("an earlier frame is still running: " + r.error().message);
   if (Expected<void> r = packScene(scene, options, IndexPolicy::kDegenerateDropped, packed); !r)
     return r;
+  blending = blend.prepare(scene, options, packed);
   if (Expected<void> r = uploadScene(c, packed, scene_buffers); !r) return r;
-  // The AOV pass gives the colour at one sample, and the pixel centres' AOVs at any count.
-  const bool aov_pass_needed =
-      samples == 1 || !frame.depth.empty() || !frame.triangle_id.empty() || !frame.normal.empty();
-  if (Expected<void> r = ensureTargets(options.width, options.height, samples, aov_pass_needed); !r)
+  // The AOV pass gives the colour at one sample (unless the linear pass blends), and the pixel
+  // centres' AOVs at any count.
+  const bool aov_pass_needed = (samples == 1 && !blending) || !frame.depth.empty() ||
+                               !frame.triangle_id.empty() || !frame.normal.empty();
+  const int linear_samples = samples > 1 || blending ? samples : 0;
+  if (Expected<void> r =
+          ensureTargets(options.width, options.height, linear_samples, aov_pass_needed);
+      !r)
     return r;
   writeDescriptors();
 
@@ -330,26 +406,7 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
   stats.samples = samples;
   const size_t pixels = static_cast<size_t>(options.width) * options.height;
   const ReadbackLayout layout = readbackLayout(pixels);
-  if (aov_pass_needed) {
-    VkClearValue clears[kAovAttachmentCount]{};
-    clears[kAovColor].color.uint32[0] = packed.frame.background;
-    clears[kAovDepth].depthStencil = {1.0f, 0};
-    recordPass(cmd, aov_pass, aov_targets.framebuffer, aov_pipelines, clears, kAovAttachmentCount);
-    if (samples == 1) recordCopy(cmd, aov_targets.images[kAovColor], false, layout.color);
-    recordCopy(cmd, aov_targets.images[kAovId], false, layout.id);
-    recordCopy(cmd, aov_targets.images[kAovNormal], false, layout.normal);
-    recordCopy(cmd, aov_targets.images[kAovDepth], true, layout.depth);
-  }
-  if (samples > 1) {
-    // Samples no triangle covers keep the background, in linear light, with alpha 0.
-    VkClearValue clears[kMsAttachmentCount]{};
-    const float* decode = srgbDecodeTable();
-    for (int k = 0; k < 3; ++k)
-      clears[kMsColor].color.float32[k] = decode[(packed.frame.background >> (8 * k)) & 255u];
-    clears[kMsDepth].depthStencil = {1.0f, 0};
-    recordPass(cmd, ms_pass, ms_targets.framebuffer, ms_pipelines, clears, kMsAttachmentCount);
-    recordCopy(cmd, ms_targets.images[kMsResolve], false, layout.resolved);
-  }
+  recordPasses(cmd, samples, linear_samples, aov_pass_needed, layout);
   // Orders the copies' writes into the readback buffer before the host reads it (after the
   // fence).
   memoryBarrier(vk, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -383,7 +440,7 @@ void RasterBackend::State::readResults(int samples, bool aov_pass_ran, Frame& fr
     for (size_t p = 0; p < pixels; ++p)
       if (ids[p] == kNoTriangle) depths[p] = std::numeric_limits<float>::infinity();
   const uint32_t* colors = reinterpret_cast<const uint32_t*>(bytes + layout.color);
-  if (samples > 1) {
+  if (samples > 1 || blending) {
     resolveOnHost(samples, frame);
     colors = resolved_colors.data();
   } else if (!frame.coverage.empty()) {

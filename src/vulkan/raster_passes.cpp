@@ -129,6 +129,20 @@ Expected<VkRenderPass> createAovPass(Context& c) {
 }
 
 Expected<VkRenderPass> createMultisamplePass(Context& c, int samples) {
+  if (samples == 1) {
+    // The linear pass at one sample (a frame with blended materials): the colour is kept as is.
+    const VkAttachmentDescription attachments[2] = {attachment(kRasterLinearFormat, 1, true),
+                                                    attachment(kRasterDepthFormat, 1, false)};
+    const VkAttachmentReference color_ref{kMsColor, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    const VkAttachmentReference depth_ref{kMsDepth,
+                                          VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription subpass{};
+    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    subpass.colorAttachmentCount = 1;
+    subpass.pColorAttachments = &color_ref;
+    subpass.pDepthStencilAttachment = &depth_ref;
+    return createPass(c, attachments, subpass);
+  }
   // The multisampled colour and depth live only inside the pass; the resolve is kept.
   VkAttachmentDescription attachments[kMsAttachmentCount] = {
       attachment(kRasterLinearFormat, samples, false),
@@ -147,7 +161,7 @@ Expected<VkRenderPass> createMultisamplePass(Context& c, int samples) {
 }
 
 Expected<void> createPassTargets(Context& c, VkRenderPass pass, int w, int h, int samples,
-                                 PassTargets& targets) {
+                                 PassTargets& targets, bool linear) {
   destroyPassTargets(c, targets);
   constexpr VkImageUsageFlags kColor = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
   constexpr VkImageUsageFlags kDepth = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
@@ -158,7 +172,9 @@ Expected<void> createPassTargets(Context& c, VkRenderPass pass, int w, int h, in
     VkImageUsageFlags usage;
   };
   std::vector<Want> wants;
-  if (samples == 1) {
+  if (samples == 1 && linear) {
+    wants = {{kRasterLinearFormat, 1, kColor | kCopied}, {kRasterDepthFormat, 1, kDepth}};
+  } else if (samples == 1) {
     wants = {{kRasterColorFormat, 1, kColor | kCopied},
              {kRasterIdFormat, 1, kColor | kCopied},
              {kRasterNormalFormat, 1, kColor | kCopied},
@@ -270,7 +286,7 @@ struct MeshPipelineState {
 Expected<void> createMeshPipelines(Context& c, VkPipelineLayout layout, VkRenderPass pass,
                                    int samples, uint32_t color_attachments,
                                    std::span<const uint32_t> fragment_spirv,
-                                   VkPipeline pipelines[3]) {
+                                   VkPipeline pipelines[3], bool blended) {
   const VulkanFunctions& vk = c.vk;
   Expected<VkShaderModule> vert = c.createShaderModule(spirv::kMeshVert);
   if (!vert) return vert.error();
@@ -288,7 +304,20 @@ Expected<void> createMeshPipelines(Context& c, VkPipelineLayout layout, VkRender
   stages[1].module = *frag;
   stages[1].pName = "main";
 
-  const MeshPipelineState state(samples, color_attachments);
+  MeshPipelineState state(samples, color_attachments);
+  if (blended) {
+    // The transparent pass: tested against the opaque depth, never written; straight alpha over
+    // in linear light, C A + D (1 - A), and the coverage A + a (1 - A), each sample on its own.
+    state.depth.depthWriteEnable = VK_FALSE;
+    VkPipelineColorBlendAttachmentState& b = state.blend[0];
+    b.blendEnable = VK_TRUE;
+    b.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+    b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    b.colorBlendOp = VK_BLEND_OP_ADD;
+    b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    b.alphaBlendOp = VK_BLEND_OP_ADD;
+  }
   VkGraphicsPipelineCreateInfo create[3]{};
   for (int i = 0; i < 3; ++i) {
     create[i].sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;

@@ -38,6 +38,7 @@ Expected<void> createAttachment(Context& context, VkFormat format, int w, int h,
 void destroyImage(Context& context, Image& image);
 
 Expected<VkRenderPass> createAovPass(Context& context);
+// At one sample: the linear colour (kept) and depth, without a resolve (blended materials).
 Expected<VkRenderPass> createMultisamplePass(Context& context, int samples);
 
 // The images and framebuffer of one pass at one size (and sample count).
@@ -47,16 +48,18 @@ struct PassTargets {
   int image_count = 0;
   VkFramebuffer framebuffer = VK_NULL_HANDLE;
 };
-// Creates the targets of the AOV pass (samples == 1) or of the multisample pass.
+// Creates the targets of the AOV pass (samples == 1) or of the multisample pass (`linear`: also
+// at one sample, a frame with blended materials; its colour is then kMsColor, kept).
 Expected<void> createPassTargets(Context& context, VkRenderPass pass, int w, int h, int samples,
-                                 PassTargets& targets);
+                                 PassTargets& targets, bool linear = false);
 void destroyPassTargets(Context& context, PassTargets& targets);
 
 // The three mesh pipelines (by CullMode: back, front, none) of `pass`, drawing with `samples`
 // per pixel into `color_attachments` colour attachments with the given fragment shader.
+// `blended`: the transparent pass's (depth write off, the over operator; raster_blend.h).
 Expected<void> createMeshPipelines(Context& context, VkPipelineLayout layout, VkRenderPass pass,
                                    int samples, uint32_t color_attachments,
                                    std::span<const uint32_t> fragment_spirv,
-                                   VkPipeline pipelines[3]);
+                                   VkPipeline pipelines[3], bool blended = false);
 
 }  // namespace tessera::vulkan

@@ -159,6 +159,7 @@ GpuMaterial packMaterial(const Material& material, PackedScene& out) {
     m.texture_flags |= kMaterialMask;
     m.uv_transform[0][3] = material.alpha_cutoff;
   }
+  if (material.alpha_mode == AlphaMode::kBlend) m.texture_flags |= kMaterialBlend;
   // kPbr's factors and maps, each map with its own set and KHR_texture_transform.
   m.pbr[0] = material.metallic;
   m.pbr[1] = material.roughness;

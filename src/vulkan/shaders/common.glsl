@@ -9,6 +9,7 @@
 
 const uint kFrameNormals = 1u;
 const uint kFrameCoverage = 2u;
+const uint kFrameMaskPass = 4u;  // masked records go to the MASK pass (mask_pass.glsl)
 const uint kFrameToneShift = 8u;  // the tone curve's bits; frame.ambient.w: 2^exposure
 const int kMaxVisibilityLayers = 9;
 const uint kObjectHasUv = 1u;
@@ -27,6 +28,7 @@ const uint kTextureMirrorT = 128u;
 const uint kTextureTransformed = 512u;
 const uint kMaterialMask = 1024u;  // alphaMode MASK, cutoff in uv_transform[0].w
 const uint kTextureSet1 = 2048u;   // read through TEXCOORD_1
+const uint kMaterialBlend = 4096u;  // alphaMode BLEND: the transparent pass draws it
 const uint kShadeHasUv = 256u;
 const uint kShadePbrUv = 512u;
 const uint kShadePbrTangents = 1024u;

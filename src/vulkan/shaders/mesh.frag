@@ -7,6 +7,15 @@
 // resolve averages it with the background's alpha 0 into covered samples / samples), and takes
 // its attributes at the centroid: at the pixel centre when the triangle covers it, else inside
 // the triangle, as the CPU's resolve shades a triangle at its first covered sample.
+//
+// TESSERA_BLEND = 1 (with TESSERA_MSAA = 1): the transparent pass's variant (alphaMode BLEND,
+// raster_blend.h). Its draws read the appended copies of the blended triangles, from
+// draw.first_triangle on, and it writes the linear colour with the material's alpha (base colour
+// times texture, as MASK reads it; clamped to [0, 1], NaN 0), which the pipeline's blend state
+// puts over what the pass holds: C A + D (1 - A), and A + a (1 - A) in alpha (the coverage).
+#ifndef TESSERA_BLEND
+#define TESSERA_BLEND 0
+#endif
 #include "common.glsl"
 #include "shading.glsl"
 
@@ -16,7 +25,11 @@
 #define TESSERA_INTERPOLATION
 #endif
 
+#if TESSERA_BLEND
+layout(push_constant) uniform Draw { uint object; uint first_triangle; } draw;
+#else
 layout(push_constant) uniform Draw { uint object; } draw;
+#endif
 
 layout(location = 0) TESSERA_INTERPOLATION in vec3 in_normal;
 layout(location = 1) TESSERA_INTERPOLATION in vec2 in_uv;
@@ -97,7 +110,11 @@ void main() {
   vec2 uv_d[4] = vec2[4](dFdx(in_uv_centre), dFdy(in_uv_centre), dFdx(in_uv1_centre),
                          dFdy(in_uv1_centre));
   const GpuObject object = objects[draw.object];
+#if TESSERA_BLEND
+  const uint t = draw.first_triangle + uint(gl_PrimitiveID);
+#else
   const uint t = object.triangle_base + uint(gl_PrimitiveID);
+#endif
   const float flip = gl_FrontFacing ? 1.0 : -1.0;
 
   // The face normal from the object-space positions, as the CPU's setup computes it.
@@ -180,7 +197,9 @@ void main() {
                              normal);
   color = toneMap(color);
 
-#if TESSERA_MSAA
+#if TESSERA_BLEND
+  out_linear = vec4(color, alpha > 0.0 ? (alpha < 1.0 ? alpha : 1.0) : 0.0);
+#elif TESSERA_MSAA
   out_linear = vec4(color, 1.0);
 #else
   out_color = packColor(color);

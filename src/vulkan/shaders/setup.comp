@@ -206,6 +206,13 @@ uint cullReason(ScreenVertex sv[3], TriangleContext ctx) {
 void emit(uint slot, RasterRecord raster, ShadeRecord shade) {
   raster_records[slot] = raster;
   shade_records[slot] = shade;
+  // alphaMode BLEND: the record is kept for the transparent pass (blend_pass.glsl), out of the
+  // bins, the raster and the visibility buffer, as the CPU leaves it out of the z-buffer.
+  if ((materials[shade.material].texture_flags & kMaterialBlend) != 0u) return;
+  // alphaMode MASK, when the MASK pass runs: that pass commits the record where alpha passes.
+  if ((frame.flags & kFrameMaskPass) != 0u &&
+      (materials[shade.material].texture_flags & kMaterialMask) != 0u)
+    return;
   visible_list[atomicAdd(counters.visible, 1u)] = slot;
 }
 

@@ -20,6 +20,15 @@
 // Output words (n pixels): colour [0, n), depth [n, 2n), id [2n, 3n), then normal (3 words a
 // pixel) from 3n when asked, then coverage (one word a pixel) when asked.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#ifndef TESSERA_BLEND_PASS
+#define TESSERA_BLEND_PASS 0
+#endif
+#ifndef TESSERA_MASK_PASS
+#define TESSERA_MASK_PASS 0
+#endif
+#if TESSERA_MASK_PASS
+#extension GL_EXT_shader_atomic_int64 : require
+#endif
 #include "common.glsl"
 #include "records.glsl"
 #include "shading.glsl"
@@ -98,11 +107,12 @@ vec2 uvAt(ShadeRecord s, vec3 b, uint flags) {
 
 // render::sampleAlbedo: trilinear filtering takes its level of detail from the UVs at the next
 // pixels right and down.
-vec3 sampleAlbedo(uint slot, ShadeRecord s, vec3 b, ivec2 pixel, uint layer) {
+// With alpha: the transparent pass (blend_pass.glsl) reads it as MASK does.
+vec4 sampleAlbedoRgba(uint slot, ShadeRecord s, vec3 b, ivec2 pixel, uint layer) {
   const GpuMaterial m = materials[s.material];
   const uint flags = m.texture_flags;
   const vec2 uv = transformUv(m, uvAt(s, b, flags));
-  if ((m.texture_flags & kTextureTrilinear) == 0u) return sampleTexture(m, uv).xyz;
+  if ((m.texture_flags & kTextureTrilinear) == 0u) return sampleTexture(m, uv);
   const vec2 size = vec2(float(m.texture_width), float(m.texture_height));
   precise vec2 du =
       transformUv(m, uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(1, 0)), flags)) -
@@ -113,7 +123,10 @@ vec3 sampleAlbedo(uint slot, ShadeRecord s, vec3 b, ivec2 pixel, uint layer) {
   precise vec2 dx = du * size, dy = dv * size;
   precise float rho2 = max(dx.x * dx.x + dx.y * dx.y, dy.x * dy.x + dy.y * dy.y);
   const float lod = rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0;
-  return sampleTextureTrilinear(m, uv, lod).xyz;
+  return sampleTextureTrilinear(m, uv, lod);
+}
+vec3 sampleAlbedo(uint slot, ShadeRecord s, vec3 b, ivec2 pixel, uint layer) {
+  return sampleAlbedoRgba(slot, s, b, pixel, layer).xyz;
 }
 
 const uint kMaxSamples = 8u;
@@ -243,6 +256,13 @@ uint resolveColor(uint pixel, int x, int y, out uint covered) {
   return packColor(average);
 }
 
+#if TESSERA_BLEND_PASS
+// The transparent pass's main(), on this file's shading (alphaMode BLEND).
+#include "blend_pass.glsl"
+#elif TESSERA_MASK_PASS
+// The MASK pass's main(), on this file's texture sampling (alphaMode MASK).
+#include "mask_pass.glsl"
+#else
 void main() {
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= frame.width || y >= frame.height) return;
@@ -280,3 +300,4 @@ void main() {
     output_words[3u * n + 3u * pixel + 2u] = floatBitsToUint(normal.z);
   }
 }
+#endif
