@@ -114,9 +114,9 @@ TEST(VulkanShadows, ComputeMatchesCpuUnderADirectionalLight) {
   ComputePtr compute = makeCompute();
   ASSERT_TRUE(compute);
   expectShadowsMatchCpu("sun, smooth, compute", *compute, boxOnFloor(Shading::kPhong), kComputeHeld,
-                        1500);
+                        300);
   expectShadowsMatchCpu("sun, pbr, compute", *compute, boxOnFloor(Shading::kPbr), kComputeHeld,
-                        1500);
+                        300);
 }
 
 TEST(VulkanShadows, RasterMatchesCpuUnderADirectionalLight) {
@@ -124,8 +124,8 @@ TEST(VulkanShadows, RasterMatchesCpuUnderADirectionalLight) {
   RasterPtr raster = makeRaster();
   ASSERT_TRUE(raster);
   expectShadowsMatchCpu("sun, smooth, raster", *raster, boxOnFloor(Shading::kPhong), kRasterHeld,
-                        1500);
-  expectShadowsMatchCpu("sun, pbr, raster", *raster, boxOnFloor(Shading::kPbr), kRasterHeld, 1500);
+                        300);
+  expectShadowsMatchCpu("sun, pbr, raster", *raster, boxOnFloor(Shading::kPbr), kRasterHeld, 300);
 }
 
 TEST(VulkanShadows, BothBackendsMatchCpuUnderASpotLight) {
@@ -151,8 +151,8 @@ TEST(VulkanShadows, ComputeMatchesCpuInASphericalProjection) {
   ASSERT_TRUE(compute);
   const Scene scene = boxOnFloor(Shading::kPhong);
   RenderOptions o = shadowOptions(true, 1024);
-  o.width = 256;
-  o.height = 128;
+  o.width = 160;
+  o.height = 80;
   o.projection = Projection::kSpherical;
   const Frame cpu = renderCpu(scene, o);
   const Frame gpu = renderWith(*compute, scene, o);
@@ -161,5 +161,7 @@ TEST(VulkanShadows, ComputeMatchesCpuInASphericalProjection) {
   EXPECT_EQ(p.close_color, p.pixels);
   RenderOptions off = o;
   off.shadows.enabled = false;
-  EXPECT_GE(darkenedPixels(gpu, renderWith(*compute, scene, off)), 100u);
+  const size_t shadow = darkenedPixels(gpu, renderWith(*compute, scene, off));
+  std::printf("[ shadow   ] sun, smooth, spherical, compute: %zu pixels darkened\n", shadow);
+  EXPECT_GE(shadow, 50u);
 }

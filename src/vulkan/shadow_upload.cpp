@@ -85,7 +85,8 @@ Expected<void> uploadShadows(Context& context, const Scene& scene, const RenderO
     upload.maps.build(scene, options.shadows, omnidirectional, aspect, *upload.pool, upload.rig);
     drawn = upload.rig.shadows != nullptr;  // null: an empty scene, nothing to shadow
   }
-  const size_t words = drawn ? blockWords(scene.lights.size(), upload.maps) : kShadowHeaderWords;
+  const size_t words =
+      drawn ? blockWords(scene.lights.size(), upload.maps) : size_t{kShadowHeaderWords};
   if (words > 0xffffffffull)
     return makeError("the shadow maps need more than 2^32 words; use a smaller map size");
   if (Expected<void> r = context.ensureBuffer(upload.buffer, words * sizeof(uint32_t), kStorage,
