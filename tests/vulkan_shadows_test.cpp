@@ -165,3 +165,18 @@ TEST(VulkanShadows, ComputeMatchesCpuInASphericalProjection) {
   std::printf("[ shadow   ] sun, smooth, spherical, compute: %zu pixels darkened\n", shadow);
   EXPECT_GE(shadow, 50u);
 }
+
+TEST(VulkanShadows, ComputeMatchesCpuWithMsaa) {
+  // With 4x MSAA the compute backend shades at the CPU's points (the centre, else the first
+  // covered sample), so the lookups still see the CPU's taps.
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr compute = makeCompute();
+  ASSERT_TRUE(compute);
+  const Scene scene = boxOnFloor(Shading::kPbr);
+  RenderOptions o = shadowOptions(true, 1024);
+  o.msaa = 4;
+  const Parity p = compare(renderWith(*compute, scene, o), renderCpu(scene, o));
+  report("sun, pbr, 4x MSAA, compute", p);
+  EXPECT_EQ(p.close_color, p.pixels);
+  EXPECT_LE(p.max_channel_diff, 2);
+}
