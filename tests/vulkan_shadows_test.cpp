@@ -180,3 +180,31 @@ TEST(VulkanShadows, ComputeMatchesCpuWithMsaa) {
   EXPECT_EQ(p.close_color, p.pixels);
   EXPECT_LE(p.max_channel_diff, 2);
 }
+
+TEST(VulkanShadows, MapsLargerThanAStorageBufferAreAClearError) {
+  // Two suns' six 2048x2048 cascades are 96 MiB: on a device allowing 32 MiB per storage buffer
+  // both backends refuse the frame, saying what to change; 1024x1024 maps (24 MiB) then draw.
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  VulkanOptions vk;
+  vk.pretend_max_buffer_bytes = 32u << 20;
+  ComputePtr compute = makeCompute(vk);
+  RasterPtr raster = makeRaster(vk);
+  ASSERT_TRUE(compute && raster);
+  const Scene scene = boxOnFloor(Shading::kPhong);
+  for (Backend* backend :
+       {static_cast<Backend*>(compute.get()), static_cast<Backend*>(raster.get())}) {
+    Frame frame;
+    backend->render(scene, shadowOptions(true, 2048), frame);
+    Expected<void> result = backend->lastResult();
+    ASSERT_FALSE(result.ok());
+    EXPECT_NE(result.error().message.find("the shadow maps (6 of 2048x2048 texels"),
+              std::string::npos)
+        << result.error().message;
+    EXPECT_NE(result.error().message.find("more than the 32 MiB"), std::string::npos)
+        << result.error().message;
+    backend->render(scene, shadowOptions(true, 1024), frame);
+    EXPECT_TRUE(backend->lastResult().ok());
+    const Parity p = compare(frame, renderCpu(scene, shadowOptions(true, 1024)));
+    EXPECT_GE(p.colorRatio(), 0.999);
+  }
+}

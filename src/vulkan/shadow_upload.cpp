@@ -1,6 +1,8 @@
 #include "vulkan/shadow_upload.h"
 
+#include <algorithm>
 #include <cstring>
+#include <string>
 
 #include "vulkan/gpu_types.h"
 
@@ -69,6 +71,22 @@ void packBlock(const Scene& scene, const ShadowUpload& upload, uint32_t* words) 
   }
 }
 
+// A block larger than one storage buffer of the device (lavapipe: 128 MiB, so two suns at 2048
+// texels fit and three do not) as an error that says what to change.
+Expected<void> checkBlockFits(const Context& context, const render::ShadowMaps& maps,
+                              size_t words) {
+  const uint64_t bytes = static_cast<uint64_t>(words) * sizeof(uint32_t);
+  const uint64_t limit = std::min<uint64_t>(context.max_buffer_bytes, 0xffffffffull);
+  if (bytes <= limit) return {};
+  const int size = maps.viewCount() > 0 ? maps.view(0).size : 0;
+  return makeError("the shadow maps (" + std::to_string(maps.viewCount()) + " of " +
+                   std::to_string(size) + "x" + std::to_string(size) + " texels: three per " +
+                   "directional light, one per spot) need " + std::to_string((bytes >> 20) + 1) +
+                   " MiB, more than the " + std::to_string(limit >> 20) +
+                   " MiB this device allows in one storage buffer (maxStorageBufferRange); shadow "
+                   "fewer lights, use smaller maps (ShadowOptions::map_size) or the cpu backend");
+}
+
 }  // namespace
 
 Expected<void> uploadShadows(Context& context, const Scene& scene, const RenderOptions& options,
@@ -87,8 +105,7 @@ Expected<void> uploadShadows(Context& context, const Scene& scene, const RenderO
   }
   const size_t words =
       drawn ? blockWords(scene.lights.size(), upload.maps) : size_t{kShadowHeaderWords};
-  if (words > 0xffffffffull)
-    return makeError("the shadow maps need more than 2^32 words; use a smaller map size");
+  if (Expected<void> r = checkBlockFits(context, upload.maps, words); !r) return r;
   if (Expected<void> r = context.ensureBuffer(upload.buffer, words * sizeof(uint32_t), kStorage,
                                               MemoryKind::kHost, "shadow map");
       !r)
