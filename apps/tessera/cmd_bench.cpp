@@ -465,8 +465,6 @@ int runBench(const std::vector<std::string>& args) {
     return kExitFailure;
   };
   if (s.resolutions.empty()) s.resolutions = kStandardResolutions;
-  if (std::string refused = refuseShadows(s.lights, s.backend); !refused.empty())
-    return failure(Error{refused});
   // The view angle against the projection's range, at every size: a usage error before any work.
   for (const Resolution& r : s.resolutions)
     if (Expected<float> angle =

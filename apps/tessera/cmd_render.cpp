@@ -526,10 +526,6 @@ int runRender(const std::vector<std::string>& args) {
     printError("render", refused);
     return kExitFailure;
   }
-  if (std::string refused = refuseShadows(s.lights, s.backend); !refused.empty()) {
-    printError("render", refused);
-    return kExitFailure;
-  }
   if ((s.camera.orthographic || s.camera.camera_index >= 0) &&
       s.camera.projectionMode() != Projection::kPerspective)
     return usageError(

@@ -326,8 +326,8 @@ void printViewHelp(const FlagSet& flags) {
                "F11 cycles the analysis view (off, tile field, density), F12 screenshot,\n"
                "Shift+F1 tile heatmap, Shift+F2 32-bit commit path (vulkan),\n"
                "Shift+F3 cycles MSAA 1/2/4/8, Shift+F12 temporal reprojection (on with\n"
-               "jitter), space plays or pauses the animation, S toggles shadows (cpu\n"
-               "backend), H lists the keys in the window, Escape quits.\n"
+               "jitter), space plays or pauses the animation, S toggles shadows,\n"
+               "H lists the keys in the window, Escape quits.\n"
                "Drop a model file on the window to load it.\n";
 }
 
@@ -442,10 +442,6 @@ int runView(const std::vector<std::string>& args) {
       return status;
   }
 
-  if (std::string refused = refuseShadows(s.lights, s.backend); !refused.empty()) {
-    printError("view", refused);
-    return kExitFailure;
-  }
   Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
   if (!backend) {
     printError("view", backend.error().message);

@@ -138,13 +138,7 @@ void addLightFlags(FlagSet& flags, LightSettings& settings) {
                     return "";
                   });
   flags.addSwitch("shadows", &settings.shadows,
-                  "shadow maps for directional and spot lights, on smooth and pbr shading (cpu "
-                  "backend)");
-}
-
-std::string refuseShadows(const LightSettings& settings, const std::string& backend) {
-  if (!settings.shadows || backend == "cpu") return "";
-  return "--shadows is drawn by the cpu backend only (use --backend cpu; docs/vulkan.md)";
+                  "shadow maps for directional and spot lights, on smooth and pbr shading");
 }
 
 void applyLights(Scene& scene, const std::vector<Light>& lights, const LightSettings& settings) {

@@ -32,9 +32,6 @@ Expected<Light> parseLight(const std::string& text);
 
 void addLightFlags(FlagSet& flags, LightSettings& settings);
 
-// What --shadows cannot go with (a backend other than cpu, which draws no shadow maps), or "".
-std::string refuseShadows(const LightSettings& settings, const std::string& backend);
-
 // The scene's lights: `lights` (the file's, then the --light ones) when there are any, else the
 // default rig (addViewLights, already in `scene`); the ambient from --ambient when given.
 void applyLights(Scene& scene, const std::vector<Light>& lights, const LightSettings& settings);

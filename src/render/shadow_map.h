@@ -73,6 +73,16 @@ class ShadowMaps {
   int viewCount() const { return view_count_; }
   const ShadowView& view(int i) const { return views_[static_cast<size_t>(i)]; }
 
+  // What visibility() reads besides the views, for its GPU port (src/vulkan/shadow_upload.cpp):
+  // light `shadow`'s views (first, count), the eye and its forward axis (a cascade's depth is
+  // along it, or the distance from the eye when omnidirectional) and the normal offset in texels.
+  int lightFirstView(int shadow) const { return lights_[static_cast<size_t>(shadow)].first_view; }
+  int lightViewCount(int shadow) const { return lights_[static_cast<size_t>(shadow)].view_count; }
+  float3 eye() const { return eye_; }
+  float3 eyeForward() const { return eye_forward_; }
+  bool omnidirectional() const { return omnidirectional_; }
+  float normalOffset() const { return normal_offset_; }
+
  private:
   struct LightMaps {
     int first_view, view_count;

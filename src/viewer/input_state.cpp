@@ -109,7 +109,7 @@ const std::vector<KeyHelp>& keyList() {
       {"Shift+F3", "MSAA 1, 2, 4, 8 samples", {{Key::kF3, true}}},
       {"Shift+F12", "temporal reprojection", {{Key::kF12, true}}},
       {"space", "play / pause the animation", {{Key::kSpace}}},
-      {"S", "shadows (cpu backend)", {{Key::kS}}},
+      {"S", "shadows", {{Key::kS}}},
       {"H", "this list", {{Key::kH}}},
       {"Escape", "quit", {{Key::kEscape}}},
   };

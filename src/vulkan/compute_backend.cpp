@@ -32,6 +32,7 @@
 #include "vulkan/descriptor_sets.h"
 #include "vulkan/gpu_types.h"
 #include "vulkan/scene_upload.h"
+#include "vulkan/shadow_upload.h"
 
 namespace tessera::vulkan {
 
@@ -112,6 +113,7 @@ struct ComputeBackend::State {
   // RenderOptions::diagnostics: the diagnostics passes' counts (GpuDiagnosticsLayout); a
   // placeholder of one header otherwise, since binding 20 must hold a buffer.
   Buffer diagnostics;
+  ShadowUpload shadows;  // binding 21: RenderOptions::shadows' maps, or a header naming no light
   std::vector<size_t> triangle_bases;  // fillComputeDiagnostics' scratch
   // The nonlinear projections' rays: the RayTable's layers as the shaders read them (rays.glsl),
   // rewritten only when the table is rebuilt (or the buffer was reallocated).
@@ -160,6 +162,7 @@ ComputeBackend::State::~State() {
        {&transformed, &raster_records, &shade_records, &extra_base, &counters, &visible_list,
         &tiles, &bin_entries, &segments, &visibility, &output, &rays, &diagnostics})
     c.destroyBuffer(*b);
+  destroyShadowUpload(c, shadows);
 }
 
 Expected<void> ComputeBackend::State::createPipelines() {
@@ -272,9 +275,9 @@ void ComputeBackend::State::writeDescriptors() {
   Context& c = *context;
   std::vector<VkDescriptorBufferInfo> infos;
   appendSceneDescriptors(scene_buffers, infos);
-  for (const Buffer* b :
-       {&transformed, &raster_records, &shade_records, &extra_base, &counters, &visible_list,
-        &tiles, &bin_entries, &segments, &visibility, &output, &rays, &diagnostics})
+  for (const Buffer* b : {&transformed, &raster_records, &shade_records, &extra_base, &counters,
+                          &visible_list, &tiles, &bin_entries, &segments, &visibility, &output,
+                          &rays, &diagnostics, &shadows.buffer})
     infos.push_back(VkDescriptorBufferInfo{b->buffer, 0, VK_WHOLE_SIZE});
   TESSERA_CHECK(infos.size() == kComputeBindingCount);
   std::vector<VkWriteDescriptorSet> writes(infos.size());
@@ -497,6 +500,7 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   if (Expected<void> r = pipelines.ensureRaster(*context, packed.frame.layers, ray_passes); !r)
     return r;
   if (Expected<void> r = uploadRays(scene, options); !r) return r;
+  if (Expected<void> r = uploadShadows(*context, scene, options, shadows); !r) return r;
   const bool diagnostic_passes = options.diagnostics && !ray_passes;
   if (diagnostic_passes)
     if (Expected<void> r = pipelines.ensureDiagnostics(*context); !r) return r;

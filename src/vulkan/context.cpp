@@ -137,8 +137,9 @@ std::string missingRequirements(const DeviceCapabilities& caps, BackendKind kind
     if (!caps.geometry_shader)
       missing.push_back("geometryShader (gl_PrimitiveID in the fragment shader)");
     if (!caps.depth32_attachment) missing.push_back("a D32_SFLOAT depth attachment");
-    if (limits.maxPerStageDescriptorStorageBuffers < 8)
-      missing.push_back("8 storage buffers per stage");
+    // The scene inputs and the shadow maps (kBindingShadows).
+    if (limits.maxPerStageDescriptorStorageBuffers < kSceneBindingCount + 1)
+      missing.push_back(std::to_string(kSceneBindingCount + 1) + " storage buffers per stage");
     if (limits.maxColorAttachments < 3) missing.push_back("3 colour attachments");
   }
   std::string text;

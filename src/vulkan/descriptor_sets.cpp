@@ -7,9 +7,19 @@ namespace tessera::vulkan {
 Expected<void> createStorageLayouts(Context& c, uint32_t count, VkShaderStageFlags stages,
                                     uint32_t push_bytes, VkDescriptorSetLayout& set_layout,
                                     VkPipelineLayout& pipeline_layout) {
+  std::vector<uint32_t> numbers(count);
+  for (uint32_t i = 0; i < count; ++i) numbers[i] = i;
+  return createStorageLayouts(c, numbers, stages, push_bytes, set_layout, pipeline_layout);
+}
+
+Expected<void> createStorageLayouts(Context& c, std::span<const uint32_t> numbers,
+                                    VkShaderStageFlags stages, uint32_t push_bytes,
+                                    VkDescriptorSetLayout& set_layout,
+                                    VkPipelineLayout& pipeline_layout) {
+  const uint32_t count = static_cast<uint32_t>(numbers.size());
   std::vector<VkDescriptorSetLayoutBinding> bindings(count);
   for (uint32_t i = 0; i < count; ++i)
-    bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr};
+    bindings[i] = {numbers[i], VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr};
   VkDescriptorSetLayoutCreateInfo layout_info{};
   layout_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
   layout_info.bindingCount = count;

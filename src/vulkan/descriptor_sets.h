@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include <tessera/base/expected.h>
 
@@ -13,6 +14,11 @@ namespace tessera::vulkan {
 // `stages`, and a pipeline layout of that one set and `push_bytes` of push constants.
 Expected<void> createStorageLayouts(Context& context, uint32_t bindings, VkShaderStageFlags stages,
                                     uint32_t push_bytes, VkDescriptorSetLayout& set_layout,
+                                    VkPipelineLayout& pipeline_layout);
+// The same with the storage buffers at the given binding numbers (not necessarily 0..n-1).
+Expected<void> createStorageLayouts(Context& context, std::span<const uint32_t> bindings,
+                                    VkShaderStageFlags stages, uint32_t push_bytes,
+                                    VkDescriptorSetLayout& set_layout,
                                     VkPipelineLayout& pipeline_layout);
 // A pool for one such set of `bindings` storage buffers, and the set.
 Expected<void> allocateStorageSet(Context& context, uint32_t bindings,

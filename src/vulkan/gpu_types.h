@@ -33,7 +33,9 @@ enum Binding : uint32_t {
   kBindingOutput = 18,       // colour, depth, id, normal words
   kBindingRays = 19,         // float[]: the nonlinear projections' rays (RayTable), xyz per pixel
   kBindingDiagnostics = 20,  // uint[]: the diagnostics passes' counts (GpuDiagnosticsLayout)
-  kComputeBindingCount = 21,
+  // Both backends (the raster one's set holds 0..7 and this): the shadow maps (shadow_upload.h).
+  kBindingShadows = 21,
+  kComputeBindingCount = 22,
 };
 
 // GpuFrameConstants::flags

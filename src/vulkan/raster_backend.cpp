@@ -19,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <limits>
 
 #include <tessera/base/check.h>
@@ -35,6 +36,7 @@
 #include "vulkan/raster_blend.h"
 #include "vulkan/raster_passes.h"
 #include "vulkan/scene_upload.h"
+#include "vulkan/shadow_upload.h"
 
 namespace tessera::vulkan {
 
@@ -91,6 +93,7 @@ struct RasterBackend::State {
 
   PackedScene packed;
   SceneBuffers scene_buffers;
+  ShadowUpload shadows;  // binding 21: RenderOptions::shadows' maps, or a header naming no light
   RasterStats stats;
   Expected<void> last_result;
 
@@ -131,6 +134,7 @@ RasterBackend::State::~State() {
   if (set_layout) c.vk.vkDestroyDescriptorSetLayout(c.device, set_layout, nullptr);
   if (timestamps) c.vk.vkDestroyQueryPool(c.device, timestamps, nullptr);
   destroySceneBuffers(c, scene_buffers);
+  destroyShadowUpload(c, shadows);
   c.destroyBuffer(readback);
 }
 
@@ -139,13 +143,16 @@ Expected<void> RasterBackend::State::createPipelines() {
   const VulkanFunctions& vk = c.vk;
   constexpr VkShaderStageFlags kStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
-  // Push constants: the object; the transparent pass's first triangle (mesh.frag).
-  if (Expected<void> r = createStorageLayouts(c, kSceneBindingCount, kStages, 2 * sizeof(uint32_t),
+  // The scene inputs (0..7) and the shadow maps (21, read by mesh.frag). Push constants: the
+  // object; the transparent pass's first triangle (mesh.frag).
+  constexpr uint32_t kBindings[] = {0, 1, 2, 3, 4, 5, 6, 7, kBindingShadows};
+  static_assert(std::size(kBindings) == kSceneBindingCount + 1);
+  if (Expected<void> r = createStorageLayouts(c, kBindings, kStages, 2 * sizeof(uint32_t),
                                               set_layout, pipeline_layout);
       !r)
     return r;
   if (Expected<void> r =
-          allocateStorageSet(c, kSceneBindingCount, set_layout, descriptor_pool, descriptor_set);
+          allocateStorageSet(c, std::size(kBindings), set_layout, descriptor_pool, descriptor_set);
       !r)
     return r;
 
@@ -228,6 +235,7 @@ void RasterBackend::State::writeDescriptors() {
     writes[i].pBufferInfo = &infos[i];
   }
   context->vk.vkUpdateDescriptorSets(context->device, kSceneBindingCount, writes, 0, nullptr);
+  writeShadowDescriptor(*context, descriptor_set, shadows);
 }
 
 void RasterBackend::State::recordPass(VkCommandBuffer cmd, VkRenderPass pass,
@@ -383,6 +391,7 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
     return r;
   blending = blend.prepare(scene, options, packed);
   if (Expected<void> r = uploadScene(c, packed, scene_buffers); !r) return r;
+  if (Expected<void> r = uploadShadows(c, scene, options, shadows); !r) return r;
   // The AOV pass gives the colour at one sample (unless the linear pass blends), and the pixel
   // centres' AOVs at any count.
   const bool aov_pass_needed = (samples == 1 && !blending) || !frame.depth.empty() ||

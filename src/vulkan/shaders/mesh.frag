@@ -189,7 +189,7 @@ void main() {
   precise vec3 centre = (worldPosition(object.model, p0) + worldPosition(object.model, p1) +
                          worldPosition(object.model, p2)) * (1.0 / 3.0);
   if (shading == kShadingFlat) color *= irradiance(normal, centre);
-  if (shading == kShadingPhong) color *= irradiance(normal, in_world);
+  if (shading == kShadingPhong) color *= irradianceShadowed(normal, in_world);
   if (shading == kShadingPbr)
     color = shadePbrFragment(object, material, color, normal_flip,
                              UvFootprint(in_uv, in_uv + uv_d[0], in_uv + uv_d[1], in_uv1,

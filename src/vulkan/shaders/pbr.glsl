@@ -1,9 +1,8 @@
 // glTF 2.0's metallic-roughness BRDF (Shading::kPbr) for both Vulkan backends: the CPU's
 // src/render/pbr.h (scalar reference) and src/render/shade_lanes.h (shadePbrLanes, normalMapped)
 // with the same float operations in the same order (precise: no fused multiply-adds). The maths
-// and its sources are described at the top of pbr.h; the environment's in environment.glsl. No
-// shadows, as for every shading mode (docs/vulkan.md). Included by shading.glsl; needs what it
-// defines.
+// and its sources are described at the top of pbr.h; the environment's in environment.glsl; the
+// shadow maps' in shadow.glsl. Included by shading.glsl; needs what it defines.
 
 #include "pbr_brdf.glsl"
 
@@ -57,8 +56,10 @@ vec3 shadePbr(PbrLobes s, float occlusion, vec3 emissive, vec3 n, vec3 p) {
       f = lit;
     }
     if (!(nl > 0.0 && f > 0.0)) continue;
+    // Times the light's shadow maps' visibility (shadow.glsl; 1 without maps).
+    precise float shadowed = f * shadowVisibility(i, p, n);
     const vec3 r = pbrResponse(s, n, v, l, nl, nv);
-    c = c + r * (light.color.xyz * f);
+    c = c + r * (light.color.xyz * shadowed);
   }
   precise vec3 result = c + emissive;
   return result;

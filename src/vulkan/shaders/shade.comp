@@ -198,7 +198,7 @@ vec3 shadeAt(uint slot, ivec2 pixel, uint layer) {
     color = shadePbrMaterial(materials[s.material], color, pbrNormalAt(s, b, f), worldAt(s, b),
                              maps, f);
   } else if ((s.shading & 255u) == kShadingPhong) {
-    color = color * irradiance(normalAt(s, b), worldAt(s, b));
+    color = color * irradianceShadowed(normalAt(s, b), worldAt(s, b));
   }
   return toneMap(color);
 }

@@ -34,6 +34,9 @@ vec3 irradiance(vec3 n, vec3 p) {
   return e;
 }
 
+// Shadow maps: irradianceShadowed() for Phong pixels, shadowVisibility() for kPbr's lights.
+#include "shadow.glsl"
+
 // An object-space point in world space (the CPU's float4x4 * float4 with w = 1).
 vec3 worldPosition(mat4 model, vec3 p) {
   precise vec3 w = model[0].xyz * p.x + model[1].xyz * p.y + model[2].xyz * p.z + model[3].xyz;
