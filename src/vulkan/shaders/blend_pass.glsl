@@ -23,18 +23,8 @@ uint blendedSamples(uint slot, uint pixel, int x, int y) {
   const RasterRecord r = raster_records[slot];
   for (uint i = 0u; i < frame.samples; ++i) {
     const uint layer = frame.first_sample_layer + i;
-    const int64_t px = int64_t(x) * kSubpixelOne + frame.layer_x[layer];
-    const int64_t py = int64_t(y) * kSubpixelOne + frame.layer_y[layer];
-    bool inside = true;
-    for (int k = 0; k < 3; ++k)
-      if (int64_t(r.a[k]) * px + int64_t(r.b[k]) * py + r.c[k] < 0l) inside = false;
-    if (!inside) continue;
-    const float shift_x = float(frame.layer_x[layer] - kSubpixelHalf) * (1.0 / 256.0);
-    const float shift_y = float(frame.layer_y[layer] - kSubpixelHalf) * (1.0 / 256.0);
-    precise float x0 = r.x0 - shift_x;
-    precise float y0 = r.y0 - shift_y;
-    precise float z_row = r.z0 + r.dzdy * ((float(y) + 0.5) - y0);
-    precise float z = z_row + r.dzdx * ((float(x) + 0.5) - x0);
+    if (!layerCovered(r, x, y, layer)) continue;
+    const float z = layerRecordDepth(r, x, y, layer);
     const bool empty = layerKey(pixel, layer) == kEmptyWord;
     if (empty || z < depthFromOrdered(layerDepth(pixel, layer))) mask |= 1u << i;
   }

@@ -256,6 +256,26 @@ uint resolveColor(uint pixel, int x, int y, out uint covered) {
   return packColor(average);
 }
 
+// Whether record r covers pixel (x, y)'s visibility layer `layer` (the exact edge test at the
+// layer's sample point, as raster.comp), and its depth there: the BLEND and MASK passes' per-sample
+// test.
+bool layerCovered(RasterRecord r, int x, int y, uint layer) {
+  const int64_t px = int64_t(x) * kSubpixelOne + frame.layer_x[layer];
+  const int64_t py = int64_t(y) * kSubpixelOne + frame.layer_y[layer];
+  for (int k = 0; k < 3; ++k)
+    if (int64_t(r.a[k]) * px + int64_t(r.b[k]) * py + r.c[k] < 0l) return false;
+  return true;
+}
+float layerRecordDepth(RasterRecord r, int x, int y, uint layer) {
+  const float shift_x = float(frame.layer_x[layer] - kSubpixelHalf) * (1.0 / 256.0);
+  const float shift_y = float(frame.layer_y[layer] - kSubpixelHalf) * (1.0 / 256.0);
+  precise float x0 = r.x0 - shift_x;
+  precise float y0 = r.y0 - shift_y;
+  precise float z_row = r.z0 + r.dzdy * ((float(y) + 0.5) - y0);
+  precise float z = z_row + r.dzdx * ((float(x) + 0.5) - x0);
+  return z;
+}
+
 #if TESSERA_BLEND_PASS
 // The transparent pass's main(), on this file's shading (alphaMode BLEND).
 #include "blend_pass.glsl"

@@ -20,15 +20,21 @@ float localFactor(Light light, vec3 n, vec3 p) {
   return f;
 }
 
+// A light's Lambert factor for unit normal n at world point p (at or below 0: unlit).
+float lambertFactor(Light light, vec3 n, vec3 p) {
+  const vec3 d = light.direction.xyz;
+  precise float f = light.direction.w == 0.0 ? -(n.x * d.x + n.y * d.y + n.z * d.z)
+                                             : localFactor(light, n, p);
+  return f;
+}
+
 // Lambert irradiance: ambient plus every light, for unit normal n at world point p
 // (src/render/lights.h: irradiance).
 vec3 irradiance(vec3 n, vec3 p) {
   precise vec3 e = frame.ambient.xyz;
   for (uint i = 0u; i < frame.light_count; ++i) {
     const Light light = lights[i];
-    const vec3 d = light.direction.xyz;
-    precise float f = light.direction.w == 0.0 ? -(n.x * d.x + n.y * d.y + n.z * d.z)
-                                               : localFactor(light, n, p);
+    precise float f = lambertFactor(light, n, p);
     if (f > 0.0) e = e + light.color.xyz * f;
   }
   return e;

@@ -143,9 +143,7 @@ vec3 irradianceShadowed(vec3 n, vec3 p) {
   precise vec3 e = frame.ambient.xyz;
   for (uint i = 0u; i < frame.light_count; ++i) {
     const Light light = lights[i];
-    const vec3 d = light.direction.xyz;
-    precise float f = light.direction.w == 0.0 ? -(n.x * d.x + n.y * d.y + n.z * d.z)
-                                               : localFactor(light, n, p);
+    precise float f = lambertFactor(light, n, p);
     if (!(f > 0.0)) continue;
     f = f * shadowVisibility(i, p, n);
     e = e + light.color.xyz * f;
