@@ -10,16 +10,21 @@
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
 
-// Each lane's triangle record (lanes outside `covered` take `first`'s): chunks and indices are
-// formed in lanes, then read back one lane at a time.
+// Each lane's triangle record (lanes outside `covered` take `first`'s): chunks and byte offsets
+// (32-bit: kMaxTrianglesPerChunk) are formed in lanes, then read back one lane at a time.
 template <typename Record>
 TESSERA_LANES_INLINE void laneRecords(I32x8 keys, I32x8 covered, uint32_t first,
                                       const Record* const chunk_records[], const Record* lanes[8]) {
+  static_assert(uint64_t{kMaxTrianglesPerChunk} * sizeof(Record) <= uint64_t{0xffffffffu},
+                "a chunk's records span more than a 32-bit byte offset reaches");
   const I32x8 owner = select(covered, keys, splat(static_cast<int32_t>(first)));
-  alignas(32) uint32_t lane_chunk[8], lane_local[8];
+  alignas(32) uint32_t lane_chunk[8], lane_offset[8];
   store(lane_chunk, shiftRight(owner, kLocalKeyBits) & splat(int32_t{kMaxChunks - 1}));
-  store(lane_local, owner & splat(static_cast<int32_t>((1u << kLocalKeyBits) - 1)));
-  for (int l = 0; l < 8; ++l) lanes[l] = chunk_records[lane_chunk[l]] + lane_local[l];
+  store(lane_offset, (owner & splat(static_cast<int32_t>((1u << kLocalKeyBits) - 1))) *
+                         splat(static_cast<int32_t>(sizeof(Record))));
+  for (int l = 0; l < 8; ++l)
+    lanes[l] = reinterpret_cast<const Record*>(
+        reinterpret_cast<const char*>(chunk_records[lane_chunk[l]]) + lane_offset[l]);
 }
 
 // shadeTexturedMixed for eight pixels of keys `keys`; false where it does not apply.
