@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "render/bin.h"
+#include "render/mixed_lanes.h"
 #include "render/msaa.h"
 #include "render/shade_lanes.h"
 

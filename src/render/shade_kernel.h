@@ -4,6 +4,7 @@
 // (kernels_<isa>.cpp); every variant gives the same bits.
 #pragma once
 
+#include "render/mixed_lanes.h"
 #include "render/msaa_kernel.h"
 #include "render/shade_lanes.h"
 

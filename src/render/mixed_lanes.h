@@ -1,0 +1,130 @@
+// Eight pixels of several triangles shaded in one evaluation, for the shading kernel
+// (shade_kernel.h) and the resolve of multisampled pixels (msaa_kernel.h): each lane's fields are
+// loaded from its own triangle's records, eight records at a time, and transposed into lanes
+// (untextured: shadeMixed; textured alike without per-pixel lighting: shadeTexturedMixed). The
+// same float operations per lane as shadeLanes (shade_lanes.h), so the same bits.
+#pragma once
+
+#include <cstddef>
+
+#include "render/shade_lanes.h"
+
+namespace tessera::render {
+namespace {  // one private copy per translation unit, each compiled for its instruction set
+
+// The float fields from x0 to color[2], in order: what an untextured flat, Gouraud or unlit pixel
+// reads. shadeMixed loads them from eight records at once.
+constexpr int kPlainFields = 18;
+static_assert(offsetof(ShadeTriangle, color) == offsetof(ShadeTriangle, x0) + 9 * sizeof(float) &&
+                  sizeof(ShadeTriangle::color) == 9 * sizeof(float) &&
+                  offsetof(ShadeTriangle, sdy) == offsetof(ShadeTriangle, x0) + 8 * sizeof(float),
+              "shadeMixed reads x0..sdy and color[3] as 18 consecutive floats");
+static_assert(sizeof(ShadeTriangle) >= offsetof(ShadeTriangle, x0) + 16 * sizeof(float),
+              "shadeMixed reads 16 floats from x0 eight at a time");
+
+// The kPlainFields floats of eight records, transposed into lanes: f[0..8] x0, y0, inv_w0, p1dx,
+// p1dy, p2dx, p2dy, sdx, sdy, then f[9..17] color[0..2].xyz.
+TESSERA_LANES_INLINE void loadPlainFields(const ShadeTriangle* const records[8],
+                                          F32x8 f[kPlainFields]) {
+  for (int block = 0; block < 2; ++block) {
+    for (int l = 0; l < 8; ++l) f[block * 8 + l] = load<F32x8>(&records[l]->x0 + block * 8);
+    transpose8x8(f + block * 8);
+  }
+  const float* last_two[8];
+  for (int l = 0; l < 8; ++l) last_two[l] = &records[l]->x0 + 16;
+  loadPairs(last_two, f[16], f[17]);
+}
+
+// Perspective-correct barycentrics of the lanes' triangles (loadPlainFields) at (px, py), with
+// shadeLanes' operations.
+TESSERA_LANES_INLINE void plainBarycentrics(const F32x8 f[kPlainFields], F32x8 px, F32x8 py,
+                                            F32x8& b0, F32x8& b1, F32x8& b2) {
+  const F32x8 dx = px - f[0];
+  const F32x8 dy = py - f[1];
+  const F32x8 inv_s = splat(1.0f) / (f[2] + f[7] * dx + f[8] * dy);
+  b1 = (f[3] * dx + f[4] * dy) * inv_s;
+  b2 = (f[5] * dx + f[6] * dy) * inv_s;
+  b0 = splat(1.0f) - b1 - b2;
+}
+
+// The interpolated vertex colours of the lanes' triangles at barycentrics b0, b1, b2.
+TESSERA_LANES_INLINE Vec3x8 plainColor(const F32x8 f[kPlainFields], F32x8 b0, F32x8 b1, F32x8 b2) {
+  return {f[9] * b0 + f[12] * b1 + f[15] * b2, f[10] * b0 + f[13] * b1 + f[16] * b2,
+          f[11] * b0 + f[14] * b1 + f[17] * b2};
+}
+
+// Eight pixels owned by several triangles, all untextured and not Phong-shaded (colour = the
+// interpolated vertex colours): lane l is shaded from its own triangle's record, whose fields
+// are loaded eight records at a time and transposed into lanes. The same operations per lane as
+// shadeLanes, so the same bits; one evaluation instead of one per triangle.
+TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F32x8 px, F32x8 py) {
+  F32x8 f[kPlainFields];
+  loadPlainFields(records, f);
+  F32x8 b0, b1, b2;
+  plainBarycentrics(f, px, py, b0, b1, b2);
+  return plainColor(f, b0, b1, b2);
+}
+
+// Whether a pixel of triangle t gets its colour from the albedo texture and the interpolated
+// vertex colours alone (textured flat, Gouraud or unlit): what shadeTexturedMixed takes.
+TESSERA_LANES_INLINE bool texturedPlain(const ShadeTriangle& t) {
+  return t.has_uv && t.shading != Shading::kPhong && t.shading != Shading::kPbr;
+}
+
+// The texture coordinates of the lanes' triangles' corners in UV set `set`, transposed into lanes:
+// u0, v0, u1, v1, u2, v2 (eight floats read from each record: the set's six and two after them).
+static_assert(offsetof(ShadeExtras, uv1) == offsetof(ShadeExtras, uv) + 6 * sizeof(float) &&
+                  sizeof(ShadeExtras) >= offsetof(ShadeExtras, uv1) + 8 * sizeof(float),
+              "uvCorners8 reads eight floats from either UV set");
+TESSERA_LANES_INLINE void uvCorners8(const ShadeExtras* const extras[8], int set, F32x8 c[8]) {
+  for (int l = 0; l < 8; ++l) c[l] = load<F32x8>(&(set == 1 ? extras[l]->uv1 : extras[l]->uv)->x);
+  transpose8x8(c);
+}
+
+// Eight pixels owned by several triangles of one textured material that are all texturedPlain
+// (colour = interpolated vertex colours x albedo): each lane's barycentrics and texture
+// coordinates come from its own triangle's records (loaded eight at a time and transposed), and
+// the texture is filtered once for the eight lanes instead of once per triangle. The same
+// operations per lane as shadeLanes, so the same bits. False, with `color` untouched, where that
+// does not apply (mixed materials or shading, a filter sampleTexture8 does not take): the caller
+// shades triangle by triangle. Lanes outside `covered` hold a covered lane's records.
+TESSERA_LANES_INLINE bool shadeTexturedMixed(const ShadeTriangle* const records[8],
+                                             const ShadeExtras* const extras[8], I32x8 covered,
+                                             const LightRig& lights, F32x8 px, F32x8 py,
+                                             Vec3x8& color) {
+  const Material* material = records[0]->material;
+  for (int l = 0; l < 8; ++l)
+    if (records[l]->material != material || !texturedPlain(*records[l])) return false;
+  const Texture& texture = *material->albedo;
+  const Sampler& sampler = material->sampler;
+  if (!texture8Applies(texture, sampler)) return false;
+  F32x8 f[kPlainFields], corner[8];
+  loadPlainFields(records, f);
+  uvCorners8(extras, sampler.texcoord, corner);
+  F32x8 b0, b1, b2;
+  plainBarycentrics(f, px, py, b0, b1, b2);
+  // As sampleAlbedo8's uvAt8, with each lane's own corners.
+  auto uvAt8 = [&](F32x8 c0, F32x8 c1, F32x8 c2) {
+    return Uv8{corner[0] * c0 + corner[2] * c1 + corner[4] * c2,
+               corner[1] * c0 + corner[3] * c1 + corner[5] * c2};
+  };
+  const Uv8 uv = uvAt8(b0, b1, b2);
+  Uv8 right = uv, down = uv;
+  if (needsLod(texture, sampler)) {
+    F32x8 r0, r1, r2, d0, d1, d2;
+    plainBarycentrics(f, px + splat(1.0f), py, r0, r1, r2);
+    plainBarycentrics(f, px, py + splat(1.0f), d0, d1, d2);
+    right = uvAt8(r0, r1, r2);
+    down = uvAt8(d0, d1, d2);
+  }
+  F32x8 albedo[4];
+  if (!sampleTexture8(texture, sampler, covered, uv, right, down, 3, albedo)) return false;
+  Vec3x8 c = plainColor(f, b0, b1, b2);
+  c = {c.x * albedo[0], c.y * albedo[1], c.z * albedo[2]};
+  if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
+  color = c;
+  return true;
+}
+
+}  // namespace
+}  // namespace tessera::render
