@@ -410,6 +410,59 @@ TEST(PbrShading, ImageIsBitIdenticalForEverySimdLevelWorkerCountAndWithMsaa) {
   }
 }
 
+// Eight pixels of several triangles lit per pixel without maps (PBR of one material, or Phong)
+// take one evaluation of the lights for the eight (shadeLitMixed); with the normal AOV on they are
+// shaded triangle by triangle. Both give the same bits: spheres of small triangles under every
+// kind of light, with shadows, vertex colours and emission, tone mapping on and off, 1 and 4
+// samples.
+TEST(PbrShading, TrianglesLitAlikeShareOneEvaluationWithTheSameBits) {
+  Scene scene;
+  scene.camera.position = {0, 1, 4};
+  scene.camera.near_z = 0.3f;
+  scene.lights.push_back(Light::directional(normalize(float3{-1, -2, -1}), {0.9f, 0.9f, 0.9f}));
+  scene.lights.push_back(Light::point({1, 1, 1}, {1, 0.5f, 0.2f}, 2.0f, 6.0f));
+  scene.lights.push_back(Light::spot({-1, 2, 1}, normalize(float3{0.5f, -1, -0.5f}),
+                                     {0.2f, 0.5f, 1}, 4.0f, 0.2f, 0.6f));
+  Mesh sphere = makeUvSphere(96, 48);
+  for (size_t i = 0; i < sphere.positions.size(); ++i)
+    sphere.colors.push_back({0.5f + 0.5f * sphere.positions[i].x, 0.8f, 0.6f, 1.0f});
+  Object pbr;
+  pbr.mesh = std::make_shared<Mesh>(sphere);
+  pbr.shading = Shading::kPbr;
+  pbr.transform.translation = {-0.9f, 0, 0};
+  pbr.materials[0].metallic = 0.6f;
+  pbr.materials[0].roughness = 0.3f;
+  pbr.materials[0].emissive_factor = {0.05f, 0.02f, 0.0f};
+  scene.objects.push_back(pbr);
+  Object phong = pbr;
+  phong.shading = Shading::kPhong;
+  phong.transform.translation = {0.9f, 0, 0};
+  scene.objects.push_back(phong);
+  Mesh floor;
+  floor.positions = {{-30, -1, 20}, {30, -1, 20}, {30, -1, -60}, {-30, -1, -60}};
+  floor.indices = {0, 1, 2, 0, 2, 3};
+  Object floor_object = pbr;
+  floor_object.mesh = std::make_shared<Mesh>(floor);
+  floor_object.transform.translation = {0, 0, 0};
+  scene.objects.push_back(floor_object);
+  for (ToneMapping tone : {ToneMapping::kNone, ToneMapping::kAces}) {
+    scene.tone_mapping = tone;
+    for (int msaa : {1, 4}) {
+      RenderOptions options;
+      options.width = 233;
+      options.height = 151;
+      options.msaa = msaa;
+      options.shadows.enabled = true;
+      options.shadows.map_size = 512;
+      const Frame together = test::renderAt(scene, options, SimdLevel::kAuto, 2);
+      options.normals = true;
+      const Frame apart = test::renderAt(scene, options, SimdLevel::kAuto, 2);
+      EXPECT_GT(test::coveredCount(together), 233 * 151 / 2);
+      EXPECT_EQ(together.color, apart.color) << "tone mapping " << int(tone) << ", msaa " << msaa;
+    }
+  }
+}
+
 TEST(PbrShading, PixelMatchesTheScalarReference) {
   // An untextured quad without maps: each pixel is shadePbr of its interpolated inputs; the
   // eight-lane code does the same operations.

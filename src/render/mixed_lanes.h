@@ -47,10 +47,16 @@ TESSERA_LANES_INLINE void plainBarycentrics(const F32x8 f[kPlainFields], F32x8 p
   b0 = splat(1.0f) - b1 - b2;
 }
 
+// A float3[3] of the lanes' triangles (v[3 k + c]: component c of corner k) at barycentrics b0,
+// b1, b2: interpolate's operations with each lane's own corners.
+TESSERA_LANES_INLINE Vec3x8 interpolate9(const F32x8 v[9], F32x8 b0, F32x8 b1, F32x8 b2) {
+  return {v[0] * b0 + v[3] * b1 + v[6] * b2, v[1] * b0 + v[4] * b1 + v[7] * b2,
+          v[2] * b0 + v[5] * b1 + v[8] * b2};
+}
+
 // The interpolated vertex colours of the lanes' triangles at barycentrics b0, b1, b2.
 TESSERA_LANES_INLINE Vec3x8 plainColor(const F32x8 f[kPlainFields], F32x8 b0, F32x8 b1, F32x8 b2) {
-  return {f[9] * b0 + f[12] * b1 + f[15] * b2, f[10] * b0 + f[13] * b1 + f[16] * b2,
-          f[11] * b0 + f[14] * b1 + f[17] * b2};
+  return interpolate9(f + 9, b0, b1, b2);
 }
 
 // Eight pixels owned by several triangles, all untextured and not Phong-shaded (colour = the
@@ -121,6 +127,81 @@ TESSERA_LANES_INLINE bool shadeTexturedMixed(const ShadeTriangle* const records[
   if (!sampleTexture8(texture, sampler, covered, uv, right, down, 3, albedo)) return false;
   Vec3x8 c = plainColor(f, b0, b1, b2);
   c = {c.x * albedo[0], c.y * albedo[1], c.z * albedo[2]};
+  if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
+  color = c;
+  return true;
+}
+
+static_assert(sizeof(float3) == 3 * sizeof(float), "corners9 reads a float3[3] as nine floats");
+
+// A float3[3] (nine consecutive floats) of eight records, transposed into lanes as interpolate9
+// takes them.
+TESSERA_LANES_INLINE void corners9(const float* const at[8], F32x8 v[9]) {
+  for (int l = 0; l < 8; ++l) v[l] = load<F32x8>(at[l]);
+  transpose8x8(v);
+  alignas(32) float last[8];
+  for (int l = 0; l < 8; ++l) last[l] = at[l][8];
+  v[8] = load<F32x8>(last);
+}
+
+// One of the float3[3] fields of eight ShadeExtras (normal or world), in lanes.
+using ExtrasCorners = float3 (ShadeExtras::*)[3];
+TESSERA_LANES_INLINE void extrasCorners(const ShadeExtras* const extras[8], ExtrasCorners field,
+                                        F32x8 v[9]) {
+  const float* at[8];
+  for (int l = 0; l < 8; ++l) at[l] = &(extras[l]->*field)[0].x;
+  corners9(at, v);
+}
+
+// Whether a pixel of triangle t is lit per pixel from its interpolated normal and vertex colours
+// alone (Phong, or PBR whose material reads no map through this mesh): what shadeLitMixed takes.
+TESSERA_LANES_INLINE bool litPlain(const ShadeTriangle& t) {
+  if (t.has_uv) return false;
+  if (t.shading == Shading::kPhong) return true;
+  if (t.shading != Shading::kPbr) return false;
+  const Material& m = *t.material;
+  return (t.pbr_flags & kPbrUv) == 0 ||
+         !(m.normal || m.metallic_roughness || m.occlusion || m.emissive);
+}
+
+// Eight pixels owned by several triangles that are all litPlain with the same shading (and, for
+// PBR, the same material): each lane's barycentrics, colours, normals and world positions come from
+// its own triangle's records (loaded eight at a time and transposed), and the lights are evaluated
+// once for the eight lanes instead of once per triangle. The same operations per lane as
+// shadeLanes, so the same bits. False, with `color` untouched, where that does not apply; lanes
+// outside `covered` hold a covered lane's records.
+TESSERA_LANES_INLINE bool shadeLitMixed(const ShadeTriangle* const records[8],
+                                        const ShadeExtras* const extras[8], const LightRig& lights,
+                                        F32x8 px, F32x8 py, Vec3x8& color) {
+  const ShadeTriangle& t = *records[0];
+  const bool pbr = t.shading == Shading::kPbr;
+  for (int l = 0; l < 8; ++l) {
+    const ShadeTriangle& r = *records[l];
+    if (r.shading != t.shading || (pbr && r.material != t.material) || !litPlain(r)) return false;
+  }
+  F32x8 f[kPlainFields], corner[9];
+  loadPlainFields(records, f);
+  F32x8 b0, b1, b2;
+  plainBarycentrics(f, px, py, b0, b1, b2);
+  Vec3x8 c = plainColor(f, b0, b1, b2);
+  extrasCorners(extras, &ShadeExtras::normal, corner);
+  const Vec3x8 n = normalize8(interpolate9(corner, b0, b1, b2));
+  Vec3x8 p{};
+  if (pbr || lights.local || lights.shadows) {
+    extrasCorners(extras, &ShadeExtras::world, corner);
+    p = interpolate9(corner, b0, b1, b2);
+  }
+  if (pbr) {
+    // shadePbrLanes without maps: the material's factors.
+    const Material& m = *t.material;
+    const Vec3x8 emissive{splat(m.emissive_factor.x), splat(m.emissive_factor.y),
+                          splat(m.emissive_factor.z)};
+    c = shadePbr8(lights, pbrLobes8(c, splat(m.metallic), splat(m.roughness)), splat(1.0f),
+                  emissive, n, p);
+  } else {
+    const Vec3x8 e = irradiance8(lights, n, p);
+    c = {c.x * e.x, c.y * e.y, c.z * e.z};
+  }
   if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
   color = c;
   return true;

@@ -28,24 +28,25 @@ TESSERA_LANES_INLINE void laneRecords(I32x8 keys, I32x8 covered, uint32_t first,
         reinterpret_cast<const char*>(chunk_records[lane_chunk[l]]) + lane_offset[l]);
 }
 
-// shadeTexturedMixed for eight pixels of keys `keys`; false where it does not apply.
-TESSERA_LANES_INLINE bool shadeTexturedMixedLanes(I32x8 keys, I32x8 covered, uint32_t first,
-                                                  const ShadeTriangle* const records[],
-                                                  const ShadeExtras* const extras[],
-                                                  const LightRig& lights, F32x8 px, float py,
-                                                  Vec3x8& color) {
+// shade(records, extras) with each lane's records for eight pixels of keys `keys`
+// (shadeTexturedMixed, shadeLitMixed); false where it does not apply.
+template <typename Shade>
+TESSERA_LANES_INLINE bool shadeMixedLanes(I32x8 keys, I32x8 covered, uint32_t first,
+                                          const ShadeTriangle* const records[],
+                                          const ShadeExtras* const extras[], Shade shade) {
   const ShadeTriangle* lanes[8];
   const ShadeExtras* lane_extras[8];
   laneRecords(keys, covered, first, records, lanes);
   laneRecords(keys, covered, first, extras, lane_extras);
-  return shadeTexturedMixed(lanes, lane_extras, covered, lights, px, splat(py), color);
+  return shade(lanes, lane_extras);
 }
 
 // Shades the tile in pixel order, eight pixels of a row at a time, then encodes the row to sRGB
 // and stores it whole (no read-modify-write of partly written pixels). Eight pixels of one triangle
 // take one evaluation; those of several are shaded lane by lane from their own records when every
-// triangle is plain (`plain`: untextured, not Phong, no normal AOV) or when all are textured alike
-// without per-pixel lighting (shadeTexturedMixed: one texture filter for the eight), else each
+// triangle is plain (`plain`: untextured, not Phong, no normal AOV), when all are textured alike
+// without per-pixel lighting (shadeTexturedMixed: one texture filter for the eight) or when all
+// are lit per pixel alike without maps (shadeLitMixed: one evaluation of the lights), else each
 // triangle is evaluated once for the eight and the results merged in registers.
 // `kSampled`: msaa is given (an instance of its own, so one sample pays nothing for it).
 template <bool kSampled>
@@ -85,9 +86,18 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
         color = shadeMixed(lanes, px, splat(py));
       } else if (several && !want_normals &&
                  texturedPlain(records[keyChunk(first)][keyLocal(first)]) &&
-                 shadeTexturedMixedLanes(keys, covered, first, records, extras, lights, px, py,
-                                         color)) {
-        // Every triangle of the eight textured alike: one texture evaluation (shade_lanes.h).
+                 shadeMixedLanes(keys, covered, first, records, extras,
+                                 [&](const ShadeTriangle* const* r, const ShadeExtras* const* e) {
+                                   return shadeTexturedMixed(r, e, covered, lights, px, splat(py),
+                                                             color);
+                                 })) {
+        // Every triangle of the eight textured alike: one texture evaluation (mixed_lanes.h).
+      } else if (several && !want_normals && litPlain(records[keyChunk(first)][keyLocal(first)]) &&
+                 shadeMixedLanes(keys, covered, first, records, extras,
+                                 [&](const ShadeTriangle* const* r, const ShadeExtras* const* e) {
+                                   return shadeLitMixed(r, e, lights, px, splat(py), color);
+                                 })) {
+        // Every triangle of the eight lit per pixel alike: one evaluation of the lights.
       } else {
         I32x8 todo = covered;
         do {
