@@ -28,17 +28,18 @@ TESSERA_LANES_INLINE void laneRecords(I32x8 keys, I32x8 covered, uint32_t first,
         reinterpret_cast<const char*>(chunk_records[lane_chunk[l]]) + lane_offset[l]);
 }
 
-// shade(records, extras) with each lane's records for eight pixels of keys `keys`
-// (shadeTexturedMixed, shadeLitMixed); false where it does not apply.
-template <typename Shade>
-TESSERA_LANES_INLINE bool shadeMixedLanes(I32x8 keys, I32x8 covered, uint32_t first,
-                                          const ShadeTriangle* const records[],
-                                          const ShadeExtras* const extras[], Shade shade) {
+// Each lane's ShadeTriangle and ShadeExtras for eight pixels of keys `keys` (laneRecords).
+struct MixedRecords {
   const ShadeTriangle* lanes[8];
-  const ShadeExtras* lane_extras[8];
-  laneRecords(keys, covered, first, records, lanes);
-  laneRecords(keys, covered, first, extras, lane_extras);
-  return shade(lanes, lane_extras);
+  const ShadeExtras* extras[8];
+};
+TESSERA_LANES_INLINE MixedRecords mixedRecords(I32x8 keys, I32x8 covered, uint32_t first,
+                                               const ShadeTriangle* const records[],
+                                               const ShadeExtras* const extras[]) {
+  MixedRecords r;
+  laneRecords(keys, covered, first, records, r.lanes);
+  laneRecords(keys, covered, first, extras, r.extras);
+  return r;
 }
 
 // Shades the tile in pixel order, eight pixels of a row at a time, then encodes the row to sRGB
@@ -78,27 +79,29 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
       const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
       const I32x8 mixed = kSampled ? load<I32x8>(msaa->tiles->mixed + i) : splat(int32_t{0});
       const bool several = any(covered & ~equal(keys, splat(static_cast<int32_t>(first))));
+      bool shaded = true;
       if (kSampled && plain && any(mixed)) {
         color = shadePlainSampled(*msaa, chunks, records, i, tile.x0 + tx, tile.y0 + ty, mixed);
       } else if (several && plain) {
         const ShadeTriangle* lanes[8];
         laneRecords(keys, covered, first, records, lanes);
         color = shadeMixed(lanes, px, splat(py));
-      } else if (several && !want_normals &&
-                 texturedPlain(records[keyChunk(first)][keyLocal(first)]) &&
-                 shadeMixedLanes(keys, covered, first, records, extras,
-                                 [&](const ShadeTriangle* const* r, const ShadeExtras* const* e) {
-                                   return shadeTexturedMixed(r, e, covered, lights, px, splat(py),
-                                                             color);
-                                 })) {
-        // Every triangle of the eight textured alike: one texture evaluation (mixed_lanes.h).
-      } else if (several && !want_normals && litPlain(records[keyChunk(first)][keyLocal(first)]) &&
-                 shadeMixedLanes(keys, covered, first, records, extras,
-                                 [&](const ShadeTriangle* const* r, const ShadeExtras* const* e) {
-                                   return shadeLitMixed(r, e, lights, px, splat(py), color);
-                                 })) {
-        // Every triangle of the eight lit per pixel alike: one evaluation of the lights.
+      } else if (several && !want_normals) {
+        // Every triangle of the eight textured alike without per-pixel lighting, or lit per pixel
+        // alike without maps: one evaluation for the eight (mixed_lanes.h).
+        const ShadeTriangle& t = records[keyChunk(first)][keyLocal(first)];
+        const bool textured = texturedPlain(t);
+        shaded = textured || litPlain(t);
+        if (shaded) {
+          const MixedRecords r = mixedRecords(keys, covered, first, records, extras);
+          shaded = textured ? shadeTexturedMixed(r.lanes, r.extras, covered, lights, px, splat(py),
+                                                 color)
+                            : shadeLitMixed(r.lanes, r.extras, lights, px, splat(py), color);
+        }
       } else {
+        shaded = false;
+      }
+      if (!shaded) {
         I32x8 todo = covered;
         do {
           const uint32_t key = static_cast<uint32_t>(lane(keys, firstLane(todo)));
