@@ -216,12 +216,15 @@ def widest_kernels(machine):
 
 
 def shading_label(r):
-    """A row's shading, with its tone curve and light count when the row records them."""
+    """A row's shading, with its tone curve, light count and camera flags when the row records
+    them."""
     label = r["shading"]
     if r.get("tone_mapping", "none") != "none":
         label += f", {r['tone_mapping']} tone mapping"
     if "lights" in r:
         label += f", {r['lights']} light{'' if r['lights'] == 1 else 's'}"
+    if r.get("camera"):
+        label += f", `{r['camera']}`"
     return label
 
 

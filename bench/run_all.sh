@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Regenerates docs/perf.md from a fresh measurement: builds tessera (Release), runs every built-in
 # scene at every standard resolution beside llvmpipe, the bunny at 1080p with 1 and 2 workers,
-# with other shading (PBR too) and culling and with 4x MSAA against 1x (llvmpipe at the same
-# sample count), and UV spheres of 1k to 1M triangles at 1080p; then writes the raw results (docs/perf/*.jsonl),
-# the plots (docs/perf/*.png) and the rendering section of docs/perf.md (between bench/report.py's
-# markers; the rest of the page is left alone).
+# with other shading (PBR too), culling and camera (the bunny filling the frame) and with 4x MSAA
+# against 1x (llvmpipe at the same sample count), and UV spheres of 1k to 1M triangles at 1080p;
+# then writes the raw results (docs/perf/*.jsonl), the plots (docs/perf/*.png) and the rendering
+# section of docs/perf.md (between bench/report.py's markers; the rest of the page is left alone).
 #
 #   bench/run_all.sh                  # FRAMES=30 timed frames per scene and resolution
 #   FRAMES=50 MAX_LOAD=0.5 bench/run_all.sh
@@ -84,6 +84,10 @@ done > "$out/scaling.jsonl"
   # the bench's two view lights, and under one directional light (issue 19's PBR row).
   bench --resolution 1920,1080 --shading pbr bunny
   bench --resolution 1920,1080 --shading pbr --light directional:-0.4,-0.6,-1 bunny
+  # The bunny filling the frame (issue 21's rows): bigger triangles, nearly every pixel shaded.
+  for shading in gouraud flat smooth; do
+    bench --resolution 1920,1080 --shading "$shading" --camera-position 0,0.2,3 bunny
+  done
 } > "$out/variants.jsonl"
 echo "run_all: the bunny at 1920x1080 with 1x and 4x MSAA, three rounds" >&2
 # The cost of 4x MSAA is the 4x median over the 1x median: each round measures the two back to

@@ -350,6 +350,22 @@ TEST_F(BenchCli, ToneMappingChangesTheFrameAndIsReported) {
   EXPECT_EQ(run("--frames 1 --tone-mapping filmic cube").exit_code, 2);
 }
 
+// The camera flags are recorded in the JSON row (the matrix's "bunny filling the frame" rows are
+// told apart from the bench's own view by them) and move tessera's camera.
+TEST_F(BenchCli, CameraFlagsAreReported) {
+  const std::string common = "--json --crc --frames 1 --warmup 0 --resolution 64,48 ";
+  RunResult own = run(common + "cube");
+  RunResult moved = run(common + "--camera-position 0,0.5,4 --camera-view-up 0,1,0 cube");
+  ASSERT_EQ(own.exit_code, 0) << own.err;
+  ASSERT_EQ(moved.exit_code, 0) << moved.err;
+  nlohmann::json a = nlohmann::json::parse(own.out, nullptr, false);
+  nlohmann::json b = nlohmann::json::parse(moved.out, nullptr, false);
+  ASSERT_TRUE(a.is_object() && b.is_object()) << own.out << moved.out;
+  EXPECT_EQ(a.value("camera", "?"), "");
+  EXPECT_EQ(b.value("camera", ""), "--camera-position 0,0.5,4 --camera-view-up 0,1,0");
+  EXPECT_NE(a.value("crc32", ""), b.value("crc32", ""));
+}
+
 // --hdri lights tessera's PBR frames with the image (a 4x2 sky, flat RGBE: bright orange above,
 // black below) and is reported; llvmpipe draws no environment light, and an unreadable image stops
 // the bench before anything is timed.

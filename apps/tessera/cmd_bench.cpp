@@ -346,6 +346,21 @@ Expected<Measured> measure(BenchRun& run, bench::BenchScene& b, Resolution resol
   return measured;
 }
 
+// The camera flags given, as they are typed ("" for the bench's own view): --camera-position,
+// --camera-focal-point and --camera-view-up, each x,y,z.
+std::string cameraFlags(const CameraSettings& c) {
+  std::ostringstream out;
+  auto add = [&out](bool given, const char* name, float3 v) {
+    if (!given) return;
+    if (out.tellp() > 0) out << ' ';
+    out << "--camera-" << name << ' ' << v.x << ',' << v.y << ',' << v.z;
+  };
+  add(c.has_position, "position", c.position);
+  add(c.has_focal_point, "focal-point", c.focal_point);
+  add(c.has_view_up, "view-up", c.view_up);
+  return out.str();
+}
+
 // One line of output: a JSON object with --json, else a line of text.
 void printMeasured(const BenchRun& run, const bench::BenchScene& b, Resolution resolution,
                    const Measured& m) {
@@ -362,7 +377,8 @@ void printMeasured(const BenchRun& run, const bench::BenchScene& b, Resolution r
               << ", \"msaa\": " << s.msaa << ", \"shading\": \"" << s.shading
               << "\", \"tone_mapping\": \"" << s.tone.tone_mapping
               << "\", \"exposure\": " << fixed(s.tone.exposure, 2)
-              << ", \"hdri\": " << jsonString(s.hdri) << ", \"back_faces\": \""
+              << ", \"hdri\": " << jsonString(s.hdri)
+              << ", \"camera\": " << jsonString(cameraFlags(s.camera)) << ", \"back_faces\": \""
               << (run.cull == CullMode::kBack ? "culled" : "drawn")
               << "\", \"backend\": " << jsonString(run.renderer.name())
               << ", \"workers\": " << run.workers
