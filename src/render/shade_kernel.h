@@ -86,6 +86,9 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
         const ShadeTriangle* lanes[8];
         laneRecords(keys, covered, first, records, lanes);
         color = shadeMixed(lanes, px, splat(py));
+      } else if (plain) {
+        // One triangle's pixels (the lanes it does not cover are encoded as the background).
+        color = shadePlainLanes(records[keyChunk(first)][keyLocal(first)], px, py);
       } else if (several && !want_normals) {
         // Every triangle of the eight textured alike without per-pixel lighting, or lit per pixel
         // alike without maps: one evaluation for the eight (mixed_lanes.h).

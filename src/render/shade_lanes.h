@@ -448,21 +448,31 @@ TESSERA_LANES_INLINE void shadeLanesAt(const ShadeTriangle& t, const ShadeExtras
   color = {select(mask, c.x, color.x), select(mask, c.y, color.y), select(mask, c.z, color.z)};
 }
 
+// Triangle t's barycentrics (b.x, b.y, b.z) at pixel centres (x, y), exactly as barycentricsAt.
+TESSERA_LANES_INLINE void barycentrics8(const ShadeTriangle& t, F32x8 x, float y, Vec3x8& b) {
+  const F32x8 dx = x - splat(t.x0);
+  const float dy = y - t.y0;
+  const F32x8 inv_s = splat(1.0f) / (splat(t.inv_w0) + splat(t.sdx) * dx + splat(t.sdy * dy));
+  b.y = (splat(t.p1dx) * dx + splat(t.p1dy * dy)) * inv_s;
+  b.z = (splat(t.p2dx) * dx + splat(t.p2dy * dy)) * inv_s;
+  b.x = splat(1.0f) - b.y - b.z;
+}
+
+// The colour of an untextured flat, Gouraud or unlit triangle (its interpolated vertex colours)
+// at pixel centres (px, py): shadeLanes' operations for such a triangle without a tone curve.
+TESSERA_LANES_INLINE Vec3x8 shadePlainLanes(const ShadeTriangle& t, F32x8 px, float py) {
+  Vec3x8 b;
+  barycentrics8(t, px, py, b);
+  return interpolate(t.color, b.x, b.y, b.z);
+}
+
 // Shades the lanes of `mask` (pixel centres px, py) from triangle t, into `color` and, when
 // asked, `normal`; the other lanes keep what they hold.
 TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const ShadeExtras& e,
                                      const LightRig& lights, bool want_normals, F32x8 px, float py,
                                      I32x8 mask, Vec3x8& color, Vec3x8& normal) {
-  // Barycentrics exactly as barycentricsAt, at (px, py) and, for a level of detail, at the next
-  // pixel centres right and down.
-  auto barycentrics = [&](F32x8 x, float y, Vec3x8& b) {
-    const F32x8 dx = x - splat(t.x0);
-    const float dy = y - t.y0;
-    const F32x8 inv_s = splat(1.0f) / (splat(t.inv_w0) + splat(t.sdx) * dx + splat(t.sdy * dy));
-    b.y = (splat(t.p1dx) * dx + splat(t.p1dy * dy)) * inv_s;
-    b.z = (splat(t.p2dx) * dx + splat(t.p2dy * dy)) * inv_s;
-    b.x = splat(1.0f) - b.y - b.z;
-  };
+  // At (px, py) and, for a level of detail, at the next pixel centres right and down.
+  auto barycentrics = [&](F32x8 x, float y, Vec3x8& b) { barycentrics8(t, x, y, b); };
   Vec3x8 b;
   barycentrics(px, py, b);
   shadeLanesAt(
