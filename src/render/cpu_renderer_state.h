@@ -70,6 +70,34 @@ struct CpuRenderer::State {
   render::LightRig lights;              // this frame's
   render::ShadowMaps shadows;           // RenderOptions::shadows, this frame's
 
+  // With MSAA: this frame's sample layers (`shifts`), the centre's last when `with_centre`.
+  void prepareSampleLayers(const RenderOptions& options, bool with_centre);
+  // Every object's transforms and triangle base, and what frustum culling keeps; the triangles of
+  // the scene, drawn or not.
+  size_t prepareObjects(const Scene& scene, const RenderOptions& options,
+                        const float4x4& projection, const float4x4& view_projection);
+  // The vertex stage (replicated per worker or not: replication.h) and the setup stage (per
+  // chunk, then the painter's order and the blended triangles' order), timed.
+  struct Geometry {
+    bool replicable = false, replicate = false;
+    double vertex_ms = 0, setup_ms = 0;
+  };
+  Geometry transformAndSetUp(const Scene& scene, const RenderOptions& options,
+                             const render::TileGrid& grid, size_t triangle_total,
+                             int32_t sample_reach);
+  // What every tile of the frame's tile pass shares.
+  struct TilePass {
+    bool with_centre = false;  // MSAA: the pixel centres are a layer of their own
+    bool plain = false;        // plainShading
+    uint32_t background = 0;   // sRGB
+  };
+  // Raster, shade and resolve of one tile (or, for the first of a run of empty tiles along a row,
+  // the background of the run).
+  void renderTile(const Scene& scene, const RenderOptions& options, const render::TileGrid& grid,
+                  const TilePass& pass, int tile, int worker, Frame& frame);
+  void recordStats(const Geometry& geometry, double tiles_ms, double lines_ms,
+                   size_t triangle_total);
+
   void setupChunk(const Scene& scene, const render::VertexBuffer& vertices,
                   const render::TileGrid& grid, const render::GuardBand& guard, bool want_normals,
                   int32_t sample_reach, render::TriangleChunk& chunk) const;
