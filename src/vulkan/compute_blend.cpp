@@ -33,19 +33,9 @@ Expected<void> ComputeBlendPass::create(Context& c, VkDescriptorSetLayout scene_
   layout_info.pPushConstantRanges = &push;
   TESSERA_VK_CHECK(c.vk.vkCreatePipelineLayout(c.device, &layout_info, nullptr, &layout_));
 
-  Expected<VkShaderModule> module = c.createShaderModule(spirv);
-  if (!module) return module.error();
-  VkComputePipelineCreateInfo create{};
-  create.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
-  create.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-  create.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  create.stage.module = *module;
-  create.stage.pName = "main";
-  create.layout = layout_;
-  const VkResult created =
-      c.vk.vkCreateComputePipelines(c.device, VK_NULL_HANDLE, 1, &create, nullptr, &pipeline_);
-  c.vk.vkDestroyShaderModule(c.device, *module, nullptr);
-  TESSERA_VK_CHECK(created);
+  Expected<VkPipeline> pipeline = createComputePipeline(c, layout_, spirv);
+  if (!pipeline) return pipeline.error();
+  pipeline_ = *pipeline;
   return {};
 }
 

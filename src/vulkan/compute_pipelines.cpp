@@ -56,26 +56,6 @@ RasterShaders rasterShaders(bool ray, bool atomic64, bool fp64) {
 
 }  // namespace
 
-Expected<VkPipeline> ComputePipelines::createPipeline(Context& c, Spirv spirv,
-                                                      const VkSpecializationInfo* specialization) {
-  Expected<VkShaderModule> module = c.createShaderModule(spirv);
-  if (!module) return module.error();
-  VkComputePipelineCreateInfo create{};
-  create.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
-  create.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-  create.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  create.stage.module = *module;
-  create.stage.pName = "main";
-  create.stage.pSpecializationInfo = specialization;
-  create.layout = layout;
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  const VkResult created =
-      c.vk.vkCreateComputePipelines(c.device, VK_NULL_HANDLE, 1, &create, nullptr, &pipeline);
-  c.vk.vkDestroyShaderModule(c.device, *module, nullptr);
-  TESSERA_VK_CHECK(created);
-  return pipeline;
-}
-
 Expected<void> ComputePipelines::create(Context& c, bool with_atomic64, bool with_fp64) {
   atomic64 = with_atomic64;
   fp64 = with_fp64;
@@ -101,7 +81,7 @@ Expected<void> ComputePipelines::create(Context& c, bool with_atomic64, bool wit
       {&ray.shade, spirv::kRayShade},
   };
   for (const Entry& e : entries) {
-    Expected<VkPipeline> pipeline = createPipeline(c, e.spirv);
+    Expected<VkPipeline> pipeline = createComputePipeline(c, layout, e.spirv);
     if (!pipeline) return pipeline.error();
     *e.pipeline = *pipeline;
   }
@@ -123,11 +103,11 @@ Expected<void> ComputePipelines::ensureRaster(Context& c, uint32_t layers, bool 
                                            {1, sizeof(uint32_t), sizeof(uint32_t)}};
   const VkSpecializationInfo specialization{2, map, sizeof(constants), constants};
   const RasterShaders shaders = rasterShaders(ray_passes, atomic64, fp64);
-  Expected<VkPipeline> first = createPipeline(c, shaders.first, &specialization);
+  Expected<VkPipeline> first = createComputePipeline(c, layout, shaders.first, &specialization);
   if (!first) return first.error();
   passes.raster[layers] = *first;
   if (!shaders.second.empty()) {
-    Expected<VkPipeline> second = createPipeline(c, shaders.second, &specialization);
+    Expected<VkPipeline> second = createComputePipeline(c, layout, shaders.second, &specialization);
     if (!second) return second.error();
     passes.raster_id[layers] = *second;
   }
@@ -148,7 +128,7 @@ Expected<void> ComputePipelines::ensureDiagnostics(Context& c) {
   };
   for (const Entry& e : entries) {
     if (*e.pipeline) continue;
-    Expected<VkPipeline> pipeline = createPipeline(c, e.spirv);
+    Expected<VkPipeline> pipeline = createComputePipeline(c, layout, e.spirv);
     if (!pipeline) return pipeline.error();
     *e.pipeline = *pipeline;
   }
@@ -157,8 +137,8 @@ Expected<void> ComputePipelines::ensureDiagnostics(Context& c) {
 
 void ComputePipelines::destroy(Context& c) {
   VkDevice device = c.device;
-  for (VkPipeline p : {clear, transform, bin_args, scan, setup_diagnostics, diag_occupancy,
-                       diag_tests}) {
+  for (VkPipeline p :
+       {clear, transform, bin_args, scan, setup_diagnostics, diag_occupancy, diag_tests}) {
     if (p) c.vk.vkDestroyPipeline(device, p, nullptr);
   }
   for (ProjectionPasses* passes : {&perspective, &ray}) {

@@ -42,10 +42,6 @@ struct ComputePipelines {
   Expected<void> ensureRaster(Context& context, uint32_t layers, bool ray);
   Expected<void> ensureDiagnostics(Context& context);
   void destroy(Context& context);
-
- private:
-  Expected<VkPipeline> createPipeline(Context& context, std::span<const uint32_t> spirv,
-                                      const VkSpecializationInfo* specialization = nullptr);
 };
 
 }  // namespace tessera::vulkan

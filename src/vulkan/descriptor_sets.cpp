@@ -55,4 +55,25 @@ Expected<void> allocateStorageSet(Context& c, uint32_t bindings, VkDescriptorSet
   return {};
 }
 
+Expected<VkPipeline> createComputePipeline(Context& c, VkPipelineLayout layout,
+                                           std::span<const uint32_t> spirv,
+                                           const VkSpecializationInfo* specialization) {
+  Expected<VkShaderModule> module = c.createShaderModule(spirv);
+  if (!module) return module.error();
+  VkComputePipelineCreateInfo create{};
+  create.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+  create.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  create.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  create.stage.module = *module;
+  create.stage.pName = "main";
+  create.stage.pSpecializationInfo = specialization;
+  create.layout = layout;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  const VkResult created =
+      c.vk.vkCreateComputePipelines(c.device, VK_NULL_HANDLE, 1, &create, nullptr, &pipeline);
+  c.vk.vkDestroyShaderModule(c.device, *module, nullptr);
+  TESSERA_VK_CHECK(created);
+  return pipeline;
+}
+
 }  // namespace tessera::vulkan

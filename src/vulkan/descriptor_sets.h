@@ -1,4 +1,5 @@
-// The one descriptor set both Vulkan backends use: every binding a storage buffer.
+// The one descriptor set both Vulkan backends use: every binding a storage buffer; and a compute
+// pipeline on such a layout.
 #pragma once
 
 #include <cstdint>
@@ -24,5 +25,10 @@ Expected<void> createStorageLayouts(Context& context, std::span<const uint32_t> 
 Expected<void> allocateStorageSet(Context& context, uint32_t bindings,
                                   VkDescriptorSetLayout set_layout, VkDescriptorPool& pool,
                                   VkDescriptorSet& set);
+
+// A compute pipeline of `spirv` (entry point "main") on `layout`, specialized when given.
+Expected<VkPipeline> createComputePipeline(Context& context, VkPipelineLayout layout,
+                                           std::span<const uint32_t> spirv,
+                                           const VkSpecializationInfo* specialization = nullptr);
 
 }  // namespace tessera::vulkan
