@@ -17,6 +17,328 @@ namespace tessera {
 
 using namespace render;
 
+namespace {
+
+// What every triangle of one object reads in the setup stage.
+struct ObjectSetup {
+  const Object& object;
+  const ObjectTransforms& xf;
+  const Mesh& mesh;
+  size_t vertex_count;
+  bool has_uv, has_color, has_materials;
+  SetupContext ctx;
+  // Flat shading lights the face; so do vertices of a mesh without normals. A mirrored object's
+  // triangles compare it with their vertex normals (setup.cpp: the normals' facing).
+  bool needs_face_normal;
+  MeshVertices vertices;
+  const uint16_t* outcodes;
+  PlainGouraud plain_gouraud;
+  // alphaMode BLEND: such triangles wait for the transparent pass (blend.h), out of the bins.
+  bool any_blended;
+
+  // Read only for the triangles that survive the cull.
+  uint16_t material(size_t local) const {
+    return has_materials ? mesh.triangle_materials[local] : uint16_t{0};
+  }
+  float3 faceNormal(const uint32_t idx[3]) const {
+    if (!needs_face_normal) return float3{};
+    const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
+                 p2 = mesh.positions[idx[2]];
+    return xf.normal_matrix * cross(p1 - p0, p2 - p0) * xf.winding_sign;
+  }
+};
+
+// One chunk's setup (CpuRenderer::State::setupChunk), object by object.
+class ChunkSetup {
+ public:
+  // `objects`, `cull`, `lights` and `kernels`: the renderer's, this frame's.
+  ChunkSetup(const std::vector<ObjectTransforms>& objects, const FrustumCull& cull,
+             const LightRig& lights, const Kernels& kernels, const Scene& scene,
+             const VertexBuffer& vertices, const TileGrid& grid, const GuardBand& guard,
+             bool want_normals, int32_t sample_reach, TriangleChunk& chunk)
+      : objects_(objects),
+        cull_(cull),
+        lights_(lights),
+        scene_(scene),
+        vertices_(vertices),
+        grid_(grid),
+        guard_(guard),
+        want_normals_(want_normals),
+        sample_reach_(sample_reach),
+        chunk_(chunk),
+        setup_batch_(kernels.setup_batch),
+        cull_group_(kernels.cull_group) {}
+
+  // The triangles [t, stop) of object `object_index` (whose triangles the chunk holds some of).
+  void drawObject(size_t object_index, size_t t, size_t stop);
+
+  // The last batch; then a fence: the batch kernel's streaming stores are weakly ordered, and
+  // they reach memory before the tile stage (on any thread) reads the records.
+  void finish() {
+    flush();
+#if defined(__SSE2__)
+    _mm_sfence();
+#endif
+  }
+
+ private:
+  ObjectSetup objectSetup(size_t object_index);
+  uint32_t nextRecord();
+  void flush();
+  __attribute__((always_inline)) inline void bin(const ObjectSetup& o, const auto& box,
+                                                 uint32_t record, const ShadeTriangle& shade);
+  __attribute__((always_inline)) inline void drawWhole(const ObjectSetup& o, size_t t,
+                                                       const uint32_t idx[3], int64_t area,
+                                                       const PixelBox& box);
+  void drawClipped(const ObjectSetup& o, size_t t, const uint32_t idx[3], uint32_t cut);
+  __attribute__((always_inline)) inline void drawOne(const ObjectSetup& o, size_t t);
+  void drawCulled(const ObjectSetup& o, size_t local, size_t l);
+
+  const std::vector<ObjectTransforms>& objects_;
+  const FrustumCull& cull_;
+  const LightRig& lights_;
+  const Scene& scene_;
+  const VertexBuffer& vertices_;
+  const TileGrid& grid_;
+  const GuardBand& guard_;
+  const bool want_normals_;
+  const int32_t sample_reach_;
+  TriangleChunk& chunk_;
+  TriangleOrientation orientation_;
+  // Unclipped triangles wait here for the rest of their setup (setup_kernel.h). The kernel
+  // depends on nothing per object, so one flush per full batch and one at the end of the chunk.
+  SetupBatch batch_;
+  const SetupBatchFn setup_batch_;
+  const CullGroupFn cull_group_;
+};
+
+ObjectSetup ChunkSetup::objectSetup(size_t object_index) {
+  const Object& object = scene_.objects[object_index];
+  const ObjectTransforms& xf = objects_[object_index];
+  const Mesh& mesh = *object.mesh;
+  const size_t vertex_count = mesh.vertexCount();
+  const bool has_uv = mesh.uvs.size() == vertex_count;
+  const bool has_color = mesh.colors.size() == vertex_count;
+  const SetupContext ctx = objectSetupContext(lights_, object, xf.model, grid_.width, grid_.height,
+                                              want_normals_, sample_reach_);
+  const MeshVertices mesh_vertices{
+      vertices_.screen.data() + xf.vertex_base,
+      vertices_.normal.data() + xf.vertex_base,
+      litPerVertex(object, lights_) ? vertices_.lit.data() + xf.vertex_base : nullptr,
+      has_uv ? mesh.uvs.data() : nullptr,
+      has_color ? mesh.colors.data() : nullptr,
+      mesh.positions.data(),
+      meshUv1(ctx, mesh)};
+  const bool has_materials = mesh.triangle_materials.size() == mesh.triangleCount();
+  ObjectSetup o{object,
+                xf,
+                mesh,
+                vertex_count,
+                has_uv,
+                has_color,
+                has_materials,
+                ctx,
+                object.shading == Shading::kFlat || mesh.normals.size() != vertex_count ||
+                    xf.winding_sign < 0.0f,
+                mesh_vertices,
+                vertices_.outcode.data() + xf.vertex_base,
+                plainGouraudFor(ctx, mesh_vertices, has_materials),
+                false};
+  // A mirrored object's front faces may show their vertex normals' back (setup.cpp).
+  if (xf.winding_sign < 0.0f) o.plain_gouraud.applies = false;
+  // One look at the object's materials. alphaMode MASK: the raster tests such triangles' alpha
+  // (rasterMasked), in the chunks that hold one.
+  for (const Material& m : object.materials) {
+    chunk_.any_masked |= m.alpha_mode == AlphaMode::kMask;
+    o.any_blended |= isBlended(m);
+  }
+  return o;
+}
+
+// The record slot of the next visible triangle: setup writes in place, and the slot counts
+// (chunk.size) only once the triangle survives.
+uint32_t ChunkSetup::nextRecord() {
+  const uint32_t local = static_cast<uint32_t>(chunk_.size);
+  TESSERA_CHECK(local < kMaxTrianglesPerChunk) << "chunk holds too many triangles";
+  if (local == chunk_.raster.size()) {
+    chunk_.raster.emplace_back();
+    chunk_.wide.emplace_back();
+    chunk_.shade.emplace_back();
+    chunk_.extras.emplace_back();
+  }
+  return local;
+}
+
+void ChunkSetup::flush() {
+  if (batch_.count == 0) return;
+  batch_.padLanes();
+  setup_batch_(batch_, grid_.width, grid_.height, sample_reach_, chunk_.raster.data(),
+               chunk_.wide.data(), chunk_.shade.data());
+  batch_.count = 0;
+}
+
+void ChunkSetup::bin(const ObjectSetup& o, const auto& box, uint32_t record,
+                     const ShadeTriangle& shade) {
+  if (o.any_blended && isBlended(*shade.material))
+    chunk_.blended.push_back(record);
+  else
+    chunk_.bins.add(grid_, box, record);
+}
+
+// A triangle that passed the cull whole: binned now, in submission order; the edges and planes
+// come eight at a time (flush).
+void ChunkSetup::drawWhole(const ObjectSetup& o, size_t t, const uint32_t idx[3], int64_t area,
+                           const PixelBox& box) {
+  const size_t local = t - o.xf.triangle_base;
+  const uint32_t id = static_cast<uint32_t>(t);
+  const uint32_t record = nextRecord();
+  ++chunk_.size;
+  orient(area, orientation_);
+  ShadeTriangle& shade = batch_.nextShade();
+  if (!plainGouraudCorners(o.ctx, o.plain_gouraud, o.vertices, idx, orientation_, id,
+                           o.material(local), shade))
+    setupShadeCorners(o.ctx, o.vertices, idx, orientation_, o.faceNormal(idx), id,
+                      o.material(local), shade, chunk_.extras[record]);
+  bin(o, box, record, shade);
+  batch_.push(o.vertices.screen[idx[0]], o.vertices.screen[idx[1]], o.vertices.screen[idx[2]], area,
+              record);
+  if (batch_.full()) flush();
+}
+
+// A triangle crossing the near or far plane or leaving the guard band: clip, then fan.
+void ChunkSetup::drawClipped(const ObjectSetup& o, size_t t, const uint32_t idx[3], uint32_t cut) {
+  const size_t local = t - o.xf.triangle_base;
+  const uint32_t id = static_cast<uint32_t>(t);
+  ++chunk_.clipped;
+  ClipVertex in[3];
+  const bool needs_world = needsWorld(lights_, o.object.shading);
+  for (int k = 0; k < 3; ++k) {
+    const size_t v = o.xf.vertex_base + idx[k];
+    in[k] = {vertices_.clip(v), vertices_.normal[v], o.has_uv ? o.mesh.uvs[idx[k]] : float2{},
+             o.has_color ? o.mesh.colors[idx[k]] : float4{1, 1, 1, 1},
+             needs_world ? (o.xf.model * float4(o.mesh.positions[idx[k]], 1.0f)).xyz() : float3{}};
+    if (o.ctx.tangents) {
+      const float4 tangent = o.ctx.tangents[idx[k]];
+      in[k].tangent =
+          float4((o.xf.model * float4(tangent.xyz(), 0.0f)).xyz(), tangent.w * o.ctx.winding_sign);
+    }
+    if (o.ctx.uv1) in[k].uv1 = o.vertices.uv1[idx[k]];
+  }
+  ClipVertex polygon[kMaxClippedVertices];
+  const int n = clipTriangle(in, cut, guard_, polygon);
+  const float width = static_cast<float>(grid_.width), height = static_cast<float>(grid_.height);
+  size_t pieces = 0;
+  for (int k = 1; k + 1 < n; ++k) {
+    const ClipVertex* fan[3] = {&polygon[0], &polygon[k], &polygon[k + 1]};
+    ScreenVertex sv[3];
+    for (int i = 0; i < 3; ++i) sv[i] = projectToScreen(fan[i]->position, width, height);
+    const uint32_t record = nextRecord();
+    RasterTriangle& raster = chunk_.raster[record];
+    if (!setupRaster(o.ctx, sv, raster, chunk_.wide[record], orientation_)) continue;
+    ++chunk_.size;
+    VertexAttributes a[3];
+    for (int i = 0; i < 3; ++i)
+      a[i] = {fan[i]->normal, fan[i]->uv,      fan[i]->color, false,
+              fan[i]->world,  fan[i]->tangent, fan[i]->uv1};
+    setupShade(o.ctx, sv, a, orientation_, raster, o.faceNormal(idx), id, o.material(local),
+               chunk_.shade[record], chunk_.extras[record]);
+    bin(o, raster, record, chunk_.shade[record]);
+    ++pieces;
+  }
+  if (pieces == 0) {
+    ++chunk_.culled;
+    ++chunk_.cull_reasons.clipped_away;
+  } else {
+    chunk_.clip_splits += pieces - 1;
+  }
+}
+
+// One triangle through the same checks as the cull kernel. Inlined as drawWhole: left to itself
+// GCC stopped inlining it once drawClipped grew, and the per-triangle loop around drawWhole lost
+// 12 instructions a triangle (bunny, callgrind).
+void ChunkSetup::drawOne(const ObjectSetup& o, size_t t) {
+  const size_t local = t - o.xf.triangle_base;
+  const uint32_t idx[3] = {o.mesh.indices[local * 3], o.mesh.indices[local * 3 + 1],
+                           o.mesh.indices[local * 3 + 2]};
+  if (idx[0] >= o.vertex_count || idx[1] >= o.vertex_count || idx[2] >= o.vertex_count) {
+    ++chunk_.culled;
+    ++chunk_.cull_reasons.invalid;
+    return;
+  }
+  const uint32_t c0 = o.outcodes[idx[0]], c1 = o.outcodes[idx[1]], c2 = o.outcodes[idx[2]];
+  // Non-finite vertices drop their triangle; so does one wholly outside a frustum plane.
+  const ScreenVertex& v0 = o.vertices.screen[idx[0]];
+  const ScreenVertex& v1 = o.vertices.screen[idx[1]];
+  const ScreenVertex& v2 = o.vertices.screen[idx[2]];
+  if (((c0 | c1 | c2) & kNonFinite) || (c0 & c1 & c2 & kRejectPlanes)) {
+    ++chunk_.culled;
+    countCullReason(o.ctx, c0, c1, c2, v0, v1, v2, chunk_.cull_reasons);
+    return;
+  }
+  if (const uint32_t cut = (c0 | c1 | c2) & kCutPlanes) {
+    drawClipped(o, t, idx, cut);
+    return;
+  }
+  const int64_t area = signedArea(v0, v1, v2);
+  const PixelBox box =
+      cullsArea(o.ctx, area) ? PixelBox{0, 0, -1, -1} : pixelBox(o.ctx, v0, v1, v2);
+  if (box.empty()) {
+    ++chunk_.culled;
+    countCullReason(o.ctx, c0, c1, c2, v0, v1, v2, chunk_.cull_reasons);
+    return;
+  }
+  drawWhole(o, t, idx, area, box);
+}
+
+// Triangle `l` of the cull group at `local`, culled by the kernel: counted, and why when the chunk
+// counts the reasons.
+void ChunkSetup::drawCulled(const ObjectSetup& o, size_t local, size_t l) {
+  ++chunk_.culled;
+  if (!chunk_.count_reasons) return;
+  const uint32_t* idx = &o.mesh.indices[(local + l) * 3];
+  countCullReason(o.ctx, o.outcodes[idx[0]], o.outcodes[idx[1]], o.outcodes[idx[2]],
+                  o.vertices.screen[idx[0]], o.vertices.screen[idx[1]], o.vertices.screen[idx[2]],
+                  chunk_.cull_reasons);
+}
+
+void ChunkSetup::drawObject(size_t object_index, size_t t, size_t stop) {
+  const ObjectSetup o = objectSetup(object_index);
+  // Eight triangles at a time through the cull kernel; the rest (and groups with an index
+  // outside the mesh) one at a time.
+  constexpr size_t kGroup = CullGroup::kLanes;
+  // Only the triangle ranges that frustum culling kept (cull.h): the rest would be dropped.
+  TriangleRuns runs(cull_, object_index);
+  while (t < stop) {
+    const size_t run_end = runs.next(t, stop);
+    while (t < run_end) {
+      const size_t local = t - o.xf.triangle_base;
+      CullGroup group;
+      if (run_end - t < kGroup ||
+          !cull_group_(&o.mesh.indices[local * 3], o.vertex_count, o.vertices.screen, o.outcodes,
+                       grid_.width, grid_.height, o.object.cull, sample_reach_, group)) {
+        drawOne(o, t++);
+        continue;
+      }
+      for (size_t l = 0; l < kGroup; ++l) {
+        if (group.kind[l] == CullGroup::kCulled) {
+          drawCulled(o, local, l);
+          continue;
+        }
+        const uint32_t* idx = &o.mesh.indices[(local + l) * 3];
+        if (group.kind[l] == CullGroup::kClip) {
+          drawClipped(o, t + l, idx, static_cast<uint32_t>(group.cut[l]));
+          continue;
+        }
+        drawWhole(o, t + l, idx, static_cast<int64_t>(group.area[l]),
+                  PixelBox{group.min_x[l], group.min_y[l], group.max_x[l], group.max_y[l]});
+      }
+      t += kGroup;
+    }
+  }
+}
+
+}  // namespace
+
 void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vertices,
                                     const TileGrid& grid, const GuardBand& guard, bool want_normals,
                                     int32_t sample_reach, TriangleChunk& chunk) const {
@@ -29,247 +351,19 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
   chunk.any_masked = false;
   chunk.blended.clear();
 
+  ChunkSetup setup(objects, cull, lights, kernels, scene, vertices, grid, guard, want_normals,
+                   sample_reach, chunk);
   const size_t begin = chunk.first_triangle, end = begin + chunk.triangle_count;
-  size_t object_index = objectHolding(objects, begin);
-
-  TriangleOrientation orientation;
-  // The record slot of the next visible triangle: setup writes in place, and the slot counts
-  // (chunk.size) only once the triangle survives.
-  auto nextRecord = [&] {
-    const uint32_t local = static_cast<uint32_t>(chunk.size);
-    TESSERA_CHECK(local < kMaxTrianglesPerChunk) << "chunk holds too many triangles";
-    if (local == chunk.raster.size()) {
-      chunk.raster.emplace_back();
-      chunk.wide.emplace_back();
-      chunk.shade.emplace_back();
-      chunk.extras.emplace_back();
-    }
-    return local;
-  };
-
-  // Unclipped triangles wait here for the rest of their setup (setup_kernel.h). The kernel
-  // depends on nothing per object, so one flush per full batch and one at the end of the chunk.
-  SetupBatch batch;
-  const SetupBatchFn setup_batch = kernels.setup_batch;
-  const CullGroupFn cull_group = kernels.cull_group;
-  auto flush = [&] {
-    if (batch.count == 0) return;
-    batch.padLanes();
-    setup_batch(batch, grid.width, grid.height, sample_reach, chunk.raster.data(),
-                chunk.wide.data(), chunk.shade.data());
-    batch.count = 0;
-  };
-
-  const float width = static_cast<float>(grid.width), height = static_cast<float>(grid.height);
-  for (size_t t = begin; t < end; ++object_index) {
+  for (size_t t = begin, object_index = objectHolding(objects, begin); t < end; ++object_index) {
     const Object& object = scene.objects[object_index];
-    const ObjectTransforms& xf = objects[object_index];
-    const size_t object_end = xf.triangle_base + (object.mesh ? object.mesh->triangleCount() : 0);
+    const size_t object_end =
+        objects[object_index].triangle_base + (object.mesh ? object.mesh->triangleCount() : 0);
     if (!object.mesh || t >= object_end) continue;
-    if (!cull.drawsTriangles(object_index)) {
-      t = std::min(end, object_end);
-      continue;
-    }
-    const Mesh& mesh = *object.mesh;
-    const size_t vertex_count = mesh.vertexCount();
-    const bool has_uv = mesh.uvs.size() == vertex_count;
-    const bool has_color = mesh.colors.size() == vertex_count;
-    const bool has_materials = mesh.triangle_materials.size() == mesh.triangleCount();
-
-    const SetupContext ctx = objectSetupContext(lights, object, xf.model, grid.width, grid.height,
-                                                want_normals, sample_reach);
-    // Flat shading lights the face; so do vertices of a mesh without normals. A mirrored object's
-    // triangles compare it with their vertex normals (setup.cpp: the normals' facing).
-    const bool needs_face_normal = object.shading == Shading::kFlat ||
-                                   mesh.normals.size() != vertex_count || xf.winding_sign < 0.0f;
-    const MeshVertices mesh_vertices{
-        vertices.screen.data() + xf.vertex_base,
-        vertices.normal.data() + xf.vertex_base,
-        litPerVertex(object, lights) ? vertices.lit.data() + xf.vertex_base : nullptr,
-        has_uv ? mesh.uvs.data() : nullptr,
-        has_color ? mesh.colors.data() : nullptr,
-        mesh.positions.data(),
-        meshUv1(ctx, mesh)};
-    const uint16_t* outcodes = vertices.outcode.data() + xf.vertex_base;
-    PlainGouraud plain_gouraud = plainGouraudFor(ctx, mesh_vertices, has_materials);
-    // A mirrored object's front faces may show their vertex normals' back (setup.cpp).
-    if (xf.winding_sign < 0.0f) plain_gouraud.applies = false;
-
-    // Read only for the triangles that survive the cull.
-    auto material = [&](size_t local) {
-      return has_materials ? mesh.triangle_materials[local] : uint16_t{0};
-    };
-    // One look at the object's materials. alphaMode MASK: the raster tests such triangles' alpha
-    // (rasterMasked), in the chunks that hold one. BLEND: such triangles wait for the transparent
-    // pass (blend.h), out of the bins.
-    bool any_blended = false;
-    for (const Material& m : object.materials) {
-      chunk.any_masked |= m.alpha_mode == AlphaMode::kMask;
-      any_blended |= isBlended(m);
-    }
-    auto bin = [&](const auto& box, uint32_t record, const ShadeTriangle& shade)
-        __attribute__((always_inline)) {
-      if (any_blended && isBlended(*shade.material))
-        chunk.blended.push_back(record);
-      else
-        chunk.bins.add(grid, box, record);
-    };
-    auto face_normal = [&](const uint32_t idx[3]) {
-      if (!needs_face_normal) return float3{};
-      const float3 p0 = mesh.positions[idx[0]], p1 = mesh.positions[idx[1]],
-                   p2 = mesh.positions[idx[2]];
-      return xf.normal_matrix * cross(p1 - p0, p2 - p0) * xf.winding_sign;
-    };
-
-    // A triangle that passed the cull whole: binned now, in submission order; the edges and
-    // planes come eight at a time (flush).
-    auto drawWhole = [&](size_t t, const uint32_t idx[3], int64_t area, const PixelBox& box)
-        __attribute__((always_inline)) {
-      const size_t local = t - xf.triangle_base;
-      const uint32_t id = static_cast<uint32_t>(t);
-      const uint32_t record = nextRecord();
-      ++chunk.size;
-      orient(area, orientation);
-      ShadeTriangle& shade = batch.nextShade();
-      if (!plainGouraudCorners(ctx, plain_gouraud, mesh_vertices, idx, orientation, id,
-                               material(local), shade))
-        setupShadeCorners(ctx, mesh_vertices, idx, orientation, face_normal(idx), id,
-                          material(local), shade, chunk.extras[record]);
-      bin(box, record, shade);
-      batch.push(mesh_vertices.screen[idx[0]], mesh_vertices.screen[idx[1]],
-                 mesh_vertices.screen[idx[2]], area, record);
-      if (batch.full()) flush();
-    };
-
-    // A triangle crossing the near or far plane or leaving the guard band: clip, then fan.
-    auto drawClipped = [&](size_t t, const uint32_t idx[3], uint32_t cut) {
-      const size_t local = t - xf.triangle_base;
-      const uint32_t id = static_cast<uint32_t>(t);
-      ++chunk.clipped;
-      ClipVertex in[3];
-      const bool needs_world = needsWorld(lights, object.shading);
-      for (int k = 0; k < 3; ++k) {
-        in[k] = {vertices.clip(xf.vertex_base + idx[k]), vertices.normal[xf.vertex_base + idx[k]],
-                 has_uv ? mesh.uvs[idx[k]] : float2{},
-                 has_color ? mesh.colors[idx[k]] : float4{1, 1, 1, 1},
-                 needs_world ? (xf.model * float4(mesh.positions[idx[k]], 1.0f)).xyz() : float3{}};
-        if (ctx.tangents) {
-          const float4 t = ctx.tangents[idx[k]];
-          in[k].tangent = float4((xf.model * float4(t.xyz(), 0.0f)).xyz(), t.w * ctx.winding_sign);
-        }
-        if (ctx.uv1) in[k].uv1 = mesh_vertices.uv1[idx[k]];
-      }
-      ClipVertex polygon[kMaxClippedVertices];
-      const int n = clipTriangle(in, cut, guard, polygon);
-      size_t pieces = 0;
-      for (int k = 1; k + 1 < n; ++k) {
-        const ClipVertex* fan[3] = {&polygon[0], &polygon[k], &polygon[k + 1]};
-        ScreenVertex sv[3];
-        for (int i = 0; i < 3; ++i) sv[i] = projectToScreen(fan[i]->position, width, height);
-        const uint32_t record = nextRecord();
-        RasterTriangle& raster = chunk.raster[record];
-        if (!setupRaster(ctx, sv, raster, chunk.wide[record], orientation)) continue;
-        ++chunk.size;
-        VertexAttributes a[3];
-        for (int i = 0; i < 3; ++i)
-          a[i] = {fan[i]->normal, fan[i]->uv,      fan[i]->color, false,
-                  fan[i]->world,  fan[i]->tangent, fan[i]->uv1};
-        setupShade(ctx, sv, a, orientation, raster, face_normal(idx), id, material(local),
-                   chunk.shade[record], chunk.extras[record]);
-        bin(raster, record, chunk.shade[record]);
-        ++pieces;
-      }
-      if (pieces == 0) {
-        ++chunk.culled;
-        ++chunk.cull_reasons.clipped_away;
-      } else {
-        chunk.clip_splits += pieces - 1;
-      }
-    };
-
-    // One triangle through the same checks as the cull kernel. Inlined as the other lambdas:
-    // left to itself GCC stopped inlining it once drawClipped grew, and the per-triangle loop
-    // around drawWhole lost 12 instructions a triangle (bunny, callgrind).
-    auto drawOne = [&](size_t t) __attribute__((always_inline)) {
-      const size_t local = t - xf.triangle_base;
-      const uint32_t idx[3] = {mesh.indices[local * 3], mesh.indices[local * 3 + 1],
-                               mesh.indices[local * 3 + 2]};
-      if (idx[0] >= vertex_count || idx[1] >= vertex_count || idx[2] >= vertex_count) {
-        ++chunk.culled;
-        ++chunk.cull_reasons.invalid;
-        return;
-      }
-      const uint32_t c0 = outcodes[idx[0]], c1 = outcodes[idx[1]], c2 = outcodes[idx[2]];
-      // Non-finite vertices drop their triangle; so does one wholly outside a frustum plane.
-      const ScreenVertex& v0 = mesh_vertices.screen[idx[0]];
-      const ScreenVertex& v1 = mesh_vertices.screen[idx[1]];
-      const ScreenVertex& v2 = mesh_vertices.screen[idx[2]];
-      if (((c0 | c1 | c2) & kNonFinite) || (c0 & c1 & c2 & kRejectPlanes)) {
-        ++chunk.culled;
-        countCullReason(ctx, c0, c1, c2, v0, v1, v2, chunk.cull_reasons);
-        return;
-      }
-      if (const uint32_t cut = (c0 | c1 | c2) & kCutPlanes) {
-        drawClipped(t, idx, cut);
-        return;
-      }
-      const int64_t area = signedArea(v0, v1, v2);
-      const PixelBox box =
-          cullsArea(ctx, area) ? PixelBox{0, 0, -1, -1} : pixelBox(ctx, v0, v1, v2);
-      if (box.empty()) {
-        ++chunk.culled;
-        countCullReason(ctx, c0, c1, c2, v0, v1, v2, chunk.cull_reasons);
-        return;
-      }
-      drawWhole(t, idx, area, box);
-    };
-
-    // Eight triangles at a time through the cull kernel; the rest (and groups with an index
-    // outside the mesh) one at a time.
-    constexpr size_t kGroup = CullGroup::kLanes;
     const size_t stop = std::min(end, object_end);
-    // Only the triangle ranges that frustum culling kept (cull.h): the rest would be dropped.
-    TriangleRuns runs(cull, object_index);
-    while (t < stop) {
-      const size_t run_end = runs.next(t, stop);
-      while (t < run_end) {
-        const size_t local = t - xf.triangle_base;
-        CullGroup group;
-        if (run_end - t < kGroup ||
-            !cull_group(&mesh.indices[local * 3], vertex_count, mesh_vertices.screen, outcodes,
-                        grid.width, grid.height, object.cull, sample_reach, group)) {
-          drawOne(t++);
-          continue;
-        }
-        for (size_t l = 0; l < kGroup; ++l) {
-          if (group.kind[l] == CullGroup::kCulled) {
-            ++chunk.culled;
-            if (chunk.count_reasons) {
-              const uint32_t* idx = &mesh.indices[(local + l) * 3];
-              countCullReason(ctx, outcodes[idx[0]], outcodes[idx[1]], outcodes[idx[2]],
-                              mesh_vertices.screen[idx[0]], mesh_vertices.screen[idx[1]],
-                              mesh_vertices.screen[idx[2]], chunk.cull_reasons);
-            }
-            continue;
-          }
-          const uint32_t* idx = &mesh.indices[(local + l) * 3];
-          if (group.kind[l] == CullGroup::kClip) {
-            drawClipped(t + l, idx, static_cast<uint32_t>(group.cut[l]));
-            continue;
-          }
-          drawWhole(t + l, idx, static_cast<int64_t>(group.area[l]),
-                    PixelBox{group.min_x[l], group.min_y[l], group.max_x[l], group.max_y[l]});
-        }
-        t += kGroup;
-      }
-    }
+    if (cull.drawsTriangles(object_index)) setup.drawObject(object_index, t, stop);
+    t = stop;
   }
-  flush();
-  // The batch kernel's streaming stores are weakly ordered: they reach memory before the tile
-  // stage (on any thread) reads the records.
-#if defined(__SSE2__)
-  _mm_sfence();
-#endif
+  setup.finish();
 }
 
 }  // namespace tessera
