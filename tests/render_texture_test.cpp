@@ -49,6 +49,30 @@ bool sameBits(float a, float b) {
 // Eight lanes at a time, every wrap mode on each axis, bilinear and trilinear, with and without
 // a transform, power-of-two and other sizes, coordinates over several periods and footprints
 // over every level: the same bits as sampleTexture, lane by lane.
+// A scene for the textured-object tests: the camera at `eye` looking down -z, one sun.
+Scene texturedScene(float3 eye) {
+  Scene scene;
+  scene.camera.position = eye;
+  scene.camera.near_z = 0.2f;
+  scene.camera.far_z = 100;
+  scene.lights.push_back({normalize(float3{-1, -2, -1}), float3(0.9f)});
+  return scene;
+}
+
+// An unlit floor (y = -1) whose coordinates run over many periods of `texture`, repeated across
+// and mirrored down.
+Object texturedFloor(std::shared_ptr<Texture> texture, TextureFilter filter) {
+  Mesh floor;
+  floor.positions = {{-30, -1, 20}, {30, -1, 20}, {30, -1, -60}, {-30, -1, -60}};
+  floor.uvs = {{-20, -20}, {25, -20}, {25, 40}, {-20, 40}};
+  floor.indices = {0, 1, 2, 0, 2, 3};
+  Object object = unlitObject(floor, CullMode::kNone);
+  object.materials[0].albedo = std::move(texture);
+  object.materials[0].sampler =
+      makeSampler(filter, TextureWrap::kRepeat, TextureWrap::kMirroredRepeat);
+  return object;
+}
+
 TEST(TextureLanes, EightLanesHaveTheBitsOfSampleTexture) {
   using namespace tessera::render;
   const std::shared_ptr<Texture> textures[] = {
@@ -109,11 +133,7 @@ TEST(TextureLanes, EightLanesHaveTheBitsOfSampleTexture) {
 // transforms, coordinates over many periods of a texture whose size is not a power of two, lit
 // per pixel and unlit) through every kernel variant and worker count, with and without MSAA.
 TEST(TextureLanes, TexturedSceneIsBitIdenticalForEverySimdLevelAndWorkerCount) {
-  Scene scene;
-  scene.camera.position = {0, 1.2f, 3.5f};
-  scene.camera.near_z = 0.2f;
-  scene.camera.far_z = 100;
-  scene.lights.push_back({normalize(float3{-1, -2, -1}), float3(0.9f)});
+  Scene scene = texturedScene({0, 1.2f, 3.5f});
   Object sphere;
   sphere.mesh = std::make_shared<Mesh>(makeUvSphere(48, 24));
   sphere.shading = Shading::kPhong;
@@ -122,16 +142,10 @@ TEST(TextureLanes, TexturedSceneIsBitIdenticalForEverySimdLevelAndWorkerCount) {
       makeSampler(TextureFilter::kTrilinear, TextureWrap::kMirroredRepeat, TextureWrap::kRepeat);
   sphere.materials[0].sampler.transform = {{0.1f, 0.3f}, 0.4f, {3.0f, 2.0f}};
   scene.objects.push_back(sphere);
-  Mesh floor;
-  floor.positions = {{-30, -1, 20}, {30, -1, 20}, {30, -1, -60}, {-30, -1, -60}};
-  floor.uvs = {{-20, -20}, {25, -20}, {25, 40}, {-20, 40}};
-  floor.indices = {0, 1, 2, 0, 2, 3};
-  Object floor_object = unlitObject(floor, CullMode::kNone);
-  floor_object.materials[0].albedo = noiseTexture(24, 20, true, 12);
-  floor_object.materials[0].sampler =
-      makeSampler(TextureFilter::kTrilinear, TextureWrap::kRepeat, TextureWrap::kMirroredRepeat);
+  const Object floor_object =
+      texturedFloor(noiseTexture(24, 20, true, 12), TextureFilter::kTrilinear);
   scene.objects.push_back(floor_object);
-  Mesh card = floor;
+  Mesh card = *floor_object.mesh;
   card.positions = {{-2, -0.5f, -1}, {-0.5f, -0.5f, -1}, {-0.5f, 1, -1}, {-2, 1, -1}};
   card.uvs = {{-0.5f, -0.5f}, {1.5f, -0.5f}, {1.5f, 1.5f}, {-0.5f, 1.5f}};
   Object card_object = unlitObject(card, CullMode::kNone);
@@ -146,10 +160,7 @@ TEST(TextureLanes, TexturedSceneIsBitIdenticalForEverySimdLevelAndWorkerCount) {
     options.height = 167;
     options.msaa = msaa;
     const Frame reference = renderAt(scene, options, SimdLevel::kScalar, 1);
-    int textured = 0;
-    for (int y = 0; y < options.height; ++y)
-      for (int x = 0; x < options.width; ++x) textured += reference.idAt(x, y) != kNoTriangle;
-    EXPECT_GT(textured, options.width * options.height / 2);
+    EXPECT_GT(test::coveredCount(reference), options.width * options.height / 2);
     for (SimdLevel level :
          {SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512, SimdLevel::kAuto}) {
       for (int workers : {1, 3}) {
@@ -166,11 +177,7 @@ TEST(TextureLanes, TexturedSceneIsBitIdenticalForEverySimdLevelAndWorkerCount) {
 // Both give the same bits: Gouraud and flat spheres of small triangles (trilinear, a transform,
 // UV set 1 on one), an unlit floor (bilinear), tone mapping on and off, at 1 and 4 samples.
 TEST(TextureLanes, TrianglesTexturedAlikeShareOneFilterWithTheSameBits) {
-  Scene scene;
-  scene.camera.position = {0, 1.0f, 4.0f};
-  scene.camera.near_z = 0.2f;
-  scene.camera.far_z = 100;
-  scene.lights.push_back({normalize(float3{-1, -2, -1}), float3(0.9f)});
+  Scene scene = texturedScene({0, 1.0f, 4.0f});
   Object gouraud;
   gouraud.mesh = std::make_shared<Mesh>(makeUvSphere(96, 48));
   gouraud.shading = Shading::kGouraud;
@@ -189,15 +196,7 @@ TEST(TextureLanes, TrianglesTexturedAlikeShareOneFilterWithTheSameBits) {
   flat.materials[0].albedo = noiseTexture(40, 24, true, 22);
   flat.materials[0].sampler.texcoord = 1;
   scene.objects.push_back(flat);
-  Mesh floor;
-  floor.positions = {{-30, -1, 20}, {30, -1, 20}, {30, -1, -60}, {-30, -1, -60}};
-  floor.uvs = {{-20, -20}, {25, -20}, {25, 40}, {-20, 40}};
-  floor.indices = {0, 1, 2, 0, 2, 3};
-  Object floor_object = unlitObject(floor, CullMode::kNone);
-  floor_object.materials[0].albedo = noiseTexture(24, 20, false, 23);
-  floor_object.materials[0].sampler =
-      makeSampler(TextureFilter::kBilinear, TextureWrap::kRepeat, TextureWrap::kMirroredRepeat);
-  scene.objects.push_back(floor_object);
+  scene.objects.push_back(texturedFloor(noiseTexture(24, 20, false, 23), TextureFilter::kBilinear));
 
   for (ToneMapping tone : {ToneMapping::kNone, ToneMapping::kAces}) {
     scene.tone_mapping = tone;
@@ -210,10 +209,7 @@ TEST(TextureLanes, TrianglesTexturedAlikeShareOneFilterWithTheSameBits) {
       options.normals = true;
       const Frame apart = renderAt(scene, options, SimdLevel::kAuto, 2);
       // The spheres' triangles are a few pixels across: most groups of eight hold several.
-      int covered = 0;
-      for (int y = 0; y < options.height; ++y)
-        for (int x = 0; x < options.width; ++x) covered += together.idAt(x, y) != kNoTriangle;
-      EXPECT_GT(covered, options.width * options.height / 2);
+      EXPECT_GT(test::coveredCount(together), options.width * options.height / 2);
       EXPECT_EQ(together.color, apart.color)
           << "tone mapping " << static_cast<int>(tone) << ", msaa " << msaa;
     }
