@@ -7,6 +7,8 @@
 #include <limits>
 #include <memory>
 
+#include <gtest/gtest.h>
+
 #include <tessera/render/cpu_renderer.h>
 #include <tessera/scene/scene.h>
 
@@ -72,6 +74,27 @@ inline int coveredCount(const Frame& f) {
   int n = 0;
   for (uint32_t id : f.triangle_id) n += id != kNoTriangle;
   return n;
+}
+
+// Eight pixels of several triangles shaded alike take one evaluation for the eight
+// (mixed_lanes.h); with the normal AOV on, every triangle is shaded on its own. Renders `scene`
+// both ways, tone mapping off and ACES, at 1 and 4 samples (the rest of the options `base`'s), and
+// expects the same colours; most of the frame must be covered.
+inline void expectMixedShadingMatchesPerTriangle(Scene scene, const RenderOptions& base) {
+  for (ToneMapping tone : {ToneMapping::kNone, ToneMapping::kAces}) {
+    scene.tone_mapping = tone;
+    for (int msaa : {1, 4}) {
+      RenderOptions options = base;
+      options.msaa = msaa;
+      options.normals = false;
+      const Frame together = renderAt(scene, options, SimdLevel::kAuto, 2);
+      options.normals = true;
+      const Frame apart = renderAt(scene, options, SimdLevel::kAuto, 2);
+      EXPECT_GT(coveredCount(together), options.width * options.height / 2);
+      EXPECT_EQ(together.color, apart.color)
+          << "tone mapping " << static_cast<int>(tone) << ", msaa " << msaa;
+    }
+  }
 }
 
 }  // namespace tessera::test
