@@ -152,6 +152,16 @@ class BenchCli : public ::testing::Test {
     return test::runInFolder(dir_, TESSERA_EXE, "bench " + args);
   }
 
+  // Runs `tessera bench` with `args` and parses its one JSON line; an empty object (with the
+  // test failed) when the run fails or prints no JSON object.
+  nlohmann::json runJson(const std::string& args) {
+    RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out, nullptr, /*allow_exceptions=*/false);
+    EXPECT_TRUE(j.is_object()) << args << "\n" << r.out;
+    return j.is_object() ? j : nlohmann::json::object();
+  }
+
   static std::vector<std::string> lines(const std::string& text) {
     std::vector<std::string> out;
     std::istringstream in(text);
@@ -354,13 +364,9 @@ TEST_F(BenchCli, ToneMappingChangesTheFrameAndIsReported) {
 // told apart from the bench's own view by them) and move tessera's camera.
 TEST_F(BenchCli, CameraFlagsAreReported) {
   const std::string common = "--json --crc --frames 1 --warmup 0 --resolution 64,48 ";
-  RunResult own = run(common + "cube");
-  RunResult moved = run(common + "--camera-position 0,0.5,4 --camera-view-up 0,1,0 cube");
-  ASSERT_EQ(own.exit_code, 0) << own.err;
-  ASSERT_EQ(moved.exit_code, 0) << moved.err;
-  nlohmann::json a = nlohmann::json::parse(own.out, nullptr, false);
-  nlohmann::json b = nlohmann::json::parse(moved.out, nullptr, false);
-  ASSERT_TRUE(a.is_object() && b.is_object()) << own.out << moved.out;
+  const nlohmann::json a = runJson(common + "cube");
+  const nlohmann::json b =
+      runJson(common + "--camera-position 0,0.5,4 --camera-view-up 0,1,0 cube");
   EXPECT_EQ(a.value("camera", "?"), "");
   EXPECT_EQ(b.value("camera", ""), "--camera-position 0,0.5,4 --camera-view-up 0,1,0");
   EXPECT_NE(a.value("crc32", ""), b.value("crc32", ""));
@@ -376,13 +382,8 @@ TEST_F(BenchCli, HdriLightsTheFrameAndIsReported) {
     for (int i = 0; i < 8; ++i) sky.write(i < 4 ? "\x80\x40\x10\x82" : "\0\0\0\0", 4);
   }
   const std::string common = "--json --crc --frames 1 --warmup 0 --resolution 64,48 --shading pbr ";
-  RunResult plain = run(common + "cube");
-  RunResult lit = run(common + "--hdri sky.hdr cube");
-  ASSERT_EQ(plain.exit_code, 0) << plain.err;
-  ASSERT_EQ(lit.exit_code, 0) << lit.err;
-  nlohmann::json a = nlohmann::json::parse(plain.out, nullptr, false);
-  nlohmann::json b = nlohmann::json::parse(lit.out, nullptr, false);
-  ASSERT_TRUE(a.is_object() && b.is_object()) << plain.out << lit.out;
+  const nlohmann::json a = runJson(common + "cube");
+  const nlohmann::json b = runJson(common + "--hdri sky.hdr cube");
   EXPECT_EQ(a.value("hdri", "?"), "");
   EXPECT_EQ(b.value("hdri", ""), "sky.hdr");
   EXPECT_NE(a.value("crc32", ""), b.value("crc32", ""));  // the image reached tessera's frame

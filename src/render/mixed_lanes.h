@@ -1,16 +1,67 @@
 // Eight pixels of several triangles shaded in one evaluation, for the shading kernel
 // (shade_kernel.h) and the resolve of multisampled pixels (msaa_kernel.h): each lane's fields are
 // loaded from its own triangle's records, eight records at a time, and transposed into lanes
-// (untextured: shadeMixed; textured alike without per-pixel lighting: shadeTexturedMixed). The
-// same float operations per lane as shadeLanes (shade_lanes.h), so the same bits.
+// (untextured: shadeMixed; textured alike without per-pixel lighting: shadeTexturedMixed; lit per
+// pixel alike: shadeLitMixed), each lane's records found by laneRecords. The same float operations
+// per lane as shadeLanes (shade_lanes.h), so the same bits.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include "render/shade_lanes.h"
 
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
+
+// Each lane's triangle in lanes (lanes outside `covered` take `first`'s): its chunk and its index
+// in that chunk's records.
+struct LaneKeys {
+  alignas(32) uint32_t chunk[8];
+  I32x8 local;
+};
+TESSERA_LANES_INLINE LaneKeys laneKeys(I32x8 keys, I32x8 covered, uint32_t first) {
+  const I32x8 owner = select(covered, keys, splat(static_cast<int32_t>(first)));
+  LaneKeys k;
+  store(k.chunk, shiftRight(owner, kLocalKeyBits) & splat(int32_t{kMaxChunks - 1}));
+  k.local = owner & splat(static_cast<int32_t>((1u << kLocalKeyBits) - 1));
+  return k;
+}
+
+// laneKeys where the lanes outside `valid` (at least one lane) borrow the first valid lane's key.
+TESSERA_LANES_INLINE LaneKeys laneKeys(I32x8 keys, I32x8 valid) {
+  return laneKeys(keys, valid, static_cast<uint32_t>(lane(keys, firstLane(valid))));
+}
+
+// Each lane's record of the chunks' arrays `chunk_records` (each chunk's first record): byte
+// offsets (32-bit: kMaxTrianglesPerChunk) are formed in lanes, then read back one lane at a time
+// (per lane in scalar code, the textured frame's shading took 10% more instructions).
+template <typename Record>
+TESSERA_LANES_INLINE void laneRecords(const LaneKeys& k, const Record* const chunk_records[],
+                                      const Record* lanes[8]) {
+  static_assert(uint64_t{kMaxTrianglesPerChunk} * sizeof(Record) <= uint64_t{0xffffffffu},
+                "a chunk's records span more than a 32-bit byte offset reaches");
+  alignas(32) uint32_t lane_offset[8];
+  store(lane_offset, k.local * splat(static_cast<int32_t>(sizeof(Record))));
+  for (int l = 0; l < 8; ++l)
+    lanes[l] = reinterpret_cast<const Record*>(
+        reinterpret_cast<const char*>(chunk_records[k.chunk[l]]) + lane_offset[l]);
+}
+
+// Each lane's ShadeTriangle and ShadeExtras for eight pixels of keys `keys` (laneRecords).
+struct MixedRecords {
+  const ShadeTriangle* lanes[8];
+  const ShadeExtras* extras[8];
+};
+TESSERA_LANES_INLINE MixedRecords mixedRecords(I32x8 keys, I32x8 covered, uint32_t first,
+                                               const ShadeTriangle* const records[],
+                                               const ShadeExtras* const extras[]) {
+  const LaneKeys k = laneKeys(keys, covered, first);
+  MixedRecords r;
+  laneRecords(k, records, r.lanes);
+  laneRecords(k, extras, r.extras);
+  return r;
+}
 
 // The float fields from x0 to color[2], in order: what an untextured flat, Gouraud or unlit pixel
 // reads. shadeMixed loads them from eight records at once.
@@ -169,10 +220,10 @@ TESSERA_LANES_INLINE bool litPlain(const ShadeTriangle& t) {
 // its own triangle's records (loaded eight at a time and transposed), and the lights are evaluated
 // once for the eight lanes instead of once per triangle. The same operations per lane as
 // shadeLanes, so the same bits. False, with `color` untouched, where that does not apply; lanes
-// outside `covered` hold a covered lane's records.
+// outside `covered` hold a covered lane's records (and read no shadow map).
 TESSERA_LANES_INLINE bool shadeLitMixed(const ShadeTriangle* const records[8],
-                                        const ShadeExtras* const extras[8], const LightRig& lights,
-                                        F32x8 px, F32x8 py, Vec3x8& color) {
+                                        const ShadeExtras* const extras[8], I32x8 covered,
+                                        const LightRig& lights, F32x8 px, F32x8 py, Vec3x8& color) {
   const ShadeTriangle& t = *records[0];
   const bool pbr = t.shading == Shading::kPbr;
   for (int l = 0; l < 8; ++l) {
@@ -197,9 +248,9 @@ TESSERA_LANES_INLINE bool shadeLitMixed(const ShadeTriangle* const records[8],
     const Vec3x8 emissive{splat(m.emissive_factor.x), splat(m.emissive_factor.y),
                           splat(m.emissive_factor.z)};
     c = shadePbr8(lights, pbrLobes8(c, splat(m.metallic), splat(m.roughness)), splat(1.0f),
-                  emissive, n, p);
+                  emissive, n, p, covered);
   } else {
-    const Vec3x8 e = irradiance8(lights, n, p);
+    const Vec3x8 e = irradiance8(lights, n, p, covered);
     c = {c.x * e.x, c.y * e.y, c.z * e.z};
   }
   if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);

@@ -155,15 +155,6 @@ TESSERA_LANES_INLINE Vec3x8 shadeSampleFragments(const MsaaShading& m, int s, I3
   return color;
 }
 
-// The shading records of the lanes' keys (chunk_records: each chunk's first record); lanes
-// outside `valid` (at least one lane) borrow the first valid lane's (computed, not used).
-TESSERA_LANES_INLINE void laneRecords(const ShadeTriangle* const* chunk_records, I32x8 keys,
-                                      I32x8 valid, const ShadeTriangle* records[8]) {
-  alignas(32) uint32_t key[8];
-  store(key, select(valid, keys, splat(lane(keys, firstLane(valid)))));
-  for (int l = 0; l < 8; ++l) records[l] = chunk_records[keyChunk(key[l])] + keyLocal(key[l]);
-}
-
 // Eight plain fragments (shadeMixed's case), lane l from records[l] in pixel x + l (column: x + l)
 // of row y: at the pixel centre where `at_centre`, else at the lane's sample, sample_dx right of
 // column and at sample_y. One evaluation for the eight.
@@ -213,7 +204,7 @@ TESSERA_LANES_INLINE Vec3x8 shadePlainSampled(const MsaaShading& m,
   Vec3x8 sample0{sum};
   const I32x8 valid = ~equal(keys[0], empty);
   if (any(valid)) {
-    laneRecords(chunk_records, keys[0], valid, records);
+    laneRecords(laneKeys(keys[0], valid), chunk_records, records);
     const I32x8 at_centre = ~mixed | centresCovered(chunks, keys[0], pending[0], x, y);
     sample0 = shadePlainFragments(records, column, y, splat(sampleX(m, 0)), splat(sampleY(m, 0, y)),
                                   at_centre);
@@ -236,7 +227,7 @@ TESSERA_LANES_INLINE Vec3x8 shadePlainSampled(const MsaaShading& m,
       pending[s] = pending[s] & ~take;
       any_pending = any_pending | pending[s];
     }
-    laneRecords(chunk_records, key, taken, records);
+    laneRecords(laneKeys(key, taken), chunk_records, records);
     const Vec3x8 c = shadePlainFragments(records, column, y, sample_dx, sample_y,
                                          centresCovered(chunks, key, taken, x, y));
     const F32x8 w = toFloat(weight);

@@ -11,37 +11,6 @@
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
 
-// Each lane's triangle record (lanes outside `covered` take `first`'s): chunks and byte offsets
-// (32-bit: kMaxTrianglesPerChunk) are formed in lanes, then read back one lane at a time.
-template <typename Record>
-TESSERA_LANES_INLINE void laneRecords(I32x8 keys, I32x8 covered, uint32_t first,
-                                      const Record* const chunk_records[], const Record* lanes[8]) {
-  static_assert(uint64_t{kMaxTrianglesPerChunk} * sizeof(Record) <= uint64_t{0xffffffffu},
-                "a chunk's records span more than a 32-bit byte offset reaches");
-  const I32x8 owner = select(covered, keys, splat(static_cast<int32_t>(first)));
-  alignas(32) uint32_t lane_chunk[8], lane_offset[8];
-  store(lane_chunk, shiftRight(owner, kLocalKeyBits) & splat(int32_t{kMaxChunks - 1}));
-  store(lane_offset, (owner & splat(static_cast<int32_t>((1u << kLocalKeyBits) - 1))) *
-                         splat(static_cast<int32_t>(sizeof(Record))));
-  for (int l = 0; l < 8; ++l)
-    lanes[l] = reinterpret_cast<const Record*>(
-        reinterpret_cast<const char*>(chunk_records[lane_chunk[l]]) + lane_offset[l]);
-}
-
-// Each lane's ShadeTriangle and ShadeExtras for eight pixels of keys `keys` (laneRecords).
-struct MixedRecords {
-  const ShadeTriangle* lanes[8];
-  const ShadeExtras* extras[8];
-};
-TESSERA_LANES_INLINE MixedRecords mixedRecords(I32x8 keys, I32x8 covered, uint32_t first,
-                                               const ShadeTriangle* const records[],
-                                               const ShadeExtras* const extras[]) {
-  MixedRecords r;
-  laneRecords(keys, covered, first, records, r.lanes);
-  laneRecords(keys, covered, first, extras, r.extras);
-  return r;
-}
-
 // Shades the tile in pixel order, eight pixels of a row at a time, then encodes the row to sRGB
 // and stores it whole (no read-modify-write of partly written pixels). Eight pixels of one triangle
 // take one evaluation; those of several are shaded lane by lane from their own records when every
@@ -84,7 +53,7 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
         color = shadePlainSampled(*msaa, chunks, records, i, tile.x0 + tx, tile.y0 + ty, mixed);
       } else if (several && plain) {
         const ShadeTriangle* lanes[8];
-        laneRecords(keys, covered, first, records, lanes);
+        laneRecords(laneKeys(keys, covered, first), records, lanes);
         color = shadeMixed(lanes, px, splat(py));
       } else if (plain) {
         // One triangle's pixels (the lanes it does not cover are encoded as the background).
@@ -97,9 +66,10 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
         shaded = textured || litPlain(t);
         if (shaded) {
           const MixedRecords r = mixedRecords(keys, covered, first, records, extras);
-          shaded = textured ? shadeTexturedMixed(r.lanes, r.extras, covered, lights, px, splat(py),
-                                                 color)
-                            : shadeLitMixed(r.lanes, r.extras, lights, px, splat(py), color);
+          shaded =
+              textured
+                  ? shadeTexturedMixed(r.lanes, r.extras, covered, lights, px, splat(py), color)
+                  : shadeLitMixed(r.lanes, r.extras, covered, lights, px, splat(py), color);
         }
       } else {
         shaded = false;

@@ -62,7 +62,8 @@ TESSERA_LANES_INLINE F32x8 localFactor8(const ShadeLight& light, const Vec3x8& n
 
 // f times the light's shadow-map visibility (ShadowMaps::visibility, scalar code compiled once:
 // the same bits on every instruction set) in the lanes of `lit`; f where the light has no map.
-// An unoccluded lane is multiplied by exactly 1.
+// An unoccluded lane is multiplied by exactly 1. The maps are read lane by lane: callers leave
+// out of `lit` the lanes whose colour is not kept.
 TESSERA_LANES_INLINE F32x8 shadowed8(const LightRig& rig, const ShadeLight& light, I32x8 lit,
                                      F32x8 f, const Vec3x8& n, const Vec3x8& p) {
   if (!rig.shadows || light.shadow < 0 || !any(lit)) return f;
@@ -76,8 +77,10 @@ TESSERA_LANES_INLINE F32x8 shadowed8(const LightRig& rig, const ShadeLight& ligh
 }
 
 // As render::irradiance: ambient plus every light, at world points p (read only when the rig has
-// a point or spot light, or shadow maps), times the shadow maps' visibility.
-TESSERA_LANES_INLINE Vec3x8 irradiance8(const LightRig& rig, const Vec3x8& n, const Vec3x8& p) {
+// a point or spot light, or shadow maps), times the shadow maps' visibility, which is looked up
+// for the lanes of `wanted` only (the others' colour is not kept).
+TESSERA_LANES_INLINE Vec3x8 irradiance8(const LightRig& rig, const Vec3x8& n, const Vec3x8& p,
+                                        I32x8 wanted) {
   Vec3x8 e{splat(rig.ambient.x), splat(rig.ambient.y), splat(rig.ambient.z)};
   const F32x8 zero = splat(0.0f);
   for (const ShadeLight& light : rig.lights) {
@@ -88,7 +91,7 @@ TESSERA_LANES_INLINE Vec3x8 irradiance8(const LightRig& rig, const Vec3x8& n, co
     else
       f = localFactor8(light, n, p);
     const I32x8 lit = positive(f);
-    f = shadowed8(rig, light, lit, f, n, p);
+    f = shadowed8(rig, light, lit & wanted, f, n, p);
     e.x = e.x + select(lit, splat(light.radiance.x) * f, zero);
     e.y = e.y + select(lit, splat(light.radiance.y) * f, zero);
     e.z = e.z + select(lit, splat(light.radiance.z) * f, zero);
@@ -286,9 +289,11 @@ TESSERA_LANES_INLINE F32x8 localAttenuation8(const ShadeLight& light, const Vec3
   return (window * (t * t)) / d2;
 }
 
-// As shadePbr: ambient, every light in order, then the emission.
+// As shadePbr: ambient, every light in order, then the emission; shadow maps are looked up for
+// the lanes of `wanted` only (irradiance8).
 TESSERA_LANES_INLINE Vec3x8 shadePbr8(const LightRig& rig, const PbrLobes8& s, F32x8 occlusion,
-                                      const Vec3x8& emissive, const Vec3x8& n, const Vec3x8& p) {
+                                      const Vec3x8& emissive, const Vec3x8& n, const Vec3x8& p,
+                                      I32x8 wanted) {
   const Vec3x8 v = viewVector8(rig, p);
   const F32x8 nv = absLanes(dot8(n, v));
   Vec3x8 c = rig.environment ? pbrEnvironment8(s, rig, occlusion, n, v, nv)
@@ -307,7 +312,7 @@ TESSERA_LANES_INLINE Vec3x8 shadePbr8(const LightRig& rig, const PbrLobes8& s, F
     }
     const I32x8 lit = positive(nl) & positive(f);
     if (!any(lit)) continue;
-    f = shadowed8(rig, light, lit, f, n, p);
+    f = shadowed8(rig, light, lit & wanted, f, n, p);
     const Vec3x8 r = pbrResponse8(s, n, v, l, nl, nv);
     c = {select(lit, c.x + r.x * (splat(light.radiance.x) * f), c.x),
          select(lit, c.y + r.y * (splat(light.radiance.y) * f), c.y),
@@ -395,7 +400,7 @@ TESSERA_LANES_INLINE Vec3x8 shadePbrLanes(const ShadeTriangle& t, const ShadeExt
     emissive = {emissive.x * texel[0], emissive.y * texel[1], emissive.z * texel[2]};
   }
   const Vec3x8 p = interpolate(e.world, b0, b1, b2);
-  return shadePbr8(lights, pbrLobes8(c, metallic, roughness), occlusion, emissive, n, p);
+  return shadePbr8(lights, pbrLobes8(c, metallic, roughness), occlusion, emissive, n, p, mask);
 }
 
 // Shades the lanes of `mask` from triangle t at barycentrics b0, b1, b2, into `color` and, when
@@ -433,7 +438,7 @@ TESSERA_LANES_INLINE void shadeLanesAt(const ShadeTriangle& t, const ShadeExtras
     const Vec3x8 n = normalize8(interpolate(e.normal, b0, b1, b2));
     if (t.shading == Shading::kPhong) {
       const Vec3x8 p = lights.local || lights.shadows ? interpolate(e.world, b0, b1, b2) : Vec3x8{};
-      const Vec3x8 e = irradiance8(lights, n, p);
+      const Vec3x8 e = irradiance8(lights, n, p, mask);
       c = {c.x * e.x, c.y * e.y, c.z * e.z};
     }
     if (want_normals)
