@@ -3,6 +3,7 @@
 // Lambert lighting, the shading modes, the normal AOV and the axes' lines.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -314,6 +315,46 @@ TEST(Shading, FlatGouraudAndPhongDifferAsExpectedOnASphere) {
     EXPECT_EQ(it->second, flat.color[i]);
   }
   EXPECT_GT(colour_of.size(), 20u);
+}
+
+// An untextured mesh's UVs are not read by the Lambert modes (setup leaves them out, and its
+// triangles take the plain Gouraud path): the images are those of the mesh without UVs. An albedo
+// texture, or a PBR map without one, still reads them.
+TEST(Shading, UvsMatterOnlyWhereATextureReadsThem) {
+  auto render = [](Shading shading, bool uvs, auto&& material) {
+    Scene scene;
+    scene.camera.position = {0, 0, 3};
+    scene.lights.push_back({normalize(float3{-1, -1, -1}), float3(1.0f)});
+    Mesh sphere = makeUvSphere(24, 12);
+    if (!uvs) sphere.uvs.clear();
+    Object o;
+    o.mesh = std::make_shared<Mesh>(sphere);
+    o.shading = shading;
+    material(o.materials[0]);
+    scene.objects.push_back(o);
+    return renderScene(scene, 64, 64, 2, nullptr, /*normals=*/shading == Shading::kPhong);
+  };
+  auto checker = std::make_shared<Texture>();
+  checker->width = checker->height = 8;
+  for (int i = 0; i < 64; ++i)
+    checker->texels.push_back((i + i / 8) % 2 ? 0xffffffffu : 0xff202020u);
+  const auto plain = [](Material&) {};
+  for (Shading shading : {Shading::kFlat, Shading::kGouraud, Shading::kPhong, Shading::kUnlit}) {
+    const Frame with = render(shading, true, plain), without = render(shading, false, plain);
+    ASSERT_TRUE(
+        std::ranges::any_of(with.triangle_id, [](uint32_t id) { return id != kNoTriangle; }));
+    EXPECT_EQ(with.color, without.color) << int(shading);
+    EXPECT_EQ(with.triangle_id, without.triangle_id) << int(shading);
+    EXPECT_EQ(0, std::memcmp(with.normal.data(), without.normal.data(),
+                             with.normal.size() * sizeof(float3)))
+        << int(shading);
+    const auto textured = [&](Material& m) { m.albedo = checker; };
+    EXPECT_NE(render(shading, true, textured).color, render(shading, false, textured).color)
+        << int(shading) << ": the albedo texture was not read";
+  }
+  const auto mapped = [&](Material& m) { m.metallic_roughness.texture = checker; };
+  EXPECT_NE(render(Shading::kPbr, true, mapped).color, render(Shading::kPbr, false, mapped).color)
+      << "the metallic-roughness map was not read";
 }
 
 TEST(Shading, NormalAovIsUnitAndFacesTheViewer) {

@@ -135,7 +135,12 @@ inline SetupContext objectSetupContext(const LightRig& lights, const Object& obj
   ctx.model = &model;
   if (object.mesh) {
     const size_t vertex_count = object.mesh->vertexCount();
-    ctx.has_uv = object.mesh->uvs.size() == vertex_count;
+    // The Lambert modes read UVs for the albedo texture only (Material): an untextured mesh's
+    // UVs are left out, so that its triangles take the plain Gouraud path (plainGouraudFor).
+    const bool reads_uv = object.shading == Shading::kPbr ||
+                          std::any_of(object.materials.begin(), object.materials.end(),
+                                      [](const Material& m) { return m.albedo != nullptr; });
+    ctx.has_uv = reads_uv && object.mesh->uvs.size() == vertex_count;
     ctx.has_color = object.mesh->colors.size() == vertex_count;
   }
   ctx.want_normals = want_normals;
