@@ -1,6 +1,6 @@
 // XDND version 5 as the source side (freedesktop.org's Drag-and-Drop Protocol for the X Window
 // System): XdndEnter, XdndPosition, wait for XdndStatus, XdndDrop, serve the selection, wait for
-// XdndFinished. And the ICCCM close request.
+// XdndFinished. The ICCCM close request, and the root window's MapNotify events.
 #include "x11_client.h"
 
 #include <X11/Xatom.h>
@@ -131,6 +131,30 @@ std::string requestClose(const std::string& display_name, unsigned long window) 
   XSync(display, False);
   XCloseDisplay(display);
   return "";
+}
+
+MappedWindows::MappedWindows(const std::string& display_name) {
+  Display* display = XOpenDisplay(display_name.c_str());
+  if (display == nullptr) return;
+  XSelectInput(display, DefaultRootWindow(display), SubstructureNotifyMask);
+  XSync(display, False);  // selected before anything the caller starts next maps a window
+  display_ = display;
+}
+
+MappedWindows::~MappedWindows() {
+  if (display_) XCloseDisplay(static_cast<Display*>(display_));
+}
+
+std::vector<unsigned long> MappedWindows::mapped() {
+  Display* display = static_cast<Display*>(display_);
+  if (display == nullptr) return mapped_;
+  XSync(display, False);
+  while (XPending(display) > 0) {
+    XEvent event;
+    XNextEvent(display, &event);
+    if (event.type == MapNotify) mapped_.push_back(event.xmap.window);
+  }
+  return mapped_;
 }
 
 }  // namespace tessera::test
