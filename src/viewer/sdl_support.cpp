@@ -39,6 +39,24 @@ Expected<void> SdlSession::start() {
   return {};
 }
 
+Expected<void> openWindow(int width, int height, bool fullscreen, SdlPtr<SDL_Window>& window,
+                          SdlPtr<SDL_Renderer>& renderer) {
+  // Hidden until the renderer exists: an OpenGL renderer makes SDL destroy the window and create
+  // it again, and a window shown before that would appear, vanish and come back under a new id
+  // (a flicker, and a stale id for anything that found the first one).
+  Uint32 flags = SDL_WINDOW_RESIZABLE | SDL_WINDOW_ALLOW_HIGHDPI | SDL_WINDOW_HIDDEN;
+  if (fullscreen) flags |= SDL_WINDOW_FULLSCREEN_DESKTOP;
+  window.reset(SDL_CreateWindow("tessera view", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
+                                width, height, flags));
+  if (!window) return makeError(std::string("cannot create a window: ") + SDL_GetError());
+  // No vsync: the loop paces itself to -fps and the render time stays measurable.
+  renderer.reset(SDL_CreateRenderer(window.get(), -1, 0));
+  if (!renderer) renderer.reset(SDL_CreateRenderer(window.get(), -1, SDL_RENDERER_SOFTWARE));
+  if (!renderer) return makeError(std::string("cannot create a renderer: ") + SDL_GetError());
+  SDL_ShowWindow(window.get());
+  return {};
+}
+
 namespace {
 
 Key toKey(SDL_Keycode code) {

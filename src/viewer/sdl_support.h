@@ -38,6 +38,11 @@ class SdlSession {
   bool ttf_ = false;
 };
 
+// The viewer's window ("tessera view", resizable, fullscreen if asked) and its renderer (SDL's
+// first choice, else software; no vsync), shown once both exist.
+Expected<void> openWindow(int width, int height, bool fullscreen, SdlPtr<SDL_Window>& window,
+                          SdlPtr<SDL_Renderer>& renderer);
+
 // The SDL event as the input mapping sees it; nullopt for events it does not take.
 std::optional<InputEvent> toInputEvent(const SDL_Event& e);
 

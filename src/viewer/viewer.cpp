@@ -145,19 +145,10 @@ class Viewer {
 };
 
 Expected<void> Viewer::open(const fs::path& font_path) {
-  // Hidden until the renderer exists: an OpenGL renderer makes SDL destroy the window and create
-  // it again, and a window shown before that would appear, vanish and come back under a new id
-  // (a flicker, and a stale id for anything that found the first one).
-  Uint32 flags = SDL_WINDOW_RESIZABLE | SDL_WINDOW_ALLOW_HIGHDPI | SDL_WINDOW_HIDDEN;
-  if (options_.fullscreen) flags |= SDL_WINDOW_FULLSCREEN_DESKTOP;
-  window_.reset(SDL_CreateWindow("tessera view", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
-                                 options_.width, options_.height, flags));
-  if (!window_) return makeError(std::string("cannot create a window: ") + SDL_GetError());
-  // No vsync: the loop paces itself to -fps and the render time stays measurable.
-  renderer_.reset(SDL_CreateRenderer(window_.get(), -1, 0));
-  if (!renderer_) renderer_.reset(SDL_CreateRenderer(window_.get(), -1, SDL_RENDERER_SOFTWARE));
-  if (!renderer_) return makeError(std::string("cannot create a renderer: ") + SDL_GetError());
-  SDL_ShowWindow(window_.get());
+  if (Expected<void> shown =
+          openWindow(options_.width, options_.height, options_.fullscreen, window_, renderer_);
+      !shown)
+    return shown;
   SDL_EventState(SDL_DROPFILE, SDL_ENABLE);
   if (!text_.open(font_path))
     return makeError("cannot open the font " + font_path.string() + ": " + TTF_GetError());
