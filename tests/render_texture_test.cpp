@@ -172,10 +172,12 @@ TEST(TextureLanes, TexturedSceneIsBitIdenticalForEverySimdLevelAndWorkerCount) {
   }
 }
 
-// Eight pixels of several textured triangles without per-pixel lighting take one texture filter
-// for the eight (shadeTexturedMixed); with the normal AOV on they are shaded triangle by triangle.
-// Both give the same bits: Gouraud and flat spheres of small triangles (trilinear, a transform,
-// UV set 1 on one), an unlit floor (bilinear), tone mapping on and off, at 1 and 4 samples.
+// Eight pixels of textured triangles without per-pixel lighting are filtered with the rest of
+// their row, one filter for the eight however many triangles they hold (prepareTexturedGroup); with
+// the normal AOV on they are shaded triangle by triangle. Both give the same bits: Gouraud and flat
+// spheres of small triangles (trilinear, a transform, UV set 1 on one), an unlit floor (bilinear),
+// a card whose coordinates are beyond the eight-lane filter's reach (the row's deferred filter
+// hands it back to the triangle-by-triangle shading), tone mapping on and off, at 1 and 4 samples.
 TEST(TextureLanes, TrianglesTexturedAlikeShareOneFilterWithTheSameBits) {
   Scene scene = texturedScene({0, 1.0f, 4.0f});
   Object gouraud;
@@ -197,6 +199,14 @@ TEST(TextureLanes, TrianglesTexturedAlikeShareOneFilterWithTheSameBits) {
   flat.materials[0].sampler.texcoord = 1;
   scene.objects.push_back(flat);
   scene.objects.push_back(texturedFloor(noiseTexture(24, 20, false, 23), TextureFilter::kBilinear));
+  Mesh card = *scene.objects.back().mesh;
+  card.positions = {{-2, -0.5f, -1}, {-0.5f, -0.5f, -1}, {-0.5f, 1, -1}, {-2, 1, -1}};
+  card.uvs = {{70000, 70000}, {70003, 70000}, {70003, 70002}, {70000, 70002}};
+  Object far_card = unlitObject(card);
+  far_card.materials[0].albedo = noiseTexture(16, 16, true, 24);
+  far_card.materials[0].sampler =
+      makeSampler(TextureFilter::kBilinear, TextureWrap::kRepeat, TextureWrap::kRepeat);
+  scene.objects.push_back(far_card);
 
   // The spheres' triangles are a few pixels across: most groups of eight hold several.
   RenderOptions options;

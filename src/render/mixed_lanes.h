@@ -1,7 +1,7 @@
 // Eight pixels of several triangles shaded in one evaluation, for the shading kernel
 // (shade_kernel.h) and the resolve of multisampled pixels (msaa_kernel.h): each lane's fields are
 // loaded from its own triangle's records, eight records at a time, and transposed into lanes
-// (untextured: shadeMixed; textured alike without per-pixel lighting: shadeTexturedMixed; lit per
+// (untextured: shadeMixed; textured alike without per-pixel lighting: prepareTexturedGroup; lit per
 // pixel alike: shadeLitMixed), each lane's records found by laneRecords. The same float operations
 // per lane as shadeLanes (shade_lanes.h), so the same bits.
 #pragma once
@@ -123,7 +123,7 @@ TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F3
 }
 
 // Whether a pixel of triangle t gets its colour from the albedo texture and the interpolated
-// vertex colours alone (textured flat, Gouraud or unlit): what shadeTexturedMixed takes.
+// vertex colours alone (textured flat, Gouraud or unlit): what prepareTexturedGroup takes.
 TESSERA_LANES_INLINE bool texturedPlain(const ShadeTriangle& t) {
   return t.has_uv && t.shading != Shading::kPhong && t.shading != Shading::kPbr;
 }
@@ -139,25 +139,25 @@ TESSERA_LANES_INLINE void uvCorners8(const ShadeExtras* const extras[8], int set
 }
 
 // Eight pixels owned by several triangles of one textured material that are all texturedPlain
-// (colour = interpolated vertex colours x albedo): each lane's barycentrics and texture
-// coordinates come from its own triangle's records (loaded eight at a time and transposed), and
-// the texture is filtered once for the eight lanes instead of once per triangle. The same
-// operations per lane as shadeLanes, so the same bits. False, with `color` untouched, where that
-// does not apply (mixed materials or shading, a filter sampleTexture8 does not take): the caller
-// shades triangle by triangle. Lanes outside `covered` hold a covered lane's records.
-TESSERA_LANES_INLINE bool shadeTexturedMixed(const ShadeTriangle* const records[8],
-                                             const ShadeExtras* const extras[8], I32x8 covered,
-                                             const LightRig& lights, F32x8 px, F32x8 py,
-                                             Vec3x8& color) {
-  const Material* material = records[0]->material;
-  for (int l = 0; l < 8; ++l)
-    if (records[l]->material != material || !texturedPlain(*records[l])) return false;
-  const Texture& texture = *material->albedo;
-  const Sampler& sampler = material->sampler;
-  if (!texture8Applies(texture, sampler)) return false;
-  F32x8 f[kPlainFields], corner[8];
-  loadPlainFields(records, f);
-  uvCorners8(extras, sampler.texcoord, corner);
+// (colour = interpolated vertex colours x albedo), up to the texture filter: each lane's
+// barycentrics and texture coordinates come from its own triangle's records (loaded eight at a
+// time and transposed), and the texture is filtered once for the eight lanes instead of once per
+// triangle (filterTexturedGroup). The shading kernel filters a row's groups together, after the
+// row's other work: each filter is a chain of dependent gathers, and several side by side keep the
+// core busy.
+struct TexturedGroup {
+  Uv8 uv, right, down;  // right and down: at the next pixel centres, set only where needsLod
+  Vec3x8 color;         // the interpolated vertex colours
+  I32x8 covered;
+  const Material* material;
+  int tx;  // the first pixel's column in the tile
+};
+
+// The group's texture coordinates and vertex colours from its triangles' fields in lanes (f:
+// loadPlainFields', corner: uvCorners8's), in `material` read through `texture` and `sampler`.
+TESSERA_LANES_INLINE void prepareTexturedFields(const F32x8 f[kPlainFields], const F32x8 corner[8],
+                                                const Material* material, I32x8 covered, F32x8 px,
+                                                F32x8 py, TexturedGroup& group) {
   F32x8 b0, b1, b2;
   plainBarycentrics(f, px, py, b0, b1, b2);
   // As sampleAlbedo8's uvAt8, with each lane's own corners.
@@ -165,18 +165,68 @@ TESSERA_LANES_INLINE bool shadeTexturedMixed(const ShadeTriangle* const records[
     return Uv8{corner[0] * c0 + corner[2] * c1 + corner[4] * c2,
                corner[1] * c0 + corner[3] * c1 + corner[5] * c2};
   };
-  const Uv8 uv = uvAt8(b0, b1, b2);
-  Uv8 right = uv, down = uv;
-  if (needsLod(texture, sampler)) {
+  group.uv = uvAt8(b0, b1, b2);
+  if (needsLod(*material->albedo, material->sampler)) {
     F32x8 r0, r1, r2, d0, d1, d2;
     plainBarycentrics(f, px + splat(1.0f), py, r0, r1, r2);
     plainBarycentrics(f, px, py + splat(1.0f), d0, d1, d2);
-    right = uvAt8(r0, r1, r2);
-    down = uvAt8(d0, d1, d2);
+    group.right = uvAt8(r0, r1, r2);
+    group.down = uvAt8(d0, d1, d2);
   }
+  group.color = plainColor(f, b0, b1, b2);
+  group.covered = covered;
+  group.material = material;
+}
+
+// Whether triangle t's eight-lane texture filter is sampleTexture8's.
+TESSERA_LANES_INLINE bool texturedGroupApplies(const ShadeTriangle& t) {
+  return texturedPlain(t) && texture8Applies(*t.material->albedo, t.material->sampler);
+}
+
+// prepareTexturedFields for eight pixels of several triangles, each lane's fields loaded from its
+// own records; false, with `group` untouched, where the group cannot be shaded so (mixed
+// materials or shading, a filter sampleTexture8 does not take). Lanes outside `covered` hold a
+// covered lane's records.
+TESSERA_LANES_INLINE bool prepareTexturedGroup(const ShadeTriangle* const records[8],
+                                               const ShadeExtras* const extras[8], I32x8 covered,
+                                               F32x8 px, F32x8 py, TexturedGroup& group) {
+  const Material* material = records[0]->material;
+  for (int l = 0; l < 8; ++l)
+    if (records[l]->material != material || !texturedPlain(*records[l])) return false;
+  if (!texture8Applies(*material->albedo, material->sampler)) return false;
+  F32x8 f[kPlainFields], corner[8];
+  loadPlainFields(records, f);
+  uvCorners8(extras, material->sampler.texcoord, corner);
+  prepareTexturedFields(f, corner, material, covered, px, py, group);
+  return true;
+}
+
+// prepareTexturedFields for eight pixels of one triangle t (texturedGroupApplies), its fields
+// broadcast: the same values in every lane, so the same bits as shadeLanes.
+TESSERA_LANES_INLINE void prepareTexturedGroup(const ShadeTriangle& t, const ShadeExtras& e,
+                                               I32x8 covered, F32x8 px, F32x8 py,
+                                               TexturedGroup& group) {
+  F32x8 f[kPlainFields], corner[8];
+  const float* fields = &t.x0;
+  for (int k = 0; k < kPlainFields; ++k) f[k] = splat(fields[k]);
+  const float* uv = &uvSet(e, t.material->sampler)->x;
+  for (int k = 0; k < 6; ++k) corner[k] = splat(uv[k]);
+  prepareTexturedFields(f, corner, t.material, covered, px, py, group);
+}
+
+// The prepared group's colour: its vertex colours times the filtered albedo, tone-mapped. The same
+// operations per lane as shadeLanes, so the same bits. False, with `color` untouched, where a
+// lane's coordinates are beyond sampleTexture8's reach: the caller shades triangle by triangle.
+TESSERA_LANES_INLINE bool filterTexturedGroup(const TexturedGroup& group, const LightRig& lights,
+                                              Vec3x8& color) {
   F32x8 albedo[4];
-  if (!sampleTexture8(texture, sampler, covered, uv, right, down, 3, albedo)) return false;
-  Vec3x8 c = plainColor(f, b0, b1, b2);
+  const Texture& texture = *group.material->albedo;
+  const Sampler& sampler = group.material->sampler;
+  const bool lod = needsLod(texture, sampler);
+  if (!sampleTexture8(texture, sampler, group.covered, group.uv, lod ? group.right : group.uv,
+                      lod ? group.down : group.uv, 3, albedo))
+    return false;
+  Vec3x8 c = group.color;
   c = {c.x * albedo[0], c.y * albedo[1], c.z * albedo[2]};
   if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
   color = c;
