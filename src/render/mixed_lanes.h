@@ -153,8 +153,9 @@ struct TexturedGroup {
   int tx;  // the first pixel's column in the tile
 };
 
-// The group's texture coordinates and vertex colours from its triangles' fields in lanes (f:
-// loadPlainFields', corner: uvCorners8's), in `material` read through `texture` and `sampler`.
+// The group's texture coordinates (in the UV set and at the footprint that `material`'s sampler
+// reads) and vertex colours, from its triangles' fields in lanes (f: loadPlainFields', corner:
+// uvCorners8's).
 TESSERA_LANES_INLINE void prepareTexturedFields(const F32x8 f[kPlainFields], const F32x8 corner[8],
                                                 const Material* material, I32x8 covered, F32x8 px,
                                                 F32x8 py, TexturedGroup& group) {

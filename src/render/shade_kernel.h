@@ -29,6 +29,30 @@ TESSERA_LANES_INLINE void shadeApart(I32x8 keys, I32x8 covered,
   } while (any(todo));
 }
 
+// The textured groups of row ty that shadeTile prepared, filtered one after another into the row's
+// linear colours; a group whose coordinates are beyond the eight-lane filter's reach is shaded
+// triangle by triangle.
+TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
+                                            const TexturedGroup groups[], int count,
+                                            const ShadeTriangle* const records[],
+                                            const ShadeExtras* const extras[],
+                                            const LightRig& lights, float linear[3][kTileSize]) {
+  const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
+  const F32x8 zero = splat(0.0f);
+  for (int g = 0; g < count; ++g) {
+    const TexturedGroup& group = groups[g];
+    Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
+    if (!filterTexturedGroup(group, lights, color)) {
+      const I32x8 keys = load<I32x8>(tile.key + ty * kTileSize + group.tx);
+      const F32x8 px = toFloat(splat(tile.x0 + group.tx) + iota()) + splat(0.5f);
+      shadeApart(keys, group.covered, records, extras, lights, false, px, py, color, normal);
+    }
+    store(linear[0] + group.tx, color.x);
+    store(linear[1] + group.tx, color.y);
+    store(linear[2] + group.tx, color.z);
+  }
+}
+
 // Shades the tile in pixel order, eight pixels of a row at a time, then encodes the row to sRGB
 // and stores it whole (no read-modify-write of partly written pixels). Eight pixels of one triangle
 // take one evaluation; those of several are shaded lane by lane from their own records when every
@@ -126,18 +150,7 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
         store(out.normal_z + i, normal.z);
       }
     }
-    for (int g = 0; g < textured_count; ++g) {
-      const TexturedGroup& group = textured_groups[g];
-      Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
-      if (!filterTexturedGroup(group, lights, color)) {
-        const I32x8 keys = load<I32x8>(tile.key + ty * kTileSize + group.tx);
-        const F32x8 px = toFloat(splat(tile.x0 + group.tx) + iota()) + splat(0.5f);
-        shadeApart(keys, group.covered, records, extras, lights, false, px, py, color, normal);
-      }
-      store(linear[0] + group.tx, color.x);
-      store(linear[1] + group.tx, color.y);
-      store(linear[2] + group.tx, color.z);
-    }
+    filterTexturedRow(tile, ty, textured_groups, textured_count, records, extras, lights, linear);
     if (kSampled && !plain) resolveMixedRow(*msaa, tile, ty, chunks, lights, linear);
     encodeShadedRow(tile, ty, linear, background, out);
   }
