@@ -493,7 +493,7 @@ TESSERA_LANES_INLINE void rasterNarrowSamples(const RasterTriangle& t, uint32_t 
       const I32x8 covered = nonNegative((edge[0] + le.offset[i][0]) | (edge[1] + le.offset[i][1]) |
                                         (edge[2] + le.offset[i][2])) &
                             in_box;
-      if (!any(covered)) continue;
+      // No branch on a layer the step misses: the test writes back what it read (rasterSmall).
       float* depth = layers[i]->depth + offset;
       uint32_t* keys = layers[i]->key + offset;
       const F32x8 z = (z0 + dzdy * (centre_y - splat(le.y0[i]))) + dz[i];
@@ -554,8 +554,8 @@ TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t k
               const I32x8 covered = nonNegative((e0 + le.offset[i][0]) | (e1 + le.offset[i][1]) |
                                                 (e2 + le.offset[i][2])) &
                                     in_range;
-              if (!any(covered)) continue;
-              // rowDepth and depthAcross8 of the moved triangle (rasterSample).
+              // No branch on a layer the step misses (rasterSmall's reason). rowDepth and
+              // depthAcross8 of the moved triangle (rasterSample).
               const float z_row = t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - le.y0[i]);
               depthTestRow8<kRule>(key, z_row, dzdx * (centre - splat(le.x0[i])), x, covered,
                                    layers[i]->depth + row_offset, layers[i]->key + row_offset);
