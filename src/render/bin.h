@@ -101,6 +101,9 @@ struct alignas(128) TriangleChunk {
   // Some record's material may be alphaMode MASK (its ShadeTriangle's material says): the tile
   // raster then looks at each record's (raster_kernel.h's walkTileBins, mask_kernel.h).
   bool any_masked = false;
+  // Some record is lit per pixel (Phong, PBR) or the normal AOV is asked for: the tile raster
+  // prefetches each record's ShadeExtras normals (and texture coordinates) for the shading pass.
+  bool reads_normals = false;
   ChunkBins bins;
   // Records whose material is alphaMode BLEND, in submission order: left out of `bins` for the
   // transparent pass (blend.h).

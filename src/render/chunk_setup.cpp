@@ -146,6 +146,8 @@ ObjectSetup ChunkSetup::objectSetup(size_t object_index) {
                 false};
   // A mirrored object's front faces may show their vertex normals' back (setup.cpp).
   if (xf.winding_sign < 0.0f) o.plain_gouraud.applies = false;
+  chunk_.reads_normals |=
+      ctx.shading == Shading::kPhong || ctx.shading == Shading::kPbr || want_normals_;
   // One look at the object's materials. alphaMode MASK: the raster tests such triangles' alpha
   // (rasterMasked), in the chunks that hold one.
   for (const Material& m : object.materials) {
@@ -349,6 +351,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
   chunk.cull_reasons = {};
   chunk.clip_splits = 0;
   chunk.any_masked = false;
+  chunk.reads_normals = false;
   chunk.blended.clear();
 
   ChunkSetup setup(objects, cull, lights, kernels, scene, vertices, grid, guard, want_normals,

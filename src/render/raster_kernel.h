@@ -12,6 +12,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 
 #include "render/bin.h"
@@ -345,13 +346,19 @@ TESSERA_LANES_INLINE void walkTileBins(const std::vector<TriangleChunk>& chunks,
     if (ahead_valid) {
       // The record a few triangles ahead (one line), and its shading record for the shading
       // pass that follows (the first two lines: all that untextured flat and Gouraud pixels
-      // read). Records are written by setup long before and scattered: without this, both
-      // passes wait on them.
+      // read), with, for pixels lit per pixel, the lines of its extras that hold the normals and
+      // texture coordinates (bytes 0 to 59). Records are written by setup long before and
+      // scattered: without this, both passes wait on them.
       const TriangleChunk& next = chunks[ahead.chunk];
       __builtin_prefetch(&next.raster[*ahead.it]);
       const char* shade = reinterpret_cast<const char*>(&next.shade[*ahead.it]);
       __builtin_prefetch(shade);
       __builtin_prefetch(shade + 64);
+      if (next.reads_normals) {
+        const char* extras = reinterpret_cast<const char*>(&next.extras[*ahead.it]);
+        __builtin_prefetch(extras);
+        __builtin_prefetch(extras + offsetof(ShadeExtras, uv1) - 1);
+      }
       ahead_valid = advance(chunks, chunk_count, tile_index, ahead);
     }
     const TriangleChunk& chunk = chunks[at.chunk];
