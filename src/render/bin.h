@@ -104,6 +104,8 @@ struct alignas(128) TriangleChunk {
   // Some record is lit per pixel (Phong, PBR) or the normal AOV is asked for: the tile raster
   // prefetches each record's ShadeExtras normals (and texture coordinates) for the shading pass.
   bool reads_normals = false;
+  // And some such record reads its corners' world positions (needsWorld): those are prefetched too.
+  bool reads_world = false;
   ChunkBins bins;
   // Records whose material is alphaMode BLEND, in submission order: left out of `bins` for the
   // transparent pass (blend.h).

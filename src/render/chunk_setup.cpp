@@ -146,8 +146,9 @@ ObjectSetup ChunkSetup::objectSetup(size_t object_index) {
                 false};
   // A mirrored object's front faces may show their vertex normals' back (setup.cpp).
   if (xf.winding_sign < 0.0f) o.plain_gouraud.applies = false;
-  chunk_.reads_normals |=
-      ctx.shading == Shading::kPhong || ctx.shading == Shading::kPbr || want_normals_;
+  const bool per_pixel = ctx.shading == Shading::kPhong || ctx.shading == Shading::kPbr;
+  chunk_.reads_normals |= per_pixel || want_normals_;
+  chunk_.reads_world |= per_pixel && needsWorld(lights_, ctx.shading);
   // One look at the object's materials. alphaMode MASK: the raster tests such triangles' alpha
   // (rasterMasked), in the chunks that hold one.
   for (const Material& m : object.materials) {
@@ -352,6 +353,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
   chunk.clip_splits = 0;
   chunk.any_masked = false;
   chunk.reads_normals = false;
+  chunk.reads_world = false;
   chunk.blended.clear();
 
   ChunkSetup setup(objects, cull, lights, kernels, scene, vertices, grid, guard, want_normals,

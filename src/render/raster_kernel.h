@@ -347,8 +347,9 @@ TESSERA_LANES_INLINE void walkTileBins(const std::vector<TriangleChunk>& chunks,
       // The record a few triangles ahead (one line), and its shading record for the shading
       // pass that follows (the first two lines: all that untextured flat and Gouraud pixels
       // read), with, for pixels lit per pixel, the lines of its extras that hold the normals and
-      // texture coordinates (bytes 0 to 59). Records are written by setup long before and
-      // scattered: without this, both passes wait on them.
+      // texture coordinates (bytes 0 to 59) and, where they are read, the world positions.
+      // Records are written by setup long before and scattered: without this, both passes wait
+      // on them.
       const TriangleChunk& next = chunks[ahead.chunk];
       __builtin_prefetch(&next.raster[*ahead.it]);
       const char* shade = reinterpret_cast<const char*>(&next.shade[*ahead.it]);
@@ -358,6 +359,10 @@ TESSERA_LANES_INLINE void walkTileBins(const std::vector<TriangleChunk>& chunks,
         const char* extras = reinterpret_cast<const char*>(&next.extras[*ahead.it]);
         __builtin_prefetch(extras);
         __builtin_prefetch(extras + offsetof(ShadeExtras, uv1) - 1);
+        if (next.reads_world) {
+          __builtin_prefetch(extras + offsetof(ShadeExtras, world));
+          __builtin_prefetch(extras + offsetof(ShadeExtras, tangent) - 1);
+        }
       }
       ahead_valid = advance(chunks, chunk_count, tile_index, ahead);
     }
