@@ -3,6 +3,7 @@
 #include "render/kernels.h"
 #include "render/painter_kernel.h"
 #include "render/raster_kernel.h"
+#include "render/raster_samples_kernel.h"
 #include "render/ray_kernel.h"
 #include "render/setup_kernel.h"
 #include "render/shade_kernel.h"

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "render/painter.h"
-#include "render/raster_kernel.h"
+#include "render/raster_samples_kernel.h"
 
 namespace tessera::render {
 namespace {  // one private copy per translation unit, as raster_kernel.h

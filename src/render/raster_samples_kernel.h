@@ -1,0 +1,214 @@
+// The tile raster kernel for multisampling: each triangle into every sample layer of a tile, the
+// layers' samples at their own positions (msaa.h). The same arithmetic per sample as the
+// one-sample walk (raster_kernel.h), compiled once per instruction set, so every variant gives
+// the same bits.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "render/raster_kernel.h"
+
+namespace tessera::render {
+namespace {  // one private copy per translation unit, each compiled for its instruction set
+
+// A triangle's coverage and depth at one sample of every pixel: the triangle moved by the
+// sample's offset from the pixel centre (-offset), rasterized at pixel centres. The edge values
+// at the centre of the moved triangle are the original's at the sample, exactly: a and b stay, c
+// (or a small triangle's corner values) take a * dx + b * dy, and the depth plane's origin moves
+// by the offset in pixels. The record's box holds every pixel any sample may cover (setup grows
+// it by kSampleReach); the moved triangle's own box, from its snapped vertices (which a, b and x0,
+// y0 give back exactly), is narrower by up to a pixel on each side: most of a dense mesh's
+// triangles are a few pixels across, so that is a large share of their pixels. A small
+// triangle's moved values fit in int32 (smallBox with the sample reach).
+template <DepthRule kRule>
+TESSERA_LANES_INLINE void rasterSample(const RasterTriangle& t, const RasterWide& w, uint32_t key,
+                                       const SampleShift& shift, TileVisibility& tile) {
+  // The snapped vertices in 1/256 pixel (edge 2 runs v0 -> v1, edge 1 v2 -> v0; setup.cpp).
+  const int32_t v0x = static_cast<int32_t>(t.x0 * static_cast<float>(kSubpixelOne));
+  const int32_t v0y = static_cast<int32_t>(t.y0 * static_cast<float>(kSubpixelOne));
+  const int32_t v1x = v0x + t.b[2], v1y = v0y - t.a[2];
+  const int32_t v2x = v0x - t.b[1], v2y = v0y + t.a[1];
+  // pixelRange (setup.h) of the moved vertices, within the record's box.
+  const int32_t lo_x = std::min({v0x, v1x, v2x}) - shift.dx,
+                hi_x = std::max({v0x, v1x, v2x}) - shift.dx;
+  const int32_t lo_y = std::min({v0y, v1y, v2y}) - shift.dy,
+                hi_y = std::max({v0y, v1y, v2y}) - shift.dy;
+  const int min_x = std::max<int>(t.min_x, -((kSubpixelHalf - lo_x) >> kSubpixelBits));
+  const int max_x = std::min<int>(t.max_x, (hi_x - kSubpixelHalf) >> kSubpixelBits);
+  const int min_y = std::max<int>(t.min_y, -((kSubpixelHalf - lo_y) >> kSubpixelBits));
+  const int max_y = std::min<int>(t.maxY(), (hi_y - kSubpixelHalf) >> kSubpixelBits);
+  if (min_x > max_x || min_y > max_y) return;
+
+  RasterTriangle moved = t;
+  moved.x0 = t.x0 - shift.pixels_x;
+  moved.y0 = t.y0 - shift.pixels_y;
+  moved.min_x = static_cast<int16_t>(min_x);
+  moved.min_y = static_cast<int16_t>(min_y);
+  moved.max_x = static_cast<int16_t>(max_x);
+  moved.max_y_small = static_cast<uint16_t>(max_y | (t.max_y_small & RasterTriangle::kSmallBit));
+  if (t.small()) {
+    // The corner values at the moved box's first pixel.
+    const int64_t step_x = int64_t{min_x - t.min_x} * kSubpixelOne + shift.dx;
+    const int64_t step_y = int64_t{min_y - t.min_y} * kSubpixelOne + shift.dy;
+    for (int k = 0; k < 3; ++k)
+      moved.corner[k] =
+          static_cast<int32_t>(t.corner[k] + int64_t{t.a[k]} * step_x + int64_t{t.b[k]} * step_y);
+    rasterTriangle<kRule>(moved, w, key, tile);  // a small triangle's wide record is not read
+    return;
+  }
+  RasterWide moved_wide;
+  for (int k = 0; k < 3; ++k)
+    moved_wide.c[k] = w.c[k] + int64_t{t.a[k]} * shift.dx + int64_t{t.b[k]} * shift.dy;
+  moved_wide.z_min = w.z_min;
+  rasterTriangle<kRule>(moved, moved_wide, key, tile);
+}
+
+// What rasterSmallSamples keeps per layer: the edge offsets of its samples, the depth plane's
+// origin of the moved triangle (rasterSample), and whether Hi-Z leaves it anything to draw.
+struct SampleLayerEdges {
+  I32x8 offset[kMaxSamples + 1][3];
+  float x0[kMaxSamples + 1], y0[kMaxSamples + 1];
+  bool drawn[kMaxSamples + 1];
+};
+
+// rasterNarrow for every layer at once: a small triangle at most four pixels wide, two rows a
+// step (lanes 0-3 row y, lanes 4-7 row y + 1), each layer's edge values the centre's plus its
+// offset and its depth as rasterSample forms it (rasterNarrow's operations: the same bits).
+template <DepthRule kRule>
+TESSERA_LANES_INLINE void rasterNarrowSamples(const RasterTriangle& t, uint32_t key,
+                                              TileVisibility* const* layers,
+                                              const SampleLayerEdges& le, int layer_count,
+                                              int x_begin, int x_end, int y_begin, int y_end) {
+  const TileVisibility& tile = *layers[0];
+  const I32x8 column = iota() & splat(int32_t{3});
+  const I32x8 second_row = shiftRight(iota(), 2);  // 0 for lanes 0-3, 1 for lanes 4-7
+  I32x8 edge[3];
+  int32_t step_y[3];
+  for (int k = 0; k < 3; ++k) {
+    // Fits with every layer's offset: smallBox allows for the samples and a row past the box.
+    edge[k] = splat(smallEdgeAt(t, k, x_begin, y_begin)) + splat(t.a[k] * kSubpixelOne) * column +
+              splat(t.b[k] * kSubpixelOne) * second_row;
+    step_y[k] = 2 * t.b[k] * kSubpixelOne;
+  }
+  const I32x8 in_columns = lessOrEqual(column, splat(x_end - x_begin));
+  const F32x8 centre_x = toFloat(splat(x_begin) + column) + splat(0.5f);
+  F32x8 dz[kMaxSamples + 1];
+  for (int i = 0; i < layer_count; ++i) dz[i] = splat(t.dzdx) * (centre_x - splat(le.x0[i]));
+  F32x8 centre_y = toFloat(splat(y_begin) + second_row) + splat(0.5f);
+  const F32x8 z0 = splat(t.z0), dzdy = splat(t.dzdy);
+  int offset = (y_begin - tile.y0) * kTileSize + (x_begin - tile.x0);
+  for (int y = y_begin; y <= y_end; y += 2) {
+    if (y != y_begin) {
+      for (int k = 0; k < 3; ++k) edge[k] = edge[k] + splat(step_y[k]);
+      centre_y = centre_y + splat(2.0f);
+      offset += 2 * kTileSize;
+    }
+    const I32x8 in_box = in_columns & (y < y_end ? splat(int32_t{-1}) : ~second_row);
+    for (int i = 0; i < layer_count; ++i) {
+      if (!le.drawn[i]) continue;
+      const I32x8 covered = nonNegative((edge[0] + le.offset[i][0]) | (edge[1] + le.offset[i][1]) |
+                                        (edge[2] + le.offset[i][2])) &
+                            in_box;
+      // No branch on a layer the step misses: the test writes back what it read (rasterSmall).
+      float* depth = layers[i]->depth + offset;
+      uint32_t* keys = layers[i]->key + offset;
+      const F32x8 z = (z0 + dzdy * (centre_y - splat(le.y0[i]))) + dz[i];
+      const F32x8 stored = load2x4<F32x8>(depth, depth + kTileSize);
+      const I32x8 pass = kRule == DepthRule::kLatest ? covered : covered & lessThan(z, stored);
+      store2x4(depth, depth + kTileSize, select(pass, z, stored));
+      store2x4(
+          keys, keys + kTileSize,
+          select(pass, splat(static_cast<int32_t>(key)), load2x4<I32x8>(keys, keys + kTileSize)));
+    }
+  }
+}
+
+// A small triangle into every layer at once: rasterSmall's walk over its box, eight pixels at a
+// time (rasterNarrowSamples' two rows of four when it is at most four pixels wide), with each
+// layer's edge values the centre's plus that sample's a * dx + b * dy (within int32: smallBox
+// with the sample reach) and its depth as rasterSample forms it (the same bits).
+template <DepthRule kRule>
+TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t key,
+                                             TileVisibility* const* layers,
+                                             const SampleShift* shifts, int layer_count) {
+  const TileVisibility& tile = *layers[0];
+  const int x_begin = std::max<int>(t.min_x, tile.x0);
+  const int x_end = std::min(static_cast<int>(t.max_x), tile.x0 + tile.width - 1);
+  const int y_begin = std::max<int>(t.min_y, tile.y0);
+  const int y_end = std::min(t.maxY(), tile.y0 + tile.height - 1);
+  if (x_begin > x_end || y_begin > y_end) return;
+  SampleLayerEdges le;
+  int drawn_count = 0;
+  for (int i = 0; i < layer_count; ++i) {
+    for (int k = 0; k < 3; ++k)
+      le.offset[i][k] = splat(t.a[k] * shifts[i].dx + t.b[k] * shifts[i].dy);
+    le.x0[i] = t.x0 - shifts[i].pixels_x;
+    le.y0[i] = t.y0 - shifts[i].pixels_y;
+    le.drawn[i] = true;
+    if (kRule == DepthRule::kNearest && layers[i]->hiz_bounded) {
+      RasterTriangle moved = t;
+      moved.x0 = le.x0[i];
+      moved.y0 = le.y0[i];
+      le.drawn[i] = !hiddenByHiZ(moved, *layers[i], x_begin, x_end, y_begin, y_end);
+    }
+    drawn_count += le.drawn[i];
+  }
+  if (drawn_count == 0) return;
+  // Two rows or more, as rasterTriangle's choice of rasterNarrow.
+  if (x_end - x_begin < 4 && y_end > y_begin) {
+    rasterNarrowSamples<kRule>(t, key, layers, le, layer_count, x_begin, x_end, y_begin, y_end);
+    return;
+  }
+  const F32x8 dzdx = splat(t.dzdx);
+  walkSmallBox(
+      t, tile, x_begin, x_end, y_begin, y_end,
+      [&](int y, int row_offset, int x, I32x8 e0, I32x8 e1, I32x8 e2, I32x8 in_range)
+          __attribute__((always_inline)) {
+            const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
+            for (int i = 0; i < layer_count; ++i) {
+              if (!le.drawn[i]) continue;
+              const I32x8 covered = nonNegative((e0 + le.offset[i][0]) | (e1 + le.offset[i][1]) |
+                                                (e2 + le.offset[i][2])) &
+                                    in_range;
+              // No branch on a layer the step misses (rasterSmall's reason). rowDepth and
+              // depthAcross8 of the moved triangle (rasterSample).
+              const float z_row = t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - le.y0[i]);
+              depthTestRow8<kRule>(key, z_row, dzdx * (centre - splat(le.x0[i])), x, covered,
+                                   layers[i]->depth + row_offset, layers[i]->key + row_offset);
+            }
+          });
+}
+
+// One triangle into each layer of `layers`, layer i at shifts[i].
+template <DepthRule kRule = DepthRule::kNearest>
+TESSERA_LANES_INLINE void rasterTriangleSamples(const RasterTriangle& t, const RasterWide& w,
+                                                uint32_t key, TileVisibility* const* layers,
+                                                const SampleShift* shifts, int layer_count) {
+  if (t.small()) {
+    rasterSmallSamples<kRule>(t, key, layers, shifts, layer_count);
+    return;
+  }
+  for (int i = 0; i < layer_count; ++i) rasterSample<kRule>(t, w, key, shifts[i], *layers[i]);
+}
+
+// Every triangle of the tile into each layer of `layers`, layer i at shifts[i].
+void rasterTileSamplesKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                             int tile_index, TileVisibility* const* layers,
+                             const SampleShift* shifts, int layer_count) {
+  auto draw = [&](const RasterTriangle& t, const RasterWide& w, uint32_t key)
+      __attribute__((always_inline)) {
+    rasterTriangleSamples(t, w, key, layers, shifts, layer_count);
+  };
+  auto masked = [&](const TriangleChunk& chunk, uint32_t record, uint32_t key) {
+    rasterMasked<false>(chunk, record, key, layers, shifts, layer_count);
+  };
+  if (anyMasked(chunks, chunk_count))
+    walkTileBins<true>(chunks, chunk_count, tile_index, draw, masked);
+  else
+    walkTileBins<false>(chunks, chunk_count, tile_index, draw, masked);
+}
+
+}  // namespace
+}  // namespace tessera::render
