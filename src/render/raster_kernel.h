@@ -37,36 +37,35 @@ TESSERA_LANES_INLINE F32x8 depthAcross8(const RasterTriangle& t, int x) {
   return splat(t.dzdx) * (centre - splat(t.x0));
 }
 
-// Depth-tests eight pixels starting at x: covered lanes nearer than the stored depth take z and
-// the key; the others write back what they read (the tile rows are padded, so the eight slots
-// always exist). z is the plane at the pixel centre, the row's depth plus depthAcross8 at x,
-// computed exactly as everywhere else.
+// Depth-tests the eight pixels at depth[0..7] and keys[0..7]: covered lanes nearer than the stored
+// depth take z and the key; the others write back what they read (the tile rows are padded, so the
+// eight slots always exist). z is the plane at the pixel centre, the row's depth plus depthAcross8
+// at the first of the eight, computed exactly as everywhere else.
 template <DepthRule kRule = DepthRule::kNearest>
-TESSERA_LANES_INLINE void depthTestRow8(uint32_t key, float z_row, F32x8 across, int x,
-                                        I32x8 covered, float* depth, uint32_t* keys) {
+TESSERA_LANES_INLINE void depthTestRow8(uint32_t key, float z_row, F32x8 across, I32x8 covered,
+                                        float* depth, uint32_t* keys) {
   const F32x8 z = splat(z_row) + across;
-  const F32x8 stored = load<F32x8>(depth + x);
+  const F32x8 stored = load<F32x8>(depth);
   const I32x8 pass = kRule == DepthRule::kLatest ? covered : covered & lessThan(z, stored);
-  store(depth + x, select(pass, z, stored));
-  store(keys + x, select(pass, splat(static_cast<int32_t>(key)), load<I32x8>(keys + x)));
+  store(depth, select(pass, z, stored));
+  store(keys, select(pass, splat(static_cast<int32_t>(key)), load<I32x8>(keys)));
 }
 
 template <DepthRule kRule = DepthRule::kNearest>
 TESSERA_LANES_INLINE void depthTestRow8(const RasterTriangle& t, uint32_t key, float z_row, int x,
                                         I32x8 covered, float* depth, uint32_t* keys) {
-  depthTestRow8<kRule>(key, z_row, depthAcross8(t, x), x, covered, depth, keys);
+  depthTestRow8<kRule>(key, z_row, depthAcross8(t, x), covered, depth, keys);
 }
 
 TESSERA_LANES_INLINE float rowDepth(const RasterTriangle& t, int y) {
   return t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - t.y0);
 }
 
-// Row pointers such that depth[x] is pixel x of row y (x and y in window coordinates).
-TESSERA_LANES_INLINE float* depthRow(TileVisibility& tile, int y) {
-  return tile.depth + (y - tile.y0) * kTileSize - tile.x0;
-}
-TESSERA_LANES_INLINE uint32_t* keyRow(TileVisibility& tile, int y) {
-  return tile.key + (y - tile.y0) * kTileSize - tile.x0;
+// The index of pixel (x, y), in window coordinates, in the tile's depth and key arrays. Pointers
+// are formed at a pixel inside the tile, never at a row's window origin left of the tile, which
+// is outside the array (undefined behaviour; UBSan's bounds check reports it).
+TESSERA_LANES_INLINE int tilePixel(const TileVisibility& tile, int x, int y) {
+  return (y - tile.y0) * kTileSize + (x - tile.x0);
 }
 
 // A small triangle's edge k at the centre of pixel (x, y) in its box: from the value at the box's
@@ -78,10 +77,11 @@ TESSERA_LANES_INLINE int32_t smallEdgeAt(const RasterTriangle& t, int k, int x, 
 }
 
 // Walks a small triangle's box from (x_begin, y_begin) to (x_end, y_end), eight pixels of a row at
-// a time, calling visit(y, x, e0, e1, e2, in_range) with the three edge values at the centres of
-// pixels x .. x + 7 and the lanes within x_end. The values are row + step * (x - x_begin + lane),
-// formed by adds; each row is stepped at its top, so no value past row y_end is formed: with two
-// rows or more the box is at least a pixel tall, and |b| * one pixel fits (RasterTriangle::small).
+// a time, calling visit(y, row_offset, x, e0, e1, e2, in_range) with the three edge values at the
+// centres of pixels x .. x + 7 and the lanes within x_end; row_offset + x is tilePixel(x, y). The
+// values are row + step * (x - x_begin + lane), formed by adds; each row is stepped at its top, so
+// no value past row y_end is formed: with two rows or more the box is at least a pixel tall, and
+// |b| * one pixel fits (RasterTriangle::small).
 template <typename Visit>
 TESSERA_LANES_INLINE void walkSmallBox(const RasterTriangle& t, const TileVisibility& tile,
                                        int x_begin, int x_end, int y_begin, int y_end,
@@ -129,8 +129,8 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
             // either way and mispredicted often enough to cost more than the work it
             // saved (docs/perf.md, round 5).
             const F32x8 across = x == x_begin ? first_across : depthAcross8(t, x);
-            depthTestRow8<kRule>(key, rowDepth(t, y), across, x, covered, tile.depth + row_offset,
-                                 tile.key + row_offset);
+            depthTestRow8<kRule>(key, rowDepth(t, y), across, covered,
+                                 tile.depth + (row_offset + x), tile.key + (row_offset + x));
           });
 }
 
@@ -157,8 +157,8 @@ TESSERA_LANES_INLINE void rasterNarrow(const RasterTriangle& t, uint32_t key, Ti
   // exactly (it stays below 2^23), so every lane computes what rowDepth does.
   F32x8 centre_y = toFloat(splat(y_begin) + second_row) + splat(0.5f);
   const F32x8 z0 = splat(t.z0), dzdy = splat(t.dzdy), y0 = splat(t.y0);
-  float* depth = depthRow(tile, y_begin) + x_begin;
-  uint32_t* keys = keyRow(tile, y_begin) + x_begin;
+  float* depth = tile.depth + tilePixel(tile, x_begin, y_begin);
+  uint32_t* keys = tile.key + tilePixel(tile, x_begin, y_begin);
   for (int y = y_begin; y <= y_end; y += 2) {
     // Stepped at the top so no value beyond row y_end + 1 is formed (see rasterNarrow's caller).
     if (y != y_begin) {
@@ -227,15 +227,16 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide
                    lanes64 * splat(static_cast<int64_t>(t.a[k]) * kSubpixelOne);
           covered = covered & nonNegative(e[0] | e[1] | e[2]);
         }
-        depthTestRow8<kRule>(t, key, rowDepth(t, y), bx, covered, depthRow(tile, y),
-                             keyRow(tile, y));
+        depthTestRow8<kRule>(t, key, rowDepth(t, y), bx, covered,
+                             tile.depth + tilePixel(tile, bx, y),
+                             tile.key + tilePixel(tile, bx, y));
       }
       // A block now wholly written by this triangle gets a tighter bound.
       if (kRule == DepthRule::kNearest && inside && x0 == bx && x1 == bx + kBlock - 1 && y0 == by &&
           y1 == by + kBlock - 1) {
-        F32x8 highest = load<F32x8>(depthRow(tile, by) + bx);
+        F32x8 highest = load<F32x8>(tile.depth + tilePixel(tile, bx, by));
         for (int y = by + 1; y < by + kBlock; ++y)
-          highest = maximum(highest, load<F32x8>(depthRow(tile, y) + bx));
+          highest = maximum(highest, load<F32x8>(tile.depth + tilePixel(tile, bx, y)));
         float bound = lane(highest, 0);
         for (int l = 1; l < kLanes; ++l) bound = std::max(bound, lane(highest, l));
         block_max = bound;

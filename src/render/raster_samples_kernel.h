@@ -175,8 +175,9 @@ TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t k
               // No branch on a layer the step misses (rasterSmall's reason). rowDepth and
               // depthAcross8 of the moved triangle (rasterSample).
               const float z_row = t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - le.y0[i]);
-              depthTestRow8<kRule>(key, z_row, dzdx * (centre - splat(le.x0[i])), x, covered,
-                                   layers[i]->depth + row_offset, layers[i]->key + row_offset);
+              depthTestRow8<kRule>(key, z_row, dzdx * (centre - splat(le.x0[i])), covered,
+                                   layers[i]->depth + (row_offset + x),
+                                   layers[i]->key + (row_offset + x));
             }
           });
 }
