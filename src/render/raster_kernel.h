@@ -134,50 +134,78 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
           });
 }
 
-// Triangles at most four pixels wide (most of a dense mesh): two rows per step, lanes 0-3 on row
-// y and lanes 4-7 on row y + 1, so a step does the work of two rows of rasterSmall. The same
-// values per pixel as rasterSmall (edge values, z), hence the same bits.
-template <DepthRule kRule>
-TESSERA_LANES_INLINE void rasterNarrow(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
-                                       int x_begin, int x_end, int y_begin, int y_end) {
-  const I32x8 column = iota() & splat(int32_t{3});
-  const I32x8 second_row = shiftRight(iota(), 2);  // 0 for lanes 0-3, 1 for lanes 4-7
+// The lanes of a step of walkNarrowBox: column 0-3 in the box, and row 0 (lanes 0-3) or 1 (4-7).
+TESSERA_LANES_INLINE I32x8 narrowColumn() {
+  return iota() & splat(int32_t{3});
+}
+TESSERA_LANES_INLINE I32x8 narrowSecondRow() {
+  return shiftRight(iota(), 2);
+}
+
+// Walks a small triangle's box at most four pixels wide two rows a step, lanes 0-3 on row y and
+// lanes 4-7 on row y + 1, calling visit(offset, centre_y, e0, e1, e2, in_box) with tilePixel of
+// (x_begin, y), the lanes' row centres y + 0.5 (stepped by 2, exactly: below 2^23, so each lane
+// holds what rowDepth computes from), the edge values at the lanes' pixel centres (smallEdgeAt's
+// integers, formed by adds) and the lanes inside the box.
+template <typename Visit>
+TESSERA_LANES_INLINE void walkNarrowBox(const RasterTriangle& t, const TileVisibility& tile,
+                                        int x_begin, int x_end, int y_begin, int y_end,
+                                        Visit visit) {
+  const I32x8 column = narrowColumn(), second_row = narrowSecondRow();
   I32x8 edge[3];
   int32_t step_y[3];
   for (int k = 0; k < 3; ++k) {
-    // Fits: the triangle is small (RasterTriangle::small), and the pixels are within its box.
+    // Fits: the triangle is small (RasterTriangle::small; smallBox allows for the sample
+    // offsets), and the pixels are within its box or a row past it.
     edge[k] = splat(smallEdgeAt(t, k, x_begin, y_begin)) + splat(t.a[k] * kSubpixelOne) * column +
               splat(t.b[k] * kSubpixelOne) * second_row;
     step_y[k] = 2 * t.b[k] * kSubpixelOne;
   }
   const I32x8 in_columns = lessOrEqual(column, splat(x_end - x_begin));
-  const F32x8 centre_dx = toFloat(splat(x_begin) + column) + splat(0.5f) - splat(t.x0);
-  const F32x8 dz = splat(t.dzdx) * centre_dx;
-  // rowDepth of each lane's row, lanes 4-7 one row down: the row centre y + 0.5 steps by 2,
-  // exactly (it stays below 2^23), so every lane computes what rowDepth does.
   F32x8 centre_y = toFloat(splat(y_begin) + second_row) + splat(0.5f);
-  const F32x8 z0 = splat(t.z0), dzdy = splat(t.dzdy), y0 = splat(t.y0);
-  float* depth = tile.depth + tilePixel(tile, x_begin, y_begin);
-  uint32_t* keys = tile.key + tilePixel(tile, x_begin, y_begin);
+  int offset = tilePixel(tile, x_begin, y_begin);
   for (int y = y_begin; y <= y_end; y += 2) {
     // Stepped at the top so no value beyond row y_end + 1 is formed (see rasterNarrow's caller).
     if (y != y_begin) {
       for (int k = 0; k < 3; ++k) edge[k] = edge[k] + splat(step_y[k]);
       centre_y = centre_y + splat(2.0f);
-      depth += 2 * kTileSize;
-      keys += 2 * kTileSize;
+      offset += 2 * kTileSize;
     }
-    const I32x8 rows = y < y_end ? splat(int32_t{-1}) : ~second_row;  // lanes 4-7: row y_end + 1
-    const I32x8 covered = nonNegative(edge[0] | edge[1] | edge[2]) & in_columns & rows;
-    // No branch on an empty group, as in rasterSmall.
-    const F32x8 z = (z0 + dzdy * (centre_y - y0)) + dz;
-    const F32x8 stored = load2x4<F32x8>(depth, depth + kTileSize);
-    const I32x8 pass = kRule == DepthRule::kLatest ? covered : covered & lessThan(z, stored);
-    store2x4(depth, depth + kTileSize, select(pass, z, stored));
-    store2x4(
-        keys, keys + kTileSize,
-        select(pass, splat(static_cast<int32_t>(key)), load2x4<I32x8>(keys, keys + kTileSize)));
+    // Lanes 4-7 of the last step: row y_end + 1, outside the box.
+    const I32x8 in_box = in_columns & (y < y_end ? splat(int32_t{-1}) : ~second_row);
+    visit(offset, centre_y, edge[0], edge[1], edge[2], in_box);
   }
+}
+
+// depthTestRow8 for a step of walkNarrowBox: the two rows of four at depth and depth + kTileSize.
+template <DepthRule kRule>
+TESSERA_LANES_INLINE void depthTest2x4(uint32_t key, F32x8 z, I32x8 covered, float* depth,
+                                       uint32_t* keys) {
+  const F32x8 stored = load2x4<F32x8>(depth, depth + kTileSize);
+  const I32x8 pass = kRule == DepthRule::kLatest ? covered : covered & lessThan(z, stored);
+  store2x4(depth, depth + kTileSize, select(pass, z, stored));
+  store2x4(keys, keys + kTileSize,
+           select(pass, splat(static_cast<int32_t>(key)), load2x4<I32x8>(keys, keys + kTileSize)));
+}
+
+// Triangles at most four pixels wide (most of a dense mesh): walkNarrowBox, so a step does the
+// work of two rows of rasterSmall. The same values per pixel as rasterSmall (edge values, z),
+// hence the same bits.
+template <DepthRule kRule>
+TESSERA_LANES_INLINE void rasterNarrow(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
+                                       int x_begin, int x_end, int y_begin, int y_end) {
+  const F32x8 centre_dx = toFloat(splat(x_begin) + narrowColumn()) + splat(0.5f) - splat(t.x0);
+  const F32x8 dz = splat(t.dzdx) * centre_dx;
+  const F32x8 z0 = splat(t.z0), dzdy = splat(t.dzdy), y0 = splat(t.y0);
+  walkNarrowBox(
+      t, tile, x_begin, x_end, y_begin, y_end,
+      [&](int offset, F32x8 centre_y, I32x8 e0, I32x8 e1, I32x8 e2, I32x8 in_box)
+          __attribute__((always_inline)) {
+            // No branch on an empty group, as in rasterSmall.
+            const I32x8 covered = nonNegative(e0 | e1 | e2) & in_box;
+            const F32x8 z = (z0 + dzdy * (centre_y - y0)) + dz;
+            depthTest2x4<kRule>(key, z, covered, tile.depth + offset, tile.key + offset);
+          });
 }
 
 TESSERA_LANES_INLINE int64_t edgeAt(const RasterTriangle& t, const RasterWide& w, int k, int x,

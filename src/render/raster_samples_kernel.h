@@ -82,47 +82,25 @@ TESSERA_LANES_INLINE void rasterNarrowSamples(const RasterTriangle& t, uint32_t 
                                               const SampleLayerEdges& le, int layer_count,
                                               int x_begin, int x_end, int y_begin, int y_end) {
   const TileVisibility& tile = *layers[0];
-  const I32x8 column = iota() & splat(int32_t{3});
-  const I32x8 second_row = shiftRight(iota(), 2);  // 0 for lanes 0-3, 1 for lanes 4-7
-  I32x8 edge[3];
-  int32_t step_y[3];
-  for (int k = 0; k < 3; ++k) {
-    // Fits with every layer's offset: smallBox allows for the samples and a row past the box.
-    edge[k] = splat(smallEdgeAt(t, k, x_begin, y_begin)) + splat(t.a[k] * kSubpixelOne) * column +
-              splat(t.b[k] * kSubpixelOne) * second_row;
-    step_y[k] = 2 * t.b[k] * kSubpixelOne;
-  }
-  const I32x8 in_columns = lessOrEqual(column, splat(x_end - x_begin));
-  const F32x8 centre_x = toFloat(splat(x_begin) + column) + splat(0.5f);
+  const F32x8 centre_x = toFloat(splat(x_begin) + narrowColumn()) + splat(0.5f);
   F32x8 dz[kMaxSamples + 1];
   for (int i = 0; i < layer_count; ++i) dz[i] = splat(t.dzdx) * (centre_x - splat(le.x0[i]));
-  F32x8 centre_y = toFloat(splat(y_begin) + second_row) + splat(0.5f);
   const F32x8 z0 = splat(t.z0), dzdy = splat(t.dzdy);
-  int offset = (y_begin - tile.y0) * kTileSize + (x_begin - tile.x0);
-  for (int y = y_begin; y <= y_end; y += 2) {
-    if (y != y_begin) {
-      for (int k = 0; k < 3; ++k) edge[k] = edge[k] + splat(step_y[k]);
-      centre_y = centre_y + splat(2.0f);
-      offset += 2 * kTileSize;
-    }
-    const I32x8 in_box = in_columns & (y < y_end ? splat(int32_t{-1}) : ~second_row);
-    for (int i = 0; i < layer_count; ++i) {
-      if (!le.drawn[i]) continue;
-      const I32x8 covered = nonNegative((edge[0] + le.offset[i][0]) | (edge[1] + le.offset[i][1]) |
-                                        (edge[2] + le.offset[i][2])) &
-                            in_box;
-      // No branch on a layer the step misses: the test writes back what it read (rasterSmall).
-      float* depth = layers[i]->depth + offset;
-      uint32_t* keys = layers[i]->key + offset;
-      const F32x8 z = (z0 + dzdy * (centre_y - splat(le.y0[i]))) + dz[i];
-      const F32x8 stored = load2x4<F32x8>(depth, depth + kTileSize);
-      const I32x8 pass = kRule == DepthRule::kLatest ? covered : covered & lessThan(z, stored);
-      store2x4(depth, depth + kTileSize, select(pass, z, stored));
-      store2x4(
-          keys, keys + kTileSize,
-          select(pass, splat(static_cast<int32_t>(key)), load2x4<I32x8>(keys, keys + kTileSize)));
-    }
-  }
+  walkNarrowBox(
+      t, tile, x_begin, x_end, y_begin, y_end,
+      [&](int offset, F32x8 centre_y, I32x8 e0, I32x8 e1, I32x8 e2,
+          I32x8 in_box) __attribute__((always_inline)) {
+        for (int i = 0; i < layer_count; ++i) {
+          if (!le.drawn[i]) continue;
+          const I32x8 covered = nonNegative((e0 + le.offset[i][0]) | (e1 + le.offset[i][1]) |
+                                            (e2 + le.offset[i][2])) &
+                                in_box;
+          // No branch on a layer the step misses: the test writes back what it read
+          // (rasterSmall).
+          const F32x8 z = (z0 + dzdy * (centre_y - splat(le.y0[i]))) + dz[i];
+          depthTest2x4<kRule>(key, z, covered, layers[i]->depth + offset, layers[i]->key + offset);
+        }
+      });
 }
 
 // A small triangle into every layer at once: rasterSmall's walk over its box, eight pixels at a
