@@ -146,9 +146,8 @@ ObjectSetup ChunkSetup::objectSetup(size_t object_index) {
                 false};
   // A mirrored object's front faces may show their vertex normals' back (setup.cpp).
   if (xf.winding_sign < 0.0f) o.plain_gouraud.applies = false;
-  const bool per_pixel = ctx.shading == Shading::kPhong || ctx.shading == Shading::kPbr;
-  chunk_.reads_normals |= per_pixel || want_normals_;
-  chunk_.reads_world |= per_pixel && needsWorld(lights_, ctx.shading);
+  chunk_.reads_normals |= writesNormals(ctx.shading, want_normals_);
+  chunk_.reads_world |= writesWorld(lights_, ctx.shading);
   // One look at the object's materials. alphaMode MASK: the raster tests such triangles' alpha
   // (rasterMasked), in the chunks that hold one.
   for (const Material& m : object.materials) {

@@ -222,15 +222,18 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
                                              (ctx.has_uv && ctx.tangents ? kPbrTangents : 0));
       break;
     case Shading::kPhong:
-    case Shading::kUnlit:
+    case Shading::kUnlit: {
       // The albedo, lit per pixel (Phong) or not at all.
+      const bool normals = writesNormals(ctx.shading, ctx.want_normals);
+      const bool positions = writesWorld(lights, ctx.shading);
       for (int k = 0; k < 3; ++k) {
         const int i = o.order[k];
-        if (ctx.shading == Shading::kPhong || ctx.want_normals) extras.normal[k] = vertexNormal(i);
-        if (ctx.shading == Shading::kPhong && needs_world) extras.world[k] = world(i);
+        if (normals) extras.normal[k] = vertexNormal(i);
+        if (positions) extras.world[k] = world(i);
         shade.color[k] = albedo(i);
       }
       break;
+    }
   }
   if (ctx.has_uv)
     for (int k = 0; k < 3; ++k) extras.uv[k] = corners.uv(o.order[k]);

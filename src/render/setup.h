@@ -264,6 +264,17 @@ inline bool needsWorld(const LightRig& lights, Shading shading) {
          (lights.shadows != nullptr && shading == Shading::kPhong);
 }
 
+// Which ShadeExtras fields setup writes for a triangle shaded `shading` (setup.cpp) and so which
+// the shading pass reads: the normals for per-pixel shading (Phong, PBR) and the normal AOV; the
+// world positions for per-pixel shading that needsWorld. The tile raster prefetches what these
+// say (TriangleChunk::reads_normals, reads_world).
+inline bool writesNormals(Shading shading, bool want_normals) {
+  return shading == Shading::kPhong || shading == Shading::kPbr || want_normals;
+}
+inline bool writesWorld(const LightRig& lights, Shading shading) {
+  return (shading == Shading::kPhong || shading == Shading::kPbr) && needsWorld(lights, shading);
+}
+
 // An object's vertices, indexed by mesh vertex: an unclipped triangle's corners are read from
 // here, and only for what its shading mode uses.
 struct MeshVertices {
