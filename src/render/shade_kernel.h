@@ -53,16 +53,130 @@ TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
   }
 }
 
+// Row ty of a plain tile (every triangle untextured, not Phong, no normal AOV) into the row's
+// linear colours: eight pixels of one triangle take shadePlainLanes, of several shadeMixed, and
+// with MSAA (`kSampled`) a group holding a mixed pixel is resolved in the group
+// (shadePlainSampled). A function of its own, not inlined into shadeTile: in the one function of
+// every path the compiler kept this loop's colours and masks on the stack, and the plain frames'
+// shading took 10% longer.
+template <bool kSampled>
+__attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
+                                             const std::vector<TriangleChunk>& chunks,
+                                             const ShadeTriangle* const records[],
+                                             const MsaaShading* msaa, float linear[3][kTileSize]) {
+  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
+  const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
+  for (int tx = 0; tx < tile.width; tx += 8) {
+    const int i = ty * kTileSize + tx;
+    const I32x8 keys = load<I32x8>(tile.key + i);
+    const I32x8 covered = ~equal(keys, empty);
+    if (!any(covered)) continue;
+    Vec3x8 color;
+    const I32x8 mixed = kSampled ? load<I32x8>(msaa->tiles->mixed + i) : splat(int32_t{0});
+    if (kSampled && any(mixed)) {
+      color = shadePlainSampled(*msaa, chunks, records, i, tile.x0 + tx, tile.y0 + ty, mixed);
+    } else {
+      const F32x8 px = toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f);
+      const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
+      if (any(covered & ~equal(keys, splat(static_cast<int32_t>(first))))) {
+        const ShadeTriangle* lanes[8];
+        laneRecords(laneKeys(keys, covered, first), records, lanes);
+        color = shadeMixed(lanes, px, splat(py));
+      } else {
+        // One triangle's pixels (the lanes it does not cover are encoded as the background).
+        color = shadePlainLanes(records[keyChunk(first)][keyLocal(first)], px, py);
+      }
+    }
+    store(linear[0] + tx, color.x);
+    store(linear[1] + tx, color.y);
+    store(linear[2] + tx, color.z);
+  }
+}
+
+// Row ty of a tile that is not plain (see shadeTile) into the row's linear colours and, when
+// asked, the tile's normals. A function of its own, as shadePlainRow is: apart from the encode,
+// the compiler keeps more of the row's values in registers.
+template <bool kSampled>
+__attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
+                                        const std::vector<TriangleChunk>& chunks,
+                                        const ShadeTriangle* const records[],
+                                        const ShadeExtras* const extras[], const LightRig& lights,
+                                        bool want_normals, const MsaaShading* msaa,
+                                        float linear[3][kTileSize], ShadedTile& out) {
+  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
+  const F32x8 zero = splat(0.0f);
+  const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
+  TexturedGroup textured_groups[kTileSize / 8];
+  int textured_count = 0;
+  for (int tx = 0; tx < tile.width; tx += 8) {
+    const int i = ty * kTileSize + tx;
+    const I32x8 keys = load<I32x8>(tile.key + i);
+    const I32x8 covered = ~equal(keys, empty);
+    if (!any(covered)) continue;
+    const F32x8 px = toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f);
+    Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
+    const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
+    const bool several = any(covered & ~equal(keys, splat(static_cast<int32_t>(first))));
+    bool shaded = true;
+    if (several && !want_normals) {
+      // Every triangle of the eight textured alike without per-pixel lighting (filtered with the
+      // row's other such groups, below), or lit per pixel alike without maps: one evaluation for
+      // the eight (mixed_lanes.h).
+      const ShadeTriangle& t = records[keyChunk(first)][keyLocal(first)];
+      const bool textured = texturedPlain(t);
+      shaded = textured || litPlain(t);
+      if (shaded) {
+        const MixedRecords r = mixedRecords(keys, covered, first, records, extras);
+        if (textured) {
+          TexturedGroup& group = textured_groups[textured_count];
+          shaded = prepareTexturedGroup(r.lanes, r.extras, covered, px, splat(py), group);
+          if (shaded) {
+            group.tx = tx;
+            ++textured_count;
+            continue;
+          }
+        } else {
+          shaded = shadeLitMixed(r.lanes, r.extras, covered, lights, px, splat(py), color);
+        }
+      }
+    } else if (!several && !want_normals &&
+               texturedGroupApplies(records[keyChunk(first)][keyLocal(first)])) {
+      // One textured triangle's pixels: filtered with the row's other textured groups.
+      TexturedGroup& group = textured_groups[textured_count];
+      prepareTexturedGroup(records[keyChunk(first)][keyLocal(first)],
+                           extras[keyChunk(first)][keyLocal(first)], covered, px, splat(py), group);
+      group.tx = tx;
+      ++textured_count;
+      continue;
+    } else {
+      shaded = false;
+    }
+    if (!shaded)
+      shadeApart(keys, covered, records, extras, lights, want_normals, px, py, color, normal);
+    store(linear[0] + tx, color.x);
+    store(linear[1] + tx, color.y);
+    store(linear[2] + tx, color.z);
+    if (want_normals) {
+      store(out.normal_x + i, normal.x);
+      store(out.normal_y + i, normal.y);
+      store(out.normal_z + i, normal.z);
+    }
+  }
+  filterTexturedRow(tile, ty, textured_groups, textured_count, records, extras, lights, linear);
+  if (kSampled) resolveMixedRow(*msaa, tile, ty, chunks, lights, linear);
+}
+
 // Shades the tile in pixel order, eight pixels of a row at a time, then encodes the row to sRGB
 // and stores it whole (no read-modify-write of partly written pixels). Eight pixels of one triangle
-// take one evaluation; those of several are shaded lane by lane from their own records when every
-// triangle is plain (`plain`: untextured, not Phong, no normal AOV), when all are textured alike
-// without per-pixel lighting (prepareTexturedGroup) or when all are lit per pixel alike without
-// maps (shadeLitMixed: one evaluation of the lights), else each triangle is evaluated once for the
-// eight and the results merged in registers (shadeApart). Textured groups without per-pixel
-// lighting, of one triangle or several, are filtered once the row's other work is done, one after
-// another: a filter is a chain of dependent gathers, and the row's filters side by side keep the
-// core busy where one between each group's other work left it waiting.
+// take one evaluation. A tile whose triangles are all plain (`plain`: untextured, not Phong, no
+// normal AOV) takes shadePlainRow. Otherwise (shadeRow) eight pixels of several triangles are
+// shaded lane by lane from their own records when all are textured alike without per-pixel
+// lighting (prepareTexturedGroup) or when all are lit per pixel alike without maps (shadeLitMixed:
+// one evaluation of the lights), else each triangle is evaluated once for the eight and the results
+// merged in registers (shadeApart). Textured groups without per-pixel lighting, of one triangle or
+// several, are filtered once the row's other work is done, one after another: a filter is a chain
+// of dependent gathers, and the row's filters side by side keep the core busy where one between
+// each group's other work left it waiting.
 // `kSampled`: msaa is given (an instance of its own, so one sample pays nothing for it).
 template <bool kSampled>
 TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
@@ -75,83 +189,16 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
     records[c] = chunks[c].shade.data();
     extras[c] = chunks[c].extras.data();
   }
-  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
-  const F32x8 zero = splat(0.0f);
   // A row's colours in linear light, encoded once the row is shaded: the encode is a long chain
   // of dependent operations, and eight groups of it side by side keep the core busy where one
   // after each group's shading left it waiting.
   alignas(32) float linear[3][kTileSize];
-  TexturedGroup textured_groups[kTileSize / 8];
   for (int ty = 0; ty < tile.height; ++ty) {
-    const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
-    int textured_count = 0;
-    for (int tx = 0; tx < tile.width; tx += 8) {
-      const int i = ty * kTileSize + tx;
-      const I32x8 keys = load<I32x8>(tile.key + i);
-      const I32x8 covered = ~equal(keys, empty);
-      if (!any(covered)) continue;
-      const F32x8 px = toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f);
-      Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
-      const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
-      const I32x8 mixed = kSampled ? load<I32x8>(msaa->tiles->mixed + i) : splat(int32_t{0});
-      const bool several = any(covered & ~equal(keys, splat(static_cast<int32_t>(first))));
-      bool shaded = true;
-      if (kSampled && plain && any(mixed)) {
-        color = shadePlainSampled(*msaa, chunks, records, i, tile.x0 + tx, tile.y0 + ty, mixed);
-      } else if (several && plain) {
-        const ShadeTriangle* lanes[8];
-        laneRecords(laneKeys(keys, covered, first), records, lanes);
-        color = shadeMixed(lanes, px, splat(py));
-      } else if (plain) {
-        // One triangle's pixels (the lanes it does not cover are encoded as the background).
-        color = shadePlainLanes(records[keyChunk(first)][keyLocal(first)], px, py);
-      } else if (several && !want_normals) {
-        // Every triangle of the eight textured alike without per-pixel lighting (filtered with the
-        // row's other such groups, below), or lit per pixel alike without maps: one evaluation for
-        // the eight (mixed_lanes.h).
-        const ShadeTriangle& t = records[keyChunk(first)][keyLocal(first)];
-        const bool textured = texturedPlain(t);
-        shaded = textured || litPlain(t);
-        if (shaded) {
-          const MixedRecords r = mixedRecords(keys, covered, first, records, extras);
-          if (textured) {
-            TexturedGroup& group = textured_groups[textured_count];
-            shaded = prepareTexturedGroup(r.lanes, r.extras, covered, px, splat(py), group);
-            if (shaded) {
-              group.tx = tx;
-              ++textured_count;
-              continue;
-            }
-          } else {
-            shaded = shadeLitMixed(r.lanes, r.extras, covered, lights, px, splat(py), color);
-          }
-        }
-      } else if (!several && !want_normals &&
-                 texturedGroupApplies(records[keyChunk(first)][keyLocal(first)])) {
-        // One textured triangle's pixels: filtered with the row's other textured groups.
-        TexturedGroup& group = textured_groups[textured_count];
-        prepareTexturedGroup(records[keyChunk(first)][keyLocal(first)],
-                             extras[keyChunk(first)][keyLocal(first)], covered, px, splat(py),
-                             group);
-        group.tx = tx;
-        ++textured_count;
-        continue;
-      } else {
-        shaded = false;
-      }
-      if (!shaded)
-        shadeApart(keys, covered, records, extras, lights, want_normals, px, py, color, normal);
-      store(linear[0] + tx, color.x);
-      store(linear[1] + tx, color.y);
-      store(linear[2] + tx, color.z);
-      if (want_normals) {
-        store(out.normal_x + i, normal.x);
-        store(out.normal_y + i, normal.y);
-        store(out.normal_z + i, normal.z);
-      }
-    }
-    filterTexturedRow(tile, ty, textured_groups, textured_count, records, extras, lights, linear);
-    if (kSampled && !plain) resolveMixedRow(*msaa, tile, ty, chunks, lights, linear);
+    if (plain)
+      shadePlainRow<kSampled>(tile, ty, chunks, records, msaa, linear);
+    else
+      shadeRow<kSampled>(tile, ty, chunks, records, extras, lights, want_normals, msaa, linear,
+                         out);
     encodeShadedRow(tile, ty, linear, background, out);
   }
 }
