@@ -228,13 +228,16 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide
     for (int bx = bx_first; bx <= x_end; bx += kBlock) {
       const int x0 = std::max(bx, x_begin), x1 = std::min(bx + kBlock - 1, x_end);
       // Classify the block by the edge values at its corner pixel centres: an edge is linear,
-      // so its extremes over the block are at the corners.
+      // so its extremes over the block are at the corners, and exactly (integers) the value at
+      // the first corner plus the steps across and down that lower or raise it.
       bool outside = false, inside = true;
+      const int64_t across = static_cast<int64_t>(x1 - x0) * kSubpixelOne;
+      const int64_t down = static_cast<int64_t>(y1 - y0) * kSubpixelOne;
       for (int k = 0; k < 3; ++k) {
-        const int64_t e00 = edgeAt(t, w, k, x0, y0), e10 = edgeAt(t, w, k, x1, y0);
-        const int64_t e01 = edgeAt(t, w, k, x0, y1), e11 = edgeAt(t, w, k, x1, y1);
-        const int64_t lo = std::min(std::min(e00, e10), std::min(e01, e11));
-        const int64_t hi = std::max(std::max(e00, e10), std::max(e01, e11));
+        const int64_t e00 = edgeAt(t, w, k, x0, y0);
+        const int64_t step_x = t.a[k] * across, step_y = t.b[k] * down;
+        const int64_t lo = e00 + std::min<int64_t>(step_x, 0) + std::min<int64_t>(step_y, 0);
+        const int64_t hi = e00 + std::max<int64_t>(step_x, 0) + std::max<int64_t>(step_y, 0);
         outside |= hi < 0;
         inside &= lo >= 0;
       }
