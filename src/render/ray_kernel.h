@@ -202,14 +202,7 @@ void shadeRayTileKernel(const TileVisibility& tile, const std::vector<TriangleCh
         rs.shade(key, d, x, y, mask, want_normals, color, normal);
         todo = todo & ~mask;
       } while (any(todo));
-      store(linear[0] + tx, color.x);
-      store(linear[1] + tx, color.y);
-      store(linear[2] + tx, color.z);
-      if (want_normals) {
-        store(out.normal_x + i, normal.x);
-        store(out.normal_y + i, normal.y);
-        store(out.normal_z + i, normal.z);
-      }
+      storeShadedGroup(color, normal, want_normals, tx, i, linear, out);
     }
     if (msaa)
       resolveMixedRowWith(

@@ -153,14 +153,7 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
     }
     if (!shaded)
       shadeApart(keys, covered, records, extras, lights, want_normals, px, py, color, normal);
-    store(linear[0] + tx, color.x);
-    store(linear[1] + tx, color.y);
-    store(linear[2] + tx, color.z);
-    if (want_normals) {
-      store(out.normal_x + i, normal.x);
-      store(out.normal_y + i, normal.y);
-      store(out.normal_z + i, normal.z);
-    }
+    storeShadedGroup(color, normal, want_normals, tx, i, linear, out);
   }
   filterTexturedRow(tile, ty, textured_groups, textured_count, records, extras, lights, linear);
   if (kSampled) resolveMixedRow(*msaa, tile, ty, chunks, lights, linear);

@@ -493,6 +493,21 @@ TESSERA_LANES_INLINE void shadeLanes(const ShadeTriangle& t, const ShadeExtras& 
       });
 }
 
+// Stores eight pixels' colours at column tx of a row's linear colours and, when asked, their
+// normals at pixel i of the tile.
+TESSERA_LANES_INLINE void storeShadedGroup(const Vec3x8& color, const Vec3x8& normal,
+                                           bool want_normals, int tx, int i,
+                                           float linear[3][kTileSize], ShadedTile& out) {
+  store(linear[0] + tx, color.x);
+  store(linear[1] + tx, color.y);
+  store(linear[2] + tx, color.z);
+  if (want_normals) {
+    store(out.normal_x + i, normal.x);
+    store(out.normal_y + i, normal.y);
+    store(out.normal_z + i, normal.z);
+  }
+}
+
 // Encodes row ty of the tile's linear colours to sRGB into out.rgba, whole; the background where
 // no triangle is.
 TESSERA_LANES_INLINE void encodeShadedRow(const TileVisibility& tile, int ty,
