@@ -156,6 +156,58 @@ TEST(Renderer, PlainShadingIsTheSameForEverySimdLevelAndWithTheNormalAov) {
   }
 }
 
+TEST(Renderer, SolidTrianglesShadeToTheirOwnColourAtEverySimdLevel) {
+  // A triangle whose corners share a colour (an unlit quad of one colour; a flat-shaded cube, lit
+  // from the side) takes its encoded colour without barycentrics on the plain path. Every covered
+  // pixel of the quad is exactly that colour's sRGB, and the whole image is the same bits with the
+  // normal AOV (the per-triangle path) and at every instruction set. 203 pixels wide: a row ends
+  // inside an eight-pixel group, and the sixteen-lane encode meets groups of the quad beside
+  // groups of the cube and of nothing.
+  Scene scene;
+  scene.camera.position = {0, 0.3f, 3};
+  scene.lights.push_back({normalize(float3{-1, -0.5f, -2}), float3(0.8f)});
+  const float4 quad_colour{0.2f, 0.45f, 0.7f, 1};
+  Mesh quad;
+  quad.positions = {
+      {-1.4f, -0.9f, -0.5f}, {-0.2f, -0.9f, -0.5f}, {-0.2f, 0.9f, -0.5f}, {-1.4f, 0.9f, -0.5f}};
+  quad.colors.assign(4, quad_colour);
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  scene.objects.push_back(unlitObject(quad));
+  Object cube;
+  cube.mesh = std::make_shared<Mesh>(makeCube());
+  cube.shading = Shading::kFlat;
+  cube.transform.translation = {0.6f, 0, 0};
+  cube.transform.rotation = quat::fromAxisAngle(normalize(float3{1, 1, 0}), 0.6f);
+  cube.materials[0].base_color = {0.9f, 0.5f, 0.2f, 1};
+  scene.objects.push_back(cube);
+  RenderOptions options;
+  options.width = 203;
+  options.height = 150;
+  auto render = [&](SimdLevel level, bool normals) {
+    options.normals = normals;
+    return renderAt(scene, options, level, 2);
+  };
+  const Frame reference = render(SimdLevel::kScalar, true);
+  const uint32_t expected = packSrgba8(quad_colour);
+  int quad_pixels = 0;
+  std::set<uint32_t> cube_colours;
+  for (size_t i = 0; i < reference.color.size(); ++i) {
+    if (reference.triangle_id[i] == 1 || reference.triangle_id[i] == 2) {
+      ++quad_pixels;
+      ASSERT_EQ(reference.color[i], expected) << "pixel " << i;
+    } else if (reference.triangle_id[i] > 2) {
+      cube_colours.insert(reference.color[i]);
+    }
+  }
+  EXPECT_GT(quad_pixels, 203 * 150 / 8);
+  EXPECT_GE(cube_colours.size(), 2u) << "the cube shows faces lit differently";
+  for (SimdLevel level : {SimdLevel::kScalar, SimdLevel::kSse2, SimdLevel::kAvx2,
+                          SimdLevel::kAvx512, SimdLevel::kAuto})
+    for (bool normals : {false, true})
+      EXPECT_EQ(reference.color, render(level, normals).color)
+          << static_cast<int>(level) << " " << normals;
+}
+
 TEST(Renderer, EncodesEveryColourTheSameAtEverySimdLevel) {
   // The sRGB encode (eight or, with AVX-512, sixteen lanes at a time) against the scalar
   // variant: an unlit quad filling the view, red rising from below 0 up the image, green and

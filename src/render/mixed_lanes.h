@@ -105,9 +105,13 @@ TESSERA_LANES_INLINE Vec3x8 interpolate9(const F32x8 v[9], F32x8 b0, F32x8 b1, F
           v[2] * b0 + v[5] * b1 + v[8] * b2};
 }
 
-// The interpolated vertex colours of the lanes' triangles at barycentrics b0, b1, b2.
-TESSERA_LANES_INLINE Vec3x8 plainColor(const F32x8 f[kPlainFields], F32x8 b0, F32x8 b1, F32x8 b2) {
-  return interpolate9(f + 9, b0, b1, b2);
+// The interpolated vertex colours of the lanes' triangles at barycentrics b1, b2:
+// interpolateColor's operations with each lane's own corners.
+TESSERA_LANES_INLINE Vec3x8 plainColor(const F32x8 f[kPlainFields], F32x8 b1, F32x8 b2) {
+  const F32x8* c = f + 9;
+  return {c[0] + (c[3] - c[0]) * b1 + (c[6] - c[0]) * b2,
+          c[1] + (c[4] - c[1]) * b1 + (c[7] - c[1]) * b2,
+          c[2] + (c[5] - c[2]) * b1 + (c[8] - c[2]) * b2};
 }
 
 // Eight pixels owned by several triangles, all untextured and not Phong-shaded (colour = the
@@ -119,7 +123,7 @@ TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F3
   loadPlainFields(records, f);
   F32x8 b0, b1, b2;
   plainBarycentrics(f, px, py, b0, b1, b2);
-  return plainColor(f, b0, b1, b2);
+  return plainColor(f, b1, b2);
 }
 
 // Whether a pixel of triangle t gets its colour from the albedo texture and the interpolated
@@ -174,7 +178,7 @@ TESSERA_LANES_INLINE void prepareTexturedFields(const F32x8 f[kPlainFields], con
     group.right = uvAt8(r0, r1, r2);
     group.down = uvAt8(d0, d1, d2);
   }
-  group.color = plainColor(f, b0, b1, b2);
+  group.color = plainColor(f, b1, b2);
   group.covered = covered;
   group.material = material;
 }
@@ -285,7 +289,7 @@ TESSERA_LANES_INLINE bool shadeLitMixed(const ShadeTriangle* const records[8],
   loadPlainFields(records, f);
   F32x8 b0, b1, b2;
   plainBarycentrics(f, px, py, b0, b1, b2);
-  Vec3x8 c = plainColor(f, b0, b1, b2);
+  Vec3x8 c = plainColor(f, b1, b2);
   extrasCorners(extras, &ShadeExtras::normal, corner);
   const Vec3x8 n = normalize8(interpolate9(corner, b0, b1, b2));
   Vec3x8 p{};

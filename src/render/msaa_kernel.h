@@ -166,8 +166,7 @@ TESSERA_LANES_INLINE Vec3x8 shadePlainFragments(const ShadeTriangle* const recor
   F32x8 c0, c1, c2, s0, s1, s2;
   plainBarycentrics(f, column + splat(0.5f), splat(static_cast<float>(y) + 0.5f), c0, c1, c2);
   plainBarycentrics(f, column + sample_dx, sample_y, s0, s1, s2);
-  return plainColor(f, select(at_centre, c0, s0), select(at_centre, c1, s1),
-                    select(at_centre, c2, s2));
+  return plainColor(f, select(at_centre, c1, s1), select(at_centre, c2, s2));
 }
 
 // The linear colours of pixels x .. x + 7 of row y (tile offset i; chunk_records as laneRecords)

@@ -210,7 +210,7 @@ void shadeRayTileKernel(const TileVisibility& tile, const std::vector<TriangleCh
           linear, [&](int s, I32x8 keys, I32x8 first, int x, int y) __attribute__((always_inline)) {
             return shadeRayFragments(rs, s, keys, first, x, y);
           });
-    encodeShadedRow(tile, ty, linear, background, out);
+    encodeShadedRow(tile, ty, linear, nullptr, background, out);
   }
 }
 

@@ -54,7 +54,8 @@ TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
 }
 
 // Row ty of a plain tile (every triangle untextured, not Phong, no normal AOV) into the row's
-// linear colours: eight pixels of one triangle take shadePlainLanes, of several shadeMixed, and
+// linear colours: eight pixels of one triangle take shadePlainLanes (of one whose corners share a
+// colour, that colour, and its sRGB in `solid` for the encode), of several shadeMixed, and
 // with MSAA (`kSampled`) a group holding a mixed pixel is resolved in the group
 // (shadePlainSampled). A function of its own, not inlined into shadeTile: in the one function of
 // every path the compiler kept this loop's colours and masks on the stack, and the plain frames'
@@ -63,14 +64,19 @@ template <bool kSampled>
 __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
                                              const std::vector<TriangleChunk>& chunks,
                                              const ShadeTriangle* const records[],
-                                             const MsaaShading* msaa, float linear[3][kTileSize]) {
+                                             const MsaaShading* msaa, float linear[3][kTileSize],
+                                             uint32_t solid[kTileSize / 8]) {
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
+  // The last single-triangle group's triangle and its solidRgba: a row crosses few triangles.
+  uint32_t last_key = kEmptyKey, last_rgba = 0;
   for (int tx = 0; tx < tile.width; tx += 8) {
     const int i = ty * kTileSize + tx;
     const I32x8 keys = load<I32x8>(tile.key + i);
     const I32x8 covered = ~equal(keys, empty);
+    solid[tx / 8] = kSolidEmpty;
     if (!any(covered)) continue;
+    solid[tx / 8] = kNoSolid;
     Vec3x8 color;
     const I32x8 mixed = kSampled ? load<I32x8>(msaa->tiles->mixed + i) : splat(int32_t{0});
     if (kSampled && any(mixed)) {
@@ -84,7 +90,18 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
         color = shadeMixed(lanes, px, splat(py));
       } else {
         // One triangle's pixels (the lanes it does not cover are encoded as the background).
-        color = shadePlainLanes(records[keyChunk(first)][keyLocal(first)], px, py);
+        const ShadeTriangle& t = records[keyChunk(first)][keyLocal(first)];
+        if (first != last_key) {
+          last_key = first;
+          last_rgba = solidRgba(t);
+        }
+        if (last_rgba != kNoSolid) {
+          // interpolateColor's value at any pixel: no barycentrics, and the encode is done.
+          color = {splat(t.color[0].x), splat(t.color[0].y), splat(t.color[0].z)};
+          solid[tx / 8] = last_rgba;
+        } else {
+          color = shadePlainLanes(t, px, py);
+        }
       }
     }
     store(linear[0] + tx, color.x);
@@ -186,13 +203,18 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
   // of dependent operations, and eight groups of it side by side keep the core busy where one
   // after each group's shading left it waiting.
   alignas(32) float linear[3][kTileSize];
+  // A plain row's groups of one solid triangle (shadePlainRow); the groups past a narrow tile's
+  // width, which the sixteen-lane encode reads beside the last one, stay kNoSolid.
+  uint32_t solid[kTileSize / 8] = {};
   for (int ty = 0; ty < tile.height; ++ty) {
-    if (plain)
-      shadePlainRow<kSampled>(tile, ty, chunks, records, msaa, linear);
-    else
+    if (plain) {
+      shadePlainRow<kSampled>(tile, ty, chunks, records, msaa, linear, solid);
+      encodeShadedRow(tile, ty, linear, solid, background, out);
+    } else {
       shadeRow<kSampled>(tile, ty, chunks, records, extras, lights, want_normals, msaa, linear,
                          out);
-    encodeShadedRow(tile, ty, linear, background, out);
+      encodeShadedRow(tile, ty, linear, nullptr, background, out);
+    }
   }
 }
 

@@ -28,6 +28,17 @@ TESSERA_LANES_INLINE Vec3x8 interpolate(const float3 v[3], F32x8 b0, F32x8 b1, F
           splat(v[0].z) * b0 + splat(v[1].z) * b1 + splat(v[2].z) * b2};
 }
 
+// Vertex colours at barycentrics b1, b2 (b0 = 1 - b1 - b2, not read) as c0 + (c1 - c0) b1 +
+// (c2 - c0) b2: a triangle whose corners share a colour (every flat-shaded one, and a Gouraud face
+// of one normal under directional light) shades to exactly that colour, which shadePlainRow's
+// solid groups take without the barycentrics.
+TESSERA_LANES_INLINE Vec3x8 interpolateColor(const float3 c[3], F32x8 b1, F32x8 b2) {
+  const float3 d1 = c[1] - c[0], d2 = c[2] - c[0];
+  return {splat(c[0].x) + splat(d1.x) * b1 + splat(d2.x) * b2,
+          splat(c[0].y) + splat(d1.y) * b1 + splat(d2.y) * b2,
+          splat(c[0].z) + splat(d1.z) * b1 + splat(d2.z) * b2};
+}
+
 // As tessera::normalize: zero for a zero vector.
 TESSERA_LANES_INLINE Vec3x8 normalize8(Vec3x8 v) {
   const F32x8 len = squareRoot(v.x * v.x + v.y * v.y + v.z * v.z);
@@ -415,7 +426,7 @@ TESSERA_LANES_INLINE void shadeLanesAt(const ShadeTriangle& t, const ShadeExtras
                                        F32x8 b1, F32x8 b2, I32x8 mask, Vec3x8& color,
                                        Vec3x8& normal, AlbedoLane albedo_lane, Footprint footprint,
                                        TextureLane texture_lane) {
-  Vec3x8 c = interpolate(t.color, b0, b1, b2);
+  Vec3x8 c = interpolateColor(t.color, b1, b2);
   Vec3x8 albedo;
   if (t.has_uv && sampleAlbedo8(t, e, mask, b0, b1, b2, footprint, albedo)) {
     c = {c.x * albedo.x, c.y * albedo.y, c.z * albedo.z};
@@ -468,7 +479,7 @@ TESSERA_LANES_INLINE void barycentrics8(const ShadeTriangle& t, F32x8 x, float y
 TESSERA_LANES_INLINE Vec3x8 shadePlainLanes(const ShadeTriangle& t, F32x8 px, float py) {
   Vec3x8 b;
   barycentrics8(t, px, py, b);
-  return interpolate(t.color, b.x, b.y, b.z);
+  return interpolateColor(t.color, b.y, b.z);
 }
 
 // Shades the lanes of `mask` (pixel centres px, py) from triangle t, into `color` and, when
@@ -508,11 +519,30 @@ TESSERA_LANES_INLINE void storeShadedGroup(const Vec3x8& color, const Vec3x8& no
   }
 }
 
+// A group of eight pixels as shadePlainRow leaves it for the encode: kNoSolid, encode its linear
+// colours; kSolidEmpty, no pixel covered; else the sRGB of every covered pixel (alpha 0xff, so
+// never either of the two).
+constexpr uint32_t kNoSolid = 0, kSolidEmpty = 1;
+
+// The encoded colour of every pixel of a triangle whose corners share a colour (interpolateColor
+// gives exactly that colour), by encodeShadedRow's operations; kNoSolid for any other triangle.
+TESSERA_LANES_INLINE uint32_t solidRgba(const ShadeTriangle& t) {
+  const float3 d1 = t.color[1] - t.color[0], d2 = t.color[2] - t.color[0];
+  if (!(d1.x == 0.0f && d1.y == 0.0f && d1.z == 0.0f && d2.x == 0.0f && d2.y == 0.0f &&
+        d2.z == 0.0f))
+    return kNoSolid;
+  const I32x8 rgba =
+      encodeSrgb8x8(splat(t.color[0].x)) | shiftLeft(encodeSrgb8x8(splat(t.color[0].y)), 8) |
+      shiftLeft(encodeSrgb8x8(splat(t.color[0].z)), 16) | splat(static_cast<int32_t>(0xff000000u));
+  return static_cast<uint32_t>(lane(rgba, 0));
+}
+
 // Encodes row ty of the tile's linear colours to sRGB into out.rgba, whole; the background where
-// no triangle is.
+// no triangle is. `solid` (or null) gives shadePlainRow's groups of one solid triangle, which take
+// their colour from it.
 TESSERA_LANES_INLINE void encodeShadedRow(const TileVisibility& tile, int ty,
-                                          const float linear[3][kTileSize], uint32_t background,
-                                          ShadedTile& out) {
+                                          const float linear[3][kTileSize], const uint32_t solid[],
+                                          uint32_t background, ShadedTile& out) {
 #if defined(TESSERA_LANES16)
   const I32x16 fill = splat16(static_cast<int32_t>(background));  // the encode's width
   // Sixteen pixels a step (the rows are kTileSize wide, a multiple of 16).
@@ -524,10 +554,16 @@ TESSERA_LANES_INLINE void encodeShadedRow(const TileVisibility& tile, int ty,
       store(out.rgba + i, fill);
       continue;
     }
-    const I32x16 rgba = encodeSrgb8x16(load<F32x16>(linear[0] + tx)) |
-                        encodeSrgb8x16(load<F32x16>(linear[1] + tx)) << 8 |
-                        encodeSrgb8x16(load<F32x16>(linear[2] + tx)) << 16 |
-                        static_cast<int32_t>(0xff000000u);
+    I32x16 rgba;
+    if (solid && solid[tx / 8] != kNoSolid && solid[tx / 8 + 1] != kNoSolid) {
+      rgba = reinterpret_cast<I32x16>(
+          _mm512_mask_blend_epi32(0xff00, _mm512_set1_epi32(static_cast<int>(solid[tx / 8])),
+                                  _mm512_set1_epi32(static_cast<int>(solid[tx / 8 + 1]))));
+    } else {
+      rgba = encodeSrgb8x16(load<F32x16>(linear[0] + tx)) |
+             encodeSrgb8x16(load<F32x16>(linear[1] + tx)) << 8 |
+             encodeSrgb8x16(load<F32x16>(linear[2] + tx)) << 16 | static_cast<int32_t>(0xff000000u);
+    }
     store(out.rgba + i, covered ? rgba : fill);
   }
 #else
@@ -541,9 +577,11 @@ TESSERA_LANES_INLINE void encodeShadedRow(const TileVisibility& tile, int ty,
       store(out.rgba + i, fill);
       continue;
     }
-    const I32x8 rgba = encodeSrgb8x8(load<F32x8>(linear[0] + tx)) |
-                       shiftLeft(encodeSrgb8x8(load<F32x8>(linear[1] + tx)), 8) |
-                       shiftLeft(encodeSrgb8x8(load<F32x8>(linear[2] + tx)), 16) | opaque;
+    const I32x8 rgba = solid && solid[tx / 8] != kNoSolid
+                           ? splat(static_cast<int32_t>(solid[tx / 8]))
+                           : encodeSrgb8x8(load<F32x8>(linear[0] + tx)) |
+                                 shiftLeft(encodeSrgb8x8(load<F32x8>(linear[1] + tx)), 8) |
+                                 shiftLeft(encodeSrgb8x8(load<F32x8>(linear[2] + tx)), 16) | opaque;
     store(out.rgba + i, select(covered, rgba, fill));
   }
 #endif
