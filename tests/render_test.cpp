@@ -117,6 +117,33 @@ TEST(Renderer, ImageIsBitIdenticalForEverySimdLevel) {
   }
 }
 
+namespace {
+
+// The scene rendered by every instruction set's kernels, with and without the normal AOV (which
+// takes the per-triangle path where the plain one would serve), checked against the scalar kernels
+// with it: the same colours and ids. Returns that reference.
+Frame expectSameWithEveryKernelAndTheNormalAov(const Scene& scene, int width, int height) {
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  auto render = [&](SimdLevel level, bool normals) {
+    options.normals = normals;
+    return renderAt(scene, options, level, 2);
+  };
+  const Frame reference = render(SimdLevel::kScalar, true);
+  for (SimdLevel level : {SimdLevel::kScalar, SimdLevel::kSse2, SimdLevel::kAvx2,
+                          SimdLevel::kAvx512, SimdLevel::kAuto}) {
+    for (bool normals : {false, true}) {
+      const Frame other = render(level, normals);
+      EXPECT_EQ(reference.color, other.color) << static_cast<int>(level) << " " << normals;
+      EXPECT_EQ(reference.triangle_id, other.triangle_id) << static_cast<int>(level);
+    }
+  }
+  return reference;
+}
+
+}  // namespace
+
 TEST(Renderer, PlainShadingIsTheSameForEverySimdLevelAndWithTheNormalAov) {
   // No texture and no Phong: eight pixels owned by several triangles are shaded lane by lane from
   // their own records. Asking for normals takes the per-triangle path instead; both, at every
@@ -137,23 +164,8 @@ TEST(Renderer, PlainShadingIsTheSameForEverySimdLevelAndWithTheNormalAov) {
     o.materials[0].base_color = {0.3f + 0.3f * static_cast<float>(i), 0.8f, 0.5f, 1};
     scene.objects.push_back(o);
   }
-  RenderOptions options;
-  options.width = 257;
-  options.height = 163;
-  auto render = [&](SimdLevel level, bool normals) {
-    options.normals = normals;
-    return renderAt(scene, options, level, 2);
-  };
-  const Frame reference = render(SimdLevel::kScalar, true);
+  const Frame reference = expectSameWithEveryKernelAndTheNormalAov(scene, 257, 163);
   EXPECT_GT(coveredCount(reference), 257 * 163 / 4);
-  for (SimdLevel level : {SimdLevel::kScalar, SimdLevel::kSse2, SimdLevel::kAvx2,
-                          SimdLevel::kAvx512, SimdLevel::kAuto}) {
-    for (bool normals : {false, true}) {
-      const Frame other = render(level, normals);
-      EXPECT_EQ(reference.color, other.color) << static_cast<int>(level) << " " << normals;
-      EXPECT_EQ(reference.triangle_id, other.triangle_id) << static_cast<int>(level);
-    }
-  }
 }
 
 TEST(Renderer, SolidTrianglesShadeToTheirOwnColourAtEverySimdLevel) {
@@ -180,14 +192,7 @@ TEST(Renderer, SolidTrianglesShadeToTheirOwnColourAtEverySimdLevel) {
   cube.transform.rotation = quat::fromAxisAngle(normalize(float3{1, 1, 0}), 0.6f);
   cube.materials[0].base_color = {0.9f, 0.5f, 0.2f, 1};
   scene.objects.push_back(cube);
-  RenderOptions options;
-  options.width = 203;
-  options.height = 150;
-  auto render = [&](SimdLevel level, bool normals) {
-    options.normals = normals;
-    return renderAt(scene, options, level, 2);
-  };
-  const Frame reference = render(SimdLevel::kScalar, true);
+  const Frame reference = expectSameWithEveryKernelAndTheNormalAov(scene, 203, 150);
   const uint32_t expected = packSrgba8(quad_colour);
   int quad_pixels = 0;
   std::set<uint32_t> cube_colours;
@@ -201,11 +206,6 @@ TEST(Renderer, SolidTrianglesShadeToTheirOwnColourAtEverySimdLevel) {
   }
   EXPECT_GT(quad_pixels, 203 * 150 / 8);
   EXPECT_GE(cube_colours.size(), 2u) << "the cube shows faces lit differently";
-  for (SimdLevel level : {SimdLevel::kScalar, SimdLevel::kSse2, SimdLevel::kAvx2,
-                          SimdLevel::kAvx512, SimdLevel::kAuto})
-    for (bool normals : {false, true})
-      EXPECT_EQ(reference.color, render(level, normals).color)
-          << static_cast<int>(level) << " " << normals;
 }
 
 TEST(Renderer, EncodesEveryColourTheSameAtEverySimdLevel) {
