@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cstring>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "render/fixed_point.h"
@@ -37,7 +37,7 @@ constexpr uint32_t keyLocal(uint32_t key) {
 
 // A tile of depths at infinity: what TileVisibility::clear copies (libc's memcpy takes the
 // widest stores the machine has; the loop it replaced was compiled for SSE2's 16 bytes).
-inline const std::array<float, kTileSize * kTileSize> kFarDepths = [] {
+inline const std::array<float, kTileSize* kTileSize> kFarDepths = [] {
   std::array<float, kTileSize * kTileSize> far;
   far.fill(std::numeric_limits<float>::infinity());
   return far;

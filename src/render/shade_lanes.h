@@ -524,6 +524,12 @@ TESSERA_LANES_INLINE void storeShadedGroup(const Vec3x8& color, const Vec3x8& no
 // never either of the two).
 constexpr uint32_t kNoSolid = 0, kSolidEmpty = 1;
 
+// Eight pixels' linear colours to sRGB, packed with an alpha of 0xff.
+TESSERA_LANES_INLINE I32x8 encodeRgba8x8(F32x8 r, F32x8 g, F32x8 b) {
+  return encodeSrgb8x8(r) | shiftLeft(encodeSrgb8x8(g), 8) | shiftLeft(encodeSrgb8x8(b), 16) |
+         splat(static_cast<int32_t>(0xff000000u));
+}
+
 // The encoded colour of every pixel of a triangle whose corners share a colour (interpolateColor
 // gives exactly that colour), by encodeShadedRow's operations; kNoSolid for any other triangle.
 TESSERA_LANES_INLINE uint32_t solidRgba(const ShadeTriangle& t) {
@@ -531,10 +537,8 @@ TESSERA_LANES_INLINE uint32_t solidRgba(const ShadeTriangle& t) {
   if (!(d1.x == 0.0f && d1.y == 0.0f && d1.z == 0.0f && d2.x == 0.0f && d2.y == 0.0f &&
         d2.z == 0.0f))
     return kNoSolid;
-  const I32x8 rgba =
-      encodeSrgb8x8(splat(t.color[0].x)) | shiftLeft(encodeSrgb8x8(splat(t.color[0].y)), 8) |
-      shiftLeft(encodeSrgb8x8(splat(t.color[0].z)), 16) | splat(static_cast<int32_t>(0xff000000u));
-  return static_cast<uint32_t>(lane(rgba, 0));
+  const float3& c = t.color[0];
+  return static_cast<uint32_t>(lane(encodeRgba8x8(splat(c.x), splat(c.y), splat(c.z)), 0));
 }
 
 // Encodes row ty of the tile's linear colours to sRGB into out.rgba, whole; the background where
@@ -569,7 +573,6 @@ TESSERA_LANES_INLINE void encodeShadedRow(const TileVisibility& tile, int ty,
 #else
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const I32x8 fill = splat(static_cast<int32_t>(background));
-  const I32x8 opaque = splat(static_cast<int32_t>(0xff000000u));
   for (int tx = 0; tx < tile.width; tx += 8) {
     const int i = ty * kTileSize + tx;
     const I32x8 covered = ~equal(load<I32x8>(tile.key + i), empty);
@@ -579,9 +582,8 @@ TESSERA_LANES_INLINE void encodeShadedRow(const TileVisibility& tile, int ty,
     }
     const I32x8 rgba = solid && solid[tx / 8] != kNoSolid
                            ? splat(static_cast<int32_t>(solid[tx / 8]))
-                           : encodeSrgb8x8(load<F32x8>(linear[0] + tx)) |
-                                 shiftLeft(encodeSrgb8x8(load<F32x8>(linear[1] + tx)), 8) |
-                                 shiftLeft(encodeSrgb8x8(load<F32x8>(linear[2] + tx)), 16) | opaque;
+                           : encodeRgba8x8(load<F32x8>(linear[0] + tx), load<F32x8>(linear[1] + tx),
+                                           load<F32x8>(linear[2] + tx));
     store(out.rgba + i, select(covered, rgba, fill));
   }
 #endif
