@@ -13,7 +13,9 @@
 #include <immintrin.h>
 #endif
 
+#if !defined(TESSERA_LANES_INLINE)
 #define TESSERA_LANES_INLINE inline __attribute__((always_inline))
+#endif
 
 #if defined(TESSERA_SIMD_SCALAR)
 #include "render/simd_lanes_scalar.h"
