@@ -75,8 +75,13 @@ Object texturedFloor(std::shared_ptr<Texture> texture, TextureFilter filter) {
 
 TEST(TextureLanes, EightLanesHaveTheBitsOfSampleTexture) {
   using namespace tessera::render;
+  // The last is above Texture::kLinearTexelLimit: it is filtered from its RGBA8 texels, the
+  // others from their linear copies (Texture::linearTexels).
   const std::shared_ptr<Texture> textures[] = {
-      noiseTexture(16, 8, true, 1), noiseTexture(13, 7, false, 2), noiseTexture(1, 5, true, 3)};
+      noiseTexture(16, 8, true, 1), noiseTexture(13, 7, false, 2), noiseTexture(1, 5, true, 3),
+      noiseTexture(1100, 1000, true, 4)};
+  for (const auto& texture : textures)
+    EXPECT_EQ(texture->linearTexels(0) == nullptr, texture->width == 1100);
   const TextureWrap wraps[] = {TextureWrap::kRepeat, TextureWrap::kClamp,
                                TextureWrap::kMirroredRepeat};
   const TextureTransform transforms[] = {TextureTransform{},
@@ -125,7 +130,7 @@ TEST(TextureLanes, EightLanesHaveTheBitsOfSampleTexture) {
               }
             }
           }
-  EXPECT_EQ(taken, 3 * 2 * 9 * 2 * 16);  // every coordinate here is below 65536
+  EXPECT_EQ(taken, 4 * 2 * 9 * 2 * 16);  // every coordinate here is below 65536
   EXPECT_GT(compared, 1000);
 }
 

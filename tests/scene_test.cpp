@@ -292,6 +292,51 @@ TEST(Texture, MipChainAveragesInLinearLight) {
   EXPECT_TRUE(std::isfinite(t.sampleLod({0.1f, 0.2f}, std::nanf(""), trilinear).x));
 }
 
+// The linear copy holds every level's texels as sampling decodes them (sRGB through the table,
+// alpha and linear textures as code / 255), is made again after the texels change, and is not
+// made above the size limit.
+TEST(Texture, LinearTexelsAreTheDecodedTexelsOfEveryLevel) {
+  Texture t;
+  t.width = 3;
+  t.height = 2;
+  t.texels = {0x00000000u, 0xff102030u, 0x80ffffffu, 0x7f0a0b0cu, 0x01c8641eu, 0xfe010203u};
+  generateMipmaps(t);
+  ASSERT_EQ(t.levelCount(), 2);
+  for (bool srgb : {true, false}) {
+    Texture copy = t;  // a copy makes its own linear texels
+    copy.srgb = srgb;
+    for (int level = 0; level < copy.levelCount(); ++level) {
+      const std::vector<uint32_t>& texels = level == 0 ? copy.texels : copy.mips[0].texels;
+      const float* linear = copy.linearTexels(level);
+      ASSERT_NE(linear, nullptr);
+      for (size_t i = 0; i < texels.size(); ++i)
+        for (int k = 0; k < 4; ++k) {
+          const uint32_t code = (texels[i] >> (8 * k)) & 0xff;
+          const float want =
+              srgb && k < 3 ? srgbDecodeTable()[code] : static_cast<float>(code) / 255.0f;
+          EXPECT_EQ(linear[4 * i + k], want) << "level " << level << " texel " << i << " " << k;
+        }
+    }
+    EXPECT_EQ(copy.linearTexels(2), nullptr);  // no such level
+  }
+  // New texels and levels: the next call decodes them.
+  EXPECT_EQ(t.linearTexels(0)[0], 0.0f);
+  t.texels[0] = 0xffffffffu;
+  generateMipmaps(t);
+  EXPECT_EQ(t.linearTexels(0)[0], 1.0f);
+  Texture big;
+  big.width = 1025;
+  big.height = 1024;
+  big.texels.assign(static_cast<size_t>(big.width) * big.height, 0xffffffffu);
+  EXPECT_GT(static_cast<size_t>(big.width) * big.height, Texture::kLinearTexelLimit);
+  EXPECT_EQ(big.linearTexels(0), nullptr);  // filtered from its RGBA8 texels
+  Texture broken;                           // texels that do not fill the level: nothing to copy
+  broken.width = 4;
+  broken.height = 4;
+  broken.texels.assign(3, 0u);
+  EXPECT_EQ(broken.linearTexels(0), nullptr);
+}
+
 // An instance's T * R * S is built in closed form; it must hold the bits of the three 4x4
 // products it replaced, for any rotation and scale (mirrors included).
 TEST(Transform, TrsHasTheBitsOfTheThreeProducts) {

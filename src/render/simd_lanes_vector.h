@@ -77,6 +77,23 @@ TESSERA_LANES_INLINE bool any(I32x8 mask) {
 // Row l of the 8x8 matrix r becomes column l: interleave pairs, then quads, then halves (the
 // shuffles map to unpack, shufps and vperm2f128).
 TESSERA_LANES_INLINE void transpose8x8(F32x8 r[8]) {
+#if defined(__SSE2__) && !defined(__AVX__)
+  // GCC lowers the eight-lane shuffles below to single-float moves without AVX: transpose the
+  // four 4x4 blocks as registers of four, the two off the diagonal trading places.
+  __m128 h[2][8];  // h[half][row]
+  for (int i = 0; i < 8; ++i) {
+    std::memcpy(h[0] + i, reinterpret_cast<const char*>(&r[i]), 16);
+    std::memcpy(h[1] + i, reinterpret_cast<const char*>(&r[i]) + 16, 16);
+  }
+  for (int k = 0; k < 2; ++k)
+    for (int b = 0; b < 8; b += 4) _MM_TRANSPOSE4_PS(h[k][b], h[k][b + 1], h[k][b + 2], h[k][b + 3]);
+  for (int i = 0; i < 4; ++i) {
+    std::memcpy(reinterpret_cast<char*>(&r[i]), h[0] + i, 16);
+    std::memcpy(reinterpret_cast<char*>(&r[i]) + 16, h[0] + 4 + i, 16);
+    std::memcpy(reinterpret_cast<char*>(&r[4 + i]), h[1] + i, 16);
+    std::memcpy(reinterpret_cast<char*>(&r[4 + i]) + 16, h[1] + 4 + i, 16);
+  }
+#else
   // __builtin_shufflevector: GCC 12 and Clang both have it (GCC's __builtin_shuffle is GCC's own).
   F32x8 t[8], u[8];
   for (int i = 0; i < 8; i += 2) {
@@ -93,6 +110,7 @@ TESSERA_LANES_INLINE void transpose8x8(F32x8 r[8]) {
     r[i] = __builtin_shufflevector(u[i], u[i + 4], 0, 1, 2, 3, 8, 9, 10, 11);
     r[i + 4] = __builtin_shufflevector(u[i], u[i + 4], 4, 5, 6, 7, 12, 13, 14, 15);
   }
+#endif
 }
 // The first lane of a mask that is not all zero.
 TESSERA_LANES_INLINE int firstLane(I32x8 mask) {

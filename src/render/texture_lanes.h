@@ -105,7 +105,38 @@ TESSERA_LANES_INLINE F32x8 decodeChannel(I32x8 texels, int shift, bool srgb, con
 struct LevelLanes {
   int width, height;
   const uint32_t* texels;
+  const float* linear;  // Texture::linearTexels of this level, or null
 };
+
+// The four channels of the texels at `index` (eight lanes) from a level's linear copy: a load of
+// each lane's four floats (two lanes a register) and a transpose, where the RGBA8 texels take a
+// gather and then a table gather per channel. The values are decodeChannel's, so the same bits.
+TESSERA_LANES_INLINE void loadLinear8(const float* linear, I32x8 index, F32x8 out[4]) {
+  alignas(32) int32_t at[8];
+  store(at, index);
+  for (int l = 0; l < 4; ++l)
+    out[l] = load2x4<F32x8>(linear + 4 * static_cast<size_t>(at[l]),
+                            linear + 4 * static_cast<size_t>(at[l + 4]));
+  transpose4x4Halves(out);  // out[k]: channel k of lanes 0-3, then of lanes 4-7
+}
+
+// loadLinear8 of the four texels (x, y), (x + 1, y), (x, y + 1) and (x + 1, y + 1) of a level
+// `width` texels wide, where `index` is each lane's (x, y): each lane's texel and its right
+// neighbour are eight consecutive floats, one load a row and a transpose. top[k] and bottom[k]:
+// channel k of (x, y) and (x, y + 1); top[4 + k] and bottom[4 + k] of their right neighbours.
+TESSERA_LANES_INLINE void loadLinearQuads8(const float* linear, I32x8 index, int width,
+                                           F32x8 top[8], F32x8 bottom[8]) {
+  alignas(32) int32_t at[8];
+  store(at, index);
+  const size_t down = 4 * static_cast<size_t>(width);
+  for (int l = 0; l < 8; ++l) {
+    const float* p = linear + 4 * static_cast<size_t>(at[l]);
+    top[l] = load<F32x8>(p);
+    bottom[l] = load<F32x8>(p + down);
+  }
+  transpose8x8(top);
+  transpose8x8(bottom);
+}
 
 // sampleLevel's bilinear filter (texture.cpp) in one level for the lanes of `mask` (the others
 // read texel 0), `channels` channels (3: RGB, 4: RGBA); coordinates below 65536 in magnitude.
@@ -123,12 +154,30 @@ TESSERA_LANES_INLINE void bilinear8(const LevelLanes& level, bool srgb, const Sa
   const I32x8 w = splat(int32_t{level.width});
   const uint32_t* texels = level.texels;
   const I32x8 row_a = ya * w, row_b = yb * w;
+  // lerp(a, b, t) = a + (b - a) * t: across, then down.
+  if (level.linear) {
+    F32x8 top[8], bottom[8];  // channels 0-3 of the left texel, then of the right one
+    const I32x8 one = splat(int32_t{1});
+    if (any(~(equal(xb, xa + one) & equal(yb, ya + one)))) {  // a lane at a wrap or a clamp
+      loadLinear8(level.linear, row_a + xa, top);
+      loadLinear8(level.linear, row_a + xb, top + 4);
+      loadLinear8(level.linear, row_b + xa, bottom);
+      loadLinear8(level.linear, row_b + xb, bottom + 4);
+    } else {
+      loadLinearQuads8(level.linear, row_a + xa, level.width, top, bottom);
+    }
+    for (int k = 0; k < channels; ++k) {
+      const F32x8 upper = top[k] + (top[4 + k] - top[k]) * tx;
+      const F32x8 lower = bottom[k] + (bottom[4 + k] - bottom[k]) * tx;
+      out[k] = upper + (lower - upper) * ty;
+    }
+    return;
+  }
   const I32x8 c00 = gatherWords(texels, row_a + xa), c10 = gatherWords(texels, row_a + xb);
   const I32x8 c01 = gatherWords(texels, row_b + xa), c11 = gatherWords(texels, row_b + xb);
   const float* decode = kSrgbDecode.data();
   for (int k = 0; k < channels; ++k) {
     const bool encoded = srgb && k < 3;  // alpha is linear
-    // lerp(a, b, t) = a + (b - a) * t: across, then down.
     const F32x8 t00 = decodeChannel(c00, 8 * k, encoded, decode);
     const F32x8 t10 = decodeChannel(c10, 8 * k, encoded, decode);
     const F32x8 t01 = decodeChannel(c01, 8 * k, encoded, decode);
@@ -140,9 +189,10 @@ TESSERA_LANES_INLINE void bilinear8(const LevelLanes& level, bool srgb, const Sa
 }
 
 TESSERA_LANES_INLINE LevelLanes levelLanes(const Texture& texture, int level) {
-  if (level == 0) return {texture.width, texture.height, texture.texels.data()};
+  const float* linear = texture.linearTexels(level);
+  if (level == 0) return {texture.width, texture.height, texture.texels.data(), linear};
   const TextureLevel& m = texture.mips[static_cast<size_t>(level - 1)];
-  return {m.width, m.height, m.texels.data()};
+  return {m.width, m.height, m.texels.data(), linear};
 }
 
 // Whether sampleTexture8 can take reads of `texture` through `sampler` (up to 16384 texels a side,

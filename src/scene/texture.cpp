@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 
 #include <tessera/scene/color.h>
 
@@ -72,6 +73,36 @@ LevelView levelView(const Texture& t, int level) {
   return {m.width, m.height, m.texels.data()};
 }
 
+// Whether every level's texel vector holds its width x height texels (what reading them takes).
+bool levelsHoldTheirTexels(const Texture& t) {
+  if (t.texels.size() != static_cast<size_t>(t.width) * static_cast<size_t>(std::max(t.height, 0)))
+    return false;
+  for (const TextureLevel& m : t.mips)
+    if (m.width < 0 || m.texels.size() != static_cast<size_t>(m.width) *
+                                              static_cast<size_t>(std::max(m.height, 0)))
+      return false;
+  return t.width >= 0;
+}
+
+// Every level of t decoded to linear float RGBA (Texture::linearTexels).
+void decodeLevels(const Texture& t, std::vector<std::vector<float>>& levels) {
+  const float* decode = srgbDecodeTable();
+  levels.resize(static_cast<size_t>(t.levelCount()));
+  for (int l = 0; l < t.levelCount(); ++l) {
+    const LevelView view = levelView(t, l);
+    const size_t count = static_cast<size_t>(view.width) * static_cast<size_t>(view.height);
+    std::vector<float>& out = levels[static_cast<size_t>(l)];
+    out.resize(4 * count);
+    for (size_t i = 0; i < count; ++i) {
+      const float4 c = decodeTexel(view.texels[i], t.srgb, decode);
+      out[4 * i] = c.x;
+      out[4 * i + 1] = c.y;
+      out[4 * i + 2] = c.z;
+      out[4 * i + 3] = c.w;
+    }
+  }
+}
+
 }  // namespace
 
 int wrapTexel(int i, int size, TextureWrap wrap) {
@@ -138,7 +169,33 @@ float4 Texture::sampleLod(float2 uv, float lod, const Sampler& sampler) const {
   return lerp(a, b, blend);
 }
 
+LinearTexelCache& LinearTexelCache::operator=(const LinearTexelCache&) {
+  // The texture it belongs to takes new texels: the next linearTexels makes the copy again.
+  std::lock_guard lock(mutex_);
+  levels_.clear();
+  state_.store(0, std::memory_order_release);
+  return *this;
+}
+
+void Texture::makeLinearTexels() const {
+  const LinearTexelCache& cache = linear_cache;  // its members are mutable
+  std::lock_guard lock(cache.mutex_);
+  if (cache.state_.load(std::memory_order_relaxed) != 0) return;  // another thread made it
+  int state = 2;
+  if (static_cast<size_t>(width) * static_cast<size_t>(height) <= kLinearTexelLimit &&
+      levelsHoldTheirTexels(*this)) {
+    try {
+      decodeLevels(*this, cache.levels_);
+      state = 1;
+    } catch (const std::bad_alloc&) {
+      cache.levels_.clear();  // without the copy, sampling reads the RGBA8 texels
+    }
+  }
+  cache.state_.store(state, std::memory_order_release);
+}
+
 void generateMipmaps(Texture& texture) {
+  texture.linear_cache = LinearTexelCache();  // made again, with the new levels, on next use
   texture.mips.clear();
   LevelView above{texture.width, texture.height, texture.texels.data()};
   while (above.width > 1 || above.height > 1) {

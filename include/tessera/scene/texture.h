@@ -2,7 +2,10 @@
 // decoded to linear when sampled (the decode is exact: a 256-entry table).
 #pragma once
 
+#include <atomic>
+#include <cstddef>
 #include <cstdint>
+#include <mutex>
 #include <vector>
 
 #include <tessera/math/vec.h>
@@ -62,6 +65,21 @@ struct TextureLevel {
   std::vector<uint32_t> texels;  // RGBA8, R in the low byte, row 0 at the top
 };
 
+// Texture::linearTexels' copy: made once, by the first caller, and not copied with the texture
+// (a copy makes its own on first use).
+class LinearTexelCache {
+ public:
+  LinearTexelCache() = default;
+  LinearTexelCache(const LinearTexelCache&) {}
+  LinearTexelCache& operator=(const LinearTexelCache&);
+
+ private:
+  friend struct Texture;
+  mutable std::mutex mutex_;
+  mutable std::atomic<int> state_{0};               // 0: not made yet; 1: made; 2: not made
+  mutable std::vector<std::vector<float>> levels_;  // level 0, then the mips
+};
+
 struct Texture {
   int width = 0;
   int height = 0;
@@ -78,6 +96,26 @@ struct Texture {
   // two levels around it; the other filters use the nearest level.
   float4 sampleLod(float2 uv, float lod, const Sampler& sampler) const;
   int levelCount() const { return 1 + static_cast<int>(mips.size()); }
+
+  // Level `level`'s texels decoded to linear light as sampling decodes them (sRGB through the
+  // table, the rest and alpha as code / 255): four floats a texel, in the order of `texels`. The
+  // renderer's eight-lane filter loads a texel's four channels at once from it, where the RGBA8
+  // texels take a gather and then a table gather per channel. Made on the first call, for every
+  // level at once (other callers wait); null above kLinearTexelLimit texels at level 0 (the copy
+  // is four times the texels' memory). The texels must not change once it is made: materials
+  // hold their textures const.
+  const float* linearTexels(int level) const {
+    if (linear_cache.state_.load(std::memory_order_acquire) == 0) makeLinearTexels();
+    if (linear_cache.state_.load(std::memory_order_relaxed) != 1 || level < 0 ||
+        static_cast<size_t>(level) >= linear_cache.levels_.size())
+      return nullptr;
+    return linear_cache.levels_[static_cast<size_t>(level)].data();
+  }
+  static constexpr size_t kLinearTexelLimit = size_t{1} << 20;  // 1024 x 1024: 21 MB with mips
+  LinearTexelCache linear_cache;
+
+ private:
+  void makeLinearTexels() const;
 };
 
 // Texel i of an axis of `size` texels wrapped into [0, size) (any int i, size > 0).
