@@ -86,7 +86,8 @@ TESSERA_LANES_INLINE void transpose8x8(F32x8 r[8]) {
     std::memcpy(h[1] + i, reinterpret_cast<const char*>(&r[i]) + 16, 16);
   }
   for (int k = 0; k < 2; ++k)
-    for (int b = 0; b < 8; b += 4) _MM_TRANSPOSE4_PS(h[k][b], h[k][b + 1], h[k][b + 2], h[k][b + 3]);
+    for (int b = 0; b < 8; b += 4)
+      _MM_TRANSPOSE4_PS(h[k][b], h[k][b + 1], h[k][b + 2], h[k][b + 3]);
   for (int i = 0; i < 4; ++i) {
     std::memcpy(reinterpret_cast<char*>(&r[i]), h[0] + i, 16);
     std::memcpy(reinterpret_cast<char*>(&r[i]) + 16, h[0] + 4 + i, 16);
