@@ -27,9 +27,10 @@ asan_tests=(math_test scene_test render_test render_raster_test render_shading_t
             io_image_test environment_test io_obj_test io_gltf_test io_gltf_files_test io_gltf_draco_test io_points_test
             io_stl_test io_assimp_test cli_test cli_validation_test
             cli_diagnostics_test hostile_test animation_test gltf_animation_test)
-# The tests that render with several workers, and the worker and page pools under them.
+# The tests that render with several workers, the worker and page pools under them, and the
+# texture copy that a frame's workers make together.
 tsan_tests=(render_test)
-tsan_filter='Renderer.ImageIsBitIdenticalForAnyWorkerCount:Renderer.AnAnimationIsTheSameForOneAndTwoWorkers:WorkerPool.*:PagePool.*'
+tsan_filter='Renderer.ImageIsBitIdenticalForAnyWorkerCount:Renderer.AnAnimationIsTheSameForOneAndTwoWorkers:WorkerPool.*:PagePool.*:TextureCopy.*'
 
 # The TSan build's configuration (the ASan build's is scripts/asan_build.sh's).
 configure() {  # folder, compiler, extra cmake arguments...

@@ -433,6 +433,35 @@ TEST(ReplicationChoice, KeepsTheFasterWayAndProbesTheOther) {
 // Every index of every job runs exactly once, on a worker the pool has, whether the workers are
 // spinning (jobs back to back) or asleep (a pause before the job) when it starts, and a job's
 // results are all there when parallelFor returns. A worker may arrive late, during a later job.
+// Texture::linearTexels is made by whichever thread first samples a texture: several at once
+// (the workers of one frame) get one copy, made once, with the decoded values. Run under
+// ThreadSanitizer too (scripts/sanitize.sh).
+TEST(TextureCopy, ThreadsThatMeetATextureTogetherShareOneDecodedCopy) {
+  Texture texture;
+  texture.width = 64;
+  texture.height = 32;
+  for (int i = 0; i < texture.width * texture.height; ++i)
+    texture.texels.push_back(0x80000000u | static_cast<uint32_t>(i * 2654435761u >> 8));
+  generateMipmaps(texture);
+  const float* seen[4] = {};
+  std::atomic<int> waiting{4};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      waiting.fetch_sub(1);
+      while (waiting.load() > 0) {
+      }
+      seen[t] = texture.linearTexels(t % 2);  // levels 0 and 1
+    });
+  for (std::thread& thread : threads) thread.join();
+  ASSERT_NE(seen[0], nullptr);
+  ASSERT_NE(seen[1], nullptr);
+  for (int t = 2; t < 4; ++t) EXPECT_EQ(seen[t], seen[t % 2]);
+  for (int i = 0; i < texture.width * texture.height; ++i)
+    ASSERT_EQ(seen[0][4 * i], srgbDecodeTable()[texture.texels[static_cast<size_t>(i)] & 0xff]);
+  EXPECT_EQ(seen[1][3], 128.0f / 255.0f);  // alpha: linear
+}
+
 TEST(WorkerPool, EveryIndexRunsOnceAndIsDoneOnReturn) {
   render::WorkerPool pool(3);
   ASSERT_EQ(pool.size(), 3);
