@@ -9,8 +9,9 @@ cd "$root"
 # compile once for both (scripts/asan_build.sh).
 "$root/fuzz/run_all.sh" 20
 # The unit suite (with the hostile corpus) under ASan+UBSan and the threaded render tests under
-# TSan: lean -O1 builds of only what they run (scripts/sanitize.sh). 457 s on an idle 2-core AVX2
-# machine (2026-12-02); the whole of this script took 24m37s there.
+# TSan: lean -O1 builds of only what they run (scripts/sanitize.sh). 385 s on this project's 2-core
+# AVX-512 machine (2026-12-04, fa02c27); the whole of this script took 21m39s there, against 46 min
+# before the scalar kernels stopped taking 16 minutes to compile (cfad94d).
 "$root/scripts/sanitize.sh"
 # Last, so that its summary closes the output.
 ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600
