@@ -337,6 +337,48 @@ TEST(Texture, LinearTexelsAreTheDecodedTexelsOfEveryLevel) {
   EXPECT_EQ(broken.linearTexels(0), nullptr);
 }
 
+// The copies' memory counts against one budget for the process: a copy that would pass it is not
+// made, and a copy's bytes return to it when its texture is dropped or takes new levels.
+TEST(Texture, LinearTexelCopiesKeepWithinTheBudget) {
+  auto texture = [] {
+    Texture t;
+    t.width = 32;
+    t.height = 16;
+    t.texels.assign(32 * 16, 0xff336699u);
+    return t;
+  };
+  constexpr size_t kCopy = 32 * 16 * 4 * sizeof(float);  // one level's linear copy
+  const size_t held = Texture::linearTexelBytes();
+  const size_t budget = Texture::setLinearTexelBudget(held + 2 * kCopy + kCopy / 2);
+  {
+    Texture a = texture();
+    Texture b = texture();
+    Texture c = texture();
+    ASSERT_NE(a.linearTexels(0), nullptr);
+    ASSERT_NE(b.linearTexels(0), nullptr);
+    EXPECT_EQ(Texture::linearTexelBytes(), held + 2 * kCopy);
+    EXPECT_EQ(c.linearTexels(0), nullptr);  // half a copy's room left
+    EXPECT_EQ(Texture::linearTexelBytes(), held + 2 * kCopy);
+    {
+      Texture moved = std::move(a);  // the copy moves with the texels
+      EXPECT_EQ(Texture::linearTexelBytes(), held + 2 * kCopy);
+      EXPECT_NE(moved.linearTexels(0), nullptr);
+      EXPECT_EQ(Texture::linearTexelBytes(), held + 2 * kCopy);
+    }
+    EXPECT_EQ(Texture::linearTexelBytes(), held + kCopy);  // back with the texture that held it
+    Texture d = texture();
+    EXPECT_NE(d.linearTexels(0), nullptr);
+    EXPECT_EQ(Texture::linearTexelBytes(), held + 2 * kCopy);
+    // New levels drop b's copy; with its mips (16x8, ... 1x1) it takes more than it had.
+    generateMipmaps(b);
+    EXPECT_EQ(Texture::linearTexelBytes(), held + kCopy);
+    ASSERT_NE(b.linearTexels(1), nullptr);
+    EXPECT_GT(Texture::linearTexelBytes(), held + 2 * kCopy);
+  }
+  EXPECT_EQ(Texture::linearTexelBytes(), held);
+  Texture::setLinearTexelBudget(budget);
+}
+
 // An instance's T * R * S is built in closed form; it must hold the bits of the three 4x4
 // products it replaced, for any rotation and scale (mirrors included).
 TEST(Transform, TrsHasTheBitsOfTheThreeProducts) {

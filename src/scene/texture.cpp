@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <new>
+#include <utility>
 
 #include <tessera/scene/color.h>
 
@@ -169,11 +170,70 @@ float4 Texture::sampleLod(float2 uv, float lod, const Sampler& sampler) const {
   return lerp(a, b, blend);
 }
 
+namespace {
+
+std::atomic<size_t> linear_texel_bytes{0};
+std::atomic<size_t> linear_texel_budget{Texture::kLinearTexelBudget};
+
+// Takes `bytes` of the copies' budget; false, with nothing taken, where they would pass it.
+bool reserveLinearTexels(size_t bytes) {
+  size_t held = linear_texel_bytes.load(std::memory_order_relaxed);
+  do {
+    if (bytes > linear_texel_budget.load(std::memory_order_relaxed) ||
+        held > linear_texel_budget.load(std::memory_order_relaxed) - bytes)
+      return false;
+  } while (!linear_texel_bytes.compare_exchange_weak(held, held + bytes));
+  return true;
+}
+
+// The bytes of the linear copy of every level of t: four floats a texel.
+size_t linearBytes(const Texture& t) {
+  size_t texels = 0;
+  for (int l = 0; l < t.levelCount(); ++l) {
+    const LevelView view = levelView(t, l);
+    texels += static_cast<size_t>(view.width) * static_cast<size_t>(view.height);
+  }
+  return 4 * sizeof(float) * texels;
+}
+
+}  // namespace
+
+size_t Texture::linearTexelBytes() {
+  return linear_texel_bytes.load();
+}
+
+size_t Texture::setLinearTexelBudget(size_t bytes) {
+  return linear_texel_budget.exchange(bytes);
+}
+
+void LinearTexelCache::drop() {
+  levels_.clear();
+  levels_.shrink_to_fit();
+  linear_texel_bytes.fetch_sub(bytes_);
+  bytes_ = 0;
+}
+
+LinearTexelCache::~LinearTexelCache() {
+  drop();
+}
+
 LinearTexelCache& LinearTexelCache::operator=(const LinearTexelCache&) {
   // The texture it belongs to takes new texels: the next linearTexels makes the copy again.
   std::lock_guard lock(mutex_);
-  levels_.clear();
+  drop();
   state_.store(0, std::memory_order_release);
+  return *this;
+}
+
+LinearTexelCache& LinearTexelCache::operator=(LinearTexelCache&& other) noexcept {
+  // The texels move with it: the copy still holds their values.
+  if (this == &other) return *this;
+  std::scoped_lock lock(mutex_, other.mutex_);
+  drop();
+  levels_ = std::move(other.levels_);
+  bytes_ = std::exchange(other.bytes_, 0);
+  state_.store(other.state_.exchange(0), std::memory_order_release);
+  other.levels_.clear();
   return *this;
 }
 
@@ -184,11 +244,16 @@ void Texture::makeLinearTexels() const {
   int state = 2;
   if (static_cast<size_t>(width) * static_cast<size_t>(height) <= kLinearTexelLimit &&
       levelsHoldTheirTexels(*this)) {
-    try {
-      decodeLevels(*this, cache.levels_);
-      state = 1;
-    } catch (const std::bad_alloc&) {
-      cache.levels_.clear();  // without the copy, sampling reads the RGBA8 texels
+    const size_t bytes = linearBytes(*this);
+    if (reserveLinearTexels(bytes)) {
+      try {
+        decodeLevels(*this, cache.levels_);
+        cache.bytes_ = bytes;
+        state = 1;
+      } catch (const std::bad_alloc&) {
+        cache.levels_.clear();  // without the copy, sampling reads the RGBA8 texels
+        linear_texel_bytes.fetch_sub(bytes);
+      }
     }
   }
   cache.state_.store(state, std::memory_order_release);

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 #include <tessera/math/vec.h>
@@ -66,18 +67,24 @@ struct TextureLevel {
 };
 
 // Texture::linearTexels' copy: made once, by the first caller, and not copied with the texture
-// (a copy makes its own on first use).
+// (a copy makes its own on first use); a moved texture takes it along with its texels. Its bytes
+// count against the process's budget (Texture::kLinearTexelBudget) until it is dropped.
 class LinearTexelCache {
  public:
   LinearTexelCache() = default;
   LinearTexelCache(const LinearTexelCache&) {}
+  LinearTexelCache(LinearTexelCache&& other) noexcept { *this = std::move(other); }
   LinearTexelCache& operator=(const LinearTexelCache&);
+  LinearTexelCache& operator=(LinearTexelCache&& other) noexcept;
+  ~LinearTexelCache();
 
  private:
   friend struct Texture;
+  void drop();  // the copy's memory and its share of the budget; the caller holds mutex_
   mutable std::mutex mutex_;
   mutable std::atomic<int> state_{0};               // 0: not made yet; 1: made; 2: not made
   mutable std::vector<std::vector<float>> levels_;  // level 0, then the mips
+  mutable size_t bytes_ = 0;                        // what it holds of the budget
 };
 
 struct Texture {
@@ -112,6 +119,14 @@ struct Texture {
     return linear_cache.levels_[static_cast<size_t>(level)].data();
   }
   static constexpr size_t kLinearTexelLimit = size_t{1} << 20;  // 1024 x 1024: 21 MB with mips
+  // The most memory the copies of every texture alive in the process take together: a texture
+  // whose copy would pass it samples its RGBA8 texels instead (the same values, more slowly), so
+  // that a model with many large maps does not hold four times their memory again.
+  static constexpr size_t kLinearTexelBudget = size_t{256} << 20;
+  // The copies' bytes now held of the budget; and, for tests, the budget itself (returns the
+  // previous one; copies already made keep their memory).
+  static size_t linearTexelBytes();
+  static size_t setLinearTexelBudget(size_t bytes);
   LinearTexelCache linear_cache;
 
  private:
