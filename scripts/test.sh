@@ -9,9 +9,10 @@ cd "$root"
 # compile once for both (scripts/asan_build.sh).
 "$root/fuzz/run_all.sh" 20
 # The unit suite (with the hostile corpus) under ASan+UBSan and the threaded render tests under
-# TSan: lean -O1 builds of only what they run (scripts/sanitize.sh). 385 s on this project's 2-core
-# AVX-512 machine (2026-12-04, fa02c27); the whole of this script took 21m39s there, against 46 min
-# before the scalar kernels stopped taking 16 minutes to compile (cfad94d).
+# TSan: lean -O1 builds of only what they run (scripts/sanitize.sh). 192 s on this project's 2-core
+# AVX-512 machine (2026-12-04, f4d6f40); the whole of this script took 13m05s there in a clean clone,
+# against 21m39s before the SSE2 and the sanitizer builds' AVX2 kernels took their lane operations
+# inline (f4d6f40) and 46 min before the scalar kernels did (cfad94d).
 "$root/scripts/sanitize.sh"
 # Last, so that its summary closes the output.
 ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600

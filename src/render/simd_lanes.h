@@ -13,6 +13,9 @@
 #include <immintrin.h>
 #endif
 
+// Forced inline by default: the AVX2 and AVX-512 kernels are the fast ones. The scalar and SSE2
+// units, and the sanitizer builds' AVX2 kernels (CMakeLists.txt), define it as plain inline: forced
+// into whole kernels, their wider code took GCC and clang minutes to compile.
 #if !defined(TESSERA_LANES_INLINE)
 #define TESSERA_LANES_INLINE inline __attribute__((always_inline))
 #endif

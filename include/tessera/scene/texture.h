@@ -80,7 +80,7 @@ class LinearTexelCache {
 
  private:
   friend struct Texture;
-  void drop();  // the copy's memory and its share of the budget; the caller holds mutex_
+  void drop();  // the copy's memory and its share of the budget (under mutex_, or at the end)
   mutable std::mutex mutex_;
   mutable std::atomic<int> state_{0};               // 0: not made yet; 1: made; 2: not made
   mutable std::vector<std::vector<float>> levels_;  // level 0, then the mips
