@@ -177,11 +177,10 @@ std::atomic<size_t> linear_texel_budget{Texture::kLinearTexelBudget};
 
 // Takes `bytes` of the copies' budget; false, with nothing taken, where they would pass it.
 bool reserveLinearTexels(size_t bytes) {
+  const size_t budget = linear_texel_budget.load(std::memory_order_relaxed);
   size_t held = linear_texel_bytes.load(std::memory_order_relaxed);
   do {
-    if (bytes > linear_texel_budget.load(std::memory_order_relaxed) ||
-        held > linear_texel_budget.load(std::memory_order_relaxed) - bytes)
-      return false;
+    if (bytes > budget || held > budget - bytes) return false;
   } while (!linear_texel_bytes.compare_exchange_weak(held, held + bytes));
   return true;
 }
@@ -207,10 +206,11 @@ size_t Texture::setLinearTexelBudget(size_t bytes) {
 }
 
 void LinearTexelCache::drop() {
+  size_t floats = 0;  // what makeLinearTexels reserved: linearBytes of the texture it was made of
+  for (const std::vector<float>& level : levels_) floats += level.size();
+  linear_texel_bytes.fetch_sub(sizeof(float) * floats);
   levels_.clear();
   levels_.shrink_to_fit();
-  linear_texel_bytes.fetch_sub(bytes_);
-  bytes_ = 0;
 }
 
 LinearTexelCache::~LinearTexelCache() {
@@ -231,9 +231,8 @@ LinearTexelCache& LinearTexelCache::operator=(LinearTexelCache&& other) noexcept
   std::scoped_lock lock(mutex_, other.mutex_);
   drop();
   levels_ = std::move(other.levels_);
-  bytes_ = std::exchange(other.bytes_, 0);
+  other.levels_.clear();  // its share of the budget moves with the levels
   state_.store(other.state_.exchange(0), std::memory_order_release);
-  other.levels_.clear();
   return *this;
 }
 
@@ -247,8 +246,7 @@ void Texture::makeLinearTexels() const {
     const size_t bytes = linearBytes(*this);
     if (reserveLinearTexels(bytes)) {
       try {
-        decodeLevels(*this, cache.levels_);
-        cache.bytes_ = bytes;
+        decodeLevels(*this, cache.levels_);  // sizeof(float) * its floats == bytes
         state = 1;
       } catch (const std::bad_alloc&) {
         cache.levels_.clear();  // without the copy, sampling reads the RGBA8 texels

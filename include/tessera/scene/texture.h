@@ -83,8 +83,8 @@ class LinearTexelCache {
   void drop();  // the copy's memory and its share of the budget (under mutex_, or at the end)
   mutable std::mutex mutex_;
   mutable std::atomic<int> state_{0};               // 0: not made yet; 1: made; 2: not made
-  mutable std::vector<std::vector<float>> levels_;  // level 0, then the mips
-  mutable size_t bytes_ = 0;                        // what it holds of the budget
+  mutable std::vector<std::vector<float>> levels_;  // level 0, then the mips (their bytes: its
+                                                    // share of the budget)
 };
 
 struct Texture {
