@@ -269,8 +269,9 @@ TEST_F(AssimpFiles, TruncatedAndGarbageFilesGiveOneClearLine) {
   }
 }
 
-// assimp 5.2's PLY reader never returns on these (fuzz/corpus/assimp/hang_nul_in_keyword.ply);
-// tessera's header check refuses them first.
+// assimp 5.2's PLY reader never returns on some of these (fuzz/corpus/assimp/
+// hang_nul_in_keyword.ply) and overflows its arrays on others; tessera's header check refuses
+// them first.
 TEST_F(AssimpFiles, BrokenPlyHeadersAreRefusedBeforeAssimpSeesThem) {
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n";
   const struct {
@@ -282,6 +283,9 @@ TEST_F(AssimpFiles, BrokenPlyHeadersAreRefusedBeforeAssimpSeesThem) {
       {header + "property floot y\nend_header\n", "line 5: 'property TYPE NAME'"},
       {"ply\nformat ascii 2.0 1.0\nelement vertex 3\nend_header\n", "line 2: an unknown format"},
       {header + "0 0 0\n", "no end_header"},
+      // assimp writes past its vertex arrays (fuzz/corpus/assimp/overflow_vertex_twice.ply).
+      {header + "element vertex 2\nproperty float x\nend_header\n0\n0\n0\n0\n0\n",
+       "line 5: a second 'vertex' element"},
   };
   for (const auto& c : cases) {
     const fs::path path = write("broken.ply", c.text);

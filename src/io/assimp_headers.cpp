@@ -63,13 +63,15 @@ bool isPlyType(std::string_view word) {
 // some broken headers (a NUL inside a keyword, found by fuzz/assimp_fuzz.cpp), so only the
 // header grammar goes through: printable lines, well-formed `format`, `element NAME COUNT` and
 // `property [list TYPE] TYPE NAME` lines, up to `end_header` (other lines are skipped, as assimp
-// skips them). The counts an
-// element declares are checked against the budget and the file's size: assimp sizes its arrays
-// from them.
+// skips them). The counts an element declares are checked against the budget and the file's
+// size: assimp sizes its arrays from them. An element name declared twice is refused: assimp
+// sizes its vertex arrays from one `element vertex` and fills them from both, writing past
+// their end (fuzz/corpus/assimp/overflow_vertex_twice.ply).
 Expected<void> checkPlyHeader(std::string_view text, const std::string& name,
                               const LoadBudget& budget, size_t file_bytes) {
   size_t line_number = 0, at = 0;
   bool in_element = false;
+  std::vector<std::string_view> elements;  // the names declared so far
   // The vertex count is checked at end_header: a PLY without faces is a point cloud, whose
   // vertices are points (LoadBudget::points()).
   uint64_t vertices = 0, faces = 0;
@@ -102,6 +104,9 @@ Expected<void> checkPlyHeader(std::string_view text, const std::string& name,
     } else if (key == "element") {
       if (words.size() != 3 || words[2].find_first_not_of("0123456789") != std::string_view::npos)
         return bad("'element NAME COUNT' expected");
+      if (std::find(elements.begin(), elements.end(), words[1]) != elements.end())
+        return bad("a second " + singleQuoted(elided(words[1])) + " element");
+      elements.push_back(words[1]);
       const uint64_t count = parseCount(words[2]);
       if (words[1] == "vertex") vertices = count;
       if (words[1] == "face") faces = count;
