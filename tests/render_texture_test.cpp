@@ -158,6 +158,25 @@ TEST(TextureLanes, TexturedSceneIsBitIdenticalForEverySimdLevelAndWorkerCount) {
   card_object.materials[0].sampler =
       makeSampler(TextureFilter::kBilinear, TextureWrap::kClamp, TextureWrap::kMirroredRepeat);
   scene.objects.push_back(card_object);
+  // Bilinear in one level, untransformed, repeated on a power of two and clamped: the groups the
+  // AVX-512 kernels filter two at a time (render/texture_lanes16.h), the clamped card's edges and
+  // the sphere's seam among them.
+  Object plain_sphere;
+  plain_sphere.mesh = std::make_shared<Mesh>(makeUvSphere(32, 16));
+  plain_sphere.shading = Shading::kGouraud;
+  plain_sphere.transform.translation = {1.4f, 0.2f, 0.5f};
+  plain_sphere.transform.scale = float3(0.6f);
+  plain_sphere.materials[0].albedo = noiseTexture(64, 32, true, 14);
+  plain_sphere.materials[0].sampler =
+      makeSampler(TextureFilter::kBilinear, TextureWrap::kRepeat, TextureWrap::kRepeat);
+  scene.objects.push_back(plain_sphere);
+  card.positions = {{0.2f, -0.9f, -0.5f}, {1.6f, -0.9f, -0.5f}, {1.6f, 0.1f, -0.5f},
+                    {0.2f, 0.1f, -0.5f}};
+  Object clamped_card = unlitObject(card, CullMode::kNone);
+  clamped_card.materials[0].albedo = noiseTexture(16, 8, false, 15);
+  clamped_card.materials[0].sampler =
+      makeSampler(TextureFilter::kBilinear, TextureWrap::kClamp, TextureWrap::kClamp);
+  scene.objects.push_back(clamped_card);
 
   for (int msaa : {1, 4}) {
     RenderOptions options;
@@ -212,6 +231,16 @@ TEST(TextureLanes, TrianglesTexturedAlikeShareOneFilterWithTheSameBits) {
   far_card.materials[0].sampler =
       makeSampler(TextureFilter::kBilinear, TextureWrap::kRepeat, TextureWrap::kRepeat);
   scene.objects.push_back(far_card);
+  // Bilinear, one level, untransformed, repeated on a power of two: the AVX-512 kernels filter
+  // two of its groups at a time (render/texture_lanes16.h).
+  Object plain = gouraud;
+  plain.mesh = std::make_shared<Mesh>(makeUvSphere(80, 40));
+  plain.transform.translation = {0, -0.6f, 0.8f};
+  plain.transform.scale = float3(0.5f);
+  plain.materials[0].albedo = noiseTexture(32, 16, true, 25);
+  plain.materials[0].sampler =
+      makeSampler(TextureFilter::kBilinear, TextureWrap::kRepeat, TextureWrap::kRepeat);
+  scene.objects.push_back(plain);
 
   // The spheres' triangles are a few pixels across: most groups of eight hold several.
   RenderOptions options;

@@ -7,6 +7,7 @@
 #include "render/mixed_lanes.h"
 #include "render/msaa_kernel.h"
 #include "render/shade_lanes.h"
+#include "render/texture_lanes16.h"
 
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
@@ -42,6 +43,23 @@ TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
   for (int g = 0; g < count; ++g) {
     const TexturedGroup& group = groups[g];
     Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
+#if defined(TESSERA_LANES16)
+    // Two groups side by side in sixteen lanes where they can be (texture_lanes16.h).
+    if (g + 1 < count && pairApplies(group, groups[g + 1])) {
+      Vec3x8 next;
+      if (filterTexturedPair(group, groups[g + 1], lights, color, next)) {
+        const TexturedGroup& second = groups[g + 1];
+        store(linear[0] + second.tx, next.x);
+        store(linear[1] + second.tx, next.y);
+        store(linear[2] + second.tx, next.z);
+        store(linear[0] + group.tx, color.x);
+        store(linear[1] + group.tx, color.y);
+        store(linear[2] + group.tx, color.z);
+        ++g;
+        continue;
+      }
+    }
+#endif
     if (!filterTexturedGroup(group, lights, color)) {
       const I32x8 keys = load<I32x8>(tile.key + ty * kTileSize + group.tx);
       const F32x8 px = toFloat(splat(tile.x0 + group.tx) + iota()) + splat(0.5f);
