@@ -170,8 +170,8 @@ TEST(TextureLanes, TexturedSceneIsBitIdenticalForEverySimdLevelAndWorkerCount) {
   plain_sphere.materials[0].sampler =
       makeSampler(TextureFilter::kBilinear, TextureWrap::kRepeat, TextureWrap::kRepeat);
   scene.objects.push_back(plain_sphere);
-  card.positions = {{0.2f, -0.9f, -0.5f}, {1.6f, -0.9f, -0.5f}, {1.6f, 0.1f, -0.5f},
-                    {0.2f, 0.1f, -0.5f}};
+  card.positions = {
+      {0.2f, -0.9f, -0.5f}, {1.6f, -0.9f, -0.5f}, {1.6f, 0.1f, -0.5f}, {0.2f, 0.1f, -0.5f}};
   Object clamped_card = unlitObject(card, CullMode::kNone);
   clamped_card.materials[0].albedo = noiseTexture(16, 8, false, 15);
   clamped_card.materials[0].sampler =

@@ -1,5 +1,5 @@
-// Two textured groups of a row filtered side by side in sixteen lanes (a 512-bit register each), for
-// the AVX-512 kernels (TESSERA_LANES16): the coordinates, wraps, transposes and lerps of
+// Two textured groups of a row filtered side by side in sixteen lanes (a 512-bit register each),
+// for the AVX-512 kernels (TESSERA_LANES16): the coordinates, wraps, transposes and lerps of
 // texture_lanes.h's bilinear8 once for both groups instead of once for each. The same float
 // operations per lane as bilinear8, so the same bits. It takes the common case only (one level,
 // the decoded copy, no transform, repeat on a power of two or clamp, every lane's four texels in
@@ -51,14 +51,14 @@ TESSERA_LANES_INLINE void transpose8x8Halves(F32x16 r[8]) {
                                    28, 29);
     u[i + 1] = __builtin_shufflevector(t[i], t[i + 2], 2, 3, 18, 19, 6, 7, 22, 23, 10, 11, 26, 27,
                                        14, 15, 30, 31);
-    u[i + 2] = __builtin_shufflevector(t[i + 1], t[i + 3], 0, 1, 16, 17, 4, 5, 20, 21, 8, 9, 24,
-                                       25, 12, 13, 28, 29);
+    u[i + 2] = __builtin_shufflevector(t[i + 1], t[i + 3], 0, 1, 16, 17, 4, 5, 20, 21, 8, 9, 24, 25,
+                                       12, 13, 28, 29);
     u[i + 3] = __builtin_shufflevector(t[i + 1], t[i + 3], 2, 3, 18, 19, 6, 7, 22, 23, 10, 11, 26,
                                        27, 14, 15, 30, 31);
   }
   for (int i = 0; i < 4; ++i) {
-    r[i] = __builtin_shufflevector(u[i], u[i + 4], 0, 1, 2, 3, 16, 17, 18, 19, 8, 9, 10, 11, 24,
-                                   25, 26, 27);
+    r[i] = __builtin_shufflevector(u[i], u[i + 4], 0, 1, 2, 3, 16, 17, 18, 19, 8, 9, 10, 11, 24, 25,
+                                   26, 27);
     r[i + 4] = __builtin_shufflevector(u[i], u[i + 4], 4, 5, 6, 7, 20, 21, 22, 23, 12, 13, 14, 15,
                                        28, 29, 30, 31);
   }
@@ -79,8 +79,7 @@ TESSERA_LANES_INLINE void wrapPair16(I32x16 i, int size, TextureWrap wrap, I32x1
 }
 
 TESSERA_LANES_INLINE bool isPairWrap(TextureWrap wrap, int size) {
-  return wrap == TextureWrap::kClamp ||
-         (wrap == TextureWrap::kRepeat && (size & (size - 1)) == 0);
+  return wrap == TextureWrap::kClamp || (wrap == TextureWrap::kRepeat && (size & (size - 1)) == 0);
 }
 
 // Whether two prepared groups of a row can be filtered side by side: one material, whose albedo
