@@ -30,9 +30,9 @@ TESSERA_LANES_INLINE void shadeApart(I32x8 keys, I32x8 covered,
   } while (any(todo));
 }
 
-// The textured groups of row ty that shadeTile prepared, filtered one after another into the row's
-// linear colours; a group whose coordinates are beyond the eight-lane filter's reach is shaded
-// triangle by triangle.
+// The textured groups of row ty that shadeTile prepared, filtered one after another (on AVX-512 two
+// at a time where they can be) into the row's linear colours; a group whose coordinates are beyond
+// the eight-lane filter's reach is shaded triangle by triangle.
 TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
                                             const TexturedGroup groups[], int count,
                                             const ShadeTriangle* const records[],
@@ -40,6 +40,11 @@ TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
                                             const LightRig& lights, float linear[3][kTileSize]) {
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
   const F32x8 zero = splat(0.0f);
+  const auto store_group = [&](const TexturedGroup& group, const Vec3x8& color) {
+    store(linear[0] + group.tx, color.x);
+    store(linear[1] + group.tx, color.y);
+    store(linear[2] + group.tx, color.z);
+  };
   for (int g = 0; g < count; ++g) {
     const TexturedGroup& group = groups[g];
     Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
@@ -48,13 +53,8 @@ TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
     if (g + 1 < count && pairApplies(group, groups[g + 1])) {
       Vec3x8 next;
       if (filterTexturedPair(group, groups[g + 1], lights, color, next)) {
-        const TexturedGroup& second = groups[g + 1];
-        store(linear[0] + second.tx, next.x);
-        store(linear[1] + second.tx, next.y);
-        store(linear[2] + second.tx, next.z);
-        store(linear[0] + group.tx, color.x);
-        store(linear[1] + group.tx, color.y);
-        store(linear[2] + group.tx, color.z);
+        store_group(group, color);
+        store_group(groups[g + 1], next);
         ++g;
         continue;
       }
@@ -65,9 +65,7 @@ TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
       const F32x8 px = toFloat(splat(tile.x0 + group.tx) + iota()) + splat(0.5f);
       shadeApart(keys, group.covered, records, extras, lights, false, px, py, color, normal);
     }
-    store(linear[0] + group.tx, color.x);
-    store(linear[1] + group.tx, color.y);
-    store(linear[2] + group.tx, color.z);
+    store_group(group, color);
   }
 }
 
