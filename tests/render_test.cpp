@@ -371,9 +371,9 @@ TEST(Renderer, LargeAndSmallFramesGetEveryPixelWritten) {
     Scene scene = clipSpaceScene();
     scene.background = {0.2f, 0.4f, 0.6f, 1.0f};
     const float w = static_cast<float>(width), h = static_cast<float>(height);
-    scene.objects.push_back(unlitObject(
-        windowTriangle({0.3f * w, 0.1f * h, 0.5f}, {0.9f * w, 0.5f * h, 0.5f},
-                       {0.45f * w, 0.8f * h, 0.5f}, width, height)));
+    scene.objects.push_back(
+        unlitObject(windowTriangle({0.3f * w, 0.1f * h, 0.5f}, {0.9f * w, 0.5f * h, 0.5f},
+                                   {0.45f * w, 0.8f * h, 0.5f}, width, height)));
     RenderOptions options;
     options.width = width;
     options.height = height;
