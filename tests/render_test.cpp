@@ -362,36 +362,6 @@ TEST(Renderer, EmptySceneIsAllBackground) {
   for (float z : f.depth) EXPECT_EQ(z, kInf);
 }
 
-// The resolve writes frames of more than 4 MB of colour past the caches and smaller ones through
-// them (render/resolve.cpp): both give every pixel its colour, the triangle's where the id AOV
-// (written apart from the colour) names it and the background elsewhere, odd widths' row ends
-// and empty tiles' runs included.
-TEST(Renderer, LargeAndSmallFramesGetEveryPixelWritten) {
-  for (const auto& [width, height] : {std::pair{1101, 1000}, std::pair{301, 203}}) {
-    Scene scene = clipSpaceScene();
-    scene.background = {0.2f, 0.4f, 0.6f, 1.0f};
-    const float w = static_cast<float>(width), h = static_cast<float>(height);
-    scene.objects.push_back(
-        unlitObject(windowTriangle({0.3f * w, 0.1f * h, 0.5f}, {0.9f * w, 0.5f * h, 0.5f},
-                                   {0.45f * w, 0.8f * h, 0.5f}, width, height)));
-    RenderOptions options;
-    options.width = width;
-    options.height = height;
-    options.ids = true;
-    Frame frame;
-    CpuRenderer(2).render(scene, options, frame);
-    const uint32_t background = packSrgba8(scene.background), white = packSrgba8({1, 1, 1, 1});
-    size_t covered = 0, wrong = 0;
-    for (size_t i = 0; i < frame.color.size(); ++i) {
-      const bool on = frame.triangle_id[i] != kNoTriangle;
-      covered += on;
-      wrong += frame.color[i] != (on ? white : background);
-    }
-    EXPECT_EQ(wrong, 0u) << width << "x" << height;
-    EXPECT_GT(covered, frame.color.size() / 10) << width << "x" << height;
-  }
-}
-
 TEST(Renderer, AovsAreFilledOnlyWhenAskedAndDoNotChangeTheColour) {
   Scene scene;
   Object o;

@@ -73,7 +73,8 @@ void CpuRenderer::State::blendTile(const RenderOptions& options, int tile, int w
 
 void CpuRenderer::State::renderSampledTile(const Scene& scene, const RenderOptions& options,
                                            int tile, int worker, const TileGrid& grid,
-                                           bool with_centre, bool plain, Frame& frame) {
+                                           const TilePass& pass, Frame& frame) {
+  const bool with_centre = pass.with_centre;
   const int tx = tile % grid.columns, ty = tile / grid.columns;
   const int x0 = tx * kTileSize, y0 = ty * kTileSize;
   const int width = std::min(kTileSize, options.width - x0);
@@ -94,10 +95,10 @@ void CpuRenderer::State::renderSampledTile(const Scene& scene, const RenderOptio
   const MsaaShading msaa{&st, options.msaa, samplePattern(options.msaa).data(),
                          scene.background.xyz()};
   ShadedTile& out = *shaded[static_cast<size_t>(worker)];
-  kernels.shade_tile(*st.primary, chunks, chunk_count, lights, options.normals, plain,
+  kernels.shade_tile(*st.primary, chunks, chunk_count, lights, options.normals, pass.plain,
                      packSrgba8(scene.background), &msaa, out);
   // The AOVs are the centre layer's: the same as one sample gives.
-  resolveTile(with_centre ? *layers[options.msaa] : *st.primary, out, chunks, frame);
+  resolveTile(with_centre ? *layers[options.msaa] : *st.primary, out, chunks, pass.stream, frame);
   if (options.coverage) resolveCoverage(*st.primary, st.covered, options.msaa, frame);
   blendTile(options, tile, worker, layers, frame);
 }
@@ -234,11 +235,11 @@ void CpuRenderer::State::renderTile(const Scene& scene, const RenderOptions& opt
     int run_end = tx + 1;
     while (run_end < grid.columns && tile_empty[tile_index + (run_end - tx)]) ++run_end;
     resolveEmptyTile(x0, y0, std::min(run_end * kTileSize, options.width) - x0, height,
-                     pass.background, frame);
+                     pass.background, pass.stream, frame);
     return;
   }
   if (options.msaa > 1) {
-    renderSampledTile(scene, options, tile, worker, grid, pass.with_centre, pass.plain, frame);
+    renderSampledTile(scene, options, tile, worker, grid, pass, frame);
     return;
   }
   TileVisibility& visibility = *tiles[static_cast<size_t>(worker)];
@@ -250,7 +251,7 @@ void CpuRenderer::State::renderTile(const Scene& scene, const RenderOptions& opt
   ShadedTile& out = *shaded[static_cast<size_t>(worker)];
   kernels.shade_tile(visibility, chunks, chunk_count, lights, options.normals, pass.plain,
                      pass.background, nullptr, out);
-  resolveTile(visibility, out, chunks, frame);
+  resolveTile(visibility, out, chunks, pass.stream, frame);
   if (options.coverage) resolveCoverage(visibility, nullptr, 1, frame);
   const TileVisibility* const layers[1] = {&visibility};
   blendTile(options, tile, worker, layers, frame);
@@ -330,6 +331,9 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     for (uint32_t tile : s.blend.bins().usedTiles()) s.tile_empty[tile] = 0;
   pass.plain = plainShading(scene, options.normals);
   pass.background = packSrgba8(scene.background);
+  size_t triangles_setup = 0;
+  for (size_t c = 0; c < s.chunk_count; ++c) triangles_setup += s.chunks[c].size;
+  pass.stream = streamsFrame(frame.pixelCount(), triangles_setup);
   s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile, int worker) {
     s.renderTile(scene, options, grid, pass, static_cast<int>(tile), worker, frame);
   });

@@ -90,6 +90,7 @@ struct CpuRenderer::State {
     bool with_centre = false;  // MSAA: the pixel centres are a layer of their own
     bool plain = false;        // plainShading
     uint32_t background = 0;   // sRGB
+    bool stream = false;       // the colour written past the caches (streamsFrame)
   };
   // Raster, shade and resolve of one tile (or, for the first of a run of empty tiles along a row,
   // the background of the run).
@@ -107,7 +108,7 @@ struct CpuRenderer::State {
                  const render::TileVisibility* const* layers, Frame& frame);
   // Raster, shade and resolve of one tile with several samples per pixel (msaa.h).
   void renderSampledTile(const Scene& scene, const RenderOptions& options, int tile, int worker,
-                         const render::TileGrid& grid, bool with_centre, bool plain, Frame& frame);
+                         const render::TileGrid& grid, const TilePass& pass, Frame& frame);
 };
 
 }  // namespace tessera

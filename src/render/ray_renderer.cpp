@@ -173,7 +173,7 @@ void RayRenderer::renderTile(const Scene& scene, const RenderOptions& options, i
                               visibility);
     kernels_->shade_ray_tile(visibility, chunks_, chunk_count_, lights_, options.normals,
                              background, rays_, nullptr, out);
-    resolveTile(visibility, out, chunks_, frame);
+    resolveTile(visibility, out, chunks_, stream_, frame);
     if (options.coverage) resolveCoverage(visibility, nullptr, 1, frame);
     return;
   }
@@ -190,7 +190,7 @@ void RayRenderer::renderTile(const Scene& scene, const RenderOptions& options, i
   const MsaaShading msaa{&st, samples, samplePattern(samples).data(), scene.background.xyz()};
   kernels_->shade_ray_tile(*st.primary, chunks_, chunk_count_, lights_, options.normals, background,
                            rays_, &msaa, out);
-  resolveTile(with_centre ? st.layer(samples) : *st.primary, out, chunks_, frame);
+  resolveTile(with_centre ? st.layer(samples) : *st.primary, out, chunks_, stream_, frame);
   if (options.coverage) resolveCoverage(*st.primary, st.covered, samples, frame);
 }
 
@@ -234,8 +234,12 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const Clock::time_point t_setup = Clock::now();
 
   tile_empty_.assign(static_cast<size_t>(grid_.tileCount()), 1);
-  for (size_t c = 0; c < chunk_count_; ++c)
+  size_t triangles_setup = 0;
+  for (size_t c = 0; c < chunk_count_; ++c) {
     for (uint32_t tile : chunks_[c].bins.usedTiles()) tile_empty_[tile] = 0;
+    triangles_setup += chunks_[c].size;
+  }
+  stream_ = streamsFrame(frame.pixelCount(), triangles_setup);
   while (tiles_.size() < static_cast<size_t>(pool.size())) {
     tiles_.push_back(std::make_unique<TileVisibility>());
     shaded_.push_back(std::make_unique<ShadedTile>());
@@ -251,7 +255,7 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     const int x0 = static_cast<int>(tile) % grid_.columns * kTileSize;
     const int y0 = static_cast<int>(tile) / grid_.columns * kTileSize;
     resolveEmptyTile(x0, y0, std::min(kTileSize, options.width - x0),
-                     std::min(kTileSize, options.height - y0), background, frame);
+                     std::min(kTileSize, options.height - y0), background, stream_, frame);
   });
   const Clock::time_point t_tiles = Clock::now();
 

@@ -61,6 +61,7 @@ class RayRenderer {
   VertexBuffer vertices_;
   std::vector<TriangleChunk> chunks_;
   size_t chunk_count_ = 0;
+  bool stream_ = false;  // this frame's colour written past the caches (streamsFrame)
   TileGrid grid_;
   std::vector<uint8_t> tile_empty_;
   std::vector<std::unique_ptr<TileVisibility>> tiles_;  // one per worker

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <fstream>
 #include <limits>
+#include <string>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -13,20 +15,6 @@
 namespace tessera::render {
 
 namespace {
-
-// Frames of up to this many bytes of colour are written through the caches, larger ones past
-// them (streaming stores). A small frame stays in the cache, where the next frame's writes and the
-// image encoder find it; a large one would only evict what the tiles read (the triangles' records,
-// the workers' tile buffers). Measured on the 2-core AMD EPYC with AVX-512 (docs/perf.md,
-// 2026-12-04, sixth session): through the caches, the cube at 640x480 took 26% less time and
-// the bunny at 1280x720 5% less, while at 1920x1080 (8.3 MB) the bunny took 10% more and the
-// dense sphere 3% more. A fixed size: the caches' sizes as a VM reports them can be wrong (this
-// one's sysconf gives 320 MB of L3 for 32 MB).
-constexpr size_t kCachedFrameBytes = size_t{4} << 20;
-
-bool streamsFrame(const Frame& frame) {
-  return frame.color.size() * sizeof(uint32_t) > kCachedFrameBytes;
-}
 
 // Fills n pixels with `value`, bypassing the cache where `stream`: nothing reads the background
 // back before the frame is done.
@@ -91,12 +79,44 @@ void fenceStreams() {
 #endif
 }
 
+// The size of cpu 0's last-level cache as Linux describes it (sysfs), 0 when it does not. Not
+// sysconf: glibc's figure can be wrong in a VM (this project's gives 320 MB of L3 for 32 MB).
+size_t lastLevelCacheBytes() {
+  int best_level = 0;
+  size_t best = 0;
+  for (int index = 0; index < 16; ++index) {
+    const std::string dir =
+        "/sys/devices/system/cpu/cpu0/cache/index" + std::to_string(index) + "/";
+    std::ifstream level_file(dir + "level"), size_file(dir + "size"), type_file(dir + "type");
+    int level = 0;
+    std::string size, type;
+    if (!(level_file >> level) || !(size_file >> size) || !(type_file >> type)) continue;
+    if (type == "Instruction" || level <= best_level) continue;
+    size_t value = 0, at = 0;
+    while (at < size.size() && size[at] >= '0' && size[at] <= '9')
+      value = value * 10 + static_cast<size_t>(size[at++] - '0');
+    const char unit = at < size.size() ? size[at] : ' ';
+    value <<= unit == 'K' ? 10 : unit == 'M' ? 20 : unit == 'G' ? 30 : 0;
+    best_level = level;
+    best = value;
+  }
+  return best;
+}
+
 }  // namespace
 
+bool streamsFrame(size_t pixels, size_t triangles) {
+  static const size_t cache = lastLevelCacheBytes();
+  const size_t limit = cache > 0 ? cache / 2 : kUnknownCacheFrameBytes;
+  const size_t bytes =
+      pixels * sizeof(uint32_t) + triangles * (sizeof(RasterTriangle) + sizeof(ShadeTriangle));
+  return bytes > limit;
+}
+
 void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
-                 const std::vector<TriangleChunk>& chunks, Frame& frame) {
+                 const std::vector<TriangleChunk>& chunks, bool stream, Frame& frame) {
   const bool depth = !frame.depth.empty(), ids = !frame.triangle_id.empty(),
-             normals = !frame.normal.empty(), stream = streamsFrame(frame);
+             normals = !frame.normal.empty();
   for (int ty = 0; ty < tile.height; ++ty) {
     const size_t row = static_cast<size_t>(tile.y0 + ty) * frame.width + tile.x0;
     const int t0 = ty * kTileSize;
@@ -133,10 +153,10 @@ void resolveCoverage(const TileVisibility& tile, const int32_t* covered, int sam
   }
 }
 
-void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background, Frame& frame) {
+void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background, bool stream,
+                      Frame& frame) {
   const bool depth = !frame.depth.empty(), ids = !frame.triangle_id.empty(),
-             normals = !frame.normal.empty(), coverage = !frame.coverage.empty(),
-             stream = streamsFrame(frame);
+             normals = !frame.normal.empty(), coverage = !frame.coverage.empty();
   for (int y = y0; y < y0 + height; ++y) {
     const size_t row = static_cast<size_t>(y) * frame.width + x0;
     fillRow(&frame.color[row], static_cast<size_t>(width), background, stream);
