@@ -325,14 +325,15 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   // Tiles no triangle touches (the background), found before the workers start so that a run of
   // them along a row can be filled in one go.
   s.tile_empty.assign(static_cast<size_t>(grid.tileCount()), 1);
-  for (size_t c = 0; c < s.chunk_count; ++c)
+  size_t triangles_setup = 0;
+  for (size_t c = 0; c < s.chunk_count; ++c) {
     for (uint32_t tile : s.chunks[c].bins.usedTiles()) s.tile_empty[tile] = 0;
+    triangles_setup += s.chunks[c].size;
+  }
   if (!s.blend.empty())
     for (uint32_t tile : s.blend.bins().usedTiles()) s.tile_empty[tile] = 0;
   pass.plain = plainShading(scene, options.normals);
   pass.background = packSrgba8(scene.background);
-  size_t triangles_setup = 0;
-  for (size_t c = 0; c < s.chunk_count; ++c) triangles_setup += s.chunks[c].size;
   pass.stream = streamsFrame(frame.pixelCount(), triangles_setup);
   s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile, int worker) {
     s.renderTile(scene, options, grid, pass, static_cast<int>(tile), worker, frame);

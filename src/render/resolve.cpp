@@ -138,7 +138,7 @@ void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
                                               shaded.normal_z[t0 + tx]};
     }
   }
-  fenceStreams();
+  if (stream) fenceStreams();
 }
 
 void resolveCoverage(const TileVisibility& tile, const int32_t* covered, int samples,
@@ -165,7 +165,7 @@ void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background
     if (normals) std::fill_n(&frame.normal[row], width, float3{});
     if (coverage) std::fill_n(&frame.coverage[row], width, uint8_t{0});
   }
-  fenceStreams();
+  if (stream) fenceStreams();
 }
 
 }  // namespace tessera::render
