@@ -64,13 +64,13 @@ TESSERA_LANES_INLINE bool coversCentre(const RasterTriangle& t, const RasterWide
   return true;
 }
 
-// The lanes of `lanes` whose pixel centre (x + l, y) passes the edge tests of their triangle
+// The lanes of `lanes` whose pixel centre (columns[l], y) passes the edge tests of their triangle
 // (keys): the exact test, as the Vulkan backend's. Small triangles (the pixel lies in the record's
 // box, where their edge values fit in int32: RasterTriangle::small) take it in lanes from their
 // records' first twelve words, loaded eight records at a time and transposed; large ones lane by
 // lane in 64 bits.
 TESSERA_LANES_INLINE I32x8 centresCovered(const std::vector<TriangleChunk>& chunks, I32x8 keys,
-                                          I32x8 lanes, int x, int y) {
+                                          I32x8 lanes, I32x8 columns, int y) {
   if (!any(lanes)) return lanes;
   alignas(32) uint32_t key[8];
   store(key, select(lanes, keys, splat(lane(keys, firstLane(lanes)))));
@@ -91,7 +91,7 @@ TESSERA_LANES_INLINE I32x8 centresCovered(const std::vector<TriangleChunk>& chun
   loadPairs(at10, ends, unused);
   const I32x8 min_x = shiftRight(shiftLeft(bitsOf(box), 16), 16);
   const I32x8 min_y = shiftRight(bitsOf(box), 16);
-  const I32x8 dx = (splat(x) + iota() - min_x) * splat(kSubpixelOne);
+  const I32x8 dx = (columns - min_x) * splat(kSubpixelOne);
   const I32x8 dy = (splat(y) - min_y) * splat(kSubpixelOne);
   const I32x8 e0 = bitsOf(w[0]) + bitsOf(w[3]) * dx + bitsOf(w[6]) * dy;
   const I32x8 e1 = bitsOf(w[1]) + bitsOf(w[4]) * dx + bitsOf(w[7]) * dy;
@@ -100,12 +100,13 @@ TESSERA_LANES_INLINE I32x8 centresCovered(const std::vector<TriangleChunk>& chun
   I32x8 covered = lanes & small & nonNegative(e0 | e1 | e2);
   const I32x8 large = lanes & ~small;
   if (any(large)) {
-    alignas(32) int32_t wanted[8], inside[8];
+    alignas(32) int32_t wanted[8], inside[8], column[8];
     store(wanted, large);
     store(inside, covered);
+    store(column, columns);
     for (int l = 0; l < 8; ++l)
       if (wanted[l] &&
-          coversCentre(*records[l], chunks[keyChunk(key[l])].wide[keyLocal(key[l])], x + l, y))
+          coversCentre(*records[l], chunks[keyChunk(key[l])].wide[keyLocal(key[l])], column[l], y))
         inside[l] = -1;
     covered = load<I32x8>(inside);
   }
@@ -137,7 +138,7 @@ TESSERA_LANES_INLINE Vec3x8 shadeSampleFragments(const MsaaShading& m, int s, I3
   const float centre_y = static_cast<float>(y) + 0.5f, sample_y = sampleY(m, s, y);
   const F32x8 zero = splat(0.0f);
   Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
-  const I32x8 centre = centresCovered(chunks, keys, first, x, y);
+  const I32x8 centre = centresCovered(chunks, keys, first, splat(x) + iota(), y);
   I32x8 todo = first;
   while (any(todo)) {
     const uint32_t k = key[firstLane(todo)];
@@ -169,22 +170,46 @@ TESSERA_LANES_INLINE Vec3x8 shadePlainFragments(const ShadeTriangle* const recor
   return plainColor(f, select(at_centre, c1, s1), select(at_centre, c2, s2));
 }
 
-// The linear colours of pixels x .. x + 7 of row y (tile offset i; chunk_records as laneRecords)
-// when every triangle is plain and some of the eight are mixed, each fragment shaded where
-// shadeSampleFragments shades it. Sample 0's triangles are shaded for
-// every lane at once (at the centre in the pixels that are not mixed: the one-sample colour), then
-// the later samples' new triangles in rounds, each round taking per lane its earliest sample not
-// yet shaded (mostly one round: a mixed pixel mostly holds two triangles). Each mixed pixel sums,
-// as resolveMixedRowWith does and in its order, its uncovered samples' background and each triangle
-// weighted by the samples it holds, over the sample count.
+// The later samples' fragments of a row's mixed plain pixels, queued by shadePlainSampled and
+// shaded eight at a time across the row's groups (shadeQueuedFragments). Shaded group by group, a
+// round of the later samples (per pixel its earliest new triangle) held about three of the eight
+// lanes, and most mixed groups took one round or two (docs/perf.md).
+struct FragmentQueue {
+  // What a flush leaves (fewer than eight), one group's fragments, and the slack of a full store.
+  static constexpr int kCapacity = 8 + 8 * (kMaxSamples - 1) + 8;
+  static_assert(kTileSize <= 64 && kMaxSamples <= 8, "where's fields: 6 bits, 3 bits, the rest");
+  alignas(32) int32_t key[kCapacity];
+  // Tile column | sample << 6 | the samples of the pixel its triangle holds << 9.
+  alignas(32) int32_t where[kCapacity];
+  int count;
+  // sampleX and the fraction of sampleY of each sample.
+  float sample_x[kMaxSamples], sample_y[kMaxSamples];
+
+  explicit FragmentQueue(const MsaaShading& m) : key{}, where{}, count(0) {
+    for (int s = 0; s < kMaxSamples; ++s) {
+      sample_x[s] = s < m.samples ? sampleX(m, s) : 0.0f;
+      sample_y[s] = s < m.samples ? sampleY(m, s, 0) : 0.0f;
+    }
+  }
+};
+
+// The linear colours of pixels x .. x + 7 of row y (tile offset i, tile column tx; chunk_records
+// as laneRecords) when every triangle is plain and some of the eight are mixed, each fragment
+// shaded where shadeSampleFragments shades it. Sample 0's triangles are shaded here for every lane
+// at once (at the centre in the pixels that are not mixed: the one-sample colour); the later
+// samples' new triangles of the mixed pixels go to `queue`, in sample order. A mixed pixel's colour
+// is left as the sum so far of its uncovered samples' background and sample 0's triangle weighted
+// by the samples it holds: shadeQueuedFragments adds the rest, in the order of resolveMixedRowWith,
+// and finishMixedRow divides by the sample count.
 TESSERA_LANES_INLINE Vec3x8 shadePlainSampled(const MsaaShading& m,
                                               const std::vector<TriangleChunk>& chunks,
                                               const ShadeTriangle* const* chunk_records, int i,
-                                              int x, int y, I32x8 mixed) {
+                                              int tx, int x, int y, I32x8 mixed,
+                                              FragmentQueue& queue) {
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const I32x8 zero = splat(int32_t{0});
   I32x8 keys[kMaxSamples], held[kMaxSamples], pending[kMaxSamples];
-  I32x8 background = zero, any_pending = zero;
+  I32x8 background = zero;
   for (int s = 0; s < m.samples; ++s)
     keys[s] = load<I32x8>(m.tiles->layers[static_cast<size_t>(s)]->key + i);
   for (int s = 0; s < m.samples; ++s) {
@@ -193,50 +218,99 @@ TESSERA_LANES_INLINE Vec3x8 shadePlainSampled(const MsaaShading& m,
     for (int r = 0; r < s; ++r) pending[s] = pending[s] & ~equal(keys[s], keys[r]);
     held[s] = zero;
     for (int r = s; r < m.samples; ++r) held[s] = held[s] - equal(keys[r], keys[s]);
-    if (s > 0) any_pending = any_pending | pending[s];
   }
   const F32x8 bg_weight = toFloat(background);
   Vec3x8 sum{splat(m.background.x) * bg_weight, splat(m.background.y) * bg_weight,
              splat(m.background.z) * bg_weight};
-  const F32x8 column = toFloat(splat(x) + iota());
-  const ShadeTriangle* records[8];
   Vec3x8 sample0{sum};
   const I32x8 valid = ~equal(keys[0], empty);
   if (any(valid)) {
+    const ShadeTriangle* records[8];
     laneRecords(laneKeys(keys[0], valid), chunk_records, records);
-    const I32x8 at_centre = ~mixed | centresCovered(chunks, keys[0], pending[0], x, y);
-    sample0 = shadePlainFragments(records, column, y, splat(sampleX(m, 0)), splat(sampleY(m, 0, y)),
-                                  at_centre);
+    const I32x8 at_centre =
+        ~mixed | centresCovered(chunks, keys[0], pending[0], splat(x) + iota(), y);
+    sample0 = shadePlainFragments(records, toFloat(splat(x) + iota()), y, splat(sampleX(m, 0)),
+                                  splat(sampleY(m, 0, y)), at_centre);
     const F32x8 weight = toFloat(held[0]);
     sum = {select(pending[0], sum.x + sample0.x * weight, sum.x),
            select(pending[0], sum.y + sample0.y * weight, sum.y),
            select(pending[0], sum.z + sample0.z * weight, sum.z)};
   }
-  while (any(any_pending)) {
-    I32x8 key = zero, weight = zero, taken = zero;
-    F32x8 sample_dx = splat(0.0f), sample_y = splat(0.0f);
-    any_pending = zero;
-    for (int s = 1; s < m.samples; ++s) {
-      const I32x8 take = pending[s] & ~taken;
-      key = select(take, keys[s], key);
-      weight = select(take, held[s], weight);
-      sample_dx = select(take, splat(sampleX(m, s)), sample_dx);
-      sample_y = select(take, splat(sampleY(m, s, y)), sample_y);
-      taken = taken | take;
-      pending[s] = pending[s] & ~take;
-      any_pending = any_pending | pending[s];
-    }
-    laneRecords(laneKeys(key, taken), chunk_records, records);
-    const Vec3x8 c = shadePlainFragments(records, column, y, sample_dx, sample_y,
-                                         centresCovered(chunks, key, taken, x, y));
-    const F32x8 w = toFloat(weight);
-    sum = {select(taken, sum.x + c.x * w, sum.x), select(taken, sum.y + c.y * w, sum.y),
-           select(taken, sum.z + c.z * w, sum.z)};
+  const I32x8 column = splat(tx) + iota();
+  for (int s = 1; s < m.samples; ++s) {
+    int n = 0;
+    store(queue.key + queue.count, compressLanes(keys[s], pending[s], n));
+    store(queue.where + queue.count,
+          compressLanes(column | splat(s << 6) | shiftLeft(held[s], 9), pending[s], n));
+    queue.count += n;
   }
+  return {select(mixed, sum.x, sample0.x), select(mixed, sum.y, sample0.y),
+          select(mixed, sum.z, sample0.z)};
+}
+
+// Queued fragments first .. first + count - 1 (count at most eight) of row y of the tile at
+// column x0 shaded in one evaluation, each weighted by its samples and added to its pixel's sum
+// in `linear`, in queue order.
+TESSERA_LANES_INLINE void shadeQueuedFragments(const std::vector<TriangleChunk>& chunks,
+                                               const ShadeTriangle* const* chunk_records,
+                                               const FragmentQueue& queue, int first, int count,
+                                               int x0, int y, float linear[3][kTileSize]) {
+  const I32x8 valid = lessThan(iota(), splat(count));
+  const I32x8 keys = load<I32x8>(queue.key + first);
+  const I32x8 where = load<I32x8>(queue.where + first);
+  const I32x8 tx = where & splat(int32_t{63});
+  const I32x8 sample = shiftRight(where, 6) & splat(int32_t{7});
+  const ShadeTriangle* records[8];
+  laneRecords(laneKeys(keys, valid), chunk_records, records);
+  const I32x8 columns = splat(x0) + tx;
+  const Vec3x8 c =
+      shadePlainFragments(records, toFloat(columns), y, gather(queue.sample_x, sample),
+                          splat(static_cast<float>(y)) + gather(queue.sample_y, sample),
+                          centresCovered(chunks, keys, valid, columns, y));
+  const F32x8 weight = toFloat(shiftRight(where, 9));
+  alignas(32) float add[3][8];
+  alignas(32) int32_t pixel[8];
+  store(add[0], c.x * weight);
+  store(add[1], c.y * weight);
+  store(add[2], c.z * weight);
+  store(pixel, tx);
+  for (int l = 0; l < count; ++l) {
+    linear[0][pixel[l]] += add[0][l];
+    linear[1][pixel[l]] += add[1][l];
+    linear[2][pixel[l]] += add[2][l];
+  }
+}
+
+// The queue's fragments shaded eight at a time (shadeQueuedFragments), all of them when `all`,
+// else while eight are left; what is left moves to the front.
+TESSERA_LANES_INLINE void shadeQueue(const std::vector<TriangleChunk>& chunks,
+                                     const ShadeTriangle* const* chunk_records,
+                                     FragmentQueue& queue, bool all, int x0, int y,
+                                     float linear[3][kTileSize]) {
+  int first = 0;
+  for (; queue.count - first >= 8; first += 8)
+    shadeQueuedFragments(chunks, chunk_records, queue, first, 8, x0, y, linear);
+  if (all && queue.count > first) {
+    shadeQueuedFragments(chunks, chunk_records, queue, first, queue.count - first, x0, y, linear);
+    first = queue.count;
+  }
+  if (first == 0) return;
+  store(queue.key, load<I32x8>(queue.key + first));  // fewer than eight left
+  store(queue.where, load<I32x8>(queue.where + first));
+  queue.count -= first;
+}
+
+// Row ty's mixed pixels, their sums complete (shadeQueue with `all`), divided by the sample count.
+TESSERA_LANES_INLINE void finishMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
+                                         float linear[3][kTileSize]) {
   const F32x8 inv_samples = splat(1.0f / static_cast<float>(m.samples));
-  return {select(mixed, sum.x * inv_samples, sample0.x),
-          select(mixed, sum.y * inv_samples, sample0.y),
-          select(mixed, sum.z * inv_samples, sample0.z)};
+  for (int tx = 0; tx < tile.width; tx += 8) {
+    const I32x8 mixed = load<I32x8>(m.tiles->mixed + ty * kTileSize + tx);
+    if (!any(mixed)) continue;
+    for (int k = 0; k < 3; ++k)
+      store(linear[k] + tx,
+            select(mixed, load<F32x8>(linear[k] + tx) * inv_samples, load<F32x8>(linear[k] + tx)));
+  }
 }
 
 // Replaces the linear colours of row ty's mixed pixels by their resolve, eight pixels at a time:

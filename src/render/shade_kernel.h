@@ -4,6 +4,8 @@
 // (kernels_<isa>.cpp); every variant gives the same bits.
 #pragma once
 
+#include <optional>
+
 #include "render/mixed_lanes.h"
 #include "render/msaa_kernel.h"
 #include "render/shade_lanes.h"
@@ -72,20 +74,22 @@ TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
 // Row ty of a plain tile (every triangle untextured, not Phong, no normal AOV) into the row's
 // linear colours: eight pixels of one triangle take shadePlainLanes (of one whose corners share a
 // colour, that colour, and its sRGB in `solid` for the encode), of several shadeMixed, and
-// with MSAA (`kSampled`) a group holding a mixed pixel is resolved in the group
-// (shadePlainSampled). A function of its own, not inlined into shadeTile: in the one function of
-// every path the compiler kept this loop's colours and masks on the stack, and the plain frames'
-// shading took 10% longer.
+// with MSAA (`kSampled`) a group holding a mixed pixel is resolved with the row's other such
+// groups (shadePlainSampled, then `queue`'s fragments eight at a time). A function of its own,
+// not inlined into shadeTile: in the one function of every path the compiler kept this loop's
+// colours and masks on the stack, and the plain frames' shading took 10% longer.
 template <bool kSampled>
 __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
                                              const std::vector<TriangleChunk>& chunks,
                                              const ShadeTriangle* const records[],
-                                             const MsaaShading* msaa, float linear[3][kTileSize],
+                                             const MsaaShading* msaa, FragmentQueue* queue,
+                                             float linear[3][kTileSize],
                                              uint32_t solid[kTileSize / 8]) {
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
   // The last single-triangle group's triangle and its solidRgba: a row crosses few triangles.
   uint32_t last_key = kEmptyKey, last_rgba = 0;
+  bool row_mixed = false;
   for (int tx = 0; tx < tile.width; tx += 8) {
     const int i = ty * kTileSize + tx;
     const I32x8 keys = load<I32x8>(tile.key + i);
@@ -95,8 +99,10 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
     solid[tx / 8] = kNoSolid;
     Vec3x8 color;
     const I32x8 mixed = kSampled ? load<I32x8>(msaa->tiles->mixed + i) : splat(int32_t{0});
-    if (kSampled && any(mixed)) {
-      color = shadePlainSampled(*msaa, chunks, records, i, tile.x0 + tx, tile.y0 + ty, mixed);
+    const bool sampled = kSampled && any(mixed);
+    if (sampled) {
+      color = shadePlainSampled(*msaa, chunks, records, i, tx, tile.x0 + tx, tile.y0 + ty, mixed,
+                                *queue);
     } else {
       const F32x8 px = toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f);
       const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
@@ -123,6 +129,14 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
     store(linear[0] + tx, color.x);
     store(linear[1] + tx, color.y);
     store(linear[2] + tx, color.z);
+    if (sampled) {
+      row_mixed = true;
+      shadeQueue(chunks, records, *queue, false, tile.x0, tile.y0 + ty, linear);
+    }
+  }
+  if (kSampled && row_mixed) {
+    shadeQueue(chunks, records, *queue, true, tile.x0, tile.y0 + ty, linear);
+    finishMixedRow(*msaa, tile, ty, linear);
   }
 }
 
@@ -222,9 +236,12 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
   // A plain row's groups of one solid triangle (shadePlainRow); the groups past a narrow tile's
   // width, which the sixteen-lane encode reads beside the last one, stay kNoSolid.
   uint32_t solid[kTileSize / 8] = {};
+  std::optional<FragmentQueue> queue;
+  if (kSampled && plain) queue.emplace(*msaa);
   for (int ty = 0; ty < tile.height; ++ty) {
     if (plain) {
-      shadePlainRow<kSampled>(tile, ty, chunks, records, msaa, linear, solid);
+      shadePlainRow<kSampled>(tile, ty, chunks, records, msaa, queue ? &*queue : nullptr, linear,
+                              solid);
       encodeShadedRow(tile, ty, linear, solid, background, out);
     } else {
       shadeRow<kSampled>(tile, ty, chunks, records, extras, lights, want_normals, msaa, linear,

@@ -299,6 +299,16 @@ TESSERA_LANES_INLINE F64x8 loadStrided(const double* first, size_t stride) {
     std::memcpy(&r.v[l], reinterpret_cast<const char*>(first) + l * stride, sizeof(double));
   return r;
 }
+// The lanes of v where `mask` is set moved to the front in lane order (the lanes after them hold
+// anything); `count` becomes their number.
+TESSERA_LANES_INLINE I32x8 compressLanes(I32x8 v, I32x8 mask, int& count) {
+  I32x8 r = v;
+  int n = 0;
+  for (int l = 0; l < 8; ++l)
+    if (mask.v[l]) r.v[n++] = v.v[l];
+  count = n;
+  return r;
+}
 
 }  // namespace
 }  // namespace tessera::render

@@ -442,5 +442,47 @@ TESSERA_LANES_INLINE F64x8 loadStrided(const double* first, size_t stride) {
   return r;
 }
 
+#if defined(__AVX2__) && !defined(__AVX512VL__)
+// compressLanes' permutations: for each eight-bit mask, the indices of its set lanes in order, one
+// byte each, the rest 0.
+constexpr uint64_t compressIndices(unsigned bits) {
+  uint64_t indices = 0;
+  int n = 0;
+  for (unsigned l = 0; l < 8; ++l)
+    if (bits & (1u << l)) indices |= uint64_t{l} << (8 * n++);
+  return indices;
+}
+constexpr auto kCompressIndices = [] {
+  struct Table {
+    uint64_t index[256];
+  } t{};
+  for (unsigned bits = 0; bits < 256; ++bits) t.index[bits] = compressIndices(bits);
+  return t;
+}();
+#endif
+// The lanes of v where `mask` is set moved to the front in lane order (the lanes after them hold
+// anything); `count` becomes their number.
+TESSERA_LANES_INLINE I32x8 compressLanes(I32x8 v, I32x8 mask, int& count) {
+#if defined(__AVX512VL__)
+  const __mmask8 k =
+      _mm256_cmpneq_epi32_mask(reinterpret_cast<__m256i>(mask), _mm256_setzero_si256());
+  count = __builtin_popcount(k);
+  return reinterpret_cast<I32x8>(_mm256_maskz_compress_epi32(k, reinterpret_cast<__m256i>(v)));
+#elif defined(__AVX2__)
+  const unsigned bits = static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(mask)));
+  count = __builtin_popcount(bits);
+  const __m256i index =
+      _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(kCompressIndices.index[bits])));
+  return reinterpret_cast<I32x8>(_mm256_permutevar8x32_epi32(reinterpret_cast<__m256i>(v), index));
+#else
+  I32x8 r = v;
+  int n = 0;
+  for (int l = 0; l < 8; ++l)
+    if (mask[l]) r[n++] = v[l];
+  count = n;
+  return r;
+#endif
+}
+
 }  // namespace
 }  // namespace tessera::render
