@@ -65,17 +65,13 @@ TESSERA_LANES_INLINE bool coversCentre(const RasterTriangle& t, const RasterWide
 }
 
 // The lanes of `lanes` whose pixel centre (columns[l], y) passes the edge tests of their triangle
-// (keys): the exact test, as the Vulkan backend's. Small triangles (the pixel lies in the record's
-// box, where their edge values fit in int32: RasterTriangle::small) take it in lanes from their
-// records' first twelve words, loaded eight records at a time and transposed; large ones lane by
-// lane in 64 bits.
+// (keys; records: each lane's raster record, a valid one in every lane): the exact test, as the
+// Vulkan backend's. Small triangles (the pixel lies in the record's box, where their edge values
+// fit in int32: RasterTriangle::small) take it in lanes from their records' first twelve words,
+// loaded eight records at a time and transposed; large ones lane by lane in 64 bits.
 TESSERA_LANES_INLINE I32x8 centresCovered(const std::vector<TriangleChunk>& chunks, I32x8 keys,
-                                          I32x8 lanes, I32x8 columns, int y) {
-  if (!any(lanes)) return lanes;
-  alignas(32) uint32_t key[8];
-  store(key, select(lanes, keys, splat(lane(keys, firstLane(lanes)))));
-  const RasterTriangle* records[8];
-  for (int l = 0; l < 8; ++l) records[l] = &chunks[keyChunk(key[l])].raster[keyLocal(key[l])];
+                                          const RasterTriangle* const records[8], I32x8 lanes,
+                                          I32x8 columns, int y) {
   // corner[3], a[3], b[0..1]; then b[2] and min_x | min_y << 16; then max_x | max_y_small << 16
   // (kSmallBit: the sign bit) and x0.
   F32x8 w[8], b2, box, ends, unused;
@@ -101,9 +97,11 @@ TESSERA_LANES_INLINE I32x8 centresCovered(const std::vector<TriangleChunk>& chun
   const I32x8 large = lanes & ~small;
   if (any(large)) {
     alignas(32) int32_t wanted[8], inside[8], column[8];
+    alignas(32) uint32_t key[8];
     store(wanted, large);
     store(inside, covered);
     store(column, columns);
+    store(key, keys);
     for (int l = 0; l < 8; ++l)
       if (wanted[l] &&
           coversCentre(*records[l], chunks[keyChunk(key[l])].wide[keyLocal(key[l])], column[l], y))
@@ -111,6 +109,17 @@ TESSERA_LANES_INLINE I32x8 centresCovered(const std::vector<TriangleChunk>& chun
     covered = load<I32x8>(inside);
   }
   return covered;
+}
+
+// centresCovered with the records found from the keys.
+TESSERA_LANES_INLINE I32x8 centresCovered(const std::vector<TriangleChunk>& chunks, I32x8 keys,
+                                          I32x8 lanes, I32x8 columns, int y) {
+  if (!any(lanes)) return lanes;
+  alignas(32) uint32_t key[8];
+  store(key, select(lanes, keys, splat(lane(keys, firstLane(lanes)))));
+  const RasterTriangle* records[8];
+  for (int l = 0; l < 8; ++l) records[l] = &chunks[keyChunk(key[l])].raster[keyLocal(key[l])];
+  return centresCovered(chunks, keys, records, lanes, columns, y);
 }
 
 // Sample s of row y in pixels: x from the pixel's left edge, y from the top of the image.
@@ -164,10 +173,10 @@ TESSERA_LANES_INLINE Vec3x8 shadePlainFragments(const ShadeTriangle* const recor
                                                 I32x8 at_centre) {
   F32x8 f[kPlainFields];
   loadPlainFields(records, f);
-  F32x8 c0, c1, c2, s0, s1, s2;
-  plainBarycentrics(f, column + splat(0.5f), splat(static_cast<float>(y) + 0.5f), c0, c1, c2);
-  plainBarycentrics(f, column + sample_dx, sample_y, s0, s1, s2);
-  return plainColor(f, select(at_centre, c1, s1), select(at_centre, c2, s2));
+  F32x8 b0, b1, b2;
+  plainBarycentrics(f, select(at_centre, column + splat(0.5f), column + sample_dx),
+                    select(at_centre, splat(static_cast<float>(y) + 0.5f), sample_y), b0, b1, b2);
+  return plainColor(f, b1, b2);
 }
 
 // The later samples' fragments of a row's mixed plain pixels, queued by shadePlainSampled and
@@ -184,12 +193,16 @@ struct FragmentQueue {
   int count;
   // sampleX and the fraction of sampleY of each sample.
   float sample_x[kMaxSamples], sample_y[kMaxSamples];
+  // Each chunk's first raster record (laneRecords), for the centre test.
+  const RasterTriangle* raster[kMaxChunks];
 
-  explicit FragmentQueue(const MsaaShading& m) : key{}, where{}, count(0) {
+  FragmentQueue(const MsaaShading& m, const std::vector<TriangleChunk>& chunks, size_t chunk_count)
+      : key{}, where{}, count(0) {
     for (int s = 0; s < kMaxSamples; ++s) {
       sample_x[s] = s < m.samples ? sampleX(m, s) : 0.0f;
       sample_y[s] = s < m.samples ? sampleY(m, s, 0) : 0.0f;
     }
+    for (size_t c = 0; c < chunk_count; ++c) raster[c] = chunks[c].raster.data();
   }
 };
 
@@ -226,9 +239,12 @@ TESSERA_LANES_INLINE Vec3x8 shadePlainSampled(const MsaaShading& m,
   const I32x8 valid = ~equal(keys[0], empty);
   if (any(valid)) {
     const ShadeTriangle* records[8];
-    laneRecords(laneKeys(keys[0], valid), chunk_records, records);
+    const RasterTriangle* raster[8];
+    const LaneKeys lane_keys = laneKeys(keys[0], valid);
+    laneRecords(lane_keys, chunk_records, records);
+    laneRecords(lane_keys, queue.raster, raster);
     const I32x8 at_centre =
-        ~mixed | centresCovered(chunks, keys[0], pending[0], splat(x) + iota(), y);
+        ~mixed | centresCovered(chunks, keys[0], raster, pending[0], splat(x) + iota(), y);
     sample0 = shadePlainFragments(records, toFloat(splat(x) + iota()), y, splat(sampleX(m, 0)),
                                   splat(sampleY(m, 0, y)), at_centre);
     const F32x8 weight = toFloat(held[0]);
@@ -261,12 +277,15 @@ TESSERA_LANES_INLINE void shadeQueuedFragments(const std::vector<TriangleChunk>&
   const I32x8 tx = where & splat(int32_t{63});
   const I32x8 sample = shiftRight(where, 6) & splat(int32_t{7});
   const ShadeTriangle* records[8];
-  laneRecords(laneKeys(keys, valid), chunk_records, records);
+  const RasterTriangle* raster[8];
+  const LaneKeys lane_keys = laneKeys(keys, valid);
+  laneRecords(lane_keys, chunk_records, records);
+  laneRecords(lane_keys, queue.raster, raster);
   const I32x8 columns = splat(x0) + tx;
   const Vec3x8 c =
       shadePlainFragments(records, toFloat(columns), y, gather(queue.sample_x, sample),
                           splat(static_cast<float>(y)) + gather(queue.sample_y, sample),
-                          centresCovered(chunks, keys, valid, columns, y));
+                          centresCovered(chunks, keys, raster, valid, columns, y));
   const F32x8 weight = toFloat(shiftRight(where, 9));
   alignas(32) float add[3][8];
   alignas(32) int32_t pixel[8];

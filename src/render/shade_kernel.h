@@ -237,7 +237,7 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
   // width, which the sixteen-lane encode reads beside the last one, stay kNoSolid.
   uint32_t solid[kTileSize / 8] = {};
   std::optional<FragmentQueue> queue;
-  if (kSampled && plain) queue.emplace(*msaa);
+  if (kSampled && plain) queue.emplace(*msaa, chunks, chunk_count);
   for (int ty = 0; ty < tile.height; ++ty) {
     if (plain) {
       shadePlainRow<kSampled>(tile, ty, chunks, records, msaa, queue ? &*queue : nullptr, linear,
