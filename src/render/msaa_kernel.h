@@ -67,24 +67,18 @@ TESSERA_LANES_INLINE bool coversCentre(const RasterTriangle& t, const RasterWide
 // The lanes of `lanes` whose pixel centre (columns[l], y) passes the edge tests of their triangle
 // (keys; records: each lane's raster record, a valid one in every lane): the exact test, as the
 // Vulkan backend's. Small triangles (the pixel lies in the record's box, where their edge values
-// fit in int32: RasterTriangle::small) take it in lanes from their records' first twelve words,
+// fit in int32: RasterTriangle::small) take it in lanes from their records' first ten words,
 // loaded eight records at a time and transposed; large ones lane by lane in 64 bits.
 TESSERA_LANES_INLINE I32x8 centresCovered(const std::vector<TriangleChunk>& chunks, I32x8 keys,
                                           const RasterTriangle* const records[8], I32x8 lanes,
                                           I32x8 columns, int y) {
-  // corner[3], a[3], b[0..1]; then b[2] and min_x | min_y << 16; then max_x | max_y_small << 16
-  // (kSmallBit: the sign bit) and x0.
-  F32x8 w[8], b2, box, ends, unused;
+  // corner[3], a[3], b[0..1]; then b[2] and min_x | min_y << 16.
+  F32x8 w[8], b2, box;
   for (int l = 0; l < 8; ++l) w[l] = load<F32x8>(records[l]);
   transpose8x8(w);
   const float* at8[8];
-  const float* at10[8];
-  for (int l = 0; l < 8; ++l) {
-    at8[l] = reinterpret_cast<const float*>(records[l]) + 8;
-    at10[l] = reinterpret_cast<const float*>(records[l]) + 10;
-  }
+  for (int l = 0; l < 8; ++l) at8[l] = reinterpret_cast<const float*>(records[l]) + 8;
   loadPairs(at8, b2, box);
-  loadPairs(at10, ends, unused);
   const I32x8 min_x = shiftRight(shiftLeft(bitsOf(box), 16), 16);
   const I32x8 min_y = shiftRight(bitsOf(box), 16);
   const I32x8 dx = (columns - min_x) * splat(kSubpixelOne);
@@ -92,7 +86,9 @@ TESSERA_LANES_INLINE I32x8 centresCovered(const std::vector<TriangleChunk>& chun
   const I32x8 e0 = bitsOf(w[0]) + bitsOf(w[3]) * dx + bitsOf(w[6]) * dy;
   const I32x8 e1 = bitsOf(w[1]) + bitsOf(w[4]) * dx + bitsOf(w[7]) * dy;
   const I32x8 e2 = bitsOf(w[2]) + bitsOf(w[5]) * dx + bitsOf(b2) * dy;
-  const I32x8 small = lessThan(bitsOf(ends), splat(int32_t{0}));
+  // A large triangle's corner values are 0 (setup); a small one's are not all 0, as no point lies
+  // on all three edges of a triangle with an area (setup drops the others).
+  const I32x8 small = ~equal(bitsOf(w[0]) | bitsOf(w[1]) | bitsOf(w[2]), splat(int32_t{0}));
   I32x8 covered = lanes & small & nonNegative(e0 | e1 | e2);
   const I32x8 large = lanes & ~small;
   if (any(large)) {
