@@ -6,8 +6,8 @@
 
 #include <optional>
 
+#include "render/fragment_queue.h"
 #include "render/mixed_lanes.h"
-#include "render/msaa_kernel.h"
 #include "render/shade_lanes.h"
 #include "render/texture_lanes16.h"
 
@@ -90,6 +90,9 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
   // The last single-triangle group's triangle and its solidRgba: a row crosses few triangles.
   uint32_t last_key = kEmptyKey, last_rgba = 0;
   bool row_mixed = false;
+  const auto shade_queued = [&](int first, int count) __attribute__((always_inline)) {
+    shadeQueuedPlain(chunks, records, *queue, first, count, tile.x0, tile.y0 + ty, linear);
+  };
   for (int tx = 0; tx < tile.width; tx += 8) {
     const int i = ty * kTileSize + tx;
     const I32x8 keys = load<I32x8>(tile.key + i);
@@ -131,11 +134,11 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
     store(linear[2] + tx, color.z);
     if (sampled) {
       row_mixed = true;
-      shadeQueue(chunks, records, *queue, false, tile.x0, tile.y0 + ty, linear);
+      shadeQueue(*queue, false, shade_queued);
     }
   }
   if (kSampled && row_mixed) {
-    shadeQueue(chunks, records, *queue, true, tile.x0, tile.y0 + ty, linear);
+    shadeQueue(*queue, true, shade_queued);
     finishMixedRow(*msaa, tile, ty, linear);
   }
 }
@@ -149,7 +152,8 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
                                         const ShadeTriangle* const records[],
                                         const ShadeExtras* const extras[], const LightRig& lights,
                                         bool want_normals, const MsaaShading* msaa,
-                                        float linear[3][kTileSize], ShadedTile& out) {
+                                        FragmentQueue* queue, float linear[3][kTileSize],
+                                        ShadedTile& out) {
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const F32x8 zero = splat(0.0f);
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
@@ -203,7 +207,7 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
     storeShadedGroup(color, normal, want_normals, tx, i, linear, out);
   }
   filterTexturedRow(tile, ty, textured_groups, textured_count, records, extras, lights, linear);
-  if (kSampled) resolveMixedRow(*msaa, tile, ty, chunks, lights, linear);
+  if (kSampled) resolveMixedRow(*msaa, tile, ty, chunks, records, extras, lights, *queue, linear);
 }
 
 // Shades the tile in pixel order, eight pixels of a row at a time, then encodes the row to sRGB
@@ -237,15 +241,15 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
   // width, which the sixteen-lane encode reads beside the last one, stay kNoSolid.
   uint32_t solid[kTileSize / 8] = {};
   std::optional<FragmentQueue> queue;
-  if (kSampled && plain) queue.emplace(*msaa, chunks, chunk_count);
+  if (kSampled) queue.emplace(*msaa, chunks, chunk_count);
   for (int ty = 0; ty < tile.height; ++ty) {
     if (plain) {
       shadePlainRow<kSampled>(tile, ty, chunks, records, msaa, queue ? &*queue : nullptr, linear,
                               solid);
       encodeShadedRow(tile, ty, linear, solid, background, out);
     } else {
-      shadeRow<kSampled>(tile, ty, chunks, records, extras, lights, want_normals, msaa, linear,
-                         out);
+      shadeRow<kSampled>(tile, ty, chunks, records, extras, lights, want_normals, msaa,
+                         queue ? &*queue : nullptr, linear, out);
       encodeShadedRow(tile, ty, linear, nullptr, background, out);
     }
   }

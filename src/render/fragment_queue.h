@@ -1,0 +1,283 @@
+// The mixed pixels of a multisampled row (msaa.h), shaded through a queue of fragments: each
+// distinct triangle of a mixed pixel is one fragment, shaded at the pixel centre when the centre
+// passes the triangle's edge tests and otherwise at the first sample it holds, and weighted by the
+// samples it holds. Fragments are queued as the row's groups are visited and shaded eight at a
+// time across the groups, each added to its pixel's sum in queue order (each pixel's sample order);
+// at the row's end the sums, which began with the uncovered samples' background, are divided by
+// the sample count. Shaded group by group instead, a round of a group held about three of its
+// eight lanes (docs/perf.md). Compiled per instruction set; every variant gives the same bits.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/msaa_kernel.h"
+
+namespace tessera::render {
+namespace {  // one private copy per translation unit, each compiled for its instruction set
+
+struct FragmentQueue {
+  // What a flush leaves (fewer than eight) and one group's fragments (eight at most a sample),
+  // whose last full store ends within.
+  static constexpr int kCapacity = 8 + 8 * kMaxSamples;
+  static_assert(kTileSize <= 64 && kMaxSamples <= 8, "where's fields: 6 bits, 3 bits, the rest");
+  alignas(32) int32_t key[kCapacity];
+  // Tile column | sample << 6 | the samples of the pixel its triangle holds << 9.
+  alignas(32) int32_t where[kCapacity];
+  int count;
+  // sampleX and the fraction of sampleY of each sample.
+  float sample_x[kMaxSamples], sample_y[kMaxSamples];
+  // Each chunk's first raster record (laneRecords), for the centre test.
+  const RasterTriangle* raster[kMaxChunks];
+
+  FragmentQueue(const MsaaShading& m, const std::vector<TriangleChunk>& chunks, size_t chunk_count)
+      : key{}, where{}, count(0) {
+    for (int s = 0; s < kMaxSamples; ++s) {
+      sample_x[s] = s < m.samples ? sampleX(m, s) : 0.0f;
+      sample_y[s] = s < m.samples ? sampleY(m, s, 0) : 0.0f;
+    }
+    for (size_t c = 0; c < chunk_count; ++c) raster[c] = chunks[c].raster.data();
+  }
+
+  // The lanes of `lanes` (pixels tx .. tx + 7 of the tile, their triangles `keys` at sample s,
+  // holding `held` samples each) at the queue's end.
+  TESSERA_LANES_INLINE void push(I32x8 keys, I32x8 lanes, int tx, int s, I32x8 held) {
+    int n = 0;
+    store(key + count, compressLanes(keys, lanes, n));
+    store(where + count,
+          compressLanes((splat(tx) + iota()) | splat(s << 6) | shiftLeft(held, 9), lanes, n));
+    count += n;
+  }
+};
+
+// Queued fragments in lanes: their triangles' records and the point each is shaded at.
+struct QueuedFragments {
+  I32x8 valid, keys, tx;
+  F32x8 px, py, weight;
+  LaneKeys lane_keys;
+  const ShadeTriangle* records[8];
+};
+
+// Fragments first .. first + count - 1 of the queue (count at most eight; the other lanes borrow
+// the first's triangle) of row y of the tile at column x0.
+TESSERA_LANES_INLINE void loadQueued(const std::vector<TriangleChunk>& chunks,
+                                     const ShadeTriangle* const* chunk_records,
+                                     const FragmentQueue& queue, int first, int count, int x0,
+                                     int y, QueuedFragments& q) {
+  q.valid = lessThan(iota(), splat(count));
+  q.keys = load<I32x8>(queue.key + first);
+  const I32x8 where = load<I32x8>(queue.where + first);
+  q.tx = where & splat(int32_t{63});
+  const I32x8 sample = shiftRight(where, 6) & splat(int32_t{7});
+  q.weight = toFloat(shiftRight(where, 9));
+  q.lane_keys = laneKeys(q.keys, q.valid);
+  laneRecords(q.lane_keys, chunk_records, q.records);
+  const RasterTriangle* raster[8];
+  laneRecords(q.lane_keys, queue.raster, raster);
+  const I32x8 columns = splat(x0) + q.tx;
+  const I32x8 at_centre = centresCovered(chunks, q.keys, raster, q.valid, columns, y);
+  const F32x8 column = toFloat(columns);
+  q.px = select(at_centre, column + splat(0.5f), column + gather(queue.sample_x, sample));
+  q.py = select(at_centre, splat(static_cast<float>(y) + 0.5f),
+                splat(static_cast<float>(y)) + gather(queue.sample_y, sample));
+}
+
+// The fragments' linear colours `color`, weighted, added to their pixels' sums in lane order.
+TESSERA_LANES_INLINE void addFragments(const QueuedFragments& q, int count, const Vec3x8& color,
+                                       float linear[3][kTileSize]) {
+  alignas(32) float add[3][8];
+  alignas(32) int32_t pixel[8];
+  store(add[0], color.x * q.weight);
+  store(add[1], color.y * q.weight);
+  store(add[2], color.z * q.weight);
+  store(pixel, q.tx);
+  for (int l = 0; l < count; ++l) {
+    linear[0][pixel[l]] += add[0][l];
+    linear[1][pixel[l]] += add[1][l];
+    linear[2][pixel[l]] += add[2][l];
+  }
+}
+
+// The queue's fragments shaded eight at a time by shade(first, count), all of them when `all`,
+// else while eight are left; what is left moves to the front.
+template <typename Shade>
+TESSERA_LANES_INLINE void shadeQueue(FragmentQueue& queue, bool all, Shade shade) {
+  int first = 0;
+  for (; queue.count - first >= 8; first += 8) shade(first, 8);
+  if (all && queue.count > first) {
+    shade(first, queue.count - first);
+    first = queue.count;
+  }
+  if (first == 0) return;
+  store(queue.key, load<I32x8>(queue.key + first));  // fewer than eight left
+  store(queue.where, load<I32x8>(queue.where + first));
+  queue.count -= first;
+}
+
+// Row ty's mixed pixels, their sums complete (shadeQueue with `all`), divided by the sample count.
+TESSERA_LANES_INLINE void finishMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
+                                         float linear[3][kTileSize]) {
+  const F32x8 inv_samples = splat(1.0f / static_cast<float>(m.samples));
+  for (int tx = 0; tx < tile.width; tx += 8) {
+    const I32x8 mixed = load<I32x8>(m.tiles->mixed + ty * kTileSize + tx);
+    if (!any(mixed)) continue;
+    for (int k = 0; k < 3; ++k)
+      store(linear[k] + tx,
+            select(mixed, load<F32x8>(linear[k] + tx) * inv_samples, load<F32x8>(linear[k] + tx)));
+  }
+}
+
+// The samples' keys of pixels tile offset i .. i + 7 and what the resolve derives from them:
+// per sample, the pixels of `mixed` where it holds a triangle no earlier sample holds (pending)
+// and how many samples hold that triangle (held); and the background's share of each pixel's sum.
+struct MixedGroup {
+  I32x8 keys[kMaxSamples], held[kMaxSamples], pending[kMaxSamples];
+  Vec3x8 sum;
+};
+TESSERA_LANES_INLINE void loadMixedGroup(const MsaaShading& m, int i, I32x8 mixed, MixedGroup& g) {
+  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
+  const I32x8 zero = splat(int32_t{0});
+  I32x8 background = zero;
+  for (int s = 0; s < m.samples; ++s)
+    g.keys[s] = load<I32x8>(m.tiles->layers[static_cast<size_t>(s)]->key + i);
+  for (int s = 0; s < m.samples; ++s) {
+    background = background - equal(g.keys[s], empty);
+    g.pending[s] = mixed & ~equal(g.keys[s], empty);
+    for (int r = 0; r < s; ++r) g.pending[s] = g.pending[s] & ~equal(g.keys[s], g.keys[r]);
+    g.held[s] = zero;
+    for (int r = s; r < m.samples; ++r) g.held[s] = g.held[s] - equal(g.keys[r], g.keys[s]);
+  }
+  const F32x8 bg_weight = toFloat(background);
+  g.sum = {splat(m.background.x) * bg_weight, splat(m.background.y) * bg_weight,
+           splat(m.background.z) * bg_weight};
+}
+
+// Plain fragments (shadeMixed's case), lane l from records[l] at (px, py): one evaluation.
+TESSERA_LANES_INLINE Vec3x8 plainAt(const ShadeTriangle* const records[8], F32x8 px, F32x8 py) {
+  F32x8 f[kPlainFields];
+  loadPlainFields(records, f);
+  F32x8 b0, b1, b2;
+  plainBarycentrics(f, px, py, b0, b1, b2);
+  return plainColor(f, b1, b2);
+}
+
+// The linear colours of pixels x .. x + 7 of row y (tile offset i, tile column tx; chunk_records
+// as laneRecords) when every triangle is plain and some of the eight are mixed. Sample 0's
+// triangles are shaded here for every lane at once (at the centre in the pixels that are not
+// mixed: the one-sample colour); the later samples' new triangles of the mixed pixels go to
+// `queue`. A mixed pixel's colour is left as its sum so far: the background's share and sample
+// 0's triangle weighted by the samples it holds.
+TESSERA_LANES_INLINE Vec3x8 shadePlainSampled(const MsaaShading& m,
+                                              const std::vector<TriangleChunk>& chunks,
+                                              const ShadeTriangle* const* chunk_records, int i,
+                                              int tx, int x, int y, I32x8 mixed,
+                                              FragmentQueue& queue) {
+  MixedGroup g;
+  loadMixedGroup(m, i, mixed, g);
+  Vec3x8 sum = g.sum, sample0 = g.sum;
+  const I32x8 valid = ~equal(g.keys[0], splat(static_cast<int32_t>(kEmptyKey)));
+  if (any(valid)) {
+    const ShadeTriangle* records[8];
+    const RasterTriangle* raster[8];
+    const LaneKeys lane_keys = laneKeys(g.keys[0], valid);
+    laneRecords(lane_keys, chunk_records, records);
+    laneRecords(lane_keys, queue.raster, raster);
+    const I32x8 columns = splat(x) + iota();
+    const I32x8 at_centre =
+        ~mixed | centresCovered(chunks, g.keys[0], raster, g.pending[0], columns, y);
+    const F32x8 column = toFloat(columns);
+    sample0 =
+        plainAt(records, select(at_centre, column + splat(0.5f), column + splat(sampleX(m, 0))),
+                select(at_centre, splat(static_cast<float>(y) + 0.5f), splat(sampleY(m, 0, y))));
+    const F32x8 weight = toFloat(g.held[0]);
+    sum = {select(g.pending[0], sum.x + sample0.x * weight, sum.x),
+           select(g.pending[0], sum.y + sample0.y * weight, sum.y),
+           select(g.pending[0], sum.z + sample0.z * weight, sum.z)};
+  }
+  for (int s = 1; s < m.samples; ++s) queue.push(g.keys[s], g.pending[s], tx, s, g.held[s]);
+  return {select(mixed, sum.x, sample0.x), select(mixed, sum.y, sample0.y),
+          select(mixed, sum.z, sample0.z)};
+}
+
+// The queued plain fragments first .. first + count - 1 of row y shaded and added to their sums.
+TESSERA_LANES_INLINE void shadeQueuedPlain(const std::vector<TriangleChunk>& chunks,
+                                           const ShadeTriangle* const* chunk_records,
+                                           const FragmentQueue& queue, int first, int count, int x0,
+                                           int y, float linear[3][kTileSize]) {
+  QueuedFragments q;
+  loadQueued(chunks, chunk_records, queue, first, count, x0, y, q);
+  addFragments(q, count, plainAt(q.records, q.px, q.py), linear);
+}
+
+// The colours of queued fragments of any triangles: in one evaluation where all are textured alike
+// without per-pixel lighting (prepareTexturedGroup) or lit per pixel alike without maps
+// (shadeLitMixed), else triangle by triangle and point by point (shadeLanes). The same operations
+// per lane on every path, so the same bits.
+TESSERA_LANES_INLINE Vec3x8 shadeFragments(const QueuedFragments& q,
+                                           const ShadeExtras* const* chunk_extras,
+                                           const LightRig& lights) {
+  const ShadeExtras* extras[8];
+  laneRecords(q.lane_keys, chunk_extras, extras);
+  Vec3x8 color;
+  const ShadeTriangle& t = *q.records[0];
+  if (texturedPlain(t)) {
+    TexturedGroup group;
+    if (prepareTexturedGroup(q.records, extras, q.valid, q.px, q.py, group) &&
+        filterTexturedGroup(group, lights, color))
+      return color;
+  } else if (litPlain(t) && shadeLitMixed(q.records, extras, q.valid, lights, q.px, q.py, color)) {
+    return color;
+  }
+  const F32x8 zero = splat(0.0f);
+  color = {zero, zero, zero};
+  Vec3x8 normal{zero, zero, zero};
+  alignas(32) float row[8];
+  alignas(32) uint32_t key[8];
+  store(row, q.py);
+  store(key, q.keys);
+  I32x8 todo = q.valid;
+  while (any(todo)) {
+    const int l = firstLane(todo);
+    const I32x8 mine =
+        todo & equal(q.keys, splat(static_cast<int32_t>(key[l]))) & equal(q.py, splat(row[l]));
+    shadeLanes(*q.records[l], *extras[l], lights, false, q.px, row[l], mine, color, normal);
+    todo = todo & ~mine;
+  }
+  return color;
+}
+
+// Row ty's mixed pixels when some triangle of the tile is not plain: their colours (the centre
+// colours shadeRow left) replaced by their resolve, every fragment through the queue.
+TESSERA_LANES_INLINE void resolveMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
+                                          const std::vector<TriangleChunk>& chunks,
+                                          const ShadeTriangle* const* chunk_records,
+                                          const ShadeExtras* const* chunk_extras,
+                                          const LightRig& lights, FragmentQueue& queue,
+                                          float linear[3][kTileSize]) {
+  const int y = tile.y0 + ty;
+  const auto shade = [&](int first, int count) __attribute__((always_inline)) {
+    QueuedFragments q;
+    loadQueued(chunks, chunk_records, queue, first, count, tile.x0, y, q);
+    addFragments(q, count, shadeFragments(q, chunk_extras, lights), linear);
+  };
+  bool row_mixed = false;
+  for (int tx = 0; tx < tile.width; tx += 8) {
+    const int i = ty * kTileSize + tx;
+    const I32x8 mixed = load<I32x8>(m.tiles->mixed + i);
+    if (!any(mixed)) continue;
+    row_mixed = true;
+    MixedGroup g;
+    loadMixedGroup(m, i, mixed, g);
+    store(linear[0] + tx, select(mixed, g.sum.x, load<F32x8>(linear[0] + tx)));
+    store(linear[1] + tx, select(mixed, g.sum.y, load<F32x8>(linear[1] + tx)));
+    store(linear[2] + tx, select(mixed, g.sum.z, load<F32x8>(linear[2] + tx)));
+    for (int s = 0; s < m.samples; ++s) queue.push(g.keys[s], g.pending[s], tx, s, g.held[s]);
+    shadeQueue(queue, false, shade);
+  }
+  if (!row_mixed) return;
+  shadeQueue(queue, true, shade);
+  finishMixedRow(m, tile, ty, linear);
+}
+
+}  // namespace
+}  // namespace tessera::render
