@@ -152,15 +152,6 @@ TESSERA_LANES_INLINE void loadMixedGroup(const MsaaShading& m, int i, I32x8 mixe
            splat(m.background.z) * bg_weight};
 }
 
-// Plain fragments (shadeMixed's case), lane l from records[l] at (px, py): one evaluation.
-TESSERA_LANES_INLINE Vec3x8 plainAt(const ShadeTriangle* const records[8], F32x8 px, F32x8 py) {
-  F32x8 f[kPlainFields];
-  loadPlainFields(records, f);
-  F32x8 b0, b1, b2;
-  plainBarycentrics(f, px, py, b0, b1, b2);
-  return plainColor(f, b1, b2);
-}
-
 // The linear colours of pixels x .. x + 7 of row y (tile offset i, tile column tx; chunk_records
 // as laneRecords) when every triangle is plain and some of the eight are mixed. Sample 0's
 // triangles are shaded here for every lane at once (at the centre in the pixels that are not
@@ -187,8 +178,8 @@ TESSERA_LANES_INLINE Vec3x8 shadePlainSampled(const MsaaShading& m,
         ~mixed | centresCovered(chunks, g.keys[0], raster, g.pending[0], columns, y);
     const F32x8 column = toFloat(columns);
     sample0 =
-        plainAt(records, select(at_centre, column + splat(0.5f), column + splat(sampleX(m, 0))),
-                select(at_centre, splat(static_cast<float>(y) + 0.5f), splat(sampleY(m, 0, y))));
+        shadeMixed(records, select(at_centre, column + splat(0.5f), column + splat(sampleX(m, 0))),
+                   select(at_centre, splat(static_cast<float>(y) + 0.5f), splat(sampleY(m, 0, y))));
     const F32x8 weight = toFloat(g.held[0]);
     sum = {select(g.pending[0], sum.x + sample0.x * weight, sum.x),
            select(g.pending[0], sum.y + sample0.y * weight, sum.y),
@@ -206,7 +197,7 @@ TESSERA_LANES_INLINE void shadeQueuedPlain(const std::vector<TriangleChunk>& chu
                                            int y, float linear[3][kTileSize]) {
   QueuedFragments q;
   loadQueued(chunks, chunk_records, queue, first, count, x0, y, q);
-  addFragments(q, count, plainAt(q.records, q.px, q.py), linear);
+  addFragments(q, count, shadeMixed(q.records, q.px, q.py), linear);
 }
 
 // The colours of queued fragments of any triangles: in one evaluation where all are textured alike
