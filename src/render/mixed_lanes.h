@@ -1,6 +1,6 @@
 // Eight pixels of several triangles shaded in one evaluation, for the shading kernel
-// (shade_kernel.h) and the resolve of multisampled pixels (msaa_kernel.h): each lane's fields are
-// loaded from its own triangle's records, eight records at a time, and transposed into lanes
+// (shade_kernel.h) and the resolve of multisampled pixels (fragment_queue.h): each lane's fields
+// are loaded from its own triangle's records, eight records at a time, and transposed into lanes
 // (untextured: shadeMixed; textured alike without per-pixel lighting: prepareTexturedGroup; lit per
 // pixel alike: shadeLitMixed), each lane's records found by laneRecords. The same float operations
 // per lane as shadeLanes (shade_lanes.h), so the same bits.

@@ -1,7 +1,8 @@
-// The multisampling kernels (msaa.h): combining a tile's sample layers, and resolving the mixed
-// pixels of a row sample by sample. Written once against eight-lane types and compiled per
-// instruction set (kernels_<isa>.cpp), with the same operations per lane, so every variant gives
-// the same bits.
+// The multisampling kernels (msaa.h): combining a tile's sample layers, the exact centre test of
+// a mixed pixel's triangles, and the sample-by-sample resolve of the ray renderer's rows (the
+// perspective path resolves through fragment_queue.h). Written once against eight-lane types and
+// compiled per instruction set (kernels_<isa>.cpp), with the same operations per lane, so every
+// variant gives the same bits.
 #pragma once
 
 #include <cstdint>

@@ -1,7 +1,7 @@
 // The shading kernel: a tile's visible pixels, eight at a time, shaded once at their centres
 // (shade_lanes.h) and encoded to sRGB a row at a time; with MSAA the mixed pixels of each row are
-// resolved sample by sample before the encode (msaa_kernel.h). Compiled per instruction set
-// (kernels_<isa>.cpp); every variant gives the same bits.
+// resolved before the encode, their fragments eight at a time (fragment_queue.h). Compiled per
+// instruction set (kernels_<isa>.cpp); every variant gives the same bits.
 #pragma once
 
 #include <optional>
