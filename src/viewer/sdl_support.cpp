@@ -3,7 +3,29 @@
 #include <cstdlib>
 #include <string>
 
+#if defined(TESSERA_HAS_X11)
+#include <X11/Xlib.h>
+#endif
+
 namespace tessera::viewer {
+namespace {
+
+#if defined(TESSERA_HAS_X11)
+// Xlib's handler before ours: every error but the one below goes to it (its default prints the
+// error and exits).
+XErrorHandler previous_x_error_handler = nullptr;
+
+// A request on a window that no longer exists (BadWindow) is not fatal. A viewer once ended with
+// status 1 as it quit, on Xlib's default handler, for an X_SendEvent to its own window after
+// that was gone: most likely SDL 2.26 sending a wake-up to a destroyed window (SDL 2.28's
+// SDL_DestroyWindow clears a pending one).
+int ignoreStaleWindowErrors(Display* display, XErrorEvent* error) {
+  if (error->error_code == BadWindow) return 0;
+  return previous_x_error_handler ? previous_x_error_handler(display, error) : 0;
+}
+#endif
+
+}  // namespace
 
 SdlSession::~SdlSession() {
   if (ttf_) TTF_Quit();
@@ -34,6 +56,9 @@ Expected<void> SdlSession::start() {
     return makeError("cannot open a window: no display (SDL found none and fell back to its '" +
                      current +
                      "' driver); set DISPLAY (X11) or WAYLAND_DISPLAY, or run under xvfb-run");
+#if defined(TESSERA_HAS_X11)
+  if (current == "x11") previous_x_error_handler = XSetErrorHandler(ignoreStaleWindowErrors);
+#endif
   if (TTF_Init() != 0) return makeError(std::string("cannot start SDL2_ttf: ") + TTF_GetError());
   ttf_ = true;
   return {};
