@@ -119,4 +119,18 @@ struct alignas(128) TriangleChunk {
   size_t clip_splits = 0;
 };
 
+// Marks the tiles no chunk's bins touch: tile_empty gets `tiles` entries, 1 for such a tile and 0
+// for the others. Returns the chunks' set-up triangles (records this frame), which streamsFrame
+// weighs.
+inline size_t markEmptyTiles(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                             size_t tiles, std::vector<uint8_t>& tile_empty) {
+  tile_empty.assign(tiles, 1);
+  size_t triangles = 0;
+  for (size_t c = 0; c < chunk_count; ++c) {
+    for (uint32_t tile : chunks[c].bins.usedTiles()) tile_empty[tile] = 0;
+    triangles += chunks[c].size;
+  }
+  return triangles;
+}
+
 }  // namespace tessera::render

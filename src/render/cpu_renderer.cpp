@@ -324,12 +324,8 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const Clock::time_point t_setup = Clock::now();
   // Tiles no triangle touches (the background), found before the workers start so that a run of
   // them along a row can be filled in one go.
-  s.tile_empty.assign(static_cast<size_t>(grid.tileCount()), 1);
-  size_t triangles_setup = 0;
-  for (size_t c = 0; c < s.chunk_count; ++c) {
-    for (uint32_t tile : s.chunks[c].bins.usedTiles()) s.tile_empty[tile] = 0;
-    triangles_setup += s.chunks[c].size;
-  }
+  const size_t triangles_setup =
+      markEmptyTiles(s.chunks, s.chunk_count, static_cast<size_t>(grid.tileCount()), s.tile_empty);
   if (!s.blend.empty())
     for (uint32_t tile : s.blend.bins().usedTiles()) s.tile_empty[tile] = 0;
   pass.plain = plainShading(scene, options.normals);

@@ -233,12 +233,8 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
                    [&](size_t c, int) { setupChunk(scene, options, pool.size(), chunks_[c]); });
   const Clock::time_point t_setup = Clock::now();
 
-  tile_empty_.assign(static_cast<size_t>(grid_.tileCount()), 1);
-  size_t triangles_setup = 0;
-  for (size_t c = 0; c < chunk_count_; ++c) {
-    for (uint32_t tile : chunks_[c].bins.usedTiles()) tile_empty_[tile] = 0;
-    triangles_setup += chunks_[c].size;
-  }
+  const size_t triangles_setup =
+      markEmptyTiles(chunks_, chunk_count_, static_cast<size_t>(grid_.tileCount()), tile_empty_);
   stream_ = streamsFrame(frame.pixelCount(), triangles_setup);
   while (tiles_.size() < static_cast<size_t>(pool.size())) {
     tiles_.push_back(std::make_unique<TileVisibility>());
