@@ -76,6 +76,19 @@ TESSERA_LANES_INLINE void rasterRayBox(const RayTriangle& t, const int16_t box[4
   }
 }
 
+// The lanes whose ray passes through the triangle: rayCovers' tests, the same edge values.
+TESSERA_LANES_INLINE I32x8 raysCover(const RayTriangle& t, const Ray8& d) {
+  const F32x8 zero = splat(0.0f);
+  I32x8 covered = splat(int32_t{-1});
+  F32x8 e[3];
+  for (int k = 0; k < 3; ++k) {
+    e[k] = edgeValue(t, k, d);
+    const I32x8 owner = splat(static_cast<int32_t>(-((t.owner >> k) & 1)));
+    covered = covered & (lessThan(zero, e[k]) | (equal(e[k], zero) & owner));
+  }
+  return covered & lessThan(zero, (e[0] + e[1]) + e[2]);
+}
+
 // The barycentrics of eight rays' hits, as rayBarycentrics.
 TESSERA_LANES_INLINE void rayBarycentrics8(const RayTriangle& t, const Ray8& d, F32x8& b0,
                                            F32x8& b1, F32x8& b2) {
@@ -148,13 +161,7 @@ Vec3x8 shadeRayFragments(const RayShading& rs, int s, I32x8 keys, I32x8 first, i
     const uint32_t key = static_cast<uint32_t>(lane(keys, firstLane(todo)));
     const I32x8 mine = todo & equal(keys, splat(static_cast<int32_t>(key)));
     const RayTriangle& r = rs.chunks[keyChunk(key)].ray[keyLocal(key)];
-    alignas(32) int32_t at_centre[8];
-    for (int l = 0; l < 8; ++l)
-      at_centre[l] =
-          lane(mine, l) && rayCovers(r, {lane(centre.x, l), lane(centre.y, l), lane(centre.z, l)})
-              ? -1
-              : 0;
-    const I32x8 c = load<I32x8>(at_centre);
+    const I32x8 c = mine & raysCover(r, centre);
     const Ray8 d{select(c, centre.x, sample.x), select(c, centre.y, sample.y),
                  select(c, centre.z, sample.z)};
     rs.shade(key, d, x, y, mine, false, color, normal);
