@@ -44,7 +44,7 @@ bool unitDirection(float3 p, Dir& d) {
 // way) unless the triangle holds a pole; the angle from the axis is extreme at the corners or
 // where an arc comes nearest either pole.
 struct AngularExtent {
-  Interval polar{0, 0};  // angle from the axis, [0, pi]
+  Interval polar{0, 0};    // angle from the axis, [0, pi]
   Interval azimuth{0, 0};  // may leave [-pi, pi]; the whole turn when `full`
   bool full = false;
 };
@@ -86,10 +86,12 @@ bool angularExtent(const Dir u[3], const Dir& axis, const Dir& ref, const Dir& r
     for (const Dir* pole : {&axis, &back}) {
       const double t = pole->dot(m) / mm;
       Dir q{{pole->v[0] - t * m.v[0], pole->v[1] - t * m.v[1], pole->v[2] - t * m.v[2]}};
+      // Whether q lies within the arc, before the square root and divisions of its unit length:
+      // a positive scale keeps the signs (most arcs do not pass their nearest approach).
+      if (a.cross(q).dot(m) < 0.0 || q.cross(b).dot(m) < 0.0) continue;
       const double len = std::sqrt(q.dot(q));
       if (!(len > 1e-12)) continue;  // the arc's plane is perpendicular to the pole
       for (double& c : q.v) c /= len;
-      if (a.cross(q).dot(m) < 0.0 || q.cross(b).dot(m) < 0.0) continue;
       const double c = q.dot(axis);
       cos_lo = std::min(cos_lo, c);
       cos_hi = std::max(cos_hi, c);
@@ -153,16 +155,20 @@ WindowBox polarBox(const RaySetupContext& ctx, const AngularExtent& e) {
   double u0 = -r_hi, u1 = r_hi, v0 = -r_hi, v1 = r_hi;
   if (!e.full) {
     u0 = v0 = 1e300, u1 = v1 = -1e300;
-    auto take = [&](double r, double psi) {
-      const double u = r * std::cos(psi), v = r * std::sin(psi);
+    auto take = [&](double r, double cos_psi, double sin_psi) {
+      const double u = r * cos_psi, v = r * sin_psi;
       u0 = std::min(u0, u), u1 = std::max(u1, u), v0 = std::min(v0, v), v1 = std::max(v1, v);
     };
-    for (double r : {r_lo, r_hi})
-      for (double psi : {e.azimuth.lo, e.azimuth.hi}) take(r, psi);
+    // Each azimuth's cosine and sine once for both radii.
+    for (double psi : {e.azimuth.lo, e.azimuth.hi}) {
+      const double cos_psi = std::cos(psi), sin_psi = std::sin(psi);
+      take(r_lo, cos_psi, sin_psi);
+      take(r_hi, cos_psi, sin_psi);
+    }
     // The sector's outer arc reaches furthest where it crosses an axis direction.
     for (int k = -8; k <= 8; ++k) {
       const double axis = k * kHalfPi;
-      if (axis > e.azimuth.lo && axis < e.azimuth.hi) take(r_hi, axis);
+      if (axis > e.azimuth.lo && axis < e.azimuth.hi) take(r_hi, std::cos(axis), std::sin(axis));
     }
   }
   const double w = ctx.width, h = ctx.height, aspect = w / h;
