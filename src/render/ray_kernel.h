@@ -149,6 +149,51 @@ struct RayShading {
   }
 };
 
+// Each chunk's first shading and ray records, for laneRecords.
+struct RayRecords {
+  const ShadeTriangle* shade[kMaxChunks];
+  const RayTriangle* ray[kMaxChunks];
+};
+
+// Whether a pixel of triangle t is its interpolated vertex colours alone (untextured, lit per
+// vertex or unlit): what shadeRayMixed takes.
+TESSERA_LANES_INLINE bool rayPlain(const ShadeTriangle& t) {
+  return !t.has_uv && t.shading != Shading::kPhong && t.shading != Shading::kPbr;
+}
+
+// Eight rays d (the lanes of `covered`, whose keys name several triangles, `first` a covered
+// lane's) of triangles that are all rayPlain, each lane shaded from its own triangle's records:
+// the edge normals and colours of eight records loaded at once and transposed into lanes, then
+// RayShading::shade's operations per lane (rayBarycentrics8, interpolateColor, the tone curve), so
+// the same bits in one evaluation instead of one per triangle. False, with `color` untouched,
+// where a lane's triangle is not rayPlain.
+TESSERA_LANES_INLINE bool shadeRayMixed(const RayRecords& records, const LightRig& lights,
+                                        I32x8 keys, I32x8 covered, uint32_t first, const Ray8& d,
+                                        Vec3x8& color) {
+  const LaneKeys k = laneKeys(keys, covered, first);
+  const ShadeTriangle* lanes[8];
+  laneRecords(k, records.shade, lanes);
+  for (int l = 0; l < 8; ++l)
+    if (!rayPlain(*lanes[l])) return false;
+  const RayTriangle* rays[8];
+  laneRecords(k, records.ray, rays);
+  const float* at[8];
+  for (int l = 0; l < 8; ++l) at[l] = &rays[l]->n[0][0];
+  F32x8 n[9], f[kPlainFields];
+  corners9(at, n);
+  loadPlainFields(lanes, f);
+  // edgeValue's operations with each lane's own normals.
+  const F32x8 e0 = (d.x * n[0] + d.y * n[1]) + d.z * n[2];
+  const F32x8 e1 = (d.x * n[3] + d.y * n[4]) + d.z * n[5];
+  const F32x8 e2 = (d.x * n[6] + d.y * n[7]) + d.z * n[8];
+  const F32x8 inv_s = splat(1.0f) / ((e0 + e1) + e2);
+  Vec3x8 c = plainColor(f, e1 * inv_s, e2 * inv_s);
+  if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
+  const F32x8 zero = splat(0.0f);
+  color = {select(covered, c.x, zero), select(covered, c.y, zero), select(covered, c.z, zero)};
+  return true;
+}
+
 // The sample-s fragments of eight pixels (the lanes of `first`), each triangle shaded at the centre
 // ray of the lanes whose centre ray passes through it and at sample s's ray elsewhere.
 Vec3x8 shadeRayFragments(const RayShading& rs, int s, I32x8 keys, I32x8 first, int x, int y) {
@@ -186,9 +231,15 @@ void rasterRayTileKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_
 }
 
 void shadeRayTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk>& chunks,
-                        size_t, const LightRig& lights, bool want_normals, uint32_t background,
-                        const RayTable& rays, const MsaaShading* msaa, ShadedTile& out) {
+                        size_t chunk_count, const LightRig& lights, bool want_normals,
+                        uint32_t background, const RayTable& rays, const MsaaShading* msaa,
+                        ShadedTile& out) {
   const RayShading rs{lights, chunks, rays, rays.width(), rays.height()};
+  RayRecords records;
+  for (size_t c = 0; c < chunk_count; ++c) {
+    records.shade[c] = chunks[c].shade.data();
+    records.ray[c] = chunks[c].ray.data();
+  }
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const F32x8 zero = splat(0.0f);
   alignas(32) float linear[3][kTileSize];
@@ -203,6 +254,13 @@ void shadeRayTileKernel(const TileVisibility& tile, const std::vector<TriangleCh
       const int x = tile.x0 + tx;
       const Ray8 d = loadRays(rays.centre(), row + static_cast<size_t>(x));
       Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
+      // Several triangles lit per vertex: one evaluation from each lane's records.
+      const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(todo)));
+      if (!want_normals && any(todo & ~equal(keys, splat(static_cast<int32_t>(first)))) &&
+          shadeRayMixed(records, lights, keys, todo, first, d, color)) {
+        storeShadedGroup(color, normal, want_normals, tx, i, linear, out);
+        continue;
+      }
       do {
         const uint32_t key = static_cast<uint32_t>(lane(keys, firstLane(todo)));
         const I32x8 mask = equal(keys, splat(static_cast<int32_t>(key)));
