@@ -256,7 +256,8 @@ void shadeRayTileKernel(const TileVisibility& tile, const std::vector<TriangleCh
       Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
       // Several triangles lit per vertex: one evaluation from each lane's records.
       const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(todo)));
-      if (!want_normals && any(todo & ~equal(keys, splat(static_cast<int32_t>(first)))) &&
+      if (!want_normals && rayPlain(records.shade[keyChunk(first)][keyLocal(first)]) &&
+          any(todo & ~equal(keys, splat(static_cast<int32_t>(first)))) &&
           shadeRayMixed(records, lights, keys, todo, first, d, color)) {
         storeShadedGroup(color, normal, want_normals, tx, i, linear, out);
         continue;
