@@ -82,15 +82,16 @@ TESSERA_LANES_INLINE void loadQueued(const std::vector<TriangleChunk>& chunks,
                 splat(static_cast<float>(y)) + gather(queue.sample_y, sample));
 }
 
-// The fragments' linear colours `color`, weighted, added to their pixels' sums in lane order.
-TESSERA_LANES_INLINE void addFragments(const QueuedFragments& q, int count, const Vec3x8& color,
+// The fragments' linear colours `color` (tile columns tx), weighted, added to their pixels' sums
+// in lane order.
+TESSERA_LANES_INLINE void addFragments(I32x8 tx, F32x8 weight, int count, const Vec3x8& color,
                                        float linear[3][kTileSize]) {
   alignas(32) float add[3][8];
   alignas(32) int32_t pixel[8];
-  store(add[0], color.x * q.weight);
-  store(add[1], color.y * q.weight);
-  store(add[2], color.z * q.weight);
-  store(pixel, q.tx);
+  store(add[0], color.x * weight);
+  store(add[1], color.y * weight);
+  store(add[2], color.z * weight);
+  store(pixel, tx);
   for (int l = 0; l < count; ++l) {
     linear[0][pixel[l]] += add[0][l];
     linear[1][pixel[l]] += add[1][l];
@@ -197,7 +198,7 @@ TESSERA_LANES_INLINE void shadeQueuedPlain(const std::vector<TriangleChunk>& chu
                                            int y, float linear[3][kTileSize]) {
   QueuedFragments q;
   loadQueued(chunks, chunk_records, queue, first, count, x0, y, q);
-  addFragments(q, count, shadeMixed(q.records, q.px, q.py), linear);
+  addFragments(q.tx, q.weight, count, shadeMixed(q.records, q.px, q.py), linear);
 }
 
 // The colours of queued fragments of any triangles: in one evaluation where all are textured alike
@@ -237,20 +238,13 @@ TESSERA_LANES_INLINE Vec3x8 shadeFragments(const QueuedFragments& q,
   return color;
 }
 
-// Row ty's mixed pixels when some triangle of the tile is not plain: their colours (the centre
-// colours shadeRow left) replaced by their resolve, every fragment through the queue.
-TESSERA_LANES_INLINE void resolveMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
-                                          const std::vector<TriangleChunk>& chunks,
-                                          const ShadeTriangle* const* chunk_records,
-                                          const ShadeExtras* const* chunk_extras,
-                                          const LightRig& lights, FragmentQueue& queue,
-                                          float linear[3][kTileSize]) {
-  const int y = tile.y0 + ty;
-  const auto shade = [&](int first, int count) __attribute__((always_inline)) {
-    QueuedFragments q;
-    loadQueued(chunks, chunk_records, queue, first, count, tile.x0, y, q);
-    addFragments(q, count, shadeFragments(q, chunk_extras, lights), linear);
-  };
+// Row ty's mixed pixels: their colours (the centre colours the row's shading left) replaced by
+// their resolve, every fragment through the queue, shade(first, count) shading queued fragments
+// and adding them to their sums (the perspective path's, below; the ray renderer's, ray_queue.h).
+template <typename Shade>
+TESSERA_LANES_INLINE void resolveMixedRowBy(const MsaaShading& m, const TileVisibility& tile,
+                                            int ty, FragmentQueue& queue,
+                                            float linear[3][kTileSize], Shade shade) {
   bool row_mixed = false;
   for (int tx = 0; tx < tile.width; tx += 8) {
     const int i = ty * kTileSize + tx;
@@ -268,6 +262,22 @@ TESSERA_LANES_INLINE void resolveMixedRow(const MsaaShading& m, const TileVisibi
   if (!row_mixed) return;
   shadeQueue(queue, true, shade);
   finishMixedRow(m, tile, ty, linear);
+}
+
+// resolveMixedRowBy of a perspective row when some triangle of the tile is not plain.
+TESSERA_LANES_INLINE void resolveMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
+                                          const std::vector<TriangleChunk>& chunks,
+                                          const ShadeTriangle* const* chunk_records,
+                                          const ShadeExtras* const* chunk_extras,
+                                          const LightRig& lights, FragmentQueue& queue,
+                                          float linear[3][kTileSize]) {
+  const int y = tile.y0 + ty;
+  resolveMixedRowBy(
+      m, tile, ty, queue, linear, [&](int first, int count) __attribute__((always_inline)) {
+        QueuedFragments q;
+        loadQueued(chunks, chunk_records, queue, first, count, tile.x0, y, q);
+        addFragments(q.tx, q.weight, count, shadeFragments(q, chunk_extras, lights), linear);
+      });
 }
 
 }  // namespace

@@ -1,8 +1,7 @@
-// The multisampling kernels (msaa.h): combining a tile's sample layers, the exact centre test of
-// a mixed pixel's triangles, and the sample-by-sample resolve of the ray renderer's rows (the
-// perspective path resolves through fragment_queue.h). Written once against eight-lane types and
-// compiled per instruction set (kernels_<isa>.cpp), with the same operations per lane, so every
-// variant gives the same bits.
+// The multisampling kernels (msaa.h): combining a tile's sample layers and the exact centre test
+// of a mixed pixel's triangles (the rows resolve through fragment_queue.h). Written once against
+// eight-lane types and compiled per instruction set (kernels_<isa>.cpp), with the same operations
+// per lane, so every variant gives the same bits.
 #pragma once
 
 #include <cstdint>
@@ -115,50 +114,6 @@ TESSERA_LANES_INLINE float sampleX(const MsaaShading& m, int s) {
 TESSERA_LANES_INLINE float sampleY(const MsaaShading& m, int s, int y) {
   return static_cast<float>(y) +
          static_cast<float>(m.positions[s].y) * (1.0f / static_cast<float>(kSubpixelOne));
-}
-
-// Replaces the linear colours of row ty's mixed pixels by their resolve, eight pixels at a time:
-// the uncovered samples' background, then each distinct triangle in the order of its first
-// sample, weighted by the samples it holds, over the sample count. shade(s, keys, first, x, y)
-// gives the linear colours of the lanes of `first`: the pixels x .. x + 7 of row y whose sample s
-// holds a triangle (keys) that no earlier sample holds.
-template <typename ShadeFragments>
-TESSERA_LANES_INLINE void resolveMixedRowWith(const MsaaShading& m, const TileVisibility& tile,
-                                              int ty, float linear[3][kTileSize],
-                                              ShadeFragments shade) {
-  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
-  const I32x8 zero = splat(int32_t{0});
-  const F32x8 inv_samples = splat(1.0f / static_cast<float>(m.samples));
-  const int y = tile.y0 + ty;
-  for (int tx = 0; tx < tile.width; tx += 8) {
-    const int i = ty * kTileSize + tx;
-    const I32x8 mixed = load<I32x8>(m.tiles->mixed + i);
-    if (!any(mixed)) continue;
-    I32x8 keys[kMaxSamples];
-    I32x8 background = zero;
-    for (int s = 0; s < m.samples; ++s) {
-      keys[s] = load<I32x8>(m.tiles->layers[static_cast<size_t>(s)]->key + i);
-      background = background - equal(keys[s], empty);
-    }
-    const F32x8 bg_weight = toFloat(background);
-    Vec3x8 sum{splat(m.background.x) * bg_weight, splat(m.background.y) * bg_weight,
-               splat(m.background.z) * bg_weight};
-    for (int s = 0; s < m.samples; ++s) {
-      I32x8 first = mixed & ~equal(keys[s], empty);
-      for (int r = 0; r < s; ++r) first = first & ~equal(keys[s], keys[r]);
-      if (!any(first)) continue;
-      I32x8 held = zero;
-      for (int r = s; r < m.samples; ++r) held = held - equal(keys[r], keys[s]);
-      const Vec3x8 c = shade(s, keys[s], first, tile.x0 + tx, y);
-      // Lanes outside `first` may hold anything (a borrowed record off its triangle): not added.
-      const F32x8 weight = toFloat(held);
-      sum = {select(first, sum.x + c.x * weight, sum.x), select(first, sum.y + c.y * weight, sum.y),
-             select(first, sum.z + c.z * weight, sum.z)};
-    }
-    store(linear[0] + tx, select(mixed, sum.x * inv_samples, load<F32x8>(linear[0] + tx)));
-    store(linear[1] + tx, select(mixed, sum.y * inv_samples, load<F32x8>(linear[1] + tx)));
-    store(linear[2] + tx, select(mixed, sum.z * inv_samples, load<F32x8>(linear[2] + tx)));
-  }
 }
 
 }  // namespace

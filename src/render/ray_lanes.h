@@ -1,0 +1,167 @@
+// Eight rays at a time for the nonlinear projections' tile stage (ray_kernel.h) and their
+// multisampled resolve (ray_queue.h): edge values, coverage and barycentrics of rays against a
+// triangle's edge planes (ray_setup.h), and the shading of a ray group. Written once against
+// eight-lane types and compiled per instruction set with the same operations per lane, so every
+// variant gives the same bits.
+#pragma once
+
+#include <vector>
+
+#include <tessera/render/projection.h>
+#include <tessera/scene/scene.h>
+
+#include "render/bin.h"
+#include "render/mixed_lanes.h"
+#include "render/ray_setup.h"
+#include "render/shade_lanes.h"
+
+namespace tessera::render {
+namespace {  // one private copy per translation unit, each compiled for its instruction set
+
+struct Ray8 {
+  F32x8 x, y, z;
+};
+
+TESSERA_LANES_INLINE Ray8 loadRays(const RayLayer& layer, size_t at) {
+  return {load<F32x8>(layer.x.data() + at), load<F32x8>(layer.y.data() + at),
+          load<F32x8>(layer.z.data() + at)};
+}
+
+// E_k of eight rays, as dotRay.
+TESSERA_LANES_INLINE F32x8 edgeValue(const RayTriangle& t, int k, const Ray8& d) {
+  return (d.x * splat(t.n[k][0]) + d.y * splat(t.n[k][1])) + d.z * splat(t.n[k][2]);
+}
+
+TESSERA_LANES_INLINE I32x8 lessOrEqualF(F32x8 a, F32x8 b) {
+  return lessThan(a, b) | equal(a, b);
+}
+
+// The lanes whose ray passes through the triangle: rayCovers' tests, the same edge values.
+TESSERA_LANES_INLINE I32x8 raysCover(const RayTriangle& t, const Ray8& d) {
+  const F32x8 zero = splat(0.0f);
+  I32x8 covered = splat(int32_t{-1});
+  F32x8 e[3];
+  for (int k = 0; k < 3; ++k) {
+    e[k] = edgeValue(t, k, d);
+    const I32x8 owner = splat(static_cast<int32_t>(-((t.owner >> k) & 1)));
+    covered = covered & (lessThan(zero, e[k]) | (equal(e[k], zero) & owner));
+  }
+  return covered & lessThan(zero, (e[0] + e[1]) + e[2]);
+}
+
+// The barycentrics of eight rays' hits, as rayBarycentrics.
+TESSERA_LANES_INLINE void rayBarycentrics8(const RayTriangle& t, const Ray8& d, F32x8& b0,
+                                           F32x8& b1, F32x8& b2) {
+  const F32x8 e0 = edgeValue(t, 0, d), e1 = edgeValue(t, 1, d), e2 = edgeValue(t, 2, d);
+  const F32x8 inv_s = splat(1.0f) / ((e0 + e1) + e2);
+  b1 = e1 * inv_s;
+  b2 = e2 * inv_s;
+  b0 = splat(1.0f) - b1 - b2;
+}
+
+float3 rayAt(const RayLayer& layer, size_t at) {
+  return {layer.x[at], layer.y[at], layer.z[at]};
+}
+
+// What shading a tile reads of the frame's rays.
+struct RayShading {
+  const LightRig& lights;
+  const std::vector<TriangleChunk>& chunks;
+  const RayTable& rays;
+  int width, height;
+
+  // Shades the lanes of `mask` from triangle `key` at the rays d (pixels x .. x + 7 of row y);
+  // lanes the eight-lane texture filter does not take find their level of detail from the centre
+  // rays of the next pixels right and down (or left and up at the image's edge).
+  TESSERA_LANES_INLINE void shade(uint32_t key, const Ray8& d, int x, int y, I32x8 mask,
+                                  bool want_normals, Vec3x8& color, Vec3x8& normal) const {
+    const TriangleChunk& chunk = chunks[keyChunk(key)];
+    const ShadeTriangle& t = chunk.shade[keyLocal(key)];
+    const ShadeExtras& e = chunk.extras[keyLocal(key)];
+    const RayTriangle& r = chunk.ray[keyLocal(key)];
+    F32x8 b0, b1, b2;
+    rayBarycentrics8(r, d, b0, b1, b2);
+    // The barycentrics at the centre rays of the next pixels right and down of pixel x + l (or
+    // left and up at the image's edge: a one-pixel-wide image has no neighbour, the pixel itself).
+    auto neighbours = [&](int l, Barycentrics& br, Barycentrics& bd) {
+      const int px = x + l;
+      const int right = px + 1 < width ? px + 1 : std::max(px - 1, 0);
+      const int down = y + 1 < height ? y + 1 : std::max(y - 1, 0);
+      const size_t w = static_cast<size_t>(width);
+      rayBarycentrics(r, rayAt(rays.centre(), static_cast<size_t>(y) * w + right), br.b0, br.b1,
+                      br.b2);
+      rayBarycentrics(r, rayAt(rays.centre(), static_cast<size_t>(down) * w + px), bd.b0, bd.b1,
+                      bd.b2);
+    };
+    shadeLanesAt(
+        t, e, lights, want_normals, b0, b1, b2, mask, color, normal,
+        [&](int l, const Barycentrics& b) {
+          Barycentrics br, bd;
+          neighbours(l, br, bd);
+          return sampleAlbedo(t, e, b, br, bd);
+        },
+        [](Vec3x8&, Vec3x8&) { return false; },
+        [&](int l, const Barycentrics& b, const Texture& texture, const Sampler& sampler) {
+          Barycentrics br, bd;
+          neighbours(l, br, bd);
+          return sampleTexture(texture, sampler, e, b, br, bd);
+        });
+  }
+};
+
+// Each chunk's first shading, extra and ray records, for laneRecords.
+struct RayRecords {
+  const ShadeTriangle* shade[kMaxChunks];
+  const ShadeExtras* extras[kMaxChunks];
+  const RayTriangle* ray[kMaxChunks];
+
+  RayRecords(const std::vector<TriangleChunk>& chunks, size_t chunk_count) {
+    for (size_t c = 0; c < chunk_count; ++c) {
+      shade[c] = chunks[c].shade.data();
+      extras[c] = chunks[c].extras.data();
+      ray[c] = chunks[c].ray.data();
+    }
+  }
+};
+
+// Whether a pixel of triangle t is its interpolated vertex colours alone (untextured, lit per
+// vertex or unlit): what shadeRayMixed takes.
+TESSERA_LANES_INLINE bool rayPlain(const ShadeTriangle& t) {
+  return !t.has_uv && t.shading != Shading::kPhong && t.shading != Shading::kPbr;
+}
+
+// Eight rays d (the lanes of `covered`, whose keys name several triangles, `first` a covered
+// lane's) of triangles that are all rayPlain, each lane shaded from its own triangle's records:
+// the edge normals and colours of eight records loaded at once and transposed into lanes, then
+// RayShading::shade's operations per lane (rayBarycentrics8, interpolateColor, the tone curve), so
+// the same bits in one evaluation instead of one per triangle. False, with `color` untouched,
+// where a lane's triangle is not rayPlain.
+TESSERA_LANES_INLINE bool shadeRayMixed(const RayRecords& records, const LightRig& lights,
+                                        I32x8 keys, I32x8 covered, uint32_t first, const Ray8& d,
+                                        Vec3x8& color) {
+  const LaneKeys k = laneKeys(keys, covered, first);
+  const ShadeTriangle* lanes[8];
+  laneRecords(k, records.shade, lanes);
+  for (int l = 0; l < 8; ++l)
+    if (!rayPlain(*lanes[l])) return false;
+  const RayTriangle* rays[8];
+  laneRecords(k, records.ray, rays);
+  const float* at[8];
+  for (int l = 0; l < 8; ++l) at[l] = &rays[l]->n[0][0];
+  F32x8 n[9], f[kPlainFields];
+  corners9(at, n);
+  loadPlainFields(lanes, f);
+  // edgeValue's operations with each lane's own normals.
+  const F32x8 e0 = (d.x * n[0] + d.y * n[1]) + d.z * n[2];
+  const F32x8 e1 = (d.x * n[3] + d.y * n[4]) + d.z * n[5];
+  const F32x8 e2 = (d.x * n[6] + d.y * n[7]) + d.z * n[8];
+  const F32x8 inv_s = splat(1.0f) / ((e0 + e1) + e2);
+  Vec3x8 c = plainColor(f, e1 * inv_s, e2 * inv_s);
+  if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
+  const F32x8 zero = splat(0.0f);
+  color = {select(covered, c.x, zero), select(covered, c.y, zero), select(covered, c.z, zero)};
+  return true;
+}
+
+}  // namespace
+}  // namespace tessera::render
