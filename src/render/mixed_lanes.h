@@ -270,25 +270,25 @@ TESSERA_LANES_INLINE bool litPlain(const ShadeTriangle& t) {
          !(m.normal || m.metallic_roughness || m.occlusion || m.emissive);
 }
 
-// Eight pixels owned by several triangles that are all litPlain with the same shading (and, for
-// PBR, the same material): each lane's barycentrics, colours, normals and world positions come from
-// its own triangle's records (loaded eight at a time and transposed), and the lights are evaluated
-// once for the eight lanes instead of once per triangle. The same operations per lane as
-// shadeLanes, so the same bits. False, with `color` untouched, where that does not apply; lanes
-// outside `covered` hold a covered lane's records (and read no shadow map).
-TESSERA_LANES_INLINE bool shadeLitMixed(const ShadeTriangle* const records[8],
-                                        const ShadeExtras* const extras[8], I32x8 covered,
-                                        const LightRig& lights, F32x8 px, F32x8 py, Vec3x8& color) {
+// Whether the lanes' triangles are all litPlain with the first's shading (and, for PBR, its
+// material): what shadeLitMixed and shadeLitAt take.
+TESSERA_LANES_INLINE bool litAlike(const ShadeTriangle* const records[8]) {
   const ShadeTriangle& t = *records[0];
   const bool pbr = t.shading == Shading::kPbr;
   for (int l = 0; l < 8; ++l) {
     const ShadeTriangle& r = *records[l];
     if (r.shading != t.shading || (pbr && r.material != t.material) || !litPlain(r)) return false;
   }
-  F32x8 f[kPlainFields], corner[9];
-  loadPlainFields(records, f);
-  F32x8 b0, b1, b2;
-  plainBarycentrics(f, px, py, b0, b1, b2);
+  return true;
+}
+
+// The colours of the lanes' triangles (litAlike; f: loadPlainFields') at barycentrics b0, b1, b2,
+// each lane's normals and world positions from its own records: shadeLanes' operations per lane.
+TESSERA_LANES_INLINE Vec3x8 shadeLitAt(const ShadeTriangle& t, const F32x8 f[kPlainFields],
+                                       const ShadeExtras* const extras[8], I32x8 covered,
+                                       const LightRig& lights, F32x8 b0, F32x8 b1, F32x8 b2) {
+  const bool pbr = t.shading == Shading::kPbr;
+  F32x8 corner[9];
   Vec3x8 c = plainColor(f, b1, b2);
   extrasCorners(extras, &ShadeExtras::normal, corner);
   const Vec3x8 n = normalize8(interpolate9(corner, b0, b1, b2));
@@ -309,7 +309,24 @@ TESSERA_LANES_INLINE bool shadeLitMixed(const ShadeTriangle* const records[8],
     c = {c.x * e.x, c.y * e.y, c.z * e.z};
   }
   if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
-  color = c;
+  return c;
+}
+
+// Eight pixels owned by several triangles that are all litPlain with the same shading (and, for
+// PBR, the same material): each lane's barycentrics, colours, normals and world positions come from
+// its own triangle's records (loaded eight at a time and transposed), and the lights are evaluated
+// once for the eight lanes instead of once per triangle. The same operations per lane as
+// shadeLanes, so the same bits. False, with `color` untouched, where that does not apply; lanes
+// outside `covered` hold a covered lane's records (and read no shadow map).
+TESSERA_LANES_INLINE bool shadeLitMixed(const ShadeTriangle* const records[8],
+                                        const ShadeExtras* const extras[8], I32x8 covered,
+                                        const LightRig& lights, F32x8 px, F32x8 py, Vec3x8& color) {
+  if (!litAlike(records)) return false;
+  F32x8 f[kPlainFields];
+  loadPlainFields(records, f);
+  F32x8 b0, b1, b2;
+  plainBarycentrics(f, px, py, b0, b1, b2);
+  color = shadeLitAt(*records[0], f, extras, covered, lights, b0, b1, b2);
   return true;
 }
 

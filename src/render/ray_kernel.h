@@ -94,9 +94,9 @@ void shadeRayTileKernel(const TileVisibility& tile, const std::vector<TriangleCh
       const int x = tile.x0 + tx;
       const Ray8 d = loadRays(rays.centre(), row + static_cast<size_t>(x));
       Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
-      // Several triangles lit per vertex: one evaluation from each lane's records.
+      // Several triangles shaded alike: one evaluation from each lane's records.
       const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(todo)));
-      if (!want_normals && rayPlain(records.shade[keyChunk(first)][keyLocal(first)]) &&
+      if (!want_normals && rayBatchable(records.shade[keyChunk(first)][keyLocal(first)]) &&
           any(todo & ~equal(keys, splat(static_cast<int32_t>(first)))) &&
           shadeRayMixed(records, lights, keys, todo, first, d, color)) {
         storeShadedGroup(color, normal, want_normals, tx, i, linear, out);

@@ -125,39 +125,92 @@ struct RayRecords {
 };
 
 // Whether a pixel of triangle t is its interpolated vertex colours alone (untextured, lit per
-// vertex or unlit): what shadeRayMixed takes.
+// vertex or unlit).
 TESSERA_LANES_INLINE bool rayPlain(const ShadeTriangle& t) {
   return !t.has_uv && t.shading != Shading::kPhong && t.shading != Shading::kPbr;
 }
 
-// Eight rays d (the lanes of `covered`, whose keys name several triangles, `first` a covered
-// lane's) of triangles that are all rayPlain, each lane shaded from its own triangle's records:
-// the edge normals and colours of eight records loaded at once and transposed into lanes, then
-// RayShading::shade's operations per lane (rayBarycentrics8, interpolateColor, the tone curve), so
-// the same bits in one evaluation instead of one per triangle. False, with `color` untouched,
-// where a lane's triangle is not rayPlain.
+// Whether eight rays of several triangles, triangle t among them, may take shadeRaysOnce.
+TESSERA_LANES_INLINE bool rayBatchable(const ShadeTriangle& t) {
+  return rayPlain(t) || texturedPlain(t) || litPlain(t);
+}
+
+// The triangles' edge values at rays d, as edgeValue with each lane's own normals (n: corners9's
+// layout of RayTriangle::n).
+TESSERA_LANES_INLINE void edgeValues(const F32x8 n[9], const Ray8& d, F32x8 e[3]) {
+  for (int k = 0; k < 3; ++k) e[k] = (d.x * n[3 * k] + d.y * n[3 * k + 1]) + d.z * n[3 * k + 2];
+}
+
+// The edge normals of the lanes' triangles (laneRecords' rays), in corners9's layout.
+TESSERA_LANES_INLINE void rayNormals(const RayTriangle* const rays[8], F32x8 n[9]) {
+  const float* at[8];
+  for (int l = 0; l < 8; ++l) at[l] = &rays[l]->n[0][0];
+  corners9(at, n);
+}
+
+// Eight rays d of several triangles (k: each lane's; n: their edge normals; lanes outside `valid`
+// hold a valid lane's triangle) shaded in one evaluation, each lane from its own triangle's records
+// loaded eight at a time: where all are rayPlain (interpolateColor), all textured alike without
+// per-pixel lighting or a level of detail (filterTexturedGroup), or all lit per pixel alike
+// (shadeLitAt). RayShading::shade's operations per lane (rayBarycentrics8's barycentrics), so the
+// same bits. False, with `color` untouched, otherwise: the caller shades triangle by triangle.
+TESSERA_LANES_INLINE bool shadeRaysOnce(const RayRecords& records, const LaneKeys& k,
+                                        const F32x8 n[9], const Ray8& d, I32x8 valid,
+                                        const LightRig& lights, Vec3x8& color) {
+  const ShadeTriangle* lanes[8];
+  laneRecords(k, records.shade, lanes);
+  const ShadeTriangle& t = *lanes[0];
+  const Material* material = t.material;
+  bool plain = true, textured = texturedPlain(t);
+  for (int l = 0; l < 8; ++l) {
+    plain = plain && rayPlain(*lanes[l]);
+    textured = textured && texturedPlain(*lanes[l]) && lanes[l]->material == material;
+  }
+  textured = textured && texture8Applies(*material->albedo, material->sampler) &&
+             !needsLod(*material->albedo, material->sampler);
+  const bool lit = !plain && !textured && litAlike(lanes);
+  if (!plain && !textured && !lit) return false;
+  F32x8 e[3], f[kPlainFields];
+  edgeValues(n, d, e);
+  const F32x8 inv_s = splat(1.0f) / ((e[0] + e[1]) + e[2]);
+  const F32x8 b1 = e[1] * inv_s, b2 = e[2] * inv_s;
+  const F32x8 b0 = splat(1.0f) - b1 - b2;
+  loadPlainFields(lanes, f);
+  if (plain) {
+    Vec3x8 c = plainColor(f, b1, b2);
+    if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
+    color = c;
+    return true;
+  }
+  const ShadeExtras* extras[8];
+  laneRecords(k, records.extras, extras);
+  if (lit) {
+    color = shadeLitAt(t, f, extras, valid, lights, b0, b1, b2);
+    return true;
+  }
+  F32x8 corner[8];
+  uvCorners8(extras, material->sampler.texcoord, corner);
+  TexturedGroup group;
+  group.uv = {corner[0] * b0 + corner[2] * b1 + corner[4] * b2,
+              corner[1] * b0 + corner[3] * b1 + corner[5] * b2};
+  group.color = plainColor(f, b1, b2);
+  group.covered = valid;
+  group.material = material;
+  return filterTexturedGroup(group, lights, color);
+}
+
+// Eight centre rays d (the lanes of `covered`, whose keys name several triangles, `first` a
+// covered lane's): shadeRaysOnce from each lane's records, zero outside `covered`.
 TESSERA_LANES_INLINE bool shadeRayMixed(const RayRecords& records, const LightRig& lights,
                                         I32x8 keys, I32x8 covered, uint32_t first, const Ray8& d,
                                         Vec3x8& color) {
   const LaneKeys k = laneKeys(keys, covered, first);
-  const ShadeTriangle* lanes[8];
-  laneRecords(k, records.shade, lanes);
-  for (int l = 0; l < 8; ++l)
-    if (!rayPlain(*lanes[l])) return false;
   const RayTriangle* rays[8];
   laneRecords(k, records.ray, rays);
-  const float* at[8];
-  for (int l = 0; l < 8; ++l) at[l] = &rays[l]->n[0][0];
-  F32x8 n[9], f[kPlainFields];
-  corners9(at, n);
-  loadPlainFields(lanes, f);
-  // edgeValue's operations with each lane's own normals.
-  const F32x8 e0 = (d.x * n[0] + d.y * n[1]) + d.z * n[2];
-  const F32x8 e1 = (d.x * n[3] + d.y * n[4]) + d.z * n[5];
-  const F32x8 e2 = (d.x * n[6] + d.y * n[7]) + d.z * n[8];
-  const F32x8 inv_s = splat(1.0f) / ((e0 + e1) + e2);
-  Vec3x8 c = plainColor(f, e1 * inv_s, e2 * inv_s);
-  if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
+  F32x8 n[9];
+  rayNormals(rays, n);
+  Vec3x8 c;
+  if (!shadeRaysOnce(records, k, n, d, covered, lights, c)) return false;
   const F32x8 zero = splat(0.0f);
   color = {select(covered, c.x, zero), select(covered, c.y, zero), select(covered, c.z, zero)};
   return true;

@@ -27,11 +27,6 @@ struct QueuedRays {
   Ray8 d;
 };
 
-// The triangles' edge values at rays d, as edgeValue with each lane's own normals.
-TESSERA_LANES_INLINE void edgeValues(const F32x8 n[9], const Ray8& d, F32x8 e[3]) {
-  for (int k = 0; k < 3; ++k) e[k] = (d.x * n[3 * k] + d.y * n[3 * k + 1]) + d.z * n[3 * k + 2];
-}
-
 // Fragments first .. first + count - 1 of the queue (the other lanes borrow the first's), of row y
 // of the tile at column x0: each at its pixel's centre ray where raysCover's tests pass it through
 // its triangle, else at its sample's ray.
@@ -59,13 +54,10 @@ TESSERA_LANES_INLINE void loadQueuedRays(const RayShading& rs, const RayRecords&
   }
   q.lane_keys = laneKeys(q.keys, q.valid);
   laneRecords(q.lane_keys, records.ray, q.triangles);
-  const float* at[8];
+  rayNormals(q.triangles, q.n);
   alignas(32) int32_t owner[3][8];
-  for (int l = 0; l < 8; ++l) {
-    at[l] = &q.triangles[l]->n[0][0];
+  for (int l = 0; l < 8; ++l)
     for (int k = 0; k < 3; ++k) owner[k][l] = -((q.triangles[l]->owner >> k) & 1);
-  }
-  corners9(at, q.n);
   // raysCover's tests at the centre rays, each lane against its own triangle.
   const Ray8 c{load<F32x8>(ray[0]), load<F32x8>(ray[1]), load<F32x8>(ray[2])};
   const F32x8 zero = splat(0.0f);
@@ -78,48 +70,12 @@ TESSERA_LANES_INLINE void loadQueuedRays(const RayShading& rs, const RayRecords&
          select(at_centre, c.z, load<F32x8>(ray[5]))};
 }
 
-// The queued fragments' linear colours: in one evaluation where all are plain (shadeRayMixed's
-// operations) or textured alike without per-pixel lighting and without a level of detail
-// (filterTexturedGroup from each lane's own records), else by RayShading::shade for each run of
-// lanes of one triangle in consecutive columns.
+// The queued fragments' linear colours: shadeRaysOnce where it applies, else by
+// RayShading::shade for each run of lanes of one triangle in consecutive columns.
 TESSERA_LANES_INLINE Vec3x8 shadeQueuedRays(const RayShading& rs, const RayRecords& records,
                                             const QueuedRays& q, int x0, int y) {
-  const ShadeTriangle* lanes[8];
-  laneRecords(q.lane_keys, records.shade, lanes);
-  bool plain = true, textured = true;
-  const Material* material = lanes[0]->material;
-  for (int l = 0; l < 8; ++l) {
-    plain = plain && rayPlain(*lanes[l]);
-    textured = textured && texturedPlain(*lanes[l]) && lanes[l]->material == material;
-  }
-  if (plain || textured) {
-    F32x8 e[3], f[kPlainFields];
-    edgeValues(q.n, q.d, e);
-    const F32x8 inv_s = splat(1.0f) / ((e[0] + e[1]) + e[2]);
-    const F32x8 b1 = e[1] * inv_s, b2 = e[2] * inv_s;
-    loadPlainFields(lanes, f);
-    if (plain) {
-      Vec3x8 c = plainColor(f, b1, b2);
-      if (rs.lights.tone.active()) toneMap8(rs.lights.tone, c.x, c.y, c.z);
-      return c;
-    }
-    const Texture& texture = *material->albedo;
-    if (texture8Applies(texture, material->sampler) && !needsLod(texture, material->sampler)) {
-      const ShadeExtras* extras[8];
-      laneRecords(q.lane_keys, records.extras, extras);
-      F32x8 corner[8];
-      uvCorners8(extras, material->sampler.texcoord, corner);
-      const F32x8 b0 = splat(1.0f) - b1 - b2;
-      TexturedGroup group;
-      group.uv = {corner[0] * b0 + corner[2] * b1 + corner[4] * b2,
-                  corner[1] * b0 + corner[3] * b1 + corner[5] * b2};
-      group.color = plainColor(f, b1, b2);
-      group.covered = q.valid;
-      group.material = material;
-      Vec3x8 color;
-      if (filterTexturedGroup(group, rs.lights, color)) return color;
-    }
-  }
+  Vec3x8 once;
+  if (shadeRaysOnce(records, q.lane_keys, q.n, q.d, q.valid, rs.lights, once)) return once;
   // RayShading::shade takes lane l at column x + l: a run of one triangle's lanes whose columns
   // are x + l shares one call.
   const F32x8 zero = splat(0.0f);
