@@ -238,13 +238,24 @@ TESSERA_LANES_INLINE Vec3x8 shadeFragments(const QueuedFragments& q,
   return color;
 }
 
+// Queued fragments' linear colours and where they go: tile columns and weights.
+struct ShadedFragments {
+  I32x8 tx;
+  F32x8 weight;
+  Vec3x8 color;
+};
+
 // Row ty's mixed pixels: their colours (the centre colours the row's shading left) replaced by
-// their resolve, every fragment through the queue, shade(first, count) shading queued fragments
-// and adding them to their sums (the perspective path's, below; the ray renderer's, ray_queue.h).
+// their resolve, every fragment through the queue; shade(first, count) gives the ShadedFragments
+// of queued fragments (the perspective path's, below; the ray renderer's, ray_queue.h).
 template <typename Shade>
 TESSERA_LANES_INLINE void resolveMixedRowBy(const MsaaShading& m, const TileVisibility& tile,
                                             int ty, FragmentQueue& queue,
                                             float linear[3][kTileSize], Shade shade) {
+  const auto add = [&](int first, int count) __attribute__((always_inline)) {
+    const ShadedFragments f = shade(first, count);
+    addFragments(f.tx, f.weight, count, f.color, linear);
+  };
   bool row_mixed = false;
   for (int tx = 0; tx < tile.width; tx += 8) {
     const int i = ty * kTileSize + tx;
@@ -257,10 +268,10 @@ TESSERA_LANES_INLINE void resolveMixedRowBy(const MsaaShading& m, const TileVisi
     store(linear[1] + tx, select(mixed, g.sum.y, load<F32x8>(linear[1] + tx)));
     store(linear[2] + tx, select(mixed, g.sum.z, load<F32x8>(linear[2] + tx)));
     for (int s = 0; s < m.samples; ++s) queue.push(g.keys[s], g.pending[s], tx, s, g.held[s]);
-    shadeQueue(queue, false, shade);
+    shadeQueue(queue, false, add);
   }
   if (!row_mixed) return;
-  shadeQueue(queue, true, shade);
+  shadeQueue(queue, true, add);
   finishMixedRow(m, tile, ty, linear);
 }
 
@@ -272,12 +283,11 @@ TESSERA_LANES_INLINE void resolveMixedRow(const MsaaShading& m, const TileVisibi
                                           const LightRig& lights, FragmentQueue& queue,
                                           float linear[3][kTileSize]) {
   const int y = tile.y0 + ty;
-  resolveMixedRowBy(
-      m, tile, ty, queue, linear, [&](int first, int count) __attribute__((always_inline)) {
-        QueuedFragments q;
-        loadQueued(chunks, chunk_records, queue, first, count, tile.x0, y, q);
-        addFragments(q.tx, q.weight, count, shadeFragments(q, chunk_extras, lights), linear);
-      });
+  resolveMixedRowBy(m, tile, ty, queue, linear, [&](int first, int count) {
+    QueuedFragments q;
+    loadQueued(chunks, chunk_records, queue, first, count, tile.x0, y, q);
+    return ShadedFragments{q.tx, q.weight, shadeFragments(q, chunk_extras, lights)};
+  });
 }
 
 }  // namespace

@@ -98,12 +98,11 @@ TESSERA_LANES_INLINE void resolveRayMixedRow(const MsaaShading& m, const TileVis
                                              const RayRecords& records, FragmentQueue& queue,
                                              float linear[3][kTileSize]) {
   const int y = tile.y0 + ty;
-  resolveMixedRowBy(
-      m, tile, ty, queue, linear, [&](int first, int count) __attribute__((always_inline)) {
-        QueuedRays q;
-        loadQueuedRays(rs, records, queue, first, count, tile.x0, y, q);
-        addFragments(q.tx, q.weight, count, shadeQueuedRays(rs, records, q, tile.x0, y), linear);
-      });
+  resolveMixedRowBy(m, tile, ty, queue, linear, [&](int first, int count) {
+    QueuedRays q;
+    loadQueuedRays(rs, records, queue, first, count, tile.x0, y, q);
+    return ShadedFragments{q.tx, q.weight, shadeQueuedRays(rs, records, q, tile.x0, y)};
+  });
 }
 
 }  // namespace
