@@ -124,6 +124,36 @@ TEST(Projection, RaysFollowTheFormulas) {
   }
 }
 
+// The table's rays are rayDirection's rounded to float, bit for bit, in every mode, in every
+// layer (the samples' and the centres', with a jitter): the cylindrical and spherical tables take
+// each column's sine and cosine once, the others a ray at a time.
+TEST(Projection, TheRayTableHoldsRayDirectionsRaysExactly) {
+  const double fov = 100.0 * kPi / 180.0;
+  for (Projection p : kProjections) {
+    RayTable table;
+    ASSERT_TRUE(table.update(p, 37, 23, 100.0f, 4, Jitter{0.125f, -0.375f}));
+    const int width = table.width(), height = table.height();
+    int compared = 0;
+    for (int i = 0; i <= table.samples(); ++i) {
+      const RayLayer& layer = i < table.samples() ? table.sample(i) : table.centre();
+      for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+          double d[3] = {0, 0, 0};
+          if (!rayDirection(p, x + static_cast<double>(layer.offset_x),
+                            y + static_cast<double>(layer.offset_y), width, height, fov, d))
+            d[0] = d[1] = d[2] = 0;
+          const size_t at = static_cast<size_t>(y) * width + x;
+          ASSERT_EQ(layer.x[at], static_cast<float>(d[0])) << projectionName(p) << " " << x;
+          ASSERT_EQ(layer.y[at], static_cast<float>(d[1])) << projectionName(p) << " " << x;
+          ASSERT_EQ(layer.z[at], static_cast<float>(d[2])) << projectionName(p) << " " << x;
+          ++compared;
+        }
+      }
+    }
+    EXPECT_EQ(compared, 5 * 37 * 23) << projectionName(p);
+  }
+}
+
 TEST(Projection, IdsAgreeWithABruteForceRayCasterInEveryMode) {
   for (const ModeCase& m : kModes) {
     Scene room = roomScene(m);
@@ -161,8 +191,8 @@ TEST(Projection, NoBackgroundInsideAClosedRoom) {
           // Every sample of a pixel sees the room (watertight per sample): full coverage, except
           // at the fisheye's rim, where samples leave the circle of rays.
           if (msaa > 1 && m.projection != Projection::kFisheye) {
-            EXPECT_EQ(frame.coverageAt(x, y), 255) << projectionName(m.projection) << " " << x
-                                                   << "," << y;
+            EXPECT_EQ(frame.coverageAt(x, y), 255)
+                << projectionName(m.projection) << " " << x << "," << y;
           }
         }
       }
@@ -272,8 +302,8 @@ TEST(Projection, ColoursComeFromTheHitsBarycentrics) {
     for (int x = 0; x < m.width; x += 3) {
       if (frame.idAt(x, y) != 1) continue;
       double d[3];
-      ASSERT_TRUE(rayDirection(m.projection, x + 0.5, y + 0.5, m.width, m.height,
-                               m.fov * kPi / 180, d));
+      ASSERT_TRUE(
+          rayDirection(m.projection, x + 0.5, y + 0.5, m.width, m.height, m.fov * kPi / 180, d));
       // Barycentrics of the hit: Cramer's rule on v0 a + v1 b + v2 c = t d, a + b + c = 1.
       const auto& p = scene.objects[0].mesh->positions;
       auto tri = [&](int i, int k) { return static_cast<double>(p[static_cast<size_t>(i)][k]); };

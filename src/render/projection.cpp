@@ -149,8 +149,7 @@ bool rayDirection(Projection p, double sx, double sy, int width, int height, dou
     case Projection::kFisheye:
       return polarRay(std::sqrt(q.u * q.u + q.v * q.v) * s, q, d);
     case Projection::kStereographic:
-      return polarRay(2.0 * std::atan(std::sqrt(q.u * q.u + q.v * q.v) * std::tan(s / 2.0)), q,
-                      d);
+      return polarRay(2.0 * std::atan(std::sqrt(q.u * q.u + q.v * q.v) * std::tan(s / 2.0)), q, d);
   }
   return false;
 }
@@ -184,8 +183,8 @@ bool projectDirection(Projection p, const double din[3], int width, int height, 
       const double alpha = std::acos(std::clamp(-d[2], -1.0, 1.0));
       const double rho = std::sqrt(d[0] * d[0] + d[1] * d[1]);
       if (rho == 0.0 && alpha > 1.0) return false;  // straight behind: every direction at once
-      const double r = p == Projection::kFisheye ? alpha / s
-                                                 : std::tan(alpha / 2.0) / std::tan(s / 2.0);
+      const double r =
+          p == Projection::kFisheye ? alpha / s : std::tan(alpha / 2.0) / std::tan(s / 2.0);
       if (!std::isfinite(r)) return false;
       u = rho > 0.0 ? r * d[0] / rho : 0.0;
       v = rho > 0.0 ? r * d[1] / rho : 0.0;
@@ -196,6 +195,30 @@ bool projectDirection(Projection p, const double din[3], int width, int height, 
   sx = (u / aspect + 1.0) * width / 2.0;
   sy = (1.0 - v) * height / 2.0;
   return std::isfinite(sx) && std::isfinite(sy);
+}
+
+void RayTable::separableRow(int i, int y, double fov) {
+  RayLayer& layer = layers_[static_cast<size_t>(i)];
+  const double s = fov / 2.0;
+  const double v = toImage(0.0, y + static_cast<double>(layer.offset_y), width_, height_).v;
+  const double* trig = &column_trig_[static_cast<size_t>(i) * width_ * 2];
+  const size_t row = static_cast<size_t>(y) * width_;
+  // rayDirection's expressions with the column's sin(theta), cos(theta) (and the row's phi).
+  const bool spherical = projection_ == Projection::kSpherical;
+  const double phi = v * s;
+  const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+  const double height_y = v * std::tan(s);
+  for (int x = 0; x < width_; ++x) {
+    const double sin_theta = trig[2 * x], cos_theta = trig[2 * x + 1];
+    double d[3];
+    if (spherical)
+      normalizeInto(cos_phi * sin_theta, sin_phi, -cos_phi * cos_theta, d);
+    else
+      normalizeInto(sin_theta, height_y, -cos_theta, d);
+    layer.x[row + x] = static_cast<float>(d[0]);
+    layer.y[row + x] = static_cast<float>(d[1]);
+    layer.z[row + x] = static_cast<float>(d[2]);
+  }
 }
 
 bool RayTable::update(Projection p, int width, int height, float fov_y_degrees, int samples,
@@ -222,11 +245,31 @@ bool RayTable::update(Projection p, int width, int height, float fov_y_degrees, 
     layer.y.assign(count + 8, 0.0f);
     layer.z.assign(count + 8, 0.0f);
   }
-  // Two pointers captured: the std::function made of it keeps them inline (no allocation).
   const double fov = static_cast<double>(fov_y_degrees) * kPiD / 180.0;
+  // The cylindrical and spherical rays' angle about the vertical depends on the column alone:
+  // its sine and cosine are taken once a column of each layer, not once a ray (a jittered frame
+  // rebuilds every layer). The same calls and arithmetic as rayDirection, so the same rays.
+  const bool by_column = p == Projection::kCylindrical || p == Projection::kSpherical;
+  if (by_column) {
+    column_trig_.resize(static_cast<size_t>(layer_count_) * static_cast<size_t>(width) * 2);
+    for (int i = 0; i < layer_count_; ++i) {
+      const double offset = static_cast<double>(layers_[static_cast<size_t>(i)].offset_x);
+      for (int x = 0; x < width; ++x) {
+        const double theta = toImage(x + offset, 0.0, width, height).u * (fov / 2.0);
+        double* at = &column_trig_[(static_cast<size_t>(i) * width + x) * 2];
+        at[0] = std::sin(theta);
+        at[1] = std::cos(theta);
+      }
+    }
+  }
+  // Two pointers captured: the std::function made of it keeps them inline (no allocation).
   auto row = [this, &fov](int y) {
     for (int i = 0; i < layer_count_; ++i) {
       RayLayer& layer = layers_[static_cast<size_t>(i)];
+      if (projection_ == Projection::kCylindrical || projection_ == Projection::kSpherical) {
+        separableRow(i, y, fov);
+        continue;
+      }
       for (int x = 0; x < width_; ++x) {
         double d[3] = {0, 0, 0};
         if (!rayDirection(projection_, x + static_cast<double>(layer.offset_x),

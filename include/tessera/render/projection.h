@@ -86,6 +86,10 @@ class RayTable {
   float fov_ = 0;
   Jitter jitter_{-1, -1};
   std::vector<RayLayer> layers_;
+  // The cylindrical and spherical modes: sin and cos of each layer's columns' angle theta.
+  std::vector<double> column_trig_;
+
+  void separableRow(int layer, int y, double fov);
 };
 
 }  // namespace tessera
