@@ -106,7 +106,9 @@ bool angularExtent(const Dir u[3], const Dir& axis, const Dir& ref, const Dir& r
   // Azimuths unwrapped the short way from the first corner; the three arcs must agree.
   double az[3];
   az[0] = azimuthOf(u[0], ref, ref2);
-  auto wrap = [](double x) { return std::remainder(x, 2 * kPiD); };
+  // std::remainder's exact result is x itself within half a turn (the nearest multiple is 0, ties
+  // going to the even one): the call only past it.
+  auto wrap = [](double x) { return std::fabs(x) <= kPiD ? x : std::remainder(x, 2 * kPiD); };
   for (int k = 1; k < 3; ++k) az[k] = az[0] + wrap(azimuthOf(u[k], ref, ref2) - az[0]);
   if (std::fabs(az[2] - az[1]) >= kPiD) return false;
   e.azimuth = {std::min({az[0], az[1], az[2]}), std::max({az[0], az[1], az[2]})};
