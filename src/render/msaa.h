@@ -1,7 +1,7 @@
 // Multisampling in the tile stage: one visibility layer per sample (raster_kernel.h's
 // rasterSample), then per pixel the key the shading kernel shades at the centre and whether the
-// pixel's samples hold different triangles, which the shading kernel then resolves fragment by
-// fragment (fragment_queue.h; the ray renderer sample by sample, msaa_kernel.h).
+// pixel's samples hold different triangles, which the shading kernels (of both renderers) then
+// resolve fragment by fragment (fragment_queue.h).
 //
 // A pixel whose samples all hold one triangle is shaded once at its centre, as with one sample:
 // the centre lies in the convex hull of every standard pattern, so inside that triangle. A mixed

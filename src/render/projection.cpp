@@ -197,24 +197,32 @@ bool projectDirection(Projection p, const double din[3], int width, int height, 
   return std::isfinite(sx) && std::isfinite(sy);
 }
 
+// Whether mode p's ray at (x, y) is formed from an angle of the column alone and values of the
+// row alone (RayTable::separableRow).
+namespace {
+bool separable(Projection p) {
+  return p == Projection::kCylindrical || p == Projection::kSpherical;
+}
+}  // namespace
+
 void RayTable::separableRow(int i, int y, double fov) {
   RayLayer& layer = layers_[static_cast<size_t>(i)];
   const double s = fov / 2.0;
   const double v = toImage(0.0, y + static_cast<double>(layer.offset_y), width_, height_).v;
   const double* trig = &column_trig_[static_cast<size_t>(i) * width_ * 2];
   const size_t row = static_cast<size_t>(y) * width_;
-  // rayDirection's expressions with the column's sin(theta), cos(theta) (and the row's phi).
+  // rayDirection's expressions with the column's sin(theta), cos(theta) and the row's values:
+  // spherical, cos(phi) and sin(phi); cylindrical, 1 and the height v tan(s).
   const bool spherical = projection_ == Projection::kSpherical;
-  const double phi = v * s;
-  const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
-  const double height_y = v * std::tan(s);
+  const double row_scale = spherical ? std::cos(v * s) : 1.0;
+  const double row_y = spherical ? std::sin(v * s) : v * std::tan(s);
   for (int x = 0; x < width_; ++x) {
     const double sin_theta = trig[2 * x], cos_theta = trig[2 * x + 1];
     double d[3];
     if (spherical)
-      normalizeInto(cos_phi * sin_theta, sin_phi, -cos_phi * cos_theta, d);
+      normalizeInto(row_scale * sin_theta, row_y, -row_scale * cos_theta, d);
     else
-      normalizeInto(sin_theta, height_y, -cos_theta, d);
+      normalizeInto(sin_theta, row_y, -cos_theta, d);
     layer.x[row + x] = static_cast<float>(d[0]);
     layer.y[row + x] = static_cast<float>(d[1]);
     layer.z[row + x] = static_cast<float>(d[2]);
@@ -249,8 +257,7 @@ bool RayTable::update(Projection p, int width, int height, float fov_y_degrees, 
   // The cylindrical and spherical rays' angle about the vertical depends on the column alone:
   // its sine and cosine are taken once a column of each layer, not once a ray (a jittered frame
   // rebuilds every layer). The same calls and arithmetic as rayDirection, so the same rays.
-  const bool by_column = p == Projection::kCylindrical || p == Projection::kSpherical;
-  if (by_column) {
+  if (separable(p)) {
     column_trig_.resize(static_cast<size_t>(layer_count_) * static_cast<size_t>(width) * 2);
     for (int i = 0; i < layer_count_; ++i) {
       const double offset = static_cast<double>(layers_[static_cast<size_t>(i)].offset_x);
@@ -266,7 +273,7 @@ bool RayTable::update(Projection p, int width, int height, float fov_y_degrees, 
   auto row = [this, &fov](int y) {
     for (int i = 0; i < layer_count_; ++i) {
       RayLayer& layer = layers_[static_cast<size_t>(i)];
-      if (projection_ == Projection::kCylindrical || projection_ == Projection::kSpherical) {
+      if (separable(projection_)) {
         separableRow(i, y, fov);
         continue;
       }

@@ -36,19 +36,6 @@ TESSERA_LANES_INLINE I32x8 lessOrEqualF(F32x8 a, F32x8 b) {
   return lessThan(a, b) | equal(a, b);
 }
 
-// The lanes whose ray passes through the triangle: rayCovers' tests, the same edge values.
-TESSERA_LANES_INLINE I32x8 raysCover(const RayTriangle& t, const Ray8& d) {
-  const F32x8 zero = splat(0.0f);
-  I32x8 covered = splat(int32_t{-1});
-  F32x8 e[3];
-  for (int k = 0; k < 3; ++k) {
-    e[k] = edgeValue(t, k, d);
-    const I32x8 owner = splat(static_cast<int32_t>(-((t.owner >> k) & 1)));
-    covered = covered & (lessThan(zero, e[k]) | (equal(e[k], zero) & owner));
-  }
-  return covered & lessThan(zero, (e[0] + e[1]) + e[2]);
-}
-
 // The barycentrics of eight rays' hits, as rayBarycentrics.
 TESSERA_LANES_INLINE void rayBarycentrics8(const RayTriangle& t, const Ray8& d, F32x8& b0,
                                            F32x8& b1, F32x8& b2) {
@@ -139,6 +126,20 @@ TESSERA_LANES_INLINE bool rayBatchable(const ShadeTriangle& t) {
 // layout of RayTriangle::n).
 TESSERA_LANES_INLINE void edgeValues(const F32x8 n[9], const Ray8& d, F32x8 e[3]) {
   for (int k = 0; k < 3; ++k) e[k] = (d.x * n[3 * k] + d.y * n[3 * k + 1]) + d.z * n[3 * k + 2];
+}
+
+// The lanes whose ray d passes through their triangle (n: edge normals as edgeValues takes them;
+// owner[k]: all ones where the triangle's edge k owns rays exactly on it): E_k > 0, or E_k == 0
+// on an owned edge, for every k, and a positive sum (ray_setup.h's coverage rule, the Vulkan
+// backend's rayCovers).
+TESSERA_LANES_INLINE I32x8 raysCover(const F32x8 n[9], const I32x8 owner[3], const Ray8& d) {
+  const F32x8 zero = splat(0.0f);
+  F32x8 e[3];
+  edgeValues(n, d, e);
+  I32x8 covered = lessThan(zero, (e[0] + e[1]) + e[2]);
+  for (int k = 0; k < 3; ++k)
+    covered = covered & (lessThan(zero, e[k]) | (equal(e[k], zero) & owner[k]));
+  return covered;
 }
 
 // The edge normals of the lanes' triangles (laneRecords' rays), in corners9's layout.

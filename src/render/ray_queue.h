@@ -17,12 +17,11 @@
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
 
-// Queued fragments in lanes: their triangles' records and the ray each is shaded at.
+// Queued fragments in lanes: their triangles' keys and edge normals and the ray each is shaded at.
 struct QueuedRays {
   I32x8 valid, keys, tx;
   F32x8 weight;
   LaneKeys lane_keys;
-  const RayTriangle* triangles[8];
   F32x8 n[9];  // the triangles' edge normals, corners9's layout
   Ray8 d;
 };
@@ -53,19 +52,16 @@ TESSERA_LANES_INLINE void loadQueuedRays(const RayShading& rs, const RayRecords&
     ray[3][l] = sample.x[at], ray[4][l] = sample.y[at], ray[5][l] = sample.z[at];
   }
   q.lane_keys = laneKeys(q.keys, q.valid);
-  laneRecords(q.lane_keys, records.ray, q.triangles);
-  rayNormals(q.triangles, q.n);
-  alignas(32) int32_t owner[3][8];
+  const RayTriangle* triangles[8];
+  laneRecords(q.lane_keys, records.ray, triangles);
+  rayNormals(triangles, q.n);
+  alignas(32) int32_t owner_bits[3][8];
   for (int l = 0; l < 8; ++l)
-    for (int k = 0; k < 3; ++k) owner[k][l] = -((q.triangles[l]->owner >> k) & 1);
-  // raysCover's tests at the centre rays, each lane against its own triangle.
+    for (int k = 0; k < 3; ++k) owner_bits[k][l] = -((triangles[l]->owner >> k) & 1);
+  const I32x8 owner[3] = {load<I32x8>(owner_bits[0]), load<I32x8>(owner_bits[1]),
+                          load<I32x8>(owner_bits[2])};
   const Ray8 c{load<F32x8>(ray[0]), load<F32x8>(ray[1]), load<F32x8>(ray[2])};
-  const F32x8 zero = splat(0.0f);
-  F32x8 e[3];
-  edgeValues(q.n, c, e);
-  I32x8 at_centre = q.valid & lessThan(zero, (e[0] + e[1]) + e[2]);
-  for (int k = 0; k < 3; ++k)
-    at_centre = at_centre & (lessThan(zero, e[k]) | (equal(e[k], zero) & load<I32x8>(owner[k])));
+  const I32x8 at_centre = q.valid & raysCover(q.n, owner, c);
   q.d = {select(at_centre, c.x, load<F32x8>(ray[3])), select(at_centre, c.y, load<F32x8>(ray[4])),
          select(at_centre, c.z, load<F32x8>(ray[5]))};
 }

@@ -21,9 +21,9 @@
 // (z: the distance mapped linearly from near (0) to far (1), with inv_range = 1 / (far - near)).
 //
 // Which pixels to test: the triangle's directions as the mode's angles (latitude and longitude, or
-// the angle from the view axis and the azimuth about it), exact at the corners, at the arcs' nearest
-// approaches to the poles and for triangles holding a pole; mapped to up to two pixel boxes (two
-// where the triangle crosses the seam of a 360-degree image), widened by the samples' reach.
+// the angle from the view axis and the azimuth about it), exact at the corners, at the arcs'
+// nearest approaches to the poles and for triangles holding a pole; mapped to up to two pixel boxes
+// (two where the triangle crosses the seam of a 360-degree image), widened by the samples' reach.
 #pragma once
 
 #include <cstdint>
@@ -86,16 +86,6 @@ inline void rayBarycentrics(const RayTriangle& t, float3 d, float& b0, float& b1
   b1 = e1 * inv_s;
   b2 = e2 * inv_s;
   b0 = 1.0f - b1 - b2;
-}
-
-// Whether ray d passes through the triangle (the coverage rule above, without the depth range).
-inline bool rayCovers(const RayTriangle& t, float3 d) {
-  float e[3];
-  for (int k = 0; k < 3; ++k) {
-    e[k] = dotRay(d, {t.n[k][0], t.n[k][1], t.n[k][2]});
-    if (!(e[k] > 0.0f || (e[k] == 0.0f && (t.owner >> k & 1)))) return false;
-  }
-  return (e[0] + e[1]) + e[2] > 0.0f;
 }
 
 }  // namespace tessera::render

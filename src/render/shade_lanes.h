@@ -1,5 +1,5 @@
 // Shading of eight lanes at a time, for the shading kernel (shade_kernel.h) and the resolve of
-// multisampled pixels (fragment_queue.h, msaa_kernel.h); written once against eight-lane types
+// multisampled pixels (fragment_queue.h, ray_queue.h); written once against eight-lane types
 // (simd_lanes.h) and compiled per instruction set (kernels_<isa>.cpp). Each lane does exactly the
 // float operations, in exactly the order, that shading one pixel takes, so every variant gives the
 // same bits. Texture samples are taken eight lanes at a time (texture_lanes.h); nearest ones, and
