@@ -394,3 +394,79 @@ TEST(Msaa, ColourComesFromTheSamplesWhenTheCentreHoldsAnotherTriangle) {
   options.depth = options.ids = false;  // no centre layer: the same colours
   EXPECT_EQ(render(scene, options).color, both.color);
 }
+
+TEST(Msaa, MixedPixelsAreShadedAtTheCentreOrTheFirstSampleTheTriangleHolds) {
+  // One triangle at a time on black, its vertex colours a ramp across it (red 0 on edge AB, 1 at
+  // C; green the reverse): a pixel its edges cross resolves to the ramp at the pixel centre when
+  // the centre is inside the triangle (the rule above), else at the first of its samples, in
+  // pattern order, inside it, times the share of samples covered. Small triangles and long thin
+  // ones (whose box takes the raster's large-triangle walk), at every sample count.
+  const int size = 256;
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int64_t> anywhere(20 * 256, 236 * 256), near(-6 * 256, 6 * 256);
+  std::uniform_int_distribution<int64_t> span(120 * 256, 200 * 256), width(2 * 256, 5 * 256);
+  int decisive = 0;  // pixels where the other shading point would be 3 codes off or more
+  for (int n : kSampleCounts) {
+    for (int trial = 0; trial < 9; ++trial) {
+      SubPixel v[3];
+      v[0] = {anywhere(rng), anywhere(rng)};
+      if (trial < 6) {
+        v[1] = {v[0].x + near(rng), v[0].y + near(rng)};
+        v[2] = {v[0].x + near(rng), v[0].y + near(rng)};
+      } else {  // from a corner region across the image, C a few pixels off AB's middle
+        v[0] = {v[0].x / 8, v[0].y / 8};
+        v[1] = {v[0].x + span(rng), v[0].y + span(rng)};
+        const int64_t d = width(rng);
+        v[2] = {(v[0].x + v[1].x) / 2 + d, (v[0].y + v[1].y) / 2 - d};
+      }
+      const int64_t area =
+          (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
+      if (area == 0) continue;
+      // The ramp: 0 on AB, 1 at C, linear.
+      const auto ramp = [&](double px, double py) {
+        return static_cast<double>((v[1].x - v[0].x) * 1.0 * (py - v[0].y) -
+                                   (v[1].y - v[0].y) * 1.0 * (px - v[0].x)) /
+               static_cast<double>(area);
+      };
+      Mesh mesh;
+      for (const SubPixel& p : v) {
+        mesh.positions.push_back(toNdc(p, 0.0f, size, size));
+        const float r =
+            static_cast<float>(ramp(static_cast<double>(p.x), static_cast<double>(p.y)));
+        mesh.colors.push_back({r, 1.0f - r, 0.0f, 1.0f});
+      }
+      mesh.indices = {0, 1, 2};
+      Scene scene = clipSpaceScene();
+      scene.objects.push_back(unlitMesh(mesh));
+      const Frame frame = render(scene, optionsFor(size, size, n));
+      SCOPED_TRACE(testing::Message() << n << " samples, triangle " << trial);
+      for (int y = 0; y < size; ++y) {
+        for (int x = 0; x < size; ++x) {
+          const int64_t cx = int64_t{x} * 256 + 128, cy = int64_t{y} * 256 + 128;
+          int covered = 0;
+          SubPixel first{};
+          for (const SamplePosition& s : samplePattern(n)) {
+            const SubPixel p{int64_t{x} * 256 + s.x, int64_t{y} * 256 + s.y};
+            if (!insideTriangle(v, p.x, p.y)) continue;
+            if (covered++ == 0) first = p;
+          }
+          if (covered == 0 || covered == n) continue;  // the mixed pixels
+          const bool centre = insideTriangle(v, cx, cy);
+          const SubPixel at = centre ? SubPixel{cx, cy} : first;
+          const double share = static_cast<double>(covered) / n;
+          const double f = ramp(static_cast<double>(at.x), static_cast<double>(at.y));
+          const uint32_t c = frame.colorAt(x, y);
+          const int red = static_cast<int>(c & 0xff), green = static_cast<int>((c >> 8) & 0xff);
+          ASSERT_NEAR(red, encodeSrgb8(static_cast<float>(f * share)), 1) << x << "," << y;
+          ASSERT_NEAR(green, encodeSrgb8(static_cast<float>((1.0 - f) * share)), 1)
+              << x << "," << y;
+          if (centre) {
+            const double g = ramp(static_cast<double>(first.x), static_cast<double>(first.y));
+            decisive += std::abs(encodeSrgb8(static_cast<float>(g * share)) - red) >= 3;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(decisive, 500);  // the test tells the two shading points apart (1,102 here)
+}

@@ -27,16 +27,12 @@ struct FragmentQueue {
   int count;
   // sampleX and the fraction of sampleY of each sample.
   float sample_x[kMaxSamples], sample_y[kMaxSamples];
-  // Each chunk's first raster record (laneRecords), for the centre test.
-  const RasterTriangle* raster[kMaxChunks];
 
-  FragmentQueue(const MsaaShading& m, const std::vector<TriangleChunk>& chunks, size_t chunk_count)
-      : key{}, where{}, count(0) {
+  explicit FragmentQueue(const MsaaShading& m) : key{}, where{}, count(0) {
     for (int s = 0; s < kMaxSamples; ++s) {
       sample_x[s] = s < m.samples ? sampleX(m, s) : 0.0f;
       sample_y[s] = s < m.samples ? sampleY(m, s, 0) : 0.0f;
     }
-    for (size_t c = 0; c < chunk_count; ++c) raster[c] = chunks[c].raster.data();
   }
 
   // The lanes of `lanes` (pixels tx .. tx + 7 of the tile, their triangles `keys` at sample s,
@@ -60,23 +56,20 @@ struct QueuedFragments {
 
 // Fragments first .. first + count - 1 of the queue (count at most eight; the other lanes borrow
 // the first's triangle) of row y of the tile at column x0.
-TESSERA_LANES_INLINE void loadQueued(const std::vector<TriangleChunk>& chunks,
-                                     const ShadeTriangle* const* chunk_records,
+TESSERA_LANES_INLINE void loadQueued(const ShadeTriangle* const* chunk_records,
                                      const FragmentQueue& queue, int first, int count, int x0,
                                      int y, QueuedFragments& q) {
   q.valid = lessThan(iota(), splat(count));
-  q.keys = load<I32x8>(queue.key + first);
+  const I32x8 keys = load<I32x8>(queue.key + first);
+  const I32x8 at_centre = centresCovered(keys, q.valid);
+  q.keys = unflagged(keys);
   const I32x8 where = load<I32x8>(queue.where + first);
   q.tx = where & splat(int32_t{63});
   const I32x8 sample = shiftRight(where, 6) & splat(int32_t{7});
   q.weight = toFloat(shiftRight(where, 9));
   q.lane_keys = laneKeys(q.keys, q.valid);
   laneRecords(q.lane_keys, chunk_records, q.records);
-  const RasterTriangle* raster[8];
-  laneRecords(q.lane_keys, queue.raster, raster);
-  const I32x8 columns = splat(x0) + q.tx;
-  const I32x8 at_centre = centresCovered(chunks, q.keys, raster, q.valid, columns, y);
-  const F32x8 column = toFloat(columns);
+  const F32x8 column = toFloat(splat(x0) + q.tx);
   q.px = select(at_centre, column + splat(0.5f), column + gather(queue.sample_x, sample));
   q.py = select(at_centre, splat(static_cast<float>(y) + 0.5f),
                 splat(static_cast<float>(y)) + gather(queue.sample_y, sample));
@@ -160,7 +153,6 @@ TESSERA_LANES_INLINE void loadMixedGroup(const MsaaShading& m, int i, I32x8 mixe
 // `queue`. A mixed pixel's colour is left as its sum so far: the background's share and sample
 // 0's triangle weighted by the samples it holds.
 TESSERA_LANES_INLINE Vec3x8 shadePlainSampled(const MsaaShading& m,
-                                              const std::vector<TriangleChunk>& chunks,
                                               const ShadeTriangle* const* chunk_records, int i,
                                               int tx, int x, int y, I32x8 mixed,
                                               FragmentQueue& queue) {
@@ -170,14 +162,9 @@ TESSERA_LANES_INLINE Vec3x8 shadePlainSampled(const MsaaShading& m,
   const I32x8 valid = ~equal(g.keys[0], splat(static_cast<int32_t>(kEmptyKey)));
   if (any(valid)) {
     const ShadeTriangle* records[8];
-    const RasterTriangle* raster[8];
-    const LaneKeys lane_keys = laneKeys(g.keys[0], valid);
-    laneRecords(lane_keys, chunk_records, records);
-    laneRecords(lane_keys, queue.raster, raster);
-    const I32x8 columns = splat(x) + iota();
-    const I32x8 at_centre =
-        ~mixed | centresCovered(chunks, g.keys[0], raster, g.pending[0], columns, y);
-    const F32x8 column = toFloat(columns);
+    laneRecords(laneKeys(g.keys[0], valid), chunk_records, records);
+    const I32x8 at_centre = ~mixed | centresCovered(g.keys[0], g.pending[0]);
+    const F32x8 column = toFloat(splat(x) + iota());
     sample0 =
         shadeMixed(records, select(at_centre, column + splat(0.5f), column + splat(sampleX(m, 0))),
                    select(at_centre, splat(static_cast<float>(y) + 0.5f), splat(sampleY(m, 0, y))));
@@ -192,12 +179,11 @@ TESSERA_LANES_INLINE Vec3x8 shadePlainSampled(const MsaaShading& m,
 }
 
 // The queued plain fragments first .. first + count - 1 of row y shaded and added to their sums.
-TESSERA_LANES_INLINE void shadeQueuedPlain(const std::vector<TriangleChunk>& chunks,
-                                           const ShadeTriangle* const* chunk_records,
+TESSERA_LANES_INLINE void shadeQueuedPlain(const ShadeTriangle* const* chunk_records,
                                            const FragmentQueue& queue, int first, int count, int x0,
                                            int y, float linear[3][kTileSize]) {
   QueuedFragments q;
-  loadQueued(chunks, chunk_records, queue, first, count, x0, y, q);
+  loadQueued(chunk_records, queue, first, count, x0, y, q);
   addFragments(q.tx, q.weight, count, shadeMixed(q.records, q.px, q.py), linear);
 }
 
@@ -277,7 +263,6 @@ TESSERA_LANES_INLINE void resolveMixedRowBy(const MsaaShading& m, const TileVisi
 
 // resolveMixedRowBy of a perspective row when some triangle of the tile is not plain.
 TESSERA_LANES_INLINE void resolveMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
-                                          const std::vector<TriangleChunk>& chunks,
                                           const ShadeTriangle* const* chunk_records,
                                           const ShadeExtras* const* chunk_extras,
                                           const LightRig& lights, FragmentQueue& queue,
@@ -285,7 +270,7 @@ TESSERA_LANES_INLINE void resolveMixedRow(const MsaaShading& m, const TileVisibi
   const int y = tile.y0 + ty;
   resolveMixedRowBy(m, tile, ty, queue, linear, [&](int first, int count) {
     QueuedFragments q;
-    loadQueued(chunks, chunk_records, queue, first, count, tile.x0, y, q);
+    loadQueued(chunk_records, queue, first, count, tile.x0, y, q);
     return ShadedFragments{q.tx, q.weight, shadeFragments(q, chunk_extras, lights)};
   });
 }

@@ -59,10 +59,12 @@ inline float maskedAlpha(const ShadeTriangle& s, const ShadeExtras& e, float px,
 // Record `record` of `chunk` (masked) into each of the layers, layer i with its samples at
 // shifts[i]; one layer at the pixel centres (a zero shift) without MSAA. The depth is formed as
 // rasterSample and depthTestRow8 form it, so a masked triangle meets its neighbours as an opaque
-// one would.
+// one would. `flag_centres` (sample layers): the keys get kCentreKeyBit where the pixel's centre
+// passes the edge tests, as the opaque walks give it.
 template <bool kLatest>
 void rasterMasked(const TriangleChunk& chunk, uint32_t record, uint32_t key,
-                  TileVisibility* const* layers, const SampleShift* shifts, int layer_count) {
+                  TileVisibility* const* layers, const SampleShift* shifts, int layer_count,
+                  bool flag_centres) {
   const RasterTriangle& t = chunk.raster[record];
   const RasterWide& w = chunk.wide[record];
   const ShadeTriangle& s = chunk.shade[record];
@@ -87,7 +89,11 @@ void rasterMasked(const TriangleChunk& chunk, uint32_t record, uint32_t key,
         const float py = static_cast<float>(y) + 0.5f + shift.pixels_y;
         if (!(maskedAlpha(s, e, px, py) >= cutoff)) continue;
         layer.depth[at] = z;
-        layer.key[at] = key;
+        layer.key[at] = flag_centres && maskedEdgeAt(t, w, 0, x, y, 0, 0) >= 0 &&
+                                maskedEdgeAt(t, w, 1, x, y, 0, 0) >= 0 &&
+                                maskedEdgeAt(t, w, 2, x, y, 0, 0) >= 0
+                            ? key | kCentreKeyBit
+                            : key;
       }
     }
   }

@@ -23,7 +23,7 @@ struct LaneKeys {
 TESSERA_LANES_INLINE LaneKeys laneKeys(I32x8 keys, I32x8 covered, uint32_t first) {
   const I32x8 owner = select(covered, keys, splat(static_cast<int32_t>(first)));
   LaneKeys k;
-  store(k.chunk, shiftRight(owner, kLocalKeyBits) & splat(int32_t{kMaxChunks - 1}));
+  store(k.chunk, shiftRight(owner, kChunkKeyShift) & splat(int32_t{kMaxChunks - 1}));
   k.local = owner & splat(static_cast<int32_t>((1u << kLocalKeyBits) - 1));
   return k;
 }

@@ -23,7 +23,7 @@ TESSERA_LANES_INLINE void walkPainterBins(const std::vector<TriangleChunk>& chun
     for (const uint32_t* it = slice.bins.begin(tile_index); it != end; ++it) {
       const TriangleChunk& chunk = chunks[keyChunk(*it)];
       if (chunk.any_masked && isMasked(chunk, keyLocal(*it)))
-        rasterMasked<true>(chunk, keyLocal(*it), *it, layers, shifts, layer_count);
+        rasterMasked<true>(chunk, keyLocal(*it), *it, layers, shifts, layer_count, layer_count > 1);
       else
         draw(chunk.raster[keyLocal(*it)], chunk.wide[keyLocal(*it)], *it);
     }

@@ -14,22 +14,31 @@
 
 namespace tessera::render {
 
-// A triangle's key: its chunk and its index in that chunk's records.
+// A triangle's key: its chunk (the top kChunkKeyBits), a flag the sample layers set
+// (kCentreKeyBit) and its index in that chunk's records (the low kLocalKeyBits).
 constexpr int kChunkKeyBits = 7;
 constexpr uint32_t kMaxChunks = 1u << kChunkKeyBits;
-constexpr int kLocalKeyBits = 32 - kChunkKeyBits;
-// The all-ones key is empty; and a chunk's shading records stay within 2 GiB, so that the
-// shading kernel forms their byte offsets in int32 lanes (14 million records: a chunk is at most
-// 1/128 of the scene's triangles, plus the fans of clipped ones).
+constexpr int kChunkKeyShift = 32 - kChunkKeyBits;
+constexpr int kLocalKeyBits = kChunkKeyShift - 1;
+// In a multisampled tile's sample layers (msaa.h), set in the keys the layers store where the
+// pixel's centre passes the triangle's edge tests (the shading point of a mixed pixel's fragment:
+// fragment_queue.h), so that the shading reads the exact test from the key instead of redoing it
+// from the raster record. A function of the triangle and the pixel, so the keys of one pixel's
+// samples stay equal where their triangle is. Clear in every other key.
+constexpr uint32_t kCentreKeyBit = 1u << kLocalKeyBits;
+// The all-ones key is empty; a chunk holds fewer than 2^kLocalKeyBits records (16.7 million: a
+// chunk is at most 1/128 of the scene's triangles, plus the fans of clipped ones), and its
+// shading records stay within 2 GiB, so that the shading kernel forms their byte offsets in int32
+// lanes.
 constexpr uint32_t kMaxTrianglesPerChunk =
     std::min<uint64_t>((1u << kLocalKeyBits) - 1, (uint64_t{1} << 31) / sizeof(ShadeTriangle));
 constexpr uint32_t kEmptyKey = 0xffffffffu;
 
 constexpr uint32_t makeKey(uint32_t chunk, uint32_t local) {
-  return (chunk << kLocalKeyBits) | local;
+  return (chunk << kChunkKeyShift) | local;
 }
 constexpr uint32_t keyChunk(uint32_t key) {
-  return key >> kLocalKeyBits;
+  return key >> kChunkKeyShift;
 }
 constexpr uint32_t keyLocal(uint32_t key) {
   return key & ((1u << kLocalKeyBits) - 1);

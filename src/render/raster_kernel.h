@@ -41,14 +41,27 @@ TESSERA_LANES_INLINE F32x8 depthAcross8(const RasterTriangle& t, int x) {
 // depth take z and the key; the others write back what they read (the tile rows are padded, so the
 // eight slots always exist). z is the plane at the pixel centre, the row's depth plus depthAcross8
 // at the first of the eight, computed exactly as everywhere else.
+// `key`: each lane's (a sample layer's keys carry the centre flag, kCentreKeyBit), or one for all.
 template <DepthRule kRule = DepthRule::kNearest>
-TESSERA_LANES_INLINE void depthTestRow8(uint32_t key, float z_row, F32x8 across, I32x8 covered,
+TESSERA_LANES_INLINE void depthTestRow8(I32x8 key, float z_row, F32x8 across, I32x8 covered,
                                         float* depth, uint32_t* keys) {
   const F32x8 z = splat(z_row) + across;
   const F32x8 stored = load<F32x8>(depth);
   const I32x8 pass = kRule == DepthRule::kLatest ? covered : covered & lessThan(z, stored);
   store(depth, select(pass, z, stored));
-  store(keys, select(pass, splat(static_cast<int32_t>(key)), load<I32x8>(keys)));
+  store(keys, select(pass, key, load<I32x8>(keys)));
+}
+template <DepthRule kRule = DepthRule::kNearest>
+TESSERA_LANES_INLINE void depthTestRow8(uint32_t key, float z_row, F32x8 across, I32x8 covered,
+                                        float* depth, uint32_t* keys) {
+  depthTestRow8<kRule>(splat(static_cast<int32_t>(key)), z_row, across, covered, depth, keys);
+}
+
+// A sample layer's keys for a step whose edge values at the pixel centres are e0, e1, e2: `key`
+// with kCentreKeyBit in the lanes whose centre passes the three tests.
+TESSERA_LANES_INLINE I32x8 centreFlagged(uint32_t key, I32x8 e0, I32x8 e1, I32x8 e2) {
+  return splat(static_cast<int32_t>(key)) |
+         (nonNegative(e0 | e1 | e2) & splat(static_cast<int32_t>(kCentreKeyBit)));
 }
 
 template <DepthRule kRule = DepthRule::kNearest>
@@ -179,13 +192,17 @@ TESSERA_LANES_INLINE void walkNarrowBox(const RasterTriangle& t, const TileVisib
 
 // depthTestRow8 for a step of walkNarrowBox: the two rows of four at depth and depth + kTileSize.
 template <DepthRule kRule>
-TESSERA_LANES_INLINE void depthTest2x4(uint32_t key, F32x8 z, I32x8 covered, float* depth,
+TESSERA_LANES_INLINE void depthTest2x4(I32x8 key, F32x8 z, I32x8 covered, float* depth,
                                        uint32_t* keys) {
   const F32x8 stored = load2x4<F32x8>(depth, depth + kTileSize);
   const I32x8 pass = kRule == DepthRule::kLatest ? covered : covered & lessThan(z, stored);
   store2x4(depth, depth + kTileSize, select(pass, z, stored));
-  store2x4(keys, keys + kTileSize,
-           select(pass, splat(static_cast<int32_t>(key)), load2x4<I32x8>(keys, keys + kTileSize)));
+  store2x4(keys, keys + kTileSize, select(pass, key, load2x4<I32x8>(keys, keys + kTileSize)));
+}
+template <DepthRule kRule>
+TESSERA_LANES_INLINE void depthTest2x4(uint32_t key, F32x8 z, I32x8 covered, float* depth,
+                                       uint32_t* keys) {
+  depthTest2x4<kRule>(splat(static_cast<int32_t>(key)), z, covered, depth, keys);
 }
 
 // Triangles at most four pixels wide (most of a dense mesh): walkNarrowBox, so a step does the
@@ -214,10 +231,57 @@ TESSERA_LANES_INLINE int64_t edgeAt(const RasterTriangle& t, const RasterWide& w
          t.b[k] * (static_cast<int64_t>(y) * kSubpixelOne + kSubpixelHalf) + w.c[k];
 }
 
+// The edge values at the centres of pixels bx .. bx + 7 of row y, in 64 bits (lanes64: iota).
+TESSERA_LANES_INLINE void rowEdges(const RasterTriangle& t, const RasterWide& w, int bx, int y,
+                                   I64x8 lanes64, I64x8 e[3]) {
+  for (int k = 0; k < 3; ++k)
+    e[k] = splat(edgeAt(t, w, k, bx, y)) +
+           lanes64 * splat(static_cast<int64_t>(t.a[k]) * kSubpixelOne);
+}
+
+// Rows y0 .. y1 of the block at column bx (in_range: its columns in the triangle's box) of a
+// sample layer's walk (rasterBlocks with kFlagCentres), the keys with their centre flags. `inside`:
+// the block's pixels pass the moved triangle's edge tests; centres_inside, centres_outside: all or
+// none of them pass the original's at their centres. Most blocks of a large triangle are inside
+// on both counts, and take a loop of their own.
 template <DepthRule kRule>
+TESSERA_LANES_INLINE void flaggedBlockRows(const RasterTriangle& t, const RasterWide& w,
+                                           uint32_t key, TileVisibility& tile, int bx, int y0,
+                                           int y1, I32x8 in_range, bool inside, bool centres_inside,
+                                           bool centres_outside, const int64_t* centre_shift) {
+  const I32x8 block_keys = splat(static_cast<int32_t>(centres_inside ? key | kCentreKeyBit : key));
+  const F32x8 across = depthAcross8(t, bx);
+  if (inside && (centres_inside || centres_outside)) {
+    for (int y = y0; y <= y1; ++y)
+      depthTestRow8<kRule>(block_keys, rowDepth(t, y), across, in_range,
+                           tile.depth + tilePixel(tile, bx, y), tile.key + tilePixel(tile, bx, y));
+    return;
+  }
+  const I64x8 lanes64 = widen(iota());
+  const I32x8 bit = splat(static_cast<int32_t>(kCentreKeyBit));
+  for (int y = y0; y <= y1; ++y) {
+    I64x8 e[3];
+    rowEdges(t, w, bx, y, lanes64, e);
+    const I32x8 covered = inside ? in_range : in_range & nonNegative(e[0] | e[1] | e[2]);
+    const I32x8 keys = centres_inside || centres_outside
+                           ? block_keys
+                           : block_keys | (nonNegative((e[0] - splat(centre_shift[0])) |
+                                                       (e[1] - splat(centre_shift[1])) |
+                                                       (e[2] - splat(centre_shift[2]))) &
+                                           bit);
+    depthTestRow8<kRule>(keys, rowDepth(t, y), across, covered, tile.depth + tilePixel(tile, bx, y),
+                         tile.key + tilePixel(tile, bx, y));
+  }
+}
+
+// A large triangle's walk, block by block. `centre_shift` (kFlagCentres: a sample layer's walk of
+// the triangle moved by the sample's offset, rasterSample) holds what each edge's value at a
+// sample exceeds its value at the pixel centre by (a * dx + b * dy), from which the keys get their
+// centre flags (kCentreKeyBit, as centreFlagged gives the small walks theirs).
+template <DepthRule kRule, bool kFlagCentres = false>
 TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide& w, uint32_t key,
                                        TileVisibility& tile, int x_begin, int x_end, int y_begin,
-                                       int y_end) {
+                                       int y_end, const int64_t* centre_shift = nullptr) {
   // Blocks are aligned to the tile so a block row never leaves the tile's rows.
   const int bx_first = tile.x0 + ((x_begin - tile.x0) & ~(kBlock - 1));
   const int by_first = tile.y0 + ((y_begin - tile.y0) & ~(kBlock - 1));
@@ -231,6 +295,8 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide
       // so its extremes over the block are at the corners, and exactly (integers) the value at
       // the first corner plus the steps across and down that lower or raise it.
       bool outside = false, inside = true;
+      // The same of the edges at the pixel centres (kFlagCentres).
+      bool centres_outside = false, centres_inside = true;
       const int64_t across = static_cast<int64_t>(x1 - x0) * kSubpixelOne;
       const int64_t down = static_cast<int64_t>(y1 - y0) * kSubpixelOne;
       for (int k = 0; k < 3; ++k) {
@@ -240,6 +306,10 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide
         const int64_t hi = e00 + std::max<int64_t>(step_x, 0) + std::max<int64_t>(step_y, 0);
         outside |= hi < 0;
         inside &= lo >= 0;
+        if constexpr (kFlagCentres) {
+          centres_outside |= hi - centre_shift[k] < 0;
+          centres_inside &= lo - centre_shift[k] >= 0;
+        }
       }
       if (outside) continue;
       float& block_max =
@@ -249,18 +319,21 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide
       if (kRule == DepthRule::kNearest && w.z_min >= block_max) continue;
       const I32x8 columns = splat(bx) + lanes;
       const I32x8 in_range = lessOrEqual(splat(x0), columns) & lessOrEqual(columns, splat(x1));
-      for (int y = y0; y <= y1; ++y) {
-        I32x8 covered = in_range;
-        if (!inside) {
-          I64x8 e[3];
-          for (int k = 0; k < 3; ++k)
-            e[k] = splat(edgeAt(t, w, k, bx, y)) +
-                   lanes64 * splat(static_cast<int64_t>(t.a[k]) * kSubpixelOne);
-          covered = covered & nonNegative(e[0] | e[1] | e[2]);
+      if constexpr (kFlagCentres) {
+        flaggedBlockRows<kRule>(t, w, key, tile, bx, y0, y1, in_range, inside, centres_inside,
+                                centres_outside, centre_shift);
+      } else {
+        for (int y = y0; y <= y1; ++y) {
+          I32x8 covered = in_range;
+          if (!inside) {
+            I64x8 e[3];
+            rowEdges(t, w, bx, y, lanes64, e);
+            covered = covered & nonNegative(e[0] | e[1] | e[2]);
+          }
+          depthTestRow8<kRule>(t, key, rowDepth(t, y), bx, covered,
+                               tile.depth + tilePixel(tile, bx, y),
+                               tile.key + tilePixel(tile, bx, y));
         }
-        depthTestRow8<kRule>(t, key, rowDepth(t, y), bx, covered,
-                             tile.depth + tilePixel(tile, bx, y),
-                             tile.key + tilePixel(tile, bx, y));
       }
       // A block now wholly written by this triangle gets a tighter bound.
       if (kRule == DepthRule::kNearest && inside && x0 == bx && x1 == bx + kBlock - 1 && y0 == by &&
@@ -427,7 +500,7 @@ __attribute__((noinline)) void rasterTileWalk(const std::vector<TriangleChunk>& 
       [&](const TriangleChunk& chunk, uint32_t record, uint32_t key) {
         TileVisibility* const layers[1] = {&tile};
         const SampleShift centre[1] = {};
-        rasterMasked<false>(chunk, record, key, layers, centre, 1);
+        rasterMasked<false>(chunk, record, key, layers, centre, 1, false);
       });
 }
 

@@ -13,56 +13,51 @@
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
 
-// A triangle's coverage and depth at one sample of every pixel: the triangle moved by the
-// sample's offset from the pixel centre (-offset), rasterized at pixel centres. The edge values
-// at the centre of the moved triangle are the original's at the sample, exactly: a and b stay, c
-// (or a small triangle's corner values) take a * dx + b * dy, and the depth plane's origin moves
-// by the offset in pixels. The record's box holds every pixel any sample may cover (setup grows
-// it by kSampleReach); the moved triangle's own box, from its snapped vertices (which a, b and x0,
-// y0 give back exactly), is narrower by up to a pixel on each side: most of a dense mesh's
-// triangles are a few pixels across, so that is a large share of their pixels. A small
-// triangle's moved values fit in int32 (smallBox with the sample reach).
+// A large triangle's coverage and depth at one sample of every pixel: the triangle moved by the
+// sample's offset from the pixel centre (-offset), rasterized at pixel centres. The edge values at
+// the centre of the moved triangle are the original's at the sample, exactly: a and b stay, c
+// takes a * dx + b * dy, and the depth plane's origin moves by the offset in pixels; the keys'
+// centre flags (kCentreKeyBit) come from the original's values, the moved one's less a * dx +
+// b * dy. The record's box holds every pixel any sample may cover (setup grows it by
+// kSampleReach); the moved triangle's own box, from its snapped vertices (which a, b and x0, y0
+// give back exactly), is narrower by up to a pixel on each side. (Small triangles take every
+// layer in one walk: rasterSmallSamples.) Not inlined: in the walk over the tile's triangles it
+// took registers from the small triangles' walks, which took 3% more instructions.
 template <DepthRule kRule>
-TESSERA_LANES_INLINE void rasterSample(const RasterTriangle& t, const RasterWide& w, uint32_t key,
-                                       const SampleShift& shift, TileVisibility& tile) {
+__attribute__((noinline)) void rasterSample(const RasterTriangle& t, const RasterWide& w,
+                                            uint32_t key, const SampleShift& shift,
+                                            TileVisibility& tile) {
   // The snapped vertices in 1/256 pixel (edge 2 runs v0 -> v1, edge 1 v2 -> v0; setup.cpp).
   const int32_t v0x = static_cast<int32_t>(t.x0 * static_cast<float>(kSubpixelOne));
   const int32_t v0y = static_cast<int32_t>(t.y0 * static_cast<float>(kSubpixelOne));
   const int32_t v1x = v0x + t.b[2], v1y = v0y - t.a[2];
   const int32_t v2x = v0x - t.b[1], v2y = v0y + t.a[1];
-  // pixelRange (setup.h) of the moved vertices, within the record's box.
+  // pixelRange (setup.h) of the moved vertices, within the record's box and the tile.
   const int32_t lo_x = std::min({v0x, v1x, v2x}) - shift.dx,
                 hi_x = std::max({v0x, v1x, v2x}) - shift.dx;
   const int32_t lo_y = std::min({v0y, v1y, v2y}) - shift.dy,
                 hi_y = std::max({v0y, v1y, v2y}) - shift.dy;
-  const int min_x = std::max<int>(t.min_x, -((kSubpixelHalf - lo_x) >> kSubpixelBits));
-  const int max_x = std::min<int>(t.max_x, (hi_x - kSubpixelHalf) >> kSubpixelBits);
-  const int min_y = std::max<int>(t.min_y, -((kSubpixelHalf - lo_y) >> kSubpixelBits));
-  const int max_y = std::min<int>(t.maxY(), (hi_y - kSubpixelHalf) >> kSubpixelBits);
-  if (min_x > max_x || min_y > max_y) return;
-
+  const int x_begin =
+      std::max({static_cast<int>(t.min_x), tile.x0, -((kSubpixelHalf - lo_x) >> kSubpixelBits)});
+  const int x_end = std::min({static_cast<int>(t.max_x), tile.x0 + tile.width - 1,
+                              (hi_x - kSubpixelHalf) >> kSubpixelBits});
+  const int y_begin =
+      std::max({static_cast<int>(t.min_y), tile.y0, -((kSubpixelHalf - lo_y) >> kSubpixelBits)});
+  const int y_end =
+      std::min({t.maxY(), tile.y0 + tile.height - 1, (hi_y - kSubpixelHalf) >> kSubpixelBits});
+  if (x_begin > x_end || y_begin > y_end) return;
   RasterTriangle moved = t;
   moved.x0 = t.x0 - shift.pixels_x;
   moved.y0 = t.y0 - shift.pixels_y;
-  moved.min_x = static_cast<int16_t>(min_x);
-  moved.min_y = static_cast<int16_t>(min_y);
-  moved.max_x = static_cast<int16_t>(max_x);
-  moved.max_y_small = static_cast<uint16_t>(max_y | (t.max_y_small & RasterTriangle::kSmallBit));
-  if (t.small()) {
-    // The corner values at the moved box's first pixel.
-    const int64_t step_x = int64_t{min_x - t.min_x} * kSubpixelOne + shift.dx;
-    const int64_t step_y = int64_t{min_y - t.min_y} * kSubpixelOne + shift.dy;
-    for (int k = 0; k < 3; ++k)
-      moved.corner[k] =
-          static_cast<int32_t>(t.corner[k] + int64_t{t.a[k]} * step_x + int64_t{t.b[k]} * step_y);
-    rasterTriangle<kRule>(moved, w, key, tile);  // a small triangle's wide record is not read
-    return;
-  }
   RasterWide moved_wide;
-  for (int k = 0; k < 3; ++k)
-    moved_wide.c[k] = w.c[k] + int64_t{t.a[k]} * shift.dx + int64_t{t.b[k]} * shift.dy;
+  int64_t centre_shift[3];
+  for (int k = 0; k < 3; ++k) {
+    centre_shift[k] = int64_t{t.a[k]} * shift.dx + int64_t{t.b[k]} * shift.dy;
+    moved_wide.c[k] = w.c[k] + centre_shift[k];
+  }
   moved_wide.z_min = w.z_min;
-  rasterTriangle<kRule>(moved, moved_wide, key, tile);
+  rasterBlocks<kRule, true>(moved, moved_wide, key, tile, x_begin, x_end, y_begin, y_end,
+                            centre_shift);
 }
 
 // What rasterSmallSamples keeps per layer: the edge offsets of its samples, the depth plane's
@@ -90,6 +85,7 @@ TESSERA_LANES_INLINE void rasterNarrowSamples(const RasterTriangle& t, uint32_t 
       t, tile, x_begin, x_end, y_begin, y_end,
       [&](int offset, F32x8 centre_y, I32x8 e0, I32x8 e1, I32x8 e2,
           I32x8 in_box) __attribute__((always_inline)) {
+        const I32x8 keys = centreFlagged(key, e0, e1, e2);
         for (int i = 0; i < layer_count; ++i) {
           if (!le.drawn[i]) continue;
           const I32x8 covered = nonNegative((e0 + le.offset[i][0]) | (e1 + le.offset[i][1]) |
@@ -98,7 +94,7 @@ TESSERA_LANES_INLINE void rasterNarrowSamples(const RasterTriangle& t, uint32_t 
           // No branch on a layer the step misses: the test writes back what it read
           // (rasterSmall).
           const F32x8 z = (z0 + dzdy * (centre_y - splat(le.y0[i]))) + dz[i];
-          depthTest2x4<kRule>(key, z, covered, layers[i]->depth + offset, layers[i]->key + offset);
+          depthTest2x4<kRule>(keys, z, covered, layers[i]->depth + offset, layers[i]->key + offset);
         }
       });
 }
@@ -145,6 +141,7 @@ TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t k
       [&](int y, int row_offset, int x, I32x8 e0, I32x8 e1, I32x8 e2, I32x8 in_range)
           __attribute__((always_inline)) {
             const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
+            const I32x8 keys = centreFlagged(key, e0, e1, e2);
             for (int i = 0; i < layer_count; ++i) {
               if (!le.drawn[i]) continue;
               const I32x8 covered = nonNegative((e0 + le.offset[i][0]) | (e1 + le.offset[i][1]) |
@@ -153,7 +150,7 @@ TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t k
               // No branch on a layer the step misses (rasterSmall's reason). rowDepth and
               // depthAcross8 of the moved triangle (rasterSample).
               const float z_row = t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - le.y0[i]);
-              depthTestRow8<kRule>(key, z_row, dzdx * (centre - splat(le.x0[i])), covered,
+              depthTestRow8<kRule>(keys, z_row, dzdx * (centre - splat(le.x0[i])), covered,
                                    layers[i]->depth + (row_offset + x),
                                    layers[i]->key + (row_offset + x));
             }
@@ -181,7 +178,7 @@ void rasterTileSamplesKernel(const std::vector<TriangleChunk>& chunks, size_t ch
     rasterTriangleSamples(t, w, key, layers, shifts, layer_count);
   };
   auto masked = [&](const TriangleChunk& chunk, uint32_t record, uint32_t key) {
-    rasterMasked<false>(chunk, record, key, layers, shifts, layer_count);
+    rasterMasked<false>(chunk, record, key, layers, shifts, layer_count, true);
   };
   if (anyMasked(chunks, chunk_count))
     walkTileBins<true>(chunks, chunk_count, tile_index, draw, masked);

@@ -79,7 +79,7 @@ void shadeRayTileKernel(const TileVisibility& tile, const std::vector<TriangleCh
   const RayShading rs{lights, chunks, rays, rays.width(), rays.height()};
   const RayRecords records(chunks, chunk_count);
   std::optional<FragmentQueue> queue;
-  if (msaa) queue.emplace(*msaa, chunks, chunk_count);
+  if (msaa) queue.emplace(*msaa);
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const F32x8 zero = splat(0.0f);
   alignas(32) float linear[3][kTileSize];

@@ -80,7 +80,6 @@ TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
 // colours and masks on the stack, and the plain frames' shading took 10% longer.
 template <bool kSampled>
 __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
-                                             const std::vector<TriangleChunk>& chunks,
                                              const ShadeTriangle* const records[],
                                              const MsaaShading* msaa, FragmentQueue* queue,
                                              float linear[3][kTileSize],
@@ -91,7 +90,7 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
   uint32_t last_key = kEmptyKey, last_rgba = 0;
   bool row_mixed = false;
   const auto shade_queued = [&](int first, int count) __attribute__((always_inline)) {
-    shadeQueuedPlain(chunks, records, *queue, first, count, tile.x0, tile.y0 + ty, linear);
+    shadeQueuedPlain(records, *queue, first, count, tile.x0, tile.y0 + ty, linear);
   };
   for (int tx = 0; tx < tile.width; tx += 8) {
     const int i = ty * kTileSize + tx;
@@ -104,8 +103,7 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
     const I32x8 mixed = kSampled ? load<I32x8>(msaa->tiles->mixed + i) : splat(int32_t{0});
     const bool sampled = kSampled && any(mixed);
     if (sampled) {
-      color = shadePlainSampled(*msaa, chunks, records, i, tx, tile.x0 + tx, tile.y0 + ty, mixed,
-                                *queue);
+      color = shadePlainSampled(*msaa, records, i, tx, tile.x0 + tx, tile.y0 + ty, mixed, *queue);
     } else {
       const F32x8 px = toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f);
       const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
@@ -148,7 +146,6 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
 // the compiler keeps more of the row's values in registers.
 template <bool kSampled>
 __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
-                                        const std::vector<TriangleChunk>& chunks,
                                         const ShadeTriangle* const records[],
                                         const ShadeExtras* const extras[], const LightRig& lights,
                                         bool want_normals, const MsaaShading* msaa,
@@ -207,7 +204,7 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
     storeShadedGroup(color, normal, want_normals, tx, i, linear, out);
   }
   filterTexturedRow(tile, ty, textured_groups, textured_count, records, extras, lights, linear);
-  if (kSampled) resolveMixedRow(*msaa, tile, ty, chunks, records, extras, lights, *queue, linear);
+  if (kSampled) resolveMixedRow(*msaa, tile, ty, records, extras, lights, *queue, linear);
 }
 
 // Shades the tile in pixel order, eight pixels of a row at a time, then encodes the row to sRGB
@@ -241,14 +238,13 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
   // width, which the sixteen-lane encode reads beside the last one, stay kNoSolid.
   uint32_t solid[kTileSize / 8] = {};
   std::optional<FragmentQueue> queue;
-  if (kSampled) queue.emplace(*msaa, chunks, chunk_count);
+  if (kSampled) queue.emplace(*msaa);
   for (int ty = 0; ty < tile.height; ++ty) {
     if (plain) {
-      shadePlainRow<kSampled>(tile, ty, chunks, records, msaa, queue ? &*queue : nullptr, linear,
-                              solid);
+      shadePlainRow<kSampled>(tile, ty, records, msaa, queue ? &*queue : nullptr, linear, solid);
       encodeShadedRow(tile, ty, linear, solid, background, out);
     } else {
-      shadeRow<kSampled>(tile, ty, chunks, records, extras, lights, want_normals, msaa,
+      shadeRow<kSampled>(tile, ty, records, extras, lights, want_normals, msaa,
                          queue ? &*queue : nullptr, linear, out);
       encodeShadedRow(tile, ty, linear, nullptr, background, out);
     }
