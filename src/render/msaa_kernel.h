@@ -1,7 +1,7 @@
-// The multisampling kernels (msaa.h): combining a tile's sample layers and the exact centre test
-// of a mixed pixel's triangles (the rows resolve through fragment_queue.h). Written once against
-// eight-lane types and compiled per instruction set (kernels_<isa>.cpp), with the same operations
-// per lane, so every variant gives the same bits.
+// The multisampling kernels (msaa.h): combining a tile's sample layers, and the exact centre test
+// of a mixed pixel's triangles read from the layers' keys (kCentreKeyBit; the rows resolve through
+// fragment_queue.h). Written once against eight-lane types and compiled per instruction set
+// (kernels_<isa>.cpp), with the same operations per lane, so every variant gives the same bits.
 #pragma once
 
 #include <cstdint>
