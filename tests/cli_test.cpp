@@ -277,3 +277,50 @@ TEST_F(Cli, ProjectionsRenderAndRefuseViewAnglesOutOfTheirRange) {
   EXPECT_FALSE(fs::exists(dir_ / "out.png"));
   EXPECT_FALSE(fs::exists(dir_ / "out.gif"));
 }
+
+TEST_F(Cli, EverySimdLevelDrawsTheSameImageAndTheBenchSaysWhichRan) {
+  // A bumpy grid of small triangles, drawn with 4x MSAA (render's default) on every kernel this
+  // CPU runs: the PNGs must be the same bytes. A level the CPU cannot run is an error (exit 1,
+  // nothing written), never a quiet fallback.
+  std::ostringstream obj;
+  const int n = 12;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      obj << "v " << i - n / 2 << " " << j - n / 2 << " " << ((i * 7 + j * 3) % 5) * 0.3 << "\n";
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
+      obj << "f " << a << " " << b << " " << d << "\nf " << a << " " << d << " " << c << "\n";
+    }
+  writeFile("grid.obj", obj.str());
+  std::string scalar;
+  int drawn = 0;
+  for (const std::string level : {"scalar", "sse2", "avx2", "avx512", "auto"}) {
+    SCOPED_TRACE(level);
+    const std::string out = level + ".png";
+    RunResult r = run("render grid.obj --resolution 96,80 --simd " + level + " -o " + out);
+    if (r.exit_code == 1) {
+      EXPECT_NE(r.err.find("cannot run those kernels"), std::string::npos) << r.err;
+      EXPECT_FALSE(fs::exists(dir_ / out));
+      continue;
+    }
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string image = slurp(dir_ / out);
+    ASSERT_FALSE(image.empty());
+    if (scalar.empty()) scalar = image;
+    EXPECT_EQ(image, scalar);
+    ++drawn;
+  }
+  EXPECT_GE(drawn, 3);  // scalar, sse2 and auto run on any x86-64
+  RunResult bench = run("bench cube --simd scalar --json --frames 1 --warmup 0 --resolution 32,32");
+  ASSERT_EQ(bench.exit_code, 0) << bench.err;
+  EXPECT_NE(bench.out.find("\"simd\": \"scalar\""), std::string::npos) << bench.out;
+  for (const std::string& args : {std::string("render grid.obj -o bad.png --simd avx3"),
+                                  std::string("render grid.obj -o bad.png --simd sse2 "
+                                              "--backend vulkan"),
+                                  std::string("bench cube --simd sse2 --backend vulkan")}) {
+    SCOPED_TRACE(args);
+    EXPECT_EQ(run(args).exit_code, 2);
+    EXPECT_FALSE(fs::exists(dir_ / "bad.png"));
+  }
+}

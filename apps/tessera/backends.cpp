@@ -17,8 +17,52 @@ std::vector<std::string> backendNames() {
 #endif
 }
 
-Expected<std::unique_ptr<Backend>> makeBackend(const std::string& name, int workers, int device) {
-  if (name == "cpu") return std::unique_ptr<Backend>(std::make_unique<CpuRenderer>(workers));
+namespace {
+
+std::vector<std::string> simdNames() {
+  return {"auto", "scalar", "sse2", "avx2", "avx512"};
+}
+
+// The cpu backend on the kernels `simd` names; an error where the CPU cannot run them (the
+// renderer would fall back to the widest it can: a benchmark must not time other kernels than
+// those asked for).
+Expected<std::unique_ptr<Backend>> makeCpuBackend(int workers, const std::string& simd) {
+  const std::vector<std::string> names = simdNames();
+  const SimdLevel levels[] = {SimdLevel::kAuto, SimdLevel::kScalar, SimdLevel::kSse2,
+                              SimdLevel::kAvx2, SimdLevel::kAvx512};
+  SimdLevel level = SimdLevel::kAuto;
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == simd) level = levels[i];
+  auto renderer = std::make_unique<CpuRenderer>(workers, level);
+  if (level != SimdLevel::kAuto && simd != renderer->simdName())
+    return makeError("--simd " + simd + ": this CPU cannot run those kernels (its widest: " +
+                     renderer->simdName() + ")");
+  return std::unique_ptr<Backend>(std::move(renderer));
+}
+
+}  // namespace
+
+void addSimdFlag(FlagSet& flags, std::string* simd) {
+  flags.addChoice(
+      "simd", simd, simdNames(),
+      "the cpu backend's kernels: auto (the widest this CPU runs, the default), scalar, "
+      "sse2, avx2 or avx512; every choice draws the same image");
+}
+
+std::string refuseSimd(const std::string& simd, const std::string& backend) {
+  if (simd == "auto" || backend == "cpu") return "";
+  return "--simd chooses the cpu backend's kernels: leave it out with --backend " + backend;
+}
+
+std::string simdName(const Backend& backend) {
+  const auto* cpu = dynamic_cast<const CpuRenderer*>(&backend);
+  return cpu != nullptr ? cpu->simdName() : "";
+}
+
+Expected<std::unique_ptr<Backend>> makeBackend(const std::string& name, int workers, int device,
+                                               const std::string& simd) {
+  if (name == "cpu") return makeCpuBackend(workers, simd);
+  if (std::string refused = refuseSimd(simd, name); !refused.empty()) return makeError(refused);
 #ifdef TESSERA_HAVE_VULKAN
   vulkan::VulkanOptions options;
   options.device = device;

@@ -47,6 +47,7 @@ struct BenchSettings {
   CameraSettings camera;
   int workers = 0;
   std::string backend = "cpu";
+  std::string simd = "auto";
   int msaa = 1;
   int device = -1;
   bool json = false;
@@ -217,6 +218,7 @@ void addBenchFlags(FlagSet& flags, BenchSettings& s, bool& resolution_given) {
   flags.addInt("workers", &s.workers,
                "render threads, and llvmpipe's LP_NUM_THREADS; 0 = all cores (default 0)", 0, 1024);
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
+  addSimdFlag(flags, &s.simd);
   flags.addCustom("msaa", "N",
                   "samples per pixel: 1, 2, 4 or 8 (default 1); with --vs llvmpipe, llvmpipe "
                   "draws as many through a multisampled framebuffer object",
@@ -381,6 +383,7 @@ void printMeasured(const BenchRun& run, const bench::BenchScene& b, Resolution r
               << ", \"camera\": " << jsonString(cameraFlags(s.camera)) << ", \"back_faces\": \""
               << (run.cull == CullMode::kBack ? "culled" : "drawn")
               << "\", \"backend\": " << jsonString(run.renderer.name())
+              << ", \"simd\": " << jsonString(simdName(run.renderer))
               << ", \"workers\": " << run.workers
               << ", \"median_ms\": " << fixed(m.tessera.median_ms, 4)
               << ", \"mean_ms\": " << fixed(m.tessera.mean_ms, 4)
@@ -416,7 +419,9 @@ void printMeasured(const BenchRun& run, const bench::BenchScene& b, Resolution r
 
 void printHeader(const BenchRun& run) {
   const BenchSettings& s = run.settings;
-  std::cout << "# tessera bench: backend " << run.renderer.name() << ", " << run.workers
+  const std::string simd = simdName(run.renderer);
+  std::cout << "# tessera bench: backend " << run.renderer.name()
+            << (simd.empty() ? "" : " (" + simd + " kernels)") << ", " << run.workers
             << (run.workers == 1 ? " worker" : " workers") << ", " << s.shading << " shading, "
             << "tone mapping " << s.tone.tone_mapping << ", exposure " << fixed(s.tone.exposure, 2)
             << (s.hdri.empty() ? "" : ", environment " + s.hdri) << ", "
@@ -432,6 +437,7 @@ void printHeader(const BenchRun& run) {
 // The flags against each other, before any work: "" or the usage error. `scenes_given`: scenes or
 // models were named.
 std::string checkBenchFlags(const BenchSettings& s, bool scenes_given, bool resolution_given) {
+  if (std::string refused = refuseSimd(s.simd, s.backend); !refused.empty()) return refused;
   if (s.all && (scenes_given || resolution_given))
     return "--all runs the full matrix: give no scene and no --resolution with it";
   if (s.camera.projectionMode() != Projection::kPerspective && s.versus == "llvmpipe")
@@ -501,7 +507,7 @@ int runBench(const std::vector<std::string>& args) {
     if (!created) return failure(created.error());
     reference = std::move(*created);
   }
-  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
+  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device, s.simd);
   if (!backend) return failure(backend.error());
 
   BenchRun run{s, cull, workers, **backend, reference.get(), {}, {}};

@@ -49,6 +49,7 @@ struct RenderSettings {
   std::string backface;  // empty: the model says (glTF doubleSided), else visible
   std::string aov = "color";
   std::string backend = "cpu";
+  std::string simd = "auto";
   int turntable = 0;
   float duration = 0.0f;  // --duration SECONDS: the turntable's length, 0 when not given
   int fps = 30;
@@ -165,6 +166,7 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
                   "A:B: render frames A to B (inclusive, from 0, at --fps) of the animation");
   flags.addInt("workers", &s.workers, "render threads; 0 = all cores (default 0)", 0, 1024);
   flags.addChoice("backend", &s.backend, backendNames(), "renderer (default cpu)");
+  addSimdFlag(flags, &s.simd);
   flags.addInt("device", &s.device, "Vulkan device index (default: the first suitable)", 0, 64);
   flags.addSwitch("axes|axis|x", &s.axes, "draw the world axes (f3d's -x, --axis)");
   flags.addString("texture|texture-base-color", &s.texture,
@@ -379,7 +381,7 @@ void poseAnimation(const Animation& clip, float t, SceneGraph& graph, Scene& sce
 int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const Bounds& bounds,
                  SceneGraph& graph, bool diagnostics, std::optional<io::AtomicFile>& stats_file) {
   std::vector<std::string> stats_frames;
-  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
+  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device, s.simd);
   if (!backend) {
     printError("render", backend.error().message);
     return kExitFailure;
@@ -513,6 +515,8 @@ int runRender(const std::vector<std::string>& args) {
   if (std::string wrong = resolveDuration(s); !wrong.empty()) return usageError(wrong);
   OutputKind kind = OutputKind::kPng;
   if (std::string wrong = checkOutput(s, kind); !wrong.empty()) return usageError(wrong);
+  if (std::string refused = refuseSimd(s.simd, s.backend); !refused.empty())
+    return usageError(refused);
   const bool diagnostics = isDiagnosticAov(s.aov) || !s.stats.empty();
   // vulkan-raster's depth tests are the driver's: it fills the diagnostics it can measure
   // (docs/stats.md) but has no overdraw or occupancy to give.
