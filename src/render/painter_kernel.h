@@ -12,7 +12,9 @@ namespace tessera::render {
 namespace {  // one private copy per translation unit, as raster_kernel.h
 
 // Calls draw(raster, wide, key) for every record binned to the tile, in the painter's order, and
-// for a masked one (alphaMode MASK) rasterMasked into the layers (mask_kernel.h).
+// for a masked one (alphaMode MASK) rasterMasked into the layers (mask_kernel.h). Several layers
+// are a multisampled tile's sample layers, whose keys carry the centre flags (kCentreKeyBit); one
+// is the one-sample tile, whose keys do not.
 template <typename Draw>
 TESSERA_LANES_INLINE void walkPainterBins(const std::vector<TriangleChunk>& chunks,
                                           const std::vector<PainterSlice>& slices, int tile_index,
