@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <memory>
 
@@ -130,11 +131,13 @@ BENCHMARK_CAPTURE(frameBenchmark, dense, std::string("dense"))->Apply(frameArgs)
 BENCHMARK_CAPTURE(frameBenchmark, fill, std::string("fill"))->Apply(frameArgs);
 BENCHMARK_CAPTURE(frameBenchmark, textured, std::string("textured"))->Apply(frameArgs);
 
-// ---- stages, single-threaded, on the bunny at 1920x1080 (the dense sphere without it) ----
+// ---- stages, single-threaded, on the bunny at 1920x1080 (the dense sphere without it; the tile
+// shading also on the textured sphere) ----
 
-// The bunny transformed, set up and binned once, for the stages after each of those.
+// A bench scene (the bunny unless named) transformed, set up and binned once, for the stages after
+// each of those.
 struct StageInput {
-  static constexpr int kWidth = 1920, kHeight = 1080;
+  int width = 1920, height = 1080;
   bench::BenchScene scene;
   render::ObjectTransforms transforms;
   render::ViewportTransform viewport;
@@ -147,71 +150,84 @@ struct StageInput {
   std::vector<render::TriangleChunk> chunks;  // one chunk: every triangle setup keeps, binned
 };
 
-const StageInput* stageInput() {
-  static std::unique_ptr<StageInput> input = [] {
-    const int width = StageInput::kWidth, height = StageInput::kHeight;
-    Expected<bench::BenchScene> b = benchScene("bunny", width, height);
-    if (!b) b = benchScene("dense", width, height);
-    auto in = std::make_unique<StageInput>();
-    in->scene = std::move(*b);
-    bench::poseForFrame(in->scene, 3);
-    const Scene& scene = in->scene.scene;
-    const Object& object = scene.objects[0];
-    const float4x4 view_projection =
-        scene.camera.projection(static_cast<float>(width) / height) * scene.camera.view();
-    in->transforms = render::makeObjectTransforms(object, view_projection);
-    in->viewport = {static_cast<float>(width), static_cast<float>(height),
-                    render::makeGuardBand(width, height)};
-    const Mesh& mesh = *object.mesh;
-    in->vertices.resize(mesh.vertexCount());
-    render::transformVertices(mesh, in->transforms, in->viewport, 0, mesh.vertexCount(),
-                              in->vertices);
-    in->context.width = width;
-    in->context.height = height;
-    in->context.cull = object.cull;
-    in->context.shading = object.shading;
-    in->lights.prepare(in->scene.scene);
-    in->context.lights = &in->lights;
-    in->context.model = &in->transforms.model;
-    in->context.object = &in->scene.scene.objects[0];
-    in->grid = render::TileGrid::forViewport(width, height);
-    render::TriangleChunk& chunk = in->chunks.emplace_back();
-    chunk.triangle_count = mesh.triangleCount();
-    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-      render::ScreenVertex v[3];
-      render::VertexAttributes a[3];
-      float3 p[3];
-      bool inside = true;
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t i = mesh.indices[t * 3 + k];
-        inside = inside && !(in->vertices.outcode[i] & (render::kCutPlanes | render::kNonFinite));
-        v[k] = in->vertices.screen[i];
-        a[k] = {in->vertices.normal[i], {}, {1, 1, 1, 1}, true, {}};
-        p[k] = mesh.positions[i];
-      }
-      if (!inside) continue;  // the clipper's work: not part of these benchmarks
-      render::RasterTriangle r;
-      render::RasterWide w;
-      render::TriangleOrientation o;
-      if (!render::setupRaster(in->context, v, r, w, o)) continue;
-      render::ShadeTriangle shade;
-      render::ShadeExtras extras;
-      const float3 face = in->transforms.normal_matrix * cross(p[1] - p[0], p[2] - p[0]);
-      render::setupShade(in->context, v, a, o, r, face, static_cast<uint32_t>(t), 0, shade, extras);
-      chunk.raster.push_back(r);
-      chunk.wide.push_back(w);
-      chunk.shade.push_back(shade);
-      chunk.extras.push_back(extras);
-      in->orientation.push_back(o);
-      in->triangle.push_back(t);
+// The input of scene `name` at width x height, made on first use; null (with the reason in
+// `error`) when the scene cannot be made. The bunny falls back to the dense sphere.
+const StageInput* stageInput(const std::string& name, int width, int height, std::string& error) {
+  static std::map<std::string, std::unique_ptr<StageInput>> inputs;
+  const std::string key = name + "@" + std::to_string(width) + "x" + std::to_string(height);
+  if (auto it = inputs.find(key); it != inputs.end()) return it->second.get();
+  Expected<bench::BenchScene> b = benchScene(name, width, height);
+  if (!b && name == "bunny") b = benchScene("dense", width, height);
+  if (!b) {
+    error = b.error().message;
+    return nullptr;
+  }
+  auto in = std::make_unique<StageInput>();
+  in->width = width;
+  in->height = height;
+  in->scene = std::move(*b);
+  bench::poseForFrame(in->scene, 3);
+  const Scene& scene = in->scene.scene;
+  const Object& object = scene.objects[0];
+  const float4x4 view_projection =
+      scene.camera.projection(static_cast<float>(width) / height) * scene.camera.view();
+  in->transforms = render::makeObjectTransforms(object, view_projection);
+  in->viewport = {static_cast<float>(width), static_cast<float>(height),
+                  render::makeGuardBand(width, height)};
+  const Mesh& mesh = *object.mesh;
+  in->vertices.resize(mesh.vertexCount());
+  render::transformVertices(mesh, in->transforms, in->viewport, 0, mesh.vertexCount(),
+                            in->vertices);
+  in->lights.prepare(in->scene.scene);
+  in->context = render::objectSetupContext(in->lights, in->scene.scene.objects[0],
+                                           in->transforms.model, width, height, false, 0);
+  in->grid = render::TileGrid::forViewport(width, height);
+  render::TriangleChunk& chunk = in->chunks.emplace_back();
+  chunk.triangle_count = mesh.triangleCount();
+  for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+    render::ScreenVertex v[3];
+    render::VertexAttributes a[3];
+    float3 p[3];
+    bool inside = true;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t i = mesh.indices[t * 3 + k];
+      inside = inside && !(in->vertices.outcode[i] & (render::kCutPlanes | render::kNonFinite));
+      v[k] = in->vertices.screen[i];
+      a[k] = {in->vertices.normal[i],
+              in->context.has_uv ? mesh.uvs[i] : float2{},
+              in->context.has_color ? mesh.colors[i] : float4{1, 1, 1, 1},
+              true,
+              {}};
+      p[k] = mesh.positions[i];
     }
-    chunk.size = chunk.raster.size();
-    chunk.bins.reset(in->grid.tileCount());
-    for (size_t i = 0; i < chunk.size; ++i)
-      chunk.bins.add(in->grid, chunk.raster[i], static_cast<uint32_t>(i));
-    return in;
-  }();
-  return input.get();
+    if (!inside) continue;  // the clipper's work: not part of these benchmarks
+    render::RasterTriangle r;
+    render::RasterWide w;
+    render::TriangleOrientation o;
+    if (!render::setupRaster(in->context, v, r, w, o)) continue;
+    render::ShadeTriangle shade;
+    render::ShadeExtras extras;
+    const float3 face = in->transforms.normal_matrix * cross(p[1] - p[0], p[2] - p[0]);
+    render::setupShade(in->context, v, a, o, r, face, static_cast<uint32_t>(t), 0, shade, extras);
+    chunk.raster.push_back(r);
+    chunk.wide.push_back(w);
+    chunk.shade.push_back(shade);
+    chunk.extras.push_back(extras);
+    in->orientation.push_back(o);
+    in->triangle.push_back(t);
+  }
+  chunk.size = chunk.raster.size();
+  chunk.bins.reset(in->grid.tileCount());
+  for (size_t i = 0; i < chunk.size; ++i)
+    chunk.bins.add(in->grid, chunk.raster[i], static_cast<uint32_t>(i));
+  return inputs.emplace(key, std::move(in)).first->second.get();
+}
+
+const StageInput* stageInput() {
+  std::string error;
+  const StageInput* in = stageInput("bunny", 1920, 1080, error);
+  TESSERA_CHECK(in) << "no stage input: " << error;
+  return in;
 }
 
 void BM_TransformVertices(benchmark::State& state) {
@@ -309,8 +325,8 @@ void BM_CullGroups(benchmark::State& state) {
     for (size_t g = 0; g < groups; ++g) {
       render::CullGroup out;
       kernels.cull_group(&mesh.indices[g * render::CullGroup::kLanes * 3], mesh.vertexCount(),
-                         in.vertices.screen.data(), in.vertices.outcode.data(), StageInput::kWidth,
-                         StageInput::kHeight, in.context.cull, 0, out);
+                         in.vertices.screen.data(), in.vertices.outcode.data(), in.width, in.height,
+                         in.context.cull, 0, out);
       for (int l = 0; l < render::CullGroup::kLanes; ++l)
         visible += out.kind[l] == render::CullGroup::kVisible;
     }
@@ -345,8 +361,7 @@ void BM_SetupBatch(benchmark::State& state) {
   std::vector<render::ShadeTriangle> shade(count);
   for (auto _ : state) {
     for (render::SetupBatch& batch : batches)
-      kernels.setup_batch(batch, StageInput::kWidth, StageInput::kHeight, 0, raster.data(),
-                          wide.data(), shade.data());
+      kernels.setup_batch(batch, in.width, in.height, 0, raster.data(), wide.data(), shade.data());
     benchmark::DoNotOptimize(raster.data());
   }
   state.SetLabel(render::isaName(isa));
@@ -408,33 +423,63 @@ void BM_TileRaster(benchmark::State& state) {
 }
 BENCHMARK(BM_TileRaster)->Apply(isaArgs);
 
-// Shades every tile from its visibility buffer (rasterized beforehand): each visible pixel once.
-void BM_TileShade(benchmark::State& state) {
+// Shades each tile that holds a triangle from its visibility buffer, as the renderer does: the
+// tile rasterized just before (not timed), then each visible pixel shaded once and every pixel of
+// the tile encoded to sRGB (timed, the time taken by the clock around each tile). The textured
+// sphere's rows are the benchmark matrix's worst (docs/perf.md): here without the raster, setup and
+// frame writes around their shading.
+void BM_TileShade(benchmark::State& state, const std::string& name, int width, int height) {
   const auto isa = static_cast<render::Isa>(state.range(0));
   if (skipUnsupported(state, isa)) return;
-  const StageInput& in = *stageInput();
-  const render::Kernels kernels = render::kernelsFor(isa);
-  std::vector<std::unique_ptr<render::TileVisibility>> tiles;
-  for (int t = 0; t < in.grid.tileCount(); ++t) {
-    tiles.push_back(std::make_unique<render::TileVisibility>());
-    rasterTile(in, kernels, t, *tiles.back());
+  std::string error;
+  const StageInput* input = stageInput(name, width, height, error);
+  if (!input) {
+    state.SkipWithError(error.c_str());
+    return;
   }
+  const StageInput& in = *input;
+  const render::Kernels kernels = render::kernelsFor(isa);
+  auto tile = std::make_unique<render::TileVisibility>();
   const Scene& scene = in.scene.scene;
   const uint32_t background = packSrgba8(scene.background);
   auto shaded = std::make_unique<render::ShadedTile>();
   render::LightRig lights;
   lights.prepare(scene);
+  const bool plain = render::plainShading(scene, false);
+  int64_t pixels = 0;
+  // One frame's shading time in seconds (`pixels`: the shaded tiles' pixels).
+  const auto shadeFrame = [&] {
+    using Clock = std::chrono::steady_clock;
+    Clock::duration spent{};
+    pixels = 0;
+    for (int t = 0; t < in.grid.tileCount(); ++t) {
+      if (in.chunks[0].bins.count(t) == 0) continue;  // the renderer fills it with the background
+      rasterTile(in, kernels, t, *tile);
+      const Clock::time_point start = Clock::now();
+      kernels.shade_tile(*tile, in.chunks, in.chunks.size(), lights, false, plain, background,
+                         nullptr, *shaded);
+      spent += Clock::now() - start;
+      pixels += static_cast<int64_t>(tile->width) * tile->height;
+    }
+    return std::chrono::duration<double>(spent).count();
+  };
+  shadeFrame();  // a texture's decoded copy is made on first use
   for (auto _ : state) {
-    for (int t = 0; t < in.grid.tileCount(); ++t)
-      kernels.shade_tile(*tiles[t], in.chunks, in.chunks.size(), lights, false,
-                         render::plainShading(scene, false), background, nullptr, *shaded);
+    state.SetIterationTime(shadeFrame());
     benchmark::DoNotOptimize(shaded->rgba);
   }
   state.SetLabel(render::isaName(isa));
-  state.counters["pixels/s"] =
-      benchmark::Counter(static_cast<double>(in.grid.width) * in.grid.height,
-                         benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["tile pixels/s"] = benchmark::Counter(
+      static_cast<double>(pixels), benchmark::Counter::kIsIterationInvariantRate);
 }
-BENCHMARK(BM_TileShade)->Apply(isaArgs);
+BENCHMARK_CAPTURE(BM_TileShade, bunny, std::string("bunny"), 1920, 1080)
+    ->Apply(isaArgs)
+    ->UseManualTime();
+BENCHMARK_CAPTURE(BM_TileShade, textured, std::string("textured"), 1920, 1080)
+    ->Apply(isaArgs)
+    ->UseManualTime();
+BENCHMARK_CAPTURE(BM_TileShade, textured_4k, std::string("textured"), 3840, 2160)
+    ->Apply(isaArgs)
+    ->UseManualTime();
 
 }  // namespace
