@@ -12,6 +12,7 @@
 
 #include <tessera/model/model_scene.h>
 #include <tessera/render/cpu_renderer.h>
+#include <tessera/render/sampling.h>
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
 #include <tessera/scene/tangents.h>
@@ -21,6 +22,7 @@
 #include "render/bin.h"
 #include "render/clip.h"
 #include "render/kernels.h"
+#include "render/msaa.h"
 #include "render/raster.h"
 #include "render/setup.h"
 #include "render/shade.h"
@@ -151,10 +153,13 @@ struct StageInput {
 };
 
 // The input of scene `name` at width x height, made on first use; null (with the reason in
-// `error`) when the scene cannot be made. The bunny falls back to the dense sphere.
-const StageInput* stageInput(const std::string& name, int width, int height, std::string& error) {
+// `error`) when the scene cannot be made. The bunny falls back to the dense sphere. With MSAA the
+// boxes reach `sample_reach` further (render::kSampleReach), as the renderer's setup makes them.
+const StageInput* stageInput(const std::string& name, int width, int height, std::string& error,
+                             int32_t sample_reach = 0) {
   static std::map<std::string, std::unique_ptr<StageInput>> inputs;
-  const std::string key = name + "@" + std::to_string(width) + "x" + std::to_string(height);
+  const std::string key = name + "@" + std::to_string(width) + "x" + std::to_string(height) + "+" +
+                          std::to_string(sample_reach);
   if (auto it = inputs.find(key); it != inputs.end()) return it->second.get();
   Expected<bench::BenchScene> b = benchScene(name, width, height);
   if (!b && name == "bunny") b = benchScene("dense", width, height);
@@ -179,8 +184,9 @@ const StageInput* stageInput(const std::string& name, int width, int height, std
   render::transformVertices(mesh, in->transforms, in->viewport, 0, mesh.vertexCount(),
                             in->vertices);
   in->lights.prepare(in->scene.scene);
-  in->context = render::objectSetupContext(in->lights, in->scene.scene.objects[0],
-                                           in->transforms.model, width, height, false, 0);
+  in->context =
+      render::objectSetupContext(in->lights, in->scene.scene.objects[0], in->transforms.model,
+                                 width, height, false, sample_reach);
   in->grid = render::TileGrid::forViewport(width, height);
   render::TriangleChunk& chunk = in->chunks.emplace_back();
   chunk.triangle_count = mesh.triangleCount();
@@ -423,6 +429,27 @@ void BM_TileRaster(benchmark::State& state) {
 }
 BENCHMARK(BM_TileRaster)->Apply(isaArgs);
 
+// The stage input of `name`, or null with the benchmark skipped and told why.
+const StageInput* stageInputOrSkip(benchmark::State& state, const std::string& name, int width,
+                                   int height, int32_t sample_reach = 0) {
+  std::string error;
+  const StageInput* input = stageInput(name, width, height, error, sample_reach);
+  if (!input) state.SkipWithError(error.c_str());
+  return input;
+}
+
+// What the shading kernel takes besides the tiles, for a stage input's scene.
+struct ShadeInputs {
+  uint32_t background;
+  render::LightRig lights;
+  bool plain;
+  std::unique_ptr<render::ShadedTile> out = std::make_unique<render::ShadedTile>();
+  explicit ShadeInputs(const Scene& scene)
+      : background(packSrgba8(scene.background)), plain(render::plainShading(scene, false)) {
+    lights.prepare(scene);
+  }
+};
+
 // Shades each tile that holds a triangle from its visibility buffer, as the renderer does: the
 // tile rasterized just before (not timed), then each visible pixel shaded once and every pixel of
 // the tile encoded to sRGB (timed, the time taken by the clock around each tile). The textured
@@ -431,21 +458,12 @@ BENCHMARK(BM_TileRaster)->Apply(isaArgs);
 void BM_TileShade(benchmark::State& state, const std::string& name, int width, int height) {
   const auto isa = static_cast<render::Isa>(state.range(0));
   if (skipUnsupported(state, isa)) return;
-  std::string error;
-  const StageInput* input = stageInput(name, width, height, error);
-  if (!input) {
-    state.SkipWithError(error.c_str());
-    return;
-  }
+  const StageInput* input = stageInputOrSkip(state, name, width, height);
+  if (!input) return;
   const StageInput& in = *input;
   const render::Kernels kernels = render::kernelsFor(isa);
   auto tile = std::make_unique<render::TileVisibility>();
-  const Scene& scene = in.scene.scene;
-  const uint32_t background = packSrgba8(scene.background);
-  auto shaded = std::make_unique<render::ShadedTile>();
-  render::LightRig lights;
-  lights.prepare(scene);
-  const bool plain = render::plainShading(scene, false);
+  ShadeInputs shade(in.scene.scene);
   int64_t pixels = 0;
   // One frame's shading time in seconds (`pixels`: the shaded tiles' pixels).
   const auto shadeFrame = [&] {
@@ -456,8 +474,8 @@ void BM_TileShade(benchmark::State& state, const std::string& name, int width, i
       if (in.chunks[0].bins.count(t) == 0) continue;  // the renderer fills it with the background
       rasterTile(in, kernels, t, *tile);
       const Clock::time_point start = Clock::now();
-      kernels.shade_tile(*tile, in.chunks, in.chunks.size(), lights, false, plain, background,
-                         nullptr, *shaded);
+      kernels.shade_tile(*tile, in.chunks, in.chunks.size(), shade.lights, false, shade.plain,
+                         shade.background, nullptr, *shade.out);
       spent += Clock::now() - start;
       pixels += static_cast<int64_t>(tile->width) * tile->height;
     }
@@ -466,7 +484,7 @@ void BM_TileShade(benchmark::State& state, const std::string& name, int width, i
   shadeFrame();  // a texture's decoded copy is made on first use
   for (auto _ : state) {
     state.SetIterationTime(shadeFrame());
-    benchmark::DoNotOptimize(shaded->rgba);
+    benchmark::DoNotOptimize(shade.out->rgba);
   }
   state.SetLabel(render::isaName(isa));
   state.counters["tile pixels/s"] = benchmark::Counter(
@@ -480,6 +498,77 @@ BENCHMARK_CAPTURE(BM_TileShade, textured, std::string("textured"), 1920, 1080)
     ->UseManualTime();
 BENCHMARK_CAPTURE(BM_TileShade, textured_4k, std::string("textured"), 3840, 2160)
     ->Apply(isaArgs)
+    ->UseManualTime();
+
+// The tile stage as the renderer runs it for a colour-only frame of the bunny at 1920x1080, with
+// `samples` per pixel (the argument after the instruction set): each tile that holds a triangle
+// cleared, rasterized (into every sample layer, then combined) and shaded (its mixed pixels
+// resolved). The time is the two parts' (the clock around each), also given apart as the raster
+// and shade counters (ms a frame): what issue 15's cost of 4x against 1x is made of, without
+// setup and the frame's writes.
+void BM_TileStage(benchmark::State& state) {
+  const auto isa = static_cast<render::Isa>(state.range(0));
+  const int samples = static_cast<int>(state.range(1));
+  if (skipUnsupported(state, isa)) return;
+  const StageInput* input =
+      stageInputOrSkip(state, "bunny", 1920, 1080, samples > 1 ? render::kSampleReach : 0);
+  if (!input) return;
+  const StageInput& in = *input;
+  const render::Kernels kernels = render::kernelsFor(isa);
+  const Scene& scene = in.scene.scene;
+  ShadeInputs shading(scene);
+  // The sample layers and their shifts from the pixel centre (CpuRenderer's prepareSampleLayers).
+  auto st = std::make_unique<render::SampleTiles>();
+  std::vector<render::SampleShift> shifts;
+  for (const SamplePosition& p : samplePattern(samples)) {
+    const int32_t dx = p.x - render::kSubpixelHalf, dy = p.y - render::kSubpixelHalf;
+    const float to_pixels = 1.0f / static_cast<float>(render::kSubpixelOne);
+    shifts.push_back(
+        {dx, dy, static_cast<float>(dx) * to_pixels, static_cast<float>(dy) * to_pixels});
+  }
+  render::TileVisibility* layers[kMaxSamples];
+  for (int i = 0; i < samples; ++i) layers[i] = &st->layer(i);
+  const render::MsaaShading msaa{st.get(), samples, samplePattern(samples).data(),
+                                 scene.background.xyz()};
+  using Clock = std::chrono::steady_clock;
+  Clock::duration raster{}, shade{};
+  for (auto _ : state) {
+    Clock::duration frame{};
+    for (int t = 0; t < in.grid.tileCount(); ++t) {
+      if (in.chunks[0].bins.count(t) == 0) continue;  // the renderer fills it with the background
+      const Clock::time_point start = Clock::now();
+      if (samples == 1) {
+        rasterTile(in, kernels, t, *st->primary);
+      } else {
+        const int x0 = (t % in.grid.columns) * render::kTileSize;
+        const int y0 = (t / in.grid.columns) * render::kTileSize;
+        for (int i = 0; i < samples; ++i)
+          layers[i]->clear(x0, y0, std::min(render::kTileSize, in.grid.width - x0),
+                           std::min(render::kTileSize, in.grid.height - y0));
+        kernels.raster_tile_samples(in.chunks, in.chunks.size(), t, layers, shifts.data(), samples);
+        kernels.combine_samples(*st, samples, false);
+      }
+      const Clock::time_point rastered = Clock::now();
+      kernels.shade_tile(*st->primary, in.chunks, in.chunks.size(), shading.lights, false,
+                         shading.plain, shading.background, samples > 1 ? &msaa : nullptr,
+                         *shading.out);
+      const Clock::time_point done = Clock::now();
+      raster += rastered - start;
+      shade += done - rastered;
+      frame += done - start;
+    }
+    state.SetIterationTime(std::chrono::duration<double>(frame).count());
+    benchmark::DoNotOptimize(shading.out->rgba);
+  }
+  const double per_frame_ms = 1e3 / static_cast<double>(state.iterations());
+  state.counters["raster ms"] = std::chrono::duration<double>(raster).count() * per_frame_ms;
+  state.counters["shade ms"] = std::chrono::duration<double>(shade).count() * per_frame_ms;
+  state.SetLabel(std::string(render::isaName(isa)) + ", " + std::to_string(samples) + "x");
+}
+BENCHMARK(BM_TileStage)
+    ->ArgsProduct({{static_cast<int>(render::Isa::kAvx2), static_cast<int>(render::Isa::kAvx512)},
+                   {1, 4}})
+    ->Unit(benchmark::kMicrosecond)
     ->UseManualTime();
 
 }  // namespace
