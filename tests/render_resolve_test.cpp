@@ -48,6 +48,26 @@ TEST(Resolve, StreamedAndCachedWritesGiveTheSamePixels) {
   }
 }
 
+// The streamed writes go to whole cache lines only, the ends of a run through the cache: runs
+// shorter than a line, runs within one line and runs that end on a line's boundary, at every
+// start within a line, give the background to exactly their pixels.
+TEST(Resolve, StreamedRunsOfEveryLengthAndStartGiveTheirPixels) {
+  constexpr int kWidth = 64;
+  constexpr uint32_t kBackground = 0x55667788u, kUntouched = 0xdeadbeefu;
+  Frame frame;
+  frame.resize(kWidth, 1, false, false, false, false);
+  size_t wrong = 0;
+  for (int x0 = 0; x0 < 17; ++x0) {
+    for (int n = 1; x0 + n <= kWidth; ++n) {
+      std::fill(frame.color.begin(), frame.color.end(), kUntouched);
+      resolveEmptyTile(x0, 0, n, 1, kBackground, true, frame);
+      for (int x = 0; x < kWidth; ++x)
+        wrong += frame.color[x] != (x >= x0 && x < x0 + n ? kBackground : kUntouched);
+    }
+  }
+  EXPECT_EQ(wrong, 0u);
+}
+
 // A frame streams when its colour and its triangles' records would take more than half the
 // last-level cache, whatever that cache's size (up to a gigabyte): a small frame of a few
 // triangles never does, a frame of a gigabyte of colour or of records always does.

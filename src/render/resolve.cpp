@@ -5,6 +5,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <utility>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -16,46 +17,56 @@ namespace tessera::render {
 
 namespace {
 
+// Streaming stores go only to whole 64-byte cache lines: a line written in part by them costs
+// the memory a partial write, and a frame's rows need not start on a line (a std::vector's pixels
+// start 16 bytes into one, and a tile's 64-pixel span then covers five lines, two of them in
+// part). On a Xeon (Emerald Rapids) that made the streamed 4K cube frame take 13.1 ms against
+// 6.3 ms written through the cache. The pixels before the first whole line and after the last go
+// through the cache. Returns the [begin, end) pixel range of the whole lines within [0, n).
+constexpr uintptr_t kLineBytes = 64;
+std::pair<size_t, size_t> wholeLines(const uint32_t* out, size_t n) {
+  const uintptr_t at = reinterpret_cast<uintptr_t>(out);
+  const uintptr_t first = (at + kLineBytes - 1) & ~(kLineBytes - 1);
+  const uintptr_t last = (at + n * sizeof(uint32_t)) & ~(kLineBytes - 1);
+  if ((at & 3) != 0 || last <= first) return {0, 0};
+  return {(first - at) / sizeof(uint32_t), (last - at) / sizeof(uint32_t)};
+}
+
 // Fills n pixels with `value`, bypassing the cache where `stream`: nothing reads the background
 // back before the frame is done.
 void fillRow(uint32_t* out, size_t n, uint32_t value, bool stream) {
-  if (!stream) {
+#if defined(__SSE2__)
+  const auto [begin, end] = stream ? wholeLines(out, n) : std::pair<size_t, size_t>{0, 0};
+  if (begin == end) {
     std::fill_n(out, n, value);
     return;
   }
-#if defined(__SSE2__)
-  // 16-byte streaming stores, four a turn; the frame's rows are 16-byte aligned for any even
-  // width, so the scalar ends are usually empty.
-  size_t i = 0;
-  while (i < n && (reinterpret_cast<uintptr_t>(out + i) & 15) != 0) out[i++] = value;
+  std::fill_n(out, begin, value);
   const __m128i v = _mm_set1_epi32(static_cast<int>(value));
-  for (; i + 16 <= n; i += 16) {
+  for (size_t i = begin; i < end; i += 16) {
     __m128i* line = reinterpret_cast<__m128i*>(out + i);
     _mm_stream_si128(line, v);
     _mm_stream_si128(line + 1, v);
     _mm_stream_si128(line + 2, v);
     _mm_stream_si128(line + 3, v);
   }
-  for (; i + 4 <= n; i += 4) _mm_stream_si128(reinterpret_cast<__m128i*>(out + i), v);
-  for (; i < n; ++i) out[i] = value;
+  std::fill_n(out + end, n - end, value);
 #else
+  (void)stream;
   std::fill_n(out, n, value);
 #endif
 }
 
 // Copies n pixels the same way: the frame is not read back while it is drawn.
 void copyRow(uint32_t* out, const uint32_t* in, size_t n, bool stream) {
-  if (!stream) {
+#if defined(__SSE2__)
+  const auto [begin, end] = stream ? wholeLines(out, n) : std::pair<size_t, size_t>{0, 0};
+  if (begin == end) {
     std::memcpy(out, in, n * sizeof(uint32_t));
     return;
   }
-#if defined(__SSE2__)
-  size_t i = 0;
-  while (i < n && (reinterpret_cast<uintptr_t>(out + i) & 15) != 0) {
-    out[i] = in[i];
-    ++i;
-  }
-  for (; i + 16 <= n; i += 16) {
+  std::memcpy(out, in, begin * sizeof(uint32_t));
+  for (size_t i = begin; i < end; i += 16) {
     __m128i* line = reinterpret_cast<__m128i*>(out + i);
     const __m128i* from = reinterpret_cast<const __m128i*>(in + i);
     _mm_stream_si128(line, _mm_loadu_si128(from));
@@ -63,11 +74,9 @@ void copyRow(uint32_t* out, const uint32_t* in, size_t n, bool stream) {
     _mm_stream_si128(line + 2, _mm_loadu_si128(from + 2));
     _mm_stream_si128(line + 3, _mm_loadu_si128(from + 3));
   }
-  for (; i + 4 <= n; i += 4)
-    _mm_stream_si128(reinterpret_cast<__m128i*>(out + i),
-                     _mm_loadu_si128(reinterpret_cast<const __m128i*>(in + i)));
-  for (; i < n; ++i) out[i] = in[i];
+  std::memcpy(out + end, in + end, (n - end) * sizeof(uint32_t));
 #else
+  (void)stream;
   std::memcpy(out, in, n * sizeof(uint32_t));
 #endif
 }
