@@ -82,7 +82,9 @@ TEST(Resolve, OnlyFramesBeyondTheCacheAreStreamed) {
 // The whole renderer at a size that streams where the last-level cache is unknown or below 8 MB
 // (1101 x 1000: 4.4 MB) and at one that never does: every pixel gets the triangle's colour where
 // the id AOV (written apart from the colour) names it, the background elsewhere, odd widths' row
-// ends and empty tiles' runs included.
+// ends and empty tiles' runs included. Where the frame does not stream, its whole tiles take the
+// colour straight from the shading's encode (ShadedTile::direct) and the last column's narrow
+// tiles through resolveTile's copy: both in one frame.
 TEST(Resolve, LargeAndSmallFramesGetEveryPixelWritten) {
   for (const auto& [width, height] : {std::pair{1101, 1000}, std::pair{301, 203}}) {
     Scene scene = clipSpaceScene();

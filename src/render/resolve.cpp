@@ -129,7 +129,8 @@ void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
   for (int ty = 0; ty < tile.height; ++ty) {
     const size_t row = static_cast<size_t>(tile.y0 + ty) * frame.width + tile.x0;
     const int t0 = ty * kTileSize;
-    copyRow(&frame.color[row], &shaded.rgba[t0], static_cast<size_t>(tile.width), stream);
+    if (!shaded.direct)
+      copyRow(&frame.color[row], &shaded.rgba[t0], static_cast<size_t>(tile.width), stream);
     if (depth) std::memcpy(&frame.depth[row], &tile.depth[t0], sizeof(float) * tile.width);
     if (ids) {
       for (int tx = 0; tx < tile.width; ++tx) {

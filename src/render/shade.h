@@ -24,6 +24,12 @@ struct ShadedTile {
   alignas(64) float normal_x[kSize];  // world shading normal; filled only when asked
   alignas(64) float normal_y[kSize];
   alignas(64) float normal_z[kSize];
+  // Where the shading's encode (encodeShadedRow) puts the colour when not null: the frame's pixel
+  // at the tile's origin, its rows `direct_stride` pixels apart. rgba is then left alone and
+  // resolveTile copies no colour. The tile stage sets it for every tile (directColour in
+  // cpu_renderer.cpp).
+  uint32_t* direct = nullptr;
+  size_t direct_stride = 0;
 };
 
 struct Barycentrics {

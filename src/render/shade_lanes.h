@@ -541,12 +541,14 @@ TESSERA_LANES_INLINE uint32_t solidRgba(const ShadeTriangle& t) {
   return static_cast<uint32_t>(lane(encodeRgba8x8(splat(c.x), splat(c.y), splat(c.z)), 0));
 }
 
-// Encodes row ty of the tile's linear colours to sRGB into out.rgba, whole; the background where
-// no triangle is. `solid` (or null) gives shadePlainRow's groups of one solid triangle, which take
-// their colour from it.
+// Encodes row ty of the tile's linear colours to sRGB into out.rgba (or the frame's row at
+// out.direct), whole; the background where no triangle is. `solid` (or null) gives
+// shadePlainRow's groups of one solid triangle, which take their colour from it.
 TESSERA_LANES_INLINE void encodeShadedRow(const TileVisibility& tile, int ty,
                                           const float linear[3][kTileSize], const uint32_t solid[],
                                           uint32_t background, ShadedTile& out) {
+  uint32_t* const row = out.direct ? out.direct + static_cast<size_t>(ty) * out.direct_stride
+                                   : out.rgba + ty * kTileSize;
 #if defined(TESSERA_LANES16)
   const I32x16 fill = splat16(static_cast<int32_t>(background));  // the encode's width
   // Sixteen pixels a step (the rows are kTileSize wide, a multiple of 16).
@@ -555,7 +557,7 @@ TESSERA_LANES_INLINE void encodeShadedRow(const TileVisibility& tile, int ty,
     const I32x16 covered = load<I32x16>(tile.key + i) != static_cast<int32_t>(kEmptyKey);
     if (!_mm512_test_epi32_mask(reinterpret_cast<__m512i>(covered),
                                 reinterpret_cast<__m512i>(covered))) {
-      store(out.rgba + i, fill);
+      store(row + tx, fill);
       continue;
     }
     I32x16 rgba;
@@ -568,7 +570,7 @@ TESSERA_LANES_INLINE void encodeShadedRow(const TileVisibility& tile, int ty,
              encodeSrgb8x16(load<F32x16>(linear[1] + tx)) << 8 |
              encodeSrgb8x16(load<F32x16>(linear[2] + tx)) << 16 | static_cast<int32_t>(0xff000000u);
     }
-    store(out.rgba + i, covered ? rgba : fill);
+    store(row + tx, covered ? rgba : fill);
   }
 #else
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
@@ -577,14 +579,14 @@ TESSERA_LANES_INLINE void encodeShadedRow(const TileVisibility& tile, int ty,
     const int i = ty * kTileSize + tx;
     const I32x8 covered = ~equal(load<I32x8>(tile.key + i), empty);
     if (!any(covered)) {
-      store(out.rgba + i, fill);
+      store(row + tx, fill);
       continue;
     }
     const I32x8 rgba = solid && solid[tx / 8] != kNoSolid
                            ? splat(static_cast<int32_t>(solid[tx / 8]))
                            : encodeRgba8x8(load<F32x8>(linear[0] + tx), load<F32x8>(linear[1] + tx),
                                            load<F32x8>(linear[2] + tx));
-    store(out.rgba + i, select(covered, rgba, fill));
+    store(row + tx, select(covered, rgba, fill));
   }
 #endif
 }
