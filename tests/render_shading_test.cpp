@@ -289,6 +289,54 @@ TEST(Shading, LambertWithAmbientInLinearLight) {
   for (uint32_t c : f.color) EXPECT_EQ(c, expected);
 }
 
+// Flat faces under directional lights are lit eight at a time by setup's batch kernel
+// (setupFlatCorners, SetupBatch::markFlat); with the normal AOV asked for they take the scalar
+// setupShadeCorners. The colours must be the same bits on every instruction set: front faces of a
+// sphere with vertex colours, the inside of a larger open one drawn from within (back faces,
+// lit from the viewer's side), lights from in front, behind and the side, and an ambient term.
+TEST(Shading, FlatFacesLitEightAtATimeGiveTheScalarSetupsColours) {
+  Scene scene;
+  scene.camera.position = {0.3f, 0.2f, 0.4f};  // inside the larger sphere
+  scene.camera.target = {0, 0, -0.5f};
+  scene.ambient = {0.05f, 0.07f, 0.02f};
+  scene.lights.push_back({normalize(float3{-1, -1, -1}), float3{1.0f, 0.9f, 0.8f}});
+  scene.lights.push_back({normalize(float3{0.3f, 0.2f, 1}), float3{0.2f, 0.5f, 0.9f}});
+  scene.lights.push_back({normalize(float3{1, -0.2f, 0}), float3(0.4f)});
+  Mesh inner = makeUvSphere(16, 8);
+  for (size_t i = 0; i < inner.positions.size(); ++i) {
+    inner.positions[i] = inner.positions[i] * 0.25f + float3{0, 0, -0.5f};
+    inner.colors.push_back({0.5f + 0.5f * std::sin(static_cast<float>(i)),
+                            0.5f + 0.5f * std::cos(0.7f * static_cast<float>(i)), 0.8f, 1.0f});
+  }
+  Object front;
+  front.mesh = std::make_shared<Mesh>(inner);
+  front.shading = Shading::kFlat;
+  front.materials[0].base_color = {0.9f, 0.6f, 0.7f, 1.0f};
+  scene.objects.push_back(front);
+  Object around;
+  around.mesh = std::make_shared<Mesh>(makeUvSphere(24, 12));
+  around.shading = Shading::kFlat;
+  around.cull = CullMode::kNone;
+  scene.objects.push_back(around);
+  const size_t inner_triangles = inner.triangleCount();
+  size_t back_facing = 0;
+  for (SimdLevel level : {SimdLevel::kScalar, SimdLevel::kSse2, SimdLevel::kAvx2,
+                          SimdLevel::kAvx512}) {
+    RenderOptions options;
+    options.width = 96;
+    options.height = 64;
+    options.ids = true;
+    const Frame lanes = renderAt(scene, options, level, 1);
+    options.normals = true;
+    const Frame scalar = renderAt(scene, options, level, 2);
+    EXPECT_EQ(lanes.color, scalar.color) << int(level);
+    // Pixels of the larger sphere: all of them its back faces.
+    back_facing = static_cast<size_t>(std::ranges::count_if(
+        lanes.triangle_id, [&](uint32_t id) { return id > inner_triangles; }));
+  }
+  EXPECT_GT(back_facing, 1000u) << "the larger sphere's inside was not drawn";
+}
+
 TEST(Shading, FlatGouraudAndPhongDifferAsExpectedOnASphere) {
   auto render = [](Shading shading) {
     Scene scene;

@@ -33,6 +33,7 @@ struct ObjectSetup {
   MeshVertices vertices;
   const uint16_t* outcodes;
   PlainGouraud plain_gouraud;
+  bool flat_in_lanes;  // flatLitInLanes
   // alphaMode BLEND: such triangles wait for the transparent pass (blend.h), out of the bins.
   bool any_blended;
 
@@ -143,6 +144,7 @@ ObjectSetup ChunkSetup::objectSetup(size_t object_index) {
                 mesh_vertices,
                 vertices_.outcode.data() + xf.vertex_base,
                 plainGouraudFor(ctx, mesh_vertices, has_materials),
+                flatLitInLanes(ctx),
                 false};
   // A mirrored object's front faces may show their vertex normals' back (setup.cpp).
   if (xf.winding_sign < 0.0f) o.plain_gouraud.applies = false;
@@ -177,6 +179,7 @@ void ChunkSetup::flush() {
   setup_batch_(batch_, grid_.width, grid_.height, sample_reach_, chunk_.raster.data(),
                chunk_.wide.data(), chunk_.shade.data());
   batch_.count = 0;
+  batch_.flat_lanes = 0;
 }
 
 void ChunkSetup::bin(const ObjectSetup& o, const auto& box, uint32_t record,
@@ -197,10 +200,16 @@ void ChunkSetup::drawWhole(const ObjectSetup& o, size_t t, const uint32_t idx[3]
   ++chunk_.size;
   orient(area, orientation_);
   ShadeTriangle& shade = batch_.nextShade();
-  if (!plainGouraudCorners(o.ctx, o.plain_gouraud, o.vertices, idx, orientation_, id,
-                           o.material(local), shade))
+  if (o.flat_in_lanes) {
+    // Lit eight faces at a time by the batch kernel: a face took about 60 cycles of scalar
+    // square root, division and lights (docs/perf.md).
+    setupFlatCorners(o.ctx, o.vertices, idx, orientation_, id, o.material(local), shade);
+    batch_.markFlat(o.faceNormal(idx), orientation_.back_facing ? -1.0f : 1.0f, lights_);
+  } else if (!plainGouraudCorners(o.ctx, o.plain_gouraud, o.vertices, idx, orientation_, id,
+                                  o.material(local), shade)) {
     setupShadeCorners(o.ctx, o.vertices, idx, orientation_, o.faceNormal(idx), id,
                       o.material(local), shade, chunk_.extras[record]);
+  }
   bin(o, box, record, shade);
   batch_.push(o.vertices.screen[idx[0]], o.vertices.screen[idx[1]], o.vertices.screen[idx[2]], area,
               record);

@@ -138,6 +138,20 @@ inline __attribute__((always_inline)) void setupShadePlanes(const Corners& corne
   shade.sdy = (q1 - q0) * o.l1dy + (q2 - q0) * o.l2dy;
 }
 
+// The triangle's material: its own where the object has it, else the object's first.
+const Material& triangleMaterial(const SetupContext& ctx, uint16_t material) {
+  return ctx.object->materials[material < ctx.object->materials.size() ? material : 0];
+}
+
+// The record's material, id and shading.
+void setIdentity(const SetupContext& ctx, const Material& m, uint32_t triangle_id,
+                 ShadeTriangle& shade) {
+  shade.material = &m;
+  shade.triangle_id = triangle_id;
+  shade.shading = ctx.shading;
+  shade.has_uv = ctx.has_uv && m.albedo != nullptr;
+}
+
 // Everything else: material, id, and the corners' colours, normals and UVs. Always inlined into
 // its callers: a call costs as much as a corner's work.
 template <typename Corners>
@@ -145,7 +159,7 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
     const SetupContext& ctx, const Corners& corners, const TriangleOrientation& o,
     float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade,
     ShadeExtras& extras) {
-  const Material& m = ctx.object->materials[material < ctx.object->materials.size() ? material : 0];
+  const Material& m = triangleMaterial(ctx, material);
   const float3 base = m.base_color.xyz();
   // Back faces that are drawn are lit from the viewer's side (two-sided lighting).
   const float flip = o.back_facing ? -1.0f : 1.0f;
@@ -239,10 +253,7 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
     for (int k = 0; k < 3; ++k) extras.uv[k] = corners.uv(o.order[k]);
   if (ctx.uv1)
     for (int k = 0; k < 3; ++k) extras.uv1[k] = corners.uv1(o.order[k]);
-  shade.material = &m;
-  shade.triangle_id = triangle_id;
-  shade.shading = ctx.shading;
-  shade.has_uv = ctx.has_uv && m.albedo != nullptr;
+  setIdentity(ctx, m, triangle_id, shade);
 }
 
 }  // namespace
@@ -263,6 +274,17 @@ void setupShade(const SetupContext& ctx, const MeshVertices& vertices, const uin
   const MeshCorners corners{vertices, index};
   setupShadePlanes(corners, o, raster, shade);
   setupShadeCornersFrom(ctx, corners, o, face_normal, triangle_id, material, shade, extras);
+}
+
+void setupFlatCorners(const SetupContext& ctx, const MeshVertices& vertices,
+                      const uint32_t index[3], const TriangleOrientation& o, uint32_t triangle_id,
+                      uint16_t material, ShadeTriangle& shade) {
+  const MeshCorners corners{vertices, index};
+  const Material& m = triangleMaterial(ctx, material);
+  const float3 base = m.base_color.xyz();
+  for (int k = 0; k < 3; ++k)
+    shade.color[k] = ctx.has_color ? base * corners.color(o.order[k]) : base;
+  setIdentity(ctx, m, triangle_id, shade);
 }
 
 void setupShadeCorners(const SetupContext& ctx, const MeshVertices& vertices,

@@ -305,6 +305,20 @@ void setupShade(const SetupContext& ctx, const MeshVertices& vertices, const uin
                 float3 face_normal, uint32_t triangle_id, uint16_t material, ShadeTriangle& shade,
                 ShadeExtras& extras);
 
+// Whether an unclipped triangle of the object is lit in setup's lanes (SetupBatch::markFlat,
+// setupFlatCorners) rather than by setupShadeCorners: flat shading under directional lights only,
+// with neither texture coordinates nor the normal AOV (whose extras the lanes do not write).
+inline bool flatLitInLanes(const SetupContext& ctx) {
+  return ctx.shading == Shading::kFlat && !ctx.lights->local && !ctx.has_uv && !ctx.uv1 &&
+         !ctx.want_normals;
+}
+
+// setupShadeCorners for such a triangle, but for its light: the corners' albedos (the base colour
+// times the vertex colour) in shade.color, and the material, id and shading.
+void setupFlatCorners(const SetupContext& ctx, const MeshVertices& vertices,
+                      const uint32_t index[3], const TriangleOrientation& o, uint32_t triangle_id,
+                      uint16_t material, ShadeTriangle& shade);
+
 // The per-corner half of setupShade for an unclipped triangle (material, id, colours, normals,
 // UVs: everything but the barycentric planes x0 .. sdy, which setupBatch computes eight triangles
 // at a time). Reads only o.order and o.back_facing.
@@ -375,9 +389,26 @@ struct alignas(64) SetupBatch {
   Input input[kLanes];
   ShadeTriangle shade[kLanes];  // the lanes' shading records, the planes still to come
   int count = 0;
+  // Flat faces the kernel lights (setupFlatCorners): lane l's bit, its world face normal (not
+  // normalized) and the facing's flip (1, or -1 for a drawn back face), and the frame's rig, whose
+  // lights are all directional. The lane's record holds the corners' albedos, which the kernel
+  // multiplies by the face's irradiance, as setupShadeCorners lights a flat face.
+  uint32_t flat_lanes = 0;
+  const LightRig* lights = nullptr;
+  alignas(32) float face_normal[3][kLanes];
+  alignas(32) float flip[kLanes];
 
   // The shading record of the lane the next push fills.
   ShadeTriangle& nextShade() { return shade[count]; }
+  // Marks the lane the next push fills as a flat face to light.
+  void markFlat(float3 normal, float facing_flip, const LightRig& rig) {
+    face_normal[0][count] = normal.x;
+    face_normal[1][count] = normal.y;
+    face_normal[2][count] = normal.z;
+    flip[count] = facing_flip;
+    flat_lanes |= 1u << count;
+    lights = &rig;
+  }
 
   void push(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, int64_t area,
             uint32_t record) {
@@ -388,7 +419,11 @@ struct alignas(64) SetupBatch {
   // Fills the lanes past `count` with copies of the first, so that every lane computes finite
   // values (they are not stored).
   void padLanes() {
-    for (int l = count; l < kLanes; ++l) input[l] = input[0];
+    for (int l = count; l < kLanes; ++l) {
+      input[l] = input[0];
+      for (int k = 0; k < 3; ++k) face_normal[k][l] = face_normal[k][0];
+      flip[l] = flip[0];
+    }
   }
 };
 static_assert(sizeof(SetupBatch::Input) == 64);

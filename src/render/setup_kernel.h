@@ -136,6 +136,45 @@ bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenV
   return true;
 }
 
+// The batch's flat faces (SetupBatch::flat_lanes) lit as setupShadeCorners lights a flat face,
+// operation for operation (the same bits): the face normal normalized (vec.h: zero where its
+// length is not positive) and flipped, +Z times the flip where that leaves it zero; the ambient
+// plus each directional light's radiance times its cosine where that is positive; each corner's
+// albedo times that irradiance.
+TESSERA_LANES_INLINE void lightFlatFaces(SetupBatch& batch) {
+  const LightRig& rig = *batch.lights;
+  const F32x8 fx = load<F32x8>(batch.face_normal[0]), fy = load<F32x8>(batch.face_normal[1]),
+              fz = load<F32x8>(batch.face_normal[2]), flip = load<F32x8>(batch.flip);
+  const F32x8 zero = splat(0.0f);
+  const F32x8 length = squareRoot(fx * fx + fy * fy + fz * fz);
+  const I32x8 positive = lessThan(zero, length);
+  const F32x8 inverse = splat(1.0f) / length;
+  F32x8 nx = select(positive, fx * inverse, zero) * flip;
+  F32x8 ny = select(positive, fy * inverse, zero) * flip;
+  F32x8 nz = select(positive, fz * inverse, zero) * flip;
+  const I32x8 degenerate = equal(nx, zero) & equal(ny, zero) & equal(nz, zero);
+  nx = select(degenerate, zero, nx);
+  ny = select(degenerate, zero, ny);
+  nz = select(degenerate, flip, nz);
+  F32x8 ex = splat(rig.ambient.x), ey = splat(rig.ambient.y), ez = splat(rig.ambient.z);
+  for (const ShadeLight& light : rig.lights) {
+    const float3 d = light.direction, r = light.radiance;
+    const F32x8 cos_theta = zero - (nx * splat(d.x) + ny * splat(d.y) + nz * splat(d.z));
+    const I32x8 lit = lessThan(zero, cos_theta);
+    ex = select(lit, ex + splat(r.x) * cos_theta, ex);
+    ey = select(lit, ey + splat(r.y) * cos_theta, ey);
+    ez = select(lit, ez + splat(r.z) * cos_theta, ez);
+  }
+  alignas(32) float e[3][SetupBatch::kLanes];
+  store(e[0], ex);
+  store(e[1], ey);
+  store(e[2], ez);
+  for (int l = 0; l < batch.count; ++l) {
+    if (!(batch.flat_lanes >> l & 1u)) continue;
+    for (float3& c : batch.shade[l].color) c = c * float3{e[0][l], e[1][l], e[2][l]};
+  }
+}
+
 // Sets up the batch's first `count` lanes into raster[record] (and wide[record] for large
 // triangles) and shade[record]: the lane's staged shading record (batch.shade) with the planes
 // added (the other lanes must hold copies of a real triangle: they are computed, not stored).
@@ -235,6 +274,7 @@ void setupBatchKernel(SetupBatch& batch, int width, int height, int32_t sample_r
     store(s + offsetof(ShadeTriangle, x0), shade_planes[l]);
     batch.shade[l].sdy = lane(sdy, l);
   }
+  if (batch.flat_lanes != 0) lightFlatFaces(batch);
   // The shading records go out streamed too. Setup writes over last frame's records, which the
   // other worker's shading pass read: on a host where a line takes hundreds of nanoseconds
   // between cores, ordinary stores waited on every line (docs/perf.md, round 5). Eight
