@@ -395,8 +395,8 @@ struct alignas(64) SetupBatch {
   // multiplies by the face's irradiance, as setupShadeCorners lights a flat face.
   uint32_t flat_lanes = 0;
   const LightRig* lights = nullptr;
-  alignas(32) float face_normal[3][kLanes];
-  alignas(32) float flip[kLanes];
+  alignas(32) float face_normal[3][kLanes] = {};
+  alignas(32) float flip[kLanes] = {};
 
   // The shading record of the lane the next push fills.
   ShadeTriangle& nextShade() { return shade[count]; }
