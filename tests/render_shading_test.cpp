@@ -320,8 +320,8 @@ TEST(Shading, FlatFacesLitEightAtATimeGiveTheScalarSetupsColours) {
   scene.objects.push_back(around);
   const size_t inner_triangles = inner.triangleCount();
   size_t back_facing = 0;
-  for (SimdLevel level : {SimdLevel::kScalar, SimdLevel::kSse2, SimdLevel::kAvx2,
-                          SimdLevel::kAvx512}) {
+  for (SimdLevel level :
+       {SimdLevel::kScalar, SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512}) {
     RenderOptions options;
     options.width = 96;
     options.height = 64;
