@@ -337,6 +337,44 @@ TEST(Shading, FlatFacesLitEightAtATimeGiveTheScalarSetupsColours) {
   EXPECT_GT(back_facing, 1000u) << "the larger sphere's inside was not drawn";
 }
 
+// Gouraud faces lit in the vertex stage take setup's plain path (plainGouraudCorners) with their
+// texture coordinates too; with the normal AOV asked for they take the scalar setupShadeCorners.
+// The colours must be the same bits: an albedo texture read through TEXCOORD_0 on one sphere and
+// through TEXCOORD_1 (a different set) on another, on every instruction set.
+TEST(Shading, TexturedGouraudFacesOnThePlainPathGiveTheScalarSetupsColours) {
+  auto checker = std::make_shared<Texture>();
+  checker->width = checker->height = 8;
+  for (int i = 0; i < 64; ++i)
+    checker->texels.push_back((i + i / 8) % 2 ? 0xff40c0ffu : 0xff203080u);
+  Scene scene;
+  scene.camera.position = {0, 0, 4};
+  scene.lights.push_back({normalize(float3{-1, -1, -1}), float3{1.0f, 0.9f, 0.8f}});
+  for (int set : {0, 1}) {
+    Mesh sphere = makeUvSphere(16, 8);
+    for (size_t i = 0; i < sphere.positions.size(); ++i) {
+      sphere.positions[i] = sphere.positions[i] + float3{set ? 0.9f : -0.9f, 0, 0};
+      sphere.uvs1.push_back({sphere.uvs[i].y * 3.0f, sphere.uvs[i].x * 2.0f});
+    }
+    Object o;
+    o.mesh = std::make_shared<Mesh>(sphere);
+    o.shading = Shading::kGouraud;
+    o.materials[0].albedo = checker;
+    o.materials[0].sampler.texcoord = set;
+    scene.objects.push_back(o);
+  }
+  for (SimdLevel level :
+       {SimdLevel::kScalar, SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512}) {
+    RenderOptions options;
+    options.width = 96;
+    options.height = 64;
+    const Frame plain = renderAt(scene, options, level, 1);
+    options.normals = true;
+    const Frame scalar = renderAt(scene, options, level, 2);
+    EXPECT_EQ(plain.color, scalar.color) << int(level);
+    EXPECT_GT(std::set<uint32_t>(plain.color.begin(), plain.color.end()).size(), 20u);
+  }
+}
+
 TEST(Shading, FlatGouraudAndPhongDifferAsExpectedOnASphere) {
   auto render = [](Shading shading) {
     Scene scene;

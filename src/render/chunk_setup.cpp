@@ -206,7 +206,7 @@ void ChunkSetup::drawWhole(const ObjectSetup& o, size_t t, const uint32_t idx[3]
     setupFlatCorners(o.ctx, o.vertices, idx, orientation_, id, o.material(local), shade);
     batch_.markFlat(o.faceNormal(idx), orientation_.back_facing ? -1.0f : 1.0f, lights_);
   } else if (!plainGouraudCorners(o.ctx, o.plain_gouraud, o.vertices, idx, orientation_, id,
-                                  o.material(local), shade)) {
+                                  o.material(local), shade, chunk_.extras[record])) {
     setupShadeCorners(o.ctx, o.vertices, idx, orientation_, o.faceNormal(idx), id,
                       o.material(local), shade, chunk_.extras[record]);
   }

@@ -328,29 +328,33 @@ void setupShadeCorners(const SetupContext& ctx, const MeshVertices& vertices,
                        ShadeExtras& extras);
 
 // Per object: whether plainGouraudCorners applies (Gouraud, lit in the vertex stage, no vertex
-// colours, UVs or normal AOV), and the material when one serves every triangle.
+// colours or normal AOV), the material when one serves every triangle, and the texture
+// coordinates its corners carry (the albedo texture's: SetupContext::has_uv and uv1).
 struct PlainGouraud {
   bool applies = false;
   const Material* material = nullptr;  // null: per-triangle materials
+  bool uv = false, uv1 = false;
 };
 
 inline PlainGouraud plainGouraudFor(const SetupContext& ctx, const MeshVertices& vertices,
                                     bool per_triangle_materials) {
   PlainGouraud plain;
   plain.applies = ctx.shading == Shading::kGouraud && vertices.lit && !ctx.has_color &&
-                  !ctx.has_uv && !ctx.want_normals;
+                  !ctx.want_normals;
   if (!per_triangle_materials) plain.material = &ctx.object->materials[0];
+  plain.uv = ctx.has_uv;
+  plain.uv1 = ctx.uv1;
   return plain;
 }
 
 // setupShadeCorners' most common case, inline: a triangle of a PlainGouraud object facing the
 // viewer: each corner's colour is the base colour times the vertex's irradiance (the same
-// product setupShadeCorners forms). False, with nothing written, in any other case (a zero
-// normal's NaN included): call setupShadeCorners.
+// product setupShadeCorners forms), and its texture coordinates in `extras`. False, with nothing
+// written, in any other case (a zero normal's NaN included): call setupShadeCorners.
 inline bool plainGouraudCorners(const SetupContext& ctx, const PlainGouraud& plain,
                                 const MeshVertices& vertices, const uint32_t index[3],
                                 const TriangleOrientation& o, uint32_t triangle_id,
-                                uint16_t material, ShadeTriangle& shade) {
+                                uint16_t material, ShadeTriangle& shade, ShadeExtras& extras) {
   if (!plain.applies || o.back_facing) return false;
   // Facing the viewer the signed area is negative (zero is culled), so orient took the corners
   // in the order 0, 2, 1.
@@ -365,10 +369,20 @@ inline bool plainGouraudCorners(const SetupContext& ctx, const PlainGouraud& pla
   shade.color[0] = base * l0;
   shade.color[1] = base * l1;
   shade.color[2] = base * l2;
+  if (plain.uv) {
+    extras.uv[0] = vertices.uv[index[0]];
+    extras.uv[1] = vertices.uv[index[2]];
+    extras.uv[2] = vertices.uv[index[1]];
+  }
+  if (plain.uv1) {
+    extras.uv1[0] = vertices.uv1[index[0]];
+    extras.uv1[1] = vertices.uv1[index[2]];
+    extras.uv1[2] = vertices.uv1[index[1]];
+  }
   shade.material = &m;
   shade.triangle_id = triangle_id;
   shade.shading = Shading::kGouraud;
-  shade.has_uv = false;
+  shade.has_uv = plain.uv && m.albedo != nullptr;
   return true;
 }
 
