@@ -520,12 +520,7 @@ void BM_TileStage(benchmark::State& state) {
   // The sample layers and their shifts from the pixel centre (CpuRenderer's prepareSampleLayers).
   auto st = std::make_unique<render::SampleTiles>();
   std::vector<render::SampleShift> shifts;
-  for (const SamplePosition& p : samplePattern(samples)) {
-    const int32_t dx = p.x - render::kSubpixelHalf, dy = p.y - render::kSubpixelHalf;
-    const float to_pixels = 1.0f / static_cast<float>(render::kSubpixelOne);
-    shifts.push_back(
-        {dx, dy, static_cast<float>(dx) * to_pixels, static_cast<float>(dy) * to_pixels});
-  }
+  for (const SamplePosition& p : samplePattern(samples)) shifts.push_back(render::sampleShift(p));
   render::TileVisibility* layers[kMaxSamples];
   for (int i = 0; i < samples; ++i) layers[i] = &st->layer(i);
   const render::MsaaShading msaa{st.get(), samples, samplePattern(samples).data(),

@@ -117,12 +117,7 @@ void CpuRenderer::State::renderSampledTile(const Scene& scene, const RenderOptio
 
 void CpuRenderer::State::prepareSampleLayers(const RenderOptions& options, bool with_centre) {
   shifts.clear();
-  for (const SamplePosition& p : samplePattern(options.msaa)) {
-    const int32_t dx = p.x - kSubpixelHalf, dy = p.y - kSubpixelHalf;
-    constexpr float kToPixels = 1.0f / static_cast<float>(kSubpixelOne);
-    shifts.push_back(
-        {dx, dy, static_cast<float>(dx) * kToPixels, static_cast<float>(dy) * kToPixels});
-  }
+  for (const SamplePosition& p : samplePattern(options.msaa)) shifts.push_back(sampleShift(p));
   if (with_centre) shifts.push_back({});
   if (sampled.empty())
     for (int i = 0; i < pool.size(); ++i) sampled.push_back(std::make_unique<SampleTiles>());

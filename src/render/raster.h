@@ -9,6 +9,8 @@
 #include <cstring>
 #include <limits>
 
+#include <tessera/render/sampling.h>
+
 #include "render/fixed_point.h"
 #include "render/setup.h"
 
@@ -86,5 +88,12 @@ struct SampleShift {
   int32_t dx = 0, dy = 0;
   float pixels_x = 0, pixels_y = 0;
 };
+
+// The shift of a sample at `p` (sampling.h: 1/256 pixel within the pixel).
+inline SampleShift sampleShift(const SamplePosition& p) {
+  const int32_t dx = p.x - kSubpixelHalf, dy = p.y - kSubpixelHalf;
+  constexpr float kToPixels = 1.0f / static_cast<float>(kSubpixelOne);
+  return {dx, dy, static_cast<float>(dx) * kToPixels, static_cast<float>(dy) * kToPixels};
+}
 
 }  // namespace tessera::render

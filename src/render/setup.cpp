@@ -143,6 +143,12 @@ const Material& triangleMaterial(const SetupContext& ctx, uint16_t material) {
   return ctx.object->materials[material < ctx.object->materials.size() ? material : 0];
 }
 
+// Corner i's albedo: the base colour, times the vertex colour where the mesh has one.
+template <typename Corners>
+float3 cornerAlbedo(const SetupContext& ctx, float3 base, const Corners& corners, int i) {
+  return ctx.has_color ? base * corners.color(i) : base;
+}
+
 // The record's material, id and shading.
 void setIdentity(const SetupContext& ctx, const Material& m, uint32_t triangle_id,
                  ShadeTriangle& shade) {
@@ -168,7 +174,7 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
     const float3 n = normalize(face_normal) * flip;
     return isZero(n) ? float3{0, 0, flip} : n;
   };
-  const auto albedo = [&](int i) { return ctx.has_color ? base * corners.color(i) : base; };
+  const auto albedo = [&](int i) { return cornerAlbedo(ctx, base, corners, i); };
   // The vertex normals face the viewer where the face does (flip), unless they point to the other
   // side of the face than its winding does: a mirroring model whose mesh was not turned inside
   // out (SceneGraph's mirrored copies are), whose front faces would else show the normals' back.
@@ -282,8 +288,7 @@ void setupFlatCorners(const SetupContext& ctx, const MeshVertices& vertices,
   const MeshCorners corners{vertices, index};
   const Material& m = triangleMaterial(ctx, material);
   const float3 base = m.base_color.xyz();
-  for (int k = 0; k < 3; ++k)
-    shade.color[k] = ctx.has_color ? base * corners.color(o.order[k]) : base;
+  for (int k = 0; k < 3; ++k) shade.color[k] = cornerAlbedo(ctx, base, corners, o.order[k]);
   setIdentity(ctx, m, triangle_id, shade);
 }
 

@@ -339,8 +339,8 @@ struct PlainGouraud {
 inline PlainGouraud plainGouraudFor(const SetupContext& ctx, const MeshVertices& vertices,
                                     bool per_triangle_materials) {
   PlainGouraud plain;
-  plain.applies = ctx.shading == Shading::kGouraud && vertices.lit && !ctx.has_color &&
-                  !ctx.want_normals;
+  plain.applies =
+      ctx.shading == Shading::kGouraud && vertices.lit && !ctx.has_color && !ctx.want_normals;
   if (!per_triangle_materials) plain.material = &ctx.object->materials[0];
   plain.uv = ctx.has_uv;
   plain.uv1 = ctx.uv1;
