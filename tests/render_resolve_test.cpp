@@ -79,6 +79,18 @@ TEST(Resolve, OnlyFramesBeyondTheCacheAreStreamed) {
   EXPECT_FALSE(streamsFrame(0, 0));
 }
 
+// The empty tiles' background streams past kStreamedBackgroundBytes of colour whatever the cache,
+// and wherever the frame itself streams; a small frame's stays in the cache.
+TEST(Resolve, BackgroundsOfLargeFramesAreStreamed) {
+  EXPECT_FALSE(streamsBackground(640 * 480, 12));
+  EXPECT_TRUE(streamsBackground(1920 * 1080, 12));
+  EXPECT_TRUE(streamsBackground(3840 * 2160, 12));
+  EXPECT_EQ(streamsBackground(kStreamedBackgroundBytes / 4, 12),
+            streamsFrame(kStreamedBackgroundBytes / 4, 12));
+  EXPECT_TRUE(streamsBackground(kStreamedBackgroundBytes / 4 + 1, 12));
+  EXPECT_TRUE(streamsBackground(640 * 480, 10'000'000));
+}
+
 // The whole renderer at a size that streams where the last-level cache is unknown or below 8 MB
 // (1101 x 1000: 4.4 MB) and at one that never does: every pixel gets the triangle's colour where
 // the id AOV (written apart from the colour) names it, the background elsewhere, odd widths' row

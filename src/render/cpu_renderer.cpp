@@ -242,7 +242,7 @@ void CpuRenderer::State::renderTile(const Scene& scene, const RenderOptions& opt
     int run_end = tx + 1;
     while (run_end < grid.columns && tile_empty[tile_index + (run_end - tx)]) ++run_end;
     resolveEmptyTile(x0, y0, std::min(run_end * kTileSize, options.width) - x0, height,
-                     pass.background, pass.stream, frame);
+                     pass.background, pass.stream_background, frame);
     return;
   }
   if (options.msaa > 1) {
@@ -339,6 +339,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   pass.plain = plainShading(scene, options.normals);
   pass.background = packSrgba8(scene.background);
   pass.stream = streamsFrame(frame.pixelCount(), triangles_setup);
+  pass.stream_background = streamsBackground(frame.pixelCount(), triangles_setup);
   s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile, int worker) {
     s.renderTile(scene, options, grid, pass, static_cast<int>(tile), worker, frame);
   });

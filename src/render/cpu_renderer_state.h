@@ -87,10 +87,11 @@ struct CpuRenderer::State {
                              int32_t sample_reach);
   // What every tile of the frame's tile pass shares.
   struct TilePass {
-    bool with_centre = false;  // MSAA: the pixel centres are a layer of their own
-    bool plain = false;        // plainShading
-    uint32_t background = 0;   // sRGB
-    bool stream = false;       // the colour written past the caches (streamsFrame)
+    bool with_centre = false;        // MSAA: the pixel centres are a layer of their own
+    bool plain = false;              // plainShading
+    uint32_t background = 0;         // sRGB
+    bool stream = false;             // the colour written past the caches (streamsFrame)
+    bool stream_background = false;  // the empty tiles' too (streamsBackground)
   };
   // Raster, shade and resolve of one tile (or, for the first of a run of empty tiles along a row,
   // the background of the run).

@@ -236,6 +236,7 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const size_t triangles_setup =
       markEmptyTiles(chunks_, chunk_count_, static_cast<size_t>(grid_.tileCount()), tile_empty_);
   stream_ = streamsFrame(frame.pixelCount(), triangles_setup);
+  const bool stream_background = streamsBackground(frame.pixelCount(), triangles_setup);
   while (tiles_.size() < static_cast<size_t>(pool.size())) {
     tiles_.push_back(std::make_unique<TileVisibility>());
     shaded_.push_back(std::make_unique<ShadedTile>());
@@ -251,7 +252,7 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     const int x0 = static_cast<int>(tile) % grid_.columns * kTileSize;
     const int y0 = static_cast<int>(tile) / grid_.columns * kTileSize;
     resolveEmptyTile(x0, y0, std::min(kTileSize, options.width - x0),
-                     std::min(kTileSize, options.height - y0), background, stream_, frame);
+                     std::min(kTileSize, options.height - y0), background, stream_background, frame);
   });
   const Clock::time_point t_tiles = Clock::now();
 

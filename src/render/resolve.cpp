@@ -122,6 +122,10 @@ bool streamsFrame(size_t pixels, size_t triangles) {
   return bytes > limit;
 }
 
+bool streamsBackground(size_t pixels, size_t triangles) {
+  return pixels * sizeof(uint32_t) > kStreamedBackgroundBytes || streamsFrame(pixels, triangles);
+}
+
 void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
                  const std::vector<TriangleChunk>& chunks, bool stream, Frame& frame) {
   const bool depth = !frame.depth.empty(), ids = !frame.triangle_id.empty(),

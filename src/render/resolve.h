@@ -24,6 +24,16 @@ namespace tessera::render {
 constexpr size_t kUnknownCacheFrameBytes = size_t{4} << 20;
 bool streamsFrame(size_t pixels, size_t triangles);
 
+// Whether the background of a frame's empty tiles is written past the caches: when the frame
+// streams (streamsFrame), or when its colour is more than kStreamedBackgroundBytes. Nothing of the
+// renderer reads those pixels again, and a fill in streaming stores of whole lines costs no read
+// of the lines it replaces: on the 2-core Intel Xeon (docs/perf.md, 2026-12-05, "The empty tiles'
+// background streamed") a 4K fill took 1.6 ms streamed against 3.0-3.7 ms through the caches, and
+// the textured sphere's 4K frame 8.39 -> 6.94 ms, where the last-level cache the system reports
+// (300 MB, shared with other machines) kept the frame from streaming.
+constexpr size_t kStreamedBackgroundBytes = size_t{4} << 20;
+bool streamsBackground(size_t pixels, size_t triangles);
+
 // The triangle ids come from the keys through the chunks' records. `stream`: streamsFrame.
 void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
                  const std::vector<TriangleChunk>& chunks, bool stream, Frame& frame);
@@ -34,7 +44,7 @@ void resolveTile(const TileVisibility& tile, const ShadedTile& shaded,
 void resolveCoverage(const TileVisibility& tile, const int32_t* covered, int samples, Frame& frame);
 
 // A tile no triangle touches: background colour, no id, depth +inf (and zero normals and
-// coverage).
+// coverage). `stream`: streamsBackground.
 void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background, bool stream,
                       Frame& frame);
 
