@@ -5,6 +5,7 @@
 #pragma once
 
 #include <optional>
+#include <utility>
 
 #include "render/fragment_queue.h"
 #include "render/mixed_lanes.h"
@@ -71,6 +72,26 @@ TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
   }
 }
 
+// The solidRgba of the last two triangles whose groups of one triangle a tile's plain rows met,
+// kept across the rows: a row across a quad split on its diagonal meets both of its triangles in
+// turn, and each change of triangle took an encode (a long chain), which on the cube at
+// 1920x1080 was most of shadePlainRow's time while a cache of the last triangle alone was kept.
+struct SolidColours {
+  uint32_t key[2] = {kEmptyKey, kEmptyKey};  // [0]: the last met
+  uint32_t rgba[2] = {kNoSolid, kNoSolid};
+  // Triangle t's solidRgba; `k` is its key (never kEmptyKey).
+  TESSERA_LANES_INLINE uint32_t of(uint32_t k, const ShadeTriangle& t) {
+    if (k == key[0]) return rgba[0];
+    if (k != key[1]) {
+      key[1] = k;
+      rgba[1] = solidRgba(t);
+    }
+    std::swap(key[0], key[1]);
+    std::swap(rgba[0], rgba[1]);
+    return rgba[0];
+  }
+};
+
 // Row ty of a plain tile (every triangle untextured, not Phong, no normal AOV) into the row's
 // linear colours: eight pixels of one triangle take shadePlainLanes (of one whose corners share a
 // colour, that colour, and its sRGB in `solid` for the encode), of several shadeMixed, and
@@ -83,11 +104,10 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
                                              const ShadeTriangle* const records[],
                                              const MsaaShading* msaa, FragmentQueue* queue,
                                              float linear[3][kTileSize],
-                                             uint32_t solid[kTileSize / 8]) {
+                                             uint32_t solid[kTileSize / 8],
+                                             SolidColours& solids) {
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
-  // The last single-triangle group's triangle and its solidRgba: a row crosses few triangles.
-  uint32_t last_key = kEmptyKey, last_rgba = 0;
   bool row_mixed = false;
   const auto shade_queued = [&](int first, int count) __attribute__((always_inline)) {
     shadeQueuedPlain(records, *queue, first, count, tile.x0, tile.y0 + ty, linear);
@@ -114,14 +134,11 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
       } else {
         // One triangle's pixels (the lanes it does not cover are encoded as the background).
         const ShadeTriangle& t = records[keyChunk(first)][keyLocal(first)];
-        if (first != last_key) {
-          last_key = first;
-          last_rgba = solidRgba(t);
-        }
-        if (last_rgba != kNoSolid) {
+        const uint32_t rgba = solids.of(first, t);
+        if (rgba != kNoSolid) {
           // interpolateColor's value at any pixel: no barycentrics, and the encode is done.
           color = {splat(t.color[0].x), splat(t.color[0].y), splat(t.color[0].z)};
-          solid[tx / 8] = last_rgba;
+          solid[tx / 8] = rgba;
         } else {
           color = shadePlainLanes(t, px, py);
         }
@@ -237,11 +254,13 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
   // A plain row's groups of one solid triangle (shadePlainRow); the groups past a narrow tile's
   // width, which the sixteen-lane encode reads beside the last one, stay kNoSolid.
   uint32_t solid[kTileSize / 8] = {};
+  SolidColours solids;
   std::optional<FragmentQueue> queue;
   if (kSampled) queue.emplace(*msaa);
   for (int ty = 0; ty < tile.height; ++ty) {
     if (plain) {
-      shadePlainRow<kSampled>(tile, ty, records, msaa, queue ? &*queue : nullptr, linear, solid);
+      shadePlainRow<kSampled>(tile, ty, records, msaa, queue ? &*queue : nullptr, linear, solid,
+                              solids);
       encodeShadedRow(tile, ty, linear, solid, background, out);
     } else {
       shadeRow<kSampled>(tile, ty, records, extras, lights, want_normals, msaa,
