@@ -104,8 +104,7 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
                                              const ShadeTriangle* const records[],
                                              const MsaaShading* msaa, FragmentQueue* queue,
                                              float linear[3][kTileSize],
-                                             uint32_t solid[kTileSize / 8],
-                                             SolidColours& solids) {
+                                             uint32_t solid[kTileSize / 8], SolidColours& solids) {
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
   bool row_mixed = false;
