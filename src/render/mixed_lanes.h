@@ -114,11 +114,34 @@ TESSERA_LANES_INLINE Vec3x8 plainColor(const F32x8 f[kPlainFields], F32x8 b1, F3
           c[2] + (c[5] - c[2]) * b1 + (c[8] - c[2]) * b2};
 }
 
+// Whether each of eight records' corners share one colour (ShadeTriangle::solid). The first
+// alone decides most groups of meshes lit per vertex, whose triangles are seldom solid.
+TESSERA_LANES_INLINE bool allSolid(const ShadeTriangle* const records[8]) {
+  if (!records[0]->solid) return false;
+  bool solid = true;
+  for (int l = 1; l < 8; ++l) solid &= records[l]->solid;
+  return solid;
+}
+
+// The colours of eight solid records (allSolid): each lane's color[0], which interpolateColor
+// gives at any pixel of its triangle. Four loads and a transpose, where the barycentrics took
+// eighteen fields transposed and a division.
+TESSERA_LANES_INLINE Vec3x8 solidColors(const ShadeTriangle* const records[8]) {
+  F32x8 c[4];  // color[0] and the next float of lanes l and l + 4
+  for (int l = 0; l < 4; ++l)
+    c[l] = load2x4<F32x8>(&records[l]->color[0].x, &records[l + 4]->color[0].x);
+  transpose4x4Halves(c);  // c[k]: channel k of lanes 0-3, then of lanes 4-7
+  return {c[0], c[1], c[2]};
+}
+
 // Eight pixels owned by several triangles, all untextured and not Phong-shaded (colour = the
 // interpolated vertex colours): lane l is shaded from its own triangle's record, whose fields
 // are loaded eight records at a time and transposed into lanes. The same operations per lane as
-// shadeLanes, so the same bits; one evaluation instead of one per triangle.
+// shadeLanes, so the same bits; one evaluation instead of one per triangle. Where every lane's
+// triangle is solid (flat faces under directional light) its colour is that of every pixel, and
+// the barycentrics are left out.
 TESSERA_LANES_INLINE Vec3x8 shadeMixed(const ShadeTriangle* const records[8], F32x8 px, F32x8 py) {
+  if (allSolid(records)) return solidColors(records);
   F32x8 f[kPlainFields];
   loadPlainFields(records, f);
   F32x8 b0, b1, b2;

@@ -260,6 +260,7 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
   if (ctx.uv1)
     for (int k = 0; k < 3; ++k) extras.uv1[k] = corners.uv1(o.order[k]);
   setIdentity(ctx, m, triangle_id, shade);
+  markSolid(shade);
 }
 
 }  // namespace

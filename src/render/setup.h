@@ -75,6 +75,9 @@ struct ShadeTriangle {
   Shading shading;
   bool has_uv;        // sample the albedo texture (the mesh has UVs and the material a texture)
   uint8_t pbr_flags;  // kPbr only: kPbrUv, kPbrTangents (in the padding: the record stays 88 bytes)
+  // The corners share one colour (markSolid, or markSolid8 for the setup batch's records, whose
+  // colours are final only there): interpolateColor gives color[0] at every pixel.
+  bool solid;
   // Perspective-correct barycentrics at window point p, with d = p - (x0, y0):
   //   s = inv_w0 + sdx*d.x + sdy*d.y;  b1 = (p1dx*d.x + p1dy*d.y) / s;  b2 = (...) / s;  b0 =
   //   1-b1-b2
@@ -84,6 +87,17 @@ struct ShadeTriangle {
   // face's irradiance) and Gouraud (each vertex's); Phong multiplies by the per-pixel lighting.
   float3 color[3];
 };
+
+static_assert(sizeof(ShadeTriangle) == 88, "a record is 88 bytes: eight are eleven cache lines");
+
+// Sets shade.solid from its corners' colours, once they are final: the differences of corners 1
+// and 2 from corner 0 are all zero, so that c0 + d1 * b1 + d2 * b2 is c0 for any barycentrics.
+// Without branches (bitwise &): a setup's few instructions per triangle.
+inline void markSolid(ShadeTriangle& shade) {
+  const float3 &c0 = shade.color[0], &c1 = shade.color[1], &c2 = shade.color[2];
+  shade.solid = (c1.x - c0.x == 0.0f) & (c1.y - c0.y == 0.0f) & (c1.z - c0.z == 0.0f) &
+                (c2.x - c0.x == 0.0f) & (c2.y - c0.y == 0.0f) & (c2.z - c0.z == 0.0f);
+}
 
 // ShadeTriangle::pbr_flags: the mesh has UVs (the material's maps apply) and tangents (so does its
 // normal map).

@@ -175,6 +175,26 @@ TESSERA_LANES_INLINE void lightFlatFaces(SetupBatch& batch) {
   }
 }
 
+// markSolid (setup.h) for the batch's lanes, eight at a time: the same test of the same floats.
+static_assert(offsetof(ShadeTriangle, color) + 8 * sizeof(float) <= sizeof(ShadeTriangle),
+              "markSolid8 reads eight floats from color[0]");
+TESSERA_LANES_INLINE void markSolid8(SetupBatch& batch) {
+  F32x8 c[8];  // c[3 k + i]: component i of corner k (the last, c2.z, apart)
+  alignas(32) float last[SetupBatch::kLanes];
+  for (int l = 0; l < SetupBatch::kLanes; ++l) {
+    c[l] = load<F32x8>(&batch.shade[l].color[0].x);
+    last[l] = batch.shade[l].color[2].z;
+  }
+  transpose8x8(c);
+  const F32x8 zero = splat(0.0f);
+  const I32x8 solid = equal(c[3] - c[0], zero) & equal(c[4] - c[1], zero) &
+                      equal(c[5] - c[2], zero) & equal(c[6] - c[0], zero) &
+                      equal(c[7] - c[1], zero) & equal(load<F32x8>(last) - c[2], zero);
+  alignas(32) int32_t flags[SetupBatch::kLanes];
+  store(flags, solid);
+  for (int l = 0; l < batch.count; ++l) batch.shade[l].solid = flags[l] != 0;
+}
+
 // Sets up the batch's first `count` lanes into raster[record] (and wide[record] for large
 // triangles) and shade[record]: the lane's staged shading record (batch.shade) with the planes
 // added (the other lanes must hold copies of a real triangle: they are computed, not stored).
@@ -275,6 +295,7 @@ void setupBatchKernel(SetupBatch& batch, int width, int height, int32_t sample_r
     batch.shade[l].sdy = lane(sdy, l);
   }
   if (batch.flat_lanes != 0) lightFlatFaces(batch);
+  markSolid8(batch);  // the colours are final
   // The shading records go out streamed too. Setup writes over last frame's records, which the
   // other worker's shading pass read: on a host where a line takes hundreds of nanoseconds
   // between cores, ordinary stores waited on every line (docs/perf.md, round 5). Eight

@@ -533,10 +533,7 @@ TESSERA_LANES_INLINE I32x8 encodeRgba8x8(F32x8 r, F32x8 g, F32x8 b) {
 // The encoded colour of every pixel of a triangle whose corners share a colour (interpolateColor
 // gives exactly that colour), by encodeShadedRow's operations; kNoSolid for any other triangle.
 TESSERA_LANES_INLINE uint32_t solidRgba(const ShadeTriangle& t) {
-  const float3 d1 = t.color[1] - t.color[0], d2 = t.color[2] - t.color[0];
-  if (!(d1.x == 0.0f && d1.y == 0.0f && d1.z == 0.0f && d2.x == 0.0f && d2.y == 0.0f &&
-        d2.z == 0.0f))
-    return kNoSolid;
+  if (!t.solid) return kNoSolid;
   const float3& c = t.color[0];
   return static_cast<uint32_t>(lane(encodeRgba8x8(splat(c.x), splat(c.y), splat(c.z)), 0));
 }
