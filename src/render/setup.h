@@ -92,7 +92,7 @@ static_assert(sizeof(ShadeTriangle) == 88, "a record is 88 bytes: eight are elev
 
 // Sets shade.solid from its corners' colours, once they are final: the differences of corners 1
 // and 2 from corner 0 are all zero, so that c0 + d1 * b1 + d2 * b2 is c0 for any barycentrics.
-// Without branches (bitwise &): a setup's few instructions per triangle.
+// Bitwise &, not &&: no branches in the setup of every clipped or scalar-set-up triangle.
 inline void markSolid(ShadeTriangle& shade) {
   const float3 &c0 = shade.color[0], &c1 = shade.color[1], &c2 = shade.color[2];
   shade.solid = (c1.x - c0.x == 0.0f) & (c1.y - c0.y == 0.0f) & (c1.z - c0.z == 0.0f) &
