@@ -252,7 +252,8 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
     const int x0 = static_cast<int>(tile) % grid_.columns * kTileSize;
     const int y0 = static_cast<int>(tile) / grid_.columns * kTileSize;
     resolveEmptyTile(x0, y0, std::min(kTileSize, options.width - x0),
-                     std::min(kTileSize, options.height - y0), background, stream_background, frame);
+                     std::min(kTileSize, options.height - y0), background, stream_background,
+                     frame);
   });
   const Clock::time_point t_tiles = Clock::now();
 
