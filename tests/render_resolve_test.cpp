@@ -3,7 +3,9 @@
 // frames take which.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <memory>
+#include <vector>
 
 #include <tessera/render/cpu_renderer.h>
 #include <tessera/scene/color.h>
@@ -66,6 +68,39 @@ TEST(Resolve, StreamedRunsOfEveryLengthAndStartGiveTheirPixels) {
     }
   }
   EXPECT_EQ(wrong, 0u);
+}
+
+// Every empty tile of a grid 3.3 tiles wide and 2.5 tall, called once each in any order, as the
+// workers do: the tiles of each run along a row get the background (depth +inf, no id) once, the
+// last column's narrow tiles included, and the tiles that hold triangles are left alone.
+TEST(Resolve, EmptyRunsFillEveryEmptyTileAndNoOther) {
+  const TileGrid grid = TileGrid::forViewport(3 * kTileSize + 21, 2 * kTileSize + 33);
+  ASSERT_EQ(grid.columns, 4);
+  ASSERT_EQ(grid.rows, 3);
+  // Row 0: empty, full, empty, empty; row 1: all empty; row 2: full, empty, full, empty.
+  const std::vector<uint8_t> empty = {1, 0, 1, 1, 1, 1, 1, 1, 0, 1, 0, 1};
+  constexpr uint32_t kBackground = 0x0a0b0c0du, kUntouched = 0xdeadbeefu;
+  for (bool stream : {false, true}) {
+    Frame frame;
+    frame.resize(grid.width, grid.height, true, true, false, false);
+    std::fill(frame.color.begin(), frame.color.end(), kUntouched);
+    std::fill(frame.depth.begin(), frame.depth.end(), 1.0f);
+    std::fill(frame.triangle_id.begin(), frame.triangle_id.end(), 7u);
+    for (int tile = grid.tileCount() - 1; tile >= 0; --tile)
+      if (empty[static_cast<size_t>(tile)])
+        resolveEmptyRun(grid, empty, tile, kBackground, stream, frame);
+    size_t wrong = 0;
+    for (int y = 0; y < grid.height; ++y)
+      for (int x = 0; x < grid.width; ++x) {
+        const size_t i = static_cast<size_t>(y) * grid.width + x;
+        const bool background =
+            empty[static_cast<size_t>(y / kTileSize * grid.columns + x / kTileSize)] != 0;
+        wrong += frame.color[i] != (background ? kBackground : kUntouched);
+        wrong += frame.depth[i] != (background ? std::numeric_limits<float>::infinity() : 1.0f);
+        wrong += frame.triangle_id[i] != (background ? kNoTriangle : 7u);
+      }
+    EXPECT_EQ(wrong, 0u) << (stream ? "streamed" : "cached");
+  }
 }
 
 // A frame streams when its colour and its triangles' records would take more than half the

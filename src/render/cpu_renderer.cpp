@@ -236,13 +236,7 @@ void CpuRenderer::State::renderTile(const Scene& scene, const RenderOptions& opt
   const int width = std::min(kTileSize, options.width - x0);
   const int height = std::min(kTileSize, options.height - y0);
   if (tile_empty[tile_index]) {
-    // A run of empty tiles along the row is filled by its first tile, row by row across the
-    // whole run: long runs of stores instead of 64-pixel pieces.
-    if (tx > 0 && tile_empty[tile_index - 1]) return;
-    int run_end = tx + 1;
-    while (run_end < grid.columns && tile_empty[tile_index + (run_end - tx)]) ++run_end;
-    resolveEmptyTile(x0, y0, std::min(run_end * kTileSize, options.width) - x0, height,
-                     pass.background, pass.stream_background, frame);
+    resolveEmptyRun(grid, tile_empty, tile, pass.background, pass.stream_background, frame);
     return;
   }
   if (options.msaa > 1) {

@@ -249,11 +249,8 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
       renderTile(scene, options, static_cast<int>(tile), worker, with_centre, frame);
       return;
     }
-    const int x0 = static_cast<int>(tile) % grid_.columns * kTileSize;
-    const int y0 = static_cast<int>(tile) / grid_.columns * kTileSize;
-    resolveEmptyTile(x0, y0, std::min(kTileSize, options.width - x0),
-                     std::min(kTileSize, options.height - y0), background, stream_background,
-                     frame);
+    resolveEmptyRun(grid_, tile_empty_, static_cast<int>(tile), background, stream_background,
+                    frame);
   });
   const Clock::time_point t_tiles = Clock::now();
 

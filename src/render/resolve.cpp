@@ -167,6 +167,18 @@ void resolveCoverage(const TileVisibility& tile, const int32_t* covered, int sam
   }
 }
 
+void resolveEmptyRun(const TileGrid& grid, const std::vector<uint8_t>& tile_empty, int tile,
+                     uint32_t background, bool stream, Frame& frame) {
+  const int tx = tile % grid.columns, ty = tile / grid.columns;
+  const size_t index = static_cast<size_t>(tile);
+  if (tx > 0 && tile_empty[index - 1]) return;
+  int run_end = tx + 1;
+  while (run_end < grid.columns && tile_empty[index + static_cast<size_t>(run_end - tx)]) ++run_end;
+  const int x0 = tx * kTileSize, y0 = ty * kTileSize;
+  resolveEmptyTile(x0, y0, std::min(run_end * kTileSize, grid.width) - x0,
+                   std::min(kTileSize, grid.height - y0), background, stream, frame);
+}
+
 void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background, bool stream,
                       Frame& frame) {
   const bool depth = !frame.depth.empty(), ids = !frame.triangle_id.empty(),

@@ -48,4 +48,10 @@ void resolveCoverage(const TileVisibility& tile, const int32_t* covered, int sam
 void resolveEmptyTile(int x0, int y0, int width, int height, uint32_t background, bool stream,
                       Frame& frame);
 
+// Tile `tile` of `grid`, empty (tile_empty[tile], from markEmptyTiles): the first tile of a run of
+// empty tiles along its row fills the whole run, row by row across it (resolveEmptyTile: long runs
+// of stores instead of 64-pixel pieces); the run's other tiles leave it to that one.
+void resolveEmptyRun(const TileGrid& grid, const std::vector<uint8_t>& tile_empty, int tile,
+                     uint32_t background, bool stream, Frame& frame);
+
 }  // namespace tessera::render
