@@ -524,6 +524,11 @@ TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
             ShadeTriangle& staged = batch.nextShade();
             staged.triangle_id = static_cast<uint32_t>(1000 + i);
             staged.color[2] = float3{static_cast<float>(i), 0.5f, 0.25f};
+            // Solid (markSolid) for even i; odd ones differ in corner 1's y, or in corner 2's z
+            // alone (the float markSolid8 reads apart from the others).
+            staged.color[0] = staged.color[1] = staged.color[2];
+            if (i % 4 == 1) staged.color[1].y = 0.75f;
+            if (i % 4 == 3) staged.color[0].z = staged.color[1].z = 0.3f;
             batch.push(triangles[i].v[0], triangles[i].v[1], triangles[i].v[2], triangles[i].area,
                        static_cast<uint32_t>(i));
           }
@@ -544,6 +549,7 @@ TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
           EXPECT_EQ(shade[i].triangle_id, 1000 + i);
           EXPECT_EQ(shade[i].color[2].x, static_cast<float>(i));
           EXPECT_EQ(shade[i].color[2].z, 0.25f);
+          EXPECT_EQ(shade[i].solid, i % 2 == 0);
         }
       }
   }

@@ -149,6 +149,7 @@ void RayRenderer::setupChunk(const Scene& scene, const RenderOptions& options, i
       const uint16_t material = has_materials ? mesh.triangle_materials[local] : uint16_t{0};
       setupShadeCorners(ctx, corners, idx, o, face_normal, static_cast<uint32_t>(t), material,
                         chunk.shade[record], chunk.extras[record]);
+      markSolid(chunk.shade[record]);  // the record whole, though the ray kernels do not read it
       const RayTriangle& r = chunk.ray[record];
       for (const int16_t* box : {r.box[0], r.box[1]})
         if (box[0] <= box[2])

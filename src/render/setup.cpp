@@ -260,7 +260,6 @@ inline __attribute__((always_inline)) void setupShadeCornersFrom(
   if (ctx.uv1)
     for (int k = 0; k < 3; ++k) extras.uv1[k] = corners.uv1(o.order[k]);
   setIdentity(ctx, m, triangle_id, shade);
-  markSolid(shade);
 }
 
 }  // namespace
@@ -272,6 +271,7 @@ void setupShade(const SetupContext& ctx, const ScreenVertex v[3], const VertexAt
   const ClippedCorners corners{v, a};
   setupShadePlanes(corners, o, raster, shade);
   setupShadeCornersFrom(ctx, corners, o, face_normal, triangle_id, material, shade, extras);
+  markSolid(shade);
 }
 
 void setupShade(const SetupContext& ctx, const MeshVertices& vertices, const uint32_t index[3],
@@ -281,6 +281,7 @@ void setupShade(const SetupContext& ctx, const MeshVertices& vertices, const uin
   const MeshCorners corners{vertices, index};
   setupShadePlanes(corners, o, raster, shade);
   setupShadeCornersFrom(ctx, corners, o, face_normal, triangle_id, material, shade, extras);
+  markSolid(shade);
 }
 
 void setupFlatCorners(const SetupContext& ctx, const MeshVertices& vertices,

@@ -75,8 +75,9 @@ struct ShadeTriangle {
   Shading shading;
   bool has_uv;        // sample the albedo texture (the mesh has UVs and the material a texture)
   uint8_t pbr_flags;  // kPbr only: kPbrUv, kPbrTangents (in the padding: the record stays 88 bytes)
-  // The corners share one colour (markSolid, or markSolid8 for the setup batch's records, whose
-  // colours are final only there): interpolateColor gives color[0] at every pixel.
+  // The corners share one colour (markSolid: setupShade, the ray renderer's setup; markSolid8 for
+  // the setup batch's records, whose colours are final only there): interpolateColor gives
+  // color[0] at every pixel.
   bool solid;
   // Perspective-correct barycentrics at window point p, with d = p - (x0, y0):
   //   s = inv_w0 + sdx*d.x + sdy*d.y;  b1 = (p1dx*d.x + p1dy*d.y) / s;  b2 = (...) / s;  b0 =
@@ -92,7 +93,7 @@ static_assert(sizeof(ShadeTriangle) == 88, "a record is 88 bytes: eight are elev
 
 // Sets shade.solid from its corners' colours, once they are final: the differences of corners 1
 // and 2 from corner 0 are all zero, so that c0 + d1 * b1 + d2 * b2 is c0 for any barycentrics.
-// Bitwise &, not &&: no branches in the setup of every clipped or scalar-set-up triangle.
+// Bitwise &, not &&: no branches in the setup of every clipped triangle.
 inline void markSolid(ShadeTriangle& shade) {
   const float3 &c0 = shade.color[0], &c1 = shade.color[1], &c2 = shade.color[2];
   shade.solid = (c1.x - c0.x == 0.0f) & (c1.y - c0.y == 0.0f) & (c1.z - c0.z == 0.0f) &
@@ -334,8 +335,9 @@ void setupFlatCorners(const SetupContext& ctx, const MeshVertices& vertices,
                       uint16_t material, ShadeTriangle& shade);
 
 // The per-corner half of setupShade for an unclipped triangle (material, id, colours, normals,
-// UVs: everything but the barycentric planes x0 .. sdy, which setupBatch computes eight triangles
-// at a time). Reads only o.order and o.back_facing.
+// UVs: everything but the barycentric planes x0 .. sdy and the solid flag, which setupBatch
+// computes eight triangles at a time; a caller outside the batch marks the flag, markSolid).
+// Reads only o.order and o.back_facing.
 void setupShadeCorners(const SetupContext& ctx, const MeshVertices& vertices,
                        const uint32_t index[3], const TriangleOrientation& o, float3 face_normal,
                        uint32_t triangle_id, uint16_t material, ShadeTriangle& shade,
