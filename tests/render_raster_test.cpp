@@ -241,6 +241,53 @@ TEST(Raster, HiZRejectsOnlyWhatIsHidden) {
   }
 }
 
+TEST(Raster, HiZBoundsOfTiltedWallsHoldTheirFarthestCorner) {
+  // A black screen-covering wall tilted in x and y sets each whole block's depth bound; then white
+  // quads on a plane parallel to it and a little in front, so each is visible, at one sample (the
+  // ids) and at four (the colour: the sample layers keep bounds of their own). A bound taken at a
+  // block corner nearer than its farthest would reject the quads near the farthest corner.
+  constexpr int kW = 128, kH = 96;
+  for (const float tilt : {1.0f, -1.0f}) {
+    const auto wall = [&](float x, float y) { return tilt * (0.3f * x - 0.2f * y); };
+    auto quad = [&](Mesh& m, float x0, float y0, float x1, float y1, float in_front) {
+      const uint32_t base = static_cast<uint32_t>(m.positions.size());
+      m.positions.insert(m.positions.end(), {{x0, y0, wall(x0, y0) - in_front},
+                                             {x1, y0, wall(x1, y0) - in_front},
+                                             {x1, y1, wall(x1, y1) - in_front},
+                                             {x0, y1, wall(x0, y1) - in_front}});
+      m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    };
+    Mesh back, front;
+    quad(back, -1, -1, 1, 1, 0.0f);  // ids 1, 2
+    // Quads two pixels wide every three pixels, 0.002 in front (the wall moves 0.0047 a pixel
+    // across and 0.0042 down); the pixel at (px + 1, py + 1) is wholly inside each.
+    std::vector<std::pair<int, int>> inside;
+    for (int py = 1; py + 2 < kH; py += 3)
+      for (int px = 1; px + 2 < kW; px += 3) {
+        const float x0 = 2.0f * px / kW - 1.0f, y1 = 1.0f - 2.0f * py / kH;
+        quad(front, x0, y1 - 4.0f / kH, x0 + 4.0f / kW, y1, 0.002f);
+        inside.emplace_back(px + 1, py + 1);
+      }
+    Scene scene = clipSpaceScene();
+    scene.objects.push_back(unlitObject(back, CullMode::kBack));
+    scene.objects.back().materials[0].base_color = {0, 0, 0, 1};
+    scene.objects.push_back(unlitObject(front, CullMode::kBack));
+    for (const int msaa : {1, 4}) {
+      RenderOptions options;
+      options.width = kW;
+      options.height = kH;
+      options.msaa = msaa;
+      const Frame f = renderAt(scene, options, SimdLevel::kAuto, 1);
+      for (auto [px, py] : inside) {
+        if (msaa == 1)
+          EXPECT_GT(f.idAt(px, py), 2u) << "the wall hides a quad at " << px << "," << py;
+        EXPECT_EQ(f.colorAt(px, py), 0xffffffffu)
+            << "the wall shows through a quad at " << px << "," << py << ", " << msaa << "x";
+      }
+    }
+  }
+}
+
 TEST(Raster, BackfaceCullModes) {
   constexpr int kW = 16, kH = 8;
   Mesh m;

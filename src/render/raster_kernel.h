@@ -274,6 +274,18 @@ TESSERA_LANES_INLINE void flaggedBlockRows(const RasterTriangle& t, const Raster
   }
 }
 
+// The greatest depth the walk computes for t at the 8x8 block whose first pixel is (bx, by), which
+// bounds what the block stores once t has covered it all. Each step of rowDepth and depthAcross8
+// rounds monotonically in y and in x, and so does the sum of the two, so the greatest is at a
+// corner: the greater row of the first and last, plus the greater of the first and last column
+// (the lanes' arithmetic in scalars, the same bits). Read back from the stored depths, the bound
+// took a horizontal maximum per block, an eighth of the walk of the cube's large triangles.
+TESSERA_LANES_INLINE float blockDepthBound(const RasterTriangle& t, int bx, int by) {
+  const auto across = [&](int x) { return t.dzdx * (static_cast<float>(x) + 0.5f - t.x0); };
+  return std::max(rowDepth(t, by), rowDepth(t, by + kBlock - 1)) +
+         std::max(across(bx), across(bx + kBlock - 1));
+}
+
 // A large triangle's walk, block by block. `centre_shift` (kFlagCentres: a sample layer's walk of
 // the triangle moved by the sample's offset, rasterSample) holds what each edge's value at a
 // sample exceeds its value at the pixel centre by (a * dx + b * dy), from which the keys get their
@@ -338,12 +350,7 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide
       // A block now wholly written by this triangle gets a tighter bound.
       if (kRule == DepthRule::kNearest && inside && x0 == bx && x1 == bx + kBlock - 1 && y0 == by &&
           y1 == by + kBlock - 1) {
-        F32x8 highest = load<F32x8>(tile.depth + tilePixel(tile, bx, by));
-        for (int y = by + 1; y < by + kBlock; ++y)
-          highest = maximum(highest, load<F32x8>(tile.depth + tilePixel(tile, bx, y)));
-        float bound = lane(highest, 0);
-        for (int l = 1; l < kLanes; ++l) bound = std::max(bound, lane(highest, l));
-        block_max = bound;
+        block_max = std::min(block_max, blockDepthBound(t, bx, by));
         tile.hiz_bounded = true;
       }
     }
