@@ -84,7 +84,8 @@ class ChunkSetup {
 
  private:
   ObjectSetup objectSetup(size_t object_index);
-  uint32_t nextRecord();
+  __attribute__((always_inline)) inline uint32_t nextRecord();
+  void growRecords();
   void flush();
   __attribute__((always_inline)) inline void bin(const ObjectSetup& o, const auto& box,
                                                  uint32_t record, const ShadeTriangle& shade);
@@ -163,14 +164,18 @@ ObjectSetup ChunkSetup::objectSetup(size_t object_index) {
 // (chunk.size) only once the triangle survives.
 uint32_t ChunkSetup::nextRecord() {
   const uint32_t local = static_cast<uint32_t>(chunk_.size);
-  TESSERA_CHECK(local < kMaxTrianglesPerChunk) << "chunk holds too many triangles";
-  if (local == chunk_.raster.size()) {
-    chunk_.raster.emplace_back();
-    chunk_.wide.emplace_back();
-    chunk_.shade.emplace_back();
-    chunk_.extras.emplace_back();
-  }
+  if (local == chunk_.raster.size()) [[unlikely]]
+    growRecords();
   return local;
+}
+
+// One more slot in each of the chunk's record arrays (a frame with more triangles than any before).
+void ChunkSetup::growRecords() {
+  TESSERA_CHECK(chunk_.size < kMaxTrianglesPerChunk) << "chunk holds too many triangles";
+  chunk_.raster.emplace_back();
+  chunk_.wide.emplace_back();
+  chunk_.shade.emplace_back();
+  chunk_.extras.emplace_back();
 }
 
 void ChunkSetup::flush() {
