@@ -291,9 +291,14 @@ TESSERA_LANES_INLINE float blockDepthBound(const RasterTriangle& t, int bx, int 
 // sample exceeds its value at the pixel centre by (a * dx + b * dy), from which the keys get their
 // centre flags (kCentreKeyBit, as centreFlagged gives the small walks theirs).
 template <DepthRule kRule, bool kFlagCentres = false>
-TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide& w, uint32_t key,
-                                       TileVisibility& tile, int x_begin, int x_end, int y_begin,
-                                       int y_end, const int64_t* centre_shift = nullptr) {
+TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& triangle, const RasterWide& w,
+                                       uint32_t key, TileVisibility& tile, int x_begin, int x_end,
+                                       int y_begin, int y_end,
+                                       const int64_t* centre_shift = nullptr) {
+  // A copy the walk's stores cannot reach: through the reference, every store to the tile's
+  // depths (floats) and keys (32-bit integers) might have changed the record's planes and
+  // edges, so each row reloaded them and formed depthAcross8 again.
+  const RasterTriangle t = triangle;
   // Blocks are aligned to the tile so a block row never leaves the tile's rows.
   const int bx_first = tile.x0 + ((x_begin - tile.x0) & ~(kBlock - 1));
   const int by_first = tile.y0 + ((y_begin - tile.y0) & ~(kBlock - 1));
@@ -335,16 +340,17 @@ TESSERA_LANES_INLINE void rasterBlocks(const RasterTriangle& t, const RasterWide
         flaggedBlockRows<kRule>(t, w, key, tile, bx, y0, y1, in_range, inside, centres_inside,
                                 centres_outside, centre_shift);
       } else {
-        for (int y = y0; y <= y1; ++y) {
+        const F32x8 across = depthAcross8(t, bx);
+        float* depth = tile.depth + tilePixel(tile, bx, y0);
+        uint32_t* keys = tile.key + tilePixel(tile, bx, y0);
+        for (int y = y0; y <= y1; ++y, depth += kTileSize, keys += kTileSize) {
           I32x8 covered = in_range;
           if (!inside) {
             I64x8 e[3];
             rowEdges(t, w, bx, y, lanes64, e);
             covered = covered & nonNegative(e[0] | e[1] | e[2]);
           }
-          depthTestRow8<kRule>(t, key, rowDepth(t, y), bx, covered,
-                               tile.depth + tilePixel(tile, bx, y),
-                               tile.key + tilePixel(tile, bx, y));
+          depthTestRow8<kRule>(key, rowDepth(t, y), across, covered, depth, keys);
         }
       }
       // A block now wholly written by this triangle gets a tighter bound.
