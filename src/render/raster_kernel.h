@@ -251,26 +251,26 @@ TESSERA_LANES_INLINE void flaggedBlockRows(const RasterTriangle& t, const Raster
                                            bool centres_outside, const int64_t* centre_shift) {
   const I32x8 block_keys = splat(static_cast<int32_t>(centres_inside ? key | kCentreKeyBit : key));
   const F32x8 across = depthAcross8(t, bx);
+  float* depth = tile.depth + tilePixel(tile, bx, y0);
+  uint32_t* keys = tile.key + tilePixel(tile, bx, y0);
   if (inside && (centres_inside || centres_outside)) {
-    for (int y = y0; y <= y1; ++y)
-      depthTestRow8<kRule>(block_keys, rowDepth(t, y), across, in_range,
-                           tile.depth + tilePixel(tile, bx, y), tile.key + tilePixel(tile, bx, y));
+    for (int y = y0; y <= y1; ++y, depth += kTileSize, keys += kTileSize)
+      depthTestRow8<kRule>(block_keys, rowDepth(t, y), across, in_range, depth, keys);
     return;
   }
   const I64x8 lanes64 = widen(iota());
   const I32x8 bit = splat(static_cast<int32_t>(kCentreKeyBit));
-  for (int y = y0; y <= y1; ++y) {
+  for (int y = y0; y <= y1; ++y, depth += kTileSize, keys += kTileSize) {
     I64x8 e[3];
     rowEdges(t, w, bx, y, lanes64, e);
     const I32x8 covered = inside ? in_range : in_range & nonNegative(e[0] | e[1] | e[2]);
-    const I32x8 keys = centres_inside || centres_outside
-                           ? block_keys
-                           : block_keys | (nonNegative((e[0] - splat(centre_shift[0])) |
-                                                       (e[1] - splat(centre_shift[1])) |
-                                                       (e[2] - splat(centre_shift[2]))) &
-                                           bit);
-    depthTestRow8<kRule>(keys, rowDepth(t, y), across, covered, tile.depth + tilePixel(tile, bx, y),
-                         tile.key + tilePixel(tile, bx, y));
+    const I32x8 flagged = centres_inside || centres_outside
+                              ? block_keys
+                              : block_keys | (nonNegative((e[0] - splat(centre_shift[0])) |
+                                                          (e[1] - splat(centre_shift[1])) |
+                                                          (e[2] - splat(centre_shift[2]))) &
+                                              bit);
+    depthTestRow8<kRule>(flagged, rowDepth(t, y), across, covered, depth, keys);
   }
 }
 
