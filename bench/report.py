@@ -210,9 +210,18 @@ def msaa_rows(rows):
     return table, summary, four
 
 
+KERNEL_NAMES = {"avx512": "AVX-512", "avx2": "AVX2", "sse2": "SSE2", "scalar": "scalar"}
+
+
 def widest_kernels(machine):
-    return ("AVX-512" if "avx512f" in machine["simd"] else
-            "AVX2 (this CPU has no AVX-512)" if "avx2" in machine["simd"] else "SSE2")
+    """The tile kernels the run used: the CPU's widest, or those run_all.sh's SIMD chose."""
+    widest = ("AVX-512" if "avx512f" in machine["simd"] else
+              "AVX2 (this CPU has no AVX-512)" if "avx2" in machine["simd"] else "SSE2")
+    chosen = machine.get("kernels", "")
+    if chosen:
+        return (f"{KERNEL_NAMES.get(chosen, chosen)} (chosen with `--simd {chosen}`; the CPU's "
+                f"widest: {widest.split(' ')[0]})")
+    return widest
 
 
 def shading_label(r):
