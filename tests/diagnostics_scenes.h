@@ -4,9 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <random>
+#include <vector>
 
 #include <tessera/render/diagnostics.h>
 #include <tessera/scene/scene.h>
@@ -113,6 +117,53 @@ inline Mesh cullReasonMesh() {
                10, 11, 12,  // no pixel centre
                0,  1,  2};  // drawn
   return m;
+}
+
+// Triangles under a pixel in size, one around the centre of every third pixel of a width x height
+// frame, each with its corners within 0.95 pixel of that centre (so its box holds that centre or
+// none), both windings. `covers[i]`: whether triangle i covers its centre, by a float test that
+// keeps only triangles whose edges pass at least 1/32 pixel from it (the snapping to 1/256 pixel
+// cannot change the answer); `pixel[i]`: that centre's pixel.
+struct LoneCentres {
+  Scene scene;
+  std::vector<std::pair<int, int>> pixel;
+  std::vector<bool> covers;
+};
+inline LoneCentres loneCentreScene(int width, int height) {
+  LoneCentres out{clipSpaceScene(), {}, {}};
+  Mesh m;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> offset(-0.95f, 0.95f);
+  for (int py = 1; py + 1 < height; py += 3)
+    for (int px = 1; px + 1 < width; px += 3) {
+      const float cx = static_cast<float>(px) + 0.5f, cy = static_cast<float>(py) + 0.5f;
+      float x[3], y[3];
+      for (;;) {
+        for (int k = 0; k < 3; ++k) x[k] = cx + offset(rng), y[k] = cy + offset(rng);
+        const float area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+        if (std::fabs(area) < 0.1f) continue;
+        bool clear = true;
+        int inside = 0;
+        for (int k = 0; k < 3; ++k) {
+          const int n = (k + 1) % 3;
+          const float ex = x[n] - x[k], ey = y[n] - y[k];
+          const float cross = ex * (cy - y[k]) - ey * (cx - x[k]);
+          clear &= std::fabs(cross) / std::hypot(ex, ey) > 1.0f / 32.0f;
+          inside += (cross > 0) == (area > 0);
+        }
+        if (!clear) continue;
+        out.covers.push_back(inside == 3);
+        break;
+      }
+      const uint32_t base = static_cast<uint32_t>(m.positions.size());
+      for (int k = 0; k < 3; ++k)
+        m.positions.push_back({2.0f * x[k] / static_cast<float>(width) - 1.0f,
+                               1.0f - 2.0f * y[k] / static_cast<float>(height), 0.0f});
+      m.indices.insert(m.indices.end(), {base, base + 1, base + 2});
+      out.pixel.emplace_back(px, py);
+    }
+  out.scene.objects.push_back(objectOf(m));
+  return out;
 }
 
 }  // namespace tessera::diagnostics_test

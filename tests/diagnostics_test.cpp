@@ -2,6 +2,7 @@
 // tile occlusion and edges, and the pipeline counters, on scenes small enough to count by hand.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -68,8 +69,8 @@ TEST(Diagnostics, TileOcclusionOfAHalfCoveredTile) {
   constexpr int kW = 128, kH = 64;
   Scene scene = clipSpaceScene();
   Mesh m;
-  addRect(m, 0, 0, 64, 32, 0.0f, kW, kH);    // tile 0: the top 32 of 64 rows, window z 0.5
-  addRect(m, 64, 0, 128, 64, -0.5f, kW, kH); // tile 1: all of it, window z 0.25
+  addRect(m, 0, 0, 64, 32, 0.0f, kW, kH);     // tile 0: the top 32 of 64 rows, window z 0.5
+  addRect(m, 64, 0, 128, 64, -0.5f, kW, kH);  // tile 1: all of it, window z 0.25
   scene.objects.push_back(objectOf(m));
   const Frame f = render(scene, kW, kH);
   const FrameDiagnostics& d = f.diagnostics;
@@ -148,6 +149,36 @@ TEST(Diagnostics, CountersAddUpWithEveryCullReasonAndClipping) {
     EXPECT_EQ(c.triangles_setup, 3 * n);
     expectCountersAddUp(c);
   }
+}
+
+TEST(Diagnostics, TrianglesMissingTheOneCentreOfTheirBoxAreCulledForNoPixel) {
+  // Triangles under a pixel (loneCentreScene): at one sample those whose box's one centre lies
+  // outside them are dropped in setup (missesLoneCentre: the cull kernel's groups of eight and
+  // the triangles past the last group alike), and nothing they would have drawn is missing.
+  constexpr int kW = 100, kH = 64;  // 33 x 21 triangles: 86 groups of eight and 5 more
+  const LoneCentres lone = loneCentreScene(kW, kH);
+  const size_t n = lone.covers.size();
+  ASSERT_NE(n % 8, 0u);
+  const auto covering =
+      static_cast<uint64_t>(std::count(lone.covers.begin(), lone.covers.end(), true));
+  ASSERT_GT(covering, 100u);
+  ASSERT_GT(n - covering, 100u);
+  const Frame one = render(lone.scene, kW, kH);
+  for (size_t i = 0; i < n; ++i) {
+    const auto [x, y] = lone.pixel[i];
+    EXPECT_EQ(one.idAt(x, y), lone.covers[i] ? static_cast<uint32_t>(i + 1) : kNoTriangle)
+        << "triangle " << i << " at " << x << "," << y;
+  }
+  const PipelineCounters& c = one.diagnostics.counters;
+  EXPECT_EQ(c.triangles_setup, covering);
+  EXPECT_EQ(c.culled.no_pixel, n - covering);
+  EXPECT_EQ(c.pixels_passed, covering);
+  expectCountersAddUp(c);
+  // With MSAA a box reaches the samples around its centre and nothing is dropped for it: more
+  // triangles are set up, and the centre's ids are the same.
+  const Frame four = render(lone.scene, kW, kH, 1, 4);
+  EXPECT_GT(four.diagnostics.counters.triangles_setup, covering);
+  EXPECT_EQ(four.triangle_id, one.triangle_id);
 }
 
 TEST(Diagnostics, TheSameForOneAndThreeWorkers) {

@@ -449,6 +449,68 @@ TEST(Raster, CullKernelMatchesThePerTriangleChecks) {
   for (int branch = 0; branch < 5; ++branch) EXPECT_GT(decided[branch], 20) << branch;
 }
 
+// Triangles whose box holds one pixel centre, their corners on a grid of 1/8 pixel about it, so
+// that many edges run exactly through it (the top-left rule decides): the cull kernel of every
+// instruction set, missesLoneCentre (one triangle at a time) and setupRaster (the raster's own
+// edge values at the box's corner) drop the same ones.
+TEST(Raster, LoneCentresAreDroppedAlikeOnEveryPath) {
+  using namespace tessera::render;
+  std::mt19937 rng(23);
+  std::uniform_int_distribution<int32_t> eighth(-7, 7), pixel(2, 60);
+  const int width = 64, height = 64;
+  SetupContext ctx;
+  ctx.width = width;
+  ctx.height = height;
+  ctx.cull = CullMode::kNone;
+  constexpr int kVertices = 24 * 64;
+  std::vector<ScreenVertex> screen(kVertices);
+  for (int t = 0; t < kVertices / 3; ++t) {
+    const int32_t cx = pixel(rng) * kSubpixelOne + kSubpixelHalf;
+    const int32_t cy = pixel(rng) * kSubpixelOne + kSubpixelHalf;
+    for (int k = 0; k < 3; ++k)
+      screen[3 * t + k] = {cx + 32 * eighth(rng), cy + 32 * eighth(rng), 0.5f, 1.0f};
+  }
+  const std::vector<uint16_t> outcodes(kVertices, 0);
+  int missed = 0, kept = 0, on_edge = 0;
+  for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512}) {
+    if (isa > detectIsa()) continue;
+    const Kernels kernels = kernelsFor(isa);
+    for (int group = 0; group < kVertices / 24; ++group) {
+      uint32_t indices[24];
+      for (int i = 0; i < 24; ++i) indices[i] = static_cast<uint32_t>(24 * group + i);
+      CullGroup out;
+      ASSERT_TRUE(kernels.cull_group(indices, kVertices, screen.data(), outcodes.data(), width,
+                                     height, CullMode::kNone, 0, out));
+      for (int l = 0; l < 8; ++l) {
+        const ScreenVertex* v = &screen[24 * group + 3 * l];
+        const int64_t area = signedArea(v[0], v[1], v[2]);
+        const PixelBox box = pixelBox(ctx, v[0], v[1], v[2]);
+        if (area == 0 || box.empty()) continue;
+        const bool lone = box.min_x == box.max_x && box.min_y == box.max_y;
+        const bool misses = missesLoneCentre(ctx, box, v[0], v[1], v[2], area);
+        RasterTriangle raster;
+        RasterWide wide;
+        TriangleOrientation o;
+        SCOPED_TRACE(testing::Message() << isaName(isa) << " group " << group << " lane " << l);
+        EXPECT_EQ(setupRaster(ctx, v[0], v[1], v[2], area, raster, wide, o), !misses);
+        EXPECT_EQ(out.kind[l], misses ? CullGroup::kCulled : CullGroup::kVisible);
+        if (!lone || isa != Isa::kScalar) continue;
+        (misses ? missed : kept) += 1;
+        // An edge through the centre: a zero edge value before the top-left rule's bias.
+        const int64_t px = int64_t{box.min_x} * kSubpixelOne + kSubpixelHalf;
+        const int64_t py = int64_t{box.min_y} * kSubpixelOne + kSubpixelHalf;
+        for (int k = 0; k < 3; ++k) {
+          const ScreenVertex &a = v[k], &b = v[(k + 1) % 3];
+          on_edge += (int64_t{b.x} - a.x) * (py - a.y) == (int64_t{b.y} - a.y) * (px - a.x);
+        }
+      }
+    }
+  }
+  EXPECT_GT(missed, 100);
+  EXPECT_GT(kept, 100);
+  EXPECT_GT(on_edge, 30);
+}
+
 TEST(ChunkLayout, CoversEveryTriangleInOrderAndEndsEachBlockSmall) {
   using namespace tessera::render;
   for (size_t total : {size_t{0}, size_t{1}, size_t{100}, size_t{4096}, size_t{9216}, size_t{69666},
@@ -529,7 +591,9 @@ TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
     Triangle t;
     for (ScreenVertex& v : t.v) v = {cx + offset(rng), cy + offset(rng), depth(rng), inv_w(rng)};
     t.area = signedArea(t.v[0], t.v[1], t.v[2]);
-    if (t.area == 0 || pixelBox(ctx, t.v[0], t.v[1], t.v[2]).empty()) continue;
+    const PixelBox box = pixelBox(ctx, t.v[0], t.v[1], t.v[2]);
+    if (t.area == 0 || box.empty() || missesLoneCentre(ctx, box, t.v[0], t.v[1], t.v[2], t.area))
+      continue;
     triangles.push_back(t);
   }
   // With one sample, and with MSAA's reach (boxes grown by half a pixel, the small test by more).

@@ -2,6 +2,7 @@
 // same scenes as tests/diagnostics_test.cpp, the same numbers where both measure the same thing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <tessera/render/diagnostics.h>
@@ -26,8 +27,7 @@ RenderOptions diagnosticOptions(int width, int height, int msaa = 1) {
 // the CPU grows every bounding box by a fixed reach (kSampleReach), the GPU by the pattern's
 // own sample extents: the CPU's boxes may hold a pixel more, so it may bin a triangle into a
 // tile more and culls fewer for holding no pixel (docs/stats.md).
-void expectSameCounters(const PipelineCounters& cpu, const PipelineCounters& gpu,
-                        bool same_boxes) {
+void expectSameCounters(const PipelineCounters& cpu, const PipelineCounters& gpu, bool same_boxes) {
   if (!same_boxes) {
     EXPECT_LE(gpu.triangles_binned, cpu.triangles_binned);
     EXPECT_GE(gpu.culled.no_pixel, cpu.culled.no_pixel);
@@ -173,6 +173,20 @@ TEST(VulkanDiagnostics, CountersAddUpWithEveryCullReasonAndAgreeWithTheCpu) {
   EXPECT_EQ(c.triangles_setup, 3u);
   expectCountersAddUp(c);
   expectSameDiagnostics(renderCpu(scene, diagnosticOptions(64, 64)), f);
+}
+
+TEST(VulkanDiagnostics, TrianglesMissingTheOneCentreOfTheirBoxAreCulledAsOnTheCpu) {
+  TESSERA_SKIP_WITHOUT_VULKAN();
+  ComputePtr gpu = makeCompute();
+  ASSERT_TRUE(gpu);
+  constexpr int kW = 100, kH = 64;
+  const LoneCentres lone = loneCentreScene(kW, kH);
+  const auto covering =
+      static_cast<uint64_t>(std::count(lone.covers.begin(), lone.covers.end(), true));
+  const Frame f = renderWith(*gpu, lone.scene, diagnosticOptions(kW, kH));
+  EXPECT_EQ(f.diagnostics.counters.triangles_setup, covering);
+  EXPECT_EQ(f.diagnostics.counters.culled.no_pixel, lone.covers.size() - covering);
+  expectSameDiagnostics(renderCpu(lone.scene, diagnosticOptions(kW, kH)), f);
 }
 
 TEST(VulkanDiagnostics, TheCpusOnLitScenesWithEqualImages) {

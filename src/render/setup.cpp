@@ -4,22 +4,6 @@
 
 namespace tessera::render {
 
-namespace {
-
-// Edge from a to b, evaluated at p: (b - a) x (p - a) with y pointing down. Positive inside for
-// triangles whose signed area is positive (clockwise as seen on screen).
-void makeEdge(int32_t ax, int32_t ay, int32_t bx, int32_t by, int32_t& a, int32_t& b, int64_t& c) {
-  a = ay - by;
-  b = bx - ax;
-  c = static_cast<int64_t>(by - ay) * ax - static_cast<int64_t>(bx - ax) * ay;
-  // Top-left rule (y down, interior on the right of a->b): a top edge is horizontal and runs to
-  // +x; a left edge runs up (dy < 0). Centres exactly on other edges are not covered.
-  const int32_t dx = bx - ax, dy = by - ay;
-  const bool top_left = dy < 0 || (dy == 0 && dx > 0);
-  if (!top_left) c -= 1;
-}
-
-}  // namespace
 
 bool setupRaster(const SetupContext& ctx, const ScreenVertex& sv0, const ScreenVertex& sv1,
                  const ScreenVertex& sv2, int64_t area, RasterTriangle& raster, RasterWide& wide,
@@ -55,6 +39,10 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex& sv0, const ScreenV
   for (int k = 0; k < 3; ++k)
     raster.corner[k] =
         small ? static_cast<int32_t>(raster.a[k] * px + raster.b[k] * py + wide.c[k]) : 0;
+  // A box of one pixel centre, missed (missesLoneCentre's test, from the values just formed).
+  if (small && ctx.sample_reach == 0 && box.min_x == box.max_x && box.min_y == box.max_y &&
+      (raster.corner[0] | raster.corner[1] | raster.corner[2]) < 0)
+    return false;
 
   // Screen-space planes on the snapped positions, in pixels: lambda_1 = E_20 / area,
   // lambda_2 = E_01 / area. The gradients are (edge coefficient) * 256 / area, exact in the

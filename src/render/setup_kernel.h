@@ -61,9 +61,27 @@ TESSERA_LANES_INLINE void pixelRange8(I32x8 lo, I32x8 hi, int size, I32x8& first
   last = minimum(shiftRight(hi - splat(kSubpixelHalf), kSubpixelBits), splat(size - 1));
 }
 
+struct ScreenPoint8 {
+  I32x8 x, y;  // 1/256 pixel
+};
+
+// Lanes where point p misses edge a -> b: makeEdge's value there (setup.h), as (b - a) x (p - a)
+// less 1 off the top-left rule, is negative. In double lanes: exact, the differences are below
+// 2^24 and the products below 2^48.
+TESSERA_LANES_INLINE I32x8 edgeMisses8(const ScreenPoint8& a, const ScreenPoint8& b,
+                                       const ScreenPoint8& p) {
+  const I32x8 dx = b.x - a.x, dy = b.y - a.y;
+  const I32x8 zero = splat(int32_t{0});
+  const I32x8 top_left = ~nonNegative(dy) | (equal(dy, zero) & ~lessOrEqual(dx, zero));
+  const F64x8 value = toDouble(dx) * toDouble(p.y - a.y) - toDouble(dy) * toDouble(p.x - a.x) +
+                      toDouble(~top_left);
+  return lessThan(value, splat(0.0));
+}
+
 // The cull of eight consecutive triangles (CullGroup), lane by lane as setup's per-triangle checks:
 // outcodes (a non-finite vertex or all three outside one frustum plane drop the triangle; one
-// outside a cut plane sends it to the clipper), then cullsArea on signedArea, then pixelBox.
+// outside a cut plane sends it to the clipper), then cullsArea on signedArea, then pixelBox and
+// missesLoneCentre.
 bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenVertex* screen,
                      const uint16_t* outcodes, int width, int height, CullMode cull,
                      int32_t sample_reach, CullGroup& out) {
@@ -123,7 +141,20 @@ bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenV
   pixelRange8(minimum(minimum(y0, y1), y2) - reach, maximum(maximum(y0, y1), y2) + reach, height,
               min_y, max_y);
   const I32x8 empty = lessThan(max_x, min_x) | lessThan(max_y, min_y);
-  const I32x8 visible = whole & ~culled & ~empty;
+  I32x8 visible = whole & ~culled & ~empty;
+  // missesLoneCentre (setup.h), at one sample a pixel.
+  if (sample_reach == 0) {
+    const I32x8 lone = visible & equal(min_x, max_x) & equal(min_y, max_y);
+    if (any(lone)) {
+      // setupRaster's vertex order: front faces (negative area) take the corners 0, 2, 1.
+      const ScreenPoint8 v0{x0, y0}, v1{select(negative, x2, x1), select(negative, y2, y1)},
+          v2{select(negative, x1, x2), select(negative, y1, y2)};
+      const ScreenPoint8 centre{shiftLeft(min_x, kSubpixelBits) + splat(kSubpixelHalf),
+                                shiftLeft(min_y, kSubpixelBits) + splat(kSubpixelHalf)};
+      visible = visible & ~(lone & (edgeMisses8(v1, v2, centre) | edgeMisses8(v2, v0, centre) |
+                                    edgeMisses8(v0, v1, centre)));
+    }
+  }
 
   store(out.kind, (visible & splat(int32_t{CullGroup::kVisible})) |
                       (clip & splat(int32_t{CullGroup::kClip})));

@@ -147,6 +147,14 @@ bool setupTriangle(ScreenVertex sv[3], ClipVertex v[3], TriangleContext ctx,
   makeEdge(v1.x, v1.y, v2.x, v2.y, raster.a[0], raster.b[0], raster.c[0]);
   makeEdge(v2.x, v2.y, v0.x, v0.y, raster.a[1], raster.b[1], raster.c[1]);
   makeEdge(v0.x, v0.y, v1.x, v1.y, raster.a[2], raster.b[2], raster.c[2]);
+  // One sample a pixel and a box of one pixel centre: dropped when the centre is outside
+  // (missesLoneCentre, src/render/setup.h), as a box without a centre is.
+  if (frame.samples == 1u && raster.min_x == raster.max_x && raster.min_y == raster.max_y) {
+    const int64_t px = int64_t(raster.min_x) * kSubpixelOne + kSubpixelOne / 2;
+    const int64_t py = int64_t(raster.min_y) * kSubpixelOne + kSubpixelOne / 2;
+    for (int k = 0; k < 3; ++k)
+      if (int64_t(raster.a[k]) * px + int64_t(raster.b[k]) * py + raster.c[k] < 0l) return false;
+  }
 
   // Screen-space gradients of barycentrics 1 and 2: (edge coefficient) * 256 / area, the
   // reciprocal rounded once to float from double, as the CPU.
@@ -191,7 +199,7 @@ bool setupTriangle(ScreenVertex sv[3], ClipVertex v[3], TriangleContext ctx,
 
 #if TESSERA_DIAGNOSTICS
 // Why setupTriangle dropped a triangle, by its checks in their order: zero area on the snapped
-// grid, facing the culled way, else a bounding box without a pixel centre.
+// grid, facing the culled way, else a bounding box without a pixel centre (or one it misses).
 uint cullReason(ScreenVertex sv[3], TriangleContext ctx) {
   const int64_t area = int64_t(sv[1].x - sv[0].x) * int64_t(sv[2].y - sv[0].y) -
                        int64_t(sv[1].y - sv[0].y) * int64_t(sv[2].x - sv[0].x);
