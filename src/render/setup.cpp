@@ -4,7 +4,6 @@
 
 namespace tessera::render {
 
-
 bool setupRaster(const SetupContext& ctx, const ScreenVertex& sv0, const ScreenVertex& sv1,
                  const ScreenVertex& sv2, int64_t area, RasterTriangle& raster, RasterWide& wide,
                  TriangleOrientation& o) {

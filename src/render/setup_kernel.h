@@ -73,8 +73,8 @@ TESSERA_LANES_INLINE I32x8 edgeMisses8(const ScreenPoint8& a, const ScreenPoint8
   const I32x8 dx = b.x - a.x, dy = b.y - a.y;
   const I32x8 zero = splat(int32_t{0});
   const I32x8 top_left = ~nonNegative(dy) | (equal(dy, zero) & ~lessOrEqual(dx, zero));
-  const F64x8 value = toDouble(dx) * toDouble(p.y - a.y) - toDouble(dy) * toDouble(p.x - a.x) +
-                      toDouble(~top_left);
+  const F64x8 value =
+      toDouble(dx) * toDouble(p.y - a.y) - toDouble(dy) * toDouble(p.x - a.x) + toDouble(~top_left);
   return lessThan(value, splat(0.0));
 }
 
