@@ -119,40 +119,64 @@ inline Mesh cullReasonMesh() {
   return m;
 }
 
-// Triangles under a pixel in size, one around the centre of every third pixel of a width x height
-// frame, each with its corners within 0.95 pixel of that centre (so its box holds that centre or
-// none), both windings. `covers[i]`: whether triangle i covers its centre, by a float test that
-// keeps only triangles whose edges pass at least 1/32 pixel from it (the snapping to 1/256 pixel
-// cannot change the answer); `pixel[i]`: that centre's pixel.
-struct LoneCentres {
+// Triangles about a pixel in size, one about the centre c of every third pixel of a width x height
+// frame, its corners within 1.45 pixels of c (so it can cover only the 3 x 3 centres about c), both
+// windings. By float tests that hold whatever the snapping to 1/256 pixel (every corner at least
+// 1/32 pixel from the lines of centres, every edge at least 1/32 pixel from each centre):
+// `pixel[i]`, c's pixel; `covered[i]`, the pixels of the 3 x 3 whose centres triangle i covers;
+// `dropped[i]`, whether setup drops it at one sample (missesEveryCentre): its box holds no
+// centre, or at most two a side and none covered.
+struct FewCentres {
   Scene scene;
   std::vector<std::pair<int, int>> pixel;
-  std::vector<bool> covers;
+  std::vector<std::vector<std::pair<int, int>>> covered;
+  std::vector<bool> dropped;
 };
-inline LoneCentres loneCentreScene(int width, int height) {
-  LoneCentres out{clipSpaceScene(), {}, {}};
+inline FewCentres fewCentreScene(int width, int height) {
+  FewCentres out{clipSpaceScene(), {}, {}, {}};
   Mesh m;
   std::mt19937 rng(17);
-  std::uniform_real_distribution<float> offset(-0.95f, 0.95f);
+  std::uniform_real_distribution<float> offset(-1.45f, 1.45f);
+  const auto off_lines = [](float v) {  // from the centres' lines k + 0.5
+    const float f = v - 0.5f - std::floor(v - 0.5f);
+    return std::min(f, 1.0f - f) > 1.0f / 32.0f;
+  };
   for (int py = 1; py + 1 < height; py += 3)
     for (int px = 1; px + 1 < width; px += 3) {
       const float cx = static_cast<float>(px) + 0.5f, cy = static_cast<float>(py) + 0.5f;
       float x[3], y[3];
+      std::vector<std::pair<int, int>> covered;
+      bool dropped = false;
       for (;;) {
-        for (int k = 0; k < 3; ++k) x[k] = cx + offset(rng), y[k] = cy + offset(rng);
-        const float area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
-        if (std::fabs(area) < 0.1f) continue;
         bool clear = true;
-        int inside = 0;
         for (int k = 0; k < 3; ++k) {
-          const int n = (k + 1) % 3;
-          const float ex = x[n] - x[k], ey = y[n] - y[k];
-          const float cross = ex * (cy - y[k]) - ey * (cx - x[k]);
-          clear &= std::fabs(cross) / std::hypot(ex, ey) > 1.0f / 32.0f;
-          inside += (cross > 0) == (area > 0);
+          x[k] = cx + offset(rng), y[k] = cy + offset(rng);
+          clear &= off_lines(x[k]) && off_lines(y[k]);
+        }
+        const float area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+        if (!clear || std::fabs(area) < 0.1f) continue;
+        covered.clear();
+        int columns = 0, rows = 0;
+        for (int j = -1; j <= 1; ++j) {
+          const float y_c = cy + static_cast<float>(j);
+          rows += y_c > *std::min_element(y, y + 3) && y_c < *std::max_element(y, y + 3);
+          for (int i = -1; i <= 1; ++i) {
+            const float x_c = cx + static_cast<float>(i);
+            if (j == -1)
+              columns += x_c > *std::min_element(x, x + 3) && x_c < *std::max_element(x, x + 3);
+            int inside = 0;
+            for (int k = 0; k < 3; ++k) {
+              const int n = (k + 1) % 3;
+              const float ex = x[n] - x[k], ey = y[n] - y[k];
+              const float cross = ex * (y_c - y[k]) - ey * (x_c - x[k]);
+              clear &= std::fabs(cross) / std::hypot(ex, ey) > 1.0f / 32.0f;
+              inside += (cross > 0) == (area > 0);
+            }
+            if (inside == 3) covered.emplace_back(px + i, py + j);
+          }
         }
         if (!clear) continue;
-        out.covers.push_back(inside == 3);
+        dropped = columns == 0 || rows == 0 || (columns <= 2 && rows <= 2 && covered.empty());
         break;
       }
       const uint32_t base = static_cast<uint32_t>(m.positions.size());
@@ -161,6 +185,8 @@ inline LoneCentres loneCentreScene(int width, int height) {
                                1.0f - 2.0f * y[k] / static_cast<float>(height), 0.0f});
       m.indices.insert(m.indices.end(), {base, base + 1, base + 2});
       out.pixel.emplace_back(px, py);
+      out.covered.push_back(covered);
+      out.dropped.push_back(dropped);
     }
   out.scene.objects.push_back(objectOf(m));
   return out;

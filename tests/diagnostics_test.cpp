@@ -151,33 +151,41 @@ TEST(Diagnostics, CountersAddUpWithEveryCullReasonAndClipping) {
   }
 }
 
-TEST(Diagnostics, TrianglesMissingTheOneCentreOfTheirBoxAreCulledForNoPixel) {
-  // Triangles under a pixel (loneCentreScene): at one sample those whose box's one centre lies
-  // outside them are dropped in setup (missesLoneCentre: the cull kernel's groups of eight and
-  // the triangles past the last group alike), and nothing they would have drawn is missing.
+TEST(Diagnostics, TrianglesMissingTheFewCentresOfTheirBoxAreCulledForNoPixel) {
+  // Triangles about a pixel in size (fewCentreScene): at one sample those whose box holds at most
+  // two centres a side and covers none are dropped in setup (missesEveryCentre: the cull kernel's
+  // groups of eight and the triangles after the last group alike), and nothing they would have
+  // drawn is missing.
   constexpr int kW = 100, kH = 64;  // 33 x 21 triangles: 86 groups of eight and 5 more
-  const LoneCentres lone = loneCentreScene(kW, kH);
-  const size_t n = lone.covers.size();
+  const FewCentres few = fewCentreScene(kW, kH);
+  const size_t n = few.dropped.size();
   ASSERT_NE(n % 8, 0u);
-  const auto covering =
-      static_cast<uint64_t>(std::count(lone.covers.begin(), lone.covers.end(), true));
-  ASSERT_GT(covering, 100u);
-  ASSERT_GT(n - covering, 100u);
-  const Frame one = render(lone.scene, kW, kH);
+  const auto dropped =
+      static_cast<uint64_t>(std::count(few.dropped.begin(), few.dropped.end(), true));
+  ASSERT_GT(dropped, 50u);
+  ASSERT_GT(n - dropped, 300u);
+  const Frame one = render(few.scene, kW, kH);
+  uint64_t covered = 0;
   for (size_t i = 0; i < n; ++i) {
-    const auto [x, y] = lone.pixel[i];
-    EXPECT_EQ(one.idAt(x, y), lone.covers[i] ? static_cast<uint32_t>(i + 1) : kNoTriangle)
-        << "triangle " << i << " at " << x << "," << y;
+    const auto [cx, cy] = few.pixel[i];
+    for (int y = cy - 1; y <= cy + 1; ++y)
+      for (int x = cx - 1; x <= cx + 1; ++x) {
+        const bool in =
+            std::count(few.covered[i].begin(), few.covered[i].end(), std::pair{x, y}) > 0;
+        covered += in;
+        EXPECT_EQ(one.idAt(x, y), in ? static_cast<uint32_t>(i + 1) : kNoTriangle)
+            << "triangle " << i << " at " << x << "," << y;
+      }
   }
   const PipelineCounters& c = one.diagnostics.counters;
-  EXPECT_EQ(c.triangles_setup, covering);
-  EXPECT_EQ(c.culled.no_pixel, n - covering);
-  EXPECT_EQ(c.pixels_passed, covering);
+  EXPECT_EQ(c.triangles_setup, n - dropped);
+  EXPECT_EQ(c.culled.no_pixel, dropped);
+  EXPECT_EQ(c.pixels_passed, covered);
   expectCountersAddUp(c);
-  // With MSAA a box reaches the samples around its centre and nothing is dropped for it: more
-  // triangles are set up, and the centre's ids are the same.
-  const Frame four = render(lone.scene, kW, kH, 1, 4);
-  EXPECT_GT(four.diagnostics.counters.triangles_setup, covering);
+  // With MSAA a box reaches the samples about its centres and nothing is dropped for missing
+  // them: more triangles are set up, and the centres' ids are the same.
+  const Frame four = render(few.scene, kW, kH, 1, 4);
+  EXPECT_GT(four.diagnostics.counters.triangles_setup, n - dropped);
   EXPECT_EQ(four.triangle_id, one.triangle_id);
 }
 

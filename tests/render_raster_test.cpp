@@ -449,29 +449,32 @@ TEST(Raster, CullKernelMatchesThePerTriangleChecks) {
   for (int branch = 0; branch < 5; ++branch) EXPECT_GT(decided[branch], 20) << branch;
 }
 
-// Triangles whose box holds one pixel centre, their corners on a grid of 1/8 pixel about it, so
-// that many edges run exactly through it (the top-left rule decides): the cull kernel of every
-// instruction set, missesLoneCentre (one triangle at a time) and setupRaster (the raster's own
-// edge values at the box's corner) drop the same ones.
-TEST(Raster, LoneCentresAreDroppedAlikeOnEveryPath) {
+// Triangles about a pixel in size, their corners on a grid of 1/8 pixel within two pixels of a
+// pixel centre, so that many edges run exactly through a centre (the top-left rule decides): the
+// cull kernel of every instruction set, missesEveryCentre (one triangle at a time) and setupRaster
+// (the raster's own edge values from the box's corner) drop the same ones.
+TEST(Raster, FewCentresAreDroppedAlikeOnEveryPath) {
   using namespace tessera::render;
   std::mt19937 rng(23);
-  std::uniform_int_distribution<int32_t> eighth(-7, 7), pixel(2, 60);
+  std::uniform_int_distribution<int32_t> eighth(-15, 15), pixel(2, 60);
   const int width = 64, height = 64;
   SetupContext ctx;
   ctx.width = width;
   ctx.height = height;
   ctx.cull = CullMode::kNone;
-  constexpr int kVertices = 24 * 64;
+  constexpr int kVertices = 24 * 256;
   std::vector<ScreenVertex> screen(kVertices);
   for (int t = 0; t < kVertices / 3; ++t) {
     const int32_t cx = pixel(rng) * kSubpixelOne + kSubpixelHalf;
     const int32_t cy = pixel(rng) * kSubpixelOne + kSubpixelHalf;
+    // Half of them within one pixel (a box of one centre at most), half within two.
+    const int32_t step = t % 2 ? 16 : 32;
     for (int k = 0; k < 3; ++k)
-      screen[3 * t + k] = {cx + 32 * eighth(rng), cy + 32 * eighth(rng), 0.5f, 1.0f};
+      screen[3 * t + k] = {cx + step * eighth(rng), cy + step * eighth(rng), 0.5f, 1.0f};
   }
   const std::vector<uint16_t> outcodes(kVertices, 0);
-  int missed = 0, kept = 0, on_edge = 0;
+  std::map<int, int> missed, kept;  // by the box's centres
+  int on_edge = 0;
   for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512}) {
     if (isa > detectIsa()) continue;
     const Kernels kernels = kernelsFor(isa);
@@ -486,29 +489,36 @@ TEST(Raster, LoneCentresAreDroppedAlikeOnEveryPath) {
         const int64_t area = signedArea(v[0], v[1], v[2]);
         const PixelBox box = pixelBox(ctx, v[0], v[1], v[2]);
         if (area == 0 || box.empty()) continue;
-        const bool lone = box.min_x == box.max_x && box.min_y == box.max_y;
-        const bool misses = missesLoneCentre(ctx, box, v[0], v[1], v[2], area);
+        const bool misses = missesEveryCentre(ctx, box, v[0], v[1], v[2], area);
         RasterTriangle raster;
         RasterWide wide;
         TriangleOrientation o;
         SCOPED_TRACE(testing::Message() << isaName(isa) << " group " << group << " lane " << l);
         EXPECT_EQ(setupRaster(ctx, v[0], v[1], v[2], area, raster, wide, o), !misses);
         EXPECT_EQ(out.kind[l], misses ? CullGroup::kCulled : CullGroup::kVisible);
-        if (!lone || isa != Isa::kScalar) continue;
-        (misses ? missed : kept) += 1;
-        // An edge through the centre: a zero edge value before the top-left rule's bias.
-        const int64_t px = int64_t{box.min_x} * kSubpixelOne + kSubpixelHalf;
-        const int64_t py = int64_t{box.min_y} * kSubpixelOne + kSubpixelHalf;
-        for (int k = 0; k < 3; ++k) {
-          const ScreenVertex &a = v[k], &b = v[(k + 1) % 3];
-          on_edge += (int64_t{b.x} - a.x) * (py - a.y) == (int64_t{b.y} - a.y) * (px - a.x);
-        }
+        if (isa != Isa::kScalar) continue;
+        const int centres = (box.max_x - box.min_x + 1) * (box.max_y - box.min_y + 1);
+        (misses ? missed : kept)[centres] += 1;
+        // An edge through a centre of the box: a zero edge value before the top-left bias.
+        for (int y = box.min_y; y <= box.max_y; ++y)
+          for (int x = box.min_x; x <= box.max_x; ++x)
+            for (int k = 0; k < 3; ++k) {
+              const ScreenVertex &a = v[k], &b = v[(k + 1) % 3];
+              const int64_t px = int64_t{x} * kSubpixelOne + kSubpixelHalf;
+              const int64_t py = int64_t{y} * kSubpixelOne + kSubpixelHalf;
+              on_edge += (int64_t{b.x} - a.x) * (py - a.y) == (int64_t{b.y} - a.y) * (px - a.x);
+            }
       }
     }
   }
-  EXPECT_GT(missed, 100);
-  EXPECT_GT(kept, 100);
-  EXPECT_GT(on_edge, 30);
+  // Boxes of one, two and four centres, some missed and some not; larger ones never dropped.
+  for (int centres : {1, 2, 4}) {
+    EXPECT_GT(missed[centres], 20) << centres;
+    EXPECT_GT(kept[centres], 20) << centres;
+  }
+  EXPECT_GT(kept[3] + kept[6] + kept[9], 20);
+  EXPECT_EQ(missed[3] + missed[6] + missed[9], 0);
+  EXPECT_GT(on_edge, 50);
 }
 
 TEST(ChunkLayout, CoversEveryTriangleInOrderAndEndsEachBlockSmall) {
@@ -592,7 +602,7 @@ TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
     for (ScreenVertex& v : t.v) v = {cx + offset(rng), cy + offset(rng), depth(rng), inv_w(rng)};
     t.area = signedArea(t.v[0], t.v[1], t.v[2]);
     const PixelBox box = pixelBox(ctx, t.v[0], t.v[1], t.v[2]);
-    if (t.area == 0 || box.empty() || missesLoneCentre(ctx, box, t.v[0], t.v[1], t.v[2], t.area))
+    if (t.area == 0 || box.empty() || missesEveryCentre(ctx, box, t.v[0], t.v[1], t.v[2], t.area))
       continue;
     triangles.push_back(t);
   }

@@ -298,7 +298,7 @@ void ChunkSetup::drawOne(const ObjectSetup& o, size_t t) {
   const int64_t area = signedArea(v0, v1, v2);
   const PixelBox box =
       cullsArea(o.ctx, area) ? PixelBox{0, 0, -1, -1} : pixelBox(o.ctx, v0, v1, v2);
-  if (box.empty() || missesLoneCentre(o.ctx, box, v0, v1, v2, area)) {
+  if (box.empty() || missesEveryCentre(o.ctx, box, v0, v1, v2, area)) {
     ++chunk_.culled;
     countCullReason(o.ctx, c0, c1, c2, v0, v1, v2, chunk_.cull_reasons);
     return;

@@ -260,30 +260,46 @@ inline void makeEdge(int32_t ax, int32_t ay, int32_t bx, int32_t by, int32_t& a,
   if (!top_left) c -= 1;
 }
 
-// Whether a triangle of signed area `area` (not zero) whose box holds one pixel centre misses it,
-// at one sample a pixel: the raster's edge tests at that centre, in setupRaster's vertex order.
-// Such a triangle writes nothing, and setup drops it as it drops one whose box holds no centre
-// (counted as no_pixel). Meshes of triangles about a pixel in size have many: a third of the dense
-// sphere's set-up triangles at 1920x1080 had a box of one centre, two thirds of them missed. With
-// MSAA the box reaches the samples around the centre (ctx.sample_reach), and nothing is dropped.
-inline bool missesLoneCentre(const SetupContext& ctx, const PixelBox& box, const ScreenVertex& s0,
-                             const ScreenVertex& s1, const ScreenVertex& s2, int64_t area) {
-  if (ctx.sample_reach != 0 || box.min_x != box.max_x || box.min_y != box.max_y) return false;
+// The most pixel centres a side of a box may hold for setup to test each of them
+// (missesEveryCentre), and the most a triangle may span (1/256 pixel) for it: a box is clipped to
+// the viewport, and the cull kernel tests such triangles in 32-bit lanes (below 2^14, its edge
+// values at the centres stay below 2^30).
+constexpr int kFewCentres = 2;
+constexpr int32_t kFewCentresSpan = 1 << 14;
+
+// Whether a triangle of signed area `area` (not zero) whose box holds at most kFewCentres pixel
+// centres a side (and that spans less than kFewCentresSpan) misses all of them, at one sample a
+// pixel: the raster's edge tests at each, in setupRaster's vertex order. Such a triangle writes
+// nothing, and setup drops it as it drops one whose box holds no centre (counted as no_pixel).
+// Meshes of triangles about a pixel in size have many: a third of the dense sphere's set-up
+// triangles at 1920x1080, two thirds at 640x480. With MSAA the box reaches the samples around the
+// centres (ctx.sample_reach), and nothing is dropped.
+inline bool missesEveryCentre(const SetupContext& ctx, const PixelBox& box, const ScreenVertex& s0,
+                              const ScreenVertex& s1, const ScreenVertex& s2, int64_t area) {
+  if (ctx.sample_reach != 0 || box.max_x - box.min_x >= kFewCentres ||
+      box.max_y - box.min_y >= kFewCentres ||
+      std::max({s0.x, s1.x, s2.x}) - std::min({s0.x, s1.x, s2.x}) >= kFewCentresSpan ||
+      std::max({s0.y, s1.y, s2.y}) - std::min({s0.y, s1.y, s2.y}) >= kFewCentresSpan)
+    return false;
   TriangleOrientation o;
   orient(area, o);
   const ScreenVertex* const s[3] = {&s0, &s1, &s2};
   const ScreenVertex &v0 = *s[o.order[0]], &v1 = *s[o.order[1]], &v2 = *s[o.order[2]];
-  const int64_t px = int64_t{box.min_x} * kSubpixelOne + kSubpixelHalf;
-  const int64_t py = int64_t{box.min_y} * kSubpixelOne + kSubpixelHalf;
   const ScreenVertex* const from[3] = {&v1, &v2, &v0};
   const ScreenVertex* const to[3] = {&v2, &v0, &v1};
-  for (int k = 0; k < 3; ++k) {
-    int32_t a, b;
-    int64_t c;
-    makeEdge(from[k]->x, from[k]->y, to[k]->x, to[k]->y, a, b, c);
-    if (a * px + b * py + c < 0) return true;
-  }
-  return false;
+  int32_t a[3], b[3];
+  int64_t c[3];
+  for (int k = 0; k < 3; ++k)
+    makeEdge(from[k]->x, from[k]->y, to[k]->x, to[k]->y, a[k], b[k], c[k]);
+  for (int y = box.min_y; y <= box.max_y; ++y)
+    for (int x = box.min_x; x <= box.max_x; ++x) {
+      const int64_t px = int64_t{x} * kSubpixelOne + kSubpixelHalf;
+      const int64_t py = int64_t{y} * kSubpixelOne + kSubpixelHalf;
+      bool covered = true;
+      for (int k = 0; k < 3; ++k) covered &= a[k] * px + b[k] * py + c[k] >= 0;
+      if (covered) return false;
+    }
+  return true;
 }
 
 // The rest of setupRaster for a triangle that cullsArea kept: false when it covers no pixel

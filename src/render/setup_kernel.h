@@ -65,23 +65,35 @@ struct ScreenPoint8 {
   I32x8 x, y;  // 1/256 pixel
 };
 
-// Lanes where point p misses edge a -> b: makeEdge's value there (setup.h), as (b - a) x (p - a)
-// less 1 off the top-left rule, is negative. In double lanes: exact, the differences are below
-// 2^24 and the products below 2^48.
-TESSERA_LANES_INLINE I32x8 edgeMisses8(const ScreenPoint8& a, const ScreenPoint8& b,
-                                       const ScreenPoint8& p) {
-  const I32x8 dx = b.x - a.x, dy = b.y - a.y;
+// Lanes whose three edges leave each centre of a box of at most 2 x 2 pixel centres outside: the
+// box's first centre p, and `across` and `down` (0 or 1) more to the right and below. Edge k runs
+// from[k] -> to[k]; its value is makeEdge's (setup.h), (b - a) x (p - a) less 1 off the top-left
+// rule, stepped by -dy * 256 a pixel right and dx * 256 a pixel down. In 32-bit lanes: exact for
+// the lanes of `few` (spanning less than kFewCentresSpan, so the values stay below 2^30); the
+// others compute on zeros.
+TESSERA_LANES_INLINE I32x8 missesEveryCentre8(const ScreenPoint8 from[3], const ScreenPoint8 to[3],
+                                              const ScreenPoint8& p, I32x8 few, I32x8 across,
+                                              I32x8 down) {
   const I32x8 zero = splat(int32_t{0});
-  const I32x8 top_left = ~nonNegative(dy) | (equal(dy, zero) & ~lessOrEqual(dx, zero));
-  const F64x8 value =
-      toDouble(dx) * toDouble(p.y - a.y) - toDouble(dy) * toDouble(p.x - a.x) + toDouble(~top_left);
-  return lessThan(value, splat(0.0));
+  I32x8 first = zero, right = zero, below = zero, last = zero;  // the sign: some edge misses
+  for (int k = 0; k < 3; ++k) {
+    const I32x8 dx = (to[k].x - from[k].x) & few, dy = (to[k].y - from[k].y) & few;
+    const I32x8 top_left = ~nonNegative(dy) | (equal(dy, zero) & ~lessOrEqual(dx, zero));
+    const I32x8 e = dx * ((p.y - from[k].y) & few) - dy * ((p.x - from[k].x) & few) + ~top_left;
+    const I32x8 step_x = (zero - shiftLeft(dy, kSubpixelBits)) & (zero - across);
+    const I32x8 step_y = shiftLeft(dx, kSubpixelBits) & (zero - down);
+    first = first | e;
+    right = right | (e + step_x);
+    below = below | (e + step_y);
+    last = last | ((e + step_x) + step_y);
+  }
+  return ~nonNegative(first) & ~nonNegative(right) & ~nonNegative(below) & ~nonNegative(last);
 }
 
 // The cull of eight consecutive triangles (CullGroup), lane by lane as setup's per-triangle checks:
 // outcodes (a non-finite vertex or all three outside one frustum plane drop the triangle; one
 // outside a cut plane sends it to the clipper), then cullsArea on signedArea, then pixelBox and
-// missesLoneCentre.
+// missesEveryCentre.
 bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenVertex* screen,
                      const uint16_t* outcodes, int width, int height, CullMode cull,
                      int32_t sample_reach, CullGroup& out) {
@@ -142,17 +154,22 @@ bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenV
               min_y, max_y);
   const I32x8 empty = lessThan(max_x, min_x) | lessThan(max_y, min_y);
   I32x8 visible = whole & ~culled & ~empty;
-  // missesLoneCentre (setup.h), at one sample a pixel.
+  // missesEveryCentre (setup.h), at one sample a pixel.
   if (sample_reach == 0) {
-    const I32x8 lone = visible & equal(min_x, max_x) & equal(min_y, max_y);
-    if (any(lone)) {
-      // setupRaster's vertex order: front faces (negative area) take the corners 0, 2, 1.
+    const I32x8 across = max_x - min_x, down = max_y - min_y;
+    const I32x8 one = splat(int32_t{kFewCentres - 1}), span = splat(kFewCentresSpan);
+    const I32x8 few = visible & lessOrEqual(across, one) & lessOrEqual(down, one) &
+                      lessThan(maximum(maximum(x0, x1), x2) - minimum(minimum(x0, x1), x2), span) &
+                      lessThan(maximum(maximum(y0, y1), y2) - minimum(minimum(y0, y1), y2), span);
+    if (any(few)) {
+      // setupRaster's vertex order (front faces, of negative area, take the corners 0, 2, 1) and
+      // edges (edge 0 = v1 -> v2, 1 = v2 -> v0, 2 = v0 -> v1).
       const ScreenPoint8 v0{x0, y0}, v1{select(negative, x2, x1), select(negative, y2, y1)},
           v2{select(negative, x1, x2), select(negative, y1, y2)};
+      const ScreenPoint8 from[3] = {v1, v2, v0}, to[3] = {v2, v0, v1};
       const ScreenPoint8 centre{shiftLeft(min_x, kSubpixelBits) + splat(kSubpixelHalf),
                                 shiftLeft(min_y, kSubpixelBits) + splat(kSubpixelHalf)};
-      visible = visible & ~(lone & (edgeMisses8(v1, v2, centre) | edgeMisses8(v2, v0, centre) |
-                                    edgeMisses8(v0, v1, centre)));
+      visible = visible & ~(few & missesEveryCentre8(from, to, centre, few, across, down));
     }
   }
 

@@ -147,13 +147,23 @@ bool setupTriangle(ScreenVertex sv[3], ClipVertex v[3], TriangleContext ctx,
   makeEdge(v1.x, v1.y, v2.x, v2.y, raster.a[0], raster.b[0], raster.c[0]);
   makeEdge(v2.x, v2.y, v0.x, v0.y, raster.a[1], raster.b[1], raster.c[1]);
   makeEdge(v0.x, v0.y, v1.x, v1.y, raster.a[2], raster.b[2], raster.c[2]);
-  // One sample a pixel and a box of one pixel centre: dropped when the centre is outside
-  // (missesLoneCentre, src/render/setup.h), as a box without a centre is.
-  if (frame.samples == 1u && raster.min_x == raster.max_x && raster.min_y == raster.max_y) {
-    const int64_t px = int64_t(raster.min_x) * kSubpixelOne + kSubpixelOne / 2;
-    const int64_t py = int64_t(raster.min_y) * kSubpixelOne + kSubpixelOne / 2;
-    for (int k = 0; k < 3; ++k)
-      if (int64_t(raster.a[k]) * px + int64_t(raster.b[k]) * py + raster.c[k] < 0l) return false;
+  // One sample a pixel and a box of at most 2 x 2 pixel centres (of a triangle spanning less than
+  // 2^14 a side): dropped when every centre is outside (missesEveryCentre, src/render/setup.h),
+  // as a box without a centre is.
+  if (frame.samples == 1u && raster.max_x - raster.min_x < 2 && raster.max_y - raster.min_y < 2 &&
+      hi_x - lo_x < 16384 && hi_y - lo_y < 16384) {
+    bool covered = false;
+    for (int y = raster.min_y; y <= raster.max_y; ++y)
+      for (int x = raster.min_x; x <= raster.max_x; ++x) {
+        const int64_t px = int64_t(x) * kSubpixelOne + kSubpixelOne / 2;
+        const int64_t py = int64_t(y) * kSubpixelOne + kSubpixelOne / 2;
+        bool inside = true;
+        for (int k = 0; k < 3; ++k)
+          inside = inside &&
+                   int64_t(raster.a[k]) * px + int64_t(raster.b[k]) * py + raster.c[k] >= 0l;
+        covered = covered || inside;
+      }
+    if (!covered) return false;
   }
 
   // Screen-space gradients of barycentrics 1 and 2: (edge coefficient) * 256 / area, the
