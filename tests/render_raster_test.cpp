@@ -279,8 +279,9 @@ TEST(Raster, HiZBoundsOfTiltedWallsHoldTheirFarthestCorner) {
       options.msaa = msaa;
       const Frame f = renderAt(scene, options, SimdLevel::kAuto, 1);
       for (auto [px, py] : inside) {
-        if (msaa == 1)
+        if (msaa == 1) {
           EXPECT_GT(f.idAt(px, py), 2u) << "the wall hides a quad at " << px << "," << py;
+        }
         EXPECT_EQ(f.colorAt(px, py), 0xffffffffu)
             << "the wall shows through a quad at " << px << "," << py << ", " << msaa << "x";
       }
@@ -423,7 +424,8 @@ TEST(Raster, CullKernelMatchesThePerTriangleChecks) {
             const ScreenVertex &v0 = screen[idx[0]], &v1 = screen[idx[1]], &v2 = screen[idx[2]];
             const int64_t area = signedArea(v0, v1, v2);
             const PixelBox box = pixelBox(ctx, v0, v1, v2);
-            if (cullsArea(ctx, area) || box.empty()) {
+            if (cullsArea(ctx, area) || box.empty() ||
+                missesEveryCentre(ctx, box, v0, v1, v2, area)) {
               EXPECT_EQ(out.kind[l], CullGroup::kCulled);
               ++decided[cullsArea(ctx, area) ? 2 : 3];
               continue;

@@ -38,21 +38,10 @@ bool setupRaster(const SetupContext& ctx, const ScreenVertex& sv0, const ScreenV
   for (int k = 0; k < 3; ++k)
     raster.corner[k] =
         small ? static_cast<int32_t>(raster.a[k] * px + raster.b[k] * py + wide.c[k]) : 0;
-  // A box of few centres, all missed (missesEveryCentre's test, from the values just formed).
-  if (small && ctx.sample_reach == 0 && box.max_x - box.min_x < kFewCentres &&
-      box.max_y - box.min_y < kFewCentres && box_w < kFewCentresSpan && box_h < kFewCentresSpan) {
-    bool covered = false;
-    for (int y = 0; y <= box.max_y - box.min_y; ++y)
-      for (int x = 0; x <= box.max_x - box.min_x; ++x) {
-        bool inside = true;
-        for (int k = 0; k < 3; ++k)
-          inside &= raster.corner[k] +
-                        (int64_t{raster.a[k]} * x + int64_t{raster.b[k]} * y) * kSubpixelOne >=
-                    0;
-        covered |= inside;
-      }
-    if (!covered) return false;
-  }
+  // A box of few centres, all missed (missesEveryCentre, on the edges just formed).
+  if (testsEveryCentre(ctx, box, box_w, box_h) &&
+      edgesMissEveryCentre(raster.a, raster.b, wide.c, box))
+    return false;
 
   // Screen-space planes on the snapped positions, in pixels: lambda_1 = E_20 / area,
   // lambda_2 = E_01 / area. The gradients are (edge coefficient) * 256 / area, exact in the

@@ -267,20 +267,44 @@ inline void makeEdge(int32_t ax, int32_t ay, int32_t bx, int32_t by, int32_t& a,
 constexpr int kFewCentres = 2;
 constexpr int32_t kFewCentresSpan = 1 << 14;
 
+// Whether setup tests each pixel centre of `box` (missesEveryCentre): one sample a pixel, at most
+// kFewCentres centres a side, and a triangle spanning (span_x, span_y, in 1/256 pixel) less than
+// kFewCentresSpan.
+inline bool testsEveryCentre(const SetupContext& ctx, const PixelBox& box, int64_t span_x,
+                             int64_t span_y) {
+  return ctx.sample_reach == 0 && box.max_x - box.min_x < kFewCentres &&
+         box.max_y - box.min_y < kFewCentres && span_x < kFewCentresSpan &&
+         span_y < kFewCentresSpan;
+}
+
+// Whether edges a, b, c (makeEdge's, in setupRaster's order) leave every pixel centre of `box`
+// outside: the raster's tests at each.
+inline bool edgesMissEveryCentre(const int32_t a[3], const int32_t b[3], const int64_t c[3],
+                                 const PixelBox& box) {
+  for (int y = box.min_y; y <= box.max_y; ++y)
+    for (int x = box.min_x; x <= box.max_x; ++x) {
+      const int64_t px = int64_t{x} * kSubpixelOne + kSubpixelHalf;
+      const int64_t py = int64_t{y} * kSubpixelOne + kSubpixelHalf;
+      bool covered = true;
+      for (int k = 0; k < 3; ++k) covered &= a[k] * px + b[k] * py + c[k] >= 0;
+      if (covered) return false;
+    }
+  return true;
+}
+
 // Whether a triangle of signed area `area` (not zero) whose box holds at most kFewCentres pixel
-// centres a side (and that spans less than kFewCentresSpan) misses all of them, at one sample a
-// pixel: the raster's edge tests at each, in setupRaster's vertex order. Such a triangle writes
-// nothing, and setup drops it as it drops one whose box holds no centre (counted as no_pixel).
-// Meshes of triangles about a pixel in size have many: a third of the dense sphere's set-up
-// triangles at 1920x1080, two thirds at 640x480. With MSAA the box reaches the samples around the
-// centres (ctx.sample_reach), and nothing is dropped.
+// centres a side (and that spans less than kFewCentresSpan: testsEveryCentre) misses all of them,
+// at one sample a pixel: the raster's edge tests at each, in setupRaster's vertex order. Such a
+// triangle writes nothing, and setup drops it as it drops one whose box holds no centre (counted
+// as no_pixel): drawOne and the cull kernel by this test, setupRaster by edgesMissEveryCentre on
+// the edges it forms. Meshes of triangles about a pixel in size have many: a third of the dense
+// sphere's set-up triangles at 1920x1080, two thirds at 640x480. With MSAA the box reaches the
+// samples around the centres (ctx.sample_reach), and nothing is dropped.
 inline bool missesEveryCentre(const SetupContext& ctx, const PixelBox& box, const ScreenVertex& s0,
                               const ScreenVertex& s1, const ScreenVertex& s2, int64_t area) {
-  if (ctx.sample_reach != 0 || box.max_x - box.min_x >= kFewCentres ||
-      box.max_y - box.min_y >= kFewCentres ||
-      std::max({s0.x, s1.x, s2.x}) - std::min({s0.x, s1.x, s2.x}) >= kFewCentresSpan ||
-      std::max({s0.y, s1.y, s2.y}) - std::min({s0.y, s1.y, s2.y}) >= kFewCentresSpan)
-    return false;
+  const int64_t span_x = std::max({s0.x, s1.x, s2.x}) - std::min({s0.x, s1.x, s2.x});
+  const int64_t span_y = std::max({s0.y, s1.y, s2.y}) - std::min({s0.y, s1.y, s2.y});
+  if (!testsEveryCentre(ctx, box, span_x, span_y)) return false;
   TriangleOrientation o;
   orient(area, o);
   const ScreenVertex* const s[3] = {&s0, &s1, &s2};
@@ -291,15 +315,7 @@ inline bool missesEveryCentre(const SetupContext& ctx, const PixelBox& box, cons
   int64_t c[3];
   for (int k = 0; k < 3; ++k)
     makeEdge(from[k]->x, from[k]->y, to[k]->x, to[k]->y, a[k], b[k], c[k]);
-  for (int y = box.min_y; y <= box.max_y; ++y)
-    for (int x = box.min_x; x <= box.max_x; ++x) {
-      const int64_t px = int64_t{x} * kSubpixelOne + kSubpixelHalf;
-      const int64_t py = int64_t{y} * kSubpixelOne + kSubpixelHalf;
-      bool covered = true;
-      for (int k = 0; k < 3; ++k) covered &= a[k] * px + b[k] * py + c[k] >= 0;
-      if (covered) return false;
-    }
-  return true;
+  return edgesMissEveryCentre(a, b, c, box);
 }
 
 // The rest of setupRaster for a triangle that cullsArea kept: false when it covers no pixel

@@ -37,15 +37,20 @@ struct Edge8 {
   F64x8 c;  // exact: below 2^48
 };
 
-// As makeEdge (setup.cpp). c is computed in double lanes: exact, since the coordinates are below
+// makeEdge's top-left rule for an edge running (dx, dy), lane by lane: -1 off the rule, else 0
+// (what makeEdge subtracts from c).
+TESSERA_LANES_INLINE I32x8 offTopLeft(I32x8 dx, I32x8 dy) {
+  const I32x8 zero = splat(int32_t{0});
+  return nonNegative(dy) & ~(equal(dy, zero) & ~lessOrEqual(dx, zero));
+}
+
+// As makeEdge (setup.h). c is computed in double lanes: exact, since the coordinates are below
 // 2^23 in magnitude and their differences below 2^24, the products stay below 2^47.
 TESSERA_LANES_INLINE Edge8 makeEdge8(const ScreenVertex8& p, const ScreenVertex8& q) {
   const I32x8 dx = q.x - p.x, dy = q.y - p.y;
   const F64x8 c = toDouble(dy) * toDouble(p.x) - toDouble(dx) * toDouble(p.y);
-  const I32x8 zero = splat(int32_t{0});
-  const I32x8 top_left = ~nonNegative(dy) | (equal(dy, zero) & ~lessOrEqual(dx, zero));
   // Off the top-left rule c - 1: the mask's -1 added as a double.
-  return {p.y - q.y, dx, c + toDouble(~top_left)};
+  return {p.y - q.y, dx, c + toDouble(offTopLeft(dx, dy))};
 }
 
 TESSERA_LANES_INLINE ScreenVertex8 selectVertex(I32x8 mask, const ScreenVertex8& a,
@@ -78,8 +83,8 @@ TESSERA_LANES_INLINE I32x8 missesEveryCentre8(const ScreenPoint8 from[3], const 
   I32x8 first = zero, right = zero, below = zero, last = zero;  // the sign: some edge misses
   for (int k = 0; k < 3; ++k) {
     const I32x8 dx = (to[k].x - from[k].x) & few, dy = (to[k].y - from[k].y) & few;
-    const I32x8 top_left = ~nonNegative(dy) | (equal(dy, zero) & ~lessOrEqual(dx, zero));
-    const I32x8 e = dx * ((p.y - from[k].y) & few) - dy * ((p.x - from[k].x) & few) + ~top_left;
+    const I32x8 e =
+        dx * ((p.y - from[k].y) & few) - dy * ((p.x - from[k].x) & few) + offTopLeft(dx, dy);
     const I32x8 step_x = (zero - shiftLeft(dy, kSubpixelBits)) & (zero - across);
     const I32x8 step_y = shiftLeft(dx, kSubpixelBits) & (zero - down);
     first = first | e;
@@ -148,10 +153,10 @@ bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenV
   // pixelBox.
   I32x8 min_x, max_x, min_y, max_y;
   const I32x8 reach = splat(sample_reach);
-  pixelRange8(minimum(minimum(x0, x1), x2) - reach, maximum(maximum(x0, x1), x2) + reach, width,
-              min_x, max_x);
-  pixelRange8(minimum(minimum(y0, y1), y2) - reach, maximum(maximum(y0, y1), y2) + reach, height,
-              min_y, max_y);
+  const I32x8 lo_x = minimum(minimum(x0, x1), x2), hi_x = maximum(maximum(x0, x1), x2);
+  const I32x8 lo_y = minimum(minimum(y0, y1), y2), hi_y = maximum(maximum(y0, y1), y2);
+  pixelRange8(lo_x - reach, hi_x + reach, width, min_x, max_x);
+  pixelRange8(lo_y - reach, hi_y + reach, height, min_y, max_y);
   const I32x8 empty = lessThan(max_x, min_x) | lessThan(max_y, min_y);
   I32x8 visible = whole & ~culled & ~empty;
   // missesEveryCentre (setup.h), at one sample a pixel.
@@ -159,8 +164,7 @@ bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenV
     const I32x8 across = max_x - min_x, down = max_y - min_y;
     const I32x8 one = splat(int32_t{kFewCentres - 1}), span = splat(kFewCentresSpan);
     const I32x8 few = visible & lessOrEqual(across, one) & lessOrEqual(down, one) &
-                      lessThan(maximum(maximum(x0, x1), x2) - minimum(minimum(x0, x1), x2), span) &
-                      lessThan(maximum(maximum(y0, y1), y2) - minimum(minimum(y0, y1), y2), span);
+                      lessThan(hi_x - lo_x, span) & lessThan(hi_y - lo_y, span);
     if (any(few)) {
       // setupRaster's vertex order (front faces, of negative area, take the corners 0, 2, 1) and
       // edges (edge 0 = v1 -> v2, 1 = v2 -> v0, 2 = v0 -> v1).
