@@ -100,6 +100,12 @@ TESSERA_LANES_INLINE void transpose8x8(F32x8 r[8]) {
     for (int j = 0; j < 8; ++j) t[i].v[j] = r[j].v[i];
   for (int i = 0; i < 8; ++i) r[i] = t[i];
 }
+// Bit l set where lane l of the mask is (its sign bit, as a comparison leaves it).
+TESSERA_LANES_INLINE unsigned laneBits(I32x8 mask) {
+  unsigned bits = 0;
+  for (int l = 0; l < 8; ++l) bits |= static_cast<unsigned>(mask.v[l] < 0) << l;
+  return bits;
+}
 // The first lane of a mask that is not all zero.
 TESSERA_LANES_INLINE int firstLane(I32x8 mask) {
   int l = 0;

@@ -113,6 +113,20 @@ TESSERA_LANES_INLINE void transpose8x8(F32x8 r[8]) {
   }
 #endif
 }
+// Bit l set where lane l of the mask is (its sign bit, as a comparison leaves it).
+TESSERA_LANES_INLINE unsigned laneBits(I32x8 mask) {
+#if defined(__AVX__)
+  return static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(mask)));
+#elif defined(__SSE2__)
+  __m128 half[2];
+  std::memcpy(half, &mask, sizeof half);
+  return static_cast<unsigned>(_mm_movemask_ps(half[0]) | (_mm_movemask_ps(half[1]) << 4));
+#else
+  unsigned bits = 0;
+  for (int l = 0; l < 8; ++l) bits |= static_cast<unsigned>(mask[l] < 0) << l;
+  return bits;
+#endif
+}
 // The first lane of a mask that is not all zero.
 TESSERA_LANES_INLINE int firstLane(I32x8 mask) {
 #if defined(__AVX__)
