@@ -94,14 +94,17 @@ struct SolidColours {
 
 // The groups of eight pixels of row ty of a tile, sorted without a branch per group: bit g of
 // `single` (of `several`) set where group g holds covered pixels of one triangle (of more than
-// one); first[g] is the key of its first covered pixel (kEmptyKey where none is). The shading
-// then takes each kind in a loop of its own: along a row the kind changes from group to group,
-// and a branch between the two, group by group, mispredicted (BM_TileShade 6-9% longer).
+// one), and with `mixed` (MsaaShading's flags, or null) of `sampled` where it holds a mixed
+// pixel (not then in the other two); first[g] is the key of its first covered pixel (kEmptyKey
+// where none is). The shading then takes each kind in a loop of its own: along a row the kind
+// changes from group to group, and a branch between them, group by group, mispredicted
+// (BM_TileShade 6-9% longer).
 struct RowGroups {
-  uint32_t single = 0, several = 0;
+  uint32_t single = 0, several = 0, sampled = 0;
   uint32_t first[kTileSize / 8];
 };
-TESSERA_LANES_INLINE RowGroups sortRowGroups(const TileVisibility& tile, int ty) {
+TESSERA_LANES_INLINE RowGroups sortRowGroups(const TileVisibility& tile, int ty,
+                                             const int32_t* mixed) {
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   RowGroups r;
   for (int tx = 0, g = 0; tx < tile.width; tx += 8, ++g) {
@@ -111,9 +114,11 @@ TESSERA_LANES_INLINE RowGroups sortRowGroups(const TileVisibility& tile, int ty)
     // An empty group's "first" is its last lane, kEmptyKey, and it holds no other key.
     const int32_t first = lane(keys, __builtin_ctz(bits | 0x80u));
     const bool several = any(covered & ~equal(keys, splat(first)));
+    const bool sampled = mixed && any(load<I32x8>(mixed + ty * kTileSize + tx));
     r.first[g] = static_cast<uint32_t>(first);
-    r.single |= static_cast<uint32_t>(bits != 0 && !several) << g;
-    r.several |= static_cast<uint32_t>(several) << g;
+    r.single |= static_cast<uint32_t>(bits != 0 && !several && !sampled) << g;
+    r.several |= static_cast<uint32_t>(several && !sampled) << g;
+    r.sampled |= static_cast<uint32_t>(sampled) << g;
   }
   return r;
 }
@@ -170,85 +175,53 @@ TESSERA_LANES_INLINE void storeLinear(float linear[3][kTileSize], int tx, const 
   store(linear[2] + tx, color.z);
 }
 
-// shadePlainRow with MSAA: a group holding a mixed pixel is resolved with the row's other such
-// groups (shadePlainSampled, then `queue`'s fragments eight at a time), in pixel order.
-TESSERA_LANES_INLINE void shadePlainSampledRow(const TileVisibility& tile, int ty,
-                                               const ShadeTriangle* const records[],
-                                               const MsaaShading& msaa, FragmentQueue& queue,
-                                               float linear[3][kTileSize],
-                                               uint32_t solid[kTileSize / 8],
-                                               SolidColours& solids) {
-  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
-  const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
-  bool row_mixed = false;
-  const auto shade_queued = [&](int first, int count) __attribute__((always_inline)) {
-    shadeQueuedPlain(records, queue, first, count, tile.x0, tile.y0 + ty, linear);
-  };
-  for (int tx = 0; tx < tile.width; tx += 8) {
-    const int i = ty * kTileSize + tx;
-    const I32x8 keys = load<I32x8>(tile.key + i);
-    const I32x8 covered = ~equal(keys, empty);
-    solid[tx / 8] = kSolidEmpty;
-    if (!any(covered)) continue;
-    solid[tx / 8] = kNoSolid;
-    Vec3x8 color;
-    const I32x8 mixed = load<I32x8>(msaa.tiles->mixed + i);
-    const bool sampled = any(mixed);
-    if (sampled) {
-      color = shadePlainSampled(msaa, records, i, tx, tile.x0 + tx, tile.y0 + ty, mixed, queue);
-    } else {
-      const F32x8 px = pixelCentresX(tile, tx);
-      const uint32_t first = static_cast<uint32_t>(lane(keys, firstLane(covered)));
-      if (any(covered & ~equal(keys, splat(static_cast<int32_t>(first)))))
-        color = shadePlainSeveral(records, keys, covered, first, px, py);
-      else
-        color = shadePlainSingle(records, first, px, py, solids, solid[tx / 8]);
-    }
-    storeLinear(linear, tx, color);
-    if (sampled) {
-      row_mixed = true;
-      shadeQueue(queue, false, shade_queued);
-    }
-  }
-  if (row_mixed) {
-    shadeQueue(queue, true, shade_queued);
-    finishMixedRow(msaa, tile, ty, linear);
-  }
-}
-
 // Row ty of a plain tile (every triangle untextured, not Phong, no normal AOV) into the row's
 // linear colours: eight pixels of one triangle take shadePlainSingle, of several shadeMixed, and
-// with MSAA (`kSampled`) shadePlainSampledRow. A function of its own, not inlined into shadeTile:
-// in the one function of every path the compiler kept this loop's colours and masks on the
-// stack, and the plain frames' shading took 10% longer. At one sample the row's groups are sorted
-// first (sortRowGroups): those of one triangle are shaded in one loop, those of several in
-// another.
+// with MSAA (`kSampled`) a group holding a mixed pixel is resolved with the row's other such
+// groups (shadePlainSampled, then `queue`'s fragments eight at a time, each added to its pixel in
+// sample order). The groups are sorted first (sortRowGroups), each kind shaded in a loop of its
+// own. A function of its own, not inlined into shadeTile: in the one function of every path the
+// compiler kept this loop's colours and masks on the stack, and the plain frames' shading took
+// 10% longer.
 template <bool kSampled>
 __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
                                              const ShadeTriangle* const records[],
                                              const MsaaShading* msaa, FragmentQueue* queue,
                                              float linear[3][kTileSize],
                                              uint32_t solid[kTileSize / 8], SolidColours& solids) {
+  const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
+  const RowGroups groups = sortRowGroups(tile, ty, kSampled ? msaa->tiles->mixed : nullptr);
+  for (int g = 0; g * 8 < tile.width; ++g)
+    solid[g] = groups.first[g] == kEmptyKey ? kSolidEmpty : kNoSolid;
+  const auto shade_single = [&](int g) __attribute__((always_inline)) {
+    storeLinear(linear, 8 * g,
+                shadePlainSingle(records, groups.first[g], pixelCentresX(tile, 8 * g), py, solids,
+                                 solid[g]));
+  };
+  const auto shade_several = [&](int g) __attribute__((always_inline)) {
+    const RowGroup r = rowGroup(tile, ty, groups, g);
+    storeLinear(
+        linear, r.tx,
+        shadePlainSeveral(records, r.keys, r.covered, r.first, pixelCentresX(tile, r.tx), py));
+  };
+  forEachGroup(groups.single, shade_single);
+  forEachGroup(groups.several, shade_several);
   if constexpr (kSampled) {
-    shadePlainSampledRow(tile, ty, records, *msaa, *queue, linear, solid, solids);
-  } else {
-    const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
-    const RowGroups groups = sortRowGroups(tile, ty);
-    for (int g = 0; g * 8 < tile.width; ++g)
-      solid[g] = groups.first[g] == kEmptyKey ? kSolidEmpty : kNoSolid;
-    const auto shade_single = [&](int g) __attribute__((always_inline)) {
-      storeLinear(linear, 8 * g,
-                  shadePlainSingle(records, groups.first[g], pixelCentresX(tile, 8 * g), py, solids,
-                                   solid[g]));
+    if (groups.sampled == 0) return;
+    const auto shade_queued = [&](int first, int count) __attribute__((always_inline)) {
+      shadeQueuedPlain(records, *queue, first, count, tile.x0, tile.y0 + ty, linear);
     };
-    const auto shade_several = [&](int g) __attribute__((always_inline)) {
-      const RowGroup r = rowGroup(tile, ty, groups, g);
+    const auto shade_sampled = [&](int g) __attribute__((always_inline)) {
+      const int tx = 8 * g, i = ty * kTileSize + tx;
+      const I32x8 mixed = load<I32x8>(msaa->tiles->mixed + i);
       storeLinear(
-          linear, r.tx,
-          shadePlainSeveral(records, r.keys, r.covered, r.first, pixelCentresX(tile, r.tx), py));
+          linear, tx,
+          shadePlainSampled(*msaa, records, i, tx, tile.x0 + tx, tile.y0 + ty, mixed, *queue));
+      shadeQueue(*queue, false, shade_queued);
     };
-    forEachGroup(groups.single, shade_single);
-    forEachGroup(groups.several, shade_several);
+    forEachGroup(groups.sampled, shade_sampled);
+    shadeQueue(*queue, true, shade_queued);
+    finishMixedRow(*msaa, tile, ty, linear);
   }
 }
 
@@ -273,7 +246,7 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
     shadeApart(r.keys, r.covered, records, extras, lights, want_normals, px, py, color, normal);
     storeShadedGroup(color, normal, want_normals, r.tx, ty * kTileSize + r.tx, linear, out);
   };
-  const RowGroups groups = sortRowGroups(tile, ty);
+  const RowGroups groups = sortRowGroups(tile, ty, nullptr);
   const auto shade_single = [&](int g) __attribute__((always_inline)) {
     const RowGroup r = rowGroup(tile, ty, groups, g);
     const F32x8 px = pixelCentresX(tile, r.tx);
