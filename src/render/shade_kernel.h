@@ -114,7 +114,7 @@ TESSERA_LANES_INLINE RowGroups sortRowGroups(const TileVisibility& tile, int ty,
     // An empty group's "first" is its last lane, kEmptyKey, and it holds no other key.
     const int32_t first = lane(keys, __builtin_ctz(bits | 0x80u));
     const bool several = any(covered & ~equal(keys, splat(first)));
-    const bool sampled = mixed && any(load<I32x8>(mixed + ty * kTileSize + tx));
+    const bool sampled = mixed && bits != 0 && any(load<I32x8>(mixed + ty * kTileSize + tx));
     r.first[g] = static_cast<uint32_t>(first);
     r.single |= static_cast<uint32_t>(bits != 0 && !several && !sampled) << g;
     r.several |= static_cast<uint32_t>(several && !sampled) << g;
