@@ -184,8 +184,9 @@ TESSERA_LANES_INLINE void walkNarrowBox(const RasterTriangle& t, const TileVisib
       centre_y = centre_y + splat(2.0f);
       offset += 2 * kTileSize;
     }
-    // Lanes 4-7 of the last step: row y_end + 1, outside the box.
-    const I32x8 in_box = in_columns & (y < y_end ? splat(int32_t{-1}) : ~second_row);
+    // Lanes 4-7 of the last step: row y_end + 1, outside the box. A comparison, not a branch on
+    // the last step: the branch mispredicted at every box's end.
+    const I32x8 in_box = in_columns & lessOrEqual(splat(y) + second_row, splat(y_end));
     visit(offset, centre_y, edge[0], edge[1], edge[2], in_box);
   }
 }
