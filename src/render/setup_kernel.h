@@ -76,6 +76,7 @@ struct ScreenPoint8 {
 // rule, stepped by -dy * 256 a pixel right and dx * 256 a pixel down. In 32-bit lanes: exact for
 // the lanes of `few` (spanning less than kFewCentresSpan, so the values stay below 2^30); the
 // others compute on zeros.
+static_assert(kFewCentres == 2, "missesEveryCentre8 tests a box of at most 2 x 2 centres");
 TESSERA_LANES_INLINE I32x8 missesEveryCentre8(const ScreenPoint8 from[3], const ScreenPoint8 to[3],
                                               const ScreenPoint8& p, I32x8 few, I32x8 across,
                                               I32x8 down) {

@@ -108,9 +108,7 @@ TESSERA_LANES_INLINE unsigned laneBits(I32x8 mask) {
 }
 // The first lane of a mask that is not all zero.
 TESSERA_LANES_INLINE int firstLane(I32x8 mask) {
-  int l = 0;
-  while (!mask.v[l]) ++l;
-  return l;
+  return __builtin_ctz(laneBits(mask));
 }
 TESSERA_LANES_INLINE I32x8 equal(I32x8 a, I32x8 b) {
   I32x8 r;

@@ -129,18 +129,7 @@ TESSERA_LANES_INLINE unsigned laneBits(I32x8 mask) {
 }
 // The first lane of a mask that is not all zero.
 TESSERA_LANES_INLINE int firstLane(I32x8 mask) {
-#if defined(__AVX__)
-  return __builtin_ctz(static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(mask))));
-#elif defined(__SSE2__)
-  __m128 half[2];
-  std::memcpy(half, &mask, sizeof half);
-  return __builtin_ctz(
-      static_cast<unsigned>(_mm_movemask_ps(half[0]) | (_mm_movemask_ps(half[1]) << 4)));
-#else
-  int l = 0;
-  while (!mask[l]) ++l;
-  return l;
-#endif
+  return __builtin_ctz(laneBits(mask));
 }
 TESSERA_LANES_INLINE I32x8 equal(I32x8 a, I32x8 b) {
   return a == b;
@@ -483,7 +472,7 @@ TESSERA_LANES_INLINE I32x8 compressLanes(I32x8 v, I32x8 mask, int& count) {
   count = __builtin_popcount(k);
   return reinterpret_cast<I32x8>(_mm256_maskz_compress_epi32(k, reinterpret_cast<__m256i>(v)));
 #elif defined(__AVX2__)
-  const unsigned bits = static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(mask)));
+  const unsigned bits = laneBits(mask);
   count = __builtin_popcount(bits);
   const __m256i index =
       _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(kCompressIndices.index[bits])));
