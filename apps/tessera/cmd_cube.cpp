@@ -68,12 +68,10 @@ float4 demoCubeColor() {
   return {srgbToLinear(0.95f), srgbToLinear(0.55f), srgbToLinear(0.15f), 1.0f};
 }
 
-int runCube(const std::vector<std::string>& args) {
-  CubeSettings s;
-  FlagSet flags(
-      "tessera cube [--width 480] [--height 480] [--fps 30] [--duration 4s] [--fov 50] "
-      "[--output cube.gif] [flags]",
-      /*single_dash=*/true);
+namespace {
+
+// The flags of `tessera cube`, writing into s.
+void addCubeFlags(FlagSet& flags, CubeSettings& s) {
   flags.addInt("w|width", &s.width, "image width in pixels (default 480)", 1, 16384);
   flags.addInt("h|height", &s.height, "image height in pixels (default 480)", 1, 16384);
   flags.addInt("fps", &s.fps, "frames per second (default 30)", 1, 100);
@@ -96,36 +94,22 @@ int runCube(const std::vector<std::string>& args) {
                   "print the CRC-32 of each frame's RGBA8 colour pixels: crc32 frame N HEX");
   addSamplingFlags(flags, s.sampling);  // the demo keeps its look: one sample unless asked
   addProgressFlags(flags, s.progress);
+}
 
-  Expected<std::vector<std::string>> positional = flags.parse(args);
-  if (flags.helpRequested()) {
-    std::cout << flags.usage();
-    return kExitOk;
-  }
-  if (!positional) {
-    printError("cube", positional.error().message);
-    std::cerr << flags.hint();
-    return kExitUsage;
-  }
-  if (!positional->empty()) {
-    printError("cube", "unexpected argument '" + positional->front() + "'");
-    std::cerr << flags.hint();
-    return kExitUsage;
-  }
-  const Projection projection = parseProjection(s.projection).value_or(Projection::kPerspective);
+// The frames the settings ask for (a single .png: one, the turn's first), or the usage error
+// printed and 0.
+long long cubeFrameCount(const CubeSettings& s, Projection projection, const FlagSet& flags) {
   if (std::string range = checkViewAngle(
           projection, s.fov, static_cast<float>(s.width) / static_cast<float>(s.height));
       !range.empty()) {
     printError("cube", "-fov: " + range);
-    return kExitUsage;
+    return 0;
   }
   long long frame_count = std::llround(static_cast<double>(s.duration) * s.fps);
   if (frame_count < 1 || frame_count > 100000) {
     printError("cube", "-dur times -fps must give between 1 and 100000 frames");
-    return kExitUsage;
+    return 0;
   }
-
-  // A single .png (no {frame}) is one picture: the turn's first frame.
   const bool sequence = s.output.find("{frame}") != std::string::npos;
   std::string extension = std::filesystem::path(s.output).extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -134,27 +118,23 @@ int runCube(const std::vector<std::string>& args) {
     if (std::string odd = io::mp4SizeProblem(s.width, s.height); !odd.empty()) {
       printError("cube", odd);
       std::cerr << flags.hint();
-      return kExitUsage;
+      return 0;
     }
-  io::AnimationSettings animation{s.width, s.height, s.fps, true};
+  return frame_count;
+}
+
+// The sink for s.output, its folder made first.
+Expected<std::unique_ptr<io::FrameSink>> openCubeSink(const CubeSettings& s) {
+  const bool sequence = s.output.find("{frame}") != std::string::npos;
   const std::filesystem::path first_output =
       sequence ? io::formatFramePath(s.output, 0) : std::filesystem::path(s.output);
-  if (Expected<void> folder = io::createParentFolders(first_output); !folder) {
-    printError("cube", folder.error().message);
-    return kExitFailure;
-  }
-  Expected<std::unique_ptr<io::FrameSink>> sink = io::openFrameSink(s.output, animation);
-  if (!sink) {
-    printError("cube", sink.error().message);
-    return kExitFailure;
-  }
+  if (Expected<void> folder = io::createParentFolders(first_output); !folder) return folder.error();
+  return io::openFrameSink(s.output, io::AnimationSettings{s.width, s.height, s.fps, true});
+}
 
-  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
-  if (!backend) {
-    printError("cube", backend.error().message);
-    return kExitFailure;
-  }
-  Backend& renderer = **backend;
+// The turn's frames rendered and added to `sink`, then finished.
+Expected<void> renderTurn(const CubeSettings& s, Projection projection, long long frame_count,
+                          Backend& renderer, io::FrameSink& sink) {
   Scene scene = makeCubeScene(s);
   RenderOptions options;
   options.width = s.width;
@@ -172,22 +152,58 @@ int runCube(const std::vector<std::string>& args) {
         quat::fromAxisAngle({0, 1, 0}, angle) * quat::fromAxisAngle({1, 0, 0}, 0.35f);
     if (Expected<void> rendered =
             renderSampled(renderer, accumulator, scene, options, s.sampling, frame);
-        !rendered) {
-      printError("cube", rendered.error().message);
-      return kExitFailure;
-    }
-    if (Expected<void> added = (*sink)->addFrame(frame.color.data()); !added) {
-      printError("cube", added.error().message);
-      return kExitFailure;
-    }
+        !rendered)
+      return rendered;
+    if (Expected<void> added = sink.addFrame(frame.color.data()); !added) return added;
     if (s.crc) printFrameCrc(static_cast<int>(i), frame);
     progress.update(static_cast<int>(i + 1));
   }
-  if (Expected<void> done = (*sink)->finish(); !done) {
+  if (Expected<void> done = sink.finish(); !done) return done;
+  progress.finish();
+  return {};
+}
+
+}  // namespace
+
+int runCube(const std::vector<std::string>& args) {
+  CubeSettings s;
+  FlagSet flags(
+      "tessera cube [--width 480] [--height 480] [--fps 30] [--duration 4s] [--fov 50] "
+      "[--output cube.gif] [flags]",
+      /*single_dash=*/true);
+  addCubeFlags(flags, s);
+  Expected<std::vector<std::string>> positional = flags.parse(args);
+  if (flags.helpRequested()) {
+    std::cout << flags.usage();
+    return kExitOk;
+  }
+  if (!positional) {
+    printError("cube", positional.error().message);
+    std::cerr << flags.hint();
+    return kExitUsage;
+  }
+  if (!positional->empty()) {
+    printError("cube", "unexpected argument '" + positional->front() + "'");
+    std::cerr << flags.hint();
+    return kExitUsage;
+  }
+  const Projection projection = parseProjection(s.projection).value_or(Projection::kPerspective);
+  const long long frame_count = cubeFrameCount(s, projection, flags);
+  if (frame_count == 0) return kExitUsage;
+  Expected<std::unique_ptr<io::FrameSink>> sink = openCubeSink(s);
+  if (!sink) {
+    printError("cube", sink.error().message);
+    return kExitFailure;
+  }
+  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device);
+  if (!backend) {
+    printError("cube", backend.error().message);
+    return kExitFailure;
+  }
+  if (Expected<void> done = renderTurn(s, projection, frame_count, **backend, **sink); !done) {
     printError("cube", done.error().message);
     return kExitFailure;
   }
-  progress.finish();
   if (!s.progress.quiet)
     std::cout << "wrote " << s.output << " (" << frame_count
               << (frame_count == 1 ? " frame, " : " frames, ") << s.width << "x" << s.height
