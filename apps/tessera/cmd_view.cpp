@@ -353,6 +353,40 @@ viewer::ViewerOptions viewerOptions(const ViewSettings& s, Projection projection
   options.view_direction = threeQuarterDirection({0, 1, 0});
   return options;
 }
+// What every model the viewer loads takes from the flags: --texture's albedo (read here), the
+// shading, budgets, lights, grid and tone, and --hdri's environment (read once here).
+Expected<ViewLoad> makeViewLoad(const ViewSettings& s) {
+  ModelSceneSettings scene_settings;
+  if (!s.texture.empty()) {
+    Expected<Texture> texture = io::loadTexture(s.texture, /*srgb=*/true, s.budget.texturePixels());
+    if (!texture) return texture.error();
+    scene_settings.albedo = std::make_shared<const Texture>(std::move(*texture));
+  }
+  ViewLoad load{scene_settings,
+                s.shading,
+                s.budget,
+                s.lights,
+                s.animation_index,
+                std::make_shared<std::atomic<bool>>(false),
+                s.grid,
+                s.tone,
+                nullptr,
+                false,
+                float3x3{}};
+  if (!s.hdri.empty()) {
+    Scene lit;  // applyEnvironment's image, prepared once for every load
+    SurfaceSettings surface;
+    surface.hdri = s.hdri;
+    surface.hdri_background = s.hdri_background;
+    if (Expected<void> read = applyEnvironment(surface, s.budget.texturePixels(), {0, 1, 0}, lit);
+        !read)
+      return read.error();
+    load.environment = lit.environment;
+    load.environment_background = lit.environment_background;
+    load.world_to_environment = lit.world_to_environment;
+  }
+  return load;
+}
 #endif
 
 }  // namespace
@@ -398,41 +432,12 @@ int runView(const std::vector<std::string>& args) {
     }
   }
 
-  ModelSceneSettings scene_settings;
-  if (!s.texture.empty()) {
-    Expected<Texture> texture = io::loadTexture(s.texture, /*srgb=*/true, s.budget.texturePixels());
-    if (!texture) {
-      printError("view", texture.error().message);
-      return kExitFailure;
-    }
-    scene_settings.albedo = std::make_shared<const Texture>(std::move(*texture));
+  Expected<ViewLoad> made = makeViewLoad(s);
+  if (!made) {
+    printError("view", made.error().message);
+    return kExitFailure;
   }
-
-  ViewLoad load{scene_settings,
-                s.shading,
-                s.budget,
-                s.lights,
-                s.animation_index,
-                std::make_shared<std::atomic<bool>>(false),
-                s.grid,
-                s.tone,
-                nullptr,
-                false,
-                float3x3{}};
-  if (!s.hdri.empty()) {
-    Scene lit;  // applyEnvironment's image, prepared once for every load
-    SurfaceSettings surface;
-    surface.hdri = s.hdri;
-    surface.hdri_background = s.hdri_background;
-    if (Expected<void> read = applyEnvironment(surface, s.budget.texturePixels(), {0, 1, 0}, lit);
-        !read) {
-      printError("view", read.error().message);
-      return kExitFailure;
-    }
-    load.environment = lit.environment;
-    load.environment_background = lit.environment_background;
-    load.world_to_environment = lit.world_to_environment;
-  }
+  ViewLoad& load = *made;
   // --animation-index and --camera-index are checked against the model before the window opens;
   // the viewer's first load then takes this scene.
   auto preloaded = std::make_shared<PreloadedScene>();
