@@ -106,6 +106,9 @@ struct alignas(128) TriangleChunk {
   bool reads_normals = false;
   // And some such record reads its corners' world positions (needsWorld): those are prefetched too.
   bool reads_world = false;
+  // Some record may be textured without per-pixel lighting (texturedPlain, mixed_lanes.h): the
+  // shading then looks for groups of eight pixels of two such triangles (shade_kernel.h).
+  bool textured_plain = false;
   ChunkBins bins;
   // Records whose material is alphaMode BLEND, in submission order: left out of `bins` for the
   // transparent pass (blend.h).

@@ -151,6 +151,8 @@ ObjectSetup ChunkSetup::objectSetup(size_t object_index) {
   if (xf.winding_sign < 0.0f) o.plain_gouraud.applies = false;
   chunk_.reads_normals |= writesNormals(ctx.shading, want_normals_);
   chunk_.reads_world |= writesWorld(lights_, ctx.shading);
+  chunk_.textured_plain |=
+      ctx.has_uv && ctx.shading != Shading::kPhong && ctx.shading != Shading::kPbr;
   // One look at the object's materials. alphaMode MASK: the raster tests such triangles' alpha
   // (rasterMasked), in the chunks that hold one.
   for (const Material& m : object.materials) {
@@ -367,6 +369,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
   chunk.any_masked = false;
   chunk.reads_normals = false;
   chunk.reads_world = false;
+  chunk.textured_plain = false;
   chunk.blended.clear();
 
   ChunkSetup setup(objects, cull, lights, kernels, scene, vertices, grid, guard, want_normals,

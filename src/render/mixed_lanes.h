@@ -236,10 +236,30 @@ TESSERA_LANES_INLINE void prepareTexturedGroup(const ShadeTriangle& t, const Sha
                                                TexturedGroup& group) {
   F32x8 f[kPlainFields], corner[8];
   const float* fields = &t.x0;
+#pragma GCC unroll 18
   for (int k = 0; k < kPlainFields; ++k) f[k] = splat(fields[k]);
   const float* uv = &uvSet(e, t.material->sampler)->x;
   for (int k = 0; k < 6; ++k) corner[k] = splat(uv[k]);
   prepareTexturedFields(f, corner, t.material, covered, px, py, group);
+}
+
+// prepareTexturedFields for eight pixels of two triangles a and b of one material (each
+// texturedGroupApplies), the lanes of `in_b` b's and the others a's: each lane's fields picked from
+// its triangle's record, the values loadPlainFields and uvCorners8 give, so the same bits.
+TESSERA_LANES_INLINE void prepareTexturedGroup(const ShadeTriangle& a, const ShadeExtras& ea,
+                                               const ShadeTriangle& b, const ShadeExtras& eb,
+                                               I32x8 in_b, I32x8 covered, F32x8 px, F32x8 py,
+                                               TexturedGroup& group) {
+  F32x8 f[kPlainFields], corner[8];
+  const float* fa = &a.x0;
+  const float* fb = &b.x0;
+#pragma GCC unroll 18
+  for (int k = 0; k < kPlainFields; ++k) f[k] = select(in_b, splat(fb[k]), splat(fa[k]));
+  const float* ua = &uvSet(ea, a.material->sampler)->x;
+  const float* ub = &uvSet(eb, b.material->sampler)->x;
+#pragma GCC unroll 6
+  for (int k = 0; k < 6; ++k) corner[k] = select(in_b, splat(ub[k]), splat(ua[k]));
+  prepareTexturedFields(f, corner, a.material, covered, px, py, group);
 }
 
 // The prepared group's colour: its vertex colours times the filtered albedo, tone-mapped. The same

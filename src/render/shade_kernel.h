@@ -99,12 +99,15 @@ struct SolidColours {
 // where none is). The shading then takes each kind in a loop of its own: along a row the kind
 // changes from group to group, and a branch between them, group by group, mispredicted
 // (BM_TileShade 6-9% longer).
+// With `two` (shadeRow, in tiles that may hold textured triangles), bit g of `two` is also set
+// where group g's covered pixels hold exactly two triangles (it stays in `several`), second[g]
+// the other's key.
 struct RowGroups {
-  uint32_t single = 0, several = 0, sampled = 0;
-  uint32_t first[kTileSize / 8];
+  uint32_t single = 0, several = 0, sampled = 0, two = 0;
+  uint32_t first[kTileSize / 8], second[kTileSize / 8];
 };
 TESSERA_LANES_INLINE RowGroups sortRowGroups(const TileVisibility& tile, int ty,
-                                             const int32_t* mixed) {
+                                             const int32_t* mixed, bool two = false) {
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   RowGroups r;
   for (int tx = 0, g = 0; tx < tile.width; tx += 8, ++g) {
@@ -113,12 +116,20 @@ TESSERA_LANES_INLINE RowGroups sortRowGroups(const TileVisibility& tile, int ty,
     const unsigned bits = laneBits(covered);
     // An empty group's "first" is its last lane, kEmptyKey, and it holds no other key.
     const int32_t first = lane(keys, __builtin_ctz(bits | 0x80u));
-    const bool several = any(covered & ~equal(keys, splat(first)));
+    const I32x8 others = covered & ~equal(keys, splat(first));
+    const bool several = any(others);
     const bool sampled = mixed && bits != 0 && any(load<I32x8>(mixed + ty * kTileSize + tx));
     r.first[g] = static_cast<uint32_t>(first);
     r.single |= static_cast<uint32_t>(bits != 0 && !several && !sampled) << g;
     r.several |= static_cast<uint32_t>(several && !sampled) << g;
     r.sampled |= static_cast<uint32_t>(sampled) << g;
+    if (two) {
+      const int32_t second = lane(keys, __builtin_ctz(laneBits(others) | 0x80u));
+      r.second[g] = static_cast<uint32_t>(second);
+      r.two |=
+          static_cast<uint32_t>(several && !sampled && !any(others & ~equal(keys, splat(second))))
+          << g;
+    }
   }
   return r;
 }
@@ -232,7 +243,7 @@ template <bool kSampled>
 __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
                                         const ShadeTriangle* const records[],
                                         const ShadeExtras* const extras[], const LightRig& lights,
-                                        bool want_normals, const MsaaShading* msaa,
+                                        bool want_normals, bool textured, const MsaaShading* msaa,
                                         FragmentQueue* queue, float linear[3][kTileSize],
                                         ShadedTile& out) {
   const F32x8 zero = splat(0.0f);
@@ -246,7 +257,7 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
     shadeApart(r.keys, r.covered, records, extras, lights, want_normals, px, py, color, normal);
     storeShadedGroup(color, normal, want_normals, r.tx, ty * kTileSize + r.tx, linear, out);
   };
-  const RowGroups groups = sortRowGroups(tile, ty, nullptr);
+  const RowGroups groups = sortRowGroups(tile, ty, nullptr, textured && !want_normals);
   const auto shade_single = [&](int g) __attribute__((always_inline)) {
     const RowGroup r = rowGroup(tile, ty, groups, g);
     const F32x8 px = pixelCentresX(tile, r.tx);
@@ -290,9 +301,29 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
     }
     shade_apart(r, px, color);
   };
-  // Groups of one triangle first, then those of several (sortRowGroups).
+  // Two triangles textured alike: each lane's fields picked from the two records, not eight
+  // records loaded and transposed.
+  const auto shade_two = [&](int g) __attribute__((always_inline)) {
+    const uint32_t ka = groups.first[g], kb = groups.second[g];
+    const ShadeTriangle& a = records[keyChunk(ka)][keyLocal(ka)];
+    const ShadeTriangle& b = records[keyChunk(kb)][keyLocal(kb)];
+    if (b.material != a.material || !texturedPlain(b) || !texturedGroupApplies(a)) {
+      shade_several(g);
+      return;
+    }
+    const RowGroup r = rowGroup(tile, ty, groups, g);
+    TexturedGroup& group = textured_groups[textured_count];
+    prepareTexturedGroup(a, extras[keyChunk(ka)][keyLocal(ka)], b,
+                         extras[keyChunk(kb)][keyLocal(kb)],
+                         equal(r.keys, splat(static_cast<int32_t>(kb))), r.covered,
+                         pixelCentresX(tile, r.tx), splat(py), group);
+    group.tx = r.tx;
+    ++textured_count;
+  };
+  // Groups of one triangle first, then those of two, then of more (sortRowGroups).
   forEachGroup(groups.single, shade_single);
-  forEachGroup(groups.several, shade_several);
+  forEachGroup(groups.two, shade_two);
+  forEachGroup(groups.several & ~groups.two, shade_several);
   filterTexturedRow(tile, ty, textured_groups, textured_count, records, extras, lights, linear);
   if (kSampled) resolveMixedRow(*msaa, tile, ty, records, extras, lights, *queue, linear);
 }
@@ -316,9 +347,11 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
                                     uint32_t background, const MsaaShading* msaa, ShadedTile& out) {
   const ShadeTriangle* records[kMaxChunks];
   const ShadeExtras* extras[kMaxChunks];
+  bool textured = false;  // some record may be texturedPlain
   for (size_t c = 0; c < chunk_count; ++c) {
     records[c] = chunks[c].shade.data();
     extras[c] = chunks[c].extras.data();
+    textured |= chunks[c].textured_plain;
   }
   // A row's colours in linear light, encoded once the row is shaded: the encode is a long chain
   // of dependent operations, and eight groups of it side by side keep the core busy where one
@@ -336,7 +369,7 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
                               solids);
       encodeShadedRow(tile, ty, linear, solid, background, out);
     } else {
-      shadeRow<kSampled>(tile, ty, records, extras, lights, want_normals, msaa,
+      shadeRow<kSampled>(tile, ty, records, extras, lights, want_normals, textured, msaa,
                          queue ? &*queue : nullptr, linear, out);
       encodeShadedRow(tile, ty, linear, nullptr, background, out);
     }
