@@ -134,6 +134,16 @@ TESSERA_LANES_INLINE Vec3x8 solidColors(const ShadeTriangle* const records[8]) {
   return {c[0], c[1], c[2]};
 }
 
+// The kPlainFields floats of two records a and b in lanes, b's in the lanes of `in_b` and a's in
+// the others: the values loadPlainFields gives for such lanes, picked from two broadcasts.
+TESSERA_LANES_INLINE void pickPlainFields(const ShadeTriangle& a, const ShadeTriangle& b,
+                                          I32x8 in_b, F32x8 f[kPlainFields]) {
+  const float* fa = &a.x0;
+  const float* fb = &b.x0;
+#pragma GCC unroll 18
+  for (int k = 0; k < kPlainFields; ++k) f[k] = select(in_b, splat(fb[k]), splat(fa[k]));
+}
+
 // Eight pixels owned by several triangles, all untextured and not Phong-shaded (colour = the
 // interpolated vertex colours): lane l is shaded from its own triangle's record, whose fields
 // are loaded eight records at a time and transposed into lanes. The same operations per lane as
@@ -251,10 +261,7 @@ TESSERA_LANES_INLINE void prepareTexturedGroup(const ShadeTriangle& a, const Sha
                                                I32x8 in_b, I32x8 covered, F32x8 px, F32x8 py,
                                                TexturedGroup& group) {
   F32x8 f[kPlainFields], corner[8];
-  const float* fa = &a.x0;
-  const float* fb = &b.x0;
-#pragma GCC unroll 18
-  for (int k = 0; k < kPlainFields; ++k) f[k] = select(in_b, splat(fb[k]), splat(fa[k]));
+  pickPlainFields(a, b, in_b, f);
   const float* ua = &uvSet(ea, a.material->sampler)->x;
   const float* ub = &uvSet(eb, b.material->sampler)->x;
 #pragma GCC unroll 6
