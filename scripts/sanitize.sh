@@ -23,7 +23,7 @@ export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1"
 # build (ctest), unsanitized.
 # The viewer's input and state tests (no window) run in the Release build only: they parse
 # nothing a user hands in, and their compile time is CI's to spend elsewhere.
-asan_tests=(math_test scene_test render_test render_raster_test render_shading_test render_resolve_test msaa_test composite_test projection_test diagnostics_test
+asan_tests=(math_test scene_test render_test render_raster_test render_setup_test render_shading_test render_resolve_test msaa_test composite_test projection_test diagnostics_test
             io_image_test io_gif_test environment_test io_obj_test io_gltf_test io_gltf_files_test io_gltf_draco_test io_points_test
             io_stl_test io_assimp_test cli_test cli_validation_test
             cli_diagnostics_test hostile_test animation_test gltf_animation_test)
