@@ -10,6 +10,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -76,6 +77,45 @@ std::optional<int> gifLoopCount(const GifFileType* gif) {
   return search(gif->ExtensionBlocks, gif->ExtensionBlockCount);
 }
 
+// A GIF sink at `path` that has taken `frames` (each of settings' size) and is not finished;
+// null, with `error` saying why, where it could not be opened or did not take a frame.
+std::unique_ptr<FrameSink> sinkWithFrames(const fs::path& path, const AnimationSettings& settings,
+                                          const std::vector<std::vector<uint32_t>>& frames,
+                                          std::string& error) {
+  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settings);
+  if (!sink) {
+    error = sink.error().message;
+    return nullptr;
+  }
+  for (const std::vector<uint32_t>& pixels : frames) {
+    if (Expected<void> added = (*sink)->addFrame(pixels.data()); !added) {
+      error = added.error().message;
+      return nullptr;
+    }
+  }
+  return std::move(*sink);
+}
+
+// sinkWithFrames of one solid 3x3 frame.
+std::unique_ptr<FrameSink> sinkWithOneFrame(const fs::path& path, std::string& error) {
+  return sinkWithFrames(path, settingsOf(3, 3), {solidFrame(3, 3, packRgba(1, 1, 1))}, error);
+}
+
+// The GIF of sinkWithFrames, finished and read back by giflib; null, with `error` saying why,
+// where a step failed.
+DecodedGif writeGif(const fs::path& path, const AnimationSettings& settings,
+                    const std::vector<std::vector<uint32_t>>& frames, std::string& error) {
+  const std::unique_ptr<FrameSink> sink = sinkWithFrames(path, settings, frames, error);
+  if (!sink) return nullptr;
+  if (Expected<void> finished = sink->finish(); !finished) {
+    error = finished.error().message;
+    return nullptr;
+  }
+  DecodedGif gif = decodeGif(path);
+  if (!gif) error = "giflib cannot read " + path.string();
+  return gif;
+}
+
 int maxChannelDifference(const std::array<int, 3>& a, const std::array<int, 3>& b) {
   return std::max({std::abs(a[0] - b[0]), std::abs(a[1] - b[1]), std::abs(a[2] - b[2])});
 }
@@ -110,16 +150,12 @@ TEST(IoGifSink, DecodesWithFrameCountSizeAndDelays) {
   const int width = 7;
   const int height = 5;  // not square, so a swapped width and height shows
   const int frames = 7;
-  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(width, height, 30));
-  ASSERT_TRUE(sink.ok()) << sink.error().message;
-  for (int i = 0; i < frames; ++i) {
-    const std::vector<uint32_t> pixels = solidFrame(width, height, packRgba(i * 30, 0, 0));
-    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
-  }
-  ASSERT_TRUE((*sink)->finish().ok());
-
-  DecodedGif gif = decodeGif(path);
-  ASSERT_TRUE(gif);
+  std::vector<std::vector<uint32_t>> pixels;
+  for (int i = 0; i < frames; ++i)
+    pixels.push_back(solidFrame(width, height, packRgba(i * 30, 0, 0)));
+  std::string error;
+  DecodedGif gif = writeGif(path, settingsOf(width, height, 30), pixels, error);
+  ASSERT_TRUE(gif) << error;
   EXPECT_EQ(gif->SWidth, width);
   EXPECT_EQ(gif->SHeight, height);
   ASSERT_EQ(gif->ImageCount, frames);
@@ -140,16 +176,11 @@ TEST(IoGifSink, SolidFramesKeepTheirColours) {
   const std::array<uint32_t, 5> colours = {packRgba(255, 0, 0), packRgba(0, 255, 0),
                                            packRgba(0, 0, 255), packRgba(12, 200, 99),
                                            packRgba(128, 128, 128, 0)};
-  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(6, 4));
-  ASSERT_TRUE(sink.ok()) << sink.error().message;
-  for (uint32_t colour : colours) {
-    const std::vector<uint32_t> pixels = solidFrame(6, 4, colour);
-    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
-  }
-  ASSERT_TRUE((*sink)->finish().ok());
-
-  DecodedGif gif = decodeGif(path);
-  ASSERT_TRUE(gif);
+  std::vector<std::vector<uint32_t>> pixels;
+  for (uint32_t colour : colours) pixels.push_back(solidFrame(6, 4, colour));
+  std::string error;
+  DecodedGif gif = writeGif(path, settingsOf(6, 4), pixels, error);
+  ASSERT_TRUE(gif) << error;
   ASSERT_EQ(gif->ImageCount, static_cast<int>(colours.size()));
   constexpr int kTolerance = 2;
   for (size_t i = 0; i < colours.size(); ++i) {
@@ -184,14 +215,9 @@ TEST(IoGifSink, FrameOfAtMost256ColoursIsExact) {
   }
   ASSERT_EQ(std::set<uint32_t>(exact.begin(), exact.end()).size(), 256u);
   ASSERT_EQ(std::set<uint32_t>(over.begin(), over.end()).size(), 257u);
-  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(width, height));
-  ASSERT_TRUE(sink.ok()) << sink.error().message;
-  ASSERT_TRUE((*sink)->addFrame(exact.data()).ok());
-  ASSERT_TRUE((*sink)->addFrame(over.data()).ok());
-  ASSERT_TRUE((*sink)->finish().ok());
-
-  DecodedGif gif = decodeGif(path);
-  ASSERT_TRUE(gif);
+  std::string error;
+  DecodedGif gif = writeGif(path, settingsOf(width, height), {exact, over}, error);
+  ASSERT_TRUE(gif) << error;
   ASSERT_EQ(gif->ImageCount, 2);
   int inexact_over = 0;
   for (int y = 0; y < height; ++y) {
@@ -219,13 +245,9 @@ TEST(IoGifSink, ManyColouredFrameKeepsLocalAverages) {
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) pixels[y * size + x] = packRgba(x * 4, y * 4, 255 - x * 2);
   }
-  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(size, size));
-  ASSERT_TRUE(sink.ok()) << sink.error().message;
-  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
-  ASSERT_TRUE((*sink)->finish().ok());
-
-  DecodedGif gif = decodeGif(path);
-  ASSERT_TRUE(gif);
+  std::string error;
+  DecodedGif gif = writeGif(path, settingsOf(size, size), {pixels}, error);
+  ASSERT_TRUE(gif) << error;
   ASSERT_EQ(gif->ImageCount, 1);
   // Dithering trades per-pixel error for local averages: compare 8x8 block means.
   constexpr int kBlock = 8;
@@ -273,13 +295,9 @@ TEST(IoGifSink, DithersAGradientThePaletteCannotCover) {
       }
     }
   }
-  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(size, size));
-  ASSERT_TRUE(sink.ok()) << sink.error().message;
-  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
-  ASSERT_TRUE((*sink)->finish().ok());
-
-  DecodedGif gif = decodeGif(path);
-  ASSERT_TRUE(gif);
+  std::string error;
+  DecodedGif gif = writeGif(path, settingsOf(size, size), {pixels}, error);
+  ASSERT_TRUE(gif) << error;
   ASSERT_EQ(gif->ImageCount, 1);
   const GifByteType* raster = gif->SavedImages[0].RasterBits;
   int index_changes = 0;
@@ -302,15 +320,10 @@ TEST(IoGifSink, DithersAGradientThePaletteCannotCover) {
 TEST(IoGifSink, LoopingGifHasInfiniteLoopExtension) {
   TempDir dir;
   const fs::path path = dir / "loop.gif";
-  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(2, 2, 30, true));
-  ASSERT_TRUE(sink.ok()) << sink.error().message;
   const std::vector<uint32_t> pixels = solidFrame(2, 2, packRgba(5, 6, 7));
-  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
-  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
-  ASSERT_TRUE((*sink)->finish().ok());
-
-  DecodedGif gif = decodeGif(path);
-  ASSERT_TRUE(gif);
+  std::string error;
+  DecodedGif gif = writeGif(path, settingsOf(2, 2, 30, true), {pixels, pixels}, error);
+  ASSERT_TRUE(gif) << error;
   std::optional<int> loop_count = gifLoopCount(gif.get());
   ASSERT_TRUE(loop_count.has_value());
   EXPECT_EQ(*loop_count, 0);  // 0 = forever
@@ -319,14 +332,10 @@ TEST(IoGifSink, LoopingGifHasInfiniteLoopExtension) {
 TEST(IoGifSink, NonLoopingGifHasNoLoopExtension) {
   TempDir dir;
   const fs::path path = dir / "once.gif";
-  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(2, 2, 30, false));
-  ASSERT_TRUE(sink.ok()) << sink.error().message;
-  const std::vector<uint32_t> pixels = solidFrame(2, 2, packRgba(5, 6, 7));
-  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
-  ASSERT_TRUE((*sink)->finish().ok());
-
-  DecodedGif gif = decodeGif(path);
-  ASSERT_TRUE(gif);
+  std::string error;
+  DecodedGif gif =
+      writeGif(path, settingsOf(2, 2, 30, false), {solidFrame(2, 2, packRgba(5, 6, 7))}, error);
+  ASSERT_TRUE(gif) << error;
   EXPECT_EQ(gif->ImageCount, 1);
   EXPECT_FALSE(gifLoopCount(gif.get()).has_value());
 }
@@ -334,22 +343,20 @@ TEST(IoGifSink, NonLoopingGifHasNoLoopExtension) {
 TEST(IoGifSink, AppearsOnlyWhenFinished) {
   TempDir dir;
   const fs::path path = dir / "anim.gif";
-  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(3, 3));
-  ASSERT_TRUE(sink.ok()) << sink.error().message;
-  const std::vector<uint32_t> pixels = solidFrame(3, 3, packRgba(1, 1, 1));
-  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+  std::string error;
+  std::unique_ptr<FrameSink> sink = sinkWithOneFrame(path, error);
+  ASSERT_TRUE(sink) << error;
   EXPECT_FALSE(fs::exists(path));
-  ASSERT_TRUE((*sink)->finish().ok());
+  ASSERT_TRUE(sink->finish().ok());
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"anim.gif"});
 }
 
 TEST(IoGifSink, DestroyedWithoutFinishLeavesNoFile) {
   TempDir dir;
   {
-    Expected<std::unique_ptr<FrameSink>> sink = openGifSink(dir / "anim.gif", settingsOf(3, 3));
-    ASSERT_TRUE(sink.ok()) << sink.error().message;
-    const std::vector<uint32_t> pixels = solidFrame(3, 3, packRgba(1, 1, 1));
-    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+    std::string error;
+    const std::unique_ptr<FrameSink> sink = sinkWithOneFrame(dir / "anim.gif", error);
+    ASSERT_TRUE(sink) << error;
     ASSERT_FALSE(dir.entries().empty());  // the temporary exists while the sink does
   }
   EXPECT_TRUE(dir.entries().empty());
@@ -358,12 +365,11 @@ TEST(IoGifSink, DestroyedWithoutFinishLeavesNoFile) {
 TEST(IoGifSink, UnfinishedSinkKeepsExistingTarget) {
   TempDir dir;
   const fs::path path = dir / "anim.gif";
-  writeText(path, "previous animation");
+  writeFile(path, "previous animation");
   {
-    Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(3, 3));
-    ASSERT_TRUE(sink.ok()) << sink.error().message;
-    const std::vector<uint32_t> pixels = solidFrame(3, 3, packRgba(1, 1, 1));
-    ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
+    std::string error;
+    const std::unique_ptr<FrameSink> sink = sinkWithOneFrame(path, error);
+    ASSERT_TRUE(sink) << error;
   }
   EXPECT_EQ(readText(path), "previous animation");
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"anim.gif"});
@@ -372,12 +378,11 @@ TEST(IoGifSink, UnfinishedSinkKeepsExistingTarget) {
 TEST(IoGifSink, FinishedSinkReplacesExistingTarget) {
   TempDir dir;
   const fs::path path = dir / "anim.gif";
-  writeText(path, "previous animation");
-  Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(3, 3));
-  ASSERT_TRUE(sink.ok()) << sink.error().message;
-  const std::vector<uint32_t> pixels = solidFrame(3, 3, packRgba(1, 1, 1));
-  ASSERT_TRUE((*sink)->addFrame(pixels.data()).ok());
-  ASSERT_TRUE((*sink)->finish().ok());
+  writeFile(path, "previous animation");
+  std::string error;
+  std::unique_ptr<FrameSink> sink = sinkWithOneFrame(path, error);
+  ASSERT_TRUE(sink) << error;
+  ASSERT_TRUE(sink->finish().ok());
   DecodedGif gif = decodeGif(path);
   ASSERT_TRUE(gif);
   EXPECT_EQ(gif->ImageCount, 1);
@@ -386,7 +391,7 @@ TEST(IoGifSink, FinishedSinkReplacesExistingTarget) {
 TEST(IoGifSink, FinishWithoutFramesIsAnErrorAndKeepsExistingTarget) {
   TempDir dir;
   const fs::path path = dir / "anim.gif";
-  writeText(path, "previous animation");
+  writeFile(path, "previous animation");
   {
     Expected<std::unique_ptr<FrameSink>> sink = openGifSink(path, settingsOf(3, 3));
     ASSERT_TRUE(sink.ok()) << sink.error().message;

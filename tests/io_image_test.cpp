@@ -67,7 +67,7 @@ TEST(IoAtomicFile, DestroyedWithoutCommitLeavesNothing) {
 TEST(IoAtomicFile, UncommittedWriteKeepsExistingTarget) {
   TempDir dir;
   const fs::path target = dir / "out.txt";
-  writeText(target, "old");
+  writeFile(target, "old");
   {
     Expected<AtomicFile> file = AtomicFile::create(target);
     ASSERT_TRUE(file.ok()) << file.error().message;
@@ -92,7 +92,7 @@ TEST(IoAtomicFile, FailedRenameRemovesTemporaryAndKeepsTarget) {
   // rename() cannot put a file over a non-empty folder.
   const fs::path target = dir / "occupied";
   fs::create_directory(target);
-  writeText(target / "keep.txt", "kept");
+  writeFile(target / "keep.txt", "kept");
   Expected<AtomicFile> file = AtomicFile::create(target);
   ASSERT_TRUE(file.ok()) << file.error().message;
   ASSERT_TRUE(file->write("data", 4).ok());
@@ -196,7 +196,7 @@ TEST(IoPngWriter, MissingFolderIsAnErrorAndLeavesNoFile) {
 TEST(IoPngWriter, ExistingTargetIsReplaced) {
   TempDir dir;
   const fs::path path = dir / "out.png";
-  writeText(path, "not a png");
+  writeFile(path, "not a png");
   const std::vector<uint32_t> pixels(1, packRgba(9, 8, 7));
   ASSERT_TRUE(writePngRgba8(path, 1, 1, pixels.data()).ok());
   std::optional<DecodedPng> png = decodePng(path);
@@ -208,7 +208,7 @@ TEST(IoPngWriter, ExistingTargetIsReplaced) {
 TEST(IoPngWriter, WriteFailureIsAnErrorAndKeepsExistingTarget) {
   TempDir dir;
   const fs::path path = dir / "noise.png";
-  writeText(path, "old");
+  writeFile(path, "old");
   const std::vector<uint32_t> pixels = noiseFrame(64, 64);  // ~12 KB that do not compress
   Expected<void> written = [&] {
     FileSizeLimit limit(1024);

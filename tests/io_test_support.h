@@ -1,9 +1,8 @@
 // Helpers of the image and animation writers' tests (io_image_test.cpp, io_gif_test.cpp): a fresh
-// folder per test, files read and written whole, a file-size limit that stands for a full disk,
+// folder per test, a file read whole, a file-size limit that stands for a full disk,
 // and frames to write.
 #pragma once
 
-#include <stdlib.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -19,18 +18,16 @@
 #include <tessera/base/check.h>
 #include <tessera/io/frame_sink.h>
 
+#include "temp_folder.h"
+
 namespace tessera::test {
 
 namespace fs = std::filesystem;
 
-// A fresh folder per test, removed with everything in it.
+// A fresh folder per test (makeTestFolder's), removed with everything in it.
 class TempDir {
  public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "tessera_io_test_XXXXXX").string();
-    TESSERA_CHECK(mkdtemp(pattern.data()) != nullptr) << "mkdtemp " << pattern;
-    path_ = pattern;
-  }
+  TempDir() : path_(makeTestFolder("tessera_io_test")) {}
   ~TempDir() {
     std::error_code ignored;
     fs::remove_all(path_, ignored);
@@ -55,10 +52,6 @@ class TempDir {
 inline std::string readText(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-inline void writeText(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
 }
 
 constexpr uint32_t packRgba(uint32_t r, uint32_t g, uint32_t b, uint32_t a = 255) {
