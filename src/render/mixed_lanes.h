@@ -269,23 +269,28 @@ TESSERA_LANES_INLINE void prepareTexturedGroup(const ShadeTriangle& a, const Sha
   prepareTexturedFields(f, corner, a.material, covered, px, py, group);
 }
 
-// The prepared group's colour: its vertex colours times the filtered albedo, tone-mapped. The same
-// operations per lane as shadeLanes, so the same bits. False, with `color` untouched, where a
+// The prepared group's colour: its vertex colours times the filtered albedo, tone-mapped, the
+// albedo read as `reads` (textureReads of the group's material's albedo and sampler) says. The
+// same operations per lane as shadeLanes, so the same bits. False, with `color` untouched, where a
 // lane's coordinates are beyond sampleTexture8's reach: the caller shades triangle by triangle.
-TESSERA_LANES_INLINE bool filterTexturedGroup(const TexturedGroup& group, const LightRig& lights,
-                                              Vec3x8& color) {
+TESSERA_LANES_INLINE bool filterTexturedGroup(const TexturedGroup& group, const TextureReads& reads,
+                                              const LightRig& lights, Vec3x8& color) {
   F32x8 albedo[4];
-  const Texture& texture = *group.material->albedo;
-  const Sampler& sampler = group.material->sampler;
-  const bool lod = needsLod(texture, sampler);
-  if (!sampleTexture8(texture, sampler, group.covered, group.uv, lod ? group.right : group.uv,
-                      lod ? group.down : group.uv, 3, albedo))
+  if (!sampleTexture8(reads, group.covered, group.uv, reads.lod ? group.right : group.uv,
+                      reads.lod ? group.down : group.uv, 3, albedo))
     return false;
   Vec3x8 c = group.color;
   c = {c.x * albedo[0], c.y * albedo[1], c.z * albedo[2]};
   if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
   color = c;
   return true;
+}
+
+// filterTexturedGroup of one group alone.
+TESSERA_LANES_INLINE bool filterTexturedGroup(const TexturedGroup& group, const LightRig& lights,
+                                              Vec3x8& color) {
+  const Material& m = *group.material;
+  return filterTexturedGroup(group, textureReads(*m.albedo, m.sampler), lights, color);
 }
 
 static_assert(sizeof(float3) == 3 * sizeof(float), "corners9 reads a float3[3] as nine floats");

@@ -48,14 +48,25 @@ TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
     store(linear[1] + group.tx, color.y);
     store(linear[2] + group.tx, color.z);
   };
+  // The albedo's reads of the last group's material, looked up again where the material changes.
+  const Material* material = nullptr;
+  TextureReads reads{};
+  [[maybe_unused]] bool pairs = false;
   for (int g = 0; g < count; ++g) {
     const TexturedGroup& group = groups[g];
+    if (group.material != material) {
+      material = group.material;
+      reads = textureReads(*material->albedo, material->sampler);
+#if defined(TESSERA_LANES16)
+      pairs = pairReads(reads);
+#endif
+    }
     Vec3x8 color{zero, zero, zero}, normal{zero, zero, zero};
 #if defined(TESSERA_LANES16)
     // Two groups side by side in sixteen lanes where they can be (texture_lanes16.h).
-    if (g + 1 < count && pairApplies(group, groups[g + 1])) {
+    if (pairs && g + 1 < count && groups[g + 1].material == material) {
       Vec3x8 next;
-      if (filterTexturedPair(group, groups[g + 1], lights, color, next)) {
+      if (filterTexturedPair(group, groups[g + 1], reads, lights, color, next)) {
         store_group(group, color);
         store_group(groups[g + 1], next);
         ++g;
@@ -63,7 +74,7 @@ TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
       }
     }
 #endif
-    if (!filterTexturedGroup(group, lights, color)) {
+    if (!filterTexturedGroup(group, reads, lights, color)) {
       const I32x8 keys = load<I32x8>(tile.key + ty * kTileSize + group.tx);
       const F32x8 px = toFloat(splat(tile.x0 + group.tx) + iota()) + splat(0.5f);
       shadeApart(keys, group.covered, records, extras, lights, false, px, py, color, normal);

@@ -204,25 +204,48 @@ TESSERA_LANES_INLINE bool texture8Applies(const Texture& texture, const Sampler&
          texture.width <= kMaxSide && texture.height <= kMaxSide;
 }
 
+// What sampleTexture8 reads of a texture through a sampler, looked up once for the many groups
+// of eight pixels that read it: a row's textured groups mostly share one material, and looking
+// these up for each group (the transform's identity, the decoded copy, the level of detail) was
+// 2% of the textured sphere's shading instructions.
+struct TextureReads {
+  const Texture* texture;
+  const Sampler* sampler;
+  LevelLanes base;  // level 0
+  bool lod;         // needsLod
+  bool moved;       // the sampler's transform is not the identity; then `affine` is its matrix
+  UvAffine affine;
+};
+TESSERA_LANES_INLINE TextureReads textureReads(const Texture& texture, const Sampler& sampler) {
+  TextureReads r{&texture,
+                 &sampler,
+                 levelLanes(texture, 0),
+                 needsLod(texture, sampler),
+                 !sampler.transform.identity(),
+                 UvAffine{}};
+  if (r.moved) r.affine = sampler.transform.affine();
+  return r;
+}
+
 // sampleTexture (shade.cpp) for the lanes of `mask`, where texture8Applies: uv before the
 // sampler's transform, right and down the same at the next pixel centres (read where needsLod).
 // False, with nothing computed, when a lane's coordinates reach 65536 in magnitude (where
 // sanitize is not the identity): the caller samples lane by lane.
-TESSERA_LANES_INLINE bool sampleTexture8(const Texture& texture, const Sampler& sampler, I32x8 mask,
-                                         Uv8 uv, Uv8 right, Uv8 down, int channels, F32x8 out[4]) {
-  const bool moved = !sampler.transform.identity();
-  if (moved) {
-    const UvAffine affine = sampler.transform.affine();
-    uv = applyAffine(affine, uv);
-    right = applyAffine(affine, right);
-    down = applyAffine(affine, down);
+TESSERA_LANES_INLINE bool sampleTexture8(const TextureReads& reads, I32x8 mask, Uv8 uv, Uv8 right,
+                                         Uv8 down, int channels, F32x8 out[4]) {
+  const Texture& texture = *reads.texture;
+  const Sampler& sampler = *reads.sampler;
+  if (reads.moved) {
+    uv = applyAffine(reads.affine, uv);
+    right = applyAffine(reads.affine, right);
+    down = applyAffine(reads.affine, down);
   }
   const F32x8 limit = splat(65536.0f), low = splat(-65536.0f);
   if (any(mask & ~(lessThan(uv.u, limit) & lessThan(low, uv.u) & lessThan(uv.v, limit) &
                    lessThan(low, uv.v))))
     return false;
-  if (!needsLod(texture, sampler)) {
-    bilinear8(levelLanes(texture, 0), texture.srgb, sampler, mask, uv, channels, out);
+  if (!reads.lod) {
+    bilinear8(reads.base, texture.srgb, sampler, mask, uv, channels, out);
     return true;
   }
   F32x8 lod = textureLod8(uv, right, down, static_cast<float>(texture.width),
@@ -260,6 +283,12 @@ TESSERA_LANES_INLINE bool sampleTexture8(const Texture& texture, const Sampler& 
   for (int k = 0; k < channels; ++k)
     out[k] = select(two_levels, a[k] + (b[k] - a[k]) * blend, a[k]);
   return true;
+}
+
+// sampleTexture8 of `texture` through `sampler`, looked up for these eight lanes alone.
+TESSERA_LANES_INLINE bool sampleTexture8(const Texture& texture, const Sampler& sampler, I32x8 mask,
+                                         Uv8 uv, Uv8 right, Uv8 down, int channels, F32x8 out[4]) {
+  return sampleTexture8(textureReads(texture, sampler), mask, uv, right, down, channels, out);
 }
 
 }  // namespace

@@ -82,29 +82,27 @@ TESSERA_LANES_INLINE bool isPairWrap(TextureWrap wrap, int size) {
   return wrap == TextureWrap::kClamp || (wrap == TextureWrap::kRepeat && (size & (size - 1)) == 0);
 }
 
-// Whether two prepared groups of a row can be filtered side by side: one material, whose albedo
-// is read in one level from its decoded copy, untransformed, with wraps wrapPair16 takes.
-TESSERA_LANES_INLINE bool pairApplies(const TexturedGroup& a, const TexturedGroup& b) {
-  if (a.material != b.material) return false;
-  const Texture& texture = *a.material->albedo;
-  const Sampler& sampler = a.material->sampler;
-  return !needsLod(texture, sampler) && sampler.transform.identity() &&
-         isPairWrap(sampler.wrap_s, texture.width) && isPairWrap(sampler.wrap_t, texture.height) &&
-         texture.linearTexels(0) != nullptr;
+// Whether groups of a material whose albedo is read as `reads` can be filtered two side by side:
+// in one level, from its decoded copy, untransformed, with wraps wrapPair16 takes.
+TESSERA_LANES_INLINE bool pairReads(const TextureReads& reads) {
+  const Sampler& sampler = *reads.sampler;
+  return !reads.lod && !reads.moved && isPairWrap(sampler.wrap_s, reads.base.width) &&
+         isPairWrap(sampler.wrap_t, reads.base.height) && reads.base.linear != nullptr;
 }
 
-// filterTexturedGroup of a and b (pairApplies), into ca and cb. False, with nothing written, where
-// a lane's coordinates are beyond the eight-lane filter's reach or its four texels are not one
-// quad of the copy (at a clamped edge or a repeat's seam): the caller filters each group.
+// filterTexturedGroup of a and b (groups of one material, whose albedo's `reads` pairReads takes),
+// into ca and cb. False, with nothing written, where a lane's coordinates are beyond the
+// eight-lane filter's reach or its four texels are not one quad of the copy (at a clamped edge or
+// a repeat's seam): the caller filters each group.
 TESSERA_LANES_INLINE bool filterTexturedPair(const TexturedGroup& a, const TexturedGroup& b,
-                                             const LightRig& lights, Vec3x8& ca, Vec3x8& cb) {
-  const Texture& texture = *a.material->albedo;
-  const Sampler& sampler = a.material->sampler;
+                                             const TextureReads& reads, const LightRig& lights,
+                                             Vec3x8& ca, Vec3x8& cb) {
+  const Sampler& sampler = *reads.sampler;
   const I32x16 mask = join16(a.covered, b.covered);
   const F32x16 u = join16(a.uv.u, b.uv.u), v = join16(a.uv.v, b.uv.v);
   const F32x16 limit = splat16(65536.0f), low = splat16(-65536.0f);
   if (any16(mask & ~((u < limit) & (low < u) & (v < limit) & (low < v)))) return false;
-  const int width = texture.width, height = texture.height;
+  const int width = reads.base.width, height = reads.base.height;
   const F32x16 sx = u * splat16(static_cast<float>(width)) - splat16(0.5f);
   const F32x16 sy = (splat16(1.0f) - v) * splat16(static_cast<float>(height)) - splat16(0.5f);
   const F32x16 x0f = floor16(sx), y0f = floor16(sy);
@@ -118,7 +116,7 @@ TESSERA_LANES_INLINE bool filterTexturedPair(const TexturedGroup& a, const Textu
   if (any16(~((xb == xa + 1) & (yb == ya + 1)))) return false;
   alignas(64) int32_t at[16];
   *reinterpret_cast<I32x16*>(at) = ya * width + xa;
-  const float* linear = texture.linearTexels(0);
+  const float* linear = reads.base.linear;
   const size_t down = 4 * static_cast<size_t>(width);
   // Rows l and l + 8 of loadLinearQuads8's matrices for a and b, one register.
   F32x16 top[8], bottom[8];
