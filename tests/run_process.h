@@ -24,13 +24,15 @@ inline std::string slurp(const std::filesystem::path& path) {
   return s.str();
 }
 
-// Runs `executable` with `args` (a shell-quoted string) in `folder`, stdin from /dev/null.
-// stdout and stderr pass through files in `folder`, removed again before returning.
+// Runs `executable` with `args` (a shell-quoted string) in `folder`, stdin from /dev/null, with
+// `environment` (NAME=value ..., or empty) added to its environment. stdout and stderr pass
+// through files in `folder`, removed again before returning.
 inline RunResult runInFolder(const std::filesystem::path& folder, const std::string& executable,
-                             const std::string& args) {
+                             const std::string& args, const std::string& environment = "") {
   const std::filesystem::path out = folder / "stdout.txt", err = folder / "stderr.txt";
-  const std::string command = "cd '" + folder.string() + "' && '" + executable + "' " + args +
-                              " > '" + out.string() + "' 2> '" + err.string() + "' < /dev/null";
+  const std::string command = "cd '" + folder.string() + "' && " + environment + " '" + executable +
+                              "' " + args + " > '" + out.string() + "' 2> '" + err.string() +
+                              "' < /dev/null";
   const int status = std::system(command.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
