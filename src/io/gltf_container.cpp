@@ -6,8 +6,8 @@
 #include <limits>
 #include <optional>
 #include <set>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -118,10 +118,12 @@ class JsonPath {
   // Whether the element read now is one tinygltf reads into an int.
   bool isIntegerProperty(const std::string& element) const {
     static const std::set<std::string, std::less<>> kKeys = {
-        "buffer", "bufferView", "byteOffset", "byteLength", "byteStride", "target",
-        "componentType", "count", "mesh", "skin", "camera", "scene", "indices", "material",
-        "mode", "index", "texCoord", "source", "sampler", "magFilter", "minFilter", "wrapS",
-        "wrapT", "skeleton", "inverseBindMatrices", "input", "output", "node"};
+        "buffer",    "bufferView",    "byteOffset", "byteLength", "byteStride",
+        "target",    "componentType", "count",      "mesh",       "skin",
+        "camera",    "scene",         "indices",    "material",   "mode",
+        "index",     "texCoord",      "source",     "sampler",    "magFilter",
+        "minFilter", "wrapS",         "wrapT",      "skeleton",   "inverseBindMatrices",
+        "input",     "output",        "node"};
     for (const Level& level : levels_)
       if (level.name == "extras" || level.name == "extensions") return false;
     const Level& here = levels_.back();
@@ -210,37 +212,23 @@ Expected<void> checkGlbContainer(std::span<const uint8_t> bytes, const std::stri
   return {};
 }
 
-Expected<void> checkJsonShape(std::string_view text, const std::string& name) {
-  JsonPath path;
-  size_t containers = 0;
-  uint64_t parsed_bytes = 0;
-  std::string top_key;  // the key at depth 1: what an object at depth 2 will become
-  auto keep = [&](int depth, Json::parse_event_t event, Json& parsed) -> bool {
-    path.follow(depth, event, parsed);
+namespace {
+
+// The parser's callback for checkJsonShape: counts what the JSON would make and throws
+// JsonShapeError past a limit; keeps (returns true for) only what the image check reads at depth
+// 1 and 3, so that the parsed tree stays small.
+class JsonShapeLimits {
+ public:
+  bool operator()(int depth, Json::parse_event_t event, Json& parsed) {
+    path_.follow(depth, event, parsed);
     switch (event) {
       case Json::parse_event_t::object_start:
       case Json::parse_event_t::array_start:
-        if (depth >= kMaxJsonDepth)
-          throw JsonShapeError{"the JSON nests deeper than " + std::to_string(kMaxJsonDepth) +
-                               " levels"};
-        if (++containers > kMaxJsonContainers)
-          throw JsonShapeError{"the JSON has more than " + std::to_string(kMaxJsonContainers) +
-                               " objects and arrays"};
-        // The JSON value itself and tinygltf's copy of it (extras become tinygltf::Values).
-        parsed_bytes += 256;
-        if (event == Json::parse_event_t::object_start && depth == 2)
-          parsed_bytes += structBytes(top_key);
-        // Objects in the arrays of those: primitives, animation channels and samplers.
-        if (event == Json::parse_event_t::object_start && depth == 4)
-          parsed_bytes += std::max(sizeof(tinygltf::Primitive), sizeof(tinygltf::AnimationChannel));
-        if (parsed_bytes > kMaxParsedBytes)
-          throw JsonShapeError{"the JSON describes more objects than tessera parses (over " +
-                               std::to_string(kMaxParsedBytes >> 20) +
-                               " MiB of parser structures)"};
+        count(depth, event);
         return true;
       case Json::parse_event_t::key:
         if (depth == 1) {
-          top_key = parsed.get<std::string>();
+          top_key_ = parsed.get<std::string>();
           return parsed == "images" || parsed == "bufferViews" || parsed == "buffers";
         }
         if (depth == 3)
@@ -250,28 +238,53 @@ Expected<void> checkJsonShape(std::string_view text, const std::string& name) {
       default:
         return true;
     }
-  };
-  Json root;
-  try {
-    root = Json::parse(text.begin(), text.end(), keep, /*allow_exceptions=*/true,
-                       /*ignore_comments=*/false);
-  } catch (const JsonShapeError& error) {
-    return makeError(name + ": " + error.message);
-  } catch (const Json::parse_error& error) {
-    // "[json.exception.parse_error.101] parse error at line 3, column 7: syntax error while
-    // parsing array - unexpected end of input; expected ']'": where, and what was found.
-    std::string what = error.what();
-    std::string where = "at byte " + std::to_string(error.byte);
-    size_t colon = what.find("] ");
-    if (size_t at = what.find("at line "); at != std::string::npos) {
-      colon = what.find(':', at);
-      where = what.substr(at, colon - at);
-    }
-    std::string why = colon == std::string::npos ? what : what.substr(colon + 1);
-    if (size_t dash = why.find(" - "); dash != std::string::npos) why = why.substr(dash + 3);
-    return makeError(name + ": not valid JSON " + where + ": " + trimmed(why));
   }
-  if (!root.is_object()) return makeError(name + ": the JSON is not an object: not glTF");
+
+ private:
+  void count(int depth, Json::parse_event_t event) {
+    if (depth >= kMaxJsonDepth)
+      throw JsonShapeError{"the JSON nests deeper than " + std::to_string(kMaxJsonDepth) +
+                           " levels"};
+    if (++containers_ > kMaxJsonContainers)
+      throw JsonShapeError{"the JSON has more than " + std::to_string(kMaxJsonContainers) +
+                           " objects and arrays"};
+    // The JSON value itself and tinygltf's copy of it (extras become tinygltf::Values).
+    parsed_bytes_ += 256;
+    if (event == Json::parse_event_t::object_start && depth == 2)
+      parsed_bytes_ += structBytes(top_key_);
+    // Objects in the arrays of those: primitives, animation channels and samplers.
+    if (event == Json::parse_event_t::object_start && depth == 4)
+      parsed_bytes_ += std::max(sizeof(tinygltf::Primitive), sizeof(tinygltf::AnimationChannel));
+    if (parsed_bytes_ > kMaxParsedBytes)
+      throw JsonShapeError{"the JSON describes more objects than tessera parses (over " +
+                           std::to_string(kMaxParsedBytes >> 20) + " MiB of parser structures)"};
+  }
+
+  JsonPath path_;
+  size_t containers_ = 0;
+  uint64_t parsed_bytes_ = 0;
+  std::string top_key_;  // the key at depth 1: what an object at depth 2 will become
+};
+
+// "[json.exception.parse_error.101] parse error at line 3, column 7: syntax error while parsing
+// array - unexpected end of input; expected ']'" as "at line 3, column 7: unexpected end of
+// input; expected ']'": where, and what was found.
+std::string describeParseError(const Json::parse_error& error) {
+  std::string what = error.what();
+  std::string where = "at byte " + std::to_string(error.byte);
+  size_t colon = what.find("] ");
+  if (size_t at = what.find("at line "); at != std::string::npos) {
+    colon = what.find(':', at);
+    where = what.substr(at, colon - at);
+  }
+  std::string why = colon == std::string::npos ? what : what.substr(colon + 1);
+  if (size_t dash = why.find(" - "); dash != std::string::npos) why = why.substr(dash + 3);
+  return where + ": " + trimmed(why);
+}
+
+// An error where an image's bufferView lies outside its buffer (which tinygltf would read past);
+// the other broken references are left to tinygltf, which refuses them itself.
+Expected<void> checkImageViews(const Json& root, const std::string& name) {
   auto arrayOf = [&](const char* key) -> const Json* {
     auto it = root.find(key);
     return it != root.end() && it->is_array() ? &*it : nullptr;
@@ -285,7 +298,7 @@ Expected<void> checkJsonShape(std::string_view text, const std::string& name) {
     if (!image.is_object()) continue;
     std::optional<int> view_index = gltfInt(image, "bufferView");
     if (!view_index || *view_index < 0 || static_cast<size_t>(*view_index) >= views->size())
-      continue;  // tinygltf refuses these itself
+      continue;
     const Json& view = (*views)[static_cast<size_t>(*view_index)];
     if (!view.is_object()) continue;
     std::optional<int> buffer_index = gltfInt(view, "buffer");
@@ -307,6 +320,22 @@ Expected<void> checkJsonShape(std::string_view text, const std::string& name) {
                        " bytes)");
   }
   return {};
+}
+
+}  // namespace
+
+Expected<void> checkJsonShape(std::string_view text, const std::string& name) {
+  Json root;
+  try {
+    root = Json::parse(text.begin(), text.end(), JsonShapeLimits{}, /*allow_exceptions=*/true,
+                       /*ignore_comments=*/false);
+  } catch (const JsonShapeError& error) {
+    return makeError(name + ": " + error.message);
+  } catch (const Json::parse_error& error) {
+    return makeError(name + ": not valid JSON " + describeParseError(error));
+  }
+  if (!root.is_object()) return makeError(name + ": the JSON is not an object: not glTF");
+  return checkImageViews(root, name);
 }
 
 }  // namespace tessera::io::gltf
