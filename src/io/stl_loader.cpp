@@ -119,8 +119,7 @@ float floatAt(const uint8_t* p) {
 }
 
 Expected<Model> parseBinary(std::span<const uint8_t> bytes, uint32_t facet_count,
-                            const LoadBudget& budget,
-                            const std::string& name) {
+                            const LoadBudget& budget, const std::string& name) {
   if (Expected<void> ok =
           checkBudget(name, "facets", facet_count, budget.triangles(), "--max-triangles");
       !ok)
@@ -218,33 +217,78 @@ bool keywordIs(std::string_view word, std::string_view keyword) {
   return equalsIgnoreCase(word, keyword);
 }
 
-Expected<Model> parseAscii(std::string_view text, const std::string& name, const LoadBudget& budget) {
-  Words words(text);
-  std::vector<float3> corners;
-  std::string first_nonfinite;
-  auto at = [&](uint32_t line) { return name + ":" + std::to_string(line) + ": "; };
-  auto shown = [](std::string_view word) {
-    if (word.empty()) return std::string("the end of the file");
-    if (word.size() > 40) word = word.substr(0, 40);
-    std::string text = "'";
-    for (char c : word) text += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-    return text + "'";
-  };
-  auto expect = [&](std::string_view keyword) -> Expected<void> {
-    std::string_view word = words.next();
+// A word as an error message shows it: quoted, cut at 40 bytes, control bytes as '?'.
+std::string shown(std::string_view word) {
+  if (word.empty()) return std::string("the end of the file");
+  if (word.size() > 40) word = word.substr(0, 40);
+  std::string text = "'";
+  for (char c : word) text += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
+  return text + "'";
+}
+
+// The words of an ASCII STL file read as its grammar says, each error naming its line.
+class AsciiReader {
+ public:
+  AsciiReader(std::string_view text, const std::string& name) : words_(text), name_(name) {}
+  Words& words() { return words_; }
+  // "name:line: ", the start of an error message about `line`.
+  std::string at(uint32_t line) const { return name_ + ":" + std::to_string(line) + ": "; }
+  Expected<void> expect(std::string_view keyword) {
+    std::string_view word = words_.next();
     if (keywordIs(word, keyword)) return {};
-    return makeError(at(words.line()) + "expected '" + std::string(keyword) + "', found " +
+    return makeError(at(words_.line()) + "expected '" + std::string(keyword) + "', found " +
                      shown(word));
-  };
-  auto readVector = [&](float3& v) -> Expected<void> {
+  }
+  Expected<void> readVector(float3& v) {
     for (int i = 0; i < 3; ++i) {
-      std::string_view word = words.next();
+      std::string_view word = words_.next();
       if (!parseNumber(word, v[i]))
-        return makeError(at(words.line()) + "expected a number, found " + shown(word));
+        return makeError(at(words_.line()) + "expected a number, found " + shown(word));
     }
     return {};
-  };
+  }
+  // A facet after its `facet` keyword, through `endfacet`: its three corners appended to
+  // `corners`; `first_nonfinite` names the line of the first corner that is not finite.
+  Expected<void> readFacet(std::vector<float3>& corners, std::string& first_nonfinite) {
+    const uint32_t facet_line = words_.line();
+    float3 normal;
+    if (Expected<void> ok = expect("normal"); !ok) return ok;
+    if (Expected<void> ok = readVector(normal); !ok) return ok;
+    if (Expected<void> ok = expect("outer"); !ok) return ok;
+    if (Expected<void> ok = expect("loop"); !ok) return ok;
+    size_t vertices = 0;
+    while (true) {
+      const std::string_view word = words_.next();
+      if (keywordIs(word, "endloop")) break;
+      if (!keywordIs(word, "vertex"))
+        return makeError(at(words_.line()) + "expected 'vertex' or 'endloop', found " +
+                         shown(word));
+      float3 p;
+      if (Expected<void> ok = readVector(p); !ok) return ok;
+      if (++vertices > 3)
+        return makeError(at(facet_line) +
+                         "a facet with more than 3 vertices; STL facets are triangles");
+      corners.push_back(p);
+      if (!isFinite(p) && first_nonfinite.empty())
+        first_nonfinite = "line " + std::to_string(words_.line());
+    }
+    if (vertices != 3)
+      return makeError(at(facet_line) + "a facet with " + std::to_string(vertices) +
+                       " vertices; STL facets are triangles");
+    return expect("endfacet");
+  }
 
+ private:
+  Words words_;
+  const std::string& name_;
+};
+
+Expected<Model> parseAscii(std::string_view text, const std::string& name,
+                           const LoadBudget& budget) {
+  AsciiReader reader(text, name);
+  Words& words = reader.words();
+  std::vector<float3> corners;
+  std::string first_nonfinite;
   std::string_view word = words.next();
   if (!keywordIs(word, "solid"))
     return makeError(name + ": not an STL file (neither binary nor ASCII starting with 'solid')");
@@ -264,35 +308,11 @@ Expected<Model> parseAscii(std::string_view text, const std::string& name, const
       continue;
     }
     if (!keywordIs(word, "facet") || !in_solid)
-      return makeError(at(words.line()) + "expected 'facet' or 'endsolid', found " + shown(word));
-    const uint32_t facet_line = words.line();
-    float3 normal;
-    if (Expected<void> ok = expect("normal"); !ok) return ok.error();
-    if (Expected<void> ok = readVector(normal); !ok) return ok.error();
-    if (Expected<void> ok = expect("outer"); !ok) return ok.error();
-    if (Expected<void> ok = expect("loop"); !ok) return ok.error();
-    size_t vertices = 0;
-    while (true) {
-      word = words.next();
-      if (keywordIs(word, "endloop")) break;
-      if (!keywordIs(word, "vertex"))
-        return makeError(at(words.line()) + "expected 'vertex' or 'endloop', found " + shown(word));
-      float3 p;
-      if (Expected<void> ok = readVector(p); !ok) return ok.error();
-      if (++vertices > 3)
-        return makeError(at(facet_line) +
-                         "a facet with more than 3 vertices; STL facets are "
-                         "triangles");
-      corners.push_back(p);
-      if (!isFinite(p) && first_nonfinite.empty())
-        first_nonfinite = "line " + std::to_string(words.line());
-    }
-    if (vertices != 3)
-      return makeError(at(facet_line) + "a facet with " + std::to_string(vertices) +
-                       " vertices; STL facets are triangles");
-    if (Expected<void> ok = expect("endfacet"); !ok) return ok.error();
-    if (Expected<void> ok = checkBudget(name, "facets", corners.size() / 3, budget.triangles(),
-                                        "--max-triangles");
+      return makeError(reader.at(words.line()) + "expected 'facet' or 'endsolid', found " +
+                       shown(word));
+    if (Expected<void> ok = reader.readFacet(corners, first_nonfinite); !ok) return ok.error();
+    if (Expected<void> ok =
+            checkBudget(name, "facets", corners.size() / 3, budget.triangles(), "--max-triangles");
         !ok)
       return ok.error();
   }
@@ -354,9 +374,8 @@ Expected<Model> parseStl(std::span<const uint8_t> bytes, const std::string& name
     return makeError(name + ": truncated binary STL: " + std::to_string(bytes.size()) +
                      " bytes, shorter than the 84-byte header");
   }
-  Expected<Model> model =
-      parseAscii(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), name,
-                 budget);
+  Expected<Model> model = parseAscii(
+      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), name, budget);
   if (model || bytes.size() < kBinaryHeaderBytes || !hasControlBytes(bytes)) return model;
   // A binary file whose header starts with "solid" and whose size is off: say so, rather than
   // only how its bytes fail as text.
@@ -391,7 +410,8 @@ Expected<Model> loadStlFromMemory(std::span<const uint8_t> bytes, const std::str
 Expected<Model> loadStl(const std::filesystem::path& path, const LoadBudget& budget) {
   const std::string name = path.string();
   return guarded(name, [&]() -> Expected<Model> {
-    Expected<std::vector<unsigned char>> bytes = readRegularFile(path, std::min<uint64_t>(kMaxStlBytes, budget.fileBytes()), "STL");
+    Expected<std::vector<unsigned char>> bytes =
+        readRegularFile(path, std::min<uint64_t>(kMaxStlBytes, budget.fileBytes()), "STL");
     if (!bytes) return bytes.error();
     return parseStl(*bytes, name, budget);
   });

@@ -42,6 +42,42 @@ int typeRank(VkPhysicalDeviceType type) {
   }
 }
 
+// The validation layer and the extensions it provides that the instance enables: debug utils
+// (its messages), and validation features (synchronization validation) where the layer has them,
+// which `sync_validation` says. An error where the layer is not installed.
+Expected<void> validationLayer(const VulkanFunctions& vk, std::vector<const char*>& layers,
+                               std::vector<const char*>& extensions, bool& sync_validation) {
+  uint32_t count = 0;
+  TESSERA_VK_CHECK(vk.vkEnumerateInstanceLayerProperties(&count, nullptr));
+  std::vector<VkLayerProperties> available(count);
+  TESSERA_VK_CHECK(vk.vkEnumerateInstanceLayerProperties(&count, available.data()));
+  const bool found = std::any_of(available.begin(), available.end(), [](const auto& layer) {
+    return std::strcmp(layer.layerName, kValidationLayer) == 0;
+  });
+  if (!found)
+    return makeError(std::string("validation was requested but ") + kValidationLayer +
+                     " is not installed (Debian: vulkan-validationlayers)");
+  layers.push_back(kValidationLayer);
+  // The layer provides the debug-utils and validation-features extensions.
+  uint32_t extension_count = 0;
+  TESSERA_VK_CHECK(
+      vk.vkEnumerateInstanceExtensionProperties(kValidationLayer, &extension_count, nullptr));
+  std::vector<VkExtensionProperties> layer_extensions(extension_count);
+  TESSERA_VK_CHECK(vk.vkEnumerateInstanceExtensionProperties(kValidationLayer, &extension_count,
+                                                             layer_extensions.data()));
+  auto provides = [&](const char* name) {
+    return std::any_of(layer_extensions.begin(), layer_extensions.end(),
+                       [&](const auto& e) { return std::strcmp(e.extensionName, name) == 0; });
+  };
+  if (!provides(VK_EXT_DEBUG_UTILS_EXTENSION_NAME))
+    return makeError(std::string(kValidationLayer) + " does not provide " +
+                     VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  sync_validation = provides(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+  if (sync_validation) extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+  return {};
+}
+
 }  // namespace
 
 bool validationRequestedByEnvironment() {
@@ -241,34 +277,7 @@ Expected<void> Context::createInstance(const VulkanOptions& options) {
   std::vector<const char*> layers, extensions;
   bool sync_validation = false;
   if (options.validation) {
-    uint32_t count = 0;
-    TESSERA_VK_CHECK(vk.vkEnumerateInstanceLayerProperties(&count, nullptr));
-    std::vector<VkLayerProperties> available(count);
-    TESSERA_VK_CHECK(vk.vkEnumerateInstanceLayerProperties(&count, available.data()));
-    const bool found = std::any_of(available.begin(), available.end(), [](const auto& layer) {
-      return std::strcmp(layer.layerName, kValidationLayer) == 0;
-    });
-    if (!found)
-      return makeError(std::string("validation was requested but ") + kValidationLayer +
-                       " is not installed (Debian: vulkan-validationlayers)");
-    layers.push_back(kValidationLayer);
-    // The layer provides the debug-utils and validation-features extensions.
-    uint32_t extension_count = 0;
-    TESSERA_VK_CHECK(
-        vk.vkEnumerateInstanceExtensionProperties(kValidationLayer, &extension_count, nullptr));
-    std::vector<VkExtensionProperties> layer_extensions(extension_count);
-    TESSERA_VK_CHECK(vk.vkEnumerateInstanceExtensionProperties(kValidationLayer, &extension_count,
-                                                               layer_extensions.data()));
-    auto provides = [&](const char* name) {
-      return std::any_of(layer_extensions.begin(), layer_extensions.end(),
-                         [&](const auto& e) { return std::strcmp(e.extensionName, name) == 0; });
-    };
-    if (!provides(VK_EXT_DEBUG_UTILS_EXTENSION_NAME))
-      return makeError(std::string(kValidationLayer) + " does not provide " +
-                       VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-    sync_validation = provides(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
-    if (sync_validation) extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+    if (Expected<void> r = validationLayer(vk, layers, extensions, sync_validation); !r) return r;
   }
 
   VkApplicationInfo app{};
