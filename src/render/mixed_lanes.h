@@ -86,10 +86,30 @@ TESSERA_LANES_INLINE void loadPlainFields(const ShadeTriangle* const records[8],
   loadPairs(last_two, f[16], f[17]);
 }
 
-// Perspective-correct barycentrics of the lanes' triangles (loadPlainFields) at (px, py), with
-// shadeLanes' operations.
-TESSERA_LANES_INLINE void plainBarycentrics(const F32x8 f[kPlainFields], F32x8 px, F32x8 py,
-                                            F32x8& b0, F32x8& b1, F32x8& b2) {
+// The kPlainFields fields (or a UV set's six corners) of one record in every lane, broadcast where
+// they are read: `f[k]` as loadPlainFields' f[k] gives it for eight lanes of that record. Read so,
+// not broadcast into an array first, they are not spilled: GCC kept such arrays on the stack, and
+// their stores and reloads were a third of a group of one triangle's instructions (AVX2).
+struct BroadcastFields {
+  const float* p;
+  TESSERA_LANES_INLINE F32x8 operator[](int k) const { return splat(p[k]); }
+};
+
+// The same for two records a and b, b's in the lanes of `in_b` and a's in the others: the values
+// loadPlainFields (uvCorners8) gives for such lanes, picked from two broadcasts.
+struct PickedFields {
+  const float *a, *b;
+  I32x8 in_b;
+  TESSERA_LANES_INLINE F32x8 operator[](int k) const {
+    return select(in_b, splat(b[k]), splat(a[k]));
+  }
+};
+
+// Perspective-correct barycentrics of the lanes' triangles (loadPlainFields' f, or the fields of
+// BroadcastFields or PickedFields) at (px, py), with shadeLanes' operations.
+template <typename Fields>
+TESSERA_LANES_INLINE void plainBarycentrics(Fields f, F32x8 px, F32x8 py, F32x8& b0, F32x8& b1,
+                                            F32x8& b2) {
   const F32x8 dx = px - f[0];
   const F32x8 dy = py - f[1];
   const F32x8 inv_s = splat(1.0f) / (f[2] + f[7] * dx + f[8] * dy);
@@ -107,11 +127,11 @@ TESSERA_LANES_INLINE Vec3x8 interpolate9(const F32x8 v[9], F32x8 b0, F32x8 b1, F
 
 // The interpolated vertex colours of the lanes' triangles at barycentrics b1, b2:
 // interpolateColor's operations with each lane's own corners.
-TESSERA_LANES_INLINE Vec3x8 plainColor(const F32x8 f[kPlainFields], F32x8 b1, F32x8 b2) {
-  const F32x8* c = f + 9;
-  return {c[0] + (c[3] - c[0]) * b1 + (c[6] - c[0]) * b2,
-          c[1] + (c[4] - c[1]) * b1 + (c[7] - c[1]) * b2,
-          c[2] + (c[5] - c[2]) * b1 + (c[8] - c[2]) * b2};
+template <typename Fields>
+TESSERA_LANES_INLINE Vec3x8 plainColor(Fields f, F32x8 b1, F32x8 b2) {
+  return {f[9] + (f[12] - f[9]) * b1 + (f[15] - f[9]) * b2,
+          f[10] + (f[13] - f[10]) * b1 + (f[16] - f[10]) * b2,
+          f[11] + (f[14] - f[11]) * b1 + (f[17] - f[11]) * b2};
 }
 
 // Whether each of eight records' corners share one colour (ShadeTriangle::solid). The first
@@ -132,16 +152,6 @@ TESSERA_LANES_INLINE Vec3x8 solidColors(const ShadeTriangle* const records[8]) {
     c[l] = load2x4<F32x8>(&records[l]->color[0].x, &records[l + 4]->color[0].x);
   transpose4x4Halves(c);  // c[k]: channel k of lanes 0-3, then of lanes 4-7
   return {c[0], c[1], c[2]};
-}
-
-// The kPlainFields floats of two records a and b in lanes, b's in the lanes of `in_b` and a's in
-// the others: the values loadPlainFields gives for such lanes, picked from two broadcasts.
-TESSERA_LANES_INLINE void pickPlainFields(const ShadeTriangle& a, const ShadeTriangle& b,
-                                          I32x8 in_b, F32x8 f[kPlainFields]) {
-  const float* fa = &a.x0;
-  const float* fb = &b.x0;
-#pragma GCC unroll 18
-  for (int k = 0; k < kPlainFields; ++k) f[k] = select(in_b, splat(fb[k]), splat(fa[k]));
 }
 
 // Eight pixels owned by several triangles, all untextured and not Phong-shaded (colour = the
@@ -193,9 +203,10 @@ struct TexturedGroup {
 // The group's texture coordinates (in the UV set and at the footprint that `material`'s sampler
 // reads) and vertex colours, from its triangles' fields in lanes (f: loadPlainFields', corner:
 // uvCorners8's).
-TESSERA_LANES_INLINE void prepareTexturedFields(const F32x8 f[kPlainFields], const F32x8 corner[8],
-                                                const Material* material, I32x8 covered, F32x8 px,
-                                                F32x8 py, TexturedGroup& group) {
+template <typename Fields, typename Corners>
+TESSERA_LANES_INLINE void prepareTexturedFields(Fields f, Corners corner, const Material* material,
+                                                I32x8 covered, F32x8 px, F32x8 py,
+                                                TexturedGroup& group) {
   F32x8 b0, b1, b2;
   plainBarycentrics(f, px, py, b0, b1, b2);
   // As sampleAlbedo8's uvAt8, with each lane's own corners.
@@ -244,13 +255,8 @@ TESSERA_LANES_INLINE bool prepareTexturedGroup(const ShadeTriangle* const record
 TESSERA_LANES_INLINE void prepareTexturedGroup(const ShadeTriangle& t, const ShadeExtras& e,
                                                I32x8 covered, F32x8 px, F32x8 py,
                                                TexturedGroup& group) {
-  F32x8 f[kPlainFields], corner[8];
-  const float* fields = &t.x0;
-#pragma GCC unroll 18
-  for (int k = 0; k < kPlainFields; ++k) f[k] = splat(fields[k]);
-  const float* uv = &uvSet(e, t.material->sampler)->x;
-  for (int k = 0; k < 6; ++k) corner[k] = splat(uv[k]);
-  prepareTexturedFields(f, corner, t.material, covered, px, py, group);
+  prepareTexturedFields(BroadcastFields{&t.x0}, BroadcastFields{&uvSet(e, t.material->sampler)->x},
+                        t.material, covered, px, py, group);
 }
 
 // prepareTexturedFields for eight pixels of two triangles a and b of one material (each
@@ -260,13 +266,10 @@ TESSERA_LANES_INLINE void prepareTexturedGroup(const ShadeTriangle& a, const Sha
                                                const ShadeTriangle& b, const ShadeExtras& eb,
                                                I32x8 in_b, I32x8 covered, F32x8 px, F32x8 py,
                                                TexturedGroup& group) {
-  F32x8 f[kPlainFields], corner[8];
-  pickPlainFields(a, b, in_b, f);
-  const float* ua = &uvSet(ea, a.material->sampler)->x;
-  const float* ub = &uvSet(eb, b.material->sampler)->x;
-#pragma GCC unroll 6
-  for (int k = 0; k < 6; ++k) corner[k] = select(in_b, splat(ub[k]), splat(ua[k]));
-  prepareTexturedFields(f, corner, a.material, covered, px, py, group);
+  prepareTexturedFields(
+      PickedFields{&a.x0, &b.x0, in_b},
+      PickedFields{&uvSet(ea, a.material->sampler)->x, &uvSet(eb, b.material->sampler)->x, in_b},
+      a.material, covered, px, py, group);
 }
 
 // The prepared group's colour: its vertex colours times the filtered albedo, tone-mapped, the
