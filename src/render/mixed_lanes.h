@@ -243,10 +243,39 @@ TESSERA_LANES_INLINE bool prepareTexturedGroup(const ShadeTriangle* const record
   for (int l = 0; l < 8; ++l)
     if (records[l]->material != material || !texturedPlain(*records[l])) return false;
   if (!texture8Applies(*material->albedo, material->sampler)) return false;
-  F32x8 f[kPlainFields], corner[8];
-  loadPlainFields(records, f);
-  uvCorners8(extras, material->sampler.texcoord, corner);
-  prepareTexturedFields(f, corner, material, covered, px, py, group);
+  if (needsLod(*material->albedo, material->sampler)) {
+    F32x8 f[kPlainFields], corner[8];
+    loadPlainFields(records, f);
+    uvCorners8(extras, material->sampler.texcoord, corner);
+    prepareTexturedFields(f, corner, material, covered, px, py, group);
+    return true;
+  }
+  // prepareTexturedFields' operations with each block of eight fields used before the next is
+  // loaded: with all 26 in lanes at once, the AVX2 kernels (sixteen registers) stored each
+  // transposed field to the stack twice.
+  F32x8 block[8];
+  for (int l = 0; l < 8; ++l) block[l] = load<F32x8>(&records[l]->x0);
+  transpose8x8(block);  // x0, y0, inv_w0, p1dx, p1dy, p2dx, p2dy, sdx
+  const F32x8 dx = px - block[0], dy = py - block[1];
+  const F32x8 s = block[2] + block[7] * dx;
+  const F32x8 n1 = block[3] * dx + block[4] * dy, n2 = block[5] * dx + block[6] * dy;
+  for (int l = 0; l < 8; ++l) block[l] = load<F32x8>(&records[l]->x0 + 8);
+  transpose8x8(block);  // sdy, color[0].xyz, color[1].xyz, color[2].x
+  const F32x8 inv_s = splat(1.0f) / (s + block[0] * dy);
+  const F32x8 b1 = n1 * inv_s, b2 = n2 * inv_s;
+  const F32x8 b0 = splat(1.0f) - b1 - b2;
+  const float* last_two[8];
+  for (int l = 0; l < 8; ++l) last_two[l] = &records[l]->x0 + 16;
+  F32x8 c2y, c2z;
+  loadPairs(last_two, c2y, c2z);
+  group.color = {block[1] + (block[4] - block[1]) * b1 + (block[7] - block[1]) * b2,
+                 block[2] + (block[5] - block[2]) * b1 + (c2y - block[2]) * b2,
+                 block[3] + (block[6] - block[3]) * b1 + (c2z - block[3]) * b2};
+  uvCorners8(extras, material->sampler.texcoord, block);
+  group.uv = {block[0] * b0 + block[2] * b1 + block[4] * b2,
+              block[1] * b0 + block[3] * b1 + block[5] * b2};
+  group.covered = covered;
+  group.material = material;
   return true;
 }
 
