@@ -86,17 +86,9 @@ TESSERA_LANES_INLINE void loadPlainFields(const ShadeTriangle* const records[8],
   loadPairs(last_two, f[16], f[17]);
 }
 
-// The kPlainFields fields (or a UV set's six corners) of one record in every lane, broadcast where
-// they are read: `f[k]` as loadPlainFields' f[k] gives it for eight lanes of that record. Read so,
-// not broadcast into an array first, they are not spilled: GCC kept such arrays on the stack, and
-// their stores and reloads were a third of a group of one triangle's instructions (AVX2).
-struct BroadcastFields {
-  const float* p;
-  TESSERA_LANES_INLINE F32x8 operator[](int k) const { return splat(p[k]); }
-};
-
-// The same for two records a and b, b's in the lanes of `in_b` and a's in the others: the values
-// loadPlainFields (uvCorners8) gives for such lanes, picked from two broadcasts.
+// BroadcastFields (texture_lanes.h) of two records a and b, b's in the lanes of `in_b` and a's in
+// the others: the values loadPlainFields (uvCorners8) gives for such lanes, picked from two
+// broadcasts.
 struct PickedFields {
   const float *a, *b;
   I32x8 in_b;
@@ -105,17 +97,40 @@ struct PickedFields {
   }
 };
 
+// Fields 9..17 (the corners' colours) of eight records in lanes, from the transposed second block
+// of eight fields (`block`: fields 8..15) and the last two (y, z: color[2].y and .z).
+struct ColourFields {
+  const F32x8* block;
+  F32x8 y, z;
+  TESSERA_LANES_INLINE F32x8 operator[](int k) const {
+    return k < 16 ? block[k - 8] : k == 16 ? y : z;
+  }
+};
+
 // Perspective-correct barycentrics of the lanes' triangles (loadPlainFields' f, or the fields of
 // BroadcastFields or PickedFields) at (px, py), with shadeLanes' operations.
+// In two steps, for a caller that has the fields x0..sdx (f[0..7]) before sdy (f[8]):
+// barycentricSums from the first eight, then finishBarycentrics with sdy.
+struct BarycentricSums {
+  F32x8 dy, s, n1, n2;  // s: inv_w0 + sdx dx; n1, n2: b1's and b2's numerators
+};
+template <typename Fields>
+TESSERA_LANES_INLINE BarycentricSums barycentricSums(Fields f, F32x8 px, F32x8 py) {
+  const F32x8 dx = px - f[0];
+  const F32x8 dy = py - f[1];
+  return {dy, f[2] + f[7] * dx, f[3] * dx + f[4] * dy, f[5] * dx + f[6] * dy};
+}
+TESSERA_LANES_INLINE void finishBarycentrics(const BarycentricSums& sums, F32x8 sdy, F32x8& b0,
+                                             F32x8& b1, F32x8& b2) {
+  const F32x8 inv_s = splat(1.0f) / (sums.s + sdy * sums.dy);
+  b1 = sums.n1 * inv_s;
+  b2 = sums.n2 * inv_s;
+  b0 = splat(1.0f) - b1 - b2;
+}
 template <typename Fields>
 TESSERA_LANES_INLINE void plainBarycentrics(Fields f, F32x8 px, F32x8 py, F32x8& b0, F32x8& b1,
                                             F32x8& b2) {
-  const F32x8 dx = px - f[0];
-  const F32x8 dy = py - f[1];
-  const F32x8 inv_s = splat(1.0f) / (f[2] + f[7] * dx + f[8] * dy);
-  b1 = (f[3] * dx + f[4] * dy) * inv_s;
-  b2 = (f[5] * dx + f[6] * dy) * inv_s;
-  b0 = splat(1.0f) - b1 - b2;
+  finishBarycentrics(barycentricSums(f, px, py), f[8], b0, b1, b2);
 }
 
 // A float3[3] of the lanes' triangles (v[3 k + c]: component c of corner k) at barycentrics b0,
@@ -209,18 +224,13 @@ TESSERA_LANES_INLINE void prepareTexturedFields(Fields f, Corners corner, const 
                                                 TexturedGroup& group) {
   F32x8 b0, b1, b2;
   plainBarycentrics(f, px, py, b0, b1, b2);
-  // As sampleAlbedo8's uvAt8, with each lane's own corners.
-  auto uvAt8 = [&](F32x8 c0, F32x8 c1, F32x8 c2) {
-    return Uv8{corner[0] * c0 + corner[2] * c1 + corner[4] * c2,
-               corner[1] * c0 + corner[3] * c1 + corner[5] * c2};
-  };
-  group.uv = uvAt8(b0, b1, b2);
+  group.uv = uvAt8(corner, b0, b1, b2);
   if (needsLod(*material->albedo, material->sampler)) {
     F32x8 r0, r1, r2, d0, d1, d2;
     plainBarycentrics(f, px + splat(1.0f), py, r0, r1, r2);
     plainBarycentrics(f, px, py + splat(1.0f), d0, d1, d2);
-    group.right = uvAt8(r0, r1, r2);
-    group.down = uvAt8(d0, d1, d2);
+    group.right = uvAt8(corner, r0, r1, r2);
+    group.down = uvAt8(corner, d0, d1, d2);
   }
   group.color = plainColor(f, b1, b2);
   group.covered = covered;
@@ -256,24 +266,18 @@ TESSERA_LANES_INLINE bool prepareTexturedGroup(const ShadeTriangle* const record
   F32x8 block[8];
   for (int l = 0; l < 8; ++l) block[l] = load<F32x8>(&records[l]->x0);
   transpose8x8(block);  // x0, y0, inv_w0, p1dx, p1dy, p2dx, p2dy, sdx
-  const F32x8 dx = px - block[0], dy = py - block[1];
-  const F32x8 s = block[2] + block[7] * dx;
-  const F32x8 n1 = block[3] * dx + block[4] * dy, n2 = block[5] * dx + block[6] * dy;
+  const BarycentricSums sums = barycentricSums(block, px, py);
   for (int l = 0; l < 8; ++l) block[l] = load<F32x8>(&records[l]->x0 + 8);
   transpose8x8(block);  // sdy, color[0].xyz, color[1].xyz, color[2].x
-  const F32x8 inv_s = splat(1.0f) / (s + block[0] * dy);
-  const F32x8 b1 = n1 * inv_s, b2 = n2 * inv_s;
-  const F32x8 b0 = splat(1.0f) - b1 - b2;
+  F32x8 b0, b1, b2;
+  finishBarycentrics(sums, block[0], b0, b1, b2);
   const float* last_two[8];
   for (int l = 0; l < 8; ++l) last_two[l] = &records[l]->x0 + 16;
-  F32x8 c2y, c2z;
-  loadPairs(last_two, c2y, c2z);
-  group.color = {block[1] + (block[4] - block[1]) * b1 + (block[7] - block[1]) * b2,
-                 block[2] + (block[5] - block[2]) * b1 + (c2y - block[2]) * b2,
-                 block[3] + (block[6] - block[3]) * b1 + (c2z - block[3]) * b2};
+  ColourFields colours{block, {}, {}};
+  loadPairs(last_two, colours.y, colours.z);
+  group.color = plainColor(colours, b1, b2);
   uvCorners8(extras, material->sampler.texcoord, block);
-  group.uv = {block[0] * b0 + block[2] * b1 + block[4] * b2,
-              block[1] * b0 + block[3] * b1 + block[5] * b2};
+  group.uv = uvAt8(block, b0, b1, b2);
   group.covered = covered;
   group.material = material;
   return true;

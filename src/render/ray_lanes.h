@@ -192,8 +192,7 @@ TESSERA_LANES_INLINE bool shadeRaysOnce(const RayRecords& records, const LaneKey
   F32x8 corner[8];
   uvCorners8(extras, material->sampler.texcoord, corner);
   TexturedGroup group;
-  group.uv = {corner[0] * b0 + corner[2] * b1 + corner[4] * b2,
-              corner[1] * b0 + corner[3] * b1 + corner[5] * b2};
+  group.uv = uvAt8(corner, b0, b1, b2);
   group.color = plainColor(f, b1, b2);
   group.covered = valid;
   group.material = material;

@@ -162,19 +162,15 @@ TESSERA_LANES_INLINE bool sampleAlbedo8(const ShadeTriangle& t, const ShadeExtra
   const Material& m = *t.material;
   const Texture& texture = *m.albedo;
   if (!texture8Applies(texture, m.sampler)) return false;
-  // uvAt: uv[0] * b0 + uv[1] * b1 + uv[2] * b2, in the sampler's set.
-  const float2* corners = uvSet(e, m.sampler);
-  auto uvAt8 = [&](F32x8 c0, F32x8 c1, F32x8 c2) {
-    return Uv8{splat(corners[0].x) * c0 + splat(corners[1].x) * c1 + splat(corners[2].x) * c2,
-               splat(corners[0].y) * c0 + splat(corners[1].y) * c1 + splat(corners[2].y) * c2};
-  };
-  const Uv8 uv = uvAt8(b0, b1, b2);
+  // The corners in the sampler's set.
+  const BroadcastFields corners{&uvSet(e, m.sampler)->x};
+  const Uv8 uv = uvAt8(corners, b0, b1, b2);
   Uv8 right = uv, down = uv;
   if (needsLod(texture, m.sampler)) {
     Vec3x8 br, bd;
     if (!footprint(br, bd)) return false;
-    right = uvAt8(br.x, br.y, br.z);
-    down = uvAt8(bd.x, bd.y, bd.z);
+    right = uvAt8(corners, br.x, br.y, br.z);
+    down = uvAt8(corners, bd.x, bd.y, bd.z);
   }
   F32x8 out[4];
   if (!sampleTexture8(texture, m.sampler, mask, uv, right, down, 3, out)) return false;

@@ -19,6 +19,25 @@ struct Uv8 {
   F32x8 u, v;
 };
 
+// Consecutive floats of one record in every lane, broadcast where they are read: `f[k]` is float k
+// in all eight lanes, as the transposed fields of eight records give it lane by lane (the
+// ShadeTriangle fields, a UV set's corners). Read so, not broadcast into an array first, they are
+// not spilled: GCC kept such arrays on the stack, and their stores and reloads were a third of a
+// textured group of one triangle's instructions (AVX2).
+struct BroadcastFields {
+  const float* p;
+  TESSERA_LANES_INLINE F32x8 operator[](int k) const { return splat(p[k]); }
+};
+
+// The texture coordinates at barycentrics b0, b1, b2 of the lanes' triangles, whose corners
+// corner[0..5] are u0, v0, u1, v1, u2, v2 in lanes (uvCorners8's, or one triangle's
+// BroadcastFields): uvAt's operations (shade.cpp), so the same bits.
+template <typename Corners>
+TESSERA_LANES_INLINE Uv8 uvAt8(Corners corner, F32x8 b0, F32x8 b1, F32x8 b2) {
+  return {corner[0] * b0 + corner[2] * b1 + corner[4] * b2,
+          corner[1] * b0 + corner[3] * b1 + corner[5] * b2};
+}
+
 // lodLog2 (shade.cpp), lane by lane.
 TESSERA_LANES_INLINE F32x8 lodLog2x8(F32x8 x) {
   const I32x8 bits = bitsOf(x);
