@@ -449,6 +449,7 @@ Expected<void> ComputeBackend::State::renderFrame(const Scene& scene, const Rend
   if (Expected<void> r = uploadScene(*context, packed, scene_buffers); !r) return r;
   if (Expected<void> r = alpha.prepare(*context, scene, options, atomic64, packed); !r) return r;
   const bool ray_passes = options.projection != Projection::kPerspective;
+  if (Expected<void> r = pipelines.ensureProjection(*context, ray_passes); !r) return r;
   if (Expected<void> r = pipelines.ensureRaster(*context, packed.frame.layers, ray_passes); !r)
     return r;
   if (Expected<void> r = uploadRays(scene, options); !r) return r;

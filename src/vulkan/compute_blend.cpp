@@ -32,10 +32,7 @@ Expected<void> ComputeBlendPass::create(Context& c, VkDescriptorSetLayout scene_
   layout_info.pushConstantRangeCount = 1;
   layout_info.pPushConstantRanges = &push;
   TESSERA_VK_CHECK(c.vk.vkCreatePipelineLayout(c.device, &layout_info, nullptr, &layout_));
-
-  Expected<VkPipeline> pipeline = createComputePipeline(c, layout_, spirv);
-  if (!pipeline) return pipeline.error();
-  pipeline_ = *pipeline;
+  spirv_ = spirv;
   return {};
 }
 
@@ -56,6 +53,11 @@ Expected<bool> ComputeBlendPass::prepare(Context& c, const Scene& scene,
   if (options.projection != Projection::kPerspective) return false;
   order_.build(scene, options, packed.view_projection, mode_);
   if (order_.empty()) return false;
+  if (!pipeline_) {
+    Expected<VkPipeline> pipeline = createComputePipeline(c, layout_, spirv_);
+    if (!pipeline) return pipeline.error();
+    pipeline_ = *pipeline;
+  }
   // The list: per tile an offset (tiles + 1 of them, from the start of the buffer), then the keys
   // of each tile's records in drawing order. Counted, then filled.
   const uint32_t columns = packed.frame.tile_columns, rows = packed.frame.tile_rows;

@@ -24,8 +24,10 @@ namespace tessera::vulkan {
 // between the fine raster and shading.
 class ComputeBlendPass {
  public:
-  // The pass's pipeline (`spirv`: shade.comp's blend or mask variant) over the backend's set 0
-  // (`scene_set_layout`) and `push_bytes` of push constants, as the other passes' layout has them.
+  // The pass's layouts over the backend's set 0 (`scene_set_layout`) and `push_bytes` of push
+  // constants, as the other passes' layout has them; its pipeline (`spirv`: shade.comp's blend or
+  // mask variant, which lavapipe takes half a second to compile) on the first frame that has
+  // records for it.
   Expected<void> create(Context& context, VkDescriptorSetLayout scene_set_layout,
                         uint32_t push_bytes, std::span<const uint32_t> spirv,
                         AlphaMode mode = AlphaMode::kBlend);
@@ -45,6 +47,7 @@ class ComputeBlendPass {
   VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
+  std::span<const uint32_t> spirv_;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   Buffer list_;

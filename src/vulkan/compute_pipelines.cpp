@@ -73,19 +73,37 @@ Expected<void> ComputePipelines::create(Context& c, bool with_atomic64, bool wit
       {&transform, fp64 ? Spirv(spirv::kTransformFp64) : Spirv(spirv::kTransformFp32)},
       {&bin_args, spirv::kBinArgs},
       {&scan, spirv::kScan},
-      {&perspective.setup, fp64 ? Spirv(spirv::kSetupFp64) : Spirv(spirv::kSetupFp32)},
-      {&perspective.bin, spirv::kBin},
-      {&perspective.shade, spirv::kShade},
-      {&ray.setup, spirv::kRaySetup},
-      {&ray.bin, spirv::kRayBin},
-      {&ray.shade, spirv::kRayShade},
   };
   for (const Entry& e : entries) {
     Expected<VkPipeline> pipeline = createComputePipeline(c, layout, e.spirv);
     if (!pipeline) return pipeline.error();
     *e.pipeline = *pipeline;
   }
-  return ensureRaster(c, 1, false);
+  return {};
+}
+
+Expected<void> ComputePipelines::ensureProjection(Context& c, bool ray_passes) {
+  ProjectionPasses& passes = ray_passes ? ray : perspective;
+  if (passes.shade) return {};
+  struct Entry {
+    VkPipeline* pipeline;
+    Spirv spirv;
+  };
+  const Spirv setup = ray_passes ? Spirv(spirv::kRaySetup)
+                      : fp64     ? Spirv(spirv::kSetupFp64)
+                                 : Spirv(spirv::kSetupFp32);
+  const Entry entries[] = {
+      {&passes.setup, setup},
+      {&passes.bin, ray_passes ? Spirv(spirv::kRayBin) : Spirv(spirv::kBin)},
+      {&passes.shade, ray_passes ? Spirv(spirv::kRayShade) : Spirv(spirv::kShade)},
+  };
+  for (const Entry& e : entries) {
+    if (*e.pipeline) continue;
+    Expected<VkPipeline> pipeline = createComputePipeline(c, layout, e.spirv);
+    if (!pipeline) return pipeline.error();
+    *e.pipeline = *pipeline;
+  }
+  return {};
 }
 
 Expected<void> ComputePipelines::ensureRaster(Context& c, uint32_t layers, bool ray_passes) {

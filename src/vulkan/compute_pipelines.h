@@ -2,8 +2,10 @@
 // push-constant range for all of them, the passes every frame runs (clear, transform, bin args,
 // scan), and two sets of the passes that depend on the projection: the classic pipeline's
 // (perspective: edge functions on projected vertices) and the ray passes' (the nonlinear
-// projections: each pixel's ray tested against the triangle's planes). The fine raster's pipelines
-// are made on first use per visibility layer count, which sizes their shared memory.
+// projections: each pixel's ray tested against the triangle's planes). Only the first are made with
+// the backend: a projection's passes on its first frame (their shade shaders are the largest, and
+// lavapipe takes most of a second to compile each), the fine raster's per visibility layer count,
+// which sizes their shared memory.
 #pragma once
 
 #include <cstdint>
@@ -36,8 +38,10 @@ struct ComputePipelines {
   bool atomic64 = false;  // 64-bit atomic commits, else the two 32-bit passes
   bool fp64 = false;      // divisions in double
 
-  // Makes the layouts and every pipeline but the fine raster's (those for one layer excepted).
+  // Makes the layouts and the passes every frame runs.
   Expected<void> create(Context& context, bool with_atomic64, bool with_fp64);
+  // The setup, bin and shade passes of the classic pipeline or of the ray passes.
+  Expected<void> ensureProjection(Context& context, bool ray);
   // The fine raster's pipelines for `layers` visibility layers, of the ray passes or not.
   Expected<void> ensureRaster(Context& context, uint32_t layers, bool ray);
   Expected<void> ensureDiagnostics(Context& context);

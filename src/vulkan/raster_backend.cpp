@@ -100,6 +100,8 @@ struct RasterBackend::State {
   ~State();
   Expected<void> createPipelines();
   Expected<void> ensureMultisamplePass(int samples);
+  // The mesh pipelines this frame's draws use (`samples`: the linear pass's, 0 without it).
+  Expected<void> ensureMeshPipelines(int samples, bool aov_pass_needed);
   Expected<void> ensureTargets(int w, int h, int samples, bool aov_pass_needed);
   void destroyMultisamplePass();
   void writeDescriptors();
@@ -159,10 +161,6 @@ Expected<void> RasterBackend::State::createPipelines() {
   Expected<VkRenderPass> pass = createAovPass(c);
   if (!pass) return pass.error();
   aov_pass = *pass;
-  if (Expected<void> r =
-          createMeshPipelines(c, pipeline_layout, aov_pass, 1, 3, spirv::kMeshFrag, aov_pipelines);
-      !r)
-    return r;
 
   if (c.caps.timestamp_valid_bits > 0) {
     VkQueryPoolCreateInfo query_info{};
@@ -194,16 +192,31 @@ Expected<void> RasterBackend::State::ensureMultisamplePass(int samples) {
   Expected<VkRenderPass> pass = createMultisamplePass(c, samples);
   if (!pass) return pass.error();
   ms_pass = *pass;
-  if (Expected<void> r = createMeshPipelines(c, pipeline_layout, ms_pass, samples, 1,
-                                             spirv::kMeshFragMsaa, ms_pipelines);
-      !r)
-    return r;
-  if (Expected<void> r = createMeshPipelines(c, pipeline_layout, ms_pass, samples, 1,
-                                             spirv::kMeshFragBlend, ms_blend_pipelines, true);
-      !r)
-    return r;
   ms_samples = samples;
   return {};
+}
+
+Expected<void> RasterBackend::State::ensureMeshPipelines(int samples, bool aov_pass_needed) {
+  Context& c = *context;
+  // The cull modes the frame's draws use, opaque and blended (bit i for CullMode i).
+  uint32_t opaque = 0, blended = 0;
+  for (const GpuObject& object : packed.objects)
+    if (object.triangle_count > 0) opaque |= 1u << std::min(object.cull, 2u);
+  if (blending)
+    for (const RasterBlendRun& run : blend.runs())
+      blended |= 1u << std::min(packed.objects[run.object].cull, 2u);
+  if (aov_pass_needed)
+    if (Expected<void> r = createMeshPipelines(c, pipeline_layout, aov_pass, 1, 3, spirv::kMeshFrag,
+                                               aov_pipelines, opaque);
+        !r)
+      return r;
+  if (samples == 0) return {};
+  if (Expected<void> r = createMeshPipelines(c, pipeline_layout, ms_pass, samples, 1,
+                                             spirv::kMeshFragMsaa, ms_pipelines, opaque);
+      !r)
+    return r;
+  return createMeshPipelines(c, pipeline_layout, ms_pass, samples, 1, spirv::kMeshFragBlend,
+                             ms_blend_pipelines, blended, true);
 }
 
 Expected<void> RasterBackend::State::ensureTargets(int w, int h, int samples,
@@ -401,6 +414,7 @@ Expected<void> RasterBackend::State::renderFrame(const Scene& scene, const Rende
           ensureTargets(options.width, options.height, linear_samples, aov_pass_needed);
       !r)
     return r;
+  if (Expected<void> r = ensureMeshPipelines(linear_samples, aov_pass_needed); !r) return r;
   writeDescriptors();
 
   Expected<VkCommandBuffer> begun = c.beginCommands();

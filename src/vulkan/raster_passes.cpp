@@ -286,8 +286,11 @@ struct MeshPipelineState {
 Expected<void> createMeshPipelines(Context& c, VkPipelineLayout layout, VkRenderPass pass,
                                    int samples, uint32_t color_attachments,
                                    std::span<const uint32_t> fragment_spirv,
-                                   VkPipeline pipelines[3], bool blended) {
+                                   VkPipeline pipelines[3], uint32_t cull_modes, bool blended) {
   const VulkanFunctions& vk = c.vk;
+  for (int i = 0; i < 3; ++i)
+    if (pipelines[i]) cull_modes &= ~(1u << i);
+  if (cull_modes == 0) return {};
   Expected<VkShaderModule> vert = c.createShaderModule(spirv::kMeshVert);
   if (!vert) return vert.error();
   Expected<VkShaderModule> frag = c.createShaderModule(fragment_spirv);
@@ -319,26 +322,35 @@ Expected<void> createMeshPipelines(Context& c, VkPipelineLayout layout, VkRender
     b.alphaBlendOp = VK_BLEND_OP_ADD;
   }
   VkGraphicsPipelineCreateInfo create[3]{};
-  for (int i = 0; i < 3; ++i) {
-    create[i].sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
-    create[i].stageCount = 2;
-    create[i].pStages = stages;
-    create[i].pVertexInputState = &state.vertex_input;
-    create[i].pInputAssemblyState = &state.assembly;
-    create[i].pViewportState = &state.viewport;
-    create[i].pRasterizationState = &state.rasterizations[i];
-    create[i].pMultisampleState = &state.multisample;
-    create[i].pDepthStencilState = &state.depth;
-    create[i].pColorBlendState = &state.color_blend;
-    create[i].pDynamicState = &state.dynamic;
-    create[i].layout = layout;
-    create[i].renderPass = pass;
+  uint32_t modes[3], count = 0;
+  for (uint32_t i = 0; i < 3; ++i)
+    if (cull_modes & (1u << i)) modes[count++] = i;
+  for (uint32_t k = 0; k < count; ++k) {
+    const uint32_t i = modes[k];
+    create[k].sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+    create[k].stageCount = 2;
+    create[k].pStages = stages;
+    create[k].pVertexInputState = &state.vertex_input;
+    create[k].pInputAssemblyState = &state.assembly;
+    create[k].pViewportState = &state.viewport;
+    create[k].pRasterizationState = &state.rasterizations[i];
+    create[k].pMultisampleState = &state.multisample;
+    create[k].pDepthStencilState = &state.depth;
+    create[k].pColorBlendState = &state.color_blend;
+    create[k].pDynamicState = &state.dynamic;
+    create[k].layout = layout;
+    create[k].renderPass = pass;
   }
+  VkPipeline made[3] = {};
   const VkResult created =
-      vk.vkCreateGraphicsPipelines(c.device, VK_NULL_HANDLE, 3, create, nullptr, pipelines);
+      vk.vkCreateGraphicsPipelines(c.device, VK_NULL_HANDLE, count, create, nullptr, made);
   vk.vkDestroyShaderModule(c.device, *vert, nullptr);
   vk.vkDestroyShaderModule(c.device, *frag, nullptr);
+  if (created != VK_SUCCESS)
+    for (VkPipeline p : made)
+      if (p) vk.vkDestroyPipeline(c.device, p, nullptr);
   TESSERA_VK_CHECK(created);
+  for (uint32_t k = 0; k < count; ++k) pipelines[modes[k]] = made[k];
   return {};
 }
 

@@ -54,12 +54,15 @@ Expected<void> createPassTargets(Context& context, VkRenderPass pass, int w, int
                                  PassTargets& targets, bool linear = false);
 void destroyPassTargets(Context& context, PassTargets& targets);
 
-// The three mesh pipelines (by CullMode: back, front, none) of `pass`, drawing with `samples`
-// per pixel into `color_attachments` colour attachments with the given fragment shader.
-// `blended`: the transparent pass's (depth write off, the over operator; raster_blend.h).
+// The mesh pipelines of `pass` (by CullMode: back, front, none) that `cull_modes` names (bit i for
+// CullMode i) and `pipelines` does not hold yet, drawing with `samples` per pixel into
+// `color_attachments` colour attachments with the given fragment shader. `blended`: the
+// transparent pass's (depth write off, the over operator; raster_blend.h). Made as a frame first
+// needs them: lavapipe takes about half a second to compile each.
 Expected<void> createMeshPipelines(Context& context, VkPipelineLayout layout, VkRenderPass pass,
                                    int samples, uint32_t color_attachments,
                                    std::span<const uint32_t> fragment_spirv,
-                                   VkPipeline pipelines[3], bool blended = false);
+                                   VkPipeline pipelines[3], uint32_t cull_modes,
+                                   bool blended = false);
 
 }  // namespace tessera::vulkan
