@@ -11,7 +11,6 @@
 
 #include <tessera/io/atomic_file.h>
 #include <tessera/io/frame_sink.h>
-#include <tessera/io/image_loader.h>
 #include <tessera/io/image_writer.h>
 #include <tessera/io/model_loader.h>
 #include <tessera/model/model_scene.h>
@@ -28,6 +27,8 @@
 #include "light_flags.h"
 #include "point_flags.h"
 #include "progress.h"
+#include "render_scene.h"
+#include "render_settings.h"
 #include "sampling_flags.h"
 #include "surface_flags.h"
 #include "validation.h"
@@ -38,43 +39,6 @@ namespace tessera::cli {
 using namespace tessera::model;
 
 namespace {
-
-struct RenderSettings {
-  std::string output;
-  int width = 1000, height = 600;
-  float3 background{0.2f, 0.2f, 0.2f};
-  std::optional<float3> color;  // --color: the default material's, sRGB
-  CameraSettings camera;
-  std::string shading;   // empty: defaultShading (pbr for glTF, else smooth)
-  std::string backface;  // empty: the model says (glTF doubleSided), else visible
-  std::string aov = "color";
-  std::string backend = "cpu";
-  std::string simd = "auto";
-  int turntable = 0;
-  float duration = 0.0f;  // --duration SECONDS: the turntable's length, 0 when not given
-  int fps = 30;
-  int animation_index = -1;  // --animation-index: the glTF clip to play, -1 none
-  std::string frame_range;   // --frame-range A:B, frames of the clip at --fps
-  int workers = 0;
-  int device = -1;
-  bool axes = false;
-  bool info = false;
-  std::string texture;
-  bool crc = false;
-  ReferenceSettings reference;
-  std::string stats;      // --stats PATH.json: the frames' diagnostics (docs/stats.md)
-  io::LoadBudget budget;  // --memory-limit, --max-triangles, --max-texture-pixels
-  SamplingSettings sampling{.msaa = 4};  // the image a user expects: anti-aliased
-  std::string visibility = "z-buffer";
-  bool edges = false;
-  float3 edge_color{0, 0, 0};  // sRGB
-  PointSettings points;        // --point-size, --point-sprites, --line-width
-  LightSettings lights;        // --light, --ambient
-  ProgressFlags progress;      // --quiet, --progress
-  SurfaceSettings surface;     // --grid, --no-background, --opacity
-};
-
-enum class OutputKind { kPng, kVideo, kSequence };  // kVideo: .gif or .mp4
 
 bool endsWithIgnoringCase(const std::string& text, const std::string& suffix) {
   if (text.size() < suffix.size()) return false;
@@ -245,103 +209,6 @@ std::string refuseVisibility(const RenderSettings& s, bool diagnostics) {
   return "";
 }
 
-// The model as a scene with its camera, lights and axes, and the model's bounds. An exit status
-// other than kExitOk when something fails (printed); kExitOk after --info's listing too.
-int loadScene(const RenderSettings& s, const std::filesystem::path& model_path, Scene& scene,
-              Bounds& bounds, SceneGraph& graph,
-              const std::function<int(const std::string&)>& usage_error) {
-  Expected<io::Model> model = io::loadModel(model_path, s.budget);
-  if (!model) {
-    printError("render", model.error().message);
-    return kExitFailure;
-  }
-  if (s.info) {
-    printModelInfo(model_path.string(), *model, std::cout);
-    return kExitOk;
-  }
-  // The file's lights, then the --light ones: in the model's coordinates, fitted with it.
-  model->lights.insert(model->lights.end(), s.lights.lights.begin(), s.lights.lights.end());
-  if (std::string warning = fitModelScale(*model, model_path, s.camera.explicitCamera());
-      !warning.empty())
-    model->warnings.push_back(warning);
-  for (const std::string& warning : model->warnings)
-    std::cerr << "tessera render: warning: " << warning << "\n";
-  ModelSceneSettings scene_settings;
-  scene_settings.default_color_srgb = s.color;
-  if (s.color && !hasDefaultMaterial(*model))
-    std::cerr << "tessera render: warning: --color has no effect: every face of "
-              << model_path.string() << " has a material of the file\n";
-  if (!s.texture.empty()) {
-    Expected<Texture> texture = io::loadTexture(s.texture, /*srgb=*/true, s.budget.texturePixels());
-    if (!texture) {
-      printError("render", texture.error().message);
-      return kExitFailure;
-    }
-    if (!modelHasUvs(*model))
-      std::cerr << "tessera render: warning: " << model_path.string()
-                << " has no texture coordinates: --texture has no effect\n";
-    scene_settings.albedo = std::make_shared<const Texture>(std::move(*texture));
-  }
-  bounds = modelBounds(*model);
-  if (bounds.empty()) {
-    printError("render", model_path.string() + ": the model has no finite vertices");
-    return kExitFailure;
-  }
-
-  scene_settings.shading =
-      s.shading.empty() ? defaultShading(model_path) : shadingFromName(s.shading);
-  // Without the flag a glTF model's materials decide (doubleSided); other formats draw back faces.
-  const bool cull_back =
-      s.backface.empty() ? model->cull_back_faces.value_or(false) : s.backface == "hidden";
-  scene_settings.cull = cull_back ? CullMode::kBack : CullMode::kNone;
-  scene_settings.background_srgb = s.background;
-  const std::vector<Light> lights = model->lights;
-  Expected<Scene> made = makeModelScene(std::move(*model), model_path, scene_settings, &graph);
-  if (!made) {
-    printError("render", made.error().message);
-    return kExitFailure;
-  }
-  scene = std::move(*made);
-  if (s.animation_index >= 0 && static_cast<size_t>(s.animation_index) >= graph.animations.size()) {
-    printError("render", animationIndexError(model_path.string(), graph.animations.size(),
-                                             s.animation_index));
-    return kExitFailure;
-  }
-  // An animated model is framed, and its near and far planes set, for every pose of the clip.
-  if (s.animation_index >= 0) {
-    const Bounds moving =
-        clipBounds(graph.animations[static_cast<size_t>(s.animation_index)], graph);
-    if (!moving.empty()) {
-      bounds.add(moving.min);
-      bounds.add(moving.max);
-    }
-  }
-
-  const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
-  Expected<Camera> camera = makeCamera(s.camera, bounds, aspect, &graph);
-  if (!camera && cameraIndexError(camera.error().message)) {
-    printError("render", model_path.string() + ": " + camera.error().message);
-    return kExitFailure;
-  }
-  if (!camera) return usage_error(camera.error().message);
-  scene.camera = *camera;
-  addViewLights(scene);
-  applyLights(scene, lights, s.lights);
-  applySurface(s.surface, bounds, s.camera.upAxis(), scene);
-  if (Expected<void> lit =
-          applyEnvironment(s.surface, s.budget.texturePixels(), s.camera.upAxis(), scene);
-      !lit) {
-    printError("render", lit.error().message);
-    return kExitFailure;
-  }
-  if (s.axes) {
-    scene.show_world_axes = true;
-    scene.world_axes_length = std::max(bounds.radius(), 1e-6f);
-  }
-
-  return kExitOk;
-}
-
 // The options and the sampling of every frame for these settings.
 RenderOptions renderOptions(const RenderSettings& s, bool diagnostics, SamplingSettings& sampling) {
   RenderOptions options;
@@ -377,23 +244,10 @@ void poseAnimation(const Animation& clip, float t, SceneGraph& graph, Scene& sce
   updateInstances(graph, 0, scene);
 }
 
-// Renders the frames of `scene` and writes them (and the stats file, when open); the exit status.
-int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const Bounds& bounds,
-                 SceneGraph& graph, bool diagnostics, std::optional<io::AtomicFile>& stats_file) {
-  std::vector<std::string> stats_frames;
-  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device, s.simd);
-  if (!backend) {
-    printError("render", backend.error().message);
-    return kExitFailure;
-  }
-  Backend& renderer = **backend;
-  SamplingSettings sampling;
-  const RenderOptions options = renderOptions(s, diagnostics, sampling);
-  Accumulator accumulator;
-  Frame frame;
-  const Animation* clip =
-      s.animation_index >= 0 ? &graph.animations[static_cast<size_t>(s.animation_index)] : nullptr;
-  FramePlan plan{0, std::max(s.turntable, 1)};
+// The frames to render: the animation clip's (when --animation names one) or the turntable's. An
+// exit status other than kExitOk when they cannot be written as asked (printed).
+int planFrames(const RenderSettings& s, OutputKind kind, const Animation* clip, FramePlan& plan) {
+  plan = FramePlan{0, std::max(s.turntable, 1)};
   if (clip) {
     Expected<FramePlan> frames = animationFrames(*clip, s.fps, s.frame_range);
     if (!frames) {
@@ -402,14 +256,18 @@ int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const B
     }
     plan = *frames;
   }
-  const int frame_count = plan.count;
-  if (frame_count > 1 && kind == OutputKind::kPng) {
-    printError("render", "the animation has " + std::to_string(frame_count) +
+  if (plan.count > 1 && kind == OutputKind::kPng) {
+    printError("render", "the animation has " + std::to_string(plan.count) +
                              " frames: use a .gif, .mp4 or {frame} .png output, or --frame-range "
                              "A:A for one");
     return kExitUsage;
   }
-  // The output's folder, made when missing (for a sequence, frame 0's: the template's folder).
+  return kExitOk;
+}
+
+// The output's folder, made when missing (for a sequence, frame 0's: the template's folder), and
+// for a video its encoder. An exit status other than kExitOk on failure (printed).
+int openOutput(const RenderSettings& s, OutputKind kind, std::unique_ptr<io::FrameSink>& sink) {
   const std::filesystem::path first_output = kind == OutputKind::kSequence
                                                  ? io::formatFramePath(s.output, 0)
                                                  : std::filesystem::path(s.output);
@@ -417,7 +275,6 @@ int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const B
     printError("render", folder.error().message);
     return kExitFailure;
   }
-  std::unique_ptr<io::FrameSink> sink;
   if (kind == OutputKind::kVideo) {
     Expected<std::unique_ptr<io::FrameSink>> opened =
         io::openFrameSink(s.output, {s.width, s.height, s.fps, true});
@@ -427,43 +284,32 @@ int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const B
     }
     sink = std::move(*opened);
   }
-  const float3 center = bounds.center();
-  const float3 up = s.camera.upAxis();
-  Progress progress("render: frame", frame_count, s.progress);
-  for (int i = 0; i < frame_count; ++i) {
-    if (clip) {
-      poseAnimation(*clip, frameTime(*clip, s.fps, plan.first + i), graph, scene);
-    } else {
-      // The turntable turns every instance about the up axis through the model's centre.
-      const quat turn = quat::fromAxisAngle(
-          up, 2.0f * kPi * static_cast<float>(i) / static_cast<float>(frame_count));
-      for (Object& object : scene.objects) {
-        object.transform.rotation = turn;
-        object.transform.translation = center - rotate(turn, center);
-      }
-    }
-    if (Expected<void> rendered =
-            renderSampled(renderer, accumulator, scene, options, sampling, frame);
-        !rendered) {
-      printError("render", rendered.error().message);
-      return kExitFailure;
-    }
-    if (stats_file) stats_frames.push_back(statsFrameJson(frame, i, s.backend));
-    Expected<void> written;
-    if (sink) {
-      written = sink->addFrame(frame.color.data());
-    } else {
-      std::filesystem::path path = kind == OutputKind::kSequence ? io::formatFramePath(s.output, i)
-                                                                 : std::filesystem::path(s.output);
-      written = writeStill(path, frame, s.aov, s.surface.no_background);
-    }
-    if (!written) {
-      printError("render", written.error().message);
-      return kExitFailure;
-    }
-    if (s.crc) printFrameCrc(i, frame);
-    progress.update(i + 1);
+  return kExitOk;
+}
+
+// Frame i of `count` posed: the clip's pose at its time, or the turntable's turn, which turns
+// every instance about the up axis through the model's centre.
+void poseFrame(const RenderSettings& s, const Animation* clip, const FramePlan& plan, int i,
+               const Bounds& bounds, SceneGraph& graph, Scene& scene) {
+  if (clip) {
+    poseAnimation(*clip, frameTime(*clip, s.fps, plan.first + i), graph, scene);
+    return;
   }
+  const float3 center = bounds.center();
+  const quat turn = quat::fromAxisAngle(
+      s.camera.upAxis(), 2.0f * kPi * static_cast<float>(i) / static_cast<float>(plan.count));
+  for (Object& object : scene.objects) {
+    object.transform.rotation = turn;
+    object.transform.translation = center - rotate(turn, center);
+  }
+}
+
+// After the last frame: the video finished, the progress line ended, the stats file committed, the
+// summary printed and the reference compared. The exit status.
+int finishOutput(const RenderSettings& s, io::FrameSink* sink, Progress& progress,
+                 const Scene& scene, const Frame& frame, int frame_count,
+                 const std::vector<std::string>& stats_frames,
+                 std::optional<io::AtomicFile>& stats_file) {
   if (sink) {
     if (Expected<void> done = sink->finish(); !done) {
       printError("render", done.error().message);
@@ -488,6 +334,54 @@ int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const B
   }
   if (!s.reference.path.empty()) return checkReference(s.reference, s.output, frame);
   return kExitOk;
+}
+
+// Renders the frames of `scene` and writes them (and the stats file, when open); the exit status.
+int renderFrames(const RenderSettings& s, OutputKind kind, Scene& scene, const Bounds& bounds,
+                 SceneGraph& graph, bool diagnostics, std::optional<io::AtomicFile>& stats_file) {
+  std::vector<std::string> stats_frames;
+  Expected<std::unique_ptr<Backend>> backend = makeBackend(s.backend, s.workers, s.device, s.simd);
+  if (!backend) {
+    printError("render", backend.error().message);
+    return kExitFailure;
+  }
+  Backend& renderer = **backend;
+  SamplingSettings sampling;
+  const RenderOptions options = renderOptions(s, diagnostics, sampling);
+  Accumulator accumulator;
+  Frame frame;
+  const Animation* clip =
+      s.animation_index >= 0 ? &graph.animations[static_cast<size_t>(s.animation_index)] : nullptr;
+  FramePlan plan;
+  if (int status = planFrames(s, kind, clip, plan); status != kExitOk) return status;
+  std::unique_ptr<io::FrameSink> sink;
+  if (int status = openOutput(s, kind, sink); status != kExitOk) return status;
+  Progress progress("render: frame", plan.count, s.progress);
+  for (int i = 0; i < plan.count; ++i) {
+    poseFrame(s, clip, plan, i, bounds, graph, scene);
+    if (Expected<void> rendered =
+            renderSampled(renderer, accumulator, scene, options, sampling, frame);
+        !rendered) {
+      printError("render", rendered.error().message);
+      return kExitFailure;
+    }
+    if (stats_file) stats_frames.push_back(statsFrameJson(frame, i, s.backend));
+    Expected<void> written;
+    if (sink) {
+      written = sink->addFrame(frame.color.data());
+    } else {
+      std::filesystem::path path = kind == OutputKind::kSequence ? io::formatFramePath(s.output, i)
+                                                                 : std::filesystem::path(s.output);
+      written = writeStill(path, frame, s.aov, s.surface.no_background);
+    }
+    if (!written) {
+      printError("render", written.error().message);
+      return kExitFailure;
+    }
+    if (s.crc) printFrameCrc(i, frame);
+    progress.update(i + 1);
+  }
+  return finishOutput(s, sink.get(), progress, scene, frame, plan.count, stats_frames, stats_file);
 }
 
 }  // namespace
