@@ -248,6 +248,68 @@ TESSERA_LANES_INLINE void markSolid8(SetupBatch& batch) {
   for (int l = 0; l < batch.count; ++l) batch.shade[l].solid = flags[l] != 0;
 }
 
+// The triangles' bounding boxes over pixel centres (reaching samples `sample_reach` from them),
+// and smallBox's test (setup.h) lane by lane, in double lanes (exact: below 2^50).
+struct PixelBox8 {
+  I32x8 min_x, max_x, min_y, max_y, small;
+};
+TESSERA_LANES_INLINE PixelBox8 pixelBox8(const ScreenVertex8 in[3], int width, int height,
+                                         int32_t sample_reach) {
+  const I32x8 min_fx = minimum(minimum(in[0].x, in[1].x), in[2].x);
+  const I32x8 max_fx = maximum(maximum(in[0].x, in[1].x), in[2].x);
+  const I32x8 min_fy = minimum(minimum(in[0].y, in[1].y), in[2].y);
+  const I32x8 max_fy = maximum(maximum(in[0].y, in[1].y), in[2].y);
+  PixelBox8 box;
+  const I32x8 sample = splat(sample_reach);
+  pixelRange8(min_fx - sample, max_fx + sample, width, box.min_x, box.max_x);
+  pixelRange8(min_fy - sample, max_fy + sample, height, box.min_y, box.max_y);
+  const I32x8 grow = splat(4 * sample_reach);
+  const I32x8 box_w = max_fx - min_fx + grow, box_h = max_fy - min_fy + grow;
+  const F64x8 reach =
+      toDouble(box_h) * toDouble(box_w + box_w + splat(8 * kSubpixelOne)) + toDouble(box_w);
+  box.small = lessThan(reach, splat(0x1p30));
+  return box;
+}
+
+// The batch's staged shading records (final) written to shade[record], streamed.
+TESSERA_LANES_INLINE void streamShadeRecords(const SetupBatch& batch, ShadeTriangle* shade) {
+  // The shading records go out streamed too. Setup writes over last frame's records, which the
+  // other worker's shading pass read: on a host where a line takes hundreds of nanoseconds
+  // between cores, ordinary stores waited on every line (docs/perf.md, round 5). Eight
+  // consecutive records starting on a line (the usual full batch) are eleven whole lines.
+  const uint32_t first = batch.input[0].record;
+  char* const out = reinterpret_cast<char*>(&shade[first]);
+  bool consecutive =
+      batch.count == SetupBatch::kLanes && (reinterpret_cast<uintptr_t>(out) & 63) == 0;
+  for (int l = 1; l < batch.count && consecutive; ++l)
+    consecutive = batch.input[l].record == first + static_cast<uint32_t>(l);
+  if (consecutive) {
+    const char* in = reinterpret_cast<const char*>(batch.shade);
+    for (size_t offset = 0; offset < sizeof batch.shade; offset += 32)
+      storeStreaming(out + offset, load<F32x8>(in + offset));
+  } else {
+    for (int l = 0; l < batch.count; ++l)
+      streamCopy(&shade[batch.input[l].record], &batch.shade[l], sizeof(ShadeTriangle));
+  }
+}
+
+// The large triangles' (lanes outside `small`) edge constants and least depth, beside their raster
+// records in wide[record].
+TESSERA_LANES_INLINE void storeWideRecords(const SetupBatch& batch, I32x8 small, const Edge8& e0,
+                                           const Edge8& e1, const Edge8& e2, F32x8 z_min,
+                                           RasterWide* wide) {
+  alignas(64) int64_t c[3][8];
+  store(c[0], exactInt64(e0.c));
+  store(c[1], exactInt64(e1.c));
+  store(c[2], exactInt64(e2.c));
+  for (int l = 0; l < batch.count; ++l) {
+    if (lane(small, l)) continue;
+    RasterWide& w = wide[batch.input[l].record];
+    for (int k = 0; k < 3; ++k) w.c[k] = c[k][l];
+    w.z_min = lane(z_min, l);
+  }
+}
+
 // Sets up the batch's first `count` lanes into raster[record] (and wide[record] for large
 // triangles) and shade[record]: the lane's staged shading record (batch.shade) with the planes
 // added (the other lanes must hold copies of a real triangle: they are computed, not stored).
@@ -269,21 +331,9 @@ void setupBatchKernel(SetupBatch& batch, int width, int height, int32_t sample_r
   const I32x8 reorder = bitsOf(rows2[6]);
   const F64x8 area = loadStrided(&batch.input[0].area, sizeof(SetupBatch::Input));
 
-  // Bounding box over pixel centres, and the `small` test in double lanes (exact: below 2^50).
-  const I32x8 min_fx = minimum(minimum(in[0].x, in[1].x), in[2].x);
-  const I32x8 max_fx = maximum(maximum(in[0].x, in[1].x), in[2].x);
-  const I32x8 min_fy = minimum(minimum(in[0].y, in[1].y), in[2].y);
-  const I32x8 max_fy = maximum(maximum(in[0].y, in[1].y), in[2].y);
-  I32x8 min_x, max_x, min_y, max_y;
-  const I32x8 sample = splat(sample_reach);
-  pixelRange8(min_fx - sample, max_fx + sample, width, min_x, max_x);
-  pixelRange8(min_fy - sample, max_fy + sample, height, min_y, max_y);
-  // smallBox (setup.h), lane by lane.
-  const I32x8 grow = splat(4 * sample_reach);
-  const I32x8 box_w = max_fx - min_fx + grow, box_h = max_fy - min_fy + grow;
-  const F64x8 reach =
-      toDouble(box_h) * toDouble(box_w + box_w + splat(8 * kSubpixelOne)) + toDouble(box_w);
-  const I32x8 small = lessThan(reach, splat(0x1p30));
+  const PixelBox8 box = pixelBox8(in, width, height, sample_reach);
+  const I32x8 min_x = box.min_x, max_x = box.max_x, min_y = box.min_y, max_y = box.max_y;
+  const I32x8 small = box.small;
 
   // Positive area: front faces are reordered 0, 2, 1.
   const ScreenVertex8& v0 = in[0];
@@ -349,37 +399,9 @@ void setupBatchKernel(SetupBatch& batch, int width, int height, int32_t sample_r
   }
   if (batch.flat_lanes != 0) lightFlatFaces(batch);
   markSolid8(batch);  // the colours are final
-  // The shading records go out streamed too. Setup writes over last frame's records, which the
-  // other worker's shading pass read: on a host where a line takes hundreds of nanoseconds
-  // between cores, ordinary stores waited on every line (docs/perf.md, round 5). Eight
-  // consecutive records starting on a line (the usual full batch) are eleven whole lines.
-  const uint32_t first = batch.input[0].record;
-  char* const out = reinterpret_cast<char*>(&shade[first]);
-  bool consecutive =
-      batch.count == SetupBatch::kLanes && (reinterpret_cast<uintptr_t>(out) & 63) == 0;
-  for (int l = 1; l < batch.count && consecutive; ++l)
-    consecutive = batch.input[l].record == first + static_cast<uint32_t>(l);
-  if (consecutive) {
-    const char* in = reinterpret_cast<const char*>(batch.shade);
-    for (size_t offset = 0; offset < sizeof batch.shade; offset += 32)
-      storeStreaming(out + offset, load<F32x8>(in + offset));
-  } else {
-    for (int l = 0; l < batch.count; ++l)
-      streamCopy(&shade[batch.input[l].record], &batch.shade[l], sizeof(ShadeTriangle));
-  }
+  streamShadeRecords(batch, shade);
   // Large triangles (few) keep c and z_min beside the record.
-  if (any(~small)) {
-    alignas(64) int64_t c[3][8];
-    store(c[0], exactInt64(e0.c));
-    store(c[1], exactInt64(e1.c));
-    store(c[2], exactInt64(e2.c));
-    for (int l = 0; l < batch.count; ++l) {
-      if (lane(small, l)) continue;
-      RasterWide& w = wide[batch.input[l].record];
-      for (int k = 0; k < 3; ++k) w.c[k] = c[k][l];
-      w.z_min = lane(z_min, l);
-    }
-  }
+  if (any(~small)) storeWideRecords(batch, small, e0, e1, e2, z_min, wide);
 }
 
 }  // namespace
