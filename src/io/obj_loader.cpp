@@ -249,6 +249,27 @@ struct MeshChoices {
   bool use_file_normals, any_uv, has_colors;
 };
 
+// The mesh's vertex for a new corner `key` of OBJ position `position`: its position and what
+// `choices` keep of its texture coordinates, normal and colour.
+void appendVertex(const tinyobj::attrib_t& attrib, const MeshChoices& choices, const CornerKey& key,
+                  size_t position, Mesh& mesh) {
+  mesh.positions.push_back(vec3At(attrib.vertices, position));
+  if (choices.any_uv) {
+    mesh.uvs.push_back(key.uv >= 0
+                           ? float2{attrib.texcoords[2 * key.uv], attrib.texcoords[2 * key.uv + 1]}
+                           : float2{0, 0});
+  }
+  if (choices.use_file_normals)
+    mesh.normals.push_back(normalize(vec3At(attrib.normals, static_cast<size_t>(key.normal))));
+  if (choices.has_colors) {
+    // Vertex colours are linear (the architecture's convention); alpha is opaque.
+    float3 rgb = vec3At(attrib.colors, position);
+    for (int i = 0; i < 3; ++i)
+      if (!std::isfinite(rgb[i])) rgb[i] = 1.0f;
+    mesh.colors.push_back(float4{rgb, 1.0f});
+  }
+}
+
 // The indexed mesh: one vertex per distinct corner, polygons split in the contract's order,
 // materials in first-use order.
 Expected<void> buildMesh(const ObjParts& parts, const MeshChoices& choices, size_t corner_count,
@@ -282,22 +303,7 @@ Expected<void> buildMesh(const ObjParts& parts, const MeshChoices& choices, size
         const size_t position = static_cast<size_t>(index.vertex_index);
         if (added) {
           vertex_position.push_back(static_cast<uint32_t>(position));
-          mesh.positions.push_back(vec3At(attrib.vertices, position));
-          if (choices.any_uv) {
-            mesh.uvs.push_back(
-                key.uv >= 0 ? float2{attrib.texcoords[2 * key.uv], attrib.texcoords[2 * key.uv + 1]}
-                            : float2{0, 0});
-          }
-          if (choices.use_file_normals)
-            mesh.normals.push_back(
-                normalize(vec3At(attrib.normals, static_cast<size_t>(key.normal))));
-          if (choices.has_colors) {
-            // Vertex colours are linear (the architecture's convention); alpha is opaque.
-            float3 rgb = vec3At(attrib.colors, position);
-            for (int i = 0; i < 3; ++i)
-              if (!std::isfinite(rgb[i])) rgb[i] = 1.0f;
-            mesh.colors.push_back(float4{rgb, 1.0f});
-          }
+          appendVertex(attrib, choices, key, position, mesh);
         }
         polygon.push_back(mesh.positions[slot->second]);
         polygon_vertices.push_back(slot->second);
