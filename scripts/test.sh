@@ -12,7 +12,9 @@ cd "$root"
 # TSan: lean -O1 builds of only what they run (scripts/sanitize.sh). 192 s on this project's 2-core
 # AVX-512 machine (2026-12-04, f4d6f40); the whole of this script took 13m05s there in a clean clone,
 # against 21m39s before the SSE2 and the sanitizer builds' AVX2 kernels took their lane operations
-# inline (f4d6f40) and 46 min before the scalar kernels did (cfad94d).
+# inline (f4d6f40) and 46 min before the scalar kernels did (cfad94d). The suite grew to 19m52s
+# (2026-12-05, ca21eee, Intel Xeon); 15m42s after the Vulkan backends made each pipeline on first
+# use (ctest 294 -> 159 s) and the tests took a precompiled header (2026-12-06, a1049e2).
 "$root/scripts/sanitize.sh"
 # Last, so that its summary closes the output.
 ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600
