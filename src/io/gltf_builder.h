@@ -112,6 +112,30 @@ class GraphBuilder {
   void addTangents(Mesh& out);
   Expected<void> drawPrimitive(const tinygltf::Primitive& primitive, const std::string& where,
                                Mesh& out);
+  // One triangle primitive's readers, and which of Mesh's optional attributes its vertices fill.
+  struct PrimitiveReaders {
+    int mode = 0;  // TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN
+    size_t vertex_count = 0, triangle_count = 0;
+    ElementReader positions;
+    std::optional<ElementReader> indices;  // none: the vertices in order
+    std::optional<ElementReader> normals, uvs, uvs1, colors, tangents;
+    uint16_t material = 0;
+    bool keep_uvs = false, keep_uvs1 = false, keep_tangents = false;
+    bool normal_mapped = false;  // UVs and a normal map: tangents generated where none are given
+  };
+  Expected<std::optional<ElementReader>> cornerIndices(const tinygltf::Primitive& primitive,
+                                                       const std::string& where);
+  size_t triangleCount(int mode, size_t corner_count, const std::string& where);
+  Expected<void> checkStoredBudget(size_t triangle_count, size_t vertex_count) const;
+  Expected<void> readVertexAttributes(const tinygltf::Primitive& primitive,
+                                      const std::string& where, PrimitiveReaders& readers,
+                                      Mesh& out);
+  Expected<void> drawTriangles(const PrimitiveReaders& readers, const std::string& where,
+                               Mesh& out);
+  Expected<uint32_t> vertexOf(size_t corner, const PrimitiveReaders& readers,
+                              const std::string& where, bool& normals_usable, Mesh& out);
+  void finishPrimitive(const PrimitiveReaders& readers, const std::string& where,
+                       size_t first_vertex, bool normals_usable, Mesh& out);
   struct UvReaders {
     std::optional<ElementReader> set0, set1;  // TEXCOORD_0; TEXCOORD_1 when the material reads it
     bool keep_set1 = false;                   // the primitive's vertices go into Mesh::uvs1

@@ -117,37 +117,50 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
   // KHR_mesh_quantization allows integer positions, normals and texture coordinates.
   Expected<ElementReader> positions = reader(position_it->second, "POSITION of " + where, {3}, {});
   if (!positions) return positions.error();
-  const size_t vertex_count = positions->count;
+  Expected<std::optional<ElementReader>> indices = cornerIndices(primitive, where);
+  if (!indices) return indices.error();
 
-  std::optional<ElementReader> indices;
-  size_t corner_count = vertex_count;
-  if (draco_) {
-    indices = ElementReader{reinterpret_cast<const uint8_t*>(draco_->indices.data()),
-                            sizeof(uint32_t),
-                            draco_->indices.size(),
-                            1,
-                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                            false};
-    corner_count = indices->count;
-  } else if (primitive.indices >= 0) {
-    Expected<std::optional<ElementReader>> read = indexReader(primitive, where);
-    if (!read) return read.error();
-    indices = *read;
-    corner_count = indices->count;
-  }
-  size_t triangle_count = 0;
-  if (mode == TINYGLTF_MODE_TRIANGLES) {
-    triangle_count = corner_count / 3;
-    if (corner_count % 3 != 0)
-      warn(where + ": " + std::to_string(corner_count % 3) +
-           " indices after the last whole triangle are ignored");
-  } else if (corner_count >= 3) {
-    triangle_count = corner_count - 2;
-  }
-  if (triangle_count == 0) {
+  PrimitiveReaders readers;
+  readers.mode = mode;
+  readers.vertex_count = positions->count;
+  readers.positions = *positions;
+  readers.indices = *indices;
+  const size_t corner_count = readers.indices ? readers.indices->count : readers.vertex_count;
+  readers.triangle_count = triangleCount(mode, corner_count, where);
+  if (readers.triangle_count == 0) {
     warn(where + " has fewer than 3 vertices and is skipped");
     return {};
   }
+  if (Expected<void> ok = checkStoredBudget(readers.triangle_count, readers.vertex_count); !ok)
+    return ok;
+  if (Expected<void> ok = readVertexAttributes(primitive, where, readers, out); !ok) return ok;
+  return drawTriangles(readers, where, out);
+}
+
+// The primitive's corners as indices into its vertices: the Draco stream's when it has one, else
+// its `indices` accessor; none when its vertices are listed in order.
+Expected<std::optional<ElementReader>> GraphBuilder::cornerIndices(
+    const tinygltf::Primitive& primitive, const std::string& where) {
+  if (!draco_) return indexReader(primitive, where);
+  return std::optional<ElementReader>{
+      ElementReader{reinterpret_cast<const uint8_t*>(draco_->indices.data()), sizeof(uint32_t),
+                    draco_->indices.size(), 1, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, false}};
+}
+
+// The triangles of a primitive of `corner_count` corners: a list's whole triangles (with a warning
+// for the indices left over), all but two of a strip's or a fan's corners.
+size_t GraphBuilder::triangleCount(int mode, size_t corner_count, const std::string& where) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    if (corner_count % 3 != 0)
+      warn(where + ": " + std::to_string(corner_count % 3) +
+           " indices after the last whole triangle are ignored");
+    return corner_count / 3;
+  }
+  return corner_count >= 3 ? corner_count - 2 : 0;
+}
+
+// Refuses a primitive that would take the meshes stored so far past the triangle or vertex budget.
+Expected<void> GraphBuilder::checkStoredBudget(size_t triangle_count, size_t vertex_count) const {
   // countDrawn counted these in advance (with instancing); this holds the meshes stored to the
   // same budget should the two ever disagree.
   const size_t new_vertices = std::min(vertex_count, 3 * triangle_count);
@@ -158,90 +171,65 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
                      std::to_string(budget_.triangles()) + " triangles or " +
                      std::to_string(budget_.vertices()) +
                      " vertices; raise it with --max-triangles or --memory-limit");
+  return {};
+}
 
+// The primitive's NORMAL, material, texture coordinates, COLOR_0 and TANGENT into `readers`, with
+// which of them its vertices keep in `out`.
+Expected<void> GraphBuilder::readVertexAttributes(const tinygltf::Primitive& primitive,
+                                                  const std::string& where,
+                                                  PrimitiveReaders& readers, Mesh& out) {
+  const size_t vertex_count = readers.vertex_count;
   Expected<void> fatal;
-  const std::optional<ElementReader> normals =
-      optionalAttribute(primitive, "NORMAL", where, vertex_count, {3}, {}, fatal);
+  readers.normals = optionalAttribute(primitive, "NORMAL", where, vertex_count, {3}, {}, fatal);
   if (!fatal) return fatal;
   Expected<uint16_t> material = materials_.materialFor(primitive.material, model_.materials);
   if (!material) return material.error();
+  readers.material = *material;
   const Material& drawn_with = model_.materials[*material];
   Expected<UvReaders> uv_readers = uvReaders(primitive, drawn_with, where, vertex_count, out);
   if (!uv_readers) return uv_readers.error();
-  const std::optional<ElementReader>& uvs = uv_readers->set0;
-  const std::optional<ElementReader>& uvs1 = uv_readers->set1;
-  const bool keep_uvs = uvs || uvs1, keep_uvs1 = uv_readers->keep_set1;
-  const std::optional<ElementReader> colors = colorAttribute(primitive, where, vertex_count, fatal);
+  readers.uvs = uv_readers->set0;
+  readers.uvs1 = uv_readers->set1;
+  readers.keep_uvs = readers.uvs || readers.uvs1;
+  readers.keep_uvs1 = uv_readers->keep_set1;
+  readers.colors = colorAttribute(primitive, where, vertex_count, fatal);
   if (!fatal) return fatal;
   // Tangents for the material's normal map: the file's (VEC4, one per vertex), else generated.
   const bool has_tangent = primitive.attributes.count("TANGENT") != 0;
-  const std::optional<ElementReader> tangents =
-      optionalAttribute(primitive, "TANGENT", where, vertex_count, {4}, {}, fatal);
+  readers.tangents = optionalAttribute(primitive, "TANGENT", where, vertex_count, {4}, {}, fatal);
   if (!fatal) return fatal;
-  const bool normal_mapped = keep_uvs && model_.materials[*material].normal;
-  if (has_tangent && !tangents && normal_mapped) {
+  readers.normal_mapped = readers.keep_uvs && model_.materials[*material].normal;
+  if (has_tangent && !readers.tangents && readers.normal_mapped) {
     warn(where + ": its TANGENT is unusable; the normal map is left out");
     tangents_refused_ = true;
   }
-  const bool keep_tangents = tangents || normal_mapped || !out.tangents.empty();
+  readers.keep_tangents = readers.tangents || readers.normal_mapped || !out.tangents.empty();
+  return {};
+}
 
+// The primitive's triangles into `out`, with the vertices they use, then its share of the mesh
+// (finishPrimitive).
+Expected<void> GraphBuilder::drawTriangles(const PrimitiveReaders& readers,
+                                           const std::string& where, Mesh& out) {
   // Each vertex of this primitive is emitted once, on first use. The remap is stamped per
   // primitive so it never needs clearing.
-  if (remap_stamp_.size() < vertex_count) {
-    remap_stamp_.resize(vertex_count, 0);
-    remap_vertex_.resize(vertex_count, 0);
+  if (remap_stamp_.size() < readers.vertex_count) {
+    remap_stamp_.resize(readers.vertex_count, 0);
+    remap_vertex_.resize(readers.vertex_count, 0);
   }
   ++stamp_;
   const size_t first_vertex = out.positions.size();
-  if (keep_uvs) out.uvs.resize(first_vertex, float2{0, 0});
-  if (colors) out.colors.resize(first_vertex, float4{1, 1, 1, 1});
-  if (keep_tangents) out.tangents.resize(first_vertex, float4{1, 0, 0, 1});
-  bool normals_usable = normals.has_value();
+  if (readers.keep_uvs) out.uvs.resize(first_vertex, float2{0, 0});
+  if (readers.colors) out.colors.resize(first_vertex, float4{1, 1, 1, 1});
+  if (readers.keep_tangents) out.tangents.resize(first_vertex, float4{1, 0, 0, 1});
+  bool normals_usable = readers.normals.has_value();
 
-  auto vertexOf = [&](size_t corner) -> Expected<uint32_t> {
-    const size_t local = indices ? indices->index(corner) : corner;
-    if (local >= vertex_count)
-      return makeError(name_ + ": " + where + ": index " + std::to_string(local) + " is past the " +
-                       std::to_string(vertex_count) + " vertices");
-    if (remap_stamp_[local] == stamp_) return remap_vertex_[local];
-    const auto vertex = static_cast<uint32_t>(out.positions.size());
-    remap_stamp_[local] = stamp_;
-    remap_vertex_[local] = vertex;
-    out.positions.push_back(float3{positions->component(local, 0), positions->component(local, 1),
-                                   positions->component(local, 2)});
-    float3 normal{0, 0, 0};
-    if (normals) {
-      normal =
-          transformNormal(kIdentity3, {normals->component(local, 0), normals->component(local, 1),
-                                       normals->component(local, 2)});
-      normals_usable &= normal.x != 0 || normal.y != 0 || normal.z != 0;
-    }
-    out.normals.push_back(normal);
-    // glTF's v = 0 is the top of the image; tessera's is the bottom.
-    const float2 uv0 =
-        uvs ? float2{uvs->component(local, 0), 1.0f - uvs->component(local, 1)} : float2{0, 0};
-    if (keep_uvs) out.uvs.push_back(uv0);
-    if (keep_uvs1)  // set 0 where the primitive has no TEXCOORD_1
-      out.uvs1.push_back(uvs1 ? float2{uvs1->component(local, 0), 1.0f - uvs1->component(local, 1)}
-                              : uv0);
-    if (colors)
-      out.colors.push_back({colors->component(local, 0), colors->component(local, 1),
-                            colors->component(local, 2),
-                            colors->components == 4 ? colors->component(local, 3) : 1.0f});
-    if (keep_tangents)
-      out.tangents.push_back(tangents ? float4{tangents->component(local, 0),
-                                               tangents->component(local, 1),
-                                               tangents->component(local, 2),
-                                               tangents->component(local, 3) < 0.0f ? -1.0f : 1.0f}
-                                      : float4{1, 0, 0, 1});
-    return vertex;
-  };
-
-  for (size_t t = 0; t < triangle_count; ++t) {
+  for (size_t t = 0; t < readers.triangle_count; ++t) {
     size_t corners[3];
-    if (mode == TINYGLTF_MODE_TRIANGLES) {
+    if (readers.mode == TINYGLTF_MODE_TRIANGLES) {
       corners[0] = 3 * t, corners[1] = 3 * t + 1, corners[2] = 3 * t + 2;
-    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    } else if (readers.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
       // Every other triangle is listed clockwise; swap to keep one winding (glTF 3.7.2.1).
       corners[0] = t;
       corners[1] = t + 1 + t % 2;
@@ -251,31 +239,89 @@ Expected<void> GraphBuilder::drawPrimitive(const tinygltf::Primitive& primitive,
     }
     bool finite = true;
     for (size_t corner : corners) {
-      Expected<uint32_t> vertex = vertexOf(corner);
+      Expected<uint32_t> vertex = vertexOf(corner, readers, where, normals_usable, out);
       if (!vertex) return vertex.error();
       out.indices.push_back(*vertex);
       finite &= isFinite(out.positions[*vertex]);
     }
-    out.triangle_materials.push_back(*material);
+    out.triangle_materials.push_back(readers.material);
     if (!finite) ++model_.nonfinite_triangles;
   }
-  if (keep_uvs) out.uvs.resize(out.positions.size(), float2{0, 0});
-  if (keep_uvs1) out.uvs1.resize(out.positions.size(), float2{0, 0});
-  if (colors) out.colors.resize(out.positions.size(), float4{1, 1, 1, 1});
-  if (keep_tangents) {
-    out.tangents.resize(out.positions.size(), float4{1, 0, 0, 1});
-    if (!tangents && normal_mapped)
-      generated_tangent_ranges_.push_back(
-          {first_vertex, out.positions.size(), drawn_with.normal.sampler.texcoord});
+  finishPrimitive(readers, where, first_vertex, normals_usable, out);
+  return {};
+}
+
+// The mesh vertex of the primitive's `corner`: emitted into `out` on its first use, with the
+// attributes `readers` keep. A zero or non-finite normal clears `normals_usable`.
+Expected<uint32_t> GraphBuilder::vertexOf(size_t corner, const PrimitiveReaders& readers,
+                                          const std::string& where, bool& normals_usable,
+                                          Mesh& out) {
+  const size_t local = readers.indices ? readers.indices->index(corner) : corner;
+  if (local >= readers.vertex_count)
+    return makeError(name_ + ": " + where + ": index " + std::to_string(local) + " is past the " +
+                     std::to_string(readers.vertex_count) + " vertices");
+  if (remap_stamp_[local] == stamp_) return remap_vertex_[local];
+  const auto vertex = static_cast<uint32_t>(out.positions.size());
+  remap_stamp_[local] = stamp_;
+  remap_vertex_[local] = vertex;
+  const ElementReader& positions = readers.positions;
+  out.positions.push_back(float3{positions.component(local, 0), positions.component(local, 1),
+                                 positions.component(local, 2)});
+  float3 normal{0, 0, 0};
+  const std::optional<ElementReader>& normals = readers.normals;
+  if (normals) {
+    normal = transformNormal(
+        kIdentity3,
+        {normals->component(local, 0), normals->component(local, 1), normals->component(local, 2)});
+    normals_usable &= normal.x != 0 || normal.y != 0 || normal.z != 0;
   }
-  stored_triangles_ += triangle_count;
+  out.normals.push_back(normal);
+  // glTF's v = 0 is the top of the image; tessera's is the bottom.
+  const std::optional<ElementReader>& uvs = readers.uvs;
+  const std::optional<ElementReader>& uvs1 = readers.uvs1;
+  const float2 uv0 =
+      uvs ? float2{uvs->component(local, 0), 1.0f - uvs->component(local, 1)} : float2{0, 0};
+  if (readers.keep_uvs) out.uvs.push_back(uv0);
+  if (readers.keep_uvs1)  // set 0 where the primitive has no TEXCOORD_1
+    out.uvs1.push_back(uvs1 ? float2{uvs1->component(local, 0), 1.0f - uvs1->component(local, 1)}
+                            : uv0);
+  const std::optional<ElementReader>& colors = readers.colors;
+  if (colors)
+    out.colors.push_back({colors->component(local, 0), colors->component(local, 1),
+                          colors->component(local, 2),
+                          colors->components == 4 ? colors->component(local, 3) : 1.0f});
+  const std::optional<ElementReader>& tangents = readers.tangents;
+  if (readers.keep_tangents)
+    out.tangents.push_back(tangents ? float4{tangents->component(local, 0),
+                                             tangents->component(local, 1),
+                                             tangents->component(local, 2),
+                                             tangents->component(local, 3) < 0.0f ? -1.0f : 1.0f}
+                                    : float4{1, 0, 0, 1});
+  return vertex;
+}
+
+// After the primitive's triangles: `out`'s optional attributes made whole to its last vertex, the
+// vertices whose tangents or normals drawMesh generates noted, and the primitive counted against
+// the budget.
+void GraphBuilder::finishPrimitive(const PrimitiveReaders& readers, const std::string& where,
+                                   size_t first_vertex, bool normals_usable, Mesh& out) {
+  if (readers.keep_uvs) out.uvs.resize(out.positions.size(), float2{0, 0});
+  if (readers.keep_uvs1) out.uvs1.resize(out.positions.size(), float2{0, 0});
+  if (readers.colors) out.colors.resize(out.positions.size(), float4{1, 1, 1, 1});
+  if (readers.keep_tangents) {
+    out.tangents.resize(out.positions.size(), float4{1, 0, 0, 1});
+    if (!readers.tangents && readers.normal_mapped)
+      generated_tangent_ranges_.push_back(
+          {first_vertex, out.positions.size(),
+           model_.materials[readers.material].normal.sampler.texcoord});
+  }
+  stored_triangles_ += readers.triangle_count;
   stored_vertices_ += out.positions.size() - first_vertex;
   if (!normals_usable) {
-    if (normals)
+    if (readers.normals)
       warn(where + ": some normals are zero or not finite; smooth normals are generated");
     generated_normal_ranges_.push_back({first_vertex, out.positions.size()});
   }
-  return {};
 }
 
 // The primitive's texture coordinates: TEXCOORD_0 for Mesh::uvs, and TEXCOORD_1 for uvs1 when its
