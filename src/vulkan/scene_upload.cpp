@@ -1,7 +1,6 @@
 #include "vulkan/scene_upload.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstring>
 #include <limits>
 #include <numbers>
@@ -16,6 +15,7 @@
 #include "render/lines.h"
 #include "render/tone.h"
 #include "render/vertex.h"
+#include "vulkan/mesh_pack.h"
 
 namespace tessera::vulkan {
 
@@ -76,10 +76,6 @@ void fillSampling(const Scene& scene, const RenderOptions& options, GpuFrameCons
   const float* decode = srgbDecodeTable();
   for (int k = 0; k < 3; ++k) f.background_linear[k] = decode[(f.background >> (8 * k)) & 255u];
   f.background_linear[3] = 1.0f;
-}
-
-bool isFinite3(float3 p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
 }
 
 bool levelIsWhole(int width, int height, const std::vector<uint32_t>& texels) {
@@ -234,31 +230,8 @@ void fillViewer(const Scene& scene, GpuFrameConstants& f) {
   f.toward_eye[2] = toward_eye.z;
 }
 
-}  // namespace
-
-Expected<void> packScene(const Scene& scene, const RenderOptions& options, IndexPolicy policy,
-                         PackedScene& out) {
-  const size_t triangle_total = scene.triangleCount();
-  if (triangle_total > kMaxGpuTriangles)
-    return makeError("the scene has " + std::to_string(triangle_total) +
-                     " triangles; the Vulkan backends take at most " +
-                     std::to_string(kMaxGpuTriangles) + " (29-bit triangle keys)");
-
-  const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
-  // Jitter moves the geometry by -jitter pixels after the projection (sampling.h), so the sample
-  // pattern, fixed on the pixel grid, moves by +jitter relative to the scene.
-  const Jitter j = options.jitter;
-  // The nonlinear projections' passes take camera-space positions (the view matrix in place of
-  // view-projection, as the CPU's vertex stage in those modes) and carry the jitter in the rays.
-  const bool rays = options.projection != Projection::kPerspective;
-  out.view_projection =
-      rays ? scene.camera.view()
-           : jitteredProjection(scene.camera.projection(aspect), j, options.width, options.height) *
-                 scene.camera.view();
-  const float4x4 view_projection_zo = jitteredProjection(zeroToOneProjection(scene.camera, aspect),
-                                                         j, options.width, options.height) *
-                                      scene.camera.view();
-
+// Empties every packed array, keeping its memory for the next frame.
+void clearPackedArrays(PackedScene& out) {
   out.objects.clear();
   out.models.clear();
   out.materials.clear();
@@ -268,98 +241,50 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
   out.texels.clear();
   out.texture_offsets.clear();
   out.lights.clear();
+}
 
+// The object's matrices and where its vertices, triangles and materials start; records its model
+// matrix. packMesh fills the mesh's counts and flags.
+GpuObject packObject(const Object& object, const float4x4& view_projection_zo, size_t vertex_base,
+                     size_t triangle_base, PackedScene& out) {
+  const render::ObjectTransforms xf = render::makeObjectTransforms(object, out.view_projection);
+  GpuObject gpu{};
+  storeMatrix(xf.model_view_projection, gpu.model_view_projection);
+  storeMatrix(view_projection_zo * xf.model, gpu.model_view_projection_zo);
+  for (int c = 0; c < 3; ++c) {
+    gpu.normal_matrix[c][0] = xf.normal_matrix.col[c].x;
+    gpu.normal_matrix[c][1] = xf.normal_matrix.col[c].y;
+    gpu.normal_matrix[c][2] = xf.normal_matrix.col[c].z;
+  }
+  gpu.winding_sign = xf.winding_sign;
+  storeMatrix(xf.model, gpu.model);
+  gpu.vertex_base = static_cast<uint32_t>(vertex_base);
+  gpu.triangle_base = static_cast<uint32_t>(triangle_base);
+  gpu.material_base = static_cast<uint32_t>(out.materials.size());
+  gpu.material_count = static_cast<uint32_t>(object.materials.size());
+  gpu.cull = static_cast<uint32_t>(object.cull);
+  gpu.shading = static_cast<uint32_t>(object.shading);
+  out.models.push_back(xf.model);
+  return gpu;
+}
+
+// Packs every object, its materials and its mesh, one after another; an Error when the vertices
+// pass what a 32-bit index reaches.
+Expected<void> packObjects(const Scene& scene, IndexPolicy policy,
+                           const float4x4& view_projection_zo, PackedScene& out) {
   size_t vertex_base = 0, triangle_base = 0;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const Object& object = scene.objects[i];
     TESSERA_CHECK(!object.materials.empty()) << "object " << i << " has no material";
-    const render::ObjectTransforms xf = render::makeObjectTransforms(object, out.view_projection);
-    GpuObject gpu{};
-    storeMatrix(xf.model_view_projection, gpu.model_view_projection);
-    storeMatrix(view_projection_zo * xf.model, gpu.model_view_projection_zo);
-    for (int c = 0; c < 3; ++c) {
-      gpu.normal_matrix[c][0] = xf.normal_matrix.col[c].x;
-      gpu.normal_matrix[c][1] = xf.normal_matrix.col[c].y;
-      gpu.normal_matrix[c][2] = xf.normal_matrix.col[c].z;
-    }
-    gpu.winding_sign = xf.winding_sign;
-    storeMatrix(xf.model, gpu.model);
-    gpu.vertex_base = static_cast<uint32_t>(vertex_base);
-    gpu.triangle_base = static_cast<uint32_t>(triangle_base);
-    gpu.material_base = static_cast<uint32_t>(out.materials.size());
-    gpu.material_count = static_cast<uint32_t>(object.materials.size());
-    gpu.cull = static_cast<uint32_t>(object.cull);
-    gpu.shading = static_cast<uint32_t>(object.shading);
-    out.models.push_back(xf.model);
+    GpuObject gpu = packObject(object, view_projection_zo, vertex_base, triangle_base, out);
 
     for (const Material& material : object.materials)
       out.materials.push_back(packMaterial(material, out));
 
     if (object.mesh) {
-      const Mesh& mesh = *object.mesh;
-      const size_t count = mesh.vertexCount(), triangles = mesh.triangleCount();
-      const bool has_normals = mesh.normals.size() == count;
-      const bool has_uv = mesh.uvs.size() == count;
-      const bool has_uv1 = mesh.uvs1.size() == count;  // else set 0 in its place
-      const bool has_color = mesh.colors.size() == count;
-      const bool has_materials = mesh.triangle_materials.size() == triangles;
-      // The CPU's SetupContext::tangents (render/setup.h: objectSetupContext).
-      const bool has_tangents =
-          object.shading == Shading::kPbr && has_uv && has_normals &&
-          mesh.tangents.size() == count &&
-          std::any_of(object.materials.begin(), object.materials.end(),
-                      [](const Material& m) { return m.normal.texture != nullptr; });
-      gpu.vertex_count = static_cast<uint32_t>(count);
-      gpu.triangle_count = static_cast<uint32_t>(triangles);
-      gpu.flags = (has_uv ? kObjectHasUv : 0u) | (has_color ? kObjectHasColor : 0u) |
-                  (has_normals ? kObjectHasNormals : 0u) |
-                  (has_materials ? kObjectHasTriangleMaterials : 0u) |
-                  (has_tangents ? kObjectHasTangents : 0u);
-      for (size_t v = 0; v < count; ++v) {
-        GpuVertex gv{};
-        gv.position[0] = mesh.positions[v].x;
-        gv.position[1] = mesh.positions[v].y;
-        gv.position[2] = mesh.positions[v].z;
-        if (has_normals) {
-          gv.normal[0] = mesh.normals[v].x;
-          gv.normal[1] = mesh.normals[v].y;
-          gv.normal[2] = mesh.normals[v].z;
-        }
-        if (has_uv) {
-          gv.uv[0] = mesh.uvs[v].x;
-          gv.uv[1] = mesh.uvs[v].y;
-          const float2 uv1 = has_uv1 ? mesh.uvs1[v] : mesh.uvs[v];
-          gv.uv1[0] = uv1.x;
-          gv.uv1[1] = uv1.y;
-        }
-        const float4 color = has_color ? mesh.colors[v] : float4{1, 1, 1, 1};
-        for (int c = 0; c < 4; ++c) gv.color[c] = color[c];
-        if (has_tangents)
-          for (int c = 0; c < 4; ++c) gv.tangent[c] = mesh.tangents[v][c];
-        out.vertices.push_back(gv);
-      }
-      if (policy == IndexPolicy::kAsGiven) {
-        out.indices.insert(out.indices.end(), mesh.indices.begin(),
-                           mesh.indices.begin() + static_cast<ptrdiff_t>(triangles * 3));
-      } else {
-        // A vertex that is safe to repeat three times: a zero-area triangle draws nothing.
-        uint32_t safe = 0;
-        while (safe < count && !isFinite3(mesh.positions[safe])) ++safe;
-        for (size_t t = 0; t < triangles; ++t) {
-          const uint32_t* idx = &mesh.indices[t * 3];
-          bool drawn = idx[0] < count && idx[1] < count && idx[2] < count;
-          for (int k = 0; drawn && k < 3; ++k) drawn = isFinite3(mesh.positions[idx[k]]);
-          if (drawn) {
-            out.indices.insert(out.indices.end(), idx, idx + 3);
-          } else {
-            out.indices.insert(out.indices.end(), {safe, safe, safe});
-          }
-        }
-      }
-      for (size_t t = 0; t < triangles; ++t)
-        out.triangle_materials.push_back(has_materials ? mesh.triangle_materials[t] : 0u);
-      vertex_base += count;
-      triangle_base += triangles;
+      packMesh(object, policy, gpu, out);
+      vertex_base += object.mesh->vertexCount();
+      triangle_base += object.mesh->triangleCount();
       if (vertex_base > 0xffffffffull)
         return makeError("the scene has more than 2^32 vertices; the Vulkan backends take fewer");
     }
@@ -367,7 +292,11 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
   }
   out.triangle_count = triangle_base;
   out.vertex_count = vertex_base;
+  return {};
+}
 
+// The scene's lights as the CPU's shading takes them (render::shadeLight).
+void packLights(const Scene& scene, PackedScene& out) {
   for (const Light& light : scene.lights) {
     const render::ShadeLight s = render::shadeLight(light);
     out.lights.push_back(
@@ -376,7 +305,13 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
                  {s.position.x, s.position.y, s.position.z, s.spot_scale},
                  {s.spot_offset, 0, 0, 0}});
   }
+}
 
+// The frame constants, after the objects and lights are packed: viewport and tiles, counts,
+// background, ambient and tone, sampling, viewer, environment, and the nonlinear projections'
+// rays when `rays`.
+void fillFrameConstants(const Scene& scene, const RenderOptions& options, bool rays,
+                        PackedScene& out) {
   GpuFrameConstants& f = out.frame;
   f = GpuFrameConstants{};
   f.width = options.width;
@@ -407,6 +342,37 @@ Expected<void> packScene(const Scene& scene, const RenderOptions& options, Index
     f.ray_near = scene.camera.near_z;
     f.ray_inv_range = 1.0f / (scene.camera.far_z - scene.camera.near_z);
   }
+}
+
+}  // namespace
+
+Expected<void> packScene(const Scene& scene, const RenderOptions& options, IndexPolicy policy,
+                         PackedScene& out) {
+  const size_t triangle_total = scene.triangleCount();
+  if (triangle_total > kMaxGpuTriangles)
+    return makeError("the scene has " + std::to_string(triangle_total) +
+                     " triangles; the Vulkan backends take at most " +
+                     std::to_string(kMaxGpuTriangles) + " (29-bit triangle keys)");
+
+  const float aspect = static_cast<float>(options.width) / static_cast<float>(options.height);
+  // Jitter moves the geometry by -jitter pixels after the projection (sampling.h), so the sample
+  // pattern, fixed on the pixel grid, moves by +jitter relative to the scene.
+  const Jitter j = options.jitter;
+  // The nonlinear projections' passes take camera-space positions (the view matrix in place of
+  // view-projection, as the CPU's vertex stage in those modes) and carry the jitter in the rays.
+  const bool rays = options.projection != Projection::kPerspective;
+  out.view_projection =
+      rays ? scene.camera.view()
+           : jitteredProjection(scene.camera.projection(aspect), j, options.width, options.height) *
+                 scene.camera.view();
+  const float4x4 view_projection_zo = jitteredProjection(zeroToOneProjection(scene.camera, aspect),
+                                                         j, options.width, options.height) *
+                                      scene.camera.view();
+
+  clearPackedArrays(out);
+  if (Expected<void> r = packObjects(scene, policy, view_projection_zo, out); !r) return r;
+  packLights(scene, out);
+  fillFrameConstants(scene, options, rays, out);
   return {};
 }
 
