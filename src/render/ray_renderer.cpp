@@ -256,18 +256,7 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const Clock::time_point t_tiles = Clock::now();
 
   compositeFrame(scene, options, frame);
-  const RayLines mode{options.projection,
-                      static_cast<double>(scene.camera.fov_y_degrees) * std::numbers::pi / 180.0,
-                      scene.camera.near_z, scene.camera.far_z};
-  if (draws_points)
-    points_.draw(scene, options, {options.projection, {}, scene.camera.view(), mode},
-                 options.msaa > 1, pool, frame);
-  if (draws_lines) {
-    drawRayLines(scene.lines, scene.camera.view(), mode, frame, options.msaa > 1,
-                 options.line_width);
-    axisLines(scene, objects_, lines_);
-    drawRayLines(lines_, scene.camera.view(), mode, frame, options.msaa > 1);
-  }
+  drawOverlays(scene, options, draws_points, draws_lines, pool, frame);
   const Clock::time_point t_lines = Clock::now();
 
   stats = {};
@@ -280,6 +269,22 @@ void RayRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   for (size_t c = 0; c < chunk_count_; ++c) {
     stats.triangles_culled += chunks_[c].culled;
     stats.triangles_setup += chunks_[c].size;
+  }
+}
+
+void RayRenderer::drawOverlays(const Scene& scene, const RenderOptions& options, bool points,
+                               bool lines, WorkerPool& pool, Frame& frame) {
+  const RayLines mode{options.projection,
+                      static_cast<double>(scene.camera.fov_y_degrees) * std::numbers::pi / 180.0,
+                      scene.camera.near_z, scene.camera.far_z};
+  if (points)
+    points_.draw(scene, options, {options.projection, {}, scene.camera.view(), mode},
+                 options.msaa > 1, pool, frame);
+  if (lines) {
+    drawRayLines(scene.lines, scene.camera.view(), mode, frame, options.msaa > 1,
+                 options.line_width);
+    axisLines(scene, objects_, lines_);
+    drawRayLines(lines_, scene.camera.view(), mode, frame, options.msaa > 1);
   }
 }
 

@@ -52,6 +52,10 @@ class RayRenderer {
                   TriangleChunk& chunk) const;
   void renderTile(const Scene& scene, const RenderOptions& options, int tile, int worker,
                   bool with_centre, Frame& frame);
+  // The scene's points and lines (`points`, `lines`: whether it draws them) over the frame, each
+  // along the projection's curves.
+  void drawOverlays(const Scene& scene, const RenderOptions& options, bool points, bool lines,
+                    WorkerPool& pool, Frame& frame);
 
   const Kernels* kernels_ = nullptr;  // this frame's (the sample combine is integer logic: the
                                       // same bits for every instruction set)
