@@ -79,6 +79,7 @@ std::string checkFov(const ViewSettings& s, Projection mode, float aspect) {
   return "must be between 1 and 170 in perspective (other projections take wider angles)";
 }
 
+#ifdef TESSERA_HAS_VIEWER
 // The built-in model: the demo's orange cube, flat-shaded.
 io::Model cubeModel() {
   io::Model model;
@@ -88,6 +89,7 @@ io::Model cubeModel() {
   model.materials.push_back(material);
   return model;
 }
+#endif
 
 // --camera-index, --camera-orthographic and --animation-index against the other flags: "" or the
 // usage error.

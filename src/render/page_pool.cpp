@@ -16,7 +16,6 @@ namespace {
 constexpr size_t kRegion = size_t{2} << 20;  // one huge page
 constexpr int kMinClass = 6;                 // 64 bytes: a cache line
 constexpr int kMaxClass = 20;                // 1 MiB; larger blocks are mappings of their own
-constexpr size_t kLine = size_t{1} << kMinClass;
 
 size_t roundUp(size_t bytes, size_t unit) {
   return (bytes + unit - 1) / unit * unit;
@@ -42,6 +41,7 @@ void unmapRegion(void* block, size_t bytes) {
   munmap(block, bytes);
 }
 #else
+constexpr size_t kLine = size_t{1} << kMinClass;
 char* mapRegion(size_t bytes) {
   return static_cast<char*>(::operator new (bytes, std::align_val_t{kLine}));
 }
