@@ -40,6 +40,8 @@ using namespace tessera::model;
 
 namespace {
 
+enum class OutputKind { kPng, kVideo, kSequence };  // kVideo: .gif or .mp4
+
 bool endsWithIgnoringCase(const std::string& text, const std::string& suffix) {
   if (text.size() < suffix.size()) return false;
   return std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(),

@@ -52,6 +52,4 @@ struct RenderSettings {
   SurfaceSettings surface;     // --grid, --no-background, --opacity
 };
 
-enum class OutputKind { kPng, kVideo, kSequence };  // kVideo: .gif or .mp4
-
 }  // namespace tessera::cli

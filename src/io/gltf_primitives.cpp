@@ -199,7 +199,7 @@ Expected<void> GraphBuilder::readVertexAttributes(const tinygltf::Primitive& pri
   const bool has_tangent = primitive.attributes.count("TANGENT") != 0;
   readers.tangents = optionalAttribute(primitive, "TANGENT", where, vertex_count, {4}, {}, fatal);
   if (!fatal) return fatal;
-  readers.normal_mapped = readers.keep_uvs && model_.materials[*material].normal;
+  readers.normal_mapped = readers.keep_uvs && drawn_with.normal;
   if (has_tangent && !readers.tangents && readers.normal_mapped) {
     warn(where + ": its TANGENT is unusable; the normal map is left out");
     tangents_refused_ = true;

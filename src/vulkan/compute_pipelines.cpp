@@ -84,7 +84,6 @@ Expected<void> ComputePipelines::create(Context& c, bool with_atomic64, bool wit
 
 Expected<void> ComputePipelines::ensureProjection(Context& c, bool ray_passes) {
   ProjectionPasses& passes = ray_passes ? ray : perspective;
-  if (passes.shade) return {};
   struct Entry {
     VkPipeline* pipeline;
     Spirv spirv;

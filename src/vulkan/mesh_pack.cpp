@@ -1,15 +1,12 @@
 #include "vulkan/mesh_pack.h"
 
 #include <algorithm>
-#include <cmath>
+
+#include <tessera/math/vec.h>
 
 namespace tessera::vulkan {
 
 namespace {
-
-bool isFinite3(float3 p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
 
 // Which of a mesh's optional attributes are packed: each only when it is whole.
 struct MeshAttributes {
@@ -73,11 +70,11 @@ void appendIndices(const Mesh& mesh, IndexPolicy policy, PackedScene& out) {
   }
   // A vertex that is safe to repeat three times: a zero-area triangle draws nothing.
   uint32_t safe = 0;
-  while (safe < count && !isFinite3(mesh.positions[safe])) ++safe;
+  while (safe < count && !isFinite(mesh.positions[safe])) ++safe;
   for (size_t t = 0; t < triangles; ++t) {
     const uint32_t* idx = &mesh.indices[t * 3];
     bool drawn = idx[0] < count && idx[1] < count && idx[2] < count;
-    for (int k = 0; drawn && k < 3; ++k) drawn = isFinite3(mesh.positions[idx[k]]);
+    for (int k = 0; drawn && k < 3; ++k) drawn = isFinite(mesh.positions[idx[k]]);
     if (drawn) {
       out.indices.insert(out.indices.end(), idx, idx + 3);
     } else {
