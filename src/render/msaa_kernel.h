@@ -30,7 +30,7 @@ TESSERA_LANES_INLINE I32x8 unflagged(I32x8 keys) {
 
 // SampleTiles::primary, mixed and covered from the sample layers (and the centre layer, when
 // `with_centre`).
-void combineSamplesKernel(SampleTiles& tiles, int samples, bool with_centre) {
+TESSERA_LANES_INLINE void combineSamples(SampleTiles& tiles, int samples, bool with_centre) {
   const TileVisibility& first_layer = *tiles.layers[0];
   TileVisibility& primary = *tiles.primary;
   primary.x0 = first_layer.x0, primary.y0 = first_layer.y0;
@@ -62,6 +62,13 @@ void combineSamplesKernel(SampleTiles& tiles, int samples, bool with_centre) {
       store(tiles.covered + i, covered);
     }
   }
+}
+void combineSamplesKernel(SampleTiles& tiles, int samples, bool with_centre) {
+  // 4x MSAA without the centre layer (tessera render's default) with the counts as constants.
+  if (samples == 4 && !with_centre)
+    combineSamples(tiles, 4, false);
+  else
+    combineSamples(tiles, samples, with_centre);
 }
 
 // Sample s of row y in pixels: x from the pixel's left edge, y from the top of the image.

@@ -170,9 +170,10 @@ TESSERA_LANES_INLINE void rasterTriangleSamples(const RasterTriangle& t, const R
 }
 
 // Every triangle of the tile into each layer of `layers`, layer i at shifts[i].
-void rasterTileSamplesKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
-                             int tile_index, TileVisibility* const* layers,
-                             const SampleShift* shifts, int layer_count) {
+TESSERA_LANES_INLINE void rasterTileSamples(const std::vector<TriangleChunk>& chunks,
+                                            size_t chunk_count, int tile_index,
+                                            TileVisibility* const* layers,
+                                            const SampleShift* shifts, int layer_count) {
   auto draw = [&](const RasterTriangle& t, const RasterWide& w, uint32_t key)
       __attribute__((always_inline)) {
     rasterTriangleSamples(t, w, key, layers, shifts, layer_count);
@@ -184,6 +185,17 @@ void rasterTileSamplesKernel(const std::vector<TriangleChunk>& chunks, size_t ch
     walkTileBins<true>(chunks, chunk_count, tile_index, draw, masked);
   else
     walkTileBins<false>(chunks, chunk_count, tile_index, draw, masked);
+}
+
+void rasterTileSamplesKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
+                             int tile_index, TileVisibility* const* layers,
+                             const SampleShift* shifts, int layer_count) {
+  // Four layers (4x MSAA, tessera render's default, without the centre layer) in a copy of its
+  // own, where the count is a constant: the loops over the layers unroll.
+  if (layer_count == 4)
+    rasterTileSamples(chunks, chunk_count, tile_index, layers, shifts, 4);
+  else
+    rasterTileSamples(chunks, chunk_count, tile_index, layers, shifts, layer_count);
 }
 
 }  // namespace
