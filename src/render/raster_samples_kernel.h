@@ -142,14 +142,18 @@ TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t k
           __attribute__((always_inline)) {
             const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
             const I32x8 keys = centreFlagged(key, e0, e1, e2);
+            // rowDepth of each layer's moved triangle (rasterSample), the layers side by side.
+            const float centre_y = static_cast<float>(y) + 0.5f;
+            float z_rows[kMaxSamples + 1];
+            for (int i = 0; i < layer_count; ++i) z_rows[i] = t.z0 + t.dzdy * (centre_y - le.y0[i]);
             for (int i = 0; i < layer_count; ++i) {
               if (!le.drawn[i]) continue;
               const I32x8 covered = nonNegative((e0 + le.offset[i][0]) | (e1 + le.offset[i][1]) |
                                                 (e2 + le.offset[i][2])) &
                                     in_range;
-              // No branch on a layer the step misses (rasterSmall's reason). rowDepth and
-              // depthAcross8 of the moved triangle (rasterSample).
-              const float z_row = t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - le.y0[i]);
+              // No branch on a layer the step misses (rasterSmall's reason). depthAcross8 of the
+              // moved triangle (rasterSample).
+              const float z_row = z_rows[i];
               depthTestRow8<kRule>(keys, z_row, dzdx * (centre - splat(le.x0[i])), covered,
                                    layers[i]->depth + (row_offset + x),
                                    layers[i]->key + (row_offset + x));
