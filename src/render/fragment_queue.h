@@ -128,33 +128,25 @@ struct MixedGroup {
   I32x8 keys[kMaxSamples], held[kMaxSamples], pending[kMaxSamples];
   Vec3x8 sum;
 };
-// kSamples: m.samples where it is known at compile time (4, the default of tessera render), so that
-// the loops over sample pairs unroll; else 0.
-template <int kSamples>
-TESSERA_LANES_INLINE void loadMixedGroupOf(const MsaaShading& m, int i, I32x8 mixed,
-                                           MixedGroup& g) {
-  const int samples = kSamples != 0 ? kSamples : m.samples;
-  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
-  const I32x8 zero = splat(int32_t{0});
-  I32x8 background = zero;
-  for (int s = 0; s < samples; ++s)
-    g.keys[s] = load<I32x8>(m.tiles->layers[static_cast<size_t>(s)]->key + i);
-  for (int s = 0; s < samples; ++s) {
-    background = background - equal(g.keys[s], empty);
-    g.pending[s] = mixed & ~equal(g.keys[s], empty);
-    for (int r = 0; r < s; ++r) g.pending[s] = g.pending[s] & ~equal(g.keys[s], g.keys[r]);
-    g.held[s] = zero;
-    for (int r = s; r < samples; ++r) g.held[s] = g.held[s] - equal(g.keys[r], g.keys[s]);
-  }
-  const F32x8 bg_weight = toFloat(background);
-  g.sum = {splat(m.background.x) * bg_weight, splat(m.background.y) * bg_weight,
-           splat(m.background.z) * bg_weight};
-}
 TESSERA_LANES_INLINE void loadMixedGroup(const MsaaShading& m, int i, I32x8 mixed, MixedGroup& g) {
-  if (m.samples == 4)
-    loadMixedGroupOf<4>(m, i, mixed, g);
-  else
-    loadMixedGroupOf<0>(m, i, mixed, g);
+  withSampleCount(
+      m.samples, [&](int samples) __attribute__((always_inline)) {
+        const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
+        const I32x8 zero = splat(int32_t{0});
+        I32x8 background = zero;
+        for (int s = 0; s < samples; ++s)
+          g.keys[s] = load<I32x8>(m.tiles->layers[static_cast<size_t>(s)]->key + i);
+        for (int s = 0; s < samples; ++s) {
+          background = background - equal(g.keys[s], empty);
+          g.pending[s] = mixed & ~equal(g.keys[s], empty);
+          for (int r = 0; r < s; ++r) g.pending[s] = g.pending[s] & ~equal(g.keys[s], g.keys[r]);
+          g.held[s] = zero;
+          for (int r = s; r < samples; ++r) g.held[s] = g.held[s] - equal(g.keys[r], g.keys[s]);
+        }
+        const F32x8 bg_weight = toFloat(background);
+        g.sum = {splat(m.background.x) * bg_weight, splat(m.background.y) * bg_weight,
+                 splat(m.background.z) * bg_weight};
+      });
 }
 
 // The linear colours of pixels x .. x + 7 of row y (tile offset i, tile column tx; chunk_records

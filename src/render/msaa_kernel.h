@@ -64,11 +64,11 @@ TESSERA_LANES_INLINE void combineSamples(SampleTiles& tiles, int samples, bool w
   }
 }
 void combineSamplesKernel(SampleTiles& tiles, int samples, bool with_centre) {
-  // 4x MSAA without the centre layer (tessera render's default) with the counts as constants.
-  if (samples == 4 && !with_centre)
-    combineSamples(tiles, 4, false);
+  if (with_centre)
+    combineSamples(tiles, samples, true);
   else
-    combineSamples(tiles, samples, with_centre);
+    withSampleCount(
+        samples, [&](int n) __attribute__((always_inline)) { combineSamples(tiles, n, false); });
 }
 
 // Sample s of row y in pixels: x from the pixel's left edge, y from the top of the image.

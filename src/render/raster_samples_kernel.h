@@ -217,12 +217,10 @@ TESSERA_LANES_INLINE void rasterTileSamples(const std::vector<TriangleChunk>& ch
 void rasterTileSamplesKernel(const std::vector<TriangleChunk>& chunks, size_t chunk_count,
                              int tile_index, TileVisibility* const* layers,
                              const SampleShift* shifts, int layer_count) {
-  // Four layers (4x MSAA, tessera render's default, without the centre layer) in a copy of its
-  // own, where the count is a constant: the loops over the layers unroll.
-  if (layer_count == 4)
-    rasterTileSamples(chunks, chunk_count, tile_index, layers, shifts, 4);
-  else
-    rasterTileSamples(chunks, chunk_count, tile_index, layers, shifts, layer_count);
+  withSampleCount(
+      layer_count, [&](int n) __attribute__((always_inline)) {
+        rasterTileSamples(chunks, chunk_count, tile_index, layers, shifts, n);
+      });
 }
 
 }  // namespace

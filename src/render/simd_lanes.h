@@ -29,6 +29,17 @@
 namespace tessera::render {
 namespace {
 
+// Calls body(count). Where count is 4 (4x MSAA without the centre layer: tessera render's
+// default) the call is a copy of its own with the count a constant, in which the compiler unrolls
+// the body's loops over the samples or layers; `body` must be forced inline for that.
+template <typename Body>
+TESSERA_LANES_INLINE void withSampleCount(int count, Body&& body) {
+  if (count == 4)
+    body(4);
+  else
+    body(count);
+}
+
 // What both kinds of lanes share, written against their operations.
 
 template <typename V>
