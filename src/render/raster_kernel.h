@@ -74,6 +74,11 @@ TESSERA_LANES_INLINE float rowDepth(const RasterTriangle& t, int y) {
   return t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - t.y0);
 }
 
+// rowDepth of rows y .. y + 7, lane by lane the same operations.
+TESSERA_LANES_INLINE F32x8 rowDepths8(const RasterTriangle& t, int y) {
+  return splat(t.z0) + splat(t.dzdy) * ((toFloat(splat(y) + iota()) + splat(0.5f)) - splat(t.y0));
+}
+
 // The index of pixel (x, y), in window coordinates, in the tile's depth and key arrays. Pointers
 // are formed at a pixel inside the tile, never at a row's window origin left of the tile, which
 // is outside the array (undefined behaviour; UBSan's bounds check reports it).
@@ -92,39 +97,38 @@ TESSERA_LANES_INLINE int32_t smallEdgeAt(const RasterTriangle& t, int k, int x, 
 // Walks a small triangle's box from (x_begin, y_begin) to (x_end, y_end), eight pixels of a row at
 // a time, calling visit(y, row_offset, x, e0, e1, e2, in_range) with the three edge values at the
 // centres of pixels x .. x + 7 and the lanes within x_end; row_offset + x is tilePixel(x, y). The
-// values are row + step * (x - x_begin + lane), formed by adds; each row is stepped at its top, so
-// no value past row y_end is formed: with two rows or more the box is at least a pixel tall, and
-// |b| * one pixel fits (RasterTriangle::small).
+// values are row + step * (x - x_begin + lane), formed by adds; a row is stepped only when another
+// follows, so no value past row y_end is formed: with two rows or more the box is at least a pixel
+// tall, and |b| * one pixel fits (RasterTriangle::small). The row's values stay in lanes from row
+// to row: the same int32 sums as a scalar stepped with the lane offsets added each row, which took
+// most of a row's instructions.
 template <typename Visit>
 TESSERA_LANES_INLINE void walkSmallBox(const RasterTriangle& t, const TileVisibility& tile,
                                        int x_begin, int x_end, int y_begin, int y_end,
                                        Visit visit) {
-  int32_t row[3];
-  I32x8 lane_offset[3], chunk_step[3];
+  I32x8 row[3], row_step[3], chunk_step[3];
   const I32x8 lane = iota();
   for (int k = 0; k < 3; ++k) {
-    row[k] = smallEdgeAt(t, k, x_begin, y_begin);
-    lane_offset[k] = splat(t.a[k] * kSubpixelOne) * lane;
+    row[k] = splat(smallEdgeAt(t, k, x_begin, y_begin)) + splat(t.a[k] * kSubpixelOne) * lane;
+    row_step[k] = splat(t.b[k] * kSubpixelOne);
     chunk_step[k] = splat(t.a[k] * kSubpixelOne * kLanes);
   }
-  const I32x8 last = splat(x_end);
-  for (int y = y_begin; y <= y_end; ++y) {
-    if (y != y_begin)
-      for (int k = 0; k < 3; ++k) row[k] += t.b[k] * kSubpixelOne;
-    I32x8 e0 = splat(row[0]) + lane_offset[0];
-    I32x8 e1 = splat(row[1]) + lane_offset[1];
-    I32x8 e2 = splat(row[2]) + lane_offset[2];
-    I32x8 column = splat(x_begin) + lane;
-    const int row_offset = (y - tile.y0) * kTileSize - tile.x0;
-    for (int x = x_begin; x <= x_end; x += kLanes) {
-      if (x != x_begin) {
-        e0 = e0 + chunk_step[0];
-        e1 = e1 + chunk_step[1];
-        e2 = e2 + chunk_step[2];
-        column = column + splat(kLanes);
-      }
+  const I32x8 last = splat(x_end), first_column = splat(x_begin) + lane;
+  int row_offset = tilePixel(tile, x_begin, y_begin) - x_begin;
+  for (int y = y_begin;;) {
+    I32x8 e0 = row[0], e1 = row[1], e2 = row[2], column = first_column;
+    for (int x = x_begin;;) {
       visit(y, row_offset, x, e0, e1, e2, lessOrEqual(column, last));
+      x += kLanes;
+      if (x > x_end) break;
+      e0 = e0 + chunk_step[0];
+      e1 = e1 + chunk_step[1];
+      e2 = e2 + chunk_step[2];
+      column = column + splat(kLanes);
     }
+    if (++y > y_end) break;
+    for (int k = 0; k < 3; ++k) row[k] = row[k] + row_step[k];
+    row_offset += kTileSize;
   }
 }
 
@@ -132,6 +136,9 @@ template <DepthRule kRule>
 TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, TileVisibility& tile,
                                       int x_begin, int x_end, int y_begin, int y_end) {
   const F32x8 first_across = depthAcross8(t, x_begin);  // most boxes are one chunk wide
+  // The rows' depths formed eight at a time before the walk (at most a tile's rows).
+  alignas(32) float z_rows[kTileSize];
+  for (int y = y_begin; y <= y_end; y += kLanes) store(z_rows + (y - y_begin), rowDepths8(t, y));
   walkSmallBox(
       t, tile, x_begin, x_end, y_begin, y_end,
       [&](int y, int row_offset, int x, I32x8 e0, I32x8 e1, I32x8 e2, I32x8 in_range)
@@ -142,7 +149,7 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
             // either way and mispredicted often enough to cost more than the work it
             // saved (docs/perf.md, round 5).
             const F32x8 across = x == x_begin ? first_across : depthAcross8(t, x);
-            depthTestRow8<kRule>(key, rowDepth(t, y), across, covered,
+            depthTestRow8<kRule>(key, z_rows[y - y_begin], across, covered,
                                  tile.depth + (row_offset + x), tile.key + (row_offset + x));
           });
 }
