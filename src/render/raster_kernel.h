@@ -101,7 +101,8 @@ TESSERA_LANES_INLINE int32_t smallEdgeAt(const RasterTriangle& t, int k, int x, 
 // follows, so no value past row y_end is formed: with two rows or more the box is at least a pixel
 // tall, and |b| * one pixel fits (RasterTriangle::small). The row's values stay in lanes from row
 // to row: the same int32 sums as a scalar stepped with the lane offsets added each row, which took
-// most of a row's instructions.
+// most of a row's instructions. The box is not empty (x_begin <= x_end, y_begin <= y_end): the
+// first step is visited before any test.
 template <typename Visit>
 TESSERA_LANES_INLINE void walkSmallBox(const RasterTriangle& t, const TileVisibility& tile,
                                        int x_begin, int x_end, int y_begin, int y_end,
