@@ -31,10 +31,14 @@ constexpr int kBlock = 8;
 // wins, and Hi-Z is off). A template argument, so the z-buffer's kernels stay as they were.
 enum class DepthRule { kNearest, kLatest };
 
-// The z plane's change from the row's value at the centres of pixels x .. x + 7.
-TESSERA_LANES_INLINE F32x8 depthAcross8(const RasterTriangle& t, int x) {
+// The z plane's change from the row's value at the centres of pixels x .. x + 7, for the plane's
+// origin at x0 (a sample layer's moved triangle: rasterSample).
+TESSERA_LANES_INLINE F32x8 depthAcross8(const RasterTriangle& t, int x, float x0) {
   const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
-  return splat(t.dzdx) * (centre - splat(t.x0));
+  return splat(t.dzdx) * (centre - splat(x0));
+}
+TESSERA_LANES_INLINE F32x8 depthAcross8(const RasterTriangle& t, int x) {
+  return depthAcross8(t, x, t.x0);
 }
 
 // Depth-tests the eight pixels at depth[0..7] and keys[0..7]: covered lanes nearer than the stored
@@ -70,8 +74,13 @@ TESSERA_LANES_INLINE void depthTestRow8(const RasterTriangle& t, uint32_t key, f
   depthTestRow8<kRule>(key, z_row, depthAcross8(t, x), covered, depth, keys);
 }
 
+// The z plane at the centres of row y, for the plane's origin at y0 (a sample layer's moved
+// triangle: rasterSample) or the triangle's.
+TESSERA_LANES_INLINE float rowDepth(const RasterTriangle& t, int y, float y0) {
+  return t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - y0);
+}
 TESSERA_LANES_INLINE float rowDepth(const RasterTriangle& t, int y) {
-  return t.z0 + t.dzdy * (static_cast<float>(y) + 0.5f - t.y0);
+  return rowDepth(t, y, t.y0);
 }
 
 // rowDepth of rows y .. y + 7, lane by lane the same operations.

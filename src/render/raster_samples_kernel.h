@@ -156,35 +156,30 @@ TESSERA_LANES_INLINE void rasterSmallSamples(const RasterTriangle& t, uint32_t k
   // depthAcross8 of each layer's moved triangle (rasterSample) at the first step of a row (most
   // rows take one).
   F32x8 first_across[kMaxSamples + 1];
-  const F32x8 dzdx = splat(t.dzdx);
-  const F32x8 first_centre = toFloat(splat(x_begin) + iota()) + splat(0.5f);
-  for (int i = 0; i < layer_count; ++i) first_across[i] = dzdx * (first_centre - splat(le.x0[i]));
+  for (int i = 0; i < layer_count; ++i) first_across[i] = depthAcross8(t, x_begin, le.x0[i]);
   // A copy of the walk for the usual case, every layer drawn (no Hi-Z bound in the tile), without
   // a test per layer and step.
   auto walk = [&](auto every_layer) __attribute__((always_inline)) {
     walkSmallBox(
         t, tile, x_begin, x_end, y_begin, y_end,
-        [&](int y, int row_offset, int x, I32x8 e0, I32x8 e1, I32x8 e2,
-            I32x8 in_range) __attribute__((always_inline)) {
-          const F32x8 centre = toFloat(splat(x) + iota()) + splat(0.5f);
-          const I32x8 keys = centreFlagged(key, e0, e1, e2);
-          // rowDepth of each layer's moved triangle (rasterSample), the layers side by side.
-          const float centre_y = static_cast<float>(y) + 0.5f;
-          float z_rows[kMaxSamples + 1];
-          for (int i = 0; i < layer_count; ++i) z_rows[i] = t.z0 + t.dzdy * (centre_y - le.y0[i]);
-          for (int i = 0; i < layer_count; ++i) {
-            if (!every_layer && !le.drawn[i]) continue;
-            const I32x8 covered = nonNegative((e0 + le.offset[i][0]) | (e1 + le.offset[i][1]) |
-                                              (e2 + le.offset[i][2])) &
-                                  in_range;
-            // No branch on a layer the step misses (rasterSmall's reason). depthAcross8 of the
-            // moved triangle (rasterSample).
-            const F32x8 across = x == x_begin ? first_across[i] : dzdx * (centre - splat(le.x0[i]));
-            depthTestRow8<kRule>(keys, z_rows[i], across, covered,
-                                 layers[i]->depth + (row_offset + x),
-                                 layers[i]->key + (row_offset + x));
-          }
-        });
+        [&](int y, int row_offset, int x, I32x8 e0, I32x8 e1, I32x8 e2, I32x8 in_range)
+            __attribute__((always_inline)) {
+              const I32x8 keys = centreFlagged(key, e0, e1, e2);
+              // rowDepth of each layer's moved triangle (rasterSample), the layers side by side.
+              float z_rows[kMaxSamples + 1];
+              for (int i = 0; i < layer_count; ++i) z_rows[i] = rowDepth(t, y, le.y0[i]);
+              for (int i = 0; i < layer_count; ++i) {
+                if (!every_layer && !le.drawn[i]) continue;
+                const I32x8 covered = nonNegative((e0 + le.offset[i][0]) | (e1 + le.offset[i][1]) |
+                                                  (e2 + le.offset[i][2])) &
+                                      in_range;
+                // No branch on a layer the step misses (rasterSmall's reason).
+                const F32x8 across = x == x_begin ? first_across[i] : depthAcross8(t, x, le.x0[i]);
+                depthTestRow8<kRule>(keys, z_rows[i], across, covered,
+                                     layers[i]->depth + (row_offset + x),
+                                     layers[i]->key + (row_offset + x));
+              }
+            });
   };
   if (drawn_count == layer_count)
     walk(std::true_type{});
