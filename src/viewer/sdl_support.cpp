@@ -37,6 +37,14 @@ Expected<void> SdlSession::start() {
   // a drag rather than only focus it.
   SDL_SetHint(SDL_HINT_VIDEO_ALLOW_SCREENSAVER, "1");
   SDL_SetHint(SDL_HINT_MOUSE_FOCUS_CLICKTHROUGH, "1");
+#if defined(TESSERA_HAS_X11)
+  // Before SDL_Init: SDL's x11 driver keeps the handler it finds as the one to forward to, and
+  // puts it back when it closes the display at SDL_Quit, where a late BadWindow still arrives.
+  // Installed after SDL_Init, ours was replaced by Xlib's default at quit. Harmless with any other
+  // driver.
+  if (previous_x_error_handler == nullptr)
+    previous_x_error_handler = XSetErrorHandler(ignoreStaleWindowErrors);
+#endif
   if (SDL_Init(SDL_INIT_VIDEO) != 0) {
     const char* driver = std::getenv("SDL_VIDEODRIVER");
     std::string message = std::string("cannot open a window: ") + SDL_GetError();
@@ -56,9 +64,6 @@ Expected<void> SdlSession::start() {
     return makeError("cannot open a window: no display (SDL found none and fell back to its '" +
                      current +
                      "' driver); set DISPLAY (X11) or WAYLAND_DISPLAY, or run under xvfb-run");
-#if defined(TESSERA_HAS_X11)
-  if (current == "x11") previous_x_error_handler = XSetErrorHandler(ignoreStaleWindowErrors);
-#endif
   if (TTF_Init() != 0) return makeError(std::string("cannot start SDL2_ttf: ") + TTF_GetError());
   ttf_ = true;
   return {};
