@@ -259,7 +259,12 @@ def other_machine(w, results, output):
         read_lines(msaa_path) if os.path.exists(msaa_path) else [])
     best = widest_kernels(machine)
     rel = os.path.relpath(results, os.path.dirname(output) or ".")
-    w(f"### The same matrix on {machine['cpu']} with {best.split(' ')[0]}")
+    # A run whose kernels were chosen narrower than the CPU's widest says so in its title, so that
+    # it is not taken for a machine without the wider ones.
+    title = f"### The same matrix on {machine['cpu']} with {best.split(' ')[0]}"
+    if machine.get("kernels"):
+        title += f" kernels (an {widest_kernels(dict(machine, kernels='')).split(' ')[0]} CPU)"
+    w(title)
     w("")
     w(f"Measured {machine['date']} at commit `{machine['commit']}` on {machine['cpu']} "
       f"({', '.join(machine['simd'])}; tessera's tile kernels: {best}), {machine['cores']} cores, "
