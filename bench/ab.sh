@@ -10,7 +10,7 @@
 #   bench/ab.sh /tmp/before/tessera_stagetimes build/bench/tessera_stagetimes 8 \
 #       bunny 1 60 1920 1080 avx512 4
 set -euo pipefail
-[ $# -ge 4 ] || { sed -n '2,12p' "$0" >&2; exit 2; }
+[ $# -ge 4 ] || { sed -n '2,11p' "$0" >&2; exit 2; }
 old=$1 new=$2 rounds=$3
 shift 3
 out=$(mktemp -d)
