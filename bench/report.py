@@ -213,6 +213,14 @@ def msaa_rows(rows):
 KERNEL_NAMES = {"avx512": "AVX-512", "avx2": "AVX2", "sse2": "SSE2", "scalar": "scalar"}
 
 
+def cpu_name(machine):
+    """The CPU's model name, with its family and model numbers where the run recorded them (a
+    virtual machine's name may be just "AMD EPYC" for processors generations apart)."""
+    if "family" in machine:
+        return f"{machine['cpu']} (family {machine['family']}, model {machine['model']})"
+    return machine["cpu"]
+
+
 def widest_kernels(machine):
     """The tile kernels the run used: the CPU's widest, or those run_all.sh's SIMD chose."""
     widest = ("AVX-512" if "avx512f" in machine["simd"] else
@@ -261,12 +269,12 @@ def other_machine(w, results, output):
     rel = os.path.relpath(results, os.path.dirname(output) or ".")
     # A run whose kernels were chosen narrower than the CPU's widest says so in its title, so that
     # it is not taken for a machine without the wider ones.
-    title = f"### The same matrix on {machine['cpu']} with {best.split(' ')[0]}"
+    title = f"### The same matrix on {cpu_name(machine)} with {best.split(' ')[0]}"
     if machine.get("kernels"):
         title += f" kernels (an {widest_kernels(dict(machine, kernels='')).split(' ')[0]} CPU)"
     w(title)
     w("")
-    w(f"Measured {machine['date']} at commit `{machine['commit']}` on {machine['cpu']} "
+    w(f"Measured {machine['date']} at commit `{machine['commit']}` on {cpu_name(machine)} "
       f"({', '.join(machine['simd'])}; tessera's tile kernels: {best}), {machine['cores']} cores, "
       f"{machine['frames']} timed frames per row, the 1-minute load average "
       f"{machine['load_before']:.2f} at the start and {machine['load_after']:.2f} at the end; raw "
@@ -352,7 +360,7 @@ def main():
     w("")
     w("| | |")
     w("|---|---|")
-    w(f"| CPU | {machine['cpu']} ({', '.join(machine['simd'])}) |")
+    w(f"| CPU | {cpu_name(machine)}: {', '.join(machine['simd'])} |")
     best = widest_kernels(machine)
     w(f"| tessera's tile kernels | {best}, chosen at run time |")
     w(f"| cores | {machine['cores']} |")

@@ -116,11 +116,13 @@ core_latency end >> "$out/corelatency.jsonl"
 compiler=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$build/CMakeCache.txt")
 "$python" - "$out/machine.json" <<EOF
 import json, platform, subprocess, sys
-cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "unknown")
+def cpuinfo(key, default="unknown"):
+    return next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.split(":")[0].strip() == key), default)
+cpu = cpuinfo("model name")
 flags = next((l.split(":", 1)[1].split() for l in open("/proc/cpuinfo") if l.startswith("flags")), [])
 simd = [f for f in ("sse2", "avx2", "avx512f") if f in flags]
 json.dump({
-    "cpu": cpu, "cores": int(subprocess.check_output(["nproc"]).strip()), "simd": simd,
+    "cpu": cpu, "family": cpuinfo("cpu family"), "model": cpuinfo("model"), "cores": int(subprocess.check_output(["nproc"]).strip()), "simd": simd,
     "compiler": subprocess.check_output(["$compiler", "--version"], text=True).splitlines()[0],
     "kernel": platform.release(),
     "commit": subprocess.check_output(["git", "rev-parse", "--short", "HEAD"], text=True).strip(),
