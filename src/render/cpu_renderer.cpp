@@ -320,7 +320,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   // Vertex and setup stages.
   const TileGrid grid = TileGrid::forViewport(options.width, options.height);
   const State::Geometry geometry =
-      s.transformAndSetUp(scene, options, grid, triangle_total, sampled ? kSampleReach : 0);
+      s.transformAndSetUp(scene, options, grid, triangle_total, sampleReach(options.msaa));
 
   // Raster, shade and resolve, per tile.
   const Clock::time_point t_setup = Clock::now();

@@ -67,7 +67,7 @@ void BlendDrawOrder::addObject(const Scene& scene, size_t object_index, const Ob
   ctx.width = options.width;
   ctx.height = options.height;
   ctx.cull = object.cull;
-  ctx.sample_reach = options.msaa > 1 ? kSampleReach : 0;
+  ctx.sample_reach = sampleReach(options.msaa);
 
   auto add = [&](size_t local, uint32_t piece, const ScreenVertex sv[3]) {
     RasterTriangle raster;
