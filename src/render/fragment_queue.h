@@ -5,7 +5,9 @@
 // time across the groups, each added to its pixel's sum in queue order (each pixel's sample order);
 // at the row's end the sums, which began with the uncovered samples' background, are divided by
 // the sample count. Shaded group by group instead, a round of a group held about three of its
-// eight lanes (docs/perf.md). Compiled per instruction set; every variant gives the same bits.
+// eight lanes. A round is shaded a group after its fragments were queued: shaded at once, its loads
+// waited on the pushes' stores just made, which a load spanning several of them cannot take
+// forwarded (docs/perf.md). Compiled per instruction set; every variant gives the same bits.
 #pragma once
 
 #include <cstdint>
@@ -17,14 +19,15 @@ namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
 
 struct FragmentQueue {
-  // What a flush leaves (fewer than eight) and one group's fragments (eight at most a sample),
-  // whose last full store ends within.
-  static constexpr int kCapacity = 8 + 8 * kMaxSamples;
+  // A row's fragments (every sample of every pixel at most), and room for the last push's full
+  // store past them.
+  static constexpr int kCapacity = kTileSize * kMaxSamples + 8;
   static_assert(kTileSize <= 64 && kMaxSamples <= 8, "where's fields: 6 bits, 3 bits, the rest");
   alignas(32) int32_t key[kCapacity];
   // Tile column | sample << 6 | the samples of the pixel its triangle holds << 9.
   alignas(32) int32_t where[kCapacity];
   int count;
+  int shaded = 0;  // the fragments before this one are shaded
   // sampleX and the fraction of sampleY of each sample.
   float sample_x[kMaxSamples], sample_y[kMaxSamples];
 
@@ -92,23 +95,24 @@ TESSERA_LANES_INLINE void addFragments(I32x8 tx, F32x8 weight, int count, const 
   }
 }
 
-// The queue's fragments shaded eight at a time by shade(first, count), all of them when `all`,
-// else while eight are left; what is left moves to the front.
+// The whole rounds of eight among the first `ready` fragments of the queue not yet shaded, by
+// shade(first, count) in queue order. `ready`: the count before the last group's pushes, whose
+// stores a round then seldom waits on.
 template <typename Shade>
-TESSERA_LANES_INLINE void shadeQueue(FragmentQueue& queue, bool all, Shade shade) {
-  int first = 0;
-  for (; queue.count - first >= 8; first += 8) shade(first, 8);
-  if (all && queue.count > first) {
-    shade(first, queue.count - first);
-    first = queue.count;
-  }
-  if (first == 0) return;
-  store(queue.key, load<I32x8>(queue.key + first));  // fewer than eight left
-  store(queue.where, load<I32x8>(queue.where + first));
-  queue.count -= first;
+TESSERA_LANES_INLINE void shadeQueue(FragmentQueue& queue, int ready, Shade shade) {
+  for (; queue.shaded + 8 <= ready; queue.shaded += 8) shade(queue.shaded, 8);
 }
 
-// Row ty's mixed pixels, their sums complete (shadeQueue with `all`), divided by the sample count.
+// Every fragment of the queue not yet shaded (the last round fewer than eight); the queue then
+// starts empty.
+template <typename Shade>
+TESSERA_LANES_INLINE void finishQueue(FragmentQueue& queue, Shade shade) {
+  shadeQueue(queue, queue.count, shade);
+  if (queue.shaded < queue.count) shade(queue.shaded, queue.count - queue.shaded);
+  queue.count = queue.shaded = 0;
+}
+
+// Row ty's mixed pixels, their sums complete (finishQueue), divided by the sample count.
 TESSERA_LANES_INLINE void finishMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
                                          float linear[3][kTileSize]) {
   const F32x8 inv_samples = splat(1.0f / static_cast<float>(m.samples));
@@ -256,11 +260,12 @@ TESSERA_LANES_INLINE void resolveMixedRowBy(const MsaaShading& m, const TileVisi
     store(linear[0] + tx, select(mixed, g.sum.x, load<F32x8>(linear[0] + tx)));
     store(linear[1] + tx, select(mixed, g.sum.y, load<F32x8>(linear[1] + tx)));
     store(linear[2] + tx, select(mixed, g.sum.z, load<F32x8>(linear[2] + tx)));
+    const int ready = queue.count;
     for (int s = 0; s < m.samples; ++s) queue.push(g.keys[s], g.pending[s], tx, s, g.held[s]);
-    shadeQueue(queue, false, add);
+    shadeQueue(queue, ready, add);
   }
   if (!row_mixed) return;
-  shadeQueue(queue, true, add);
+  finishQueue(queue, add);
   finishMixedRow(m, tile, ty, linear);
 }
 

@@ -238,13 +238,14 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
     const auto shade_sampled = [&](int g) __attribute__((always_inline)) {
       const int tx = 8 * g, i = ty * kTileSize + tx;
       const I32x8 mixed = load<I32x8>(msaa->tiles->mixed + i);
+      const int ready = queue->count;
       storeLinear(
           linear, tx,
           shadePlainSampled(*msaa, records, i, tx, tile.x0 + tx, tile.y0 + ty, mixed, *queue));
-      shadeQueue(*queue, false, shade_queued);
+      shadeQueue(*queue, ready, shade_queued);
     };
     forEachGroup(groups.sampled, shade_sampled);
-    shadeQueue(*queue, true, shade_queued);
+    finishQueue(*queue, shade_queued);
     finishMixedRow(*msaa, tile, ty, linear);
   }
 }
