@@ -73,9 +73,9 @@ TESSERA_LANES_INLINE void loadQueued(const ShadeTriangle* const* chunk_records,
   q.lane_keys = laneKeys(q.keys, q.valid);
   laneRecords(q.lane_keys, chunk_records, q.records);
   const F32x8 column = toFloat(splat(x0) + q.tx);
-  q.px = select(at_centre, column + splat(0.5f), column + gather(queue.sample_x, sample));
+  q.px = select(at_centre, column + splat(0.5f), column + lookup8(queue.sample_x, sample));
   q.py = select(at_centre, splat(static_cast<float>(y) + 0.5f),
-                splat(static_cast<float>(y)) + gather(queue.sample_y, sample));
+                splat(static_cast<float>(y)) + lookup8(queue.sample_y, sample));
 }
 
 // The fragments' linear colours `color` (tile columns tx), weighted, added to their pixels' sums

@@ -168,6 +168,10 @@ TESSERA_LANES_INLINE I32x8 lessThan(I32x8 a, I32x8 b) {
   for (int l = 0; l < 8; ++l) r.v[l] = a.v[l] < b.v[l] ? -1 : 0;
   return r;
 }
+// table[index[l]] for indices in [0, 8).
+TESSERA_LANES_INLINE F32x8 lookup8(const float* table, I32x8 index) {
+  return gather(table, index);
+}
 // table[index[l]] for indices in [0, 16).
 TESSERA_LANES_INLINE F32x8 lookup16(const float* table, I32x8 index) {
   return gather(table, index);

@@ -209,6 +209,16 @@ TESSERA_LANES_INLINE F32x8 floorLanes(F32x8 a) {
   return a;
 #endif
 }
+// table[index[l]] for indices in [0, 8): one in-register permute where the target has it (a
+// gather instruction takes about thirteen cycles on AMD cores).
+TESSERA_LANES_INLINE F32x8 lookup8(const float* table, I32x8 index) {
+#if defined(__AVX2__)
+  return reinterpret_cast<F32x8>(
+      _mm256_permutevar8x32_ps(_mm256_loadu_ps(table), reinterpret_cast<__m256i>(index)));
+#else
+  return gather(table, index);
+#endif
+}
 // table[index[l]] for indices in [0, 16): two in-register permutes where the target has them.
 TESSERA_LANES_INLINE F32x8 lookup16(const float* table, I32x8 index) {
 #if defined(__AVX2__)
