@@ -161,7 +161,7 @@ struct StageInput {
 
 // The input of scene `name` at width x height, made on first use; null (with the reason in
 // `error`) when the scene cannot be made. The bunny falls back to the dense sphere. With MSAA the
-// boxes reach `sample_reach` further (render::kSampleReach), as the renderer's setup makes them.
+// boxes reach `sample_reach` further (render::sampleReach), as the renderer's setup makes them.
 const StageInput* stageInput(const std::string& name, int width, int height, std::string& error,
                              int32_t sample_reach = 0) {
   static std::map<std::string, std::unique_ptr<StageInput>> inputs;
@@ -521,7 +521,7 @@ void BM_TileStage(benchmark::State& state) {
   const int samples = static_cast<int>(state.range(1));
   if (skipUnsupported(state, isa)) return;
   const StageInput* input =
-      stageInputOrSkip(state, "bunny", 1920, 1080, samples > 1 ? render::kSampleReach : 0);
+      stageInputOrSkip(state, "bunny", 1920, 1080, render::sampleReach(samples));
   if (!input) return;
   const StageInput& in = *input;
   const render::Kernels kernels = render::kernelsFor(isa);

@@ -221,15 +221,20 @@ def cpu_name(machine):
     return machine["cpu"]
 
 
+def cpu_widest(machine):
+    """The widest tile kernels the run's CPU has."""
+    return ("AVX-512" if "avx512f" in machine["simd"] else
+            "AVX2" if "avx2" in machine["simd"] else "SSE2")
+
+
 def widest_kernels(machine):
     """The tile kernels the run used: the CPU's widest, or those run_all.sh's SIMD chose."""
-    widest = ("AVX-512" if "avx512f" in machine["simd"] else
-              "AVX2 (this CPU has no AVX-512)" if "avx2" in machine["simd"] else "SSE2")
+    widest = cpu_widest(machine)
     chosen = machine.get("kernels", "")
     if chosen:
         return (f"{KERNEL_NAMES.get(chosen, chosen)} (chosen with `--simd {chosen}`; the CPU's "
-                f"widest: {widest.split(' ')[0]})")
-    return widest
+                f"widest: {widest})")
+    return widest + (" (this CPU has no AVX-512)" if widest == "AVX2" else "")
 
 
 def shading_label(r):
@@ -271,7 +276,7 @@ def other_machine(w, results, output):
     # it is not taken for a machine without the wider ones.
     title = f"### The same matrix on {cpu_name(machine)} with {best.split(' ')[0]}"
     if machine.get("kernels"):
-        title += f" kernels (an {widest_kernels(dict(machine, kernels='')).split(' ')[0]} CPU)"
+        title += f" kernels (an {cpu_widest(machine)} CPU)"
     w(title)
     w("")
     w(f"Measured {machine['date']} at commit `{machine['commit']}` on {cpu_name(machine)} "

@@ -119,7 +119,7 @@ import json, platform, subprocess, sys
 def cpuinfo(key, default="unknown"):
     return next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.split(":")[0].strip() == key), default)
 cpu = cpuinfo("model name")
-flags = next((l.split(":", 1)[1].split() for l in open("/proc/cpuinfo") if l.startswith("flags")), [])
+flags = cpuinfo("flags", "").split()
 simd = [f for f in ("sse2", "avx2", "avx512f") if f in flags]
 json.dump({
     "cpu": cpu, "family": cpuinfo("cpu family"), "model": cpuinfo("model"), "cores": int(subprocess.check_output(["nproc"]).strip()), "simd": simd,

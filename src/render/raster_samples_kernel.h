@@ -20,7 +20,7 @@ namespace {  // one private copy per translation unit, each compiled for its ins
 // takes a * dx + b * dy, and the depth plane's origin moves by the offset in pixels; the keys'
 // centre flags (kCentreKeyBit) come from the original's values, the moved one's less a * dx +
 // b * dy. The record's box holds every pixel any sample may cover (setup grows it by
-// kSampleReach); the moved triangle's own box, from its snapped vertices (which a, b and x0, y0
+// sampleReach); the moved triangle's own box, from its snapped vertices (which a, b and x0, y0
 // give back exactly), is narrower by up to a pixel on each side. (Small triangles take every
 // layer in one walk: rasterSmallSamples.) Not inlined: in the walk over the tile's triangles it
 // took registers from the small triangles' walks, which took 3% more instructions.

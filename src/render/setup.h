@@ -133,7 +133,8 @@ struct SetupContext {
   const float4* tangents = nullptr;
   float winding_sign = 1.0f;  // sign of det(model): a mirrored object flips the bitangent
   // How far (1/256 pixel) a sample may lie from its pixel's centre: 0 with one sample at the
-  // centre, kSampleReach with MSAA. Boxes then hold every pixel a sample of which may be covered.
+  // centre, sampleReach(samples) with MSAA. Boxes then hold every pixel a sample of which may be
+  // covered.
   int32_t sample_reach = 0;
 };
 
