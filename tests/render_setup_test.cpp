@@ -299,6 +299,53 @@ TEST(ChunkLayout, CoversEveryTriangleInOrderAndEndsEachBlockSmall) {
   EXPECT_EQ(chunks[11].first_triangle, 34833u);
 }
 
+TEST(ChunkLayout, ChunksOfTheDrawnTrianglesTileTheScenesIndices) {
+  using namespace tessera::render;
+  // 10,000 objects of 1,000 triangles of which culling kept 3 whole and parts of 2: laid out over
+  // the kept triangles, the chunks tile [0, total) in order and each holds the kept triangles
+  // layOutChunks gave it (not one or two chunks holding them all).
+  const size_t total = 10'000'000;
+  const std::vector<IndexRange> drawn = {{4'000'000, 4'001'000}, {4'001'000, 4'002'000},
+                                         {4'002'500, 4'002'900}, {7'000'000, 7'001'000},
+                                         {9'999'000, 9'999'100}};
+  size_t drawn_total = 0;
+  for (const IndexRange& r : drawn) drawn_total += r.end - r.first;
+  const auto kept_in = [&](size_t first, size_t end) {
+    size_t n = 0;
+    for (const IndexRange& r : drawn)
+      n += std::min(end, r.end) - std::min(std::max(first, r.first), std::min(end, r.end));
+    return n;
+  };
+  for (int workers : {1, 2, 3}) {
+    std::vector<TriangleChunk> chunks;
+    const size_t count = layOutChunks(drawn_total, 512, workers, chunks);
+    std::vector<size_t> given(count);
+    for (size_t c = 0; c < count; ++c) given[c] = chunks[c].triangle_count;
+    toSceneIndices(drawn, total, chunks, count);
+    size_t next = 0;
+    for (size_t c = 0; c < count; ++c) {
+      const std::string what = std::to_string(workers) + " workers, chunk " + std::to_string(c);
+      EXPECT_EQ(chunks[c].first_triangle, next) << what;
+      next += chunks[c].triangle_count;
+      EXPECT_EQ(kept_in(chunks[c].first_triangle, next), given[c]) << what;
+      EXPECT_LE(given[c], 512u) << what;
+    }
+    EXPECT_EQ(next, total) << workers;
+    EXPECT_GE(count, 7u) << workers;
+  }
+  // Nothing kept: no chunk. Everything kept: the layout over the scene's indices, unchanged.
+  std::vector<TriangleChunk> none;
+  EXPECT_EQ(layOutChunks(0, 4096, 2, none), 0u);
+  std::vector<TriangleChunk> all, plain;
+  const size_t count = layOutChunks(69666, 4096, 2, all);
+  ASSERT_EQ(layOutChunks(69666, 4096, 2, plain), count);
+  toSceneIndices({{0, 69666}}, 69666, all, count);
+  for (size_t c = 0; c < count; ++c) {
+    EXPECT_EQ(all[c].first_triangle, plain[c].first_triangle) << c;
+    EXPECT_EQ(all[c].triangle_count, plain[c].triangle_count) << c;
+  }
+}
+
 TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
   // Every instruction set's batch kernel against the one-triangle setupRaster, on visible
   // triangles from a pixel to hundreds of pixels across (small ones keep their edge values at the

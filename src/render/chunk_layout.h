@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "render/bin.h"
+#include "render/cull.h"
 #include "render/raster.h"
 
 namespace tessera::render {
@@ -56,6 +57,37 @@ inline size_t layOutChunks(size_t triangle_total, size_t chunk_size, int workers
     }
   }
   return c;
+}
+
+// Chunks laid out by layOutChunks over the ordinals of the triangles a frame draws (`drawn`:
+// sorted, disjoint ranges of scene triangle indices, what culling keeps) moved to scene triangle
+// indices: chunk c then runs from the index of its first drawn triangle to that of the next
+// chunk's first (the first chunk from 0, the last to triangle_total), so that the chunks tile the
+// scene's indices and each holds the drawn triangles layOutChunks gave it. Laid out over the scene's
+// indices instead, a scene of 10,000 instances of which 50 were in view had its drawn triangles in
+// one or two chunks, set up by one worker.
+inline void toSceneIndices(const std::vector<IndexRange>& drawn, size_t triangle_total,
+                           std::vector<TriangleChunk>& chunks, size_t chunk_count) {
+  size_t range = 0, before = 0;  // the drawn triangles of the ranges before `range`
+  // The scene index of drawn triangle d (nondecreasing from call to call); triangle_total past
+  // the last.
+  const auto scene_index = [&](size_t d) {
+    for (; range < drawn.size(); ++range) {
+      const size_t size = drawn[range].end - drawn[range].first;
+      if (before + size > d) break;
+      before += size;
+    }
+    return range < drawn.size() ? drawn[range].first + (d - before) : triangle_total;
+  };
+  size_t begin = 0;
+  for (size_t c = 0; c < chunk_count; ++c) {
+    const size_t end = c + 1 == chunk_count
+                           ? triangle_total
+                           : scene_index(chunks[c].first_triangle + chunks[c].triangle_count);
+    chunks[c].first_triangle = begin;
+    chunks[c].triangle_count = end - begin;
+    begin = end;
+  }
 }
 
 }  // namespace tessera::render

@@ -37,6 +37,9 @@ namespace {
 constexpr size_t kVerticesPerJob =
     4096;  // the bunny's 35k vertices: 9 jobs, balanced over 2 workers
 constexpr size_t kMinTrianglesPerChunk = 4096;
+// Objects a job of the per-object work before the vertex stage (transforms and the frustum test
+// of their bounds): 256 instances took about 15 us here.
+constexpr size_t kObjectsPerJob = 256;
 
 using Clock = std::chrono::steady_clock;
 double elapsedMs(Clock::time_point a, Clock::time_point b) {
@@ -126,29 +129,36 @@ void CpuRenderer::State::prepareSampleLayers(const RenderOptions& options, bool 
 size_t CpuRenderer::State::prepareObjects(const Scene& scene, const RenderOptions& options,
                                           const float4x4& projection,
                                           const float4x4& view_projection) {
-  // Per-object constants and triangle bases (the ids: every object's, drawn or not); then what
-  // frustum culling keeps.
-  objects.resize(scene.objects.size());
-  size_t triangle_total = 0;
-  // A scene graph's instances share one T * R * S (identity, or a turntable's): computed once
-  // for each run of objects that share it.
-  float4x4 trs;
-  const Transform* trs_of = nullptr;
-  for (size_t i = 0; i < scene.objects.size(); ++i) {
-    const Object& object = scene.objects[i];
-    TESSERA_CHECK(!object.materials.empty()) << "object " << i << " has no material";
-    if (!trs_of || !trs_of->sameTrs(object.transform)) {
-      trs = object.transform.trs();
-      trs_of = &object.transform;
+  // Per-object constants; then what frustum culling keeps, and the triangle bases (the ids: every
+  // object's, drawn or not), set in culling's walk over the objects in order.
+  const size_t object_count = scene.objects.size();
+  objects.resize(object_count);
+  // What culling reads (the rest of makeObjectTransforms' constants only for what draws) and
+  // each object's bounds against the frustum: on every worker, kObjectsPerJob objects a job (a
+  // scene of 10,000 instances took 0.5 ms a frame here on one core while the other waited).
+  cull.resize(object_count);
+  const size_t jobs = (object_count + kObjectsPerJob - 1) / kObjectsPerJob;
+  pool.parallelFor(jobs, [&](size_t job, int) {
+    // A scene graph's instances share one T * R * S (identity, or a turntable's): computed once
+    // for each run of objects that share it.
+    float4x4 trs;
+    const Transform* trs_of = nullptr;
+    const size_t end = std::min(object_count, (job + 1) * kObjectsPerJob);
+    for (size_t i = job * kObjectsPerJob; i < end; ++i) {
+      const Object& object = scene.objects[i];
+      TESSERA_CHECK(!object.materials.empty()) << "object " << i << " has no material";
+      if (!trs_of || !trs_of->sameTrs(object.transform)) {
+        trs = object.transform.trs();
+        trs_of = &object.transform;
+      }
+      objects[i].model = object.transform.withBase(trs);
+      objects[i].model_view_projection = view_projection * objects[i].model;
+      cull.classify(object, i, objects[i].model_view_projection, options.frustum_cull);
     }
-    // What culling reads; the rest of makeObjectTransforms' constants only for what draws.
-    objects[i].model = object.transform.withBase(trs);
-    objects[i].model_view_projection = view_projection * objects[i].model;
-    objects[i].triangle_base = triangle_total;
-    if (object.mesh) triangle_total += object.mesh->triangleCount();
-  }
-  cull.run(scene, scene.camera.view(), projection, {options.width, options.height},
-           options.frustum_cull, objects);
+  });
+  const size_t triangle_total = cull.run(scene, scene.camera.view(), projection,
+                                         {options.width, options.height}, options.frustum_cull,
+                                         objects);
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     if (!cull.drawsTriangles(i)) continue;
     objects[i].normal_matrix = normalMatrix(objects[i].model);
@@ -199,9 +209,12 @@ CpuRenderer::State::Geometry CpuRenderer::State::transformAndSetUp(const Scene& 
 
   // Assembly, culling, clipping, setup and binning, per chunk.
   const Clock::time_point t_vertex = Clock::now();
+  // Chunks of the triangles culling keeps, not of the scene's (chunk_layout.h).
+  const size_t drawn_total = cull.drawnTriangles();
   const size_t chunk_size =
-      std::max(kMinTrianglesPerChunk, (triangle_total + kMaxChunks - 1) / kMaxChunks);
-  chunk_count = layOutChunks(triangle_total, chunk_size, pool.size(), chunks);
+      std::max(kMinTrianglesPerChunk, (drawn_total + kMaxChunks - 1) / kMaxChunks);
+  chunk_count = layOutChunks(drawn_total, chunk_size, pool.size(), chunks);
+  toSceneIndices(cull.triangleRanges(), triangle_total, chunks, chunk_count);
   pool.parallelFor(chunk_count, [&](size_t c, int worker) {
     const size_t w = static_cast<size_t>(worker);
     if (g.replicate && !transformed[w].done) {

@@ -15,8 +15,6 @@ namespace {
 // (a few ulps of the products' magnitude); the boxes are tested in double with 20 times that.
 constexpr double kPlaneMargin = 1e-5;
 
-enum class Side { kOutside, kInside, kCrossing };
-
 // kOutside when every point of `box` (mesh space) is outside one plane the outcodes test
 // (x < -w, x > w, y < -w, y > w, z < -w, z > w), kInside when every point is inside all six,
 // each with a margin for float rounding. A plane's value over the box is a linear function:
@@ -203,25 +201,34 @@ Viewpoint viewpointOf(const Object& object, const float4x4& model, const float4x
 
 }  // namespace
 
-void FrustumCull::run(const Scene& scene, const float4x4& view, const float4x4& projection,
-                      const CullViewport& viewport, bool enabled,
-                      const std::vector<ObjectTransforms>& objects) {
+bool FrustumCull::byClusters(const Object& object, bool enabled) {
+  return enabled && object.clusters && object.mesh && object.clusters->describes(*object.mesh);
+}
+
+void FrustumCull::classify(const Object& object, size_t o, const float4x4& mvp, bool enabled) {
+  sides_[o] = byClusters(object, enabled) ? sideOf(object.clusters->bounds, mvp) : Side::kCrossing;
+}
+
+size_t FrustumCull::run(const Scene& scene, const float4x4& view, const float4x4& projection,
+                        const CullViewport& viewport, bool enabled,
+                        std::vector<ObjectTransforms>& objects) {
   triangles_.clear();
   vertices_.clear();
   first_triangle_range_.assign(1, 0);
   first_vertex_range_.assign(1, 0);
   counters_ = {};
+  size_t base = 0;
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const Object& object = scene.objects[o];
-    const size_t base = objects[o].triangle_base;
+    objects[o].triangle_base = base;
     const float4x4& mvp = objects[o].model_view_projection;
     const size_t triangle_count = object.mesh ? object.mesh->triangleCount() : 0;
     const size_t vertex_count = object.mesh ? object.mesh->vertexCount() : 0;
     const MeshClusters* clusters = object.clusters.get();
-    if (!enabled || !clusters || !object.mesh || !clusters->describes(*object.mesh)) {
+    if (!byClusters(object, enabled)) {
       if (triangle_count > 0) triangles_.push_back({base, base + triangle_count});
       if (vertex_count > 0) vertices_.push_back({0, vertex_count});
-    } else if (const Side side = sideOf(clusters->bounds, mvp); side == Side::kOutside) {
+    } else if (const Side side = sides_[o]; side == Side::kOutside) {
       ++counters_.instances_culled;
       counters_.triangles_in_culled_instances += triangle_count;
     } else {
@@ -259,7 +266,9 @@ void FrustumCull::run(const Scene& scene, const float4x4& view, const float4x4& 
     }
     first_triangle_range_.push_back(triangles_.size());
     first_vertex_range_.push_back(vertices_.size());
+    base += triangle_count;
   }
+  return base;
 }
 
 void FrustumCull::addTo(PipelineStats& stats) const {

@@ -41,14 +41,24 @@ struct CullViewport {
   int width = 0, height = 0;  // pixels
 };
 
+// Where a box lies against the view frustum: outside one of its planes, inside all six, or
+// neither.
+enum class Side : uint8_t { kOutside, kInside, kCrossing };
+
 class FrustumCull {
  public:
-  // The ranges of every object this frame. `view` and `projection` are the camera's (the
-  // projection jittered as the frame draws); `enabled` false draws everything.
-  // `objects` are the frame's transforms (model, model_view_projection, triangle_base).
-  void run(const Scene& scene, const float4x4& view, const float4x4& projection,
-           const CullViewport& viewport, bool enabled,
-           const std::vector<ObjectTransforms>& objects);
+  // Room for `objects` objects' sides (classify), before a frame's calls of classify.
+  void resize(size_t objects) { sides_.resize(objects); }
+  // Object o's bounds against the frustum of `mvp` (its model-view-projection), for run. Objects
+  // are independent: the calls for different objects may run at once, on any threads.
+  void classify(const Object& object, size_t o, const float4x4& mvp, bool enabled);
+  // The ranges of every object this frame, after every object's classify. `view` and
+  // `projection` are the camera's (the projection jittered as the frame draws); `enabled` false
+  // draws everything. `objects` are the frame's transforms (model, model_view_projection); their
+  // triangle_base (the first scene triangle index of each) is set here, in the one walk over the
+  // objects in order. Returns the scene's triangle count.
+  size_t run(const Scene& scene, const float4x4& view, const float4x4& projection,
+             const CullViewport& viewport, bool enabled, std::vector<ObjectTransforms>& objects);
 
   // Triangles (scene ids, sorted, disjoint) and mesh vertices (sorted, disjoint) of object `o`.
   const IndexRange* trianglesBegin(size_t o) const { return &triangles_[first_triangle_range_[o]]; }
@@ -58,6 +68,13 @@ class FrustumCull {
   const IndexRange* verticesBegin(size_t o) const { return &vertices_[first_vertex_range_[o]]; }
   const IndexRange* verticesEnd(size_t o) const {
     return vertices_.data() + first_vertex_range_[o + 1];
+  }
+  // Every object's triangle ranges, in scene order, and how many triangles they hold.
+  const std::vector<IndexRange>& triangleRanges() const { return triangles_; }
+  size_t drawnTriangles() const {
+    size_t total = 0;
+    for (const IndexRange& r : triangles_) total += r.end - r.first;
+    return total;
   }
   bool drawsTriangles(size_t o) const {
     return first_triangle_range_[o + 1] > first_triangle_range_[o];
@@ -72,6 +89,10 @@ class FrustumCull {
                       std::vector<VertexJob>& jobs) const;
 
  private:
+  // Whether object culling tests the object's bounds and clusters (it has clusters for its mesh).
+  static bool byClusters(const Object& object, bool enabled);
+
+  std::vector<Side> sides_;  // classify's, one per object
   std::vector<IndexRange> triangles_, vertices_;
   std::vector<size_t> first_triangle_range_, first_vertex_range_;
   CullCounters counters_;
