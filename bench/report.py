@@ -5,8 +5,9 @@ usage: bench/report.py RESULTS_DIR OUTPUT_MD [OTHER_RESULTS_DIR...]
 
 RESULTS_DIR holds matrix.jsonl, scaling.jsonl, variants.jsonl and spheres.jsonl (the output of
 `tessera bench --json --vs llvmpipe`, one object per line), machine.json and, if run_all.sh
-measured them, corelatency.jsonl (tessera_corelatency --json, with "when" added) and msaa.jsonl
-(the bunny at 1x and 4x MSAA, with "round" added). Only the text
+measured them, corelatency.jsonl (tessera_corelatency --json, with "when" added), msaa.jsonl
+(the bunny at 1x and 4x MSAA, with "round" added) and matrix_scaling.jsonl (every scene at 1 and 2
+workers, with "cpus" and "round" added). Only the text
 between the BEGIN and END markers of OUTPUT_MD is replaced (the rest of the page belongs to
 others); a page without them gets the section after its title. Each OTHER_RESULTS_DIR holds another
 machine's run of the same commands (bench/run_all.sh with OUT=docs/perf/avx2, say: a machine of
@@ -173,6 +174,24 @@ def scaling_rows(scaling, latency):
                     f"{100 * reached / allowed:.0f}% of it).")
     return rows
 
+def row_scaling(rows):
+    """Worker scaling of every scene and resolution (matrix_scaling.jsonl): per row, the medians
+    over the rounds of 1 worker on each core and of 2 workers on both, the speed-up from the faster
+    core and the most the two cores allow (1 + fast / slow), in scene_key order."""
+    cells = {}
+    for r in rows:
+        cells.setdefault((scene_key(r), r["resolution"]), {}).setdefault(r["cpus"], []).append(
+            r["median_ms"])
+    out = []
+    for (key, resolution), by_cpus in sorted(cells.items()):
+        one = [median(by_cpus[c]) for c in ("0", "1") if c in by_cpus]
+        if not one or "0,1" not in by_cpus:
+            continue
+        fast, slow, two = min(one), max(one), median(by_cpus["0,1"])
+        out.append((key[1], resolution, one, two, fast / two, 1 + fast / slow))
+    return out
+
+
 def msaa_rows(rows):
     """The 4x against 1x table (per round and the medians over the rounds), its summary lines,
     and the 4x row of the scene table (medians over the rounds); ([], [], None) without 4x."""
@@ -311,6 +330,8 @@ def main():
     results, output, others = sys.argv[1], sys.argv[2], sys.argv[3:]
     matrix = sorted(read_lines(os.path.join(results, "matrix.jsonl")), key=scene_key)
     scaling = read_lines(os.path.join(results, "scaling.jsonl"))
+    every_path = os.path.join(results, "matrix_scaling.jsonl")
+    every_row = row_scaling(read_lines(every_path)) if os.path.exists(every_path) else []
     variants = read_lines(os.path.join(results, "variants.jsonl"))
     spheres = read_lines(os.path.join(results, "spheres.jsonl"))
     msaa_path = os.path.join(results, "msaa.jsonl")
@@ -465,6 +486,25 @@ def main():
         w("")
         for row in scaling_rows(beside, round_trip):
             w(row)
+        w("")
+    if every_row:
+        w("### Worker scaling: every scene at every resolution")
+        w("")
+        w("`taskset -c CPUS tessera bench --json --frames 100 --workers N`, tessera alone, in "
+          "three rounds as above (one worker pinned to core 0, one to core 1, two on both); "
+          "medians of the rounds, the speed-up against the faster core.")
+        w("")
+        w("| scene | resolution | 1 worker, cpu 0 | 1 worker, cpu 1 | 2 workers | speed-up | "
+          "at most |")
+        w("|---|---|---:|---:|---:|---:|---:|")
+        for scene, resolution, one, two, up, most in every_row:
+            cores = " | ".join(ms(t) for t in one)
+            w(f"| {scene} | {resolution} | {cores} | {ms(two)} | {up:.2f}x | {most:.2f}x |")
+        w("")
+        below = [f"{scene} at {resolution} ({up:.2f}x)"
+                 for scene, resolution, _, _, up, _ in every_row if up < 1.8]
+        w("Rows below 1.8x (issue 21's target for every row): " +
+          (", ".join(below) if below else "none") + ".")
         w("")
     w("### The bunny at 1920x1080 with other shading and culling")
     w("")

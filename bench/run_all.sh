@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Regenerates docs/perf.md from a fresh measurement: builds tessera (Release), runs every built-in
-# scene at every standard resolution beside llvmpipe, the bunny at 1080p with 1 and 2 workers,
-# with other shading (PBR too), culling and camera (the bunny filling the frame) and with 4x MSAA
-# against 1x (llvmpipe at the same sample count), and UV spheres of 1k to 1M triangles at 1080p;
+# scene at every standard resolution beside llvmpipe and alone with 1 and 2 workers, the bunny at
+# 1080p with 1 and 2 workers beside llvmpipe too, with other shading (PBR too), culling and
+# camera (the bunny filling the frame) and with 4x MSAA against 1x (llvmpipe at the same sample
+# count), and UV spheres of 1k to 1M triangles at 1080p;
 # then writes the raw results (docs/perf/*.jsonl), the plots (docs/perf/*.png) and the rendering
 # section of docs/perf.md (between bench/report.py's markers; the rest of the page is left alone).
 #
@@ -81,6 +82,14 @@ for round in 1 2 3; do
     scaling_run 0,1 "$round" $reference --workers 2 --resolution 1920,1080 bunny
   done
 done > "$out/scaling.jsonl"
+echo "run_all: worker scaling of every scene at every resolution (tessera alone)" >&2
+# The same three configurations for every row of the matrix (issue 21 asks 1.8x on every row),
+# tessera alone, 100 frames each, three rounds.
+for round in 1 2 3; do
+  scaling_run 0 "$round" --frames 100 --workers 1
+  scaling_run 1 "$round" --frames 100 --workers 1
+  scaling_run 0,1 "$round" --frames 100 --workers 2
+done > "$out/matrix_scaling.jsonl"
 {
   bench --resolution 1920,1080 --shading smooth bunny
   bench --resolution 1920,1080 --backface-type visible bunny
