@@ -29,7 +29,7 @@ constexpr int kLocalKeyBits = kChunkKeyShift - 1;
 // samples stay equal where their triangle is. Clear in every other key.
 constexpr uint32_t kCentreKeyBit = 1u << kLocalKeyBits;
 // The all-ones key is empty; a chunk holds fewer than 2^kLocalKeyBits records (16.7 million: a
-// chunk is at most 1/128 of the scene's triangles, plus the fans of clipped ones), and its
+// chunk is at most 1/128 of the triangles culling keeps, plus the fans of clipped ones), and its
 // shading records stay within 2 GiB, so that the shading kernel forms their byte offsets in int32
 // lanes.
 constexpr uint32_t kMaxTrianglesPerChunk =
