@@ -305,8 +305,10 @@ TEST(ChunkLayout, ChunksOfTheDrawnTrianglesTileTheScenesIndices) {
   // the kept triangles, the chunks tile [0, total) in order and each holds the kept triangles
   // layOutChunks gave it (not one or two chunks holding them all).
   const size_t total = 10'000'000;
-  const std::vector<IndexRange> drawn = {{4'000'000, 4'001'000}, {4'001'000, 4'002'000},
-                                         {4'002'500, 4'002'900}, {7'000'000, 7'001'000},
+  const std::vector<IndexRange> drawn = {{4'000'000, 4'001'000},
+                                         {4'001'000, 4'002'000},
+                                         {4'002'500, 4'002'900},
+                                         {7'000'000, 7'001'000},
                                          {9'999'000, 9'999'100}};
   size_t drawn_total = 0;
   for (const IndexRange& r : drawn) drawn_total += r.end - r.first;

@@ -63,9 +63,9 @@ inline size_t layOutChunks(size_t triangle_total, size_t chunk_size, int workers
 // sorted, disjoint ranges of scene triangle indices, what culling keeps) moved to scene triangle
 // indices: chunk c then runs from the index of its first drawn triangle to that of the next
 // chunk's first (the first chunk from 0, the last to triangle_total), so that the chunks tile the
-// scene's indices and each holds the drawn triangles layOutChunks gave it. Laid out over the scene's
-// indices instead, a scene of 10,000 instances of which 50 were in view had its drawn triangles in
-// one or two chunks, set up by one worker.
+// scene's indices and each holds the drawn triangles layOutChunks gave it. Laid out over the
+// scene's indices instead, a scene of 10,000 instances of which 50 were in view had its drawn
+// triangles in one or two chunks, set up by one worker.
 inline void toSceneIndices(const std::vector<IndexRange>& drawn, size_t triangle_total,
                            std::vector<TriangleChunk>& chunks, size_t chunk_count) {
   size_t range = 0, before = 0;  // the drawn triangles of the ranges before `range`

@@ -156,9 +156,9 @@ size_t CpuRenderer::State::prepareObjects(const Scene& scene, const RenderOption
       cull.classify(object, i, objects[i].model_view_projection, options.frustum_cull);
     }
   });
-  const size_t triangle_total = cull.run(scene, scene.camera.view(), projection,
-                                         {options.width, options.height}, options.frustum_cull,
-                                         objects);
+  const size_t triangle_total =
+      cull.run(scene, scene.camera.view(), projection, {options.width, options.height},
+               options.frustum_cull, objects);
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     if (!cull.drawsTriangles(i)) continue;
     objects[i].normal_matrix = normalMatrix(objects[i].model);
