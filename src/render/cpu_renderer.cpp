@@ -38,7 +38,7 @@ constexpr size_t kVerticesPerJob =
     4096;  // the bunny's 35k vertices: 9 jobs, balanced over 2 workers
 constexpr size_t kMinTrianglesPerChunk = 4096;
 // Objects a job of the per-object work before the vertex stage (transforms and the frustum test
-// of their bounds): 256 instances took about 15 us here.
+// of their bounds): 10,000 instances took 0.5 ms on one core here, so a job is about 13 us.
 constexpr size_t kObjectsPerJob = 256;
 
 using Clock = std::chrono::steady_clock;
