@@ -111,6 +111,13 @@ def median(values):
     return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
 
 
+def speedup(one, two):
+    """From 1 worker (`one`: its time on each core) to 2 workers (`two`): the speed-up against the
+    faster core, and the most two such cores allow (1 + fast / slow)."""
+    fast, slow = min(one), max(one)
+    return fast / two, 1 + fast / slow
+
+
 def scaling_rows(scaling, latency):
     """The scaling table and its summary: per round and as medians over the rounds. latency:
     the cache line round trip between the cores (ns) measured before each round, by round."""
@@ -129,10 +136,7 @@ def scaling_rows(scaling, latency):
         """1 -> 2 workers against the faster core, and the most the two cores allow; or None."""
         one = [times[k] for k in configs if k[1] == 1 and k in times]
         two = [times[k] for k in configs if k[1] == 2 and k in times]
-        if not one or not two:
-            return None
-        fast, slow = min(one), max(one)
-        return fast / two[0], 1 + fast / slow
+        return speedup(one, two[0]) if one and two else None
 
     def summary(times):
         found = speedups(times)
@@ -187,8 +191,8 @@ def row_scaling(rows):
         one = [median(by_cpus[c]) for c in ("0", "1") if c in by_cpus]
         if not one or "0,1" not in by_cpus:
             continue
-        fast, slow, two = min(one), max(one), median(by_cpus["0,1"])
-        out.append((key[1], resolution, one, two, fast / two, 1 + fast / slow))
+        two = median(by_cpus["0,1"])
+        out.append((key[1], resolution, one, two) + speedup(one, two))
     return out
 
 

@@ -157,8 +157,7 @@ size_t CpuRenderer::State::prepareObjects(const Scene& scene, const RenderOption
     }
   });
   const size_t triangle_total =
-      cull.run(scene, scene.camera.view(), projection, {options.width, options.height},
-               options.frustum_cull, objects);
+      cull.run(scene, scene.camera.view(), projection, {options.width, options.height}, objects);
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     if (!cull.drawsTriangles(i)) continue;
     objects[i].normal_matrix = normalMatrix(objects[i].model);

@@ -201,17 +201,14 @@ Viewpoint viewpointOf(const Object& object, const float4x4& model, const float4x
 
 }  // namespace
 
-bool FrustumCull::byClusters(const Object& object, bool enabled) {
-  return enabled && object.clusters && object.mesh && object.clusters->describes(*object.mesh);
-}
-
 void FrustumCull::classify(const Object& object, size_t o, const float4x4& mvp, bool enabled) {
-  sides_[o] = byClusters(object, enabled) ? sideOf(object.clusters->bounds, mvp) : Side::kCrossing;
+  const bool by_clusters =
+      enabled && object.clusters && object.mesh && object.clusters->describes(*object.mesh);
+  sides_[o] = by_clusters ? sideOf(object.clusters->bounds, mvp) : Side::kNotTested;
 }
 
 size_t FrustumCull::run(const Scene& scene, const float4x4& view, const float4x4& projection,
-                        const CullViewport& viewport, bool enabled,
-                        std::vector<ObjectTransforms>& objects) {
+                        const CullViewport& viewport, std::vector<ObjectTransforms>& objects) {
   triangles_.clear();
   vertices_.clear();
   first_triangle_range_.assign(1, 0);
@@ -225,10 +222,11 @@ size_t FrustumCull::run(const Scene& scene, const float4x4& view, const float4x4
     const size_t triangle_count = object.mesh ? object.mesh->triangleCount() : 0;
     const size_t vertex_count = object.mesh ? object.mesh->vertexCount() : 0;
     const MeshClusters* clusters = object.clusters.get();
-    if (!byClusters(object, enabled)) {
+    const Side side = sides_[o];
+    if (side == Side::kNotTested) {
       if (triangle_count > 0) triangles_.push_back({base, base + triangle_count});
       if (vertex_count > 0) vertices_.push_back({0, vertex_count});
-    } else if (const Side side = sides_[o]; side == Side::kOutside) {
+    } else if (side == Side::kOutside) {
       ++counters_.instances_culled;
       counters_.triangles_in_culled_instances += triangle_count;
     } else {

@@ -42,23 +42,25 @@ struct CullViewport {
 };
 
 // Where a box lies against the view frustum: outside one of its planes, inside all six, or
-// neither.
-enum class Side : uint8_t { kOutside, kInside, kCrossing };
+// neither; for an object, kNotTested where culling does not test it (it has no clusters for its
+// mesh, or culling is off): it is drawn whole.
+enum class Side : uint8_t { kOutside, kInside, kCrossing, kNotTested };
 
 class FrustumCull {
  public:
   // Room for `objects` objects' sides (classify), before a frame's calls of classify.
   void resize(size_t objects) { sides_.resize(objects); }
-  // Object o's bounds against the frustum of `mvp` (its model-view-projection), for run. Objects
-  // are independent: the calls for different objects may run at once, on any threads.
+  // Object o's bounds against the frustum of `mvp` (its model-view-projection), for run;
+  // `enabled` false leaves every object to be drawn whole. Objects are independent: the calls for
+  // different objects may run at once, on any threads.
   void classify(const Object& object, size_t o, const float4x4& mvp, bool enabled);
   // The ranges of every object this frame, after every object's classify. `view` and
-  // `projection` are the camera's (the projection jittered as the frame draws); `enabled` false
-  // draws everything. `objects` are the frame's transforms (model, model_view_projection); their
-  // triangle_base (the first scene triangle index of each) is set here, in the one walk over the
-  // objects in order. Returns the scene's triangle count.
+  // `projection` are the camera's (the projection jittered as the frame draws). `objects` are the
+  // frame's transforms (model, model_view_projection); their triangle_base (the first scene
+  // triangle index of each) is set here, in the one walk over the objects in order. Returns the
+  // scene's triangle count.
   size_t run(const Scene& scene, const float4x4& view, const float4x4& projection,
-             const CullViewport& viewport, bool enabled, std::vector<ObjectTransforms>& objects);
+             const CullViewport& viewport, std::vector<ObjectTransforms>& objects);
 
   // Triangles (scene ids, sorted, disjoint) and mesh vertices (sorted, disjoint) of object `o`.
   const IndexRange* trianglesBegin(size_t o) const { return &triangles_[first_triangle_range_[o]]; }
@@ -89,9 +91,6 @@ class FrustumCull {
                       std::vector<VertexJob>& jobs) const;
 
  private:
-  // Whether object culling tests the object's bounds and clusters (it has clusters for its mesh).
-  static bool byClusters(const Object& object, bool enabled);
-
   std::vector<Side> sides_;  // classify's, one per object
   std::vector<IndexRange> triangles_, vertices_;
   std::vector<size_t> first_triangle_range_, first_vertex_range_;
