@@ -181,5 +181,48 @@ TEST(Culling, AnObjectBehindTheCameraIsSkippedWhole) {
   EXPECT_EQ(renderer.lastStats().triangles_skipped, scene.triangleCount());
 }
 
+// Culling keeps each object's triangle and vertex bases from the frame before and mends only
+// those that changed: a renderer that drew other scenes first gives the image and ids a fresh one
+// gives, whether the next scene's meshes, their order or the object count changed.
+TEST(Culling, ARendererThatDrewOtherScenesDrawsTheNextAsAFreshOne) {
+  std::mt19937 rng(7);
+  Scene field = instanceField(rng);
+  field.camera.position = {0, 3, 18};  // some instances in view, some behind or beside it
+  field.camera.target = {0, 0, 0};
+  field.camera.far_z = 100;
+  Scene mixed = field;  // the same objects, every third's mesh a cube: other bases after it
+  const auto cube = std::make_shared<const Mesh>(makeCube());
+  for (size_t i = 0; i < mixed.objects.size(); i += 3) {
+    mixed.objects[i].mesh = cube;
+    mixed.objects[i].clusters = nullptr;
+  }
+  Scene fewer = mixed;
+  fewer.objects.resize(fewer.objects.size() / 2);
+  for (Scene* scene : {&mixed, &fewer}) scene->camera = field.camera;
+  RenderOptions options;
+  options.width = 160;
+  options.height = 120;
+  options.ids = true;
+  options.depth = true;
+  CpuRenderer reused(2);
+  Frame frame;
+  int drawn = 0;
+  for (const Scene* scene : {&field, &mixed, &fewer, &mixed, &field}) {
+    reused.render(*scene, options, frame);
+    CpuRenderer fresh(2);
+    Frame expected;
+    fresh.render(*scene, options, expected);
+    EXPECT_TRUE(frame.color == expected.color) << "scene " << drawn;
+    EXPECT_TRUE(frame.triangle_id == expected.triangle_id) << "scene " << drawn;
+    EXPECT_TRUE(frame.depth == expected.depth) << "scene " << drawn;
+    ++drawn;
+  }
+  // Worth something only if the scenes differ where the bases do.
+  Frame a, b;
+  CpuRenderer(1).render(field, options, a);
+  CpuRenderer(1).render(mixed, options, b);
+  EXPECT_FALSE(a.triangle_id == b.triangle_id);
+}
+
 }  // namespace
 }  // namespace tessera

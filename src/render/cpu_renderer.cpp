@@ -157,7 +157,7 @@ size_t CpuRenderer::State::prepareObjects(const Scene& scene, const RenderOption
       }
       objects[i].model = object.transform.withBase(trs);
       objects[i].model_view_projection = view_projection * objects[i].model;
-      cull.classify(object, i, objects[i].model_view_projection, options.frustum_cull);
+      cull.classify(object, i, objects[i], options.frustum_cull);
     }
   });
   const size_t triangle_total =
@@ -175,7 +175,7 @@ CpuRenderer::State::Geometry CpuRenderer::State::transformAndSetUp(const Scene& 
                                                                    const TileGrid& grid,
                                                                    size_t triangle_total,
                                                                    int32_t sample_reach) {
-  const size_t vertex_total = cull.planVertices(scene, kVerticesPerJob, objects, vertex_jobs);
+  const size_t vertex_total = cull.planVertices(kVerticesPerJob, objects, vertex_jobs);
   const Clock::time_point t_start = Clock::now();
   const GuardBand guard = makeGuardBand(options.width, options.height);
   const ViewportTransform viewport{static_cast<float>(options.width),

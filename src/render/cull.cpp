@@ -201,10 +201,16 @@ Viewpoint viewpointOf(const Object& object, const float4x4& model, const float4x
 
 }  // namespace
 
-void FrustumCull::classify(const Object& object, size_t o, const float4x4& mvp, bool enabled) {
+void FrustumCull::classify(const Object& object, size_t o, ObjectTransforms& xf, bool enabled) {
   const bool by_clusters =
       enabled && object.clusters && object.mesh && object.clusters->describes(*object.mesh);
-  sides_[o] = by_clusters ? sideOf(object.clusters->bounds, mvp) : Side::kNotTested;
+  sides_[o] =
+      by_clusters ? sideOf(object.clusters->bounds, xf.model_view_projection) : Side::kNotTested;
+  if (object.mesh)
+    counts_[o] = {object.mesh->triangleCount(), object.mesh->vertexCount()};
+  else
+    counts_[o] = {};
+  xf.triangle_base = bases_[o];
 }
 
 size_t FrustumCull::run(const Scene& scene, const float4x4& view, const float4x4& projection,
@@ -216,12 +222,10 @@ size_t FrustumCull::run(const Scene& scene, const float4x4& view, const float4x4
   counters_ = {};
   size_t base = 0;
   for (size_t o = 0; o < scene.objects.size(); ++o) {
-    const Object& object = scene.objects[o];
-    objects[o].triangle_base = base;
-    const float4x4& mvp = objects[o].model_view_projection;
-    const size_t triangle_count = object.mesh ? object.mesh->triangleCount() : 0;
-    const size_t vertex_count = object.mesh ? object.mesh->vertexCount() : 0;
-    const MeshClusters* clusters = object.clusters.get();
+    // A base follows from the meshes before it alone: the same as last frame unless they changed.
+    if (bases_[o] != base) bases_[o] = objects[o].triangle_base = base;
+    const size_t triangle_count = counts_[o].triangles;
+    const size_t vertex_count = counts_[o].vertices;
     const Side side = sides_[o];
     if (side == Side::kNotTested) {
       if (triangle_count > 0) triangles_.push_back({base, base + triangle_count});
@@ -230,6 +234,9 @@ size_t FrustumCull::run(const Scene& scene, const float4x4& view, const float4x4
       ++counters_.instances_culled;
       counters_.triangles_in_culled_instances += triangle_count;
     } else {
+      const Object& object = scene.objects[o];
+      const float4x4& mvp = objects[o].model_view_projection;
+      const MeshClusters* clusters = object.clusters.get();
       const Viewpoint eye = viewpointOf(object, objects[o].model, view, projection, viewport);
       const size_t vertex_start = vertices_.size();
       for (const MeshCluster& cluster : clusters->clusters) {
@@ -277,18 +284,19 @@ void FrustumCull::addTo(PipelineStats& stats) const {
       counters_.triangles_in_culled_instances + counters_.triangles_in_culled_clusters;
 }
 
-size_t FrustumCull::planVertices(const Scene& scene, size_t per_job,
-                                 std::vector<ObjectTransforms>& objects,
-                                 std::vector<VertexJob>& jobs) const {
+size_t FrustumCull::planVertices(size_t per_job, std::vector<ObjectTransforms>& objects,
+                                 std::vector<VertexJob>& jobs) {
   jobs.clear();
   size_t total = 0;
-  for (size_t i = 0; i < scene.objects.size(); ++i) {
-    objects[i].vertex_base = total;
-    if (!scene.objects[i].mesh || !drawsTriangles(i)) continue;
+  for (size_t i = 0; i < counts_.size(); ++i) {
+    const bool draws = counts_[i].vertices > 0 && drawsTriangles(i);
+    const size_t vertex_base = draws ? total : 0;
+    if (vertex_bases_[i] != vertex_base) vertex_bases_[i] = objects[i].vertex_base = vertex_base;
+    if (!draws) continue;
     for (const IndexRange* r = verticesBegin(i); r != verticesEnd(i); ++r)
       for (size_t first = r->first; first < r->end; first += per_job)
         jobs.push_back({static_cast<uint32_t>(i), first, std::min(per_job, r->end - first)});
-    total += scene.objects[i].mesh->vertexCount();
+    total += counts_[i].vertices;
   }
   return total;
 }

@@ -48,17 +48,25 @@ enum class Side : uint8_t { kOutside, kInside, kCrossing, kNotTested };
 
 class FrustumCull {
  public:
-  // Room for `objects` objects' sides (classify), before a frame's calls of classify.
-  void resize(size_t objects) { sides_.resize(objects); }
-  // Object o's bounds against the frustum of `mvp` (its model-view-projection), for run;
-  // `enabled` false leaves every object to be drawn whole. Objects are independent: the calls for
-  // different objects may run at once, on any threads.
-  void classify(const Object& object, size_t o, const float4x4& mvp, bool enabled);
+  // Room for `objects` objects (classify), before a frame's calls of classify.
+  void resize(size_t objects) {
+    sides_.resize(objects);
+    counts_.resize(objects);
+    bases_.resize(objects, kNoBase);
+    vertex_bases_.resize(objects, kNoBase);
+  }
+  // Object o's bounds against the frustum of its model-view-projection (xf's), for run, and its
+  // mesh's counts; `enabled` false leaves every object to be drawn whole. xf.triangle_base takes
+  // the base run gave object o last frame (run mends it where the meshes changed). Objects are
+  // independent: the calls for different objects may run at once, on any threads.
+  void classify(const Object& object, size_t o, ObjectTransforms& xf, bool enabled);
   // The ranges of every object this frame, after every object's classify. `view` and
   // `projection` are the camera's (the projection jittered as the frame draws). `objects` are the
   // frame's transforms (model, model_view_projection); their triangle_base (the first scene
-  // triangle index of each) is set here, in the one walk over the objects in order. Returns the
-  // scene's triangle count.
+  // triangle index of each) is right once this returns. Returns the scene's triangle count.
+  // The walk over every object in order reads classify's compact records, and of the objects
+  // only those culling tests in part: a scene of 10,000 instances spent 0.04 ms (1 worker) to
+  // 0.08 ms (2: the lines the other worker wrote) a frame reading and writing every object here.
   size_t run(const Scene& scene, const float4x4& view, const float4x4& projection,
              const CullViewport& viewport, std::vector<ObjectTransforms>& objects);
 
@@ -85,13 +93,22 @@ class FrustumCull {
   void addTo(PipelineStats& stats) const;
 
   // The vertex stage's jobs (at most `per_job` vertices each) for what the objects draw, and each
-  // object's vertex_base in the vertex buffer (objects that draw nothing take no room). Returns
-  // the vertex buffer's size.
-  size_t planVertices(const Scene& scene, size_t per_job, std::vector<ObjectTransforms>& objects,
-                      std::vector<VertexJob>& jobs) const;
+  // object's vertex_base in the vertex buffer (objects that draw nothing take no room, and 0),
+  // written only where it changed since the last frame, as run's triangle bases. Returns the
+  // vertex buffer's size.
+  size_t planVertices(size_t per_job, std::vector<ObjectTransforms>& objects,
+                      std::vector<VertexJob>& jobs);
 
  private:
-  std::vector<Side> sides_;  // classify's, one per object
+  struct MeshCounts {
+    size_t triangles = 0, vertices = 0;
+  };
+  static constexpr size_t kNoBase = ~size_t{0};
+  // Per object: classify's side and mesh counts, and the triangle and vertex bases run and
+  // planVertices gave it last (what its ObjectTransforms hold).
+  std::vector<Side> sides_;
+  std::vector<MeshCounts> counts_;
+  std::vector<size_t> bases_, vertex_bases_;
   std::vector<IndexRange> triangles_, vertices_;
   std::vector<size_t> first_triangle_range_, first_vertex_range_;
   CullCounters counters_;
