@@ -224,5 +224,49 @@ TEST(Culling, ARendererThatDrewOtherScenesDrawsTheNextAsAFreshOne) {
   EXPECT_FALSE(a.triangle_id == b.triangle_id);
 }
 
+// An object culled whole has no triangle to draw, but its axes may still cross the view: the
+// line pass then reads its matrices, which must be this frame's (culling skips them for objects
+// outside the frustum when no line is drawn).
+TEST(Culling, TheAxesOfAnObjectCulledWholeAreDrawnWhereItIsNow) {
+  SceneGraph graph;
+  GraphMesh sphere;
+  sphere.mesh = std::make_shared<const Mesh>(makeUvSphere(32, 16));
+  sphere.materials = {Material{}};
+  graph.meshes.push_back(sphere);
+  GraphNode node;
+  node.mesh = 0;
+  graph.nodes.push_back(node);
+  graph.updateWorld();
+  graph.prepareMeshes();
+  Scene scene;
+  instantiate(graph, Object{}, scene);
+  ASSERT_EQ(scene.objects.size(), 1u);
+  scene.objects[0].show_axes = true;
+  scene.objects[0].axes_length = 16;
+  scene.camera.position = {0, 1, 10};
+  scene.camera.target = {0, 0, 0};
+  RenderOptions options;
+  options.width = 160;
+  options.height = 120;
+  CpuRenderer reused(2);
+  Frame frame;
+  reused.render(scene, options, frame);  // in view: its matrices are written
+  // Far to the right, turned so that its X axis runs back across the view.
+  Transform& t = scene.objects[0].transform;
+  t.translation = {9, 0, 0};
+  t.rotation = quat::fromAxisAngle({0, 1, 0}, 3.14159265f);
+  reused.render(scene, options, frame);
+  EXPECT_EQ(reused.lastStats().instances_culled, 1u);
+  Frame expected;
+  options.frustum_cull = false;
+  CpuRenderer(1).render(scene, options, expected);
+  EXPECT_TRUE(frame.color == expected.color);
+  // Worth something only if the axes show.
+  Frame bare;
+  scene.objects[0].show_axes = false;
+  CpuRenderer(1).render(scene, options, bare);
+  EXPECT_FALSE(bare.color == expected.color);
+}
+
 }  // namespace
 }  // namespace tessera

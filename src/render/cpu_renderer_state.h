@@ -72,10 +72,12 @@ struct CpuRenderer::State {
 
   // With MSAA: this frame's sample layers (`shifts`), the centre's last when `with_centre`.
   void prepareSampleLayers(const RenderOptions& options, bool with_centre);
-  // Every object's transforms and triangle base, and what frustum culling keeps; the triangles of
-  // the scene, drawn or not.
+  // Every object's triangle base, the transforms of those that may draw (of every object with
+  // `every_matrix`: the line pass reads them all), and what frustum culling keeps; the triangles
+  // of the scene, drawn or not.
   size_t prepareObjects(const Scene& scene, const RenderOptions& options,
-                        const float4x4& projection, const float4x4& view_projection);
+                        const float4x4& projection, const float4x4& view_projection,
+                        bool every_matrix);
   // The vertex stage (replicated per worker or not: replication.h) and the setup stage (per
   // chunk, then the painter's order and the blended triangles' order), timed.
   struct Geometry {

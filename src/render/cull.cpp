@@ -201,16 +201,14 @@ Viewpoint viewpointOf(const Object& object, const float4x4& model, const float4x
 
 }  // namespace
 
-void FrustumCull::classify(const Object& object, size_t o, ObjectTransforms& xf, bool enabled) {
+Side FrustumCull::classify(const Object& object, size_t o, const float4x4& mvp, bool enabled) {
   const bool by_clusters =
       enabled && object.clusters && object.mesh && object.clusters->describes(*object.mesh);
-  sides_[o] =
-      by_clusters ? sideOf(object.clusters->bounds, xf.model_view_projection) : Side::kNotTested;
   if (object.mesh)
     counts_[o] = {object.mesh->triangleCount(), object.mesh->vertexCount()};
   else
     counts_[o] = {};
-  xf.triangle_base = bases_[o];
+  return sides_[o] = by_clusters ? sideOf(object.clusters->bounds, mvp) : Side::kNotTested;
 }
 
 size_t FrustumCull::run(const Scene& scene, const float4x4& view, const float4x4& projection,
@@ -222,7 +220,6 @@ size_t FrustumCull::run(const Scene& scene, const float4x4& view, const float4x4
   counters_ = {};
   size_t base = 0;
   for (size_t o = 0; o < scene.objects.size(); ++o) {
-    // A base follows from the meshes before it alone: the same as last frame unless they changed.
     if (bases_[o] != base) bases_[o] = objects[o].triangle_base = base;
     const size_t triangle_count = counts_[o].triangles;
     const size_t vertex_count = counts_[o].vertices;
