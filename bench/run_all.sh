@@ -117,7 +117,8 @@ spheres=$(mktemp -d)
 trap 'rm -rf "$spheres"' EXIT
 for k in 16 32 64 128 256 512; do
   "$python" bench/sphere_obj.py "$k" "$spheres/sphere_$((4 * k * k)).obj"
-  bench --resolution 1920,1080 "$spheres/sphere_$((4 * k * k)).obj"
+  # The scene by its file name, not the temporary directory of this run.
+  bench --resolution 1920,1080 "$spheres/sphere_$((4 * k * k)).obj" | sed "s|\"$spheres/|\"|"
 done > "$out/spheres.jsonl"
 load_after=$(load)
 core_latency end >> "$out/corelatency.jsonl"
