@@ -198,7 +198,6 @@ TEST(Culling, ARendererThatDrewOtherScenesDrawsTheNextAsAFreshOne) {
   }
   Scene fewer = mixed;
   fewer.objects.resize(fewer.objects.size() / 2);
-  for (Scene* scene : {&mixed, &fewer}) scene->camera = field.camera;
   RenderOptions options;
   options.width = 160;
   options.height = 120;
