@@ -286,7 +286,7 @@ size_t FrustumCull::planVertices(size_t per_job, std::vector<ObjectTransforms>& 
   jobs.clear();
   size_t total = 0;
   for (size_t i = 0; i < counts_.size(); ++i) {
-    const bool draws = counts_[i].vertices > 0 && drawsTriangles(i);
+    const bool draws = drawsTriangles(i);  // only an object with a mesh has triangle ranges
     const size_t vertex_base = draws ? total : 0;
     if (vertex_bases_[i] != vertex_base) vertex_bases_[i] = objects[i].vertex_base = vertex_base;
     if (!draws) continue;
