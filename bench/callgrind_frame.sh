@@ -5,7 +5,7 @@
 # clock of a shared host is not, so it measures changes of a few per cent; valgrind runs no
 # AVX-512, so use the avx2 (or sse2, scalar) kernels. Build with -g for the functions' names.
 #
-#   bench/callgrind_frame.sh STAGETIMES SCENE 1 WIDTH HEIGHT ISA MSAA [PROJECTION [SHADING]] [TOP]
+#   bench/callgrind_frame.sh STAGETIMES SCENE 1 WIDTH HEIGHT ISA MSAA [PROJECTION [SHADING [CAMERA]]] [TOP]
 #   bench/callgrind_frame.sh build/bench/tessera_stagetimes bunny 1 1920 1080 avx2 4
 #
 # TOP (default 15): how many functions to list, by their own instructions (not their callees').

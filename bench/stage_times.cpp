@@ -3,10 +3,12 @@
 // two builds can be checked for the same image while they are timed. For following the numbers
 // when changing a hot path; `tessera bench` is the yardstick.
 //   build/bench/tessera_stagetimes [scene] [workers] [frames] [width] [height] [simd] [msaa]
-//                                  [projection] [shading]
+//                                  [projection] [shading] [camera position x,y,z]
 //   simd: auto, scalar, sse2, avx2, avx512; msaa: 1, 2, 4, 8; projection: projection.h's names
 //   (the scene's camera and view angle in that mode); shading: flat, smooth, gouraud, unlit, pbr.
-//   Defaults: bunny 2 40 1920 1080 auto 1 perspective gouraud.
+//   Defaults: bunny 2 40 1920 1080 auto 1 perspective gouraud, the bench's camera (a position
+//   such as 0,0.2,3 places it as `tessera bench --camera-position` does: run_all.sh's bunny
+//   filling the frame).
 //   TESSERA_NOHASH=1 leaves the hash out (and the gap it makes between frames); TESSERA_NOCULL=1
 //   turns frustum and cluster culling off.
 #include <algorithm>
@@ -70,8 +72,18 @@ int main(int argc, char** argv) {
   }
   bench::BenchScene& b = *made;
   if (!b.fixed_view) {
+    model::CameraSettings settings;
+    if (argc > 10) {
+      settings.has_position =
+          std::sscanf(argv[10], "%f,%f,%f", &settings.position.x, &settings.position.y,
+                      &settings.position.z) == 3;
+      if (!settings.has_position) {
+        std::fprintf(stderr, "tessera_stagetimes: camera position must be x,y,z\n");
+        return 2;
+      }
+    }
     Expected<Camera> camera = model::makeCamera(
-        model::CameraSettings{}, b.bounds, static_cast<float>(width) / static_cast<float>(height));
+        settings, b.bounds, static_cast<float>(width) / static_cast<float>(height));
     if (!camera) {
       std::fprintf(stderr, "tessera_stagetimes: %s\n", camera.error().message.c_str());
       return 1;
