@@ -248,3 +248,33 @@ TEST(TextureLanes, TrianglesTexturedAlikeShareOneFilterWithTheSameBits) {
   options.height = 151;
   test::expectMixedShadingMatchesPerTriangle(scene, options);
 }
+
+// A frame whose every triangle is Phong without an albedo texture evaluates the lights of a group
+// of several triangles without looking at each lane's record first (TriangleChunk::lit_alike); a
+// textured Phong sphere beside an untextured one keeps the frame from that, and both still give
+// the bits of the triangle-by-triangle shading (were the textured one's groups lit as untextured,
+// they would lose their texture), as does the untextured sphere alone.
+TEST(TextureLanes, PhongTrianglesLitAlikeBesideTexturedOnesGiveTheSameBits) {
+  Scene scene = texturedScene({0, 1.0f, 4.0f});
+  Object plain;
+  plain.mesh = std::make_shared<Mesh>(makeUvSphere(96, 48));
+  plain.shading = Shading::kPhong;
+  plain.transform.translation = {-0.9f, 0, 0};
+  scene.objects.push_back(plain);
+  Object textured = plain;
+  textured.transform.translation = {0.9f, 0, 0};
+  textured.materials[0].albedo = noiseTexture(64, 32, true, 26);
+  scene.objects.push_back(textured);
+  Object floor = texturedFloor(noiseTexture(24, 20, false, 27), TextureFilter::kBilinear);
+  floor.shading = Shading::kPhong;
+  scene.objects.push_back(floor);
+  RenderOptions options;
+  options.width = 233;
+  options.height = 151;
+  test::expectMixedShadingMatchesPerTriangle(scene, options);
+  scene.objects.resize(1);
+  scene.objects[0].transform = {};
+  scene.objects[0].transform.translation = {0, 1, 0};
+  scene.objects[0].transform.scale = float3(2.5f);
+  test::expectMixedShadingMatchesPerTriangle(scene, options);
+}

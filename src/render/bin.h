@@ -109,6 +109,10 @@ struct alignas(128) TriangleChunk {
   // Some record may be textured without per-pixel lighting (texturedPlain, mixed_lanes.h): the
   // shading then looks for groups of eight pixels of two such triangles (shade_kernel.h).
   bool textured_plain = false;
+  // Every record is Phong-shaded without an albedo texture (litPlain, one shading): shadeRow's
+  // groups of several triangles then evaluate their lights without first looking at each lane's
+  // record for that (litAlike). Set by setupChunk; the ray renderer's chunks leave it false.
+  bool lit_alike = false;
   ChunkBins bins;
   // Records whose material is alphaMode BLEND, in submission order: left out of `bins` for the
   // transparent pass (blend.h).

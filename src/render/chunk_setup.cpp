@@ -155,10 +155,14 @@ ObjectSetup ChunkSetup::objectSetup(size_t object_index) {
       ctx.has_uv && ctx.shading != Shading::kPhong && ctx.shading != Shading::kPbr;
   // One look at the object's materials. alphaMode MASK: the raster tests such triangles' alpha
   // (rasterMasked), in the chunks that hold one.
+  bool albedo = false;
   for (const Material& m : object.materials) {
     chunk_.any_masked |= m.alpha_mode == AlphaMode::kMask;
     o.any_blended |= isBlended(m);
+    albedo |= m.albedo != nullptr;
   }
+  // Its records' has_uv: the mesh's UVs and the triangle's material's albedo (setup.cpp).
+  chunk_.lit_alike &= ctx.shading == Shading::kPhong && !(ctx.has_uv && albedo);
   return o;
 }
 
@@ -370,6 +374,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
   chunk.reads_normals = false;
   chunk.reads_world = false;
   chunk.textured_plain = false;
+  chunk.lit_alike = true;
   chunk.blended.clear();
 
   ChunkSetup setup(objects, cull, lights, kernels, scene, vertices, grid, guard, want_normals,

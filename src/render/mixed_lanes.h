@@ -408,11 +408,13 @@ TESSERA_LANES_INLINE Vec3x8 shadeLitAt(const ShadeTriangle& t, const F32x8 f[kPl
 // its own triangle's records (loaded eight at a time and transposed), and the lights are evaluated
 // once for the eight lanes instead of once per triangle. The same operations per lane as
 // shadeLanes, so the same bits. False, with `color` untouched, where that does not apply; lanes
-// outside `covered` hold a covered lane's records (and read no shadow map).
+// outside `covered` hold a covered lane's records (and read no shadow map). `alike`: the caller
+// knows the records litAlike (TriangleChunk::lit_alike), and they are not looked at for that.
 TESSERA_LANES_INLINE bool shadeLitMixed(const ShadeTriangle* const records[8],
                                         const ShadeExtras* const extras[8], I32x8 covered,
-                                        const LightRig& lights, F32x8 px, F32x8 py, Vec3x8& color) {
-  if (!litAlike(records)) return false;
+                                        const LightRig& lights, F32x8 px, F32x8 py, Vec3x8& color,
+                                        bool alike = false) {
+  if (!alike && !litAlike(records)) return false;
   F32x8 f[kPlainFields];
   loadPlainFields(records, f);
   F32x8 b0, b1, b2;

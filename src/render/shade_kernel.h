@@ -252,12 +252,14 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
 
 // Row ty of a tile that is not plain (see shadeTile) into the row's linear colours and, when
 // asked, the tile's normals. A function of its own, as shadePlainRow is: apart from the encode,
-// the compiler keeps more of the row's values in registers.
+// the compiler keeps more of the row's values in registers. `lit_alike`: every record is
+// TriangleChunk::lit_alike.
 template <bool kSampled>
 __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
                                         const ShadeTriangle* const records[],
                                         const ShadeExtras* const extras[], const LightRig& lights,
-                                        bool want_normals, bool textured, const MsaaShading* msaa,
+                                        bool want_normals, bool textured, bool lit_alike,
+                                        const MsaaShading* msaa,
                                         FragmentQueue* queue, float linear[3][kTileSize],
                                         ShadedTile& out) {
   const F32x8 zero = splat(0.0f);
@@ -296,8 +298,8 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
       // row's other such groups, below), or lit per pixel alike without maps: one evaluation for
       // the eight (mixed_lanes.h).
       const ShadeTriangle& t = records[keyChunk(r.first)][keyLocal(r.first)];
-      const bool textured = texturedPlain(t);
-      if (textured || litPlain(t)) {
+      const bool textured = !lit_alike && texturedPlain(t);
+      if (textured || lit_alike || litPlain(t)) {
         const MixedRecords m = mixedRecords(r.keys, r.covered, r.first, records, extras);
         if (textured) {
           TexturedGroup& group = textured_groups[textured_count];
@@ -306,7 +308,8 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
             ++textured_count;
             return;
           }
-        } else if (shadeLitMixed(m.lanes, m.extras, r.covered, lights, px, splat(py), color)) {
+        } else if (shadeLitMixed(m.lanes, m.extras, r.covered, lights, px, splat(py), color,
+                                 lit_alike)) {
           storeShadedGroup(color, Vec3x8{zero, zero, zero}, false, r.tx, ty * kTileSize + r.tx,
                            linear, out);
           return;
@@ -361,11 +364,13 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
                                     uint32_t background, const MsaaShading* msaa, ShadedTile& out) {
   const ShadeTriangle* records[kMaxChunks];
   const ShadeExtras* extras[kMaxChunks];
-  bool textured = false;  // some record may be texturedPlain
+  bool textured = false;   // some record may be texturedPlain
+  bool lit_alike = true;   // every record is litPlain Phong
   for (size_t c = 0; c < chunk_count; ++c) {
     records[c] = chunks[c].shade.data();
     extras[c] = chunks[c].extras.data();
     textured |= chunks[c].textured_plain;
+    lit_alike &= chunks[c].lit_alike;
   }
   // A row's colours in linear light, encoded once the row is shaded: the encode is a long chain
   // of dependent operations, and eight groups of it side by side keep the core busy where one
@@ -383,8 +388,8 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
                               solids);
       encodeShadedRow(tile, ty, linear, solid, background, out);
     } else {
-      shadeRow<kSampled>(tile, ty, records, extras, lights, want_normals, textured, msaa,
-                         queue ? &*queue : nullptr, linear, out);
+      shadeRow<kSampled>(tile, ty, records, extras, lights, want_normals, textured, lit_alike,
+                         msaa, queue ? &*queue : nullptr, linear, out);
       encodeShadedRow(tile, ty, linear, nullptr, background, out);
     }
   }
