@@ -423,5 +423,21 @@ TESSERA_LANES_INLINE bool shadeLitMixed(const ShadeTriangle* const records[8],
   return true;
 }
 
+// shadeLitMixed's work for Phong records (litAlike) up to the lights: each lane's interpolated
+// vertex colour and interpolated (not yet unit) normal, which finishPhong8 lights where the rig
+// needs no world positions.
+TESSERA_LANES_INLINE void phongInputsMixed(const ShadeTriangle* const records[8],
+                                           const ShadeExtras* const extras[8], F32x8 px, F32x8 py,
+                                           Vec3x8& color, Vec3x8& normal) {
+  F32x8 f[kPlainFields];
+  loadPlainFields(records, f);
+  F32x8 b0, b1, b2;
+  plainBarycentrics(f, px, py, b0, b1, b2);
+  color = plainColor(f, b1, b2);
+  F32x8 corner[9];
+  extrasCorners(extras, &ShadeExtras::normal, corner);
+  normal = interpolate9(corner, b0, b1, b2);
+}
+
 }  // namespace
 }  // namespace tessera::render

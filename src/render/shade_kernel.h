@@ -250,6 +250,42 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
   }
 }
 
+// The lights of a row's deferred Phong groups (bit g of `groups`: the eight pixels at 8 g), from
+// their colours in `linear` and normals in `normal`, into `linear`: two groups at a time in
+// sixteen lanes on AVX-512 without a tone curve, else one at a time.
+TESSERA_LANES_INLINE void finishPhongRow(const LightRig& lights, uint32_t groups,
+                                         const float normal[3][kTileSize],
+                                         float linear[3][kTileSize]) {
+#if defined(TESSERA_LANES16)
+  if (!lights.tone.active()) {
+    while (groups & (groups - 1)) {  // two or more left
+      const int a = 8 * __builtin_ctz(groups);
+      groups &= groups - 1;
+      const int b = 8 * __builtin_ctz(groups);
+      groups &= groups - 1;
+      F32x16 c[3], n[3];
+      for (int k = 0; k < 3; ++k) {
+        c[k] = join16(load<F32x8>(linear[k] + a), load<F32x8>(linear[k] + b));
+        n[k] = join16(load<F32x8>(normal[k] + a), load<F32x8>(normal[k] + b));
+      }
+      finishPhong16(lights, c, n);
+      for (int k = 0; k < 3; ++k) {
+        store(linear[k] + a, lowHalf(c[k]));
+        store(linear[k] + b, highHalf(c[k]));
+      }
+    }
+  }
+#endif
+  forEachGroup(groups, [&](int g) __attribute__((always_inline)) {
+    const int tx = 8 * g;
+    const Vec3x8 color{load<F32x8>(linear[0] + tx), load<F32x8>(linear[1] + tx),
+                       load<F32x8>(linear[2] + tx)};
+    const Vec3x8 n{load<F32x8>(normal[0] + tx), load<F32x8>(normal[1] + tx),
+                   load<F32x8>(normal[2] + tx)};
+    storeLinear(linear, tx, finishPhong8(lights, color, n));
+  });
+}
+
 // Row ty of a tile that is not plain (see shadeTile) into the row's linear colours and, when
 // asked, the tile's normals. A function of its own, as shadePlainRow is: apart from the encode,
 // the compiler keeps more of the row's values in registers. `lit_alike`: every record is
@@ -266,6 +302,20 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
   TexturedGroup textured_groups[kTileSize / 8];
   int textured_count = 0;
+  // Groups of untextured Phong triangles whose lights wait for the row's other groups
+  // (phongDeferrable): their colours in `linear`, their normals here, lit by finishPhong8 at the
+  // row's end. Each group's work is a long chain (barycentrics, then the normal's square root and
+  // division, then the lights), and the lights of the row's groups side by side keep the core
+  // busy where each group's own left it waiting.
+  const bool defer_phong = phongDeferrable(lights, want_normals);
+  alignas(32) float phong_normal[3][kTileSize];
+  uint32_t phong_groups = 0;
+  const auto defer = [&](int tx, const Vec3x8& color, const Vec3x8& normal)
+      __attribute__((always_inline)) {
+    storeLinear(linear, tx, color);
+    storeLinear(phong_normal, tx, normal);
+    phong_groups |= 1u << (tx / 8);
+  };
   // Group r: shaded triangle by triangle (shadeApart) and stored.
   const auto shade_apart = [&](const RowGroup& r, F32x8 px, Vec3x8 color)
       __attribute__((always_inline)) {
@@ -278,6 +328,12 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
     const RowGroup r = rowGroup(tile, ty, groups, g);
     const F32x8 px = pixelCentresX(tile, r.tx);
     const ShadeTriangle& t = records[keyChunk(r.first)][keyLocal(r.first)];
+    if (defer_phong && t.shading == Shading::kPhong && !t.has_uv) {
+      Vec3x8 color, normal;
+      phongInputs(t, extras[keyChunk(r.first)][keyLocal(r.first)], px, py, color, normal);
+      defer(r.tx, color, normal);
+      return;
+    }
     if (!want_normals && texturedGroupApplies(t)) {
       // One textured triangle's pixels: filtered with the row's other textured groups.
       TexturedGroup& group = textured_groups[textured_count];
@@ -308,6 +364,12 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
             ++textured_count;
             return;
           }
+        } else if (defer_phong && t.shading == Shading::kPhong &&
+                   (lit_alike || litAlike(m.lanes))) {
+          Vec3x8 normal;
+          phongInputsMixed(m.lanes, m.extras, px, splat(py), color, normal);
+          defer(r.tx, color, normal);
+          return;
         } else if (shadeLitMixed(m.lanes, m.extras, r.covered, lights, px, splat(py), color,
                                  lit_alike)) {
           storeShadedGroup(color, Vec3x8{zero, zero, zero}, false, r.tx, ty * kTileSize + r.tx,
@@ -341,6 +403,7 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
   forEachGroup(groups.single, shade_single);
   forEachGroup(groups.two, shade_two);
   forEachGroup(groups.several & ~groups.two, shade_several);
+  finishPhongRow(lights, phong_groups, phong_normal, linear);
   filterTexturedRow(tile, ty, textured_groups, textured_count, records, extras, lights, linear);
   if (kSampled) resolveMixedRow(*msaa, tile, ty, records, extras, lights, *queue, linear);
 }

@@ -470,6 +470,57 @@ TESSERA_LANES_INLINE void barycentrics8(const ShadeTriangle& t, F32x8 x, float y
   b.x = splat(1.0f) - b.y - b.z;
 }
 
+// Whether the lights of a Phong pixel can wait for finishPhong8: no world positions (no point or
+// spot light, no shadow maps) and no normal AOV.
+TESSERA_LANES_INLINE bool phongDeferrable(const LightRig& lights, bool want_normals) {
+  return !want_normals && !lights.local && !lights.shadows;
+}
+
+// An untextured Phong triangle t's work at pixel centres (px, py) up to the lights (shadeLanes'
+// operations): its interpolated vertex colour and interpolated (not yet unit) normal.
+TESSERA_LANES_INLINE void phongInputs(const ShadeTriangle& t, const ShadeExtras& e, F32x8 px,
+                                      float py, Vec3x8& color, Vec3x8& normal) {
+  Vec3x8 b;
+  barycentrics8(t, px, py, b);
+  color = interpolateColor(t.color, b.y, b.z);
+  normal = interpolate(e.normal, b.x, b.y, b.z);
+}
+
+// The rest of a Phong pixel's shading (phongDeferrable): the normal made unit, the lights, the
+// tone curve; shadeLanes' and shadeLitMixed's operations, so the same bits.
+TESSERA_LANES_INLINE Vec3x8 finishPhong8(const LightRig& lights, const Vec3x8& color,
+                                         const Vec3x8& normal) {
+  const Vec3x8 e = irradiance8(lights, normalize8(normal), Vec3x8{}, splat(int32_t{0}));
+  Vec3x8 c{color.x * e.x, color.y * e.y, color.z * e.z};
+  if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
+  return c;
+}
+
+#if defined(TESSERA_LANES16)
+// finishPhong8 for two groups side by side in sixteen lanes (AVX-512), the same operations per
+// lane, without a tone curve: on this host a division or square root of sixteen lanes takes
+// about as long as one of eight. c and n: the colours' and normals' x, y, z.
+TESSERA_LANES_INLINE void finishPhong16(const LightRig& lights, F32x16 c[3], const F32x16 n[3]) {
+  const F32x16 zero = splat16(0.0f);
+  const F32x16 len = reinterpret_cast<F32x16>(_mm512_maskz_sqrt_ps(
+      0xffff, reinterpret_cast<__m512>((n[0] * n[0] + n[1] * n[1]) + n[2] * n[2])));
+  const F32x16 inv = splat16(1.0f) / len;
+  const auto nonzero = len > zero;
+  const F32x16 u[3] = {nonzero ? n[0] * inv : zero, nonzero ? n[1] * inv : zero,
+                       nonzero ? n[2] * inv : zero};
+  F32x16 e[3] = {splat16(lights.ambient.x), splat16(lights.ambient.y), splat16(lights.ambient.z)};
+  for (const ShadeLight& light : lights.lights) {
+    const F32x16 f = zero - (u[0] * splat16(light.direction.x) + u[1] * splat16(light.direction.y) +
+                             u[2] * splat16(light.direction.z));
+    const auto lit = f > zero;
+    e[0] = e[0] + (lit ? splat16(light.radiance.x) * f : zero);
+    e[1] = e[1] + (lit ? splat16(light.radiance.y) * f : zero);
+    e[2] = e[2] + (lit ? splat16(light.radiance.z) * f : zero);
+  }
+  for (int k = 0; k < 3; ++k) c[k] = c[k] * e[k];
+}
+#endif
+
 // The colour of an untextured flat, Gouraud or unlit triangle (its interpolated vertex colours)
 // at pixel centres (px, py): shadeLanes' operations for such a triangle without a tone curve.
 TESSERA_LANES_INLINE Vec3x8 shadePlainLanes(const ShadeTriangle& t, F32x8 px, float py) {
