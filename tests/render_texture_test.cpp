@@ -278,3 +278,48 @@ TEST(TextureLanes, PhongTrianglesLitAlikeBesideTexturedOnesGiveTheSameBits) {
   scene.objects[0].transform.scale = float3(2.5f);
   test::expectMixedShadingMatchesPerTriangle(scene, options);
 }
+
+// With MSAA, the later samples' fragments of a frame whose every record is lit alike take the one
+// evaluation of their lights without the per-lane check too (fragment_queue.h's shadeFragments,
+// with or without the normal AOV: the test above cannot tell). A Phong sphere's pixels, mixed ones
+// included, get the same bits as in the same frame with a textured Phong card in a corner, which
+// turns that off.
+TEST(TextureLanes, PhongFragmentsLitAlikeGiveTheBitsOfTheCheckedOnes) {
+  Scene scene = texturedScene({0, 1.0f, 4.0f});
+  Object sphere;
+  sphere.mesh = std::make_shared<Mesh>(makeUvSphere(96, 48));
+  sphere.shading = Shading::kPhong;
+  sphere.transform.translation = {0.5f, 1.0f, 0};
+  sphere.transform.scale = float3(1.4f);
+  scene.objects.push_back(sphere);
+  RenderOptions options;
+  options.width = 233;
+  options.height = 151;
+  options.msaa = 4;
+  options.ids = true;
+  const Frame alone = renderAt(scene, options, SimdLevel::kAuto, 2);
+  Mesh quad;
+  quad.positions = {{-2.4f, 0, 0}, {-1.8f, 0, 0}, {-1.8f, 0.5f, 0}, {-2.4f, 0.5f, 0}};
+  quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  Object card = unlitObject(quad, CullMode::kNone);
+  card.shading = Shading::kPhong;
+  card.materials[0].albedo = noiseTexture(16, 16, true, 28);
+  scene.objects.push_back(card);
+  const Frame with_card = renderAt(scene, options, SimdLevel::kAuto, 2);
+  const uint32_t sphere_triangles = static_cast<uint32_t>(sphere.mesh->triangleCount());
+  size_t compared = 0, differing = 0, card_pixels = 0;
+  for (size_t i = 0; i < alone.color.size(); ++i) {
+    card_pixels += with_card.triangle_id[i] != kNoTriangle &&
+                   with_card.triangle_id[i] >= sphere_triangles;
+    if (alone.triangle_id[i] == kNoTriangle || with_card.triangle_id[i] != alone.triangle_id[i])
+      continue;
+    ++compared;
+    if (alone.color[i] != with_card.color[i] && differing++ == 0)
+      ADD_FAILURE() << "pixel " << i << ": " << std::hex << alone.color[i] << " alone, "
+                    << with_card.color[i] << " beside the card";
+  }
+  EXPECT_EQ(differing, 0u);
+  EXPECT_GT(compared, 233u * 151u / 8);
+  EXPECT_GT(card_pixels, 20u);
+}

@@ -197,14 +197,18 @@ TESSERA_LANES_INLINE void shadeQueuedPlain(const ShadeTriangle* const* chunk_rec
 // The colours of queued fragments of any triangles: in one evaluation where all are textured alike
 // without per-pixel lighting (prepareTexturedGroup) or lit per pixel alike without maps
 // (shadeLitMixed), else triangle by triangle and point by point (shadeLanes). The same operations
-// per lane on every path, so the same bits.
+// per lane on every path, so the same bits. `lit_alike`: every record is TriangleChunk::lit_alike.
 TESSERA_LANES_INLINE Vec3x8 shadeFragments(const QueuedFragments& q,
                                            const ShadeExtras* const* chunk_extras,
-                                           const LightRig& lights) {
+                                           const LightRig& lights, bool lit_alike) {
   const ShadeExtras* extras[8];
   laneRecords(q.lane_keys, chunk_extras, extras);
   Vec3x8 color;
   const ShadeTriangle& t = *q.records[0];
+  if (lit_alike) {
+    shadeLitMixed(q.records, extras, q.valid, lights, q.px, q.py, color, true);
+    return color;
+  }
   if (texturedPlain(t)) {
     TexturedGroup group;
     if (prepareTexturedGroup(q.records, extras, q.valid, q.px, q.py, group) &&
@@ -269,17 +273,18 @@ TESSERA_LANES_INLINE void resolveMixedRowBy(const MsaaShading& m, const TileVisi
   finishMixedRow(m, tile, ty, linear);
 }
 
-// resolveMixedRowBy of a perspective row when some triangle of the tile is not plain.
+// resolveMixedRowBy of a perspective row when some triangle of the tile is not plain (`lit_alike`:
+// every record is TriangleChunk::lit_alike).
 TESSERA_LANES_INLINE void resolveMixedRow(const MsaaShading& m, const TileVisibility& tile, int ty,
                                           const ShadeTriangle* const* chunk_records,
                                           const ShadeExtras* const* chunk_extras,
-                                          const LightRig& lights, FragmentQueue& queue,
-                                          float linear[3][kTileSize]) {
+                                          const LightRig& lights, bool lit_alike,
+                                          FragmentQueue& queue, float linear[3][kTileSize]) {
   const int y = tile.y0 + ty;
   resolveMixedRowBy(m, tile, ty, queue, linear, [&](int first, int count) {
     QueuedFragments q;
     loadQueued(chunk_records, queue, first, count, tile.x0, y, q);
-    return ShadedFragments{q.tx, q.weight, shadeFragments(q, chunk_extras, lights)};
+    return ShadedFragments{q.tx, q.weight, shadeFragments(q, chunk_extras, lights, lit_alike)};
   });
 }
 

@@ -405,7 +405,8 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
   forEachGroup(groups.several & ~groups.two, shade_several);
   finishPhongRow(lights, phong_groups, phong_normal, linear);
   filterTexturedRow(tile, ty, textured_groups, textured_count, records, extras, lights, linear);
-  if (kSampled) resolveMixedRow(*msaa, tile, ty, records, extras, lights, *queue, linear);
+  if (kSampled)
+    resolveMixedRow(*msaa, tile, ty, records, extras, lights, lit_alike, *queue, linear);
 }
 
 // Shades the tile in pixel order, eight pixels of a row at a time, then encodes the row to sRGB
