@@ -9,6 +9,7 @@
 
 #include "render/fragment_queue.h"
 #include "render/mixed_lanes.h"
+#include "render/plain_lanes16.h"
 #include "render/shade_lanes.h"
 #include "render/texture_lanes16.h"
 
@@ -229,7 +230,23 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
         shadePlainSeveral(records, r.keys, r.covered, r.first, pixelCentresX(tile, r.tx), py));
   };
   forEachGroup(groups.single, shade_single);
-  forEachGroup(groups.several, shade_several);
+  uint32_t several = groups.several;
+#if defined(TESSERA_LANES16)
+  for (; several & (several - 1); several &= several - 1) {
+    const RowGroup a = rowGroup(tile, ty, groups, __builtin_ctz(several));
+    several &= several - 1;
+    const RowGroup b = rowGroup(tile, ty, groups, __builtin_ctz(several));
+    const ShadeTriangle* ra[8];
+    const ShadeTriangle* rb[8];
+    laneRecords(laneKeys(a.keys, a.covered, a.first), records, ra);
+    laneRecords(laneKeys(b.keys, b.covered, b.first), records, rb);
+    Vec3x8 ca, cb;
+    shadeMixedPair(ra, pixelCentresX(tile, a.tx), rb, pixelCentresX(tile, b.tx), py, ca, cb);
+    storeLinear(linear, a.tx, ca);
+    storeLinear(linear, b.tx, cb);
+  }
+#endif
+  forEachGroup(several, shade_several);
   if constexpr (kSampled) {
     if (groups.sampled == 0) return;
     const auto shade_queued = [&](int first, int count) __attribute__((always_inline)) {
