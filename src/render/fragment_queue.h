@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "render/msaa_kernel.h"
+#include "render/plain_lanes16.h"
 
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
@@ -103,6 +104,12 @@ TESSERA_LANES_INLINE void shadeQueue(FragmentQueue& queue, int ready, Shade shad
   for (; queue.shaded + 8 <= ready; queue.shaded += 8) shade(queue.shaded, 8);
 }
 
+// shadeQueue two rounds at a time: shade_pair(first) shades fragments first .. first + 15.
+template <typename Pair>
+TESSERA_LANES_INLINE void shadeQueuePairs(FragmentQueue& queue, int ready, Pair shade_pair) {
+  for (; queue.shaded + 16 <= ready; queue.shaded += 16) shade_pair(queue.shaded);
+}
+
 // Every fragment of the queue not yet shaded (the last round fewer than eight); the queue then
 // starts empty.
 template <typename Shade>
@@ -159,30 +166,54 @@ TESSERA_LANES_INLINE void loadMixedGroup(const MsaaShading& m, int i, I32x8 mixe
 // mixed: the one-sample colour); the later samples' new triangles of the mixed pixels go to
 // `queue`. A mixed pixel's colour is left as its sum so far: the background's share and sample
 // 0's triangle weighted by the samples it holds.
+// In three steps, for a caller that shades two groups' sample 0 at once (shadeSampledPair):
+// the group's samples, sample 0's records and the points it is shaded at (false: no lane holds a
+// triangle at sample 0), then the sums and the later samples' pushes.
+struct SampledGroup {
+  MixedGroup g;
+  I32x8 mixed;
+  const ShadeTriangle* records[8];
+  F32x8 px, py;
+};
+TESSERA_LANES_INLINE bool prepareSampled(const MsaaShading& m,
+                                         const ShadeTriangle* const* chunk_records, int i, int x,
+                                         int y, I32x8 mixed, SampledGroup& s) {
+  loadMixedGroup(m, i, mixed, s.g);
+  s.mixed = mixed;
+  const I32x8 valid = ~equal(s.g.keys[0], splat(static_cast<int32_t>(kEmptyKey)));
+  if (!any(valid)) return false;
+  laneRecords(laneKeys(s.g.keys[0], valid), chunk_records, s.records);
+  const I32x8 at_centre = ~mixed | centresCovered(s.g.keys[0], s.g.pending[0]);
+  const F32x8 column = toFloat(splat(x) + iota());
+  s.px = select(at_centre, column + splat(0.5f), column + splat(sampleX(m, 0)));
+  s.py = select(at_centre, splat(static_cast<float>(y) + 0.5f), splat(sampleY(m, 0, y)));
+  return true;
+}
+// `sample0`: the colours of the group's sample-0 triangles (or null where prepareSampled found
+// none).
+TESSERA_LANES_INLINE Vec3x8 finishSampled(const MsaaShading& m, const SampledGroup& s,
+                                          const Vec3x8* sample0, int tx, FragmentQueue& queue) {
+  const MixedGroup& g = s.g;
+  Vec3x8 sum = g.sum;
+  const Vec3x8 c = sample0 ? *sample0 : g.sum;
+  if (sample0) {
+    const F32x8 weight = toFloat(g.held[0]);
+    sum = {select(g.pending[0], sum.x + c.x * weight, sum.x),
+           select(g.pending[0], sum.y + c.y * weight, sum.y),
+           select(g.pending[0], sum.z + c.z * weight, sum.z)};
+  }
+  for (int k = 1; k < m.samples; ++k) queue.push(g.keys[k], g.pending[k], tx, k, g.held[k]);
+  return {select(s.mixed, sum.x, c.x), select(s.mixed, sum.y, c.y), select(s.mixed, sum.z, c.z)};
+}
 TESSERA_LANES_INLINE Vec3x8 shadePlainSampled(const MsaaShading& m,
                                               const ShadeTriangle* const* chunk_records, int i,
                                               int tx, int x, int y, I32x8 mixed,
                                               FragmentQueue& queue) {
-  MixedGroup g;
-  loadMixedGroup(m, i, mixed, g);
-  Vec3x8 sum = g.sum, sample0 = g.sum;
-  const I32x8 valid = ~equal(g.keys[0], splat(static_cast<int32_t>(kEmptyKey)));
-  if (any(valid)) {
-    const ShadeTriangle* records[8];
-    laneRecords(laneKeys(g.keys[0], valid), chunk_records, records);
-    const I32x8 at_centre = ~mixed | centresCovered(g.keys[0], g.pending[0]);
-    const F32x8 column = toFloat(splat(x) + iota());
-    sample0 =
-        shadeMixed(records, select(at_centre, column + splat(0.5f), column + splat(sampleX(m, 0))),
-                   select(at_centre, splat(static_cast<float>(y) + 0.5f), splat(sampleY(m, 0, y))));
-    const F32x8 weight = toFloat(g.held[0]);
-    sum = {select(g.pending[0], sum.x + sample0.x * weight, sum.x),
-           select(g.pending[0], sum.y + sample0.y * weight, sum.y),
-           select(g.pending[0], sum.z + sample0.z * weight, sum.z)};
-  }
-  for (int s = 1; s < m.samples; ++s) queue.push(g.keys[s], g.pending[s], tx, s, g.held[s]);
-  return {select(mixed, sum.x, sample0.x), select(mixed, sum.y, sample0.y),
-          select(mixed, sum.z, sample0.z)};
+  SampledGroup s;
+  if (!prepareSampled(m, chunk_records, i, x, y, mixed, s))
+    return finishSampled(m, s, nullptr, tx, queue);
+  const Vec3x8 sample0 = shadeMixed(s.records, s.px, s.py);
+  return finishSampled(m, s, &sample0, tx, queue);
 }
 
 // The queued plain fragments first .. first + count - 1 of row y shaded and added to their sums.
@@ -193,6 +224,44 @@ TESSERA_LANES_INLINE void shadeQueuedPlain(const ShadeTriangle* const* chunk_rec
   loadQueued(chunk_records, queue, first, count, x0, y, q);
   addFragments(q.tx, q.weight, count, shadeMixed(q.records, q.px, q.py), linear);
 }
+
+#if defined(TESSERA_LANES16)
+// shadePlainSampled of two groups a and b of row y (tile offsets ia, ib, tile columns txa, txb,
+// frame columns xa, xb), their sample-0 triangles shaded in sixteen lanes (plain_lanes16.h) where
+// both have some; a's later fragments are queued before b's, as two calls queue them.
+TESSERA_LANES_INLINE void shadePlainSampledPair(const MsaaShading& m,
+                                                const ShadeTriangle* const* chunk_records, int y,
+                                                int ia, int txa, int xa, I32x8 mixed_a, int ib,
+                                                int txb, int xb, I32x8 mixed_b,
+                                                FragmentQueue& queue, Vec3x8& ca, Vec3x8& cb) {
+  SampledGroup a, b;
+  const bool has_a = prepareSampled(m, chunk_records, ia, xa, y, mixed_a, a);
+  const bool has_b = prepareSampled(m, chunk_records, ib, xb, y, mixed_b, b);
+  Vec3x8 sa, sb;
+  if (has_a && has_b) {
+    shadeMixedPair(a.records, a.px, a.py, b.records, b.px, b.py, sa, sb);
+  } else {
+    if (has_a) sa = shadeMixed(a.records, a.px, a.py);
+    if (has_b) sb = shadeMixed(b.records, b.px, b.py);
+  }
+  ca = finishSampled(m, a, has_a ? &sa : nullptr, txa, queue);
+  cb = finishSampled(m, b, has_b ? &sb : nullptr, txb, queue);
+}
+
+// shadeQueuedPlain of two full rounds, fragments first .. first + 15, in sixteen lanes
+// (plain_lanes16.h); the two rounds' colours are added in queue order, as two calls add them.
+TESSERA_LANES_INLINE void shadeQueuedPlainPair(const ShadeTriangle* const* chunk_records,
+                                               const FragmentQueue& queue, int first, int x0,
+                                               int y, float linear[3][kTileSize]) {
+  QueuedFragments a, b;
+  loadQueued(chunk_records, queue, first, 8, x0, y, a);
+  loadQueued(chunk_records, queue, first + 8, 8, x0, y, b);
+  Vec3x8 ca, cb;
+  shadeMixedPair(a.records, a.px, a.py, b.records, b.px, b.py, ca, cb);
+  addFragments(a.tx, a.weight, 8, ca, linear);
+  addFragments(b.tx, b.weight, 8, cb, linear);
+}
+#endif
 
 // The colours of queued fragments of any triangles: in one evaluation where all are textured alike
 // without per-pixel lighting (prepareTexturedGroup) or lit per pixel alike without maps

@@ -13,15 +13,16 @@
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
 
-// shadeMixed of the records of group a (`ra`, pixel centres pxa) and of group b (`rb`, pxb) of
-// one row (py), into ca and cb. Groups whose every triangle is solid take shadeMixed's shortcut,
-// each on its own.
-TESSERA_LANES_INLINE void shadeMixedPair(const ShadeTriangle* const ra[8], F32x8 pxa,
-                                         const ShadeTriangle* const rb[8], F32x8 pxb, float py,
+// shadeMixed of the records of group a (`ra`, at points pxa, pya) and of group b (`rb`, at pxb,
+// pyb), into ca and cb: two groups of a row, or two rounds of a row's queued fragments
+// (fragment_queue.h). Groups whose every triangle is solid take shadeMixed's shortcut, each on its
+// own.
+TESSERA_LANES_INLINE void shadeMixedPair(const ShadeTriangle* const ra[8], F32x8 pxa, F32x8 pya,
+                                         const ShadeTriangle* const rb[8], F32x8 pxb, F32x8 pyb,
                                          Vec3x8& ca, Vec3x8& cb) {
   if (allSolid(ra) || allSolid(rb)) {
-    ca = shadeMixed(ra, pxa, splat(py));
-    cb = shadeMixed(rb, pxb, splat(py));
+    ca = shadeMixed(ra, pxa, pya);
+    cb = shadeMixed(rb, pxb, pyb);
     return;
   }
   F32x16 f[kPlainFields];
@@ -43,7 +44,7 @@ TESSERA_LANES_INLINE void shadeMixedPair(const ShadeTriangle* const ra[8], F32x8
   f[16] = join16(ya, yb);
   f[17] = join16(za, zb);
   const F32x16 dx = join16(pxa, pxb) - f[0];
-  const F32x16 dy = splat16(py) - f[1];
+  const F32x16 dy = join16(pya, pyb) - f[1];
   const F32x16 inv_s = splat16(1.0f) / ((f[2] + f[7] * dx) + f[8] * dy);
   const F32x16 b1 = (f[3] * dx + f[4] * dy) * inv_s;
   const F32x16 b2 = (f[5] * dx + f[6] * dy) * inv_s;

@@ -241,7 +241,8 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
     laneRecords(laneKeys(a.keys, a.covered, a.first), records, ra);
     laneRecords(laneKeys(b.keys, b.covered, b.first), records, rb);
     Vec3x8 ca, cb;
-    shadeMixedPair(ra, pixelCentresX(tile, a.tx), rb, pixelCentresX(tile, b.tx), py, ca, cb);
+    shadeMixedPair(ra, pixelCentresX(tile, a.tx), splat(py), rb, pixelCentresX(tile, b.tx),
+                   splat(py), ca, cb);
     storeLinear(linear, a.tx, ca);
     storeLinear(linear, b.tx, cb);
   }
@@ -252,6 +253,13 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
     const auto shade_queued = [&](int first, int count) __attribute__((always_inline)) {
       shadeQueuedPlain(records, *queue, first, count, tile.x0, tile.y0 + ty, linear);
     };
+    // On AVX-512 the rounds go two at a time (shadeQueuedPlainPair), the last one or none left to
+    // finishQueue.
+    [[maybe_unused]] const auto shade_pair = [&](int first) __attribute__((always_inline)) {
+#if defined(TESSERA_LANES16)
+      shadeQueuedPlainPair(records, *queue, first, tile.x0, tile.y0 + ty, linear);
+#endif
+    };
     const auto shade_sampled = [&](int g) __attribute__((always_inline)) {
       const int tx = 8 * g, i = ty * kTileSize + tx;
       const I32x8 mixed = load<I32x8>(msaa->tiles->mixed + i);
@@ -259,9 +267,34 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
       storeLinear(
           linear, tx,
           shadePlainSampled(*msaa, records, i, tx, tile.x0 + tx, tile.y0 + ty, mixed, *queue));
+#if defined(TESSERA_LANES16)
+      shadeQueuePairs(*queue, ready, shade_pair);
+#else
       shadeQueue(*queue, ready, shade_queued);
+#endif
     };
+#if defined(TESSERA_LANES16)
+    // Two groups at a time: their sample-0 triangles in sixteen lanes.
+    uint32_t sampled = groups.sampled;
+    for (; sampled & (sampled - 1); sampled &= sampled - 1) {
+      const int txa = 8 * __builtin_ctz(sampled);
+      sampled &= sampled - 1;
+      const int txb = 8 * __builtin_ctz(sampled);
+      const int ia = ty * kTileSize + txa, ib = ty * kTileSize + txb;
+      const int ready = queue->count;
+      Vec3x8 ca, cb;
+      shadePlainSampledPair(*msaa, records, tile.y0 + ty, ia, txa, tile.x0 + txa,
+                            load<I32x8>(msaa->tiles->mixed + ia), ib, txb, tile.x0 + txb,
+                            load<I32x8>(msaa->tiles->mixed + ib), *queue, ca, cb);
+      storeLinear(linear, txa, ca);
+      storeLinear(linear, txb, cb);
+      shadeQueuePairs(*queue, ready, shade_pair);
+    }
+    forEachGroup(sampled, shade_sampled);
+    shadeQueuePairs(*queue, queue->count, shade_pair);
+#else
     forEachGroup(groups.sampled, shade_sampled);
+#endif
     finishQueue(*queue, shade_queued);
     finishMixedRow(*msaa, tile, ty, linear);
   }
