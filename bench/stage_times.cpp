@@ -74,9 +74,8 @@ int main(int argc, char** argv) {
   if (!b.fixed_view) {
     model::CameraSettings settings;
     if (argc > 10) {
-      settings.has_position =
-          std::sscanf(argv[10], "%f,%f,%f", &settings.position.x, &settings.position.y,
-                      &settings.position.z) == 3;
+      settings.has_position = std::sscanf(argv[10], "%f,%f,%f", &settings.position.x,
+                                          &settings.position.y, &settings.position.z) == 3;
       if (!settings.has_position) {
         std::fprintf(stderr, "tessera_stagetimes: camera position must be x,y,z\n");
         return 2;

@@ -310,8 +310,8 @@ TEST(TextureLanes, PhongFragmentsLitAlikeGiveTheBitsOfTheCheckedOnes) {
   const uint32_t sphere_triangles = static_cast<uint32_t>(sphere.mesh->triangleCount());
   size_t compared = 0, differing = 0, card_pixels = 0;
   for (size_t i = 0; i < alone.color.size(); ++i) {
-    card_pixels += with_card.triangle_id[i] != kNoTriangle &&
-                   with_card.triangle_id[i] >= sphere_triangles;
+    card_pixels +=
+        with_card.triangle_id[i] != kNoTriangle && with_card.triangle_id[i] >= sphere_triangles;
     if (alone.triangle_id[i] == kNoTriangle || with_card.triangle_id[i] != alone.triangle_id[i])
       continue;
     ++compared;

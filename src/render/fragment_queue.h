@@ -251,8 +251,8 @@ TESSERA_LANES_INLINE void shadePlainSampledPair(const MsaaShading& m,
 // shadeQueuedPlain of two full rounds, fragments first .. first + 15, in sixteen lanes
 // (plain_lanes16.h); the two rounds' colours are added in queue order, as two calls add them.
 TESSERA_LANES_INLINE void shadeQueuedPlainPair(const ShadeTriangle* const* chunk_records,
-                                               const FragmentQueue& queue, int first, int x0,
-                                               int y, float linear[3][kTileSize]) {
+                                               const FragmentQueue& queue, int first, int x0, int y,
+                                               float linear[3][kTileSize]) {
   QueuedFragments a, b;
   loadQueued(chunk_records, queue, first, 8, x0, y, a);
   loadQueued(chunk_records, queue, first + 8, 8, x0, y, b);

@@ -28,8 +28,8 @@ TESSERA_LANES_INLINE void shadeMixedPair(const ShadeTriangle* const ra[8], F32x8
   F32x16 f[kPlainFields];
   for (int block = 0; block < 2; ++block) {
     for (int l = 0; l < 8; ++l)
-      f[block * 8 + l] = join16(load<F32x8>(&ra[l]->x0 + block * 8),
-                                load<F32x8>(&rb[l]->x0 + block * 8));
+      f[block * 8 + l] =
+          join16(load<F32x8>(&ra[l]->x0 + block * 8), load<F32x8>(&rb[l]->x0 + block * 8));
     transpose8x8Halves(f + block * 8);
   }
   const float* last_a[8];

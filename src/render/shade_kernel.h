@@ -200,12 +200,65 @@ TESSERA_LANES_INLINE void storeLinear(float linear[3][kTileSize], int tx, const 
   store(linear[2] + tx, color.z);
 }
 
+#if defined(TESSERA_LANES16)
+// The groups of `several` (of row ty, sorted by sortRowGroups) two at a time in sixteen lanes
+// (shadeMixedPair) into the row's linear colours; returns the one left over, if any.
+TESSERA_LANES_INLINE uint32_t shadeSeveralPairs(const TileVisibility& tile, int ty,
+                                                const RowGroups& groups, uint32_t several,
+                                                const ShadeTriangle* const records[],
+                                                float linear[3][kTileSize]) {
+  const F32x8 py = splat(static_cast<float>(tile.y0 + ty) + 0.5f);
+  for (; several & (several - 1); several &= several - 1) {
+    const RowGroup a = rowGroup(tile, ty, groups, __builtin_ctz(several));
+    several &= several - 1;
+    const RowGroup b = rowGroup(tile, ty, groups, __builtin_ctz(several));
+    const ShadeTriangle* ra[8];
+    const ShadeTriangle* rb[8];
+    laneRecords(laneKeys(a.keys, a.covered, a.first), records, ra);
+    laneRecords(laneKeys(b.keys, b.covered, b.first), records, rb);
+    Vec3x8 ca, cb;
+    shadeMixedPair(ra, pixelCentresX(tile, a.tx), py, rb, pixelCentresX(tile, b.tx), py, ca, cb);
+    storeLinear(linear, a.tx, ca);
+    storeLinear(linear, b.tx, cb);
+  }
+  return several;
+}
+
+// The groups of `sampled` (row ty's groups holding a mixed pixel) two at a time
+// (shadePlainSampledPair), each pair followed by the queue's rounds queued before it, two at a
+// time (shade_pair); returns the group left over, if any.
+template <typename ShadePair>
+TESSERA_LANES_INLINE uint32_t shadeSampledPairs(const TileVisibility& tile, int ty,
+                                                uint32_t sampled, const MsaaShading& msaa,
+                                                const ShadeTriangle* const records[],
+                                                FragmentQueue& queue, float linear[3][kTileSize],
+                                                ShadePair shade_pair) {
+  for (; sampled & (sampled - 1); sampled &= sampled - 1) {
+    const int txa = 8 * __builtin_ctz(sampled);
+    sampled &= sampled - 1;
+    const int txb = 8 * __builtin_ctz(sampled);
+    const int ia = ty * kTileSize + txa, ib = ty * kTileSize + txb;
+    const int ready = queue.count;
+    Vec3x8 ca, cb;
+    shadePlainSampledPair(msaa, records, tile.y0 + ty, ia, txa, tile.x0 + txa,
+                          load<I32x8>(msaa.tiles->mixed + ia), ib, txb, tile.x0 + txb,
+                          load<I32x8>(msaa.tiles->mixed + ib), queue, ca, cb);
+    storeLinear(linear, txa, ca);
+    storeLinear(linear, txb, cb);
+    shadeQueuePairs(queue, ready, shade_pair);
+  }
+  return sampled;
+}
+#endif
+
 // Row ty of a plain tile (every triangle untextured, not Phong, no normal AOV) into the row's
 // linear colours: eight pixels of one triangle take shadePlainSingle, of several shadeMixed, and
 // with MSAA (`kSampled`) a group holding a mixed pixel is resolved with the row's other such
 // groups (shadePlainSampled, then `queue`'s fragments eight at a time, each added to its pixel in
 // sample order). The groups are sorted first (sortRowGroups), each kind shaded in a loop of its
-// own. A function of its own, not inlined into shadeTile: in the one function of every path the
+// own; on AVX-512 groups of several triangles, mixed groups and the queue's rounds go two at a
+// time in sixteen lanes (plain_lanes16.h). A function of its own, not inlined into shadeTile: in
+// the one function of every path the
 // compiler kept this loop's colours and masks on the stack, and the plain frames' shading took
 // 10% longer.
 template <bool kSampled>
@@ -230,36 +283,23 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
         shadePlainSeveral(records, r.keys, r.covered, r.first, pixelCentresX(tile, r.tx), py));
   };
   forEachGroup(groups.single, shade_single);
-  uint32_t several = groups.several;
 #if defined(TESSERA_LANES16)
-  for (; several & (several - 1); several &= several - 1) {
-    const RowGroup a = rowGroup(tile, ty, groups, __builtin_ctz(several));
-    several &= several - 1;
-    const RowGroup b = rowGroup(tile, ty, groups, __builtin_ctz(several));
-    const ShadeTriangle* ra[8];
-    const ShadeTriangle* rb[8];
-    laneRecords(laneKeys(a.keys, a.covered, a.first), records, ra);
-    laneRecords(laneKeys(b.keys, b.covered, b.first), records, rb);
-    Vec3x8 ca, cb;
-    shadeMixedPair(ra, pixelCentresX(tile, a.tx), splat(py), rb, pixelCentresX(tile, b.tx),
-                   splat(py), ca, cb);
-    storeLinear(linear, a.tx, ca);
-    storeLinear(linear, b.tx, cb);
-  }
+  forEachGroup(shadeSeveralPairs(tile, ty, groups, groups.several, records, linear), shade_several);
+#else
+  forEachGroup(groups.several, shade_several);
 #endif
-  forEachGroup(several, shade_several);
   if constexpr (kSampled) {
     if (groups.sampled == 0) return;
     const auto shade_queued = [&](int first, int count) __attribute__((always_inline)) {
       shadeQueuedPlain(records, *queue, first, count, tile.x0, tile.y0 + ty, linear);
     };
-    // On AVX-512 the rounds go two at a time (shadeQueuedPlainPair), the last one or none left to
-    // finishQueue.
-    [[maybe_unused]] const auto shade_pair = [&](int first) __attribute__((always_inline)) {
 #if defined(TESSERA_LANES16)
+    // On AVX-512 the rounds go two at a time (shadeQueuedPlainPair), the last one or none left to
+    // finishQueue, and so do the groups (shadeSampledPairs).
+    const auto shade_pair = [&](int first) __attribute__((always_inline)) {
       shadeQueuedPlainPair(records, *queue, first, tile.x0, tile.y0 + ty, linear);
-#endif
     };
+#endif
     const auto shade_sampled = [&](int g) __attribute__((always_inline)) {
       const int tx = 8 * g, i = ty * kTileSize + tx;
       const I32x8 mixed = load<I32x8>(msaa->tiles->mixed + i);
@@ -274,23 +314,9 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
 #endif
     };
 #if defined(TESSERA_LANES16)
-    // Two groups at a time: their sample-0 triangles in sixteen lanes.
-    uint32_t sampled = groups.sampled;
-    for (; sampled & (sampled - 1); sampled &= sampled - 1) {
-      const int txa = 8 * __builtin_ctz(sampled);
-      sampled &= sampled - 1;
-      const int txb = 8 * __builtin_ctz(sampled);
-      const int ia = ty * kTileSize + txa, ib = ty * kTileSize + txb;
-      const int ready = queue->count;
-      Vec3x8 ca, cb;
-      shadePlainSampledPair(*msaa, records, tile.y0 + ty, ia, txa, tile.x0 + txa,
-                            load<I32x8>(msaa->tiles->mixed + ia), ib, txb, tile.x0 + txb,
-                            load<I32x8>(msaa->tiles->mixed + ib), *queue, ca, cb);
-      storeLinear(linear, txa, ca);
-      storeLinear(linear, txb, cb);
-      shadeQueuePairs(*queue, ready, shade_pair);
-    }
-    forEachGroup(sampled, shade_sampled);
+    forEachGroup(
+        shadeSampledPairs(tile, ty, groups.sampled, *msaa, records, *queue, linear, shade_pair),
+        shade_sampled);
     shadeQueuePairs(*queue, queue->count, shade_pair);
 #else
     forEachGroup(groups.sampled, shade_sampled);
@@ -300,12 +326,28 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
   }
 }
 
-// The lights of a row's deferred Phong groups (bit g of `groups`: the eight pixels at 8 g), from
-// their colours in `linear` and normals in `normal`, into `linear`: two groups at a time in
-// sixteen lanes on AVX-512 without a tone curve, else one at a time.
-TESSERA_LANES_INLINE void finishPhongRow(const LightRig& lights, uint32_t groups,
-                                         const float normal[3][kTileSize],
+// A row's groups of untextured Phong triangles whose lights wait for the row's end
+// (phongDeferrable): their colours in the row's linear colours, their interpolated normals here,
+// bit g of `groups` set for the eight pixels at 8 g. finishPhongRow lights them two groups at a
+// time in sixteen lanes on AVX-512, where a division or square root of sixteen lanes costs about
+// as much as one of eight (docs/perf.md).
+struct DeferredPhong {
+  alignas(32) float normal[3][kTileSize];
+  uint32_t groups = 0;
+  TESSERA_LANES_INLINE void add(float linear[3][kTileSize], int tx, const Vec3x8& color,
+                                const Vec3x8& n) {
+    storeLinear(linear, tx, color);
+    storeLinear(normal, tx, n);
+    groups |= 1u << (tx / 8);
+  }
+};
+
+// The lights of a row's deferred Phong groups, into `linear`: two groups at a time in sixteen
+// lanes on AVX-512 without a tone curve, else one at a time.
+TESSERA_LANES_INLINE void finishPhongRow(const LightRig& lights, const DeferredPhong& deferred,
                                          float linear[3][kTileSize]) {
+  uint32_t groups = deferred.groups;
+  const auto& normal = deferred.normal;
 #if defined(TESSERA_LANES16)
   if (!lights.tone.active()) {
     while (groups & (groups - 1)) {  // two or more left
@@ -326,14 +368,15 @@ TESSERA_LANES_INLINE void finishPhongRow(const LightRig& lights, uint32_t groups
     }
   }
 #endif
-  forEachGroup(groups, [&](int g) __attribute__((always_inline)) {
+  const auto finish_one = [&](int g) __attribute__((always_inline)) {
     const int tx = 8 * g;
     const Vec3x8 color{load<F32x8>(linear[0] + tx), load<F32x8>(linear[1] + tx),
                        load<F32x8>(linear[2] + tx)};
     const Vec3x8 n{load<F32x8>(normal[0] + tx), load<F32x8>(normal[1] + tx),
                    load<F32x8>(normal[2] + tx)};
     storeLinear(linear, tx, finishPhong8(lights, color, n));
-  });
+  };
+  forEachGroup(groups, finish_one);
 }
 
 // Row ty of a tile that is not plain (see shadeTile) into the row's linear colours and, when
@@ -345,27 +388,14 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
                                         const ShadeTriangle* const records[],
                                         const ShadeExtras* const extras[], const LightRig& lights,
                                         bool want_normals, bool textured, bool lit_alike,
-                                        const MsaaShading* msaa,
-                                        FragmentQueue* queue, float linear[3][kTileSize],
-                                        ShadedTile& out) {
+                                        const MsaaShading* msaa, FragmentQueue* queue,
+                                        float linear[3][kTileSize], ShadedTile& out) {
   const F32x8 zero = splat(0.0f);
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
   TexturedGroup textured_groups[kTileSize / 8];
   int textured_count = 0;
-  // Groups of untextured Phong triangles whose lights wait for the row's other groups
-  // (phongDeferrable): their colours in `linear`, their normals here, lit by finishPhong8 at the
-  // row's end. Each group's work is a long chain (barycentrics, then the normal's square root and
-  // division, then the lights), and the lights of the row's groups side by side keep the core
-  // busy where each group's own left it waiting.
   const bool defer_phong = phongDeferrable(lights, want_normals);
-  alignas(32) float phong_normal[3][kTileSize];
-  uint32_t phong_groups = 0;
-  const auto defer = [&](int tx, const Vec3x8& color, const Vec3x8& normal)
-      __attribute__((always_inline)) {
-    storeLinear(linear, tx, color);
-    storeLinear(phong_normal, tx, normal);
-    phong_groups |= 1u << (tx / 8);
-  };
+  DeferredPhong phong;
   // Group r: shaded triangle by triangle (shadeApart) and stored.
   const auto shade_apart = [&](const RowGroup& r, F32x8 px, Vec3x8 color)
       __attribute__((always_inline)) {
@@ -381,7 +411,7 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
     if (defer_phong && t.shading == Shading::kPhong && !t.has_uv) {
       Vec3x8 color, normal;
       phongInputs(t, extras[keyChunk(r.first)][keyLocal(r.first)], px, py, color, normal);
-      defer(r.tx, color, normal);
+      phong.add(linear, r.tx, color, normal);
       return;
     }
     if (!want_normals && texturedGroupApplies(t)) {
@@ -418,7 +448,7 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
                    (lit_alike || litAlike(m.lanes))) {
           Vec3x8 normal;
           phongInputsMixed(m.lanes, m.extras, px, splat(py), color, normal);
-          defer(r.tx, color, normal);
+          phong.add(linear, r.tx, color, normal);
           return;
         } else if (shadeLitMixed(m.lanes, m.extras, r.covered, lights, px, splat(py), color,
                                  lit_alike)) {
@@ -453,7 +483,7 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
   forEachGroup(groups.single, shade_single);
   forEachGroup(groups.two, shade_two);
   forEachGroup(groups.several & ~groups.two, shade_several);
-  finishPhongRow(lights, phong_groups, phong_normal, linear);
+  finishPhongRow(lights, phong, linear);
   filterTexturedRow(tile, ty, textured_groups, textured_count, records, extras, lights, linear);
   if (kSampled)
     resolveMixedRow(*msaa, tile, ty, records, extras, lights, lit_alike, *queue, linear);
@@ -478,8 +508,8 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
                                     uint32_t background, const MsaaShading* msaa, ShadedTile& out) {
   const ShadeTriangle* records[kMaxChunks];
   const ShadeExtras* extras[kMaxChunks];
-  bool textured = false;   // some record may be texturedPlain
-  bool lit_alike = true;   // every record is litPlain Phong
+  bool textured = false;  // some record may be texturedPlain
+  bool lit_alike = true;  // every record is litPlain Phong
   for (size_t c = 0; c < chunk_count; ++c) {
     records[c] = chunks[c].shade.data();
     extras[c] = chunks[c].extras.data();
@@ -502,8 +532,8 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
                               solids);
       encodeShadedRow(tile, ty, linear, solid, background, out);
     } else {
-      shadeRow<kSampled>(tile, ty, records, extras, lights, want_normals, textured, lit_alike,
-                         msaa, queue ? &*queue : nullptr, linear, out);
+      shadeRow<kSampled>(tile, ty, records, extras, lights, want_normals, textured, lit_alike, msaa,
+                         queue ? &*queue : nullptr, linear, out);
       encodeShadedRow(tile, ty, linear, nullptr, background, out);
     }
   }
