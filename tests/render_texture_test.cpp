@@ -254,12 +254,19 @@ TEST(TextureLanes, TrianglesTexturedAlikeShareOneFilterWithTheSameBits) {
 // textured Phong sphere beside an untextured one keeps the frame from that, and both still give
 // the bits of the triangle-by-triangle shading (were the textured one's groups lit as untextured,
 // they would lose their texture), as does the untextured sphere alone.
+// An untextured Phong sphere of small triangles at `at`, `scale` across.
+Object phongSphere(float3 at, float scale) {
+  Object sphere;
+  sphere.mesh = std::make_shared<Mesh>(makeUvSphere(96, 48));
+  sphere.shading = Shading::kPhong;
+  sphere.transform.translation = at;
+  sphere.transform.scale = float3(scale);
+  return sphere;
+}
+
 TEST(TextureLanes, PhongTrianglesLitAlikeBesideTexturedOnesGiveTheSameBits) {
   Scene scene = texturedScene({0, 1.0f, 4.0f});
-  Object plain;
-  plain.mesh = std::make_shared<Mesh>(makeUvSphere(96, 48));
-  plain.shading = Shading::kPhong;
-  plain.transform.translation = {-0.9f, 0, 0};
+  const Object plain = phongSphere({-0.9f, 0, 0}, 1.0f);
   scene.objects.push_back(plain);
   Object textured = plain;
   textured.transform.translation = {0.9f, 0, 0};
@@ -272,10 +279,7 @@ TEST(TextureLanes, PhongTrianglesLitAlikeBesideTexturedOnesGiveTheSameBits) {
   options.width = 233;
   options.height = 151;
   test::expectMixedShadingMatchesPerTriangle(scene, options);
-  scene.objects.resize(1);
-  scene.objects[0].transform = {};
-  scene.objects[0].transform.translation = {0, 1, 0};
-  scene.objects[0].transform.scale = float3(2.5f);
+  scene.objects = {phongSphere({0, 1, 0}, 2.5f)};
   test::expectMixedShadingMatchesPerTriangle(scene, options);
 }
 
@@ -286,11 +290,7 @@ TEST(TextureLanes, PhongTrianglesLitAlikeBesideTexturedOnesGiveTheSameBits) {
 // turns that off.
 TEST(TextureLanes, PhongFragmentsLitAlikeGiveTheBitsOfTheCheckedOnes) {
   Scene scene = texturedScene({0, 1.0f, 4.0f});
-  Object sphere;
-  sphere.mesh = std::make_shared<Mesh>(makeUvSphere(96, 48));
-  sphere.shading = Shading::kPhong;
-  sphere.transform.translation = {0.5f, 1.0f, 0};
-  sphere.transform.scale = float3(1.4f);
+  const Object sphere = phongSphere({0.5f, 1.0f, 0}, 1.4f);
   scene.objects.push_back(sphere);
   RenderOptions options;
   options.width = 233;
