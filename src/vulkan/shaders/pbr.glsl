@@ -80,18 +80,22 @@ vec4 sampleMap(GpuMaterial m, int map, UvFootprint f) {
   const TextureRef t = m.maps[map];
   const bool set1 = (t.flags & kTextureSet1) != 0u;
   const vec2 uv = transformMapUv(m, map, set1 ? f.uv1 : f.uv);
-  if ((t.flags & kTextureTrilinear) == 0u) return sampleTexture(t, uv);
-  const vec2 right = transformMapUv(m, map, set1 ? f.right1 : f.right);
-  const vec2 down = transformMapUv(m, map, set1 ? f.down1 : f.down);
-  const vec2 size = vec2(float(t.width), float(t.height));
-  precise vec2 du = right - uv;
-  precise vec2 dv = down - uv;
-  precise vec2 dx = du * size, dy = dv * size;
-  precise float rx = dx.x * dx.x + dx.y * dx.y;
-  precise float ry = dy.x * dy.x + dy.y * dy.y;
-  const float rho2 = rx < ry ? ry : rx;
-  precise float lod = rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0;
-  return sampleTextureTrilinear(t, uv, lod);
+  const bool trilinear = (t.flags & kTextureTrilinear) != 0u;
+  float lod = 0.0;
+  if (trilinear) {
+    const vec2 right = transformMapUv(m, map, set1 ? f.right1 : f.right);
+    const vec2 down = transformMapUv(m, map, set1 ? f.down1 : f.down);
+    const vec2 size = vec2(float(t.width), float(t.height));
+    precise vec2 du = right - uv;
+    precise vec2 dv = down - uv;
+    precise vec2 dx = du * size, dy = dv * size;
+    precise float rx = dx.x * dx.x + dx.y * dx.y;
+    precise float ry = dy.x * dy.x + dy.y * dy.y;
+    const float rho2 = rx < ry ? ry : rx;
+    precise float level_of_detail = rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0;
+    lod = level_of_detail;
+  }
+  return sampleTextureAt(t, uv, trilinear, lod);
 }
 
 bool hasMap(GpuMaterial m, int map) { return (m.maps[map].flags & kTexturePresent) != 0u; }

@@ -112,18 +112,21 @@ vec4 sampleAlbedoRgba(uint slot, ShadeRecord s, vec3 b, ivec2 pixel, uint layer)
   const GpuMaterial m = materials[s.material];
   const uint flags = m.texture_flags;
   const vec2 uv = transformUv(m, uvAt(s, b, flags));
-  if ((m.texture_flags & kTextureTrilinear) == 0u) return sampleTexture(m, uv);
-  const vec2 size = vec2(float(m.texture_width), float(m.texture_height));
-  precise vec2 du =
-      transformUv(m, uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(1, 0)), flags)) -
-      uv;
-  precise vec2 dv =
-      transformUv(m, uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(0, 1)), flags)) -
-      uv;
-  precise vec2 dx = du * size, dy = dv * size;
-  precise float rho2 = max(dx.x * dx.x + dx.y * dx.y, dy.x * dy.x + dy.y * dy.y);
-  const float lod = rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0;
-  return sampleTextureTrilinear(m, uv, lod);
+  const bool trilinear = (m.texture_flags & kTextureTrilinear) != 0u;
+  float lod = 0.0;
+  if (trilinear) {
+    const vec2 size = vec2(float(m.texture_width), float(m.texture_height));
+    precise vec2 du =
+        transformUv(m, uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(1, 0)), flags)) -
+        uv;
+    precise vec2 dv =
+        transformUv(m, uvAt(s, neighbourBarycentrics(slot, s, pixel, layer, ivec2(0, 1)), flags)) -
+        uv;
+    precise vec2 dx = du * size, dy = dv * size;
+    precise float rho2 = max(dx.x * dx.x + dx.y * dx.y, dy.x * dy.x + dy.y * dy.y);
+    lod = rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0;
+  }
+  return sampleTextureAt(albedoTexture(m), uv, trilinear, lod);
 }
 vec3 sampleAlbedo(uint slot, ShadeRecord s, vec3 b, ivec2 pixel, uint layer) {
   return sampleAlbedoRgba(slot, s, b, pixel, layer).xyz;
@@ -243,12 +246,14 @@ uint resolveColor(uint pixel, int x, int y, out uint covered) {
   }
   const ivec2 pixel_xy = ivec2(x, y);
   if (covered == 0u) return frame.background;
-  if (distinct == 1u && covered == samples)
-    return packColor(shadeAt(recordSlot(keys[0]), pixel_xy, kCentre));
+  // One triangle on every sample: its colour at the centre, which the sum below gives unchanged
+  // (times the sample count and then its inverse, both powers of two). One call of shadeAt in the
+  // shader: lavapipe inlines every call, and its compile time follows the shader's size.
+  const bool whole = distinct == 1u && covered == samples;
   precise vec3 sum = frame.background_linear.xyz * float(samples - covered);
   for (uint d = 0u; d < distinct; ++d) {
     const uint slot = recordSlot(keys[d]);
-    const uint layer = coversCentre(slot, x, y) ? kCentre : first + first_sample[d];
+    const uint layer = whole || coversCentre(slot, x, y) ? kCentre : first + first_sample[d];
     sum = sum + shadeAt(slot, pixel_xy, layer) * float(counts[d]);
   }
   // Times 1 / samples, exactly (a power of two), rather than a division a GPU may round loosely.

@@ -168,28 +168,38 @@ vec4 sampleLevel(TextureLevel level, bool srgb, vec2 uv, bool nearest, ivec2 wra
   return lerp4(top, bottom, ty);
 }
 
-// Texture::sample: level 0, nearest or bilinear (uv after the sampler's transform).
-vec4 sampleTexture(TextureRef t, vec2 uv) {
-  if (t.width <= 0 || t.height <= 0) return vec4(1.0);
-  return sampleLevel(textureLevel(t, 0), (t.flags & kTextureSrgb) != 0u, uv,
-                     (t.flags & kTextureNearest) != 0u, textureWraps(t.flags));
-}
-vec4 sampleTexture(GpuMaterial m, vec2 uv) { return sampleTexture(albedoTexture(m), uv); }
-
-// Texture::sampleLod for a trilinear sampler: bilinear in the two levels around lod, blended.
-vec4 sampleTextureTrilinear(TextureRef t, vec2 uv, float lod) {
+// Texture::sample (level 0, nearest or bilinear) or, with `trilinear`, Texture::sampleLod
+// (bilinear in the two levels around lod, blended); uv after the sampler's transform. The levels
+// are taken in a loop so that the shader holds one copy of sampleLevel a call: lavapipe inlines
+// every call, and its compile time grows with the shader (docs/perf.md).
+vec4 sampleTextureAt(TextureRef t, vec2 uv, bool trilinear, float lod) {
   if (t.width <= 0 || t.height <= 0) return vec4(1.0);
   const bool srgb = (t.flags & kTextureSrgb) != 0u;
   const ivec2 wrap = textureWraps(t.flags);
-  const int last = textureLevelCount(t) - 1;
-  if (!(lod > 0.0)) lod = 0.0;  // also catches NaN
-  if (lod > float(last)) lod = float(last);
-  const int lower = int(lod);
-  precise float blend = lod - float(lower);
-  const vec4 a = sampleLevel(textureLevel(t, lower), srgb, uv, false, wrap);
-  if (blend == 0.0 || lower >= last) return a;
-  const vec4 b = sampleLevel(textureLevel(t, lower + 1), srgb, uv, false, wrap);
-  return lerp4(a, b, blend);
+  bool nearest = (t.flags & kTextureNearest) != 0u;
+  int lower = 0, levels = 1;
+  float blend = 0.0;
+  if (trilinear) {
+    const int last = textureLevelCount(t) - 1;
+    if (!(lod > 0.0)) lod = 0.0;  // also catches NaN
+    if (lod > float(last)) lod = float(last);
+    lower = int(lod);
+    precise float fraction = lod - float(lower);
+    blend = fraction;
+    nearest = false;
+    if (!(blend == 0.0 || lower >= last)) levels = 2;
+  }
+  vec4 color = vec4(0.0);
+  for (int i = 0; i < levels; ++i) {
+    const vec4 level = sampleLevel(textureLevel(t, lower + i), srgb, uv, nearest, wrap);
+    color = i == 0 ? level : lerp4(color, level, blend);
+  }
+  return color;
+}
+vec4 sampleTexture(TextureRef t, vec2 uv) { return sampleTextureAt(t, uv, false, 0.0); }
+vec4 sampleTexture(GpuMaterial m, vec2 uv) { return sampleTexture(albedoTexture(m), uv); }
+vec4 sampleTextureTrilinear(TextureRef t, vec2 uv, float lod) {
+  return sampleTextureAt(t, uv, true, lod);
 }
 vec4 sampleTextureTrilinear(GpuMaterial m, vec2 uv, float lod) {
   return sampleTextureTrilinear(albedoTexture(m), uv, lod);
