@@ -14,7 +14,10 @@ cd "$root"
 # against 21m39s before the SSE2 and the sanitizer builds' AVX2 kernels took their lane operations
 # inline (f4d6f40) and 46 min before the scalar kernels did (cfad94d). The suite grew to 19m52s
 # (2026-12-05, ca21eee, Intel Xeon); 15m42s after the Vulkan backends made each pipeline on first
-# use (ctest 294 -> 159 s) and the tests took a precompiled header (2026-12-06, a1049e2).
+# use (ctest 294 -> 159 s) and the tests took a precompiled header (2026-12-06, a1049e2). Back up
+# to 20m13s as tests were added (6e7445e); 16m23s after the Vulkan tests ran two at a time on one
+# lavapipe thread each and the shade shader shrank for lavapipe's compiler (ctest 328 -> 150 s,
+# 2026-12-06, AMD EPYC with AVX-512).
 "$root/scripts/sanitize.sh"
 # Last, so that its summary closes the output.
 ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600
