@@ -161,20 +161,20 @@ void main() {
     const vec2 in_uv_a = set1 ? in_uv1 : in_uv;
     const vec2 uv_dx = set1 ? uv_d[2] : uv_d[0], uv_dy = set1 ? uv_d[3] : uv_d[1];
     const vec2 uv = transformUv(material, in_uv_a);
-    if ((material.texture_flags & kTextureTrilinear) != 0u) {
+    const bool trilinear = (material.texture_flags & kTextureTrilinear) != 0u;
+    float lod = 0.0;
+    if (trilinear) {
       // The level of detail from the UV footprint of the pixel, as the CPU's sampleAlbedo.
       const vec2 size = vec2(float(material.texture_width), float(material.texture_height));
       const vec2 dx = (transformUv(material, in_uv_a + uv_dx) - uv) * size;
       const vec2 dy = (transformUv(material, in_uv_a + uv_dy) - uv) * size;
       const float rho2 = max(dot(dx, dx), dot(dy, dy));
-      const vec4 texel = sampleTextureTrilinear(material, uv, rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0);
-      color *= texel.xyz;
-      alpha *= texel.w;
-    } else {
-      const vec4 texel = sampleTexture(material, uv);
-      color *= texel.xyz;
-      alpha *= texel.w;
+      lod = rho2 > 0.0 ? 0.5 * log2(rho2) : 0.0;
     }
+    // One call (sampleTextureAt, shading.glsl): lavapipe inlines every call.
+    const vec4 texel = sampleTextureAt(albedoTexture(material), uv, trilinear, lod);
+    color *= texel.xyz;
+    alpha *= texel.w;
   }
   // alphaMode MASK (the CPU's mask_kernel.h): kept where alpha reaches the cutoff.
   if ((material.texture_flags & kMaterialMask) != 0u && !(alpha >= material.uv_transform[0].w))

@@ -196,14 +196,6 @@ vec4 sampleTextureAt(TextureRef t, vec2 uv, bool trilinear, float lod) {
   }
   return color;
 }
-vec4 sampleTexture(TextureRef t, vec2 uv) { return sampleTextureAt(t, uv, false, 0.0); }
-vec4 sampleTexture(GpuMaterial m, vec2 uv) { return sampleTexture(albedoTexture(m), uv); }
-vec4 sampleTextureTrilinear(TextureRef t, vec2 uv, float lod) {
-  return sampleTextureAt(t, uv, true, lod);
-}
-vec4 sampleTextureTrilinear(GpuMaterial m, vec2 uv, float lod) {
-  return sampleTextureTrilinear(albedoTexture(m), uv, lod);
-}
 
 // ---- output (src/scene/color.cpp) ----
 
