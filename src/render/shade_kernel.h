@@ -167,6 +167,20 @@ TESSERA_LANES_INLINE void forEachGroup(uint32_t groups, Body&& body) {
   for (; groups != 0; groups &= groups - 1) body(__builtin_ctz(groups));
 }
 
+// forEachGroup two groups at a time: body(a, b) for the two lowest bits left while two or more
+// are; returns the group left over (one bit or none).
+template <typename Body>
+TESSERA_LANES_INLINE uint32_t forEachGroupPair(uint32_t groups, Body&& body) {
+  while (groups & (groups - 1)) {
+    const int a = __builtin_ctz(groups);
+    groups &= groups - 1;
+    const int b = __builtin_ctz(groups);
+    groups &= groups - 1;
+    body(a, b);
+  }
+  return groups;
+}
+
 // Eight pixels of one plain triangle (the key `first`; the lanes it does not cover are encoded as
 // the background): of one whose corners share a colour, that colour, its sRGB in `solid`.
 TESSERA_LANES_INLINE Vec3x8 shadePlainSingle(const ShadeTriangle* const records[], uint32_t first,
@@ -208,20 +222,20 @@ TESSERA_LANES_INLINE uint32_t shadeSeveralPairs(const TileVisibility& tile, int 
                                                 const ShadeTriangle* const records[],
                                                 float linear[3][kTileSize]) {
   const F32x8 py = splat(static_cast<float>(tile.y0 + ty) + 0.5f);
-  for (; several & (several - 1); several &= several - 1) {
-    const RowGroup a = rowGroup(tile, ty, groups, __builtin_ctz(several));
-    several &= several - 1;
-    const RowGroup b = rowGroup(tile, ty, groups, __builtin_ctz(several));
-    const ShadeTriangle* ra[8];
-    const ShadeTriangle* rb[8];
-    laneRecords(laneKeys(a.keys, a.covered, a.first), records, ra);
-    laneRecords(laneKeys(b.keys, b.covered, b.first), records, rb);
-    Vec3x8 ca, cb;
-    shadeMixedPair(ra, pixelCentresX(tile, a.tx), py, rb, pixelCentresX(tile, b.tx), py, ca, cb);
-    storeLinear(linear, a.tx, ca);
-    storeLinear(linear, b.tx, cb);
-  }
-  return several;
+  return forEachGroupPair(
+      several, [&](int ga, int gb) __attribute__((always_inline)) {
+        const RowGroup a = rowGroup(tile, ty, groups, ga);
+        const RowGroup b = rowGroup(tile, ty, groups, gb);
+        const ShadeTriangle* ra[8];
+        const ShadeTriangle* rb[8];
+        laneRecords(laneKeys(a.keys, a.covered, a.first), records, ra);
+        laneRecords(laneKeys(b.keys, b.covered, b.first), records, rb);
+        Vec3x8 ca, cb;
+        shadeMixedPair(ra, pixelCentresX(tile, a.tx), py, rb, pixelCentresX(tile, b.tx), py, ca,
+                       cb);
+        storeLinear(linear, a.tx, ca);
+        storeLinear(linear, b.tx, cb);
+      });
 }
 
 // The groups of `sampled` (row ty's groups holding a mixed pixel) two at a time
@@ -233,21 +247,19 @@ TESSERA_LANES_INLINE uint32_t shadeSampledPairs(const TileVisibility& tile, int 
                                                 const ShadeTriangle* const records[],
                                                 FragmentQueue& queue, float linear[3][kTileSize],
                                                 ShadePair shade_pair) {
-  for (; sampled & (sampled - 1); sampled &= sampled - 1) {
-    const int txa = 8 * __builtin_ctz(sampled);
-    sampled &= sampled - 1;
-    const int txb = 8 * __builtin_ctz(sampled);
-    const int ia = ty * kTileSize + txa, ib = ty * kTileSize + txb;
-    const int ready = queue.count;
-    Vec3x8 ca, cb;
-    shadePlainSampledPair(msaa, records, tile.y0 + ty, ia, txa, tile.x0 + txa,
-                          load<I32x8>(msaa.tiles->mixed + ia), ib, txb, tile.x0 + txb,
-                          load<I32x8>(msaa.tiles->mixed + ib), queue, ca, cb);
-    storeLinear(linear, txa, ca);
-    storeLinear(linear, txb, cb);
-    shadeQueuePairs(queue, ready, shade_pair);
-  }
-  return sampled;
+  return forEachGroupPair(
+      sampled, [&](int ga, int gb) __attribute__((always_inline)) {
+        const int txa = 8 * ga, txb = 8 * gb;
+        const int ia = ty * kTileSize + txa, ib = ty * kTileSize + txb;
+        const int ready = queue.count;
+        Vec3x8 ca, cb;
+        shadePlainSampledPair(msaa, records, tile.y0 + ty, ia, txa, tile.x0 + txa,
+                              load<I32x8>(msaa.tiles->mixed + ia), ib, txb, tile.x0 + txb,
+                              load<I32x8>(msaa.tiles->mixed + ib), queue, ca, cb);
+        storeLinear(linear, txa, ca);
+        storeLinear(linear, txb, cb);
+        shadeQueuePairs(queue, ready, shade_pair);
+      });
 }
 #endif
 
@@ -258,9 +270,8 @@ TESSERA_LANES_INLINE uint32_t shadeSampledPairs(const TileVisibility& tile, int 
 // sample order). The groups are sorted first (sortRowGroups), each kind shaded in a loop of its
 // own; on AVX-512 groups of several triangles, mixed groups and the queue's rounds go two at a
 // time in sixteen lanes (plain_lanes16.h). A function of its own, not inlined into shadeTile: in
-// the one function of every path the
-// compiler kept this loop's colours and masks on the stack, and the plain frames' shading took
-// 10% longer.
+// the one function of every path the compiler kept this loop's colours and masks on the stack,
+// and the plain frames' shading took 10% longer.
 template <bool kSampled>
 __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
                                              const ShadeTriangle* const records[],
@@ -350,22 +361,20 @@ TESSERA_LANES_INLINE void finishPhongRow(const LightRig& lights, const DeferredP
   const auto& normal = deferred.normal;
 #if defined(TESSERA_LANES16)
   if (!lights.tone.active()) {
-    while (groups & (groups - 1)) {  // two or more left
-      const int a = 8 * __builtin_ctz(groups);
-      groups &= groups - 1;
-      const int b = 8 * __builtin_ctz(groups);
-      groups &= groups - 1;
-      F32x16 c[3], n[3];
-      for (int k = 0; k < 3; ++k) {
-        c[k] = join16(load<F32x8>(linear[k] + a), load<F32x8>(linear[k] + b));
-        n[k] = join16(load<F32x8>(normal[k] + a), load<F32x8>(normal[k] + b));
-      }
-      finishPhong16(lights, c, n);
-      for (int k = 0; k < 3; ++k) {
-        store(linear[k] + a, lowHalf(c[k]));
-        store(linear[k] + b, highHalf(c[k]));
-      }
-    }
+    groups = forEachGroupPair(
+        groups, [&](int ga, int gb) __attribute__((always_inline)) {
+          const int a = 8 * ga, b = 8 * gb;
+          F32x16 c[3], n[3];
+          for (int k = 0; k < 3; ++k) {
+            c[k] = join16(load<F32x8>(linear[k] + a), load<F32x8>(linear[k] + b));
+            n[k] = join16(load<F32x8>(normal[k] + a), load<F32x8>(normal[k] + b));
+          }
+          finishPhong16(lights, c, n);
+          for (int k = 0; k < 3; ++k) {
+            store(linear[k] + a, lowHalf(c[k]));
+            store(linear[k] + b, highHalf(c[k]));
+          }
+        });
   }
 #endif
   const auto finish_one = [&](int g) __attribute__((always_inline)) {
