@@ -109,9 +109,6 @@ class ChunkSetup {
   const bool want_normals_;
   const int32_t sample_reach_;
   TriangleChunk& chunk_;
-  // The batch's lanes' extras (the lanes of extras_lanes_), written at flush (writeExtras).
-  alignas(64) ShadeExtras extras_[SetupBatch::kLanes];
-  uint32_t extras_lanes_ = 0;
   TriangleOrientation orientation_;
   // Unclipped triangles wait here for the rest of their setup (setup_kernel.h). The kernel
   // depends on nothing per object, so one flush per full batch and one at the end of the chunk.
@@ -196,37 +193,30 @@ void ChunkSetup::flush() {
   batch_.padLanes();
   setup_batch_(batch_, grid_.width, grid_.height, sample_reach_, chunk_.raster.data(),
                chunk_.wide.data(), chunk_.shade.data());
-  if (extras_lanes_ != 0) writeExtras();
+  if (batch_.extras_lanes != 0) writeExtras();
   batch_.count = 0;
   batch_.flat_lanes = 0;
+  batch_.extras_lanes = 0;
 }
 
-// The batch's staged extras into their records: eight consecutive records starting on a line (21
-// whole lines) with streaming stores, as the setup kernel writes the shading records;
-// others copied. Ordinary stores over last frame's extras, which the other worker's shading pass
-// read, waited on that core for every line.
+// The batch's staged extras (SetupBatch::nextExtras) into their records: eight consecutive records
+// starting on a line (21 whole lines) with streaming stores, as the setup kernel writes the
+// shading records; others copied. Ordinary stores over last frame's extras, which the other
+// worker's shading pass read, waited on that core for every line.
 void ChunkSetup::writeExtras() {
-  const uint32_t first = batch_.input[0].record;
-  char* const out = reinterpret_cast<char*>(&chunk_.extras[first]);
-  bool whole = extras_lanes_ == 0xffu && batch_.count == SetupBatch::kLanes &&
-               (reinterpret_cast<uintptr_t>(out) & 63) == 0;
-  for (int l = 1; l < batch_.count && whole; ++l)
-    whole = batch_.input[l].record == first + static_cast<uint32_t>(l);
 #if defined(__SSE2__)
-  if (whole) {
-    const char* in = reinterpret_cast<const char*>(extras_);
-    constexpr size_t kBytes = sizeof(ShadeExtras) * SetupBatch::kLanes;
-    static_assert(kBytes % 64 == 0, "eight extras are whole lines");
-    for (size_t i = 0; i < kBytes; i += 16)
+  char* const out = reinterpret_cast<char*>(&chunk_.extras[batch_.input[0].record]);
+  if (batch_.extras_lanes == 0xffu && batch_.consecutive() &&
+      (reinterpret_cast<uintptr_t>(out) & 63) == 0) {
+    const char* in = reinterpret_cast<const char*>(batch_.extras);
+    for (size_t i = 0; i < sizeof batch_.extras; i += 16)
       _mm_stream_si128(reinterpret_cast<__m128i*>(out + i),
                        _mm_load_si128(reinterpret_cast<const __m128i*>(in + i)));
-    extras_lanes_ = 0;
     return;
   }
 #endif
   for (int l = 0; l < batch_.count; ++l)
-    if (extras_lanes_ & (1u << l)) chunk_.extras[batch_.input[l].record] = extras_[l];
-  extras_lanes_ = 0;
+    if (batch_.extras_lanes & (1u << l)) chunk_.extras[batch_.input[l].record] = batch_.extras[l];
 }
 
 void ChunkSetup::bin(const ObjectSetup& o, const auto& box, uint32_t record,
@@ -256,8 +246,7 @@ void ChunkSetup::drawWhole(const ObjectSetup& o, size_t t, const uint32_t idx[3]
     // Extras that hold normals wait for the flush with the batch (writeExtras). Such objects are
     // never PlainGouraud (it wants Gouraud without the normal AOV).
     setupShadeCorners(o.ctx, o.vertices, idx, orientation_, o.faceNormal(idx), id,
-                      o.material(local), shade, extras_[batch_.count]);
-    extras_lanes_ |= 1u << batch_.count;
+                      o.material(local), shade, batch_.nextExtras());
   } else if (!plainGouraudCorners(o.ctx, o.plain_gouraud, o.vertices, idx, orientation_, id,
                                   o.material(local), shade, chunk_.extras[record])) {
     setupShadeCorners(o.ctx, o.vertices, idx, orientation_, o.faceNormal(idx), id,

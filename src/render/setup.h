@@ -510,6 +510,10 @@ struct alignas(64) SetupBatch {
   Input input[kLanes];
   ShadeTriangle shade[kLanes];  // the lanes' shading records, the planes still to come
   int count = 0;
+  // The lanes' extras where the caller stages them (nextExtras: lane l's bit in extras_lanes),
+  // written out by the caller after the kernel (chunk_setup.cpp's writeExtras).
+  alignas(64) ShadeExtras extras[kLanes];
+  uint32_t extras_lanes = 0;
   // Flat faces the kernel lights (setupFlatCorners): lane l's bit, its world face normal (not
   // normalized) and the facing's flip (1, or -1 for a drawn back face), and the frame's rig, whose
   // lights are all directional. The lane's record holds the corners' albedos, which the kernel
@@ -521,6 +525,19 @@ struct alignas(64) SetupBatch {
 
   // The shading record of the lane the next push fills.
   ShadeTriangle& nextShade() { return shade[count]; }
+  // Its extras, staged.
+  ShadeExtras& nextExtras() {
+    extras_lanes |= 1u << count;
+    return extras[count];
+  }
+  // The lanes' records are eight consecutive ones (first, first + 1, ...): the writers then put
+  // them out as whole lines where the first starts on one.
+  bool consecutive() const {
+    if (count != kLanes) return false;
+    for (int l = 1; l < kLanes; ++l)
+      if (input[l].record != input[0].record + static_cast<uint32_t>(l)) return false;
+    return true;
+  }
   // Marks the lane the next push fills as a flat face to light.
   void markFlat(float3 normal, float facing_flip, const LightRig& rig) {
     face_normal[0][count] = normal.x;
@@ -550,6 +567,7 @@ struct alignas(64) SetupBatch {
 static_assert(sizeof(SetupBatch::Input) == 64);
 static_assert(sizeof(ShadeTriangle) * SetupBatch::kLanes % 64 == 0,
               "eight shading records are whole lines");
+static_assert(sizeof(ShadeExtras) * SetupBatch::kLanes % 64 == 0, "eight extras are whole lines");
 
 // Eight consecutive triangles of one object through the cull, eight at a time
 // (setup_kernel.h): what the per-triangle checks in setup decide (index range, outcodes,

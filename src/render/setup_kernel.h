@@ -277,13 +277,8 @@ TESSERA_LANES_INLINE void streamShadeRecords(const SetupBatch& batch, ShadeTrian
   // other worker's shading pass read: on a host where a line takes hundreds of nanoseconds
   // between cores, ordinary stores waited on every line (docs/perf.md, round 5). Eight
   // consecutive records starting on a line (the usual full batch) are eleven whole lines.
-  const uint32_t first = batch.input[0].record;
-  char* const out = reinterpret_cast<char*>(&shade[first]);
-  bool consecutive =
-      batch.count == SetupBatch::kLanes && (reinterpret_cast<uintptr_t>(out) & 63) == 0;
-  for (int l = 1; l < batch.count && consecutive; ++l)
-    consecutive = batch.input[l].record == first + static_cast<uint32_t>(l);
-  if (consecutive) {
+  char* const out = reinterpret_cast<char*>(&shade[batch.input[0].record]);
+  if (batch.consecutive() && (reinterpret_cast<uintptr_t>(out) & 63) == 0) {
     const char* in = reinterpret_cast<const char*>(batch.shade);
     for (size_t offset = 0; offset < sizeof batch.shade; offset += 32)
       storeStreaming(out + offset, load<F32x8>(in + offset));
