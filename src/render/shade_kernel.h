@@ -10,6 +10,7 @@
 #include "render/fragment_queue.h"
 #include "render/mixed_lanes.h"
 #include "render/plain_lanes16.h"
+#include "render/row_runs.h"
 #include "render/shade_lanes.h"
 #include "render/texture_lanes16.h"
 
@@ -403,6 +404,18 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
   TexturedGroup textured_groups[kTileSize / 8];
   int textured_count = 0;
+#if defined(__AVX2__)
+  if (!kSampled && textured && !want_normals) {
+    // Every covered pixel textured alike without per-pixel lighting: each lane's fields from
+    // its run's column (row_runs.h).
+    textured_count = prepareTexturedRow(tile, ty, records, extras, textured_groups);
+    if (textured_count >= 0) {
+      filterTexturedRow(tile, ty, textured_groups, textured_count, records, extras, lights, linear);
+      return;
+    }
+    textured_count = 0;
+  }
+#endif
   const bool defer_phong = phongDeferrable(lights, want_normals);
   DeferredPhong phong;
   // Group r: shaded triangle by triangle (shadeApart) and stored.

@@ -1,0 +1,169 @@
+// A textured row's triangles as runs, for the shading kernel (shade_kernel.h): the pixels of a
+// row of a tile form runs of one key, and each run's fields (its triangle's ShadeTriangle fields
+// and texture coordinates) take one column of a small table. A lane of a group of eight then
+// reads its triangle's field with one in-register permute of the eight columns from the run of
+// the group's first lane (lookup8), whatever the number of triangles in the group: no record
+// looked up and no transpose per group, and no sorting of the groups by kind. The records are
+// loaded and transposed once per eight runs instead of once per group of several triangles. The
+// fields are the same floats, and prepareTexturedFields the same operations, so the same bits.
+// Only where lookup8 is a permute (AVX2 and up); the other instruction sets take the groups'
+// records (mixed_lanes.h).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+
+#include "render/mixed_lanes.h"
+
+namespace tessera::render {
+namespace {  // one private copy per translation unit, each compiled for its instruction set
+
+#if defined(__AVX2__)
+// For each eight-bit mask of the lanes that start a run, each lane's run counted from the run of
+// lane 0 (how many of lanes 1..l start one), one byte a lane.
+constexpr uint64_t runOffsets(unsigned bits) {
+  uint64_t offsets = 0;
+  for (unsigned l = 0; l < 8; ++l)
+    offsets |= uint64_t{static_cast<unsigned>(__builtin_popcount(bits & ((2u << l) - 2u)))}
+               << (8 * l);
+  return offsets;
+}
+constexpr auto kRunOffsets = [] {
+  struct Table {
+    uint64_t offset[256];
+  } t{};
+  for (unsigned bits = 0; bits < 256; ++bits) t.offset[bits] = runOffsets(bits);
+  return t;
+}();
+
+// Eight bytes into eight lanes.
+TESSERA_LANES_INLINE I32x8 byteLanes(uint64_t bytes) {
+  return reinterpret_cast<I32x8>(
+      _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(bytes))));
+}
+
+struct RowRuns {
+  // A row of kTileSize pixels holds at most kTileSize runs. The columns are filled eight at a time.
+  static constexpr int kColumns = kTileSize;
+  alignas(32) float plain[kPlainFields][kColumns];  // loadPlainFields' fields, a run a column
+  alignas(32) float uv[8][kColumns];                // uvCorners8's (rows 6 and 7 unused)
+  alignas(32) uint32_t key[kTileSize + 8];          // each run's key (compressLanes' room after)
+  int count = 0;
+  int first[kTileSize / 8];        // each group's run of its lane 0
+  uint32_t starts[kTileSize / 8];  // each group's lanes that start a run
+};
+
+// A group's fields in lanes, each lane's from its run's column: BroadcastFields' interface.
+// `from`: the first of the eight columns read (at most the last eight filled), `offset` each
+// lane's column from there.
+struct RunFields {
+  const float (*rows)[RowRuns::kColumns];
+  int from;
+  I32x8 offset;
+  TESSERA_LANES_INLINE F32x8 operator[](int k) const { return lookup8(rows[k] + from, offset); }
+};
+
+// The runs of row ty of `tile`: their keys, and each group's first run and run starts.
+TESSERA_LANES_INLINE void findRowRuns(const TileVisibility& tile, int ty, RowRuns& runs) {
+  const uint32_t* row = tile.key + ty * kTileSize;
+  // Lane l's key before it: for the first group, a value no key of lane 0 equals before the row.
+  alignas(32) uint32_t first_prev[8];
+  first_prev[0] = ~row[0];
+  std::memcpy(first_prev + 1, row, 7 * sizeof(uint32_t));
+  int n = 0;
+  for (int tx = 0, g = 0; tx < tile.width; tx += 8, ++g) {
+    const I32x8 keys = load<I32x8>(row + tx);
+    const I32x8 prev = load<I32x8>(g == 0 ? first_prev : row + tx - 1);
+    const I32x8 starts = ~equal(keys, prev);
+    const unsigned bits = laneBits(starts);
+    runs.first[g] = n - 1 + static_cast<int>(bits & 1u);
+    runs.starts[g] = bits;
+    int count;
+    store(runs.key + n, compressLanes(keys, starts, count));
+    n += count;
+  }
+  runs.count = n;
+}
+
+// The runs' fields into their columns, eight runs at a time (loadPlainFields, uvCorners8), the
+// empty runs' (kEmptyKey) and the columns past the last run's from the row's first triangle. False
+// where some run's triangle is not texturedPlain with the first's material, or the first is not
+// texturedGroupApplies (the caller then shades the row's groups from their records); `material`:
+// the row's (null where no pixel is covered).
+TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
+                                      const ShadeExtras* const extras[], RowRuns& runs,
+                                      const Material*& material) {
+  // Each run's records; the empty runs' and those past the last filled in below.
+  const ShadeTriangle* lanes[kTileSize];
+  const ShadeExtras* lane_extras[kTileSize];
+  int first = -1;
+  material = nullptr;
+  for (int r = 0; r < runs.count; ++r) {
+    const uint32_t key = runs.key[r];
+    if (key == kEmptyKey) continue;
+    const ShadeTriangle* t = &records[keyChunk(key)][keyLocal(key)];
+    lanes[r] = t;
+    lane_extras[r] = &extras[keyChunk(key)][keyLocal(key)];
+    if (first < 0) {
+      if (!texturedGroupApplies(*t)) return false;
+      first = r;
+      material = t->material;
+    } else if (t->material != material || !texturedPlain(*t)) {
+      return false;
+    }
+  }
+  if (first < 0) return true;  // no covered pixel: nothing to prepare
+  const int columns = (runs.count + 7) & ~7;
+  for (int r = 0; r < columns; ++r) {
+    if (r < runs.count && runs.key[r] != kEmptyKey) continue;
+    lanes[r] = lanes[first];
+    lane_extras[r] = lane_extras[first];
+  }
+  const int set = material->sampler.texcoord;
+  for (int c = 0; c < columns; c += 8) {
+    F32x8 f[kPlainFields];
+    loadPlainFields(lanes + c, f);
+    for (int k = 0; k < kPlainFields; ++k) store(runs.plain[k] + c, f[k]);
+    F32x8 corner[8];
+    uvCorners8(lane_extras + c, set, corner);
+    for (int k = 0; k < 6; ++k) store(runs.uv[k] + c, corner[k]);
+  }
+  return true;
+}
+
+// The textured groups of row ty (prepareTexturedFields, each lane's fields from its run's column)
+// into groups[]; their number, or -1 where fillRowRuns found the row not all textured alike.
+TESSERA_LANES_INLINE int prepareTexturedRow(const TileVisibility& tile, int ty,
+                                            const ShadeTriangle* const records[],
+                                            const ShadeExtras* const extras[],
+                                            TexturedGroup groups[]) {
+  RowRuns runs;
+  findRowRuns(tile, ty, runs);
+  const Material* material;
+  if (!fillRowRuns(records, extras, runs, material)) return -1;
+  if (!material) return 0;
+  const int last_from = ((runs.count + 7) & ~7) - 8;  // the last eight columns filled
+  const F32x8 py = splat(static_cast<float>(tile.y0 + ty) + 0.5f);
+  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
+  const uint32_t* row = tile.key + ty * kTileSize;
+  int count = 0;
+  for (int tx = 0, g = 0; tx < tile.width; tx += 8, ++g) {
+    const I32x8 covered = ~equal(load<I32x8>(row + tx), empty);
+    if (!any(covered)) continue;
+    // Lane l's run is first[g] plus the runs lanes 1..l start, within the columns filled.
+    const int from = std::min(runs.first[g], last_from);
+    const I32x8 offset =
+        byteLanes(kRunOffsets.offset[runs.starts[g]]) + splat(runs.first[g] - from);
+    const F32x8 px = toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f);
+    TexturedGroup& group = groups[count++];
+    prepareTexturedFields(RunFields{runs.plain, from, offset}, RunFields{runs.uv, from, offset},
+                          material, covered, px, py, group);
+    group.tx = tx;
+  }
+  return count;
+}
+#endif
+
+}  // namespace
+}  // namespace tessera::render
