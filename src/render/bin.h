@@ -107,7 +107,8 @@ struct alignas(128) TriangleChunk {
   // And some such record reads its corners' world positions (needsWorld): those are prefetched too.
   bool reads_world = false;
   // Some record may be textured without per-pixel lighting (texturedPlain, mixed_lanes.h): the
-  // shading then looks for groups of eight pixels of two such triangles (shade_kernel.h).
+  // shading then takes such rows by their runs (row_runs.h), and the tile raster prefetches the
+  // records' texture coordinates as it does the normals.
   bool textured_plain = false;
   // Every record is Phong-shaded without an albedo texture (litPlain, one shading): shadeRow's
   // groups of several triangles then evaluate their lights without first looking at each lane's

@@ -482,8 +482,9 @@ TESSERA_LANES_INLINE void walkTileBins(const std::vector<TriangleChunk>& chunks,
     if (ahead_valid) {
       // The record a few triangles ahead (one line), and its shading record for the shading
       // pass that follows (the first two lines: all that untextured flat and Gouraud pixels
-      // read), with, for pixels lit per pixel, the lines of its extras that hold the normals and
-      // texture coordinates (bytes 0 to 59) and, where they are read, the world positions.
+      // read), with, for pixels lit per pixel or textured, the lines of its extras that hold the
+      // normals and texture coordinates (bytes 0 to 59) and, where they are read, the world
+      // positions.
       // Records are written by setup long before and scattered: without this, both passes wait
       // on them.
       const TriangleChunk& next = chunks[ahead.chunk];
@@ -491,7 +492,7 @@ TESSERA_LANES_INLINE void walkTileBins(const std::vector<TriangleChunk>& chunks,
       const char* shade = reinterpret_cast<const char*>(&next.shade[*ahead.it]);
       __builtin_prefetch(shade);
       __builtin_prefetch(shade + 64);
-      if (next.reads_normals) {
+      if (next.reads_normals || next.textured_plain) {
         const char* extras = reinterpret_cast<const char*>(&next.extras[*ahead.it]);
         __builtin_prefetch(extras);
         __builtin_prefetch(extras + offsetof(ShadeExtras, uv1) - 1);

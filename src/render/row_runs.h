@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstring>
 
 #include "render/mixed_lanes.h"
 
@@ -67,15 +66,17 @@ struct RunFields {
 // The runs of row ty of `tile`: their keys, and each group's first run and run starts.
 TESSERA_LANES_INLINE void findRowRuns(const TileVisibility& tile, int ty, RowRuns& runs) {
   const uint32_t* row = tile.key + ty * kTileSize;
-  // Lane l's key before it: for the first group, a value no key of lane 0 equals before the row.
-  alignas(32) uint32_t first_prev[8];
-  first_prev[0] = ~row[0];
-  std::memcpy(first_prev + 1, row, 7 * sizeof(uint32_t));
   int n = 0;
   for (int tx = 0, g = 0; tx < tile.width; tx += 8, ++g) {
     const I32x8 keys = load<I32x8>(row + tx);
-    const I32x8 prev = load<I32x8>(g == 0 ? first_prev : row + tx - 1);
-    const I32x8 starts = ~equal(keys, prev);
+    // Each lane's key against the one before it (the first group's lane 0 starts a run). The
+    // first group's keys moved up a lane in registers: read from a copy on the stack, the load
+    // waited for the copy's stores.
+    const I32x8 prev =
+        g == 0 ? reinterpret_cast<I32x8>(_mm256_permutevar8x32_epi32(
+                     reinterpret_cast<__m256i>(keys), _mm256_setr_epi32(0, 0, 1, 2, 3, 4, 5, 6)))
+               : load<I32x8>(row + tx - 1);
+    const I32x8 starts = ~equal(keys, prev) | (g == 0 ? iota() == 0 : I32x8{});
     const unsigned bits = laneBits(starts);
     runs.first[g] = n - 1 + static_cast<int>(bits & 1u);
     runs.starts[g] = bits;
