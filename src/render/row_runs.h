@@ -46,8 +46,9 @@ struct RowRuns {
   // A row of kTileSize pixels holds at most kTileSize runs. The columns are filled eight at a time.
   static constexpr int kColumns = kTileSize;
   alignas(32) float plain[kPlainFields][kColumns];  // loadPlainFields' fields, a run a column
-  alignas(32) float uv[8][kColumns];                // uvCorners8's (rows 6 and 7 unused)
-  alignas(32) uint32_t key[kTileSize + 8];          // each run's key (compressLanes' room after)
+  // The texture coordinates' corners (uvCorners8's; rows 6 and 7 unused) or the normals' (nine).
+  alignas(32) float corner[9][kColumns];
+  alignas(32) uint32_t key[kTileSize + 8];  // each run's key (compressLanes' room after)
   int count = 0;
   int first[kTileSize / 8];        // each group's run of its lane 0
   uint32_t starts[kTileSize / 8];  // each group's lanes that start a run
@@ -87,11 +88,18 @@ TESSERA_LANES_INLINE void findRowRuns(const TileVisibility& tile, int ty, RowRun
   runs.count = n;
 }
 
-// The runs' fields into their columns, eight runs at a time (loadPlainFields, uvCorners8), the
-// empty runs' (kEmptyKey) and the columns past the last run's from the row's first triangle. False
-// where some run's triangle is not texturedPlain with the first's material, or the first is not
-// texturedGroupApplies (the caller then shades the row's groups from their records); `material`:
-// the row's (null where no pixel is covered).
+// What a row's runs hold beside the ShadeTriangle fields: the texture coordinates' corners of
+// triangles textured alike without per-pixel lighting (prepareTexturedRow), or the normals'
+// corners of Phong triangles without textures (prepareLitRow).
+enum class RunCorners { kUv, kNormal };
+
+// The runs' fields into their columns, eight runs at a time (loadPlainFields, and uvCorners8 or
+// extrasCorners), the empty runs' (kEmptyKey) and the columns past the last run's from the row's
+// first triangle. False where some run's triangle is not one the row's kind takes: for kUv,
+// texturedPlain with the first's material, the first texturedGroupApplies; for kNormal, Phong
+// without texture coordinates (the caller then shades the row's groups from their records).
+// `material`: the first triangle's (null where no pixel is covered).
+template <RunCorners kCorners>
 TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
                                       const ShadeExtras* const extras[], RowRuns& runs,
                                       const Material*& material) {
@@ -106,30 +114,83 @@ TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
     const ShadeTriangle* t = &records[keyChunk(key)][keyLocal(key)];
     lanes[r] = t;
     lane_extras[r] = &extras[keyChunk(key)][keyLocal(key)];
-    if (first < 0) {
+    if (kCorners == RunCorners::kNormal) {
+      if (t->shading != Shading::kPhong || t->has_uv) return false;
+      if (first < 0) first = r;
+    } else if (first < 0) {
       if (!texturedGroupApplies(*t)) return false;
       first = r;
-      material = t->material;
-    } else if (t->material != material || !texturedPlain(*t)) {
+    } else if (t->material != lanes[first]->material || !texturedPlain(*t)) {
       return false;
     }
   }
   if (first < 0) return true;  // no covered pixel: nothing to prepare
+  material = lanes[first]->material;
   const int columns = (runs.count + 7) & ~7;
   for (int r = 0; r < columns; ++r) {
     if (r < runs.count && runs.key[r] != kEmptyKey) continue;
     lanes[r] = lanes[first];
     lane_extras[r] = lane_extras[first];
   }
-  const int set = material->sampler.texcoord;
   for (int c = 0; c < columns; c += 8) {
     F32x8 f[kPlainFields];
     loadPlainFields(lanes + c, f);
     for (int k = 0; k < kPlainFields; ++k) store(runs.plain[k] + c, f[k]);
-    F32x8 corner[8];
-    uvCorners8(lane_extras + c, set, corner);
-    for (int k = 0; k < 6; ++k) store(runs.uv[k] + c, corner[k]);
+    F32x8 corner[9];
+    if (kCorners == RunCorners::kNormal) {
+      extrasCorners(lane_extras + c, &ShadeExtras::normal, corner);
+      for (int k = 0; k < 9; ++k) store(runs.corner[k] + c, corner[k]);
+    } else {
+      uvCorners8(lane_extras + c, material->sampler.texcoord, corner);
+      for (int k = 0; k < 6; ++k) store(runs.corner[k] + c, corner[k]);
+    }
   }
+  return true;
+}
+
+// Each covered group of the row: g, and the first column `from` and each lane's column from
+// there (lane l's run is first[g] plus the runs lanes 1..l start).
+template <typename Body>
+TESSERA_LANES_INLINE void forEachRunGroup(const TileVisibility& tile, int ty, const RowRuns& runs,
+                                          Body&& body) {
+  const int last_from = ((runs.count + 7) & ~7) - 8;  // the last eight columns filled
+  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
+  const uint32_t* row = tile.key + ty * kTileSize;
+  for (int tx = 0, g = 0; tx < tile.width; tx += 8, ++g) {
+    const I32x8 covered = ~equal(load<I32x8>(row + tx), empty);
+    if (!any(covered)) continue;
+    const int from = std::min(runs.first[g], last_from);
+    const I32x8 offset =
+        byteLanes(kRunOffsets.offset[runs.starts[g]]) + splat(runs.first[g] - from);
+    body(tx, covered, from, offset, toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f));
+  }
+}
+
+// Row ty of a tile of Phong triangles without textures (TriangleChunk::lit_alike), its groups'
+// interpolated colours and normals (phongInputsMixed's operations, each lane's fields from its
+// run's column) handed to add(tx, color, normal) for the lights; false, with nothing handed, where
+// fillRowRuns found a triangle the row cannot take so.
+template <typename Add>
+TESSERA_LANES_INLINE bool prepareLitRow(const TileVisibility& tile, int ty,
+                                        const ShadeTriangle* const records[],
+                                        const ShadeExtras* const extras[], Add&& add) {
+  RowRuns runs;
+  findRowRuns(tile, ty, runs);
+  const Material* material;
+  if (!fillRowRuns<RunCorners::kNormal>(records, extras, runs, material)) return false;
+  if (!material) return true;
+  const F32x8 py = splat(static_cast<float>(tile.y0 + ty) + 0.5f);
+  forEachRunGroup(
+      tile, ty,
+      runs, [&](int tx, I32x8, int from, I32x8 offset, F32x8 px) __attribute__((always_inline)) {
+        const RunFields f{runs.plain, from, offset}, n{runs.corner, from, offset};
+        F32x8 b0, b1, b2;
+        plainBarycentrics(f, px, py, b0, b1, b2);
+        const Vec3x8 color = plainColor(f, b1, b2);
+        F32x8 corner[9];
+        for (int k = 0; k < 9; ++k) corner[k] = n[k];
+        add(tx, color, interpolate9(corner, b0, b1, b2));
+      });
   return true;
 }
 
@@ -142,26 +203,19 @@ TESSERA_LANES_INLINE int prepareTexturedRow(const TileVisibility& tile, int ty,
   RowRuns runs;
   findRowRuns(tile, ty, runs);
   const Material* material;
-  if (!fillRowRuns(records, extras, runs, material)) return -1;
+  if (!fillRowRuns<RunCorners::kUv>(records, extras, runs, material)) return -1;
   if (!material) return 0;
-  const int last_from = ((runs.count + 7) & ~7) - 8;  // the last eight columns filled
   const F32x8 py = splat(static_cast<float>(tile.y0 + ty) + 0.5f);
-  const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
-  const uint32_t* row = tile.key + ty * kTileSize;
   int count = 0;
-  for (int tx = 0, g = 0; tx < tile.width; tx += 8, ++g) {
-    const I32x8 covered = ~equal(load<I32x8>(row + tx), empty);
-    if (!any(covered)) continue;
-    // Lane l's run is first[g] plus the runs lanes 1..l start, within the columns filled.
-    const int from = std::min(runs.first[g], last_from);
-    const I32x8 offset =
-        byteLanes(kRunOffsets.offset[runs.starts[g]]) + splat(runs.first[g] - from);
-    const F32x8 px = toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f);
-    TexturedGroup& group = groups[count++];
-    prepareTexturedFields(RunFields{runs.plain, from, offset}, RunFields{runs.uv, from, offset},
-                          material, covered, px, py, group);
-    group.tx = tx;
-  }
+  forEachRunGroup(
+      tile, ty, runs,
+      [&](int tx, I32x8 covered, int from, I32x8 offset, F32x8 px) __attribute__((always_inline)) {
+        TexturedGroup& group = groups[count++];
+        prepareTexturedFields(RunFields{runs.plain, from, offset},
+                              RunFields{runs.corner, from, offset}, material, covered, px, py,
+                              group);
+        group.tx = tx;
+      });
   return count;
 }
 #endif

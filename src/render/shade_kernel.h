@@ -414,10 +414,12 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
   TexturedGroup textured_groups[kTileSize / 8];
   int textured_count = 0;
+  const bool defer_phong = phongDeferrable(lights, want_normals);
+  DeferredPhong phong;
 #if defined(__AVX2__)
+  // Rows whose every covered pixel is textured alike without per-pixel lighting, or Phong without
+  // textures, take each lane's fields from its run's column (row_runs.h).
   if (!kSampled && textured && !want_normals) {
-    // Every covered pixel textured alike without per-pixel lighting: each lane's fields from
-    // its run's column (row_runs.h).
     textured_count = prepareTexturedRow(tile, ty, records, extras, textured_groups);
     if (textured_count >= 0) {
       filterTexturedRow(tile, ty, textured_groups, textured_count, records, extras, lights, albedo,
@@ -426,9 +428,15 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
     }
     textured_count = 0;
   }
+  if (!kSampled && lit_alike && defer_phong &&
+      prepareLitRow(
+          tile, ty, records, extras,
+          [&](int tx, const Vec3x8& color, const Vec3x8& normal)
+              __attribute__((always_inline)) { phong.add(linear, tx, color, normal); })) {
+    finishPhongRow(lights, phong, linear);
+    return;
+  }
 #endif
-  const bool defer_phong = phongDeferrable(lights, want_normals);
-  DeferredPhong phong;
   // Group r: shaded triangle by triangle (shadeApart) and stored.
   const auto shade_apart = [&](const RowGroup& r, F32x8 px, Vec3x8 color)
       __attribute__((always_inline)) {
