@@ -1,13 +1,14 @@
-// A textured row's triangles as runs, for the shading kernel (shade_kernel.h): the pixels of a
-// row of a tile form runs of one key, and each run's fields (its triangle's ShadeTriangle fields
-// and texture coordinates) take one column of a small table. A lane of a group of eight then
-// reads its triangle's field with one in-register permute of the eight columns from the run of
-// the group's first lane (lookup8), whatever the number of triangles in the group: no record
-// looked up and no transpose per group, and no sorting of the groups by kind. The records are
-// loaded and transposed once per eight runs instead of once per group of several triangles. The
-// fields are the same floats, and prepareTexturedFields the same operations, so the same bits.
-// Only where lookup8 is a permute (AVX2 and up); the other instruction sets take the groups'
-// records (mixed_lanes.h).
+// A row's triangles as runs, for the shading kernel (shade_kernel.h): the pixels of a row of a
+// tile form runs of one key, and each run's fields (its triangle's ShadeTriangle fields and its
+// corners' texture coordinates or normals) take one column of a small table. A lane of a group of
+// eight then reads its triangle's field with one in-register permute of the eight columns from
+// the run of the group's first lane (lookup8), whatever the number of triangles in the group: no
+// record looked up and no transpose per group, and no sorting of the groups by kind. The records
+// are loaded and transposed once per eight runs instead of once per group of several triangles.
+// The fields are the same floats, and the preparation the same operations (prepareTexturedFields,
+// phongInputsMixed), so the same bits. Rows textured alike without per-pixel lighting, and rows of
+// Phong triangles without textures whose lights wait for the row's end. Only where lookup8 is a
+// permute (AVX2 and up); the other instruction sets take the groups' records (mixed_lanes.h).
 #pragma once
 
 #include <algorithm>
