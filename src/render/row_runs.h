@@ -6,9 +6,10 @@
 // record looked up and no transpose per group, and no sorting of the groups by kind. The records
 // are loaded and transposed once per eight runs instead of once per group of several triangles.
 // The fields are the same floats, and the preparation the same operations (prepareTexturedFields,
-// phongInputsMixed), so the same bits. Rows textured alike without per-pixel lighting, and rows of
-// Phong triangles without textures whose lights wait for the row's end. Only where lookup8 is a
-// permute (AVX2 and up); the other instruction sets take the groups' records (mixed_lanes.h).
+// phongInputsMixed, shadeMixed), so the same bits. Rows textured alike without per-pixel lighting,
+// rows of Phong triangles without textures whose lights wait for the row's end, and (AVX2) plain
+// rows without solid triangles. Only where lookup8 is a permute (AVX2 and up); the other
+// instruction sets take the groups' records (mixed_lanes.h).
 #pragma once
 
 #include <algorithm>
@@ -92,7 +93,7 @@ TESSERA_LANES_INLINE void findRowRuns(const TileVisibility& tile, int ty, RowRun
 // What a row's runs hold beside the ShadeTriangle fields: the texture coordinates' corners of
 // triangles textured alike without per-pixel lighting (prepareTexturedRow), or the normals'
 // corners of Phong triangles without textures (prepareLitRow).
-enum class RunCorners { kUv, kNormal };
+enum class RunCorners { kNone, kUv, kNormal };
 
 // The runs' fields into their columns, eight runs at a time (loadPlainFields, and uvCorners8 or
 // extrasCorners), the empty runs' (kEmptyKey) and the columns past the last run's from the row's
@@ -114,8 +115,11 @@ TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
     if (key == kEmptyKey) continue;
     const ShadeTriangle* t = &records[keyChunk(key)][keyLocal(key)];
     lanes[r] = t;
-    lane_extras[r] = &extras[keyChunk(key)][keyLocal(key)];
-    if (kCorners == RunCorners::kNormal) {
+    if (kCorners != RunCorners::kNone) lane_extras[r] = &extras[keyChunk(key)][keyLocal(key)];
+    if (kCorners == RunCorners::kNone) {
+      if (t->solid) return false;
+      if (first < 0) first = r;
+    } else if (kCorners == RunCorners::kNormal) {
       if (t->shading != Shading::kPhong || t->has_uv) return false;
       if (first < 0) first = r;
     } else if (first < 0) {
@@ -138,6 +142,7 @@ TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
     loadPlainFields(lanes + c, f);
     for (int k = 0; k < kPlainFields; ++k) store(runs.plain[k] + c, f[k]);
     F32x8 corner[9];
+    if (kCorners == RunCorners::kNone) continue;
     if (kCorners == RunCorners::kNormal) {
       extrasCorners(lane_extras + c, &ShadeExtras::normal, corner);
       for (int k = 0; k < 9; ++k) store(runs.corner[k] + c, corner[k]);
@@ -191,6 +196,29 @@ TESSERA_LANES_INLINE bool prepareLitRow(const TileVisibility& tile, int ty,
         F32x8 corner[9];
         for (int k = 0; k < 9; ++k) corner[k] = n[k];
         add(tx, color, interpolate9(corner, b0, b1, b2));
+      });
+  return true;
+}
+
+// Row ty of a plain tile (shadePlainRow's), its groups' interpolated vertex colours (shadeMixed's
+// operations, each lane's fields from its run's column) handed to put(tx, color); false, with
+// nothing handed, where some triangle is solid (shadePlainRow's shortcuts then take it).
+template <typename Put>
+TESSERA_LANES_INLINE bool preparePlainRow(const TileVisibility& tile, int ty,
+                                          const ShadeTriangle* const records[], Put&& put) {
+  RowRuns runs;
+  findRowRuns(tile, ty, runs);
+  const Material* material;
+  if (!fillRowRuns<RunCorners::kNone>(records, nullptr, runs, material)) return false;
+  if (!material) return true;
+  const F32x8 py = splat(static_cast<float>(tile.y0 + ty) + 0.5f);
+  forEachRunGroup(
+      tile, ty,
+      runs, [&](int tx, I32x8, int from, I32x8 offset, F32x8 px) __attribute__((always_inline)) {
+        const RunFields f{runs.plain, from, offset};
+        F32x8 b0, b1, b2;
+        plainBarycentrics(f, px, py, b0, b1, b2);
+        put(tx, plainColor(f, b1, b2));
       });
   return true;
 }
