@@ -154,12 +154,22 @@ TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
   return true;
 }
 
-// Each covered group of the row: g, and the first column `from` and each lane's column from
-// there (lane l's run is first[g] plus the runs lanes 1..l start).
-template <typename Body>
-TESSERA_LANES_INLINE void forEachRunGroup(const TileVisibility& tile, int ty, const RowRuns& runs,
-                                          Body&& body) {
+// Row ty cut into its runs (findRowRuns) and their columns filled (fillRowRuns<kCorners>), then
+// for each covered group body(tx, covered, fields, corners, material, px, py): the group's first
+// column, covered lanes, ShadeTriangle fields and corners in lanes (each lane's from its run's
+// column: lane l's run is first[g] plus the runs lanes 1..l start), the row's first triangle's
+// material and the pixel centres. False, with no group handed, where fillRowRuns is.
+template <RunCorners kCorners, typename Body>
+TESSERA_LANES_INLINE bool byRowRuns(const TileVisibility& tile, int ty,
+                                    const ShadeTriangle* const records[],
+                                    const ShadeExtras* const extras[], Body&& body) {
+  RowRuns runs;
+  findRowRuns(tile, ty, runs);
+  const Material* material;
+  if (!fillRowRuns<kCorners>(records, extras, runs, material)) return false;
+  if (!material) return true;                         // no covered pixel
   const int last_from = ((runs.count + 7) & ~7) - 8;  // the last eight columns filled
+  const F32x8 py = splat(static_cast<float>(tile.y0 + ty) + 0.5f);
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const uint32_t* row = tile.key + ty * kTileSize;
   for (int tx = 0, g = 0; tx < tile.width; tx += 8, ++g) {
@@ -168,84 +178,65 @@ TESSERA_LANES_INLINE void forEachRunGroup(const TileVisibility& tile, int ty, co
     const int from = std::min(runs.first[g], last_from);
     const I32x8 offset =
         byteLanes(kRunOffsets.offset[runs.starts[g]]) + splat(runs.first[g] - from);
-    body(tx, covered, from, offset, toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f));
+    body(tx, covered, RunFields{runs.plain, from, offset}, RunFields{runs.corner, from, offset},
+         material, toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f), py);
   }
+  return true;
 }
 
 // Row ty of a tile of Phong triangles without textures (TriangleChunk::lit_alike), its groups'
-// interpolated colours and normals (phongInputsMixed's operations, each lane's fields from its
-// run's column) handed to add(tx, color, normal) for the lights; false, with nothing handed, where
-// fillRowRuns found a triangle the row cannot take so.
+// interpolated colours and normals (phongInputsMixed's operations) handed to add(tx, color,
+// normal) for the lights; false, with nothing handed, where fillRowRuns found a triangle the row
+// cannot take so.
 template <typename Add>
 TESSERA_LANES_INLINE bool prepareLitRow(const TileVisibility& tile, int ty,
                                         const ShadeTriangle* const records[],
                                         const ShadeExtras* const extras[], Add&& add) {
-  RowRuns runs;
-  findRowRuns(tile, ty, runs);
-  const Material* material;
-  if (!fillRowRuns<RunCorners::kNormal>(records, extras, runs, material)) return false;
-  if (!material) return true;
-  const F32x8 py = splat(static_cast<float>(tile.y0 + ty) + 0.5f);
-  forEachRunGroup(
-      tile, ty,
-      runs, [&](int tx, I32x8, int from, I32x8 offset, F32x8 px) __attribute__((always_inline)) {
-        const RunFields f{runs.plain, from, offset}, n{runs.corner, from, offset};
-        F32x8 b0, b1, b2;
-        plainBarycentrics(f, px, py, b0, b1, b2);
-        const Vec3x8 color = plainColor(f, b1, b2);
-        F32x8 corner[9];
-        for (int k = 0; k < 9; ++k) corner[k] = n[k];
-        add(tx, color, interpolate9(corner, b0, b1, b2));
-      });
-  return true;
+  return byRowRuns<RunCorners::kNormal>(
+      tile, ty, records, extras,
+      [&](int tx, I32x8, RunFields f, RunFields n, const Material*, F32x8 px, F32x8 py)
+          __attribute__((always_inline)) {
+            F32x8 b0, b1, b2;
+            plainBarycentrics(f, px, py, b0, b1, b2);
+            const Vec3x8 color = plainColor(f, b1, b2);
+            F32x8 corner[9];
+            for (int k = 0; k < 9; ++k) corner[k] = n[k];
+            add(tx, color, interpolate9(corner, b0, b1, b2));
+          });
 }
 
 // Row ty of a plain tile (shadePlainRow's), its groups' interpolated vertex colours (shadeMixed's
-// operations, each lane's fields from its run's column) handed to put(tx, color); false, with
-// nothing handed, where some triangle is solid (shadePlainRow's shortcuts then take it).
+// operations) handed to put(tx, color); false, with nothing handed, where some triangle is solid
+// (shadePlainRow's shortcuts then take it).
 template <typename Put>
 TESSERA_LANES_INLINE bool preparePlainRow(const TileVisibility& tile, int ty,
                                           const ShadeTriangle* const records[], Put&& put) {
-  RowRuns runs;
-  findRowRuns(tile, ty, runs);
-  const Material* material;
-  if (!fillRowRuns<RunCorners::kNone>(records, nullptr, runs, material)) return false;
-  if (!material) return true;
-  const F32x8 py = splat(static_cast<float>(tile.y0 + ty) + 0.5f);
-  forEachRunGroup(
-      tile, ty,
-      runs, [&](int tx, I32x8, int from, I32x8 offset, F32x8 px) __attribute__((always_inline)) {
-        const RunFields f{runs.plain, from, offset};
-        F32x8 b0, b1, b2;
-        plainBarycentrics(f, px, py, b0, b1, b2);
-        put(tx, plainColor(f, b1, b2));
-      });
-  return true;
+  return byRowRuns<RunCorners::kNone>(
+      tile, ty, records, nullptr,
+      [&](int tx, I32x8, RunFields f, RunFields, const Material*, F32x8 px, F32x8 py)
+          __attribute__((always_inline)) {
+            F32x8 b0, b1, b2;
+            plainBarycentrics(f, px, py, b0, b1, b2);
+            put(tx, plainColor(f, b1, b2));
+          });
 }
 
-// The textured groups of row ty (prepareTexturedFields, each lane's fields from its run's column)
-// into groups[]; their number, or -1 where fillRowRuns found the row not all textured alike.
+// The textured groups of row ty (prepareTexturedFields) into groups[]; their number, or -1 where
+// fillRowRuns found the row not all textured alike.
 TESSERA_LANES_INLINE int prepareTexturedRow(const TileVisibility& tile, int ty,
                                             const ShadeTriangle* const records[],
                                             const ShadeExtras* const extras[],
                                             TexturedGroup groups[]) {
-  RowRuns runs;
-  findRowRuns(tile, ty, runs);
-  const Material* material;
-  if (!fillRowRuns<RunCorners::kUv>(records, extras, runs, material)) return -1;
-  if (!material) return 0;
-  const F32x8 py = splat(static_cast<float>(tile.y0 + ty) + 0.5f);
   int count = 0;
-  forEachRunGroup(
-      tile, ty, runs,
-      [&](int tx, I32x8 covered, int from, I32x8 offset, F32x8 px) __attribute__((always_inline)) {
+  const bool taken = byRowRuns<RunCorners::kUv>(
+      tile, ty, records, extras,
+      [&](int tx, I32x8 covered, RunFields f, RunFields uv, const Material* material, F32x8 px,
+          F32x8 py) __attribute__((always_inline)) {
         TexturedGroup& group = groups[count++];
-        prepareTexturedFields(RunFields{runs.plain, from, offset},
-                              RunFields{runs.corner, from, offset}, material, covered, px, py,
-                              group);
+        prepareTexturedFields(f, uv, material, covered, px, py, group);
         group.tx = tx;
       });
-  return count;
+  return taken ? count : -1;
 }
 #endif
 
