@@ -22,7 +22,7 @@ namespace {  // one private copy per translation unit, each compiled for its ins
 
 #if defined(__AVX2__)
 // For each eight-bit mask of the lanes that start a run, each lane's run counted from the run of
-// lane 0 (how many of lanes 1..l start one), one byte a lane.
+// lane 0 (how many of lanes 1..l start one), one byte a lane (byteLanes).
 constexpr uint64_t runOffsets(unsigned bits) {
   uint64_t offsets = 0;
   for (unsigned l = 0; l < 8; ++l)
@@ -30,19 +30,7 @@ constexpr uint64_t runOffsets(unsigned bits) {
                << (8 * l);
   return offsets;
 }
-constexpr auto kRunOffsets = [] {
-  struct Table {
-    uint64_t offset[256];
-  } t{};
-  for (unsigned bits = 0; bits < 256; ++bits) t.offset[bits] = runOffsets(bits);
-  return t;
-}();
-
-// Eight bytes into eight lanes.
-TESSERA_LANES_INLINE I32x8 byteLanes(uint64_t bytes) {
-  return reinterpret_cast<I32x8>(
-      _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(bytes))));
-}
+constexpr auto kRunOffsets = laneMaskTable(runOffsets);
 
 struct RowRuns {
   // A row of kTileSize pixels holds at most kTileSize runs. The columns are filled eight at a time.
@@ -51,9 +39,11 @@ struct RowRuns {
   // The texture coordinates' corners (uvCorners8's; rows 6 and 7 unused) or the normals' (nine).
   alignas(32) float corner[9][kColumns];
   alignas(32) uint32_t key[kTileSize + 8];  // each run's key (compressLanes' room after)
-  int count = 0;
+  int count;
   int first[kTileSize / 8];        // each group's run of its lane 0
   uint32_t starts[kTileSize / 8];  // each group's lanes that start a run
+  // The columns fillRowRuns fills: the runs' and those past the last up to a multiple of eight.
+  int filledColumns() const { return (count + 7) & ~7; }
 };
 
 // A group's fields in lanes, each lane's from its run's column: BroadcastFields' interface.
@@ -90,16 +80,18 @@ TESSERA_LANES_INLINE void findRowRuns(const TileVisibility& tile, int ty, RowRun
   runs.count = n;
 }
 
-// What a row's runs hold beside the ShadeTriangle fields: the texture coordinates' corners of
-// triangles textured alike without per-pixel lighting (prepareTexturedRow), or the normals'
-// corners of Phong triangles without textures (prepareLitRow).
+// What a row's runs hold beside the ShadeTriangle fields: nothing (plain rows, preparePlainRow),
+// the texture coordinates' corners of triangles textured alike without per-pixel lighting
+// (prepareTexturedRow), or the normals' corners of Phong triangles without textures
+// (prepareLitRow).
 enum class RunCorners { kNone, kUv, kNormal };
 
 // The runs' fields into their columns, eight runs at a time (loadPlainFields, and uvCorners8 or
 // extrasCorners), the empty runs' (kEmptyKey) and the columns past the last run's from the row's
 // first triangle. False where some run's triangle is not one the row's kind takes: for kUv,
 // texturedPlain with the first's material, the first texturedGroupApplies; for kNormal, Phong
-// without texture coordinates (the caller then shades the row's groups from their records).
+// without texture coordinates; for kNone, not solid (the caller then shades the row's groups
+// from their records). `extras`: unread for kNone.
 // `material`: the first triangle's (null where no pixel is covered).
 template <RunCorners kCorners>
 TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
@@ -131,11 +123,11 @@ TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
   }
   if (first < 0) return true;  // no covered pixel: nothing to prepare
   material = lanes[first]->material;
-  const int columns = (runs.count + 7) & ~7;
+  const int columns = runs.filledColumns();
   for (int r = 0; r < columns; ++r) {
     if (r < runs.count && runs.key[r] != kEmptyKey) continue;
     lanes[r] = lanes[first];
-    lane_extras[r] = lane_extras[first];
+    if (kCorners != RunCorners::kNone) lane_extras[r] = lane_extras[first];
   }
   for (int c = 0; c < columns; c += 8) {
     F32x8 f[kPlainFields];
@@ -167,8 +159,8 @@ TESSERA_LANES_INLINE bool byRowRuns(const TileVisibility& tile, int ty,
   findRowRuns(tile, ty, runs);
   const Material* material;
   if (!fillRowRuns<kCorners>(records, extras, runs, material)) return false;
-  if (!material) return true;                         // no covered pixel
-  const int last_from = ((runs.count + 7) & ~7) - 8;  // the last eight columns filled
+  if (!material) return true;                      // no covered pixel
+  const int last_from = runs.filledColumns() - 8;  // the last eight columns filled
   const F32x8 py = splat(static_cast<float>(tile.y0 + ty) + 0.5f);
   const I32x8 empty = splat(static_cast<int32_t>(kEmptyKey));
   const uint32_t* row = tile.key + ty * kTileSize;
@@ -176,8 +168,7 @@ TESSERA_LANES_INLINE bool byRowRuns(const TileVisibility& tile, int ty,
     const I32x8 covered = ~equal(load<I32x8>(row + tx), empty);
     if (!any(covered)) continue;
     const int from = std::min(runs.first[g], last_from);
-    const I32x8 offset =
-        byteLanes(kRunOffsets.offset[runs.starts[g]]) + splat(runs.first[g] - from);
+    const I32x8 offset = byteLanes(kRunOffsets.of[runs.starts[g]]) + splat(runs.first[g] - from);
     body(tx, covered, RunFields{runs.plain, from, offset}, RunFields{runs.corner, from, offset},
          material, toFloat(splat(tile.x0 + tx) + iota()) + splat(0.5f), py);
   }

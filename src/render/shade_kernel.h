@@ -216,17 +216,15 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
 #if defined(__AVX2__) && !defined(TESSERA_LANES16)
   // By the row's runs (row_runs.h) on AVX2; on AVX-512 the groups of several triangles two at a
   // time in sixteen lanes (shadeSeveralPairs) did better (the bunny at 1080p 6.7% faster).
-  if (!kSampled &&
-      preparePlainRow(
-          tile, ty, records, [&](int tx, const Vec3x8& color) __attribute__((always_inline)) {
-            storeLinear(linear, tx, color);
-          })) {
-    for (int tx = 0; tx < tile.width; tx += 8)
-      solid[tx / 8] = any(~equal(load<I32x8>(tile.key + ty * kTileSize + tx),
-                                 splat(static_cast<int32_t>(kEmptyKey))))
-                          ? kNoSolid
-                          : kSolidEmpty;
-    return;
+  if (!kSampled) {
+    // Every group empty until the runs hand it its colours (the sorted groups set them again).
+    for (int g = 0; g * 8 < tile.width; ++g) solid[g] = kSolidEmpty;
+    if (preparePlainRow(
+            tile, ty, records, [&](int tx, const Vec3x8& color) __attribute__((always_inline)) {
+              storeLinear(linear, tx, color);
+              solid[tx / 8] = kNoSolid;
+            }))
+      return;
   }
 #endif
   const RowGroups groups = sortRowGroups(tile, ty, kSampled ? msaa->tiles->mixed : nullptr);

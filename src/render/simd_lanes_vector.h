@@ -455,6 +455,22 @@ TESSERA_LANES_INLINE F64x8 loadStrided(const double* first, size_t stride) {
   return r;
 }
 
+#if defined(__AVX2__)
+// A table of f(bits) for every eight-bit lane mask: eight bytes a mask, one a lane (byteLanes).
+template <typename F>
+constexpr auto laneMaskTable(F f) {
+  struct Table {
+    uint64_t of[256];
+  } t{};
+  for (unsigned bits = 0; bits < 256; ++bits) t.of[bits] = f(bits);
+  return t;
+}
+// Eight bytes into eight lanes, byte l into lane l.
+TESSERA_LANES_INLINE I32x8 byteLanes(uint64_t bytes) {
+  return reinterpret_cast<I32x8>(
+      _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(bytes))));
+}
+#endif
 #if defined(__AVX2__) && !defined(__AVX512VL__)
 // compressLanes' permutations: for each eight-bit mask, the indices of its set lanes in order, one
 // byte each, the rest 0.
@@ -465,13 +481,7 @@ constexpr uint64_t compressIndices(unsigned bits) {
     if (bits & (1u << l)) indices |= uint64_t{l} << (8 * n++);
   return indices;
 }
-constexpr auto kCompressIndices = [] {
-  struct Table {
-    uint64_t index[256];
-  } t{};
-  for (unsigned bits = 0; bits < 256; ++bits) t.index[bits] = compressIndices(bits);
-  return t;
-}();
+constexpr auto kCompressIndices = laneMaskTable(compressIndices);
 #endif
 // The lanes of v where `mask` is set moved to the front in lane order (the lanes after them hold
 // anything); `count` becomes their number.
@@ -484,9 +494,9 @@ TESSERA_LANES_INLINE I32x8 compressLanes(I32x8 v, I32x8 mask, int& count) {
 #elif defined(__AVX2__)
   const unsigned bits = laneBits(mask);
   count = __builtin_popcount(bits);
-  const __m256i index =
-      _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(kCompressIndices.index[bits])));
-  return reinterpret_cast<I32x8>(_mm256_permutevar8x32_epi32(reinterpret_cast<__m256i>(v), index));
+  return reinterpret_cast<I32x8>(
+      _mm256_permutevar8x32_epi32(reinterpret_cast<__m256i>(v),
+                                  reinterpret_cast<__m256i>(byteLanes(kCompressIndices.of[bits]))));
 #else
   I32x8 r = v;
   int n = 0;
