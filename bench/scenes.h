@@ -39,6 +39,10 @@ struct BenchScene {
   // The scene's camera and lights are part of it (the fill scene: its layers must cover the
   // screen); otherwise they are the caller's to set.
   bool fixed_view = false;
+  // Whether poseForFrame turns the objects. The many-instance scene holds still: turned about the
+  // origin, its grid left the view within 40 frames, so a run's timed frames went from 1% of it in
+  // view to none.
+  bool spins = true;
   std::vector<std::string> warnings;  // from the model loader
 };
 
@@ -74,7 +78,7 @@ Expected<BenchScene> loadModelScene(const std::filesystem::path& path, Shading s
                                     const io::LoadBudget& budget = {});
 
 // Poses the scene for frame `frame`: every object turned by frame * kTurnDegreesPerFrame about
-// the spin axis through the pivot.
+// the spin axis through the pivot (nothing for a scene that does not spin).
 void poseForFrame(BenchScene& bench_scene, int frame);
 
 // A square checker texture of `cells` x `cells` cells, `size` texels a side (sRGB).
