@@ -148,6 +148,35 @@ TESSERA_LANES_INLINE void storeLinear(float linear[3][kTileSize], int tx, const 
   store(linear[2] + tx, color.z);
 }
 
+// Row ty of a plain tile when one solid triangle covers all of it (and, with `mixed`, no pixel
+// of it is mixed): the inside of a large triangle, as most rows of the cube's faces at 1920x1080.
+// Every group then takes shadePlainSingle's solid colour, without the row's sorting and a record
+// look-up per group; false, with nothing written, for any other row.
+TESSERA_LANES_INLINE bool shadeSolidRow(const TileVisibility& tile, int ty,
+                                        const ShadeTriangle* const records[], const int32_t* mixed,
+                                        float linear[3][kTileSize], uint32_t solid[],
+                                        SolidColours& solids) {
+  const int row = ty * kTileSize;
+  const uint32_t key = tile.key[row];
+  if (key == kEmptyKey) return false;
+  const I32x8 first = splat(static_cast<int32_t>(key));
+  I32x8 other = splat(int32_t{0});
+  for (int tx = 0; tx < tile.width; tx += 8) {
+    other = other | ~equal(load<I32x8>(tile.key + row + tx), first);
+    if (mixed) other = other | load<I32x8>(mixed + row + tx);
+  }
+  if (any(other)) return false;
+  const ShadeTriangle& t = records[keyChunk(key)][keyLocal(key)];
+  const uint32_t rgba = solids.of(key, t);
+  if (rgba == kNoSolid) return false;
+  const Vec3x8 color = {splat(t.color[0].x), splat(t.color[0].y), splat(t.color[0].z)};
+  for (int tx = 0, g = 0; tx < tile.width; tx += 8, ++g) {
+    storeLinear(linear, tx, color);
+    solid[g] = rgba;
+  }
+  return true;
+}
+
 #if defined(TESSERA_LANES16)
 // The groups of `several` (of row ty, sorted by sortRowGroups) two at a time in sixteen lanes
 // (shadeMixedPair) into the row's linear colours; returns the one left over, if any.
@@ -213,6 +242,9 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
                                              float linear[3][kTileSize],
                                              uint32_t solid[kTileSize / 8], SolidColours& solids) {
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
+  if (shadeSolidRow(tile, ty, records, kSampled ? msaa->tiles->mixed : nullptr, linear, solid,
+                    solids))
+    return;
 #if defined(__AVX2__) && !defined(TESSERA_LANES16)
   // By the row's runs (row_runs.h) on AVX2; on AVX-512 the groups of several triangles two at a
   // time in sixteen lanes (shadeSeveralPairs) did better (the bunny at 1080p 6.7% faster).
