@@ -122,10 +122,12 @@ namespace {
 // The scene rendered by every instruction set's kernels, with and without the normal AOV (which
 // takes the per-triangle path where the plain one would serve), checked against the scalar kernels
 // with it: the same colours and ids. Returns that reference.
-Frame expectSameWithEveryKernelAndTheNormalAov(const Scene& scene, int width, int height) {
+Frame expectSameWithEveryKernelAndTheNormalAov(const Scene& scene, int width, int height,
+                                               int msaa = 1) {
   RenderOptions options;
   options.width = width;
   options.height = height;
+  options.msaa = msaa;
   auto render = [&](SimdLevel level, bool normals) {
     options.normals = normals;
     return renderAt(scene, options, level, 2);
@@ -206,6 +208,49 @@ TEST(Renderer, SolidTrianglesShadeToTheirOwnColourAtEverySimdLevel) {
   }
   EXPECT_GT(quad_pixels, 203 * 150 / 8);
   EXPECT_GE(cube_colours.size(), 2u) << "the cube shows faces lit differently";
+}
+
+TEST(Renderer, RowsOfOneSolidTriangleTakeItsColourWithAndWithoutMsaa) {
+  // One triangle of one colour, larger than the view, behind a flat-shaded cube on the right: the
+  // rows of the left tiles hold that triangle alone and take its colour at once (shadeSolidRow),
+  // the rows the cube cuts (and, with MSAA, those holding a mixed pixel) take the groups' paths,
+  // and the narrow last tile (203 pixels: 11 columns) never the row's. The image is the same bits
+  // with the normal AOV (the per-triangle path) and at every instruction set, at 1 and 4 samples,
+  // and the large triangle's pixels away from the cube are its colour's sRGB.
+  Scene scene;
+  scene.camera.position = {0, 0, 3};
+  scene.lights.push_back({normalize(float3{-1, -0.5f, -2}), float3(0.8f)});
+  const float4 colour{0.65f, 0.3f, 0.15f, 1};
+  Mesh wall;
+  wall.positions = {{-30, -30, -1}, {30, -30, -1}, {0, 30, -1}};
+  wall.colors.assign(3, colour);
+  wall.indices = {0, 1, 2};
+  scene.objects.push_back(unlitObject(wall));
+  Object cube;
+  cube.mesh = std::make_shared<Mesh>(makeCube());
+  cube.shading = Shading::kFlat;
+  cube.transform.translation = {0.9f, 0.1f, 0};
+  cube.transform.rotation = quat::fromAxisAngle(normalize(float3{1, 1, 0}), 0.6f);
+  scene.objects.push_back(cube);
+  const uint32_t expected = packSrgba8(colour);
+  for (int msaa : {1, 4}) {
+    const Frame reference = expectSameWithEveryKernelAndTheNormalAov(scene, 203, 150, msaa);
+    int wall_pixels = 0, cube_pixels = 0;
+    for (int y = 0; y < 150; ++y)
+      for (int x = 0; x < 203; ++x) {
+        const size_t i = static_cast<size_t>(y) * 203 + static_cast<size_t>(x);
+        if (reference.triangle_id[i] != 1) {
+          cube_pixels += reference.triangle_id[i] > 1;
+          continue;
+        }
+        ++wall_pixels;
+        if (x < 64) {
+          ASSERT_EQ(reference.color[i], expected) << msaa << "x, pixel " << x << "," << y;
+        }
+      }
+    EXPECT_GT(wall_pixels, 203 * 150 / 2) << msaa << "x";
+    EXPECT_GT(cube_pixels, 203 * 150 / 20) << msaa << "x";
+  }
 }
 
 TEST(Renderer, EncodesEveryColourTheSameAtEverySimdLevel) {
