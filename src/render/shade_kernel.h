@@ -236,7 +236,7 @@ TESSERA_LANES_INLINE uint32_t shadeSampledPairs(const TileVisibility& tile, int 
 // the one function of every path the compiler kept this loop's colours and masks on the stack,
 // and the plain frames' shading took 10% longer.
 template <bool kSampled>
-__attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
+__attribute__((noinline)) bool shadePlainRow(const TileVisibility& tile, int ty,
                                              const ShadeTriangle* const records[],
                                              const MsaaShading* msaa, FragmentQueue* queue,
                                              float linear[3][kTileSize],
@@ -244,7 +244,7 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
   if (shadeSolidRow(tile, ty, records, kSampled ? msaa->tiles->mixed : nullptr, linear, solid,
                     solids))
-    return;
+    return true;
 #if defined(__AVX2__) && !defined(TESSERA_LANES16)
   // By the row's runs (row_runs.h) on AVX2; on AVX-512 the groups of several triangles two at a
   // time in sixteen lanes (shadeSeveralPairs) did better (the bunny at 1080p 6.7% faster).
@@ -256,7 +256,7 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
               storeLinear(linear, tx, color);
               solid[tx / 8] = kNoSolid;
             }))
-      return;
+      return false;
   }
 #endif
   const RowGroups groups = sortRowGroups(tile, ty, kSampled ? msaa->tiles->mixed : nullptr);
@@ -280,7 +280,7 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
   forEachGroup(groups.several, shade_several);
 #endif
   if constexpr (kSampled) {
-    if (groups.sampled == 0) return;
+    if (groups.sampled == 0) return false;
     const auto shade_queued = [&](int first, int count) __attribute__((always_inline)) {
       shadeQueuedPlain(records, *queue, first, count, tile.x0, tile.y0 + ty, linear);
     };
@@ -315,6 +315,7 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
     finishQueue(*queue, shade_queued);
     finishMixedRow(*msaa, tile, ty, linear);
   }
+  return false;
 }
 
 // A row's groups of untextured Phong triangles whose lights wait for the row's end
@@ -541,9 +542,11 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
   AlbedoReads albedo;
   for (int ty = 0; ty < tile.height; ++ty) {
     if (plain) {
-      shadePlainRow<kSampled>(tile, ty, records, msaa, queue ? &*queue : nullptr, linear, solid,
-                              solids);
-      encodeShadedRow(tile, ty, linear, solid, background, out);
+      if (shadePlainRow<kSampled>(tile, ty, records, msaa, queue ? &*queue : nullptr, linear,
+                                  solid, solids))
+        storeSolidRow(tile, ty, solid[0], out);
+      else
+        encodeShadedRow(tile, ty, linear, solid, background, out);
     } else {
       shadeRow<kSampled>(tile, ty, records, extras, lights, want_normals, textured, lit_alike, msaa,
                          queue ? &*queue : nullptr, albedo, linear, out);

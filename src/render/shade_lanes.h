@@ -266,6 +266,17 @@ TESSERA_LANES_INLINE uint32_t solidRgba(const ShadeTriangle& t) {
   return static_cast<uint32_t>(lane(encodeRgba8x8(splat(c.x), splat(c.y), splat(c.z)), 0));
 }
 
+// Row ty of the tile, every pixel covered by one solid triangle (shadeSolidRow), as `rgba`: what
+// encodeShadedRow writes for it without reading the keys and marks. The row's width is a whole
+// number of groups of eight, and of sixteen where it goes straight to the frame.
+TESSERA_LANES_INLINE void storeSolidRow(const TileVisibility& tile, int ty, uint32_t rgba,
+                                        ShadedTile& out) {
+  uint32_t* const row = out.direct ? out.direct + static_cast<size_t>(ty) * out.direct_stride
+                                   : out.rgba + ty * kTileSize;
+  const I32x8 fill = splat(static_cast<int32_t>(rgba));
+  for (int tx = 0; tx < tile.width; tx += 8) store(row + tx, fill);
+}
+
 // Encodes row ty of the tile's linear colours to sRGB into out.rgba (or the frame's row at
 // out.direct), whole; the background where no triangle is. `solid` (or null) gives
 // shadePlainRow's groups of one solid triangle, which take their colour from it.
