@@ -144,6 +144,23 @@ Frame expectSameWithEveryKernelAndTheNormalAov(const Scene& scene, int width, in
   return reference;
 }
 
+// An unlit mesh (one object) and a flat-shaded orange cube at `cube_at`, turned to show three
+// faces lit differently by a light from the side, seen from `camera` on the +z side.
+Scene unlitMeshBesideFlatCube(const Mesh& mesh, float3 camera, float3 cube_at) {
+  Scene scene;
+  scene.camera.position = camera;
+  scene.lights.push_back({normalize(float3{-1, -0.5f, -2}), float3(0.8f)});
+  scene.objects.push_back(unlitObject(mesh));
+  Object cube;
+  cube.mesh = std::make_shared<Mesh>(makeCube());
+  cube.shading = Shading::kFlat;
+  cube.transform.translation = cube_at;
+  cube.transform.rotation = quat::fromAxisAngle(normalize(float3{1, 1, 0}), 0.6f);
+  cube.materials[0].base_color = {0.9f, 0.5f, 0.2f, 1};
+  scene.objects.push_back(cube);
+  return scene;
+}
+
 }  // namespace
 
 TEST(Renderer, PlainShadingIsTheSameForEverySimdLevelAndWithTheNormalAov) {
@@ -177,23 +194,13 @@ TEST(Renderer, SolidTrianglesShadeToTheirOwnColourAtEverySimdLevel) {
   // normal AOV (the per-triangle path) and at every instruction set. 203 pixels wide: a row ends
   // inside an eight-pixel group, and the sixteen-lane encode meets groups of the quad beside
   // groups of the cube and of nothing.
-  Scene scene;
-  scene.camera.position = {0, 0.3f, 3};
-  scene.lights.push_back({normalize(float3{-1, -0.5f, -2}), float3(0.8f)});
   const float4 quad_colour{0.2f, 0.45f, 0.7f, 1};
   Mesh quad;
   quad.positions = {
       {-1.4f, -0.9f, -0.5f}, {-0.2f, -0.9f, -0.5f}, {-0.2f, 0.9f, -0.5f}, {-1.4f, 0.9f, -0.5f}};
   quad.colors.assign(4, quad_colour);
   quad.indices = {0, 1, 2, 0, 2, 3};
-  scene.objects.push_back(unlitObject(quad));
-  Object cube;
-  cube.mesh = std::make_shared<Mesh>(makeCube());
-  cube.shading = Shading::kFlat;
-  cube.transform.translation = {0.6f, 0, 0};
-  cube.transform.rotation = quat::fromAxisAngle(normalize(float3{1, 1, 0}), 0.6f);
-  cube.materials[0].base_color = {0.9f, 0.5f, 0.2f, 1};
-  scene.objects.push_back(cube);
+  const Scene scene = unlitMeshBesideFlatCube(quad, {0, 0.3f, 3}, {0.6f, 0, 0});
   const Frame reference = expectSameWithEveryKernelAndTheNormalAov(scene, 203, 150);
   const uint32_t expected = packSrgba8(quad_colour);
   int quad_pixels = 0;
@@ -217,21 +224,12 @@ TEST(Renderer, RowsOfOneSolidTriangleTakeItsColourWithAndWithoutMsaa) {
   // and the narrow last tile (203 pixels: 11 columns) never the row's. The image is the same bits
   // with the normal AOV (the per-triangle path) and at every instruction set, at 1 and 4 samples,
   // and the large triangle's pixels away from the cube are its colour's sRGB.
-  Scene scene;
-  scene.camera.position = {0, 0, 3};
-  scene.lights.push_back({normalize(float3{-1, -0.5f, -2}), float3(0.8f)});
   const float4 colour{0.65f, 0.3f, 0.15f, 1};
   Mesh wall;
   wall.positions = {{-30, -30, -1}, {30, -30, -1}, {0, 30, -1}};
   wall.colors.assign(3, colour);
   wall.indices = {0, 1, 2};
-  scene.objects.push_back(unlitObject(wall));
-  Object cube;
-  cube.mesh = std::make_shared<Mesh>(makeCube());
-  cube.shading = Shading::kFlat;
-  cube.transform.translation = {0.9f, 0.1f, 0};
-  cube.transform.rotation = quat::fromAxisAngle(normalize(float3{1, 1, 0}), 0.6f);
-  scene.objects.push_back(cube);
+  const Scene scene = unlitMeshBesideFlatCube(wall, {0, 0, 3}, {0.9f, 0.1f, 0});
   const uint32_t expected = packSrgba8(colour);
   for (int msaa : {1, 4}) {
     const Frame reference = expectSameWithEveryKernelAndTheNormalAov(scene, 203, 150, msaa);

@@ -542,8 +542,8 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
   AlbedoReads albedo;
   for (int ty = 0; ty < tile.height; ++ty) {
     if (plain) {
-      if (shadePlainRow<kSampled>(tile, ty, records, msaa, queue ? &*queue : nullptr, linear,
-                                  solid, solids))
+      if (shadePlainRow<kSampled>(tile, ty, records, msaa, queue ? &*queue : nullptr, linear, solid,
+                                  solids))
         storeSolidRow(tile, ty, solid[0], out);
       else
         encodeShadedRow(tile, ty, linear, solid, background, out);
