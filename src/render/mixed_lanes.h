@@ -73,17 +73,29 @@ static_assert(offsetof(ShadeTriangle, color) == offsetof(ShadeTriangle, x0) + 9 
 static_assert(sizeof(ShadeTriangle) >= offsetof(ShadeTriangle, x0) + 16 * sizeof(float),
               "shadeMixed reads 16 floats from x0 eight at a time");
 
-// The kPlainFields floats of eight records, transposed into lanes: f[0..8] x0, y0, inv_w0, p1dx,
-// p1dy, p2dx, p2dy, sdx, sdy, then f[9..17] color[0..2].xyz.
-TESSERA_LANES_INLINE void loadPlainFields(const ShadeTriangle* const records[8],
-                                          F32x8 f[kPlainFields]) {
+// The kPlainFields floats of eight records, transposed into lanes, each handed to put(k, lanes) as
+// it is formed: k = 0..8 x0, y0, inv_w0, p1dx, p1dy, p2dx, p2dy, sdx, sdy, then 9..17
+// color[0..2].xyz. (A caller that stores them elsewhere takes them so: gathered in an array first,
+// the AVX2 kernels kept the array on the stack and copied it in a loop of its own.)
+template <typename Put>
+TESSERA_LANES_INLINE void loadPlainFieldsBy(const ShadeTriangle* const records[8], Put&& put) {
   for (int block = 0; block < 2; ++block) {
-    for (int l = 0; l < 8; ++l) f[block * 8 + l] = load<F32x8>(&records[l]->x0 + block * 8);
-    transpose8x8(f + block * 8);
+    F32x8 f[8];
+    for (int l = 0; l < 8; ++l) f[l] = load<F32x8>(&records[l]->x0 + block * 8);
+    transpose8x8(f);
+    for (int k = 0; k < 8; ++k) put(block * 8 + k, f[k]);
   }
   const float* last_two[8];
   for (int l = 0; l < 8; ++l) last_two[l] = &records[l]->x0 + 16;
-  loadPairs(last_two, f[16], f[17]);
+  F32x8 a, b;
+  loadPairs(last_two, a, b);
+  put(16, a);
+  put(17, b);
+}
+// The same into f[0..17].
+TESSERA_LANES_INLINE void loadPlainFields(const ShadeTriangle* const records[8],
+                                          F32x8 f[kPlainFields]) {
+  loadPlainFieldsBy(records, [&](int k, F32x8 v) __attribute__((always_inline)) { f[k] = v; });
 }
 
 // BroadcastFields (texture_lanes.h) of two records a and b, b's in the lanes of `in_b` and a's in
