@@ -95,7 +95,8 @@ TESSERA_LANES_INLINE void loadPlainFieldsBy(const ShadeTriangle* const records[8
 // The same into f[0..17].
 TESSERA_LANES_INLINE void loadPlainFields(const ShadeTriangle* const records[8],
                                           F32x8 f[kPlainFields]) {
-  loadPlainFieldsBy(records, [&](int k, F32x8 v) __attribute__((always_inline)) { f[k] = v; });
+  loadPlainFieldsBy(
+      records, [&](int k, F32x8 v) __attribute__((always_inline)) { f[k] = v; });
 }
 
 // BroadcastFields (texture_lanes.h) of two records a and b, b's in the lanes of `in_b` and a's in

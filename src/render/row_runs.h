@@ -130,9 +130,9 @@ TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
     if (kCorners != RunCorners::kNone) lane_extras[r] = lane_extras[first];
   }
   for (int c = 0; c < columns; c += 8) {
-    loadPlainFieldsBy(lanes + c, [&](int k, F32x8 v) __attribute__((always_inline)) {
-      store(runs.plain[k] + c, v);
-    });
+    loadPlainFieldsBy(
+        lanes + c, [&](int k, F32x8 v)
+                       __attribute__((always_inline)) { store(runs.plain[k] + c, v); });
     F32x8 corner[9];
     if (kCorners == RunCorners::kNone) continue;
     if (kCorners == RunCorners::kNormal) {
