@@ -219,7 +219,7 @@ TEST(Renderer, SolidTrianglesShadeToTheirOwnColourAtEverySimdLevel) {
 
 TEST(Renderer, RowsOfOneSolidTriangleTakeItsColourWithAndWithoutMsaa) {
   // One triangle of one colour, larger than the view, behind a flat-shaded cube on the right: the
-  // rows of the left tiles hold that triangle alone and take its colour at once (shadeSolidRow),
+  // rows of the left tiles hold that triangle alone and take its colour at once (solidRowRgba),
   // the rows the cube cuts (and, with MSAA, those holding a mixed pixel) take the groups' paths,
   // and the narrow last tile (203 pixels: 11 columns) never the row's. The image is the same bits
   // with the normal AOV (the per-triangle path) and at every instruction set, at 1 and 4 samples,

@@ -148,33 +148,25 @@ TESSERA_LANES_INLINE void storeLinear(float linear[3][kTileSize], int tx, const 
   store(linear[2] + tx, color.z);
 }
 
-// Row ty of a plain tile when one solid triangle covers all of it (and, with `mixed`, no pixel
-// of it is mixed): the inside of a large triangle, as most rows of the cube's faces at 1920x1080.
-// Every group then takes shadePlainSingle's solid colour, without the row's sorting and a record
-// look-up per group; false, with nothing written, for any other row.
-TESSERA_LANES_INLINE bool shadeSolidRow(const TileVisibility& tile, int ty,
-                                        const ShadeTriangle* const records[], const int32_t* mixed,
-                                        float linear[3][kTileSize], uint32_t solid[],
-                                        SolidColours& solids) {
+// The sRGB of row ty of a plain tile when one solid triangle covers all of it (and, with `mixed`,
+// no pixel of it is mixed): the inside of a large triangle, as most rows of the cube's faces at
+// 1920x1080. The tile then stores that colour across the row (storeSolidRow), the value
+// shadePlainSingle and the encode give each of its groups, without the row's sorting, a record
+// look-up per group or the encode. kNoSolid for any other row.
+TESSERA_LANES_INLINE uint32_t solidRowRgba(const TileVisibility& tile, int ty,
+                                           const ShadeTriangle* const records[],
+                                           const int32_t* mixed, SolidColours& solids) {
   const int row = ty * kTileSize;
   const uint32_t key = tile.key[row];
-  if (key == kEmptyKey) return false;
+  if (key == kEmptyKey) return kNoSolid;
   const I32x8 first = splat(static_cast<int32_t>(key));
   I32x8 other = splat(int32_t{0});
   for (int tx = 0; tx < tile.width; tx += 8) {
     other = other | ~equal(load<I32x8>(tile.key + row + tx), first);
     if (mixed) other = other | load<I32x8>(mixed + row + tx);
   }
-  if (any(other)) return false;
-  const ShadeTriangle& t = records[keyChunk(key)][keyLocal(key)];
-  const uint32_t rgba = solids.of(key, t);
-  if (rgba == kNoSolid) return false;
-  const Vec3x8 color = {splat(t.color[0].x), splat(t.color[0].y), splat(t.color[0].z)};
-  for (int tx = 0, g = 0; tx < tile.width; tx += 8, ++g) {
-    storeLinear(linear, tx, color);
-    solid[g] = rgba;
-  }
-  return true;
+  if (any(other)) return kNoSolid;
+  return solids.of(key, records[keyChunk(key)][keyLocal(key)]);
 }
 
 #if defined(TESSERA_LANES16)
@@ -236,15 +228,12 @@ TESSERA_LANES_INLINE uint32_t shadeSampledPairs(const TileVisibility& tile, int 
 // the one function of every path the compiler kept this loop's colours and masks on the stack,
 // and the plain frames' shading took 10% longer.
 template <bool kSampled>
-__attribute__((noinline)) bool shadePlainRow(const TileVisibility& tile, int ty,
+__attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
                                              const ShadeTriangle* const records[],
                                              const MsaaShading* msaa, FragmentQueue* queue,
                                              float linear[3][kTileSize],
                                              uint32_t solid[kTileSize / 8], SolidColours& solids) {
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
-  if (shadeSolidRow(tile, ty, records, kSampled ? msaa->tiles->mixed : nullptr, linear, solid,
-                    solids))
-    return true;
 #if defined(__AVX2__) && !defined(TESSERA_LANES16)
   // By the row's runs (row_runs.h) on AVX2; on AVX-512 the groups of several triangles two at a
   // time in sixteen lanes (shadeSeveralPairs) did better (the bunny at 1080p 6.7% faster).
@@ -256,7 +245,7 @@ __attribute__((noinline)) bool shadePlainRow(const TileVisibility& tile, int ty,
               storeLinear(linear, tx, color);
               solid[tx / 8] = kNoSolid;
             }))
-      return false;
+      return;
   }
 #endif
   const RowGroups groups = sortRowGroups(tile, ty, kSampled ? msaa->tiles->mixed : nullptr);
@@ -280,7 +269,7 @@ __attribute__((noinline)) bool shadePlainRow(const TileVisibility& tile, int ty,
   forEachGroup(groups.several, shade_several);
 #endif
   if constexpr (kSampled) {
-    if (groups.sampled == 0) return false;
+    if (groups.sampled == 0) return;
     const auto shade_queued = [&](int first, int count) __attribute__((always_inline)) {
       shadeQueuedPlain(records, *queue, first, count, tile.x0, tile.y0 + ty, linear);
     };
@@ -315,7 +304,6 @@ __attribute__((noinline)) bool shadePlainRow(const TileVisibility& tile, int ty,
     finishQueue(*queue, shade_queued);
     finishMixedRow(*msaa, tile, ty, linear);
   }
-  return false;
 }
 
 // A row's groups of untextured Phong triangles whose lights wait for the row's end
@@ -542,11 +530,15 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
   AlbedoReads albedo;
   for (int ty = 0; ty < tile.height; ++ty) {
     if (plain) {
-      if (shadePlainRow<kSampled>(tile, ty, records, msaa, queue ? &*queue : nullptr, linear, solid,
-                                  solids))
-        storeSolidRow(tile, ty, solid[0], out);
-      else
-        encodeShadedRow(tile, ty, linear, solid, background, out);
+      const uint32_t rgba =
+          solidRowRgba(tile, ty, records, kSampled ? msaa->tiles->mixed : nullptr, solids);
+      if (rgba != kNoSolid) {
+        storeSolidRow(tile, ty, rgba, out);
+        continue;
+      }
+      shadePlainRow<kSampled>(tile, ty, records, msaa, queue ? &*queue : nullptr, linear, solid,
+                              solids);
+      encodeShadedRow(tile, ty, linear, solid, background, out);
     } else {
       shadeRow<kSampled>(tile, ty, records, extras, lights, want_normals, textured, lit_alike, msaa,
                          queue ? &*queue : nullptr, albedo, linear, out);

@@ -266,13 +266,18 @@ TESSERA_LANES_INLINE uint32_t solidRgba(const ShadeTriangle& t) {
   return static_cast<uint32_t>(lane(encodeRgba8x8(splat(c.x), splat(c.y), splat(c.z)), 0));
 }
 
-// Row ty of the tile, every pixel covered by one solid triangle (shadeSolidRow), as `rgba`: what
+// Where row ty of the tile's colour goes: the frame's row at out.direct, or out.rgba's.
+TESSERA_LANES_INLINE uint32_t* shadedRow(ShadedTile& out, int ty) {
+  return out.direct ? out.direct + static_cast<size_t>(ty) * out.direct_stride
+                    : out.rgba + ty * kTileSize;
+}
+
+// Row ty of the tile, every pixel covered by one solid triangle (solidRowRgba), as `rgba`: what
 // encodeShadedRow writes for it without reading the keys and marks. The row's width is a whole
 // number of groups of eight, and of sixteen where it goes straight to the frame.
 TESSERA_LANES_INLINE void storeSolidRow(const TileVisibility& tile, int ty, uint32_t rgba,
                                         ShadedTile& out) {
-  uint32_t* const row = out.direct ? out.direct + static_cast<size_t>(ty) * out.direct_stride
-                                   : out.rgba + ty * kTileSize;
+  uint32_t* const row = shadedRow(out, ty);
   const I32x8 fill = splat(static_cast<int32_t>(rgba));
   for (int tx = 0; tx < tile.width; tx += 8) store(row + tx, fill);
 }
@@ -283,8 +288,7 @@ TESSERA_LANES_INLINE void storeSolidRow(const TileVisibility& tile, int ty, uint
 TESSERA_LANES_INLINE void encodeShadedRow(const TileVisibility& tile, int ty,
                                           const float linear[3][kTileSize], const uint32_t solid[],
                                           uint32_t background, ShadedTile& out) {
-  uint32_t* const row = out.direct ? out.direct + static_cast<size_t>(ty) * out.direct_stride
-                                   : out.rgba + ty * kTileSize;
+  uint32_t* const row = shadedRow(out, ty);
 #if defined(TESSERA_LANES16)
   const I32x16 fill = splat16(static_cast<int32_t>(background));  // the encode's width
   // Sixteen pixels a step (the rows are kTileSize wide, a multiple of 16).
