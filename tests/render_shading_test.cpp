@@ -294,6 +294,8 @@ TEST(Shading, LambertWithAmbientInLinearLight) {
 // setupShadeCorners. The colours must be the same bits on every instruction set: front faces of a
 // sphere with vertex colours, the inside of a larger open one drawn from within (back faces,
 // lit from the viewer's side), lights from in front, behind and the side, and an ambient term.
+// The kernel also forms the face normals: the small sphere is turned and scaled unevenly, a
+// mirrored copy of it (winding sign -1) stands beside it, and batches span the objects' ends.
 TEST(Shading, FlatFacesLitEightAtATimeGiveTheScalarSetupsColours) {
   Scene scene;
   scene.camera.position = {0.3f, 0.2f, 0.4f};  // inside the larger sphere
@@ -312,14 +314,20 @@ TEST(Shading, FlatFacesLitEightAtATimeGiveTheScalarSetupsColours) {
   front.mesh = std::make_shared<Mesh>(inner);
   front.shading = Shading::kFlat;
   front.materials[0].base_color = {0.9f, 0.6f, 0.7f, 1.0f};
+  front.transform.rotation = quat::fromAxisAngle(normalize(float3{1, 2, 0.5f}), 0.7f);
+  front.transform.scale = {1.3f, 0.7f, 1.0f};
   scene.objects.push_back(front);
+  Object mirrored = front;
+  mirrored.transform.scale = {-0.8f, 0.9f, 1.1f};
+  mirrored.transform.translation = {0.25f, -0.1f, -0.1f};
+  scene.objects.push_back(mirrored);
   Object around;
   around.mesh = std::make_shared<Mesh>(makeUvSphere(24, 12));
   around.shading = Shading::kFlat;
   around.cull = CullMode::kNone;
   scene.objects.push_back(around);
   const size_t inner_triangles = inner.triangleCount();
-  size_t back_facing = 0;
+  size_t back_facing = 0, turned = 0, mirror = 0;
   for (SimdLevel level :
        {SimdLevel::kScalar, SimdLevel::kSse2, SimdLevel::kAvx2, SimdLevel::kAvx512}) {
     RenderOptions options;
@@ -330,10 +338,17 @@ TEST(Shading, FlatFacesLitEightAtATimeGiveTheScalarSetupsColours) {
     options.normals = true;
     const Frame scalar = renderAt(scene, options, level, 2);
     EXPECT_EQ(lanes.color, scalar.color) << int(level);
-    // Pixels of the larger sphere: all of them its back faces.
-    back_facing = static_cast<size_t>(std::ranges::count_if(
-        lanes.triangle_id, [&](uint32_t id) { return id > inner_triangles; }));
+    const auto pixels_of = [&](size_t object) {
+      return static_cast<size_t>(std::ranges::count_if(lanes.triangle_id, [&](uint32_t id) {
+        return id != kNoTriangle && (id - 1) / inner_triangles == object;
+      }));
+    };
+    turned = pixels_of(0);
+    mirror = pixels_of(1);
+    back_facing = pixels_of(2) + pixels_of(3) + pixels_of(4);  // the larger sphere's, all back
   }
+  EXPECT_GT(turned, 100u);
+  EXPECT_GT(mirror, 100u);
   EXPECT_GT(back_facing, 1000u) << "the larger sphere's inside was not drawn";
 }
 

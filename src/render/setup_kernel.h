@@ -9,6 +9,7 @@
 
 #include "render/setup.h"
 #include "render/simd_lanes.h"
+#include "render/vec3_lanes.h"
 
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
@@ -189,15 +190,51 @@ bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenV
   return true;
 }
 
+// The world face normals (not normalized) of the batch's flat faces, as chunk_setup.cpp's
+// faceNormal forms each (the same bits): normal_matrix * cross(p1 - p0, p2 - p0) * winding, the
+// matrix times a vector column by column (mat.h). One object's matrix in every flat lane is
+// broadcast; lanes of several objects (a batch across an object's end) read each lane's.
+TESSERA_LANES_INLINE Vec3x8 flatFaceNormals(const SetupBatch& batch) {
+  const auto corner = [&](int k, int axis) { return load<F32x8>(batch.corner[k][axis]); };
+  const F32x8 ax = corner(1, 0) - corner(0, 0), ay = corner(1, 1) - corner(0, 1),
+              az = corner(1, 2) - corner(0, 2);
+  const F32x8 bx = corner(2, 0) - corner(0, 0), by = corner(2, 1) - corner(0, 1),
+              bz = corner(2, 2) - corner(0, 2);
+  const F32x8 cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+  const int first = __builtin_ctz(batch.flat_lanes);
+  const float3x3* const shared = batch.normal_matrix[first];
+  bool one_matrix = true;
+  for (int l = 0; l < batch.count; ++l)
+    one_matrix &= !(batch.flat_lanes >> l & 1u) || batch.normal_matrix[l] == shared;
+  F32x8 m[3][3];  // m[column][row]
+  if (one_matrix) {
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) m[c][r] = splat(shared->col[c][r]);
+  } else {
+    alignas(32) float lanes[3][3][SetupBatch::kLanes];
+    for (int l = 0; l < SetupBatch::kLanes; ++l) {
+      const float3x3* const own = batch.flat_lanes >> l & 1u ? batch.normal_matrix[l] : shared;
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) lanes[c][r][l] = own->col[c][r];
+    }
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) m[c][r] = load<F32x8>(lanes[c][r]);
+  }
+  const F32x8 w = load<F32x8>(batch.winding);
+  return {(m[0][0] * cx + m[1][0] * cy + m[2][0] * cz) * w,
+          (m[0][1] * cx + m[1][1] * cy + m[2][1] * cz) * w,
+          (m[0][2] * cx + m[1][2] * cy + m[2][2] * cz) * w};
+}
+
 // The batch's flat faces (SetupBatch::flat_lanes) lit as setupShadeCorners lights a flat face,
-// operation for operation (the same bits): the face normal normalized (vec.h: zero where its
-// length is not positive) and flipped, +Z times the flip where that leaves it zero; the ambient
-// plus each directional light's radiance times its cosine where that is positive; each corner's
-// albedo times that irradiance.
+// operation for operation (the same bits): the face normal (flatFaceNormals) normalized (vec.h:
+// zero where its length is not positive) and flipped, +Z times the flip where that leaves it zero;
+// the ambient plus each directional light's radiance times its cosine where that is positive;
+// each corner's albedo times that irradiance.
 TESSERA_LANES_INLINE void lightFlatFaces(SetupBatch& batch) {
   const LightRig& rig = *batch.lights;
-  const F32x8 fx = load<F32x8>(batch.face_normal[0]), fy = load<F32x8>(batch.face_normal[1]),
-              fz = load<F32x8>(batch.face_normal[2]), flip = load<F32x8>(batch.flip);
+  const Vec3x8 face = flatFaceNormals(batch);
+  const F32x8 fx = face.x, fy = face.y, fz = face.z, flip = load<F32x8>(batch.flip);
   const F32x8 zero = splat(0.0f);
   const F32x8 length = squareRoot(fx * fx + fy * fy + fz * fz);
   const I32x8 positive = lessThan(zero, length);
