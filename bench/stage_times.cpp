@@ -99,6 +99,8 @@ int main(int argc, char** argv) {
   // TESSERA_NOCULL=1: no frustum or cluster culling before the vertex stage, to measure what it
   // costs or saves in the same build.
   options.frustum_cull = std::getenv("TESSERA_NOCULL") == nullptr;
+  // TESSERA_NOKEEP=1: every frame's background filled again (RenderOptions::frame_kept off).
+  options.frame_kept = std::getenv("TESSERA_NOKEEP") == nullptr;
   if (*projection != Projection::kPerspective) {
     model::fitDistanceRange(b.scene.camera, b.bounds);
   }

@@ -518,6 +518,8 @@ int runBench(const std::vector<std::string>& args) {
   run.options.msaa = s.msaa;
   run.options.projection = s.camera.projectionMode();
   run.options.shadows.enabled = s.lights.shadows;
+  // The frames follow one another in one Frame, only read between them (as a turntable's).
+  run.options.frame_kept = true;
   applyPointSettings(s.points, run.options);
   if (!s.json) printHeader(run);
   for (bench::BenchScene& b : *scenes) {

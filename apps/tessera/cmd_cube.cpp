@@ -142,6 +142,7 @@ Expected<void> renderTurn(const CubeSettings& s, Projection projection, long lon
   options.depth = false;
   options.ids = false;
   options.projection = projection;
+  options.frame_kept = true;  // the loop below only reads the frame between renders
   Accumulator accumulator;
   Frame frame;
   Progress progress("cube: frame", static_cast<int>(frame_count), s.progress);

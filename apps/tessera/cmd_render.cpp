@@ -223,6 +223,7 @@ RenderOptions renderOptions(const RenderSettings& s, bool diagnostics, SamplingS
   options.coverage = s.aov == "coverage";
   options.diagnostics = diagnostics;
   options.projection = s.camera.projectionMode();
+  options.frame_kept = true;  // renderFrames only reads the frame between renders
   if (s.visibility == "painter") options.visibility = Visibility::kPainter;
   options.edges.show = s.edges;
   options.shadows.enabled = s.lights.shadows;

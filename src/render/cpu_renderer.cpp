@@ -258,7 +258,8 @@ void CpuRenderer::State::renderTile(const Scene& scene, const RenderOptions& opt
   const int width = std::min(kTileSize, options.width - x0);
   const int height = std::min(kTileSize, options.height - y0);
   if (tile_empty[tile_index]) {
-    resolveEmptyRun(grid, tile_empty, tile, pass.background, pass.stream_background, frame);
+    if (tile_fill[tile_index])
+      resolveEmptyRun(grid, tile_fill, tile, pass.background, pass.stream_background, frame);
     return;
   }
   if (options.msaa > 1) {
@@ -279,6 +280,38 @@ void CpuRenderer::State::renderTile(const Scene& scene, const RenderOptions& opt
   if (options.coverage) resolveCoverage(visibility, nullptr, 1, frame);
   const TileVisibility* const layers[1] = {&visibility};
   blendTile(options, tile, worker, layers, frame);
+}
+
+namespace {
+
+// The frame's buffers, as KeptFrame holds them.
+std::array<std::pair<const void*, size_t>, 5> buffersOf(const Frame& frame) {
+  return {{{frame.color.data(), frame.color.size()},
+           {frame.depth.data(), frame.depth.size()},
+           {frame.triangle_id.data(), frame.triangle_id.size()},
+           {frame.normal.data(), frame.normal.size()},
+           {frame.coverage.data(), frame.coverage.size()}}};
+}
+
+}  // namespace
+
+void CpuRenderer::State::chooseFills(bool frame_kept, const Frame& frame, uint32_t background) {
+  tile_fill = tile_empty;
+  const bool same = kept.valid && kept.buffers == buffersOf(frame) &&
+                    kept.background == background && kept.clean.size() == tile_fill.size();
+  kept.valid = false;  // until recordKept: nothing is known of a frame left half drawn
+  if (!frame_kept || !same) return;
+  for (size_t t = 0; t < tile_fill.size(); ++t)
+    tile_fill[t] &= static_cast<uint8_t>(!kept.clean[t]);
+}
+
+void CpuRenderer::State::recordKept(const Frame& frame, uint32_t background, bool only_tiles) {
+  if (!only_tiles) return;
+  // Every empty tile holds the background: filled now, or kept from the last frame.
+  kept.buffers = buffersOf(frame);
+  kept.background = background;
+  kept.clean = tile_empty;
+  kept.valid = true;
 }
 
 void CpuRenderer::State::recordStats(const Geometry& geometry, double tiles_ms, double lines_ms,
@@ -316,6 +349,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   const bool painter = options.visibility == Visibility::kPainter;
   if (options.projection != Projection::kPerspective) {
     TESSERA_CHECK(!painter) << "the painter's algorithm draws the perspective projection only";
+    s.kept.valid = false;  // the rays write every pixel; their frame is not kept
     s.rays.render(scene, options, frame, s.pool, s.kernels, s.stats, s.shadows);
     if (options.diagnostics)
       s.diagnostics.run(s.pool, {}, 0, scene, TileGrid::forViewport(options.width, options.height),
@@ -357,6 +391,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
   pass.background = packSrgba8(scene.background);
   pass.stream = streamsFrame(frame.pixelCount(), triangles_setup);
   pass.stream_background = streamsBackground(frame.pixelCount(), triangles_setup);
+  s.chooseFills(options.frame_kept, frame, pass.background);
   s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile, int worker) {
     s.renderTile(scene, options, grid, pass, static_cast<int>(tile), worker, frame);
   });
@@ -372,6 +407,9 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
                       PointCamera::perspective(view_projection, scene.camera.view()), sampled,
                       s.pool, frame);
   if (draws_lines) s.line_pass.draw(scene, s.objects, options, view_projection, sampled, frame);
+  s.recordKept(
+      frame, pass.background,
+      !draws_points && !draws_lines && !needsComposite(scene, options) && !options.diagnostics);
 
   s.recordStats(geometry, elapsedMs(t_setup, t_tiles), elapsedMs(t_tiles, Clock::now()),
                 triangle_total);

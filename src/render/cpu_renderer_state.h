@@ -2,7 +2,9 @@
 // (cpu_renderer.cpp) and the setup stage (chunk_setup.cpp).
 #pragma once
 
+#include <array>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <tessera/render/cpu_renderer.h>
@@ -59,8 +61,18 @@ struct CpuRenderer::State {
   std::vector<std::unique_ptr<render::SampleTiles>> sampled;   // one per worker, made for MSAA
   std::vector<render::SampleShift> shifts;                     // this frame's sample layers
   std::vector<uint8_t> tile_empty;                             // this frame's: no triangle binned
-  render::PainterOrder painter;                                // RenderOptions::visibility kPainter
-  render::BlendOrder blend;                                    // alphaMode BLEND, this frame's
+  std::vector<uint8_t> tile_fill;  // this frame's empty tiles that are filled (chooseFills)
+  // What the last render left in its frame (RenderOptions::frame_kept): the buffers' addresses
+  // and sizes, the background, and per tile whether it holds the background and nothing else.
+  struct KeptFrame {
+    std::array<std::pair<const void*, size_t>, 5> buffers{};
+    uint32_t background = 0;
+    std::vector<uint8_t> clean;
+    bool valid = false;
+  };
+  KeptFrame kept;
+  render::PainterOrder painter;  // RenderOptions::visibility kPainter
+  render::BlendOrder blend;      // alphaMode BLEND, this frame's
   std::vector<std::unique_ptr<render::BlendTile>> blend_tiles;  // one per worker
   render::LinePass line_pass;
   render::PointPass point_pass;
@@ -70,6 +82,12 @@ struct CpuRenderer::State {
   render::LightRig lights;              // this frame's
   render::ShadowMaps shadows;           // RenderOptions::shadows, this frame's
 
+  // tile_fill: the empty tiles, less those that a render promised the frame as kept
+  // (RenderOptions::frame_kept) left holding `background` last time.
+  void chooseFills(bool frame_kept, const Frame& frame, uint32_t background);
+  // After the frame: its empty tiles hold `background` and nothing else where `only_tiles` (no
+  // pass after the tile stage drew into the frame).
+  void recordKept(const Frame& frame, uint32_t background, bool only_tiles);
   // With MSAA: this frame's sample layers (`shifts`), the centre's last when `with_centre`.
   void prepareSampleLayers(const RenderOptions& options, bool with_centre);
   // Every object's triangle base, the transforms of those that may draw (of every object with
