@@ -564,7 +564,10 @@ def main():
       "and nothing is encoded or written. The model turns 2 degrees about its up axis every "
       "frame (the fill scene about the view axis).")
     w("- tessera renders colour only (no depth, id or normal AOVs, no lines): clear, vertex, "
-      "clip, setup, bin, raster, shade and the sRGB resolve into `Frame::color`.")
+      "clip, setup, bin, raster, shade and the sRGB resolve into `Frame::color`. Its frames "
+      "follow one another in one `Frame`, as a turntable's do (`RenderOptions::frame_kept`): "
+      "tiles that were background in the last frame and still are keep their pixels instead of "
+      "being filled again; the image is that of a frame rendered afresh.")
     w("- llvmpipe draws with GLSL 1.20 shaders that implement tessera's lighting (Lambert from "
       "directional, point and spot lights plus ambient; Gouraud per vertex, smooth per fragment, flat from face "
       "normals in a de-indexed copy of the mesh) and encode sRGB in the fragment shader; "
