@@ -79,7 +79,7 @@ struct RenderOptions {
   // in it: nothing wrote to its buffers since (the frames of a sequence rendered into one Frame
   // and only read between renders). The CPU renderer then leaves the tiles that were background
   // in both renders as they are instead of filling them again, with the same image (the fill of a
-  // 3840x2160 frame's background is some 30 MB of stores). Other backends write every pixel.
+  // 3840x2160 frame's background: up to 33 MB of stores). Other backends write every pixel.
   bool frame_kept = false;
 };
 
