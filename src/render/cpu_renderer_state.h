@@ -82,8 +82,9 @@ struct CpuRenderer::State {
   render::LightRig lights;              // this frame's
   render::ShadowMaps shadows;           // RenderOptions::shadows, this frame's
 
-  // tile_fill: the empty tiles, less those that a render promised the frame as kept
-  // (RenderOptions::frame_kept) left holding `background` last time.
+  // tile_fill: this frame's empty tiles, less, where the caller promises the frame is as the
+  // last render left it (RenderOptions::frame_kept), those that render left holding
+  // `background` in the same buffers.
   void chooseFills(bool frame_kept, const Frame& frame, uint32_t background);
   // After the frame: its empty tiles hold `background` and nothing else where `only_tiles` (no
   // pass after the tile stage drew into the frame).
