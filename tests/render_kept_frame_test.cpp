@@ -70,7 +70,8 @@ TEST(KeptFrame, ASequenceGivesTheImagesOfFramesRenderedAfresh) {
 // A pixel scribbled between renders (breaking the promise on purpose) shows whether the renderer
 // filled its tile: left where the caller promised and the tile was background in both renders;
 // filled without the promise, with another background, after a render that drew lines over the
-// frame, after a panorama (the ray renderer's frame) and in another Frame.
+// frame, after a panorama (the ray renderer's frame), in another Frame and at another width and
+// height of as many pixels.
 TEST(KeptFrame, BackgroundTilesAreLeftOnlyUnderThePromise) {
   Scene scene = cubeScene(0);
   CpuRenderer renderer(2);
@@ -111,4 +112,13 @@ TEST(KeptFrame, BackgroundTilesAreLeftOnlyUnderThePromise) {
   renderer.render(scene, kept_options, other);
   EXPECT_FALSE(scribbled(kept_options)) << "after a render into another frame";
   EXPECT_TRUE(scribbled(kept_options));
+
+  // 128x256 holds as many pixels and tiles as 256x128, so the frame keeps its buffers; tile 0 is
+  // background in both, but its pixels lie elsewhere in them.
+  RenderOptions turned = kept_options;
+  turned.width = 128;
+  turned.height = 256;
+  frame.color[0] = kScribble;
+  renderer.render(scene, turned, frame);
+  EXPECT_NE(frame.color[0], kScribble) << "after a frame of the same pixels turned";
 }

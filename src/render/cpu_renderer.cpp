@@ -297,8 +297,8 @@ std::array<std::pair<const void*, size_t>, 5> buffersOf(const Frame& frame) {
 
 void CpuRenderer::State::chooseFills(bool frame_kept, const Frame& frame, uint32_t background) {
   tile_fill = tile_empty;
-  const bool same = kept.valid && kept.buffers == buffersOf(frame) &&
-                    kept.background == background && kept.clean.size() == tile_fill.size();
+  const bool same = kept.valid && kept.buffers == buffersOf(frame) && kept.width == frame.width &&
+                    kept.height == frame.height && kept.background == background;
   kept.valid = false;  // until recordKept: nothing is known of a frame left half drawn
   if (!frame_kept || !same) return;
   for (size_t t = 0; t < tile_fill.size(); ++t)
@@ -309,6 +309,8 @@ void CpuRenderer::State::recordKept(const Frame& frame, uint32_t background, boo
   if (!only_tiles) return;
   // Every empty tile holds the background: filled now, or kept from the last frame.
   kept.buffers = buffersOf(frame);
+  kept.width = frame.width;
+  kept.height = frame.height;
   kept.background = background;
   kept.clean = tile_empty;
   kept.valid = true;

@@ -63,9 +63,11 @@ struct CpuRenderer::State {
   std::vector<uint8_t> tile_empty;                             // this frame's: no triangle binned
   std::vector<uint8_t> tile_fill;  // this frame's empty tiles that are filled (chooseFills)
   // What the last render left in its frame (RenderOptions::frame_kept): the buffers' addresses
-  // and sizes, the background, and per tile whether it holds the background and nothing else.
+  // and sizes, the frame's width and height (a frame turned to as many pixels keeps its buffers),
+  // the background, and per tile whether it holds the background and nothing else.
   struct KeptFrame {
     std::array<std::pair<const void*, size_t>, 5> buffers{};
+    int width = 0, height = 0;
     uint32_t background = 0;
     std::vector<uint8_t> clean;
     bool valid = false;
