@@ -244,8 +244,7 @@ void ChunkSetup::drawWhole(const ObjectSetup& o, size_t t, const uint32_t idx[3]
     setupFlatCorners(o.ctx, o.vertices, idx, orientation_, id, o.material(local), shade);
     const float3 corners[3] = {o.mesh.positions[idx[0]], o.mesh.positions[idx[1]],
                                o.mesh.positions[idx[2]]};
-    batch_.markFlat(corners, o.xf.normal_matrix, o.xf.winding_sign,
-                    orientation_.back_facing ? -1.0f : 1.0f, lights_);
+    batch_.markFlat(corners, o.xf, orientation_.back_facing ? -1.0f : 1.0f, lights_);
   } else if (o.stages_extras) {
     // Extras that hold normals wait for the flush with the batch (writeExtras). Such objects are
     // never PlainGouraud (it wants Gouraud without the normal AOV).

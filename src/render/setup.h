@@ -21,6 +21,8 @@
 
 namespace tessera::render {
 
+struct ObjectTransforms;  // vertex.h
+
 // A vertex after the perspective divide and the viewport, snapped to the sub-pixel grid.
 struct ScreenVertex {
   int32_t x, y;  // window position in 1/256 pixel, y down
@@ -517,15 +519,14 @@ struct alignas(64) SetupBatch {
   // Flat faces the kernel lights (setupFlatCorners): lane l's bit; what its world face normal
   // (not normalized) is made of, which the kernel forms eight at a time as chunk_setup.cpp's
   // faceNormal does: the corners' model-space positions (corner[k][axis]: corner k in mesh
-  // order), the object's normal matrix and the sign of its winding; the facing's flip (1, or -1
-  // for a drawn back face), and the frame's rig, whose lights are all directional. The lane's
-  // record holds the corners' albedos, which the kernel multiplies by the face's irradiance, as
-  // setupShadeCorners lights a flat face.
+  // order) and the object's transforms (its normal matrix and winding sign); the facing's flip
+  // (1, or -1 for a drawn back face), and the frame's rig, whose lights are all directional. The
+  // lane's record holds the corners' albedos, which the kernel multiplies by the face's
+  // irradiance, as setupShadeCorners lights a flat face.
   uint32_t flat_lanes = 0;
   const LightRig* lights = nullptr;
   alignas(32) float corner[3][3][kLanes] = {};
-  const float3x3* normal_matrix[kLanes] = {};
-  alignas(32) float winding[kLanes] = {};
+  const ObjectTransforms* object[kLanes] = {};
   alignas(32) float flip[kLanes] = {};
 
   // The shading record of the lane the next push fills.
@@ -544,16 +545,15 @@ struct alignas(64) SetupBatch {
     return true;
   }
   // Marks the lane the next push fills as a flat face to light: corners p[0..2] (model space, mesh
-  // order) of an object whose normal matrix and winding sign are `m` and `winding_sign`.
-  void markFlat(const float3 p[3], const float3x3& m, float winding_sign, float facing_flip,
+  // order) of the object of transforms `xf`.
+  void markFlat(const float3 p[3], const ObjectTransforms& xf, float facing_flip,
                 const LightRig& rig) {
     for (int k = 0; k < 3; ++k) {
       corner[k][0][count] = p[k].x;
       corner[k][1][count] = p[k].y;
       corner[k][2][count] = p[k].z;
     }
-    normal_matrix[count] = &m;
-    winding[count] = winding_sign;
+    object[count] = &xf;
     flip[count] = facing_flip;
     flat_lanes |= 1u << count;
     lights = &rig;
@@ -572,8 +572,6 @@ struct alignas(64) SetupBatch {
       input[l] = input[0];
       for (int k = 0; k < 3; ++k)
         for (int axis = 0; axis < 3; ++axis) corner[k][axis][l] = corner[k][axis][0];
-      normal_matrix[l] = normal_matrix[0];
-      winding[l] = winding[0];
       flip[l] = flip[0];
     }
   }

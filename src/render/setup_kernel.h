@@ -10,6 +10,7 @@
 #include "render/setup.h"
 #include "render/simd_lanes.h"
 #include "render/vec3_lanes.h"
+#include "render/vertex.h"
 
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
@@ -191,9 +192,9 @@ bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenV
 }
 
 // The world face normals (not normalized) of the batch's flat faces, as chunk_setup.cpp's
-// faceNormal forms each (the same bits): normal_matrix * cross(p1 - p0, p2 - p0) * winding, the
-// matrix times a vector column by column (mat.h). One object's matrix in every flat lane is
-// broadcast; lanes of several objects (a batch across an object's end) read each lane's.
+// faceNormal forms each (the same bits): normal_matrix * cross(p1 - p0, p2 - p0) * winding_sign,
+// the matrix times a vector column by column (mat.h). One object's transforms in every flat lane
+// are broadcast; lanes of several objects (a batch across an object's end) read each lane's.
 TESSERA_LANES_INLINE Vec3x8 flatFaceNormals(const SetupBatch& batch) {
   const auto corner = [&](int k, int axis) { return load<F32x8>(batch.corner[k][axis]); };
   const F32x8 ax = corner(1, 0) - corner(0, 0), ay = corner(1, 1) - corner(0, 1),
@@ -201,26 +202,28 @@ TESSERA_LANES_INLINE Vec3x8 flatFaceNormals(const SetupBatch& batch) {
   const F32x8 bx = corner(2, 0) - corner(0, 0), by = corner(2, 1) - corner(0, 1),
               bz = corner(2, 2) - corner(0, 2);
   const F32x8 cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
-  const int first = __builtin_ctz(batch.flat_lanes);
-  const float3x3* const shared = batch.normal_matrix[first];
-  bool one_matrix = true;
+  // The other lanes (not flat, or past the count) take the first flat lane's object.
+  const ObjectTransforms* const shared = batch.object[__builtin_ctz(batch.flat_lanes)];
+  bool one_object = true;
   for (int l = 0; l < batch.count; ++l)
-    one_matrix &= !(batch.flat_lanes >> l & 1u) || batch.normal_matrix[l] == shared;
-  F32x8 m[3][3];  // m[column][row]
-  if (one_matrix) {
+    one_object &= !(batch.flat_lanes >> l & 1u) || batch.object[l] == shared;
+  F32x8 m[3][3], w;  // m[column][row]
+  if (one_object) {
     for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 3; ++r) m[c][r] = splat(shared->col[c][r]);
+      for (int r = 0; r < 3; ++r) m[c][r] = splat(shared->normal_matrix.col[c][r]);
+    w = splat(shared->winding_sign);
   } else {
-    alignas(32) float lanes[3][3][SetupBatch::kLanes];
+    alignas(32) float lanes[10][SetupBatch::kLanes];  // the matrix by columns, then the sign
     for (int l = 0; l < SetupBatch::kLanes; ++l) {
-      const float3x3* const own = batch.flat_lanes >> l & 1u ? batch.normal_matrix[l] : shared;
+      const ObjectTransforms& own = batch.flat_lanes >> l & 1u ? *batch.object[l] : *shared;
       for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) lanes[c][r][l] = own->col[c][r];
+        for (int r = 0; r < 3; ++r) lanes[3 * c + r][l] = own.normal_matrix.col[c][r];
+      lanes[9][l] = own.winding_sign;
     }
     for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 3; ++r) m[c][r] = load<F32x8>(lanes[c][r]);
+      for (int r = 0; r < 3; ++r) m[c][r] = load<F32x8>(lanes[3 * c + r]);
+    w = load<F32x8>(lanes[9]);
   }
-  const F32x8 w = load<F32x8>(batch.winding);
   return {(m[0][0] * cx + m[1][0] * cy + m[2][0] * cz) * w,
           (m[0][1] * cx + m[1][1] * cy + m[2][1] * cz) * w,
           (m[0][2] * cx + m[1][2] * cy + m[2][2] * cz) * w};
