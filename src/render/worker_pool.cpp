@@ -2,11 +2,17 @@
 
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
+#include <string_view>
 
 #include <tessera/base/check.h>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
+#endif
+#if defined(__linux__)
+#include <pthread.h>
+#include <sched.h>
 #endif
 
 namespace tessera::render {
@@ -39,6 +45,44 @@ bool spinUntil(Ready&& ready) {
   }
 }
 
+// The CPUs of a pool of `total` threads: the caller's current one first (left to the caller,
+// which is not pinned), then one for each worker thread, from the CPUs the process may use.
+// Empty (no thread pinned) where it may use fewer than `total`, with TESSERA_PIN_WORKERS=0, or
+// off Linux.
+std::vector<int> poolCpus(int total) {
+#if defined(__linux__)
+  const char* off = std::getenv("TESSERA_PIN_WORKERS");
+  if (total < 2 || (off != nullptr && std::string_view(off) == "0")) return {};
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof allowed, &allowed) != 0) return {};
+  const int here = sched_getcpu();
+  std::vector<int> cpus;
+  if (here >= 0 && here < CPU_SETSIZE && CPU_ISSET(here, &allowed)) cpus.push_back(here);
+  for (int cpu = 0; cpu < CPU_SETSIZE && static_cast<int>(cpus.size()) < total; ++cpu)
+    if (CPU_ISSET(cpu, &allowed) && cpu != here) cpus.push_back(cpu);
+  if (static_cast<int>(cpus.size()) < total) return {};
+  return cpus;
+#else
+  (void)total;
+  return {};
+#endif
+}
+
+// Pins `thread` to `cpu`; false where the system refused.
+bool pinThread(std::thread& thread, int cpu) {
+#if defined(__linux__)
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(cpu, &one);
+  return pthread_setaffinity_np(thread.native_handle(), sizeof one, &one) == 0;
+#else
+  (void)thread;
+  (void)cpu;
+  return false;
+#endif
+}
+
 }  // namespace
 
 WorkerPool::WorkerPool(int workers) {
@@ -47,6 +91,25 @@ WorkerPool::WorkerPool(int workers) {
   blocks_ = std::vector<Block>(static_cast<size_t>(total));
   threads_.reserve(total - 1);
   for (int i = 1; i < total; ++i) threads_.emplace_back([this, i] { workerLoop(i); });
+  cpus_ = poolCpus(total);
+  for (size_t i = 0; i < threads_.size() && !cpus_.empty(); ++i)
+    if (!pinThread(threads_[i], cpus_[i + 1])) cpus_.clear();  // (a CPU gone): no more pinning
+}
+
+void WorkerPool::keepCallerApart() {
+#if defined(__linux__)
+  if (cpus_.empty()) return;
+  const int here = sched_getcpu();  // read without a system call (rseq or the vDSO)
+  if (here == cpus_[0] || here < 0) return;
+  for (size_t i = 1; i < cpus_.size(); ++i) {
+    if (cpus_[i] != here) continue;
+    // The caller moved onto worker i's CPU: the worker takes the one the caller left.
+    if (!pinThread(threads_[i - 1], cpus_[0])) return;
+    cpus_[i] = cpus_[0];
+    break;
+  }
+  cpus_[0] = here;
+#endif
 }
 
 WorkerPool::~WorkerPool() {
@@ -88,6 +151,7 @@ void WorkerPool::run(size_t count, void* context, Invoker invoker) {
     for (size_t i = 0; i < count; ++i) invoker(context, i, 0);
     return;
   }
+  keepCallerApart();
   TESSERA_CHECK(count <= UINT32_MAX) << "a parallel loop of " << count << " indices";
   {
     std::lock_guard<std::mutex> lock(mutex_);
