@@ -42,12 +42,12 @@ struct WorkerSeen {
   int ran_on = -1;
 };
 
-// A loop of four indices of 5 ms each: the caller takes the first two, worker 1 (woken within
-// microseconds) the last two, where it records what it sees.
+// A loop of two indices of 5 ms for each worker: worker 1 (woken within microseconds) starts on
+// its own two, where it records what it sees.
 WorkerSeen seenByWorker(render::WorkerPool& pool) {
   WorkerSeen seen;
   std::atomic<int> worker_runs{0};
-  pool.parallelFor(4, [&](size_t, int worker) {
+  pool.parallelFor(2 * static_cast<size_t>(pool.size()), [&](size_t, int worker) {
     if (worker == 1 && worker_runs.fetch_add(1) == 0) {
       seen.allowed = allowedCpus();
       seen.ran_on = sched_getcpu();
@@ -62,7 +62,10 @@ WorkerSeen seenByWorker(render::WorkerPool& pool) {
 class ScopedEnv {
  public:
   ScopedEnv(const char* name, const char* value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old, had_ = true;
+    if (const char* old = std::getenv(name)) {
+      old_ = old;
+      had_ = true;
+    }
     setenv(name, value, 1);
   }
   ~ScopedEnv() {

@@ -46,9 +46,9 @@ bool spinUntil(Ready&& ready) {
 }
 
 // The CPUs of a pool of `total` threads: the caller's current one first (left to the caller,
-// which is not pinned), then one for each worker thread, from the CPUs the process may use.
-// Empty (no thread pinned) where it may use fewer than `total`, with TESSERA_PIN_WORKERS=0, or
-// off Linux.
+// which is not pinned), then one for each worker thread, from the CPUs the caller may run on (the
+// workers' own, which they inherit). Empty (no thread pinned) where those are fewer than `total`,
+// with TESSERA_PIN_WORKERS=0, or off Linux.
 std::vector<int> poolCpus(int total) {
 #if defined(__linux__)
   const char* off = std::getenv("TESSERA_PIN_WORKERS");

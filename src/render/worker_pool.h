@@ -1,12 +1,12 @@
 // A fixed set of worker threads that run parallel-for loops. The calling thread takes part as
 // worker 0, so a pool of one runs everything inline.
 //
-// On Linux, where the process may use at least as many CPUs as the pool has threads, each worker
-// thread is pinned to a CPU of its own, one the caller is not on; the caller is left free, and a
-// loop that finds it on a worker's CPU gives that worker the CPU the caller left. Left to the
-// scheduler, on this project's 2-core virtual machines, a run of 2-worker frames was at times 2.5
-// times slower for spells of tens to hundreds of frames, and every few tens of frames one took
-// 6 ms more; pinned, neither happened (docs/perf.md, "Worker threads pinned").
+// On Linux, where the thread that makes the pool may run on at least as many CPUs as the pool has
+// threads, each worker thread is pinned to a CPU of its own, one the caller is not on; the caller
+// is left free, and a loop that finds it on a worker's CPU gives that worker the CPU the caller
+// left. Left to the scheduler, on this project's 2-core virtual machines, a run of 2-worker frames
+// was at times 2.5 times slower for spells of tens to hundreds of frames, and every few tens of
+// frames one took 6 ms more; pinned, neither happened (docs/perf.md, "Worker threads pinned").
 // TESSERA_PIN_WORKERS=0 turns it off.
 #pragma once
 
