@@ -115,19 +115,21 @@ bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenV
   }
   if (any(bad)) return false;
 
-  // Each lane's three screen vertices: rows of (x, y, z, inv_w) pairs, transposed into lanes.
-  F32x8 rows01[8], rows2[8];
+  // Each lane's three screen vertices, (x, y, z, inv_w) each, transposed into lanes: vertices 0
+  // and 1 a row a lane, vertex 2 of lanes l and l + 4 a row.
+  F32x8 rows01[8], rows2[4];
   alignas(32) int32_t code_any[8], code_all[8];
   for (int l = 0; l < CullGroup::kLanes; ++l) {
     const uint32_t i0 = indices[3 * l], i1 = indices[3 * l + 1], i2 = indices[3 * l + 2];
     rows01[l] = load2x4<F32x8>(&screen[i0], &screen[i1]);
-    rows2[l] = load2x4<F32x8>(&screen[i2], &screen[i2]);
     const uint32_t c0 = outcodes[i0], c1 = outcodes[i1], c2 = outcodes[i2];
     code_any[l] = static_cast<int32_t>(c0 | c1 | c2);
     code_all[l] = static_cast<int32_t>(c0 & c1 & c2);
   }
+  for (int l = 0; l < CullGroup::kLanes / 2; ++l)
+    rows2[l] = load2x4<F32x8>(&screen[indices[3 * l + 2]], &screen[indices[3 * (l + 4) + 2]]);
   transpose8x8(rows01);
-  transpose8x8(rows2);
+  transpose4x4Halves(rows2);  // rows2[k]: field k of vertex 2, lanes 0-3 then 4-7
 
   const I32x8 zero = splat(int32_t{0});
   const I32x8 any_code = load<I32x8>(code_any), all_code = load<I32x8>(code_all);
