@@ -97,14 +97,20 @@ template <RunCorners kCorners>
 TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
                                       const ShadeExtras* const extras[], RowRuns& runs,
                                       const Material*& material) {
-  // Each run's records; the empty runs' and those past the last filled in below.
+  // Each run's records; the empty runs' (listed in `empty`) and those past the last filled in
+  // below.
   const ShadeTriangle* lanes[kTileSize];
   const ShadeExtras* lane_extras[kTileSize];
+  int empty[kTileSize];
+  int empty_count = 0;
   int first = -1;
   material = nullptr;
   for (int r = 0; r < runs.count; ++r) {
     const uint32_t key = runs.key[r];
-    if (key == kEmptyKey) continue;
+    if (key == kEmptyKey) {
+      empty[empty_count++] = r;
+      continue;
+    }
     const ShadeTriangle* t = &records[keyChunk(key)][keyLocal(key)];
     lanes[r] = t;
     if (kCorners != RunCorners::kNone) lane_extras[r] = &extras[keyChunk(key)][keyLocal(key)];
@@ -124,11 +130,12 @@ TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
   if (first < 0) return true;  // no covered pixel: nothing to prepare
   material = lanes[first]->material;
   const int columns = runs.filledColumns();
-  for (int r = 0; r < columns; ++r) {
-    if (r < runs.count && runs.key[r] != kEmptyKey) continue;
+  const auto from_first = [&](int r) __attribute__((always_inline)) {
     lanes[r] = lanes[first];
     if (kCorners != RunCorners::kNone) lane_extras[r] = lane_extras[first];
-  }
+  };
+  for (int e = 0; e < empty_count; ++e) from_first(empty[e]);
+  for (int r = runs.count; r < columns; ++r) from_first(r);
   for (int c = 0; c < columns; c += 8) {
     loadPlainFieldsBy(
         lanes + c, [&](int k, F32x8 v)
