@@ -97,7 +97,7 @@ class ChunkSetup {
                                                        const PixelBox& box);
   void drawClipped(const ObjectSetup& o, size_t t, const uint32_t idx[3], uint32_t cut);
   __attribute__((always_inline)) inline void drawOne(const ObjectSetup& o, size_t t);
-  void drawCulled(const ObjectSetup& o, size_t local, size_t l);
+  void countCulled(const ObjectSetup& o, size_t local, size_t l);
 
   const std::vector<ObjectTransforms>& objects_;
   const FrustumCull& cull_;
@@ -346,11 +346,9 @@ void ChunkSetup::drawOne(const ObjectSetup& o, size_t t) {
   drawWhole(o, t, idx, area, box);
 }
 
-// Triangle `l` of the cull group at `local`, culled by the kernel: counted, and why when the chunk
-// counts the reasons.
-void ChunkSetup::drawCulled(const ObjectSetup& o, size_t local, size_t l) {
-  ++chunk_.culled;
-  if (!chunk_.count_reasons) return;
+// Why triangle `l` of the cull group at `local` was culled by the kernel, counted (for a chunk that
+// counts the reasons).
+void ChunkSetup::countCulled(const ObjectSetup& o, size_t local, size_t l) {
   const uint32_t* idx = &o.mesh.indices[(local + l) * 3];
   countCullReason(o.ctx, o.outcodes[idx[0]], o.outcodes[idx[1]], o.outcodes[idx[2]],
                   o.vertices.screen[idx[0]], o.vertices.screen[idx[1]], o.vertices.screen[idx[2]],
@@ -375,11 +373,17 @@ void ChunkSetup::drawObject(size_t object_index, size_t t, size_t stop) {
         drawOne(o, t++);
         continue;
       }
-      for (size_t l = 0; l < kGroup; ++l) {
-        if (group.kind[l] == CullGroup::kCulled) {
-          drawCulled(o, local, l);
-          continue;
-        }
+      // The lanes the kernel kept, by their bits: a branch per lane on its kind missed wherever
+      // the faces turned from the camera and back.
+      unsigned kept = 0;
+      for (size_t l = 0; l < kGroup; ++l)
+        kept |= static_cast<unsigned>(group.kind[l] != CullGroup::kCulled) << l;
+      chunk_.culled += kGroup - static_cast<size_t>(__builtin_popcount(kept));
+      if (chunk_.count_reasons)
+        for (size_t l = 0; l < kGroup; ++l)
+          if (!(kept >> l & 1u)) countCulled(o, local, l);
+      for (; kept != 0; kept &= kept - 1) {
+        const size_t l = static_cast<size_t>(__builtin_ctz(kept));
         const uint32_t* idx = &o.mesh.indices[(local + l) * 3];
         if (group.kind[l] == CullGroup::kClip) {
           drawClipped(o, t + l, idx, static_cast<uint32_t>(group.cut[l]));
