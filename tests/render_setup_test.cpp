@@ -141,6 +141,7 @@ TEST(Raster, CullKernelMatchesThePerTriangleChecks) {
             SCOPED_TRACE(testing::Message()
                          << isaName(isa) << " cull " << static_cast<int>(cull) << " reach " << reach
                          << " group " << group << " lane " << l);
+            EXPECT_EQ((out.kept >> l & 1u) != 0, out.kind[l] != CullGroup::kCulled);
             if (((c0 | c1 | c2) & kNonFinite) || (c0 & c1 & c2 & kRejectPlanes)) {
               EXPECT_EQ(out.kind[l], CullGroup::kCulled);
               ++decided[0];

@@ -375,9 +375,7 @@ void ChunkSetup::drawObject(size_t object_index, size_t t, size_t stop) {
       }
       // The lanes the kernel kept, by their bits: a branch per lane on its kind missed wherever
       // the faces turned from the camera and back.
-      unsigned kept = 0;
-      for (size_t l = 0; l < kGroup; ++l)
-        kept |= static_cast<unsigned>(group.kind[l] != CullGroup::kCulled) << l;
+      unsigned kept = group.kept;
       chunk_.culled += kGroup - static_cast<size_t>(__builtin_popcount(kept));
       if (chunk_.count_reasons)
         for (size_t l = 0; l < kGroup; ++l)

@@ -588,6 +588,7 @@ struct CullGroup {
   static constexpr int kLanes = 8;
   enum Kind : int32_t { kCulled = 0, kVisible = 1, kClip = 2 };
   int32_t kind[kLanes];
+  uint32_t kept;        // bit l: lane l's kind is not kCulled
   int32_t cut[kLanes];  // kClip: the outcodes' kCutPlanes bits
   double area[kLanes];  // kVisible: signedArea (exact: below 2^49)
   int32_t min_x[kLanes], min_y[kLanes], max_x[kLanes], max_y[kLanes];  // kVisible: pixelBox

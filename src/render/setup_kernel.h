@@ -184,6 +184,7 @@ bool cullGroupKernel(const uint32_t* indices, size_t vertex_count, const ScreenV
 
   store(out.kind, (visible & splat(int32_t{CullGroup::kVisible})) |
                       (clip & splat(int32_t{CullGroup::kClip})));
+  out.kept = laneBits(visible | clip);
   store(out.cut, cut);
   store(out.area, area);
   store(out.min_x, min_x);
