@@ -16,8 +16,6 @@
 #include <tessera/viewer/sampling_modes.h>
 #include <tessera/viewer/temporal.h>
 
-#include "viewer/srgb_table.h"
-
 using namespace tessera;
 using namespace tessera::viewer;
 
@@ -110,28 +108,6 @@ TEST(SamplingModes, TemporalReprojectionRestsInTheNonlinearProjectionsAndRestart
   SamplingModes plain(4, false, true);
   plain.setProjection(Projection::kFisheye);
   EXPECT_EQ(plain.describe(), "MSAA 4x, TAA: perspective only");
-}
-
-TEST(SrgbEncodeTable, GivesEncodeSrgb8sCodes) {
-  const SrgbEncodeTable& table = SrgbEncodeTable::instance();
-  // A dense sample of [0, 1] and a little beyond, and both sides of every code's threshold.
-  const uint32_t end = __builtin_bit_cast(uint32_t, 1.001f);
-  int checked = 0;
-  for (uint32_t bits = 0; bits < end; bits += 4099) {
-    const float v = __builtin_bit_cast(float, bits);
-    ASSERT_EQ(table(v), encodeSrgb8(v)) << v;
-    ++checked;
-  }
-  for (int code = 0; code < 256; ++code) {
-    float v = decodeSrgb8(static_cast<uint8_t>(code));
-    for (int k = 0; k < 64; ++k, v = std::nextafter(v, 2.0f)) ASSERT_EQ(table(v), encodeSrgb8(v));
-    v = decodeSrgb8(static_cast<uint8_t>(code));
-    for (int k = 0; k < 64; ++k, v = std::nextafter(v, -1.0f)) ASSERT_EQ(table(v), encodeSrgb8(v));
-  }
-  EXPECT_EQ(table(-1.0f), 0);
-  EXPECT_EQ(table(std::numeric_limits<float>::quiet_NaN()), 0);
-  EXPECT_EQ(table(7.0f), 255);
-  EXPECT_GT(checked, 200000);
 }
 
 // Discs facing +Z at a given z, drawn by casting each sample's ray (no rasterizer): a backend

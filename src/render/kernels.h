@@ -79,6 +79,10 @@ using BlendTileFn = void (*)(const std::vector<TriangleChunk>& chunks, const Chu
                              const SampleShift* shifts, int samples, const LightRig& lights,
                              BlendTile& out);
 
+// The sRGB codes of `count` linear values (a multiple of 16) by the shading kernel's encode
+// (shade_kernel.h), for the tests.
+using EncodeSrgbFn = void (*)(const float* linear, size_t count, uint8_t* codes);
+
 // Every kernel compiled for one instruction set.
 struct Kernels {
   TransformVerticesFn transform_vertices;   // vertex_kernel.h
@@ -92,7 +96,8 @@ struct Kernels {
   ShadeRayTileFn shade_ray_tile;            // ray_kernel.h
   RasterPainterTileFn raster_painter_tile;  // painter_kernel.h
   RasterPainterTileSamplesFn raster_painter_tile_samples;
-  BlendTileFn blend_tile;  // blend_kernel.h
+  BlendTileFn blend_tile;    // blend_kernel.h
+  EncodeSrgbFn encode_srgb;  // shade_kernel.h
 };
 
 Kernels kernelsFor(Isa isa);
@@ -103,7 +108,7 @@ Kernels kernelsFor(Isa isa);
   Kernels {                                                                                        \
     transformVerticesKernel, cullGroupKernel, setupBatchKernel, rasterTileKernel, shadeTileKernel, \
         rasterTileSamplesKernel, combineSamplesKernel, rasterRayTileKernel, shadeRayTileKernel,    \
-        rasterPainterTileKernel, rasterPainterTileSamplesKernel, blendTileKernel                   \
+        rasterPainterTileKernel, rasterPainterTileSamplesKernel, blendTileKernel, encodeSrgbKernel \
   }
 
 // One table per instruction set, defined in kernels_<isa>.cpp.

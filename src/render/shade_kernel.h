@@ -556,5 +556,21 @@ void shadeTileKernel(const TileVisibility& tile, const std::vector<TriangleChunk
     shadeTile<false>(tile, chunks, chunk_count, lights, want_normals, plain, background, msaa, out);
 }
 
+// encodeShadedRow's encode of `count` values (a multiple of 16), its width at a time: what the
+// tests run every float of [0, 1] through, for each instruction set.
+void encodeSrgbKernel(const float* linear, size_t count, uint8_t* codes) {
+  for (size_t i = 0; i < count; i += 16) {
+#if defined(TESSERA_LANES16)
+    const I32x16 c = encodeSrgb8x16(load<F32x16>(linear + i));
+    for (int l = 0; l < 16; ++l) codes[i + l] = static_cast<uint8_t>(c[l]);
+#else
+    for (size_t half = i; half < i + 16; half += 8) {
+      const I32x8 c = encodeSrgb8x8(load<F32x8>(linear + half));
+      for (int l = 0; l < 8; ++l) codes[half + l] = static_cast<uint8_t>(lane(c, l));
+    }
+#endif
+  }
+}
+
 }  // namespace
 }  // namespace tessera::render

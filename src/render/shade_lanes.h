@@ -23,12 +23,22 @@
 namespace tessera::render {
 namespace {  // one private copy per translation unit, each compiled for its instruction set
 
-// Eight encodeSrgb8s (tessera/scene/color.h), the same operations lane by lane.
+// Eight encodeSrgb8s (tessera/scene/color.h), the same codes lane by lane: where a gather is one
+// instruction (AVX2, AVX-512), one read of kSrgbEncodeTable and a comparison, a third of the
+// polynomial's operations; else encodeSrgb8's own operations.
 TESSERA_LANES_INLINE I32x8 encodeSrgb8x8(F32x8 linear) {
   const F32x8 zero = splat(0.0f), one = splat(1.0f);
   // Clamped to [0, 1], NaN to 0: (x > 0 ? x : 0), then (< 1 ? : 1).
   const F32x8 c = lowerOf(upperOf(linear, zero), one);
   const I32x8 bits = bitsOf(c);
+#if defined(__AVX2__) && !defined(TESSERA_SIMD_SCALAR)
+  using B = SrgbEncodeBuckets;
+  const I32x8 bucket = maximum(shiftRight(bits, B::kShift) - splat(B::kFirst - 1), splat(0));
+  const I32x8 entry = gatherWords(kSrgbEncodeTable.data(), bucket);
+  const I32x8 rest = bits & splat((int32_t{1} << B::kShift) - 1);
+  // The first code, plus one unless the rest is below the next code's (lessThan: -1).
+  return (entry & splat(int32_t{0xff})) + splat(int32_t{1}) + lessThan(rest, shiftRight(entry, 8));
+#else
   // Lanes on the linear segment compute the curve too (from c's exponent, which may be below
   // -9 there: the index is clamped to the table) and take the line.
   const I32x8 e9 = shiftRight(bits, 23) - splat(int32_t{127 - 9});
@@ -42,25 +52,24 @@ TESSERA_LANES_INLINE I32x8 encodeSrgb8x8(F32x8 linear) {
   const F32x8 code = select(lessThan(splat(SrgbEncode::kLinearEnd), c), curve,
                             c * splat(SrgbEncode::kLinearFactor));
   return truncate(code + splat(0.5f));
+#endif
 }
 
 #if defined(TESSERA_LANES16)
-// encodeSrgb8x8 for sixteen lanes, the same operations.
+// encodeSrgb8x8 for sixteen lanes, by the table.
 TESSERA_LANES_INLINE I32x16 encodeSrgb8x16(F32x16 linear) {
+  using B = SrgbEncodeBuckets;
   const F32x16 zero = splat16(0.0f), one = splat16(1.0f);
   const F32x16 c = lowerOf16(upperOf16(linear, zero), one);
   const I32x16 bits = reinterpret_cast<I32x16>(c);
-  const I32x16 e9 = (bits >> 23) - (127 - 9);
-  const I32x16 index = e9 > 0 ? e9 : 0;
-  const F32x16 x = reinterpret_cast<F32x16>((bits & 0x7fffff) | 0x3f800000) - one;
-  const float* k = SrgbEncode::kPoly;
-  const F32x16 p =
-      (((splat16(k[4]) * x + splat16(k[3])) * x + splat16(k[2])) * x + splat16(k[1])) * x +
-      splat16(k[0]);
-  F32x16 curve = lookup16x16(SrgbEncode::kScale, index) * p - splat16(SrgbEncode::kOffset);
-  curve = lowerOf16(curve, splat16(255.0f));
-  const F32x16 code = SrgbEncode::kLinearEnd < c ? curve : c * splat16(SrgbEncode::kLinearFactor);
-  return truncate16(code + splat16(0.5f));
+  const I32x16 above = (bits >> B::kShift) - (B::kFirst - 1);
+  const I32x16 bucket = above > 0 ? above : 0;
+  // The masked form with every lane: the plain one reads an undefined source (GCC 12 warns).
+  const I32x16 entry = reinterpret_cast<I32x16>(
+      _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), 0xffff, reinterpret_cast<__m512i>(bucket),
+                                  kSrgbEncodeTable.data(), sizeof(uint32_t)));
+  const I32x16 rest = bits & ((int32_t{1} << B::kShift) - 1);
+  return (entry & 0xff) - (rest >= (entry >> 8));  // a true comparison is -1
 }
 #endif
 

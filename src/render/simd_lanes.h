@@ -160,11 +160,6 @@ TESSERA_LANES_INLINE F32x16 upperOf16(F32x16 a, F32x16 b) {
   return reinterpret_cast<F32x16>(
       _mm512_maskz_max_ps(0xffff, reinterpret_cast<__m512>(a), reinterpret_cast<__m512>(b)));
 }
-// As lookup16: table[index[l]] for indices in [0, 16), one permute.
-TESSERA_LANES_INLINE F32x16 lookup16x16(const float* table, I32x16 index) {
-  return reinterpret_cast<F32x16>(_mm512_maskz_permutexvar_ps(
-      0xffff, reinterpret_cast<__m512i>(index), _mm512_loadu_ps(table)));
-}
 // As truncate.
 TESSERA_LANES_INLINE I32x16 truncate16(F32x16 a) {
   return __builtin_convertvector(a, I32x16);

@@ -9,8 +9,6 @@
 #include <tessera/base/check.h>
 #include <tessera/scene/color.h>
 
-#include "srgb_table.h"
-
 namespace tessera::viewer {
 
 namespace {
@@ -250,9 +248,12 @@ bool flatAround(const uint32_t* const rows[3], int x, int width) {
   return true;
 }
 
-uint32_t encodePixel(const SrgbEncodeTable& encode, float3 c, uint32_t alpha_from) {
-  return encode(c.x) | static_cast<uint32_t>(encode(c.y)) << 8 |
-         static_cast<uint32_t>(encode(c.z)) << 16 | (alpha_from & 0xff000000u);
+// encodeSrgb8 by table (its codes in a lookup and a comparison instead of a polynomial).
+uint32_t encodePixel(float3 c, uint32_t alpha_from) {
+  const uint32_t* table = kSrgbEncodeTable.data();
+  return encodeSrgb8ByTable(table, c.x) |
+         static_cast<uint32_t>(encodeSrgb8ByTable(table, c.y)) << 8 |
+         static_cast<uint32_t>(encodeSrgb8ByTable(table, c.z)) << 16 | (alpha_from & 0xff000000u);
 }
 
 }  // namespace
@@ -262,7 +263,6 @@ void TemporalResolver::blendMoving(Frame& frame, const float4x4& view_projection
   const float4x4 inverse_current = inverse(view_projection);
   const float4x4 reprojection = previous_view_projection_ * inverse_current;
   const MovingPass pass{w, h, history_, previous_depth_, count_};
-  const SrgbEncodeTable& encode = SrgbEncodeTable::instance();
   forRowBands(h, [&](int band_y0, int band_y1) {
     // The horizontal boxes of three rows, in turn: row r in slot r % 3.
     std::vector<float3> lo(static_cast<size_t>(3) * w), hi(lo.size());
@@ -309,7 +309,7 @@ void TemporalResolver::blendMoving(Frame& frame, const float4x4& view_projection
         const int frames = std::min(history.frames + 1, kMovingHistory);
         next_[i] = lerp(history.color, current, 1.0f / static_cast<float>(frames));
         next_count_[i] = static_cast<uint8_t>(frames);
-        out[x] = encodePixel(encode, next_[i], frame.color[i]);
+        out[x] = encodePixel(next_[i], frame.color[i]);
       }
     }
   });
@@ -344,11 +344,10 @@ void TemporalResolver::keepDepth(const Frame& frame, const float4x4& view_projec
 }
 
 void TemporalResolver::encodeInto(Frame& frame) {
-  const SrgbEncodeTable& encode = SrgbEncodeTable::instance();
   forRowBands(height_, [&](int y0, int y1) {
     const size_t end = static_cast<size_t>(y1) * width_;
     for (size_t i = static_cast<size_t>(y0) * width_; i < end; ++i)
-      frame.color[i] = encodePixel(encode, history_[i], frame.color[i]);
+      frame.color[i] = encodePixel(history_[i], frame.color[i]);
   });
   if (converged()) converged_color_ = frame.color;
 }

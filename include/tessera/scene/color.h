@@ -23,8 +23,10 @@ inline float decodeSrgb8(uint8_t code) {
   return srgbDecodeTable()[code];
 }
 
-// The 8-bit encode without a table per value, so that SIMD lanes need no gather. Above the linear
-// segment (12.92 x up to 0.0031308), a value is c = m * 2^e with m in [1, 2) and e in [-9, 0], and
+// The 8-bit encode as a formula, which the Vulkan shaders and the scalar and SSE2 kernels compute
+// (kSrgbEncodeTable below gives the same codes by lookup, for kernels with a gather). Above the
+// linear segment (12.92 x up to 0.0031308), a value is c = m * 2^e with m in [1, 2) and e in [-9,
+// 0], and
 //   255 * (1.055 * c^(1/2.4) - 0.055) = kScale[e + 9] * m^(5/12) - 0.055 * 255,
 // with kScale[j] = 255 * 1.055 * 2^((j - 9) * 5/12) and m^(5/12) a degree-4 polynomial in m - 1
 // (least squares, within 0.004 code units). The result is the exact curve's nearest code within
@@ -62,6 +64,32 @@ inline uint8_t encodeSrgb8(float linear) {
     code = code < 255.0f ? code : 255.0f;
   }
   return static_cast<uint8_t>(static_cast<int32_t>(code + 0.5f));
+}
+
+// encodeSrgb8 by table, for the per-pixel encodes (the shading kernels' eight or sixteen lanes by
+// one gather, the viewer's passes): the same code for every float. A bucket is an exponent and
+// the top 8 bits of the mantissa, from 2^-13 (below it every code is 0) up to 1; within one the
+// code climbs by at most one, so an entry holds the bucket's first code (bits 0-7) and the lowest
+// remaining 15 bits of mantissa at which the code is one more (bits 8-23; 2^15: never). That
+// relies on encodeSrgb8 never going down as the value goes up within a bucket, which the tests
+// check for every float in [2^-13, 1].
+struct SrgbEncodeBuckets {
+  static constexpr int kShift = 23 - 8;
+  static constexpr int32_t kFirst = (127 - 13) << (23 - kShift);  // the bucket of 2^-13
+  static constexpr int32_t kLast = 127 << (23 - kShift);          // the bucket of 1
+  // [0]: below 2^-13; [1 + b - kFirst]: bucket b.
+  static constexpr int kEntries = kLast - kFirst + 2;
+};
+extern const std::array<uint32_t, SrgbEncodeBuckets::kEntries> kSrgbEncodeTable;
+
+// encodeSrgb8(linear) from kSrgbEncodeTable (or a table filled as it is).
+inline uint8_t encodeSrgb8ByTable(const uint32_t* table, float linear) {
+  const float c = linear > 0.0f ? (linear < 1.0f ? linear : 1.0f) : 0.0f;
+  const int32_t bits = __builtin_bit_cast(int32_t, c);
+  const int32_t bucket = (bits >> SrgbEncodeBuckets::kShift) - (SrgbEncodeBuckets::kFirst - 1);
+  const uint32_t entry = table[bucket > 0 ? bucket : 0];
+  const uint32_t rest = static_cast<uint32_t>(bits) & ((1u << SrgbEncodeBuckets::kShift) - 1);
+  return static_cast<uint8_t>((entry & 0xff) + (rest >= (entry >> 8) ? 1 : 0));
 }
 
 // Linear RGBA to packed RGBA8 (sRGB RGB, linear alpha), R in the low byte.
