@@ -25,8 +25,8 @@ inline float decodeSrgb8(uint8_t code) {
 
 // The 8-bit encode as a formula, which the Vulkan shaders and the scalar and SSE2 kernels compute
 // (kSrgbEncodeTable below gives the same codes by lookup, for kernels with a gather). Above the
-// linear segment (12.92 x up to 0.0031308), a value is c = m * 2^e with m in [1, 2) and e in [-9,
-// 0], and
+// linear segment (12.92 x up to 0.0031308), a value is c = m * 2^e with m in [1, 2) and e in
+// [-9, 0], and
 //   255 * (1.055 * c^(1/2.4) - 0.055) = kScale[e + 9] * m^(5/12) - 0.055 * 255,
 // with kScale[j] = 255 * 1.055 * 2^((j - 9) * 5/12) and m^(5/12) a degree-4 polynomial in m - 1
 // (least squares, within 0.004 code units). The result is the exact curve's nearest code within
@@ -80,6 +80,8 @@ struct SrgbEncodeBuckets {
   // [0]: below 2^-13; [1 + b - kFirst]: bucket b.
   static constexpr int kEntries = kLast - kFirst + 2;
 };
+// Filled before main, from encodeSrgb8 (about 53,000 calls); static initializers of other files
+// must call encodeSrgb8 instead, as it may not be filled yet when they run.
 extern const std::array<uint32_t, SrgbEncodeBuckets::kEntries> kSrgbEncodeTable;
 
 // encodeSrgb8(linear) from kSrgbEncodeTable (or a table filled as it is).
