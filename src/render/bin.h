@@ -32,7 +32,8 @@ class ChunkBins {
   // may have read the lists since they were filled (the renderer has more than one worker).
   // Then every line of the lists is first asked for in write state, all at once: on a host where
   // a line takes hundreds of nanoseconds between cores, the stores that refill the lists would
-  // otherwise wait for the other core's copies one line at a time (docs/perf.md, round 6).
+  // otherwise wait for the other core's copies one line at a time (docs/perf-notes/frame-stages.md,
+  // round 6).
   void reset(int tile_count, bool shared = false);
   // Adds triangle `local_index` to every tile its bounding box overlaps. Inline for the common
   // case of a dense mesh: a box inside one tile.
@@ -76,7 +77,7 @@ class ChunkBins {
   // The tiles whose lists are not empty. reset empties only these: every tile's list end was
   // read last frame by whichever worker drew the tile, and on a host where a line takes
   // hundreds of nanoseconds between cores, writing all of them cost a mostly culled chunk most
-  // of its setup time (docs/perf.md, round 5).
+  // of its setup time (docs/perf-notes/frame-stages.md, round 5).
   std::vector<uint32_t> used_;
 };
 

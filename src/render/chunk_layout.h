@@ -18,8 +18,9 @@ namespace tessera::render {
 // `workers` equal runs of indices, and hands every block out in increasing order) ends in chunks
 // of a half, a quarter and an eighth of that size, so the workers reach the small ones last and
 // finish close together: with equal chunks one waited 50-80 us a frame on the bunny for the
-// other's last chunk, 17 us with these (docs/perf.md round 6). Equal chunks where that would pass
-// kMaxChunks. Writes first_triangle and triangle_count of chunks[0, count); returns count.
+// other's last chunk, 17 us with these (docs/perf-notes/frame-stages.md, round 6). Equal chunks
+// where that would pass kMaxChunks. Writes first_triangle and triangle_count of chunks[0, count);
+// returns count.
 inline size_t layOutChunks(size_t triangle_total, size_t chunk_size, int workers,
                            std::vector<TriangleChunk>& chunks) {
   auto place = [&](size_t c, size_t first, size_t count) {

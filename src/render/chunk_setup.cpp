@@ -239,8 +239,8 @@ void ChunkSetup::drawWhole(const ObjectSetup& o, size_t t, const uint32_t idx[3]
   ShadeTriangle& shade = batch_.nextShade();
   if (o.flat_in_lanes) {
     // Lit eight faces at a time by the batch kernel, which also forms their normals: a face took
-    // about 60 cycles of scalar square root, division and lights (docs/perf.md), and its normal
-    // (faceNormal) a third of the flat bunny's scalar setup.
+    // about 60 cycles of scalar square root, division and lights (docs/perf-notes/frame-passes.md),
+    // and its normal (faceNormal) a third of the flat bunny's scalar setup.
     setupFlatCorners(o.ctx, o.vertices, idx, orientation_, id, o.material(local), shade);
     const float3 corners[3] = {o.mesh.positions[idx[0]], o.mesh.positions[idx[1]],
                                o.mesh.positions[idx[2]]};

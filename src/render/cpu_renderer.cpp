@@ -50,7 +50,8 @@ double elapsedMs(Clock::time_point a, Clock::time_point b) {
 // colour there itself, saving resolveTile's copy of it: not when the frame streams (the copy's
 // streaming stores), and only for a tile a whole number of the encode's sixteen-pixel steps wide
 // (every tile of a frame whose width is a multiple of 16; the others' last step would pass the
-// frame's row). The copy took 5-11% of the cube's frames on an Intel Xeon (docs/perf.md).
+// frame's row). The copy took 5-11% of the cube's frames on an Intel Xeon
+// (docs/perf-notes/frame-passes.md).
 void directColour(bool stream, int x0, int y0, int width, Frame& frame, ShadedTile& out) {
   const bool direct = !stream && width % 16 == 0;
   out.direct = direct ? &frame.color[static_cast<size_t>(y0) * frame.width + x0] : nullptr;

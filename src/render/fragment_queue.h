@@ -7,7 +7,8 @@
 // the sample count. Shaded group by group instead, a round of a group held about three of its
 // eight lanes. A round is shaded a group after its fragments were queued: shaded at once, its loads
 // waited on the pushes' stores just made, which a load spanning several of them cannot take
-// forwarded (docs/perf.md). Compiled per instruction set; every variant gives the same bits.
+// forwarded (docs/perf-notes/msaa-rounds-7-to-11.md). Compiled per instruction set; every variant
+// gives the same bits.
 #pragma once
 
 #include <cstdint>

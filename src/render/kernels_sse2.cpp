@@ -2,7 +2,7 @@
 // Inline, not always_inline, as in the scalar unit: SSE2 holds an eight-lane value in two
 // registers, so each lane operation is twice the code, and forced into whole kernels GCC took
 // 90-145 s to compile this file (the Release build's longest); this way it takes 9 s, and the
-// frames are within a few percent either way (docs/perf.md).
+// frames are within a few percent either way (docs/perf-notes/texturing.md).
 #define TESSERA_LANES_INLINE inline
 #include "render/blend_kernel.h"
 #include "render/kernels.h"

@@ -2,7 +2,8 @@
 // 2 MiB-aligned regions that the kernel is asked to back with huge pages (MADV_HUGEPAGE).
 //
 // A frame reads and writes some 20 MB spread over these buffers: with 4 KiB pages that is more
-// than the TLB maps, and setup and the tile stage pay page walks (docs/perf.md measures it).
+// than the TLB maps, and setup and the tile stage pay page walks (docs/perf-notes/frame-stages.md
+// measures it).
 // Blocks come in power-of-two sizes from 64 bytes (so every block is cache-line aligned); freed
 // blocks wait on a list for the next request of their size and are not returned to the system,
 // except blocks over 1 MiB, which are mappings of their own. The buffers only grow, so after the

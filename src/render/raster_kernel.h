@@ -157,7 +157,7 @@ TESSERA_LANES_INLINE void rasterSmall(const RasterTriangle& t, uint32_t key, Til
             // No branch on an empty group: where no lane is covered the depth test
             // writes back what it read. At a small triangle's edges such a branch goes
             // either way and mispredicted often enough to cost more than the work it
-            // saved (docs/perf.md, round 5).
+            // saved (docs/perf-notes/frame-stages.md, round 5).
             const F32x8 across = x == x_begin ? first_across : depthAcross8(t, x);
             depthTestRow8<kRule>(key, z_rows[y - y_begin], across, covered,
                                  tile.depth + (row_offset + x), tile.key + (row_offset + x));

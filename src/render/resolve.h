@@ -18,19 +18,20 @@ namespace tessera::render {
 // records would take more than half the last-level cache (kUnknownCacheFrameBytes where Linux
 // does not say its size). A frame that fits stays in the cache, where the next frame's writes and
 // the image encoder find it; a larger one would evict what the tiles read. Measured on the 2-core
-// AMD EPYC with its 32 MB L3 (docs/perf.md, 2026-12-04, sixth session): through the caches the
-// cube at 1920x1080 took 19% less time and the textured sphere 7% less, the bunny the same; the
-// dense sphere's million triangles took 2% more, and scenes at 3840x2160 up to 10% more.
+// AMD EPYC with its 32 MB L3 (docs/perf-notes/frame-passes.md, 2026-12-04, sixth session): through
+// the caches the cube at 1920x1080 took 19% less time and the textured sphere 7% less, the bunny
+// the same; the dense sphere's million triangles took 2% more, and scenes at 3840x2160 up to 10%
+// more.
 constexpr size_t kUnknownCacheFrameBytes = size_t{4} << 20;
 bool streamsFrame(size_t pixels, size_t triangles);
 
 // Whether the background of a frame's empty tiles is written past the caches: when the frame
 // streams (streamsFrame), or when its colour is more than kStreamedBackgroundBytes. Nothing of the
 // renderer reads those pixels again, and a fill in streaming stores of whole lines costs no read
-// of the lines it replaces: on the 2-core Intel Xeon (docs/perf.md, 2026-12-05, "The empty tiles'
-// background streamed") a 4K fill took 1.6 ms streamed against 3.0-3.7 ms through the caches, and
-// the textured sphere's 4K frame 8.39 -> 6.94 ms, where the last-level cache the system reports
-// (300 MB, shared with other machines) kept the frame from streaming.
+// of the lines it replaces: on the 2-core Intel Xeon (docs/perf-notes/frame-passes.md, 2026-12-05,
+// "The empty tiles' background streamed") a 4K fill took 1.6 ms streamed against 3.0-3.7 ms through
+// the caches, and the textured sphere's 4K frame 8.39 -> 6.94 ms, where the last-level cache the
+// system reports (300 MB, shared with other machines) kept the frame from streaming.
 constexpr size_t kStreamedBackgroundBytes = size_t{4} << 20;
 bool streamsBackground(size_t pixels, size_t triangles);
 

@@ -183,7 +183,8 @@ constexpr int32_t kSampleReach = kSubpixelHalf;
 // x or y, in 1/256 pixel: what SetupContext::sample_reach takes with MSAA (0 with one sample, at
 // the centre). Jitter moves the geometry, not the pattern, so it adds nothing. Half a pixel for
 // every count (kSampleReach, the bound) gave boxes pixels no sample of 2x or 4x can reach: on the
-// bunny at 1920x1080 with 4x, 5% of the tile raster's instructions (docs/perf.md).
+// bunny at 1920x1080 with 4x, 5% of the tile raster's instructions
+// (docs/perf-notes/msaa-rounds-7-to-11.md).
 constexpr int32_t sampleReach(int n) {
   int32_t reach = 0;
   for (const SamplePosition& p : samplePattern(n)) {

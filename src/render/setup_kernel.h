@@ -318,8 +318,8 @@ TESSERA_LANES_INLINE PixelBox8 pixelBox8(const ScreenVertex8 in[3], int width, i
 TESSERA_LANES_INLINE void streamShadeRecords(const SetupBatch& batch, ShadeTriangle* shade) {
   // The shading records go out streamed too. Setup writes over last frame's records, which the
   // other worker's shading pass read: on a host where a line takes hundreds of nanoseconds
-  // between cores, ordinary stores waited on every line (docs/perf.md, round 5). Eight
-  // consecutive records starting on a line (the usual full batch) are eleven whole lines.
+  // between cores, ordinary stores waited on every line (docs/perf-notes/frame-stages.md, round 5).
+  // Eight consecutive records starting on a line (the usual full batch) are eleven whole lines.
   char* const out = reinterpret_cast<char*>(&shade[batch.input[0].record]);
   if (batch.consecutive() && (reinterpret_cast<uintptr_t>(out) & 63) == 0) {
     const char* in = reinterpret_cast<const char*>(batch.shade);

@@ -310,7 +310,7 @@ __attribute__((noinline)) void shadePlainRow(const TileVisibility& tile, int ty,
 // (phongDeferrable): their colours in the row's linear colours, their interpolated normals here,
 // bit g of `groups` set for the eight pixels at 8 g. finishPhongRow lights them two groups at a
 // time in sixteen lanes on AVX-512, where a division or square root of sixteen lanes costs about
-// as much as one of eight (docs/perf.md).
+// as much as one of eight (docs/perf-notes/speed-2026-12-06.md).
 struct DeferredPhong {
   alignas(32) float normal[3][kTileSize];
   uint32_t groups = 0;

@@ -22,8 +22,8 @@ namespace {
 // How long a thread spins before it sleeps. Stages follow one another within microseconds, but
 // one worker may finish its part of a stage a setup chunk (100 us or more) before the other,
 // and a sleeping thread took 10-30 us to wake on this VM: with a 50 us spin the tile stage
-// started that much late every frame (docs/perf.md, round 6). Measured in time, not pause
-// instructions, whose length differs between processors by ten times.
+// started that much late every frame (docs/perf-notes/frame-stages.md, round 6). Measured in time,
+// not pause instructions, whose length differs between processors by ten times.
 constexpr std::chrono::microseconds kSpinTime{250};
 
 inline void pause() {
@@ -136,7 +136,7 @@ bool WorkerPool::take(Block& block, size_t& index) {
 void WorkerPool::drain(int worker) {
   // Its own block first, then the others' (from their fronts too: taking from the back, a helper
   // took a block's last and smallest pieces first and left its owner on a large one, 40-80 us
-  // after the helper ran out, docs/perf.md round 6).
+  // after the helper ran out, docs/perf-notes/frame-stages.md, round 6).
   const size_t n = blocks_.size();
   size_t index;
   for (size_t k = 0; k < n; ++k) {

@@ -6,8 +6,8 @@
 // is left free, and a loop that finds it on a worker's CPU gives that worker the CPU the caller
 // left. Left to the scheduler, on this project's 2-core virtual machines, a run of 2-worker frames
 // was at times 2.5 times slower for spells of tens to hundreds of frames, and every few tens of
-// frames one took 6 ms more; pinned, neither happened (docs/perf.md, "Worker threads pinned").
-// TESSERA_PIN_WORKERS=0 turns it off.
+// frames one took 6 ms more; pinned, neither happened (docs/perf-notes/speed-2026-12-07.md, "Worker
+// threads pinned"). TESSERA_PIN_WORKERS=0 turns it off.
 #pragma once
 
 #include <atomic>
@@ -35,9 +35,10 @@ class WorkerPool {
   // others', taking their next indices too. The same blocks go to the same workers stage after
   // stage and frame after frame, so what one stage writes (the vertices a range of triangles
   // uses, say) is mostly read by the same core in the next: on a host where a line takes
-  // hundreds of nanoseconds between cores that is worth more than an even split (docs/perf.md,
-  // round 5). Every block is handed out in increasing order, so a caller whose blocks end in
-  // small pieces of work has its workers finish close together (round 6).
+  // hundreds of nanoseconds between cores that is worth more than an even split
+  // (docs/perf-notes/frame-stages.md, round 5). Every block is handed out in increasing order, so
+  // a caller whose blocks end in small pieces of work has its workers finish close together
+  // (round 6).
   template <typename Body>
   void parallelFor(size_t count, Body&& body) {
     auto invoke = [](void* context, size_t index, int worker) {

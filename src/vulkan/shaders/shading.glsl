@@ -171,7 +171,8 @@ vec4 sampleLevel(TextureLevel level, bool srgb, vec2 uv, bool nearest, ivec2 wra
 // Texture::sample (level 0, nearest or bilinear) or, with `trilinear`, Texture::sampleLod
 // (bilinear in the two levels around lod, blended); uv after the sampler's transform. The levels
 // are taken in a loop so that the shader holds one copy of sampleLevel a call: lavapipe inlines
-// every call, and its compile time grows with the shader (docs/perf.md).
+// every call, and its compile time grows with the shader
+// (docs/perf-notes/per-pixel-lighting-projections-vulkan.md).
 vec4 sampleTextureAt(TextureRef t, vec2 uv, bool trilinear, float lod) {
   if (t.width <= 0 || t.height <= 0) return vec4(1.0);
   const bool srgb = (t.flags & kTextureSrgb) != 0u;
