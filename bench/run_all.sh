@@ -28,6 +28,7 @@ python=/usr/bin/python3
 "$python" -c "import matplotlib" 2>/dev/null ||
   { echo "run_all: the plots need matplotlib: apt-get install python3-matplotlib" >&2; exit 1; }
 
+source scripts/compiler.sh  # clang for a new build folder, as scripts/setup.sh
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DTESSERA_OSMESA=ON >/dev/null
 cmake --build "$build" -j"${JOBS:-2}" --target tessera tessera_corelatency
 exe="$build/apps/tessera/tessera"
