@@ -317,7 +317,8 @@ def other_machine(w, results, output):
     w(title)
     w("")
     w(f"Measured {machine['date']} at commit `{machine['commit']}` on {cpu_name(machine)} "
-      f"({', '.join(machine['simd'])}; tessera's tile kernels: {best}), {machine['cores']} cores, "
+      f"({', '.join(machine['simd'])}; tessera's tile kernels: {best}), built with "
+      f"{machine.get('compiler', 'an unrecorded compiler')}, {machine['cores']} cores, "
       f"{machine['frames']} timed frames per row, the 1-minute load average "
       f"{machine['load_before']:.2f} at the start and {machine['load_after']:.2f} at the end; raw "
       f"results in [`{rel}/`]({rel}/).")
