@@ -250,10 +250,8 @@ bool flatAround(const uint32_t* const rows[3], int x, int width) {
 
 // encodeSrgb8 by table (its codes in a lookup and a comparison instead of a polynomial).
 uint32_t encodePixel(float3 c, uint32_t alpha_from) {
-  const uint32_t* table = kSrgbEncodeTable.data();
-  return encodeSrgb8ByTable(table, c.x) |
-         static_cast<uint32_t>(encodeSrgb8ByTable(table, c.y)) << 8 |
-         static_cast<uint32_t>(encodeSrgb8ByTable(table, c.z)) << 16 | (alpha_from & 0xff000000u);
+  return encodeSrgb8ByTable(c.x) | static_cast<uint32_t>(encodeSrgb8ByTable(c.y)) << 8 |
+         static_cast<uint32_t>(encodeSrgb8ByTable(c.z)) << 16 | (alpha_from & 0xff000000u);
 }
 
 }  // namespace

@@ -84,12 +84,12 @@ struct SrgbEncodeBuckets {
 // must call encodeSrgb8 instead, as it may not be filled yet when they run.
 extern const std::array<uint32_t, SrgbEncodeBuckets::kEntries> kSrgbEncodeTable;
 
-// encodeSrgb8(linear) from kSrgbEncodeTable (or a table filled as it is).
-inline uint8_t encodeSrgb8ByTable(const uint32_t* table, float linear) {
+// encodeSrgb8(linear) from kSrgbEncodeTable.
+inline uint8_t encodeSrgb8ByTable(float linear) {
   const float c = linear > 0.0f ? (linear < 1.0f ? linear : 1.0f) : 0.0f;
   const int32_t bits = __builtin_bit_cast(int32_t, c);
   const int32_t bucket = (bits >> SrgbEncodeBuckets::kShift) - (SrgbEncodeBuckets::kFirst - 1);
-  const uint32_t entry = table[bucket > 0 ? bucket : 0];
+  const uint32_t entry = kSrgbEncodeTable[static_cast<size_t>(bucket > 0 ? bucket : 0)];
   const uint32_t rest = static_cast<uint32_t>(bits) & ((1u << SrgbEncodeBuckets::kShift) - 1);
   return static_cast<uint8_t>((entry & 0xff) + (rest >= (entry >> 8) ? 1 : 0));
 }
