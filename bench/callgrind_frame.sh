@@ -3,14 +3,15 @@
 # install valgrind): tessera_stagetimes runs 1 frame and then 5 under callgrind, and the difference
 # over 4 is one frame without the start-up (model load, first allocations). Deterministic where the
 # clock of a shared host is not, so it measures changes of a few per cent; valgrind runs no
-# AVX-512, so use the avx2 (or sse2, scalar) kernels. Build with -g for the functions' names.
+# AVX-512, so use the avx2 (or sse2, scalar) kernels. The Release build names the functions; for
+# source lines build with -g, and with clang -g -gdwarf-4 (valgrind 3.19 cannot read DWARF 5).
 #
 #   bench/callgrind_frame.sh STAGETIMES SCENE 1 WIDTH HEIGHT ISA MSAA [PROJECTION [SHADING [CAMERA]]] [TOP]
 #   bench/callgrind_frame.sh build/bench/tessera_stagetimes bunny 1 1920 1080 avx2 4
 #
 # TOP (default 15): how many functions to list, by their own instructions (not their callees').
 set -euo pipefail
-[ $# -ge 7 ] || { sed -n '2,11p' "$0" >&2; exit 2; }
+[ $# -ge 7 ] || { sed -n '2,12p' "$0" >&2; exit 2; }
 command -v valgrind > /dev/null || { echo "callgrind_frame: needs valgrind" >&2; exit 1; }
 exe=$1 scene=$2 workers=$3 width=$4 height=$5 isa=$6 msaa=$7
 shift 7
