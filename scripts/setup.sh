@@ -36,11 +36,10 @@ fi
 # generator it was made with.
 generator=()
 if [ ! -f build/CMakeCache.txt ] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
-# clang for a new build folder, unless CC or CXX names another compiler (CMake reads them only
-# when it makes a folder, so a folder keeps its compiler too). Debian 12's clang 14 gives the same
-# bits as its GCC 12 and faster kernels: up to 12% a frame with AVX2 and AVX-512 (the textured
-# rows most, the cube's and fill's the same), five to seven times with SSE2 and without SIMD
-# (docs/perf-notes/speed-2026-12-07.md, "Built with clang").
+# The compiler of a new build folder (scripts/compiler.sh: clang unless CC or CXX is set). Debian
+# 12's clang 14 gives the same bits as its GCC 12 and faster kernels: up to 12% a frame with AVX2
+# and AVX-512 (the textured rows most, the cube's and fill's the same), five to seven times with
+# SSE2 and without SIMD (docs/perf-notes/speed-2026-12-07.md, "Built with clang").
 source scripts/compiler.sh
 cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release ${TESSERA_CMAKE_ARGS:-}
 cmake --build build -j"$(nproc)"
