@@ -83,6 +83,130 @@ GLint glWrap(TextureWrap wrap) {
   return wrap == TextureWrap::kMirroredRepeat ? GL_MIRRORED_REPEAT : GL_REPEAT;
 }
 
+// A mesh's vertex streams as the reference draws them: indexed where it has normals and is not
+// flat-shaded, else a triangle soup carrying face normals. Triangles with a non-finite vertex are
+// left out, as tessera drops them; `g` gets the flags and the draw ranges, one per run of a
+// material.
+struct VertexStreams {
+  std::vector<float3> positions, normals;
+  std::vector<float2> uvs;
+  std::vector<float4> colors;
+  std::vector<uint32_t> indices;
+};
+VertexStreams vertexStreams(const Mesh& mesh, Shading shading, GpuObject& g) {
+  const size_t triangles = mesh.triangleCount();
+  // Flat shading lights the face normal; a mesh without normals is drawn flat by tessera too.
+  g.indexed = shading != Shading::kFlat && !mesh.normals.empty();
+  g.has_uv = !mesh.uvs.empty();
+  g.has_color = !mesh.colors.empty();
+  VertexStreams out;
+  auto addToRange = [&](size_t t, GLsizei elements) {
+    const uint16_t material = t < mesh.triangle_materials.size() ? mesh.triangle_materials[t] : 0;
+    if (g.ranges.empty() || g.ranges.back().material != material) {
+      const GLint first = g.ranges.empty() ? 0 : g.ranges.back().first + g.ranges.back().count;
+      DrawRange range;
+      range.first = first;
+      range.material = material;
+      g.ranges.push_back(range);
+    }
+    g.ranges.back().count += elements;
+  };
+  if (g.indexed) {
+    out.positions = mesh.positions;
+    out.normals = mesh.normals;
+    out.uvs = mesh.uvs;
+    out.colors = mesh.colors;
+    out.indices.reserve(mesh.indices.size());
+  } else {
+    out.positions.reserve(triangles * 3);
+    out.normals.reserve(triangles * 3);
+    if (g.has_uv) out.uvs.reserve(triangles * 3);
+    if (g.has_color) out.colors.reserve(triangles * 3);
+  }
+  for (size_t t = 0; t < triangles; ++t) {
+    const uint32_t* v = &mesh.indices[t * 3];
+    const float3 p0 = mesh.positions[v[0]], p1 = mesh.positions[v[1]], p2 = mesh.positions[v[2]];
+    if (!isFinite(p0) || !isFinite(p1) || !isFinite(p2)) continue;
+    if (g.indexed) {
+      out.indices.insert(out.indices.end(), v, v + 3);
+    } else {
+      const float3 face = cross(p1 - p0, p2 - p0);  // object space; the shader transforms it
+      for (int k = 0; k < 3; ++k) {
+        out.positions.push_back(mesh.positions[v[k]]);
+        out.normals.push_back(face);
+        if (g.has_uv) out.uvs.push_back(mesh.uvs[v[k]]);
+        if (g.has_color) out.colors.push_back(mesh.colors[v[k]]);
+      }
+    }
+    addToRange(t, 3);
+  }
+  return out;
+}
+
+// The mesh's streams into one buffer (the positions, then the normals, UVs and colours, each
+// tightly packed) and, when indexed, its indices into another.
+void uploadGeometry(const Mesh& mesh, Shading shading, GpuObject& g) {
+  const VertexStreams s = vertexStreams(mesh, shading, g);
+  static_assert(sizeof(float3) == 12 && sizeof(float2) == 8 && sizeof(float4) == 16);
+  const GLsizeiptr position_bytes = static_cast<GLsizeiptr>(s.positions.size() * sizeof(float3));
+  const GLsizeiptr normal_bytes = static_cast<GLsizeiptr>(s.normals.size() * sizeof(float3));
+  const GLsizeiptr uv_bytes = static_cast<GLsizeiptr>(s.uvs.size() * sizeof(float2));
+  const GLsizeiptr color_bytes = static_cast<GLsizeiptr>(s.colors.size() * sizeof(float4));
+  g.normal_offset = position_bytes;
+  g.uv_offset = g.normal_offset + normal_bytes;
+  g.color_offset = g.uv_offset + uv_bytes;
+  glGenBuffers(1, &g.vertex_buffer);
+  glBindBuffer(GL_ARRAY_BUFFER, g.vertex_buffer);
+  glBufferData(GL_ARRAY_BUFFER, g.color_offset + color_bytes, nullptr, GL_STATIC_DRAW);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, position_bytes, s.positions.data());
+  glBufferSubData(GL_ARRAY_BUFFER, g.normal_offset, normal_bytes, s.normals.data());
+  if (uv_bytes) glBufferSubData(GL_ARRAY_BUFFER, g.uv_offset, uv_bytes, s.uvs.data());
+  if (color_bytes) glBufferSubData(GL_ARRAY_BUFFER, g.color_offset, color_bytes, s.colors.data());
+  if (g.indexed) {
+    glGenBuffers(1, &g.index_buffer);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.index_buffer);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(s.indices.size() * sizeof(uint32_t)), s.indices.data(),
+                 GL_STATIC_DRAW);
+  }
+}
+
+// A material's albedo texture (0 where it has none): sRGB texels decode to linear before
+// filtering, as tessera samples them; tessera's own mip levels where it filters trilinearly. GL's
+// row 0 is t = 0, tessera's is v = 1: rows go in reversed. (Bench scenes have no texture
+// transform.)
+GLuint uploadAlbedo(const Material& material) {
+  if (!material.albedo || material.albedo->width <= 0 || material.albedo->height <= 0) return 0;
+  const Texture& t = *material.albedo;
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  const bool trilinear = material.sampler.filter == TextureFilter::kTrilinear && !t.mips.empty();
+  const int levels = trilinear ? t.levelCount() : 1;
+  std::vector<uint32_t> rows;
+  for (int level = 0; level < levels; ++level) {
+    const int w = level == 0 ? t.width : t.mips[static_cast<size_t>(level - 1)].width;
+    const int h = level == 0 ? t.height : t.mips[static_cast<size_t>(level - 1)].height;
+    const std::vector<uint32_t>& texels =
+        level == 0 ? t.texels : t.mips[static_cast<size_t>(level - 1)].texels;
+    rows.resize(texels.size());
+    for (int y = 0; y < h; ++y)
+      std::copy_n(&texels[static_cast<size_t>(h - 1 - y) * w], w,
+                  &rows[static_cast<size_t>(y) * w]);
+    glTexImage2D(GL_TEXTURE_2D, level, t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, w, h, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, rows.data());
+  }
+  const GLint filter = material.sampler.filter == TextureFilter::kNearest ? GL_NEAREST : GL_LINEAR;
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels - 1);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                  trilinear ? GL_LINEAR_MIPMAP_LINEAR : filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, glWrap(material.sampler.wrap_s));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, glWrap(material.sampler.wrap_t));
+  return texture;
+}
+
 }  // namespace
 
 struct LlvmpipeReference::State {
@@ -131,123 +255,8 @@ struct LlvmpipeReference::State {
 
   Expected<void> upload(const Object& object) {
     GpuObject g;
-    const Mesh& mesh = *object.mesh;
-    const size_t triangles = mesh.triangleCount();
-    // Flat shading lights the face normal; a mesh without normals is drawn flat by tessera too.
-    g.indexed = object.shading != Shading::kFlat && !mesh.normals.empty();
-    g.has_uv = !mesh.uvs.empty();
-    g.has_color = !mesh.colors.empty();
-
-    std::vector<float3> positions, normals;
-    std::vector<float2> uvs;
-    std::vector<float4> colors;
-    std::vector<uint32_t> indices;
-    auto materialOf = [&](size_t t) -> uint16_t {
-      return t < mesh.triangle_materials.size() ? mesh.triangle_materials[t] : 0;
-    };
-    auto addToRange = [&](size_t t, GLsizei elements) {
-      const uint16_t material = materialOf(t);
-      if (g.ranges.empty() || g.ranges.back().material != material) {
-        const GLint first = g.ranges.empty() ? 0 : g.ranges.back().first + g.ranges.back().count;
-        DrawRange range;
-        range.first = first;
-        range.material = material;
-        g.ranges.push_back(range);
-      }
-      g.ranges.back().count += elements;
-    };
-    if (g.indexed) {
-      positions = mesh.positions;
-      normals = mesh.normals;
-      uvs = mesh.uvs;
-      colors = mesh.colors;
-      indices.reserve(mesh.indices.size());
-    } else {
-      positions.reserve(triangles * 3);
-      normals.reserve(triangles * 3);
-      if (g.has_uv) uvs.reserve(triangles * 3);
-      if (g.has_color) colors.reserve(triangles * 3);
-    }
-    for (size_t t = 0; t < triangles; ++t) {
-      const uint32_t* v = &mesh.indices[t * 3];
-      const float3 p0 = mesh.positions[v[0]], p1 = mesh.positions[v[1]], p2 = mesh.positions[v[2]];
-      // tessera drops triangles with a non-finite vertex.
-      if (!isFinite(p0) || !isFinite(p1) || !isFinite(p2)) continue;
-      if (g.indexed) {
-        indices.insert(indices.end(), v, v + 3);
-      } else {
-        const float3 face = cross(p1 - p0, p2 - p0);  // object space; the shader transforms it
-        for (int k = 0; k < 3; ++k) {
-          positions.push_back(mesh.positions[v[k]]);
-          normals.push_back(face);
-          if (g.has_uv) uvs.push_back(mesh.uvs[v[k]]);
-          if (g.has_color) colors.push_back(mesh.colors[v[k]]);
-        }
-      }
-      addToRange(t, 3);
-    }
-
-    // One buffer: the positions, then the normals, UVs and colours, each tightly packed.
-    static_assert(sizeof(float3) == 12 && sizeof(float2) == 8 && sizeof(float4) == 16);
-    const GLsizeiptr position_bytes = static_cast<GLsizeiptr>(positions.size() * sizeof(float3));
-    const GLsizeiptr normal_bytes = static_cast<GLsizeiptr>(normals.size() * sizeof(float3));
-    const GLsizeiptr uv_bytes = static_cast<GLsizeiptr>(uvs.size() * sizeof(float2));
-    const GLsizeiptr color_bytes = static_cast<GLsizeiptr>(colors.size() * sizeof(float4));
-    g.normal_offset = position_bytes;
-    g.uv_offset = g.normal_offset + normal_bytes;
-    g.color_offset = g.uv_offset + uv_bytes;
-    glGenBuffers(1, &g.vertex_buffer);
-    glBindBuffer(GL_ARRAY_BUFFER, g.vertex_buffer);
-    glBufferData(GL_ARRAY_BUFFER, g.color_offset + color_bytes, nullptr, GL_STATIC_DRAW);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, position_bytes, positions.data());
-    glBufferSubData(GL_ARRAY_BUFFER, g.normal_offset, normal_bytes, normals.data());
-    if (uv_bytes) glBufferSubData(GL_ARRAY_BUFFER, g.uv_offset, uv_bytes, uvs.data());
-    if (color_bytes) glBufferSubData(GL_ARRAY_BUFFER, g.color_offset, color_bytes, colors.data());
-    if (g.indexed) {
-      glGenBuffers(1, &g.index_buffer);
-      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.index_buffer);
-      glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-                   static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)), indices.data(),
-                   GL_STATIC_DRAW);
-    }
-
-    // Albedo textures: sRGB texels decode to linear before filtering, as tessera samples them;
-    // tessera's own mip levels where it filters trilinearly. GL's row 0 is t = 0, tessera's is
-    // v = 1: rows go in reversed. (Bench scenes have no texture transform.)
-    for (const Material& material : object.materials) {
-      GLuint texture = 0;
-      if (material.albedo && material.albedo->width > 0 && material.albedo->height > 0) {
-        const Texture& t = *material.albedo;
-        glGenTextures(1, &texture);
-        glBindTexture(GL_TEXTURE_2D, texture);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        const bool trilinear =
-            material.sampler.filter == TextureFilter::kTrilinear && !t.mips.empty();
-        const int levels = trilinear ? t.levelCount() : 1;
-        std::vector<uint32_t> rows;
-        for (int level = 0; level < levels; ++level) {
-          const int w = level == 0 ? t.width : t.mips[static_cast<size_t>(level - 1)].width;
-          const int h = level == 0 ? t.height : t.mips[static_cast<size_t>(level - 1)].height;
-          const std::vector<uint32_t>& texels =
-              level == 0 ? t.texels : t.mips[static_cast<size_t>(level - 1)].texels;
-          rows.resize(texels.size());
-          for (int y = 0; y < h; ++y)
-            std::copy_n(&texels[static_cast<size_t>(h - 1 - y) * w], w,
-                        &rows[static_cast<size_t>(y) * w]);
-          glTexImage2D(GL_TEXTURE_2D, level, t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, w, h, 0, GL_RGBA,
-                       GL_UNSIGNED_BYTE, rows.data());
-        }
-        const GLint filter =
-            material.sampler.filter == TextureFilter::kNearest ? GL_NEAREST : GL_LINEAR;
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels - 1);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
-                        trilinear ? GL_LINEAR_MIPMAP_LINEAR : filter);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, glWrap(material.sampler.wrap_s));
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, glWrap(material.sampler.wrap_t));
-      }
-      g.textures.push_back(texture);
-    }
+    uploadGeometry(*object.mesh, object.shading, g);
+    for (const Material& material : object.materials) g.textures.push_back(uploadAlbedo(material));
     objects.push_back(std::move(g));
     return checkGl("uploading a mesh");
   }

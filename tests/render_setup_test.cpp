@@ -349,13 +349,83 @@ TEST(ChunkLayout, ChunksOfTheDrawnTrianglesTileTheScenesIndices) {
   }
 }
 
+namespace {
+
+// A screen-space triangle and its signed area (setup's).
+struct ScreenTriangle {
+  tessera::render::ScreenVertex v[3];
+  int64_t area;
+};
+
+// `count` random triangles that setup keeps in a viewport of ctx's size: from a pixel to hundreds
+// of pixels across, some partly off the viewport.
+std::vector<ScreenTriangle> visibleTriangles(const tessera::render::SetupContext& ctx,
+                                             size_t count) {
+  using namespace tessera::render;
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int32_t> centre(-100 * kSubpixelOne, 700 * kSubpixelOne);
+  std::uniform_real_distribution<float> depth(0.0f, 1.0f), inv_w(0.1f, 2.0f);
+  const int32_t extents[] = {kSubpixelOne, 6 * kSubpixelOne, 40 * kSubpixelOne, 500 * kSubpixelOne};
+  std::vector<ScreenTriangle> triangles;
+  while (triangles.size() < count) {
+    const int32_t extent = extents[rng() % 4];
+    std::uniform_int_distribution<int32_t> offset(-extent, extent);
+    const int32_t cx = centre(rng), cy = centre(rng);
+    ScreenTriangle t;
+    for (ScreenVertex& v : t.v) v = {cx + offset(rng), cy + offset(rng), depth(rng), inv_w(rng)};
+    t.area = signedArea(t.v[0], t.v[1], t.v[2]);
+    const PixelBox box = pixelBox(ctx, t.v[0], t.v[1], t.v[2]);
+    if (t.area == 0 || box.empty() || missesEveryCentre(ctx, box, t.v[0], t.v[1], t.v[2], t.area))
+      continue;
+    triangles.push_back(t);
+  }
+  return triangles;
+}
+
+// The records the setup batch kernel of `kernels` writes for `triangles`, in batches of eight
+// after a first of `lead`; each triangle's staged shading record carries the id 1000 + i, the
+// colour (i, 0.5, 0.25) and is solid for even i only (odd ones differ in corner 1's y, or in
+// corner 2's z alone, the float markSolid8 reads apart from the others).
+struct BatchRecords {
+  tessera::render::PoolVector<tessera::render::RasterTriangle> raster;  // aligned: streamed into
+  std::vector<tessera::render::RasterWide> wide;
+  tessera::render::PoolVector<tessera::render::ShadeTriangle> shade;
+};
+BatchRecords setupInBatches(const tessera::render::Kernels& kernels,
+                            const std::vector<ScreenTriangle>& triangles, size_t lead, int width,
+                            int height, int32_t reach) {
+  using namespace tessera::render;
+  BatchRecords out{PoolVector<RasterTriangle>(triangles.size()),
+                   std::vector<RasterWide>(triangles.size()),
+                   PoolVector<ShadeTriangle>(triangles.size())};
+  for (size_t first = 0; first < triangles.size(); first += first == 0 ? lead : 8) {
+    SetupBatch batch;
+    for (size_t i = first; i < std::min(first + (first == 0 ? lead : 8), triangles.size()); ++i) {
+      // The caller's part of the shading record, which the kernel carries to shade[record].
+      ShadeTriangle& staged = batch.nextShade();
+      staged.triangle_id = static_cast<uint32_t>(1000 + i);
+      staged.color[2] = float3{static_cast<float>(i), 0.5f, 0.25f};
+      staged.color[0] = staged.color[1] = staged.color[2];
+      if (i % 4 == 1) staged.color[1].y = 0.75f;
+      if (i % 4 == 3) staged.color[0].z = staged.color[1].z = 0.3f;
+      batch.push(triangles[i].v[0], triangles[i].v[1], triangles[i].v[2], triangles[i].area,
+                 static_cast<uint32_t>(i));
+    }
+    batch.padLanes();
+    kernels.setup_batch(batch, width, height, reach, out.raster.data(), out.wide.data(),
+                        out.shade.data());
+  }
+  return out;
+}
+
+}  // namespace
+
 TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
   // Every instruction set's batch kernel against the one-triangle setupRaster, on visible
   // triangles from a pixel to hundreds of pixels across (small ones keep their edge values at the
   // box corner, large ones c and z_min in RasterWide): the raster records byte for byte, the
   // large triangles' RasterWide, and the shading planes.
   using namespace tessera::render;
-  std::mt19937 rng(5);
   const int width = 640, height = 480;
   Scene scene;
   Object object;
@@ -369,26 +439,7 @@ TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
   lights.prepare(scene);
   ctx.lights = &lights;
   ctx.object = &object;
-  std::uniform_int_distribution<int32_t> centre(-100 * kSubpixelOne, 700 * kSubpixelOne);
-  std::uniform_real_distribution<float> depth(0.0f, 1.0f), inv_w(0.1f, 2.0f);
-  const int32_t extents[] = {kSubpixelOne, 6 * kSubpixelOne, 40 * kSubpixelOne, 500 * kSubpixelOne};
-  struct Triangle {
-    ScreenVertex v[3];
-    int64_t area;
-  };
-  std::vector<Triangle> triangles;
-  while (triangles.size() < 400) {
-    const int32_t extent = extents[rng() % 4];
-    std::uniform_int_distribution<int32_t> offset(-extent, extent);
-    const int32_t cx = centre(rng), cy = centre(rng);
-    Triangle t;
-    for (ScreenVertex& v : t.v) v = {cx + offset(rng), cy + offset(rng), depth(rng), inv_w(rng)};
-    t.area = signedArea(t.v[0], t.v[1], t.v[2]);
-    const PixelBox box = pixelBox(ctx, t.v[0], t.v[1], t.v[2]);
-    if (t.area == 0 || box.empty() || missesEveryCentre(ctx, box, t.v[0], t.v[1], t.v[2], t.area))
-      continue;
-    triangles.push_back(t);
-  }
+  const std::vector<ScreenTriangle> triangles = visibleTriangles(ctx, 400);
   // With one sample, and with MSAA's reach (boxes grown by half a pixel, the small test by more).
   for (int32_t reach : {0, kSampleReach}) {
     ctx.sample_reach = reach;
@@ -397,7 +448,7 @@ TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
     std::vector<ShadeTriangle> expected_shade(triangles.size());
     int small = 0;
     for (size_t i = 0; i < triangles.size(); ++i) {
-      const Triangle& t = triangles[i];
+      const ScreenTriangle& t = triangles[i];
       TriangleOrientation o;
       ASSERT_TRUE(
           setupRaster(ctx, t.v[0], t.v[1], t.v[2], t.area, expected[i], expected_wide[i], o));
@@ -416,44 +467,22 @@ TEST(Raster, SetupBatchKernelMatchesSetupRaster) {
     for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512})
       for (size_t lead : {size_t{8}, size_t{3}}) {
         if (isa > detectIsa()) continue;
-        const Kernels kernels = kernelsFor(isa);
-        PoolVector<RasterTriangle> raster(triangles.size());  // aligned: the kernel streams into it
-        std::vector<RasterWide> wide(triangles.size());
-        PoolVector<ShadeTriangle> shade(triangles.size());
-        for (size_t first = 0; first < triangles.size(); first += first == 0 ? lead : 8) {
-          SetupBatch batch;
-          for (size_t i = first; i < std::min(first + (first == 0 ? lead : 8), triangles.size());
-               ++i) {
-            // The caller's part of the shading record, which the kernel carries to shade[record].
-            ShadeTriangle& staged = batch.nextShade();
-            staged.triangle_id = static_cast<uint32_t>(1000 + i);
-            staged.color[2] = float3{static_cast<float>(i), 0.5f, 0.25f};
-            // Solid (markSolid) for even i; odd ones differ in corner 1's y, or in corner 2's z
-            // alone (the float markSolid8 reads apart from the others).
-            staged.color[0] = staged.color[1] = staged.color[2];
-            if (i % 4 == 1) staged.color[1].y = 0.75f;
-            if (i % 4 == 3) staged.color[0].z = staged.color[1].z = 0.3f;
-            batch.push(triangles[i].v[0], triangles[i].v[1], triangles[i].v[2], triangles[i].area,
-                       static_cast<uint32_t>(i));
-          }
-          batch.padLanes();
-          kernels.setup_batch(batch, width, height, reach, raster.data(), wide.data(),
-                              shade.data());
-        }
+        const BatchRecords r =
+            setupInBatches(kernelsFor(isa), triangles, lead, width, height, reach);
         for (size_t i = 0; i < triangles.size(); ++i) {
           SCOPED_TRACE(testing::Message() << isaName(isa) << " reach " << reach << " lead " << lead
                                           << " triangle " << i);
-          ASSERT_EQ(0, std::memcmp(&raster[i], &expected[i], sizeof(RasterTriangle)));
+          ASSERT_EQ(0, std::memcmp(&r.raster[i], &expected[i], sizeof(RasterTriangle)));
           if (!expected[i].small()) {
-            for (int k = 0; k < 3; ++k) EXPECT_EQ(wide[i].c[k], expected_wide[i].c[k]);
-            EXPECT_EQ(wide[i].z_min, expected_wide[i].z_min);
+            for (int k = 0; k < 3; ++k) EXPECT_EQ(r.wide[i].c[k], expected_wide[i].c[k]);
+            EXPECT_EQ(r.wide[i].z_min, expected_wide[i].z_min);
           }
           // The planes, x0 .. sdy, as setupShade forms them.
-          EXPECT_EQ(0, std::memcmp(&shade[i].x0, &expected_shade[i].x0, 9 * sizeof(float)));
-          EXPECT_EQ(shade[i].triangle_id, 1000 + i);
-          EXPECT_EQ(shade[i].color[2].x, static_cast<float>(i));
-          EXPECT_EQ(shade[i].color[2].z, 0.25f);
-          EXPECT_EQ(shade[i].solid, i % 2 == 0);
+          EXPECT_EQ(0, std::memcmp(&r.shade[i].x0, &expected_shade[i].x0, 9 * sizeof(float)));
+          EXPECT_EQ(r.shade[i].triangle_id, 1000 + i);
+          EXPECT_EQ(r.shade[i].color[2].x, static_cast<float>(i));
+          EXPECT_EQ(r.shade[i].color[2].z, 0.25f);
+          EXPECT_EQ(r.shade[i].solid, i % 2 == 0);
         }
       }
   }

@@ -333,6 +333,24 @@ void CpuRenderer::State::recordStats(const Geometry& geometry, double tiles_ms, 
   cull.addTo(stats);
 }
 
+void CpuRenderer::State::renderTiles(const Scene& scene, const RenderOptions& options,
+                                     const TileGrid& grid, TilePass& pass, Frame& frame) {
+  // Tiles no triangle touches (the background), found before the workers start so that a run of
+  // them along a row can be filled in one go.
+  const size_t triangles_setup =
+      markEmptyTiles(chunks, chunk_count, static_cast<size_t>(grid.tileCount()), tile_empty);
+  if (!blend.empty())
+    for (uint32_t tile : blend.bins().usedTiles()) tile_empty[tile] = 0;
+  pass.plain = plainShading(scene, options.normals);
+  pass.background = packSrgba8(scene.background);
+  pass.stream = streamsFrame(frame.pixelCount(), triangles_setup);
+  pass.stream_background = streamsBackground(frame.pixelCount(), triangles_setup);
+  chooseFills(options.frame_kept, frame, pass.background);
+  pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile, int worker) {
+    renderTile(scene, options, grid, pass, static_cast<int>(tile), worker, frame);
+  });
+}
+
 void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame& frame) {
   TESSERA_CHECK(options.width > 0 && options.height > 0 && options.width <= kMaxViewport &&
                 options.height <= kMaxViewport)
@@ -384,20 +402,7 @@ void CpuRenderer::render(const Scene& scene, const RenderOptions& options, Frame
 
   // Raster, shade and resolve, per tile.
   const Clock::time_point t_setup = Clock::now();
-  // Tiles no triangle touches (the background), found before the workers start so that a run of
-  // them along a row can be filled in one go.
-  const size_t triangles_setup =
-      markEmptyTiles(s.chunks, s.chunk_count, static_cast<size_t>(grid.tileCount()), s.tile_empty);
-  if (!s.blend.empty())
-    for (uint32_t tile : s.blend.bins().usedTiles()) s.tile_empty[tile] = 0;
-  pass.plain = plainShading(scene, options.normals);
-  pass.background = packSrgba8(scene.background);
-  pass.stream = streamsFrame(frame.pixelCount(), triangles_setup);
-  pass.stream_background = streamsBackground(frame.pixelCount(), triangles_setup);
-  s.chooseFills(options.frame_kept, frame, pass.background);
-  s.pool.parallelFor(static_cast<size_t>(grid.tileCount()), [&](size_t tile, int worker) {
-    s.renderTile(scene, options, grid, pass, static_cast<int>(tile), worker, frame);
-  });
+  s.renderTiles(scene, options, grid, pass, frame);
   const Clock::time_point t_tiles = Clock::now();
   if (geometry.replicable)
     s.replication.record(geometry.replicate,

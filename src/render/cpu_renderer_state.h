@@ -116,6 +116,10 @@ struct CpuRenderer::State {
     bool stream = false;             // the colour written past the caches (streamsFrame)
     bool stream_background = false;  // the empty tiles' too (streamsBackground)
   };
+  // The tile pass over the whole frame: finds the empty tiles, completes `pass` (with_centre is
+  // the caller's) and renders every tile on the workers.
+  void renderTiles(const Scene& scene, const RenderOptions& options, const render::TileGrid& grid,
+                   TilePass& pass, Frame& frame);
   // Raster, shade and resolve of one tile (or, for the first of a run of empty tiles along a row,
   // the background of the run).
   void renderTile(const Scene& scene, const RenderOptions& options, const render::TileGrid& grid,
