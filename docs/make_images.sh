@@ -41,7 +41,7 @@ ffmpeg -loglevel error -y -i "$tmp/panorama.png" -i "$tmp/fisheye.png" \
   -filter_complex hstack=inputs=2 "$out/projections.png"
 # Diagnostics: the bunny's overdraw (depth tests per pixel) as a heatmap with its legend.
 "$tessera" render "$bunny" --resolution 480,360 --aov overdraw-heatmap -o "$out/overdraw_heatmap.png"
-# Lights: the bunny lit by a warm point light and a blue spot light (docs/usage.md, Lights).
+# Lights: the bunny lit by a warm point light and a blue spot light (docs/rendering.md, Lights).
 "$tessera" render "$bunny" --resolution 480,360 --camera-position 0.6,0.8,4.2 \
   --camera-focal-point 0,0,0 --light point:-1.6,1.2,1.6:1,0.7,0.45:4 \
   --light spot:1.8,2.2,1.6:-1.3,-2.5,-1.4:8,14:0.45,0.65,1:8 --ambient 0.02,0.02,0.02 \
@@ -96,7 +96,7 @@ ffmpeg -loglevel error -y -i "$tmp/zbuffer.png" -i "$tmp/painter.png" \
   --edge-color 0.1,0.1,0.1 \
   -o "$out/edges.png"
 
-# A glTF animation (docs/usage.md, "Animations"): docs/animated_scene.py's hub and moon.
+# A glTF animation (docs/rendering.md, "Animations"): docs/animated_scene.py's hub and moon.
 python3 "$(dirname "$0")/animated_scene.py" "$tmp/orbit"
 "$tessera" render "$tmp/orbit/orbit.gltf" --animation-index 0 --fps 12 --resolution 240x160 \
   --shading flat -o "$out/animation.gif"

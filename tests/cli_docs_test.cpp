@@ -1,9 +1,9 @@
-// README.md's and docs/usage.md's example commands, run exactly as written, so the docs cannot
-// drift from the code again. Every `tessera ...` line of their ```sh blocks is run in a fresh
-// folder holding small stand-ins for the models and textures they name (model.obj, bunny.obj,
-// part.obj, room.obj: a box; orbit.gltf: an animated cube; wood.png: a texture; studio.hdr: an
-// environment). Lines that cannot
-// run here are skipped with the reason printed: the viewer (a window), Vulkan backends, built-in
+// The example commands of README.md, docs/usage.md, docs/rendering.md and docs/viewer.md, run
+// exactly as written, so the docs cannot drift from the code again. Every `tessera ...` line of
+// their ```sh blocks is run in a fresh folder holding small stand-ins for the models and textures
+// they name (model.obj, bunny.obj, part.obj, room.obj: a box; orbit.gltf: an animated cube;
+// wood.png: a texture; studio.hdr: an environment). Lines that cannot run here are skipped with
+// the reason printed: the viewer (a window), Vulkan backends, built-in
 // benchmark scenes (minutes at 4K), MP4 without ffmpeg, and models no stand-in is made for.
 #include <gtest/gtest.h>
 
@@ -27,7 +27,7 @@ using tessera::test::RunResult;
 namespace {
 
 struct DocCommand {
-  std::string file;  // README.md or docs/usage.md
+  std::string file;  // README.md or a file of docs/
   std::string line;  // after "tessera ", without the comment
   std::vector<std::string> words;
 };
@@ -149,11 +149,12 @@ class CliDocs : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  // Runs every command of the file that can run here; returns how many ran, by subcommand.
-  std::map<std::string, int> runAll(const std::string& file) {
+  // Runs every command of the file that can run here; returns how many ran, by subcommand. The
+  // file holds at least `least` examples.
+  std::map<std::string, int> runAll(const std::string& file, size_t least = 10) {
     std::map<std::string, int> ran;
     const std::vector<DocCommand> commands = docCommands(file);
-    EXPECT_GT(commands.size(), 10u) << file << ": the examples were not found";
+    EXPECT_GE(commands.size(), least) << file << ": the examples were not found";
     for (const DocCommand& c : commands) {
       if (std::string why = skipReason(c); !why.empty()) {
         std::cout << "[ skipped  ] " << file << ": tessera " << c.line << " (" << why << ")\n";
@@ -183,7 +184,19 @@ TEST_F(CliDocs, ReadmeCommandsRunAsWritten) {
 TEST_F(CliDocs, UsageCommandsRunAsWritten) {
   std::map<std::string, int> ran = runAll("docs/usage.md");
   EXPECT_GE(ran["cube"], 1);
-  EXPECT_GE(ran["render"], 15);
+  EXPECT_GE(ran["render"], 5);
+}
+
+TEST_F(CliDocs, RenderingCommandsRunAsWritten) {
+  std::map<std::string, int> ran = runAll("docs/rendering.md");
+  EXPECT_GE(ran["render"], 20);
+}
+
+// The viewer's lines open a window and are skipped (with the reason printed); any other line of
+// its page runs as written.
+TEST_F(CliDocs, ViewerCommandsRunAsWritten) {
+  const std::map<std::string, int> ran = runAll("docs/viewer.md", 5);
+  EXPECT_EQ(ran.count("view"), 0u);
 }
 
 }  // namespace

@@ -72,7 +72,8 @@ std::string parseSrgbColor(const std::string& v, float3& out) {
   return "";
 }
 
-// --visibility, --edges, --edge-color; --point-size, --point-sprites, --line-width (docs/usage.md).
+// --visibility, --edges, --edge-color; --point-size, --point-sprites, --line-width
+// (docs/rendering.md).
 void addVisibilityFlags(FlagSet& flags, RenderSettings& s) {
   flags.addChoice("visibility", &s.visibility, {"z-buffer", "painter"},
                   "z-buffer, or painter: no depth test, triangles drawn back to front by their "
@@ -114,7 +115,7 @@ void addRenderFlags(FlagSet& flags, RenderSettings& s) {
   flags.addChoice("aov", &s.aov, aovs,
                   "what to write: colour, triangle id, window depth, world normal (all three at "
                   "the pixel centre, whatever --msaa says), coverage (covered samples) or a "
-                  "diagnostic (docs/usage.md: overdraw, occupancy, material, density, "
+                  "diagnostic (docs/rendering.md: overdraw, occupancy, material, density, "
                   "tile-occlusion, tile-edges; overdraw-heatmap and occupancy-heatmap for people)");
   flags.addString("stats", &s.stats,
                   "write each frame's pipeline counters, stage times and per-tile diagnostics "

@@ -268,7 +268,7 @@ void addViewFlags(FlagSet& flags, ViewSettings& s) {
   flags.addInt("fps", &s.fps, "most frames a second while anything moves (default 60)", 1, 1000);
   flags.addCustom("fov", "DEG",
                   "vertical view angle in degrees (default 50; 1 to 170 in perspective; another "
-                  "projection takes it where it fits, else its default: docs/usage.md)",
+                  "projection takes it where it fits, else its default: docs/rendering.md)",
                   [&s](const std::string& v) -> std::string {
                     if (!parseFloatStrict(v, s.fov) || !(s.fov > 0.0f))
                       return "needs a number of degrees above 0, got '" + v + "'";

@@ -1,5 +1,5 @@
 // The diagnostics of `tessera render`: the diagnostic AOVs as PNGs and the --stats JSON
-// (docs/usage.md has the encodings, docs/stats.md the JSON schema).
+// (docs/rendering.md has the encodings, docs/stats.md the JSON schema).
 #pragma once
 
 #include <filesystem>

@@ -120,7 +120,7 @@ void addLightFlags(FlagSet& flags, LightSettings& settings) {
       "add a light (repeatable; replaces the default rig): directional:DX,DY,DZ[:R,G,B[:LUX]], "
       "point:X,Y,Z[:R,G,B[:CANDELA[:RANGE]]], "
       "spot:X,Y,Z:DX,DY,DZ:INNER,OUTER[:R,G,B[:CANDELA[:RANGE]]] (world coordinates, linear "
-      "colour, cone angles in degrees; docs/usage.md)",
+      "colour, cone angles in degrees; docs/rendering.md)",
       [&settings](const std::string& v) -> std::string {
         Expected<Light> light = parseLight(v);
         if (!light) return light.error().message;

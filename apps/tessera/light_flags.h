@@ -7,7 +7,8 @@
 // D is the direction the light travels (any length but zero); R,G,B a linear colour (>= 0,
 // default 1,1,1); INTENSITY lux (directional) or candela (point, spot), >= 0, default 1; RANGE > 0,
 // where KHR_lights_punctual's window ends (default: none); INNER, OUTER the spot's cone half-angles
-// in degrees, 0 <= INNER < OUTER <= 90. The units are tessera::Light's (scene.h, docs/usage.md).
+// in degrees, 0 <= INNER < OUTER <= 90. The units are tessera::Light's (scene.h,
+// docs/rendering.md).
 #pragma once
 
 #include <string>

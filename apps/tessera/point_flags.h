@@ -1,5 +1,5 @@
 // The flags that say how points and lines are drawn, shared by render, view and bench:
-// --point-size PIXELS, --point-sprites and --line-width PIXELS (docs/usage.md).
+// --point-size PIXELS, --point-sprites and --line-width PIXELS (docs/rendering.md).
 #pragma once
 
 #include <string>

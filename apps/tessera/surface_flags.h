@@ -1,7 +1,7 @@
 // f3d's --grid, --no-background and --opacity on `render`: a ground grid under the model, a
 // transparent background in an RGBA PNG, and a see-through surface; and the environment light
 // around the model, --hdri, and the display transform, --tone-mapping and --exposure
-// (docs/usage.md).
+// (docs/rendering.md).
 #pragma once
 
 #include <cstdint>

@@ -54,7 +54,7 @@ inline void addCameraFlags(FlagSet& flags, CameraSettings& c) {
   std::vector<std::string> modes;
   for (Projection p : kProjections) modes.push_back(projectionName(p));
   flags.addChoice("projection", &c.projection, modes,
-                  "how pixels map to view rays (default perspective; docs/usage.md)");
+                  "how pixels map to view rays (default perspective; docs/rendering.md)");
 }
 
 }  // namespace tessera::cli

@@ -1,5 +1,5 @@
 // Frame diagnostics: what the pipeline did to draw a frame, per pixel, per tile and in total
-// (RenderOptions::diagnostics). docs/stats.md describes every field; docs/usage.md the AOVs.
+// (RenderOptions::diagnostics). docs/stats.md describes every field; docs/rendering.md the AOVs.
 #pragma once
 
 #include <cstddef>
@@ -21,8 +21,7 @@ struct CullCounts {
   // wholly outside the frustum, or (clusters) wholly facing away.
   uint64_t skipped = 0;
   uint64_t total() const {
-    return invalid + non_finite + frustum + degenerate + facing + no_pixel + clipped_away +
-           skipped;
+    return invalid + non_finite + frustum + degenerate + facing + no_pixel + clipped_away + skipped;
   }
 };
 
