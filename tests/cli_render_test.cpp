@@ -403,8 +403,8 @@ TEST_F(CliRender, ShadowsDarkenWhatTheBoxHidesFromTheLight) {
 }
 
 TEST_F(CliRender, ShadowsAreDrawnOnTheVulkanBackends) {
-  // The Vulkan backends draw the CPU's shadow maps (docs/vulkan.md): the same shadow as the cpu
-  // backend's, where the box hides the floor from the light, and the lit floor unchanged. A
+  // The Vulkan backends draw the CPU's shadow maps (docs/vulkan-features.md): the same shadow as
+  // the cpu backend's, where the box hides the floor from the light, and the lit floor unchanged. A
   // tessera built without them (the sanitizer builds) refuses the backend itself, a usage error.
   writeFile("box.obj", boxOnFloorObj());
   const std::string common =

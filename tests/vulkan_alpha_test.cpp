@@ -1,4 +1,4 @@
-// alphaMode MASK and BLEND on the Vulkan backends (docs/vulkan.md).
+// alphaMode MASK and BLEND on the Vulkan backends (docs/vulkan-features.md).
 //
 // MASK: vulkan-raster discards the fragments whose alpha is below the cutoff, as the CPU cuts them;
 // the compute backend's MASK pass commits masked records where the alpha test passes, per sample

@@ -139,7 +139,8 @@ Expected<void> AlphaPasses::prepare(Context& c, const Scene& scene, const Render
   if (!blending) return blending.error();
   blend_active = *blending;
   mask_active = false;
-  if (!atomic64) return {};  // the 32-bit path draws masked materials opaque (docs/vulkan.md)
+  if (!atomic64)
+    return {};  // the 32-bit path draws masked materials opaque (docs/vulkan-features.md)
   Expected<bool> masking = mask.prepare(c, scene, options, packed);
   if (!masking) return masking.error();
   mask_active = *masking;

@@ -20,7 +20,7 @@ enum class Shading : uint8_t {
   kPhong,    // normals interpolated, lighting per pixel
   kUnlit,    // albedo only
   // glTF's metallic-roughness BRDF per pixel (render/pbr.h): every map and factor of the Material,
-  // view-dependent. The Vulkan backends draw it too (docs/vulkan.md).
+  // view-dependent. The Vulkan backends draw it too (docs/vulkan-features.md).
   kPbr,
 };
 

@@ -1,7 +1,7 @@
 // tessera-vulkan-stats: renders one scene with the compute backend for a few frames and prints
 // its counters and per-pass GPU times (median over the frames), with the CPU renderer and the
 // raster backend beside it; optionally writes the frame and the tile-occupancy heatmap as PNGs.
-// The numbers in docs/vulkan.md come from it.
+// The numbers in docs/vulkan.md and docs/vulkan-features.md come from it.
 //
 //   tessera-vulkan-stats [MODEL.obj] [--size W,H] [--frames N] [--32bit] [--heatmap PATH]
 //                        [--image PATH]
