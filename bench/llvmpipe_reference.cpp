@@ -83,16 +83,18 @@ GLint glWrap(TextureWrap wrap) {
   return wrap == TextureWrap::kMirroredRepeat ? GL_MIRRORED_REPEAT : GL_REPEAT;
 }
 
-// A mesh's vertex streams as the reference draws them: indexed where it has normals and is not
-// flat-shaded, else a triangle soup carrying face normals. Triangles with a non-finite vertex are
-// left out, as tessera drops them; `g` gets the flags and the draw ranges, one per run of a
-// material.
+// What uploadGeometry puts in the mesh's buffers.
 struct VertexStreams {
   std::vector<float3> positions, normals;
   std::vector<float2> uvs;
   std::vector<float4> colors;
   std::vector<uint32_t> indices;
 };
+
+// A mesh's vertex streams as the reference draws them: indexed where it has normals and is not
+// flat-shaded, else a triangle soup carrying face normals. Triangles with a non-finite vertex are
+// left out, as tessera drops them; `g` gets the flags and the draw ranges, one per run of a
+// material.
 VertexStreams vertexStreams(const Mesh& mesh, Shading shading, GpuObject& g) {
   const size_t triangles = mesh.triangleCount();
   // Flat shading lights the face normal; a mesh without normals is drawn flat by tessera too.

@@ -353,14 +353,13 @@ namespace {
 
 // A screen-space triangle and its signed area (setup's).
 struct ScreenTriangle {
-  tessera::render::ScreenVertex v[3];
+  render::ScreenVertex v[3];
   int64_t area;
 };
 
 // `count` random triangles that setup keeps in a viewport of ctx's size: from a pixel to hundreds
 // of pixels across, some partly off the viewport.
-std::vector<ScreenTriangle> visibleTriangles(const tessera::render::SetupContext& ctx,
-                                             size_t count) {
+std::vector<ScreenTriangle> visibleTriangles(const render::SetupContext& ctx, size_t count) {
   using namespace tessera::render;
   std::mt19937 rng(5);
   std::uniform_int_distribution<int32_t> centre(-100 * kSubpixelOne, 700 * kSubpixelOne);
@@ -387,11 +386,11 @@ std::vector<ScreenTriangle> visibleTriangles(const tessera::render::SetupContext
 // colour (i, 0.5, 0.25) and is solid for even i only (odd ones differ in corner 1's y, or in
 // corner 2's z alone, the float markSolid8 reads apart from the others).
 struct BatchRecords {
-  tessera::render::PoolVector<tessera::render::RasterTriangle> raster;  // aligned: streamed into
-  std::vector<tessera::render::RasterWide> wide;
-  tessera::render::PoolVector<tessera::render::ShadeTriangle> shade;
+  render::PoolVector<render::RasterTriangle> raster;  // aligned: streamed into
+  std::vector<render::RasterWide> wide;
+  render::PoolVector<render::ShadeTriangle> shade;
 };
-BatchRecords setupInBatches(const tessera::render::Kernels& kernels,
+BatchRecords setupInBatches(const render::Kernels& kernels,
                             const std::vector<ScreenTriangle>& triangles, size_t lead, int width,
                             int height, int32_t reach) {
   using namespace tessera::render;
