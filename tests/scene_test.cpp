@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tessera/base/huge_pages.h>
 #include <tessera/scene/color.h>
 #include <tessera/scene/primitives.h>
 #include <tessera/scene/scene.h>
@@ -335,6 +336,49 @@ TEST(Texture, LinearTexelsAreTheDecodedTexelsOfEveryLevel) {
   broken.height = 4;
   broken.texels.assign(3, 0u);
   EXPECT_EQ(broken.linearTexels(0), nullptr);
+}
+
+// A large level's copy lies in whole huge pages (HugePageAllocator), a small one in ordinary
+// memory, and either holds the decoded texels.
+TEST(Texture, LargeLinearTexelCopiesStartOnAHugePage) {
+  Texture t;
+  t.width = 512;
+  t.height = 512;  // 4 MiB of floats at level 0, 1 MiB at level 1
+  t.texels.resize(static_cast<size_t>(t.width) * t.height);
+  for (size_t i = 0; i < t.texels.size(); ++i) t.texels[i] = static_cast<uint32_t>(i * 2654435761u);
+  generateMipmaps(t);
+  for (int level = 0; level < t.levelCount(); ++level) {
+    const std::vector<uint32_t>& texels = level == 0 ? t.texels : t.mips[level - 1].texels;
+    const float* linear = t.linearTexels(level);
+    ASSERT_NE(linear, nullptr);
+    const size_t bytes = 4 * sizeof(float) * texels.size();
+    if (bytes >= kHugePage / 2)
+      EXPECT_EQ(reinterpret_cast<uintptr_t>(linear) % kHugePage, 0u) << "level " << level;
+    const size_t last = texels.size() - 1;
+    EXPECT_EQ(linear[4 * last + 3], static_cast<float>(texels[last] >> 24) / 255.0f);
+    EXPECT_EQ(linear[0], srgbDecodeTable()[texels[0] & 0xff]);
+  }
+}
+
+// The allocator's two kinds of block: whole huge pages from half a huge page up, operator new
+// below; a vector that grows from one kind into the other keeps its contents.
+TEST(HugePages, AllocatorTakesHugePagesForLargeBlocksOnly) {
+  HugePageAllocator<double> allocator;
+  const size_t large = kHugePage / 2 / sizeof(double);
+  double* block = allocator.allocate(large);
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(block) % kHugePage, 0u);
+  block[0] = 1.0;
+  block[large - 1] = 2.0;
+  EXPECT_EQ(block[0] + block[large - 1], 3.0);
+  allocator.deallocate(block, large);
+  EXPECT_EQ(HugePageAllocator<double>::mapped(large - 1), 0u);
+  EXPECT_EQ(HugePageAllocator<double>::mapped(large), kHugePage);
+  EXPECT_EQ(HugePageAllocator<double>::mapped(2 * large), kHugePage);
+  EXPECT_EQ(HugePageAllocator<double>::mapped(2 * large + 1), 2 * kHugePage);
+  std::vector<uint32_t, HugePageAllocator<uint32_t>> values;
+  for (uint32_t i = 0; i < 1'000'000; ++i) values.push_back(i * 2654435761u);
+  for (uint32_t i = 0; i < 1'000'000; ++i) ASSERT_EQ(values[i], i * 2654435761u) << i;
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(values.data()) % kHugePage, 0u);
 }
 
 // The copies' memory counts against one budget for the process: a copy that would pass it is not

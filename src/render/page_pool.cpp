@@ -6,6 +6,8 @@
 #include <mutex>
 #include <new>
 
+#include <tessera/base/huge_pages.h>
+
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
@@ -13,42 +15,18 @@
 namespace tessera::render {
 namespace {
 
-constexpr size_t kRegion = size_t{2} << 20;  // one huge page
-constexpr int kMinClass = 6;                 // 64 bytes: a cache line
-constexpr int kMaxClass = 20;                // 1 MiB; larger blocks are mappings of their own
+constexpr size_t kRegion = kHugePage;
+constexpr int kMinClass = 6;   // 64 bytes: a cache line
+constexpr int kMaxClass = 20;  // 1 MiB; larger blocks are mappings of their own
 
 size_t roundUp(size_t bytes, size_t unit) {
   return (bytes + unit - 1) / unit * unit;
 }
 
-#if defined(__linux__)
-// `bytes` (a multiple of kRegion) of fresh memory starting on a kRegion boundary, marked for huge
-// pages before anything touches it, so that the first touch of each 2 MiB maps a huge page.
+// `bytes` (a multiple of kRegion) on a region boundary, marked for huge pages.
 char* mapRegion(size_t bytes) {
-  const size_t span = bytes + kRegion;
-  void* raw = mmap(nullptr, span, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-  if (raw == MAP_FAILED) throw std::bad_alloc();
-  const uintptr_t begin = reinterpret_cast<uintptr_t>(raw);
-  const uintptr_t aligned = roundUp(begin, kRegion);
-  if (aligned > begin) munmap(raw, aligned - begin);
-  if (begin + span > aligned + bytes)
-    munmap(reinterpret_cast<void*>(aligned + bytes), begin + span - (aligned + bytes));
-  // Advice only: where transparent huge pages are off the memory is ordinary pages.
-  madvise(reinterpret_cast<void*>(aligned), bytes, MADV_HUGEPAGE);
-  return reinterpret_cast<char*>(aligned);
+  return static_cast<char*>(mapHugePages(bytes));
 }
-void unmapRegion(void* block, size_t bytes) {
-  munmap(block, bytes);
-}
-#else
-constexpr size_t kLine = size_t{1} << kMinClass;
-char* mapRegion(size_t bytes) {
-  return static_cast<char*>(::operator new (bytes, std::align_val_t{kLine}));
-}
-void unmapRegion(void* block, size_t) {
-  ::operator delete (block, std::align_val_t{kLine});
-}
-#endif
 
 struct FreeBlock {
   FreeBlock* next;
@@ -109,7 +87,7 @@ void poolFree(void* block, size_t bytes) noexcept {
   if (block == nullptr) return;
   const int k = sizeClass(bytes);
   if (k > kMaxClass) {
-    unmapRegion(block, roundUp(bytes, kRegion));
+    unmapHugePages(block, roundUp(bytes, kRegion));
     return;
   }
   Pool& p = pool();

@@ -86,13 +86,13 @@ bool levelsHoldTheirTexels(const Texture& t) {
 }
 
 // Every level of t decoded to linear float RGBA (Texture::linearTexels).
-void decodeLevels(const Texture& t, std::vector<std::vector<float>>& levels) {
+void decodeLevels(const Texture& t, std::vector<LinearTexelCache::LinearLevel>& levels) {
   const float* decode = srgbDecodeTable();
   levels.resize(static_cast<size_t>(t.levelCount()));
   for (int l = 0; l < t.levelCount(); ++l) {
     const LevelView view = levelView(t, l);
     const size_t count = static_cast<size_t>(view.width) * static_cast<size_t>(view.height);
-    std::vector<float>& out = levels[static_cast<size_t>(l)];
+    LinearTexelCache::LinearLevel& out = levels[static_cast<size_t>(l)];
     out.resize(4 * count);
     for (size_t i = 0; i < count; ++i) {
       const float4 c = decodeTexel(view.texels[i], t.srgb, decode);
@@ -207,7 +207,7 @@ size_t Texture::setLinearTexelBudget(size_t bytes) {
 
 void LinearTexelCache::drop() {
   size_t floats = 0;  // what makeLinearTexels reserved: linearBytes of the texture it was made of
-  for (const std::vector<float>& level : levels_) floats += level.size();
+  for (const LinearLevel& level : levels_) floats += level.size();
   linear_texel_bytes.fetch_sub(sizeof(float) * floats);
   levels_.clear();
   levels_.shrink_to_fit();
