@@ -486,7 +486,7 @@ TEST(TextureCopy, ThreadsThatMeetATextureTogetherShareOneDecodedCopy) {
   for (int i = 0; i < texture.width * texture.height; ++i)
     texture.texels.push_back(0x80000000u | static_cast<uint32_t>(i * 2654435761u >> 8));
   generateMipmaps(texture);
-  const float* seen[4] = {};
+  const int16_t* seen[4] = {};
   std::atomic<int> waiting{4};
   std::vector<std::thread> threads;
   for (int t = 0; t < 4; ++t)
@@ -501,8 +501,8 @@ TEST(TextureCopy, ThreadsThatMeetATextureTogetherShareOneDecodedCopy) {
   ASSERT_NE(seen[1], nullptr);
   for (int t = 2; t < 4; ++t) EXPECT_EQ(seen[t], seen[t % 2]);
   for (int i = 0; i < texture.width * texture.height; ++i)
-    ASSERT_EQ(seen[0][4 * i], srgbDecodeTable()[texture.texels[static_cast<size_t>(i)] & 0xff]);
-  EXPECT_EQ(seen[1][3], 128.0f / 255.0f);  // alpha: linear
+    ASSERT_EQ(seen[0][4 * i], texelFixedTable(true)[texture.texels[static_cast<size_t>(i)] & 0xff]);
+  EXPECT_EQ(seen[1][3], texelFixedTable(false)[128]);  // alpha: linear
 }
 
 // A texture whose linear copy would pass the process's budget (Texture::kLinearTexelBudget) is

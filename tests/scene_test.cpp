@@ -201,12 +201,16 @@ TEST(Texture, SAndTWrapSeparatelyAndMirroredRepeatReflectsEachPeriod) {
   EXPECT_EQ(red({0.375f, -0.25f}, TextureWrap::kRepeat, TextureWrap::kClamp), 50);
   EXPECT_EQ(red({0.375f, -0.25f}, TextureWrap::kClamp, TextureWrap::kRepeat), 10);
   EXPECT_EQ(red({0.375f, -0.25f}, TextureWrap::kClamp, TextureWrap::kMirroredRepeat), 50);
-  // Bilinear at the seam of a mirrored axis blends a texel with itself: u = 1 reads texel 3 alone.
+  // Bilinear at the seam of a mirrored axis blends a texel with itself: u = 1 reads texel 3 alone,
+  // its 15-bit value whole (FixedFilter), within half a step of 30 / 255.
   Sampler bilinear;
   bilinear.filter = TextureFilter::kBilinear;
   bilinear.wrap_s = TextureWrap::kMirroredRepeat;
   bilinear.wrap_t = TextureWrap::kClamp;
-  EXPECT_NEAR(t.sample({1.0f, 0.75f}, bilinear).x, 30.0f / 255.0f, 1e-6f);
+  const int32_t code30 = texelFixedTable(false)[30];
+  EXPECT_EQ(t.sample({1.0f, 0.75f}, bilinear).x,
+            static_cast<float>(code30 * FixedFilter::kWeightOne) * FixedFilter::kScale);
+  EXPECT_NEAR(t.sample({1.0f, 0.75f}, bilinear).x, 30.0f / 255.0f, 0.5f / FixedFilter::kTexelOne);
 }
 
 // KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv in glTF's coordinates (v down
@@ -308,23 +312,24 @@ TEST(Texture, LinearTexelsAreTheDecodedTexelsOfEveryLevel) {
     copy.srgb = srgb;
     for (int level = 0; level < copy.levelCount(); ++level) {
       const std::vector<uint32_t>& texels = level == 0 ? copy.texels : copy.mips[0].texels;
-      const float* linear = copy.linearTexels(level);
+      const int16_t* linear = copy.linearTexels(level);
       ASSERT_NE(linear, nullptr);
       for (size_t i = 0; i < texels.size(); ++i)
         for (int k = 0; k < 4; ++k) {
           const uint32_t code = (texels[i] >> (8 * k)) & 0xff;
-          const float want =
+          const float decoded =
               srgb && k < 3 ? srgbDecodeTable()[code] : static_cast<float>(code) / 255.0f;
+          const int want = static_cast<int>(std::lround(decoded * FixedFilter::kTexelOne));
           EXPECT_EQ(linear[4 * i + k], want) << "level " << level << " texel " << i << " " << k;
         }
     }
     EXPECT_EQ(copy.linearTexels(2), nullptr);  // no such level
   }
   // New texels and levels: the next call decodes them.
-  EXPECT_EQ(t.linearTexels(0)[0], 0.0f);
+  EXPECT_EQ(t.linearTexels(0)[0], 0);
   t.texels[0] = 0xffffffffu;
   generateMipmaps(t);
-  EXPECT_EQ(t.linearTexels(0)[0], 1.0f);
+  EXPECT_EQ(t.linearTexels(0)[0], FixedFilter::kTexelOne);
   Texture big;
   big.width = 1025;
   big.height = 1024;
@@ -343,20 +348,20 @@ TEST(Texture, LinearTexelsAreTheDecodedTexelsOfEveryLevel) {
 TEST(Texture, LargeLinearTexelCopiesStartOnAHugePage) {
   Texture t;
   t.width = 512;
-  t.height = 512;  // 4 MiB of floats at level 0, 1 MiB at level 1
+  t.height = 512;  // 2 MiB at level 0, 512 KiB at level 1
   t.texels.resize(static_cast<size_t>(t.width) * t.height);
   for (size_t i = 0; i < t.texels.size(); ++i) t.texels[i] = static_cast<uint32_t>(i * 2654435761u);
   generateMipmaps(t);
   for (int level = 0; level < t.levelCount(); ++level) {
     const std::vector<uint32_t>& texels = level == 0 ? t.texels : t.mips[level - 1].texels;
-    const float* linear = t.linearTexels(level);
+    const int16_t* linear = t.linearTexels(level);
     ASSERT_NE(linear, nullptr);
-    const size_t bytes = 4 * sizeof(float) * texels.size();
+    const size_t bytes = 4 * sizeof(int16_t) * texels.size();
     if (bytes >= kHugePage / 2)
       EXPECT_EQ(reinterpret_cast<uintptr_t>(linear) % kHugePage, 0u) << "level " << level;
     const size_t last = texels.size() - 1;
-    EXPECT_EQ(linear[4 * last + 3], static_cast<float>(texels[last] >> 24) / 255.0f);
-    EXPECT_EQ(linear[0], srgbDecodeTable()[texels[0] & 0xff]);
+    EXPECT_EQ(linear[4 * last + 3], texelFixedTable(false)[texels[last] >> 24]);
+    EXPECT_EQ(linear[0], texelFixedTable(true)[texels[0] & 0xff]);
   }
 }
 
@@ -391,7 +396,7 @@ TEST(Texture, LinearTexelCopiesKeepWithinTheBudget) {
     t.texels.assign(32 * 16, 0xff336699u);
     return t;
   };
-  constexpr size_t kCopy = 32 * 16 * 4 * sizeof(float);  // one level's linear copy
+  constexpr size_t kCopy = 32 * 16 * 4 * sizeof(int16_t);  // one level's linear copy
   const size_t held = Texture::linearTexelBytes();
   const size_t budget = Texture::setLinearTexelBudget(held + 2 * kCopy + kCopy / 2);
   {

@@ -1,10 +1,14 @@
 // Texture sampling eight lanes at a time, for the shading kernels (shade_lanes.h): sampleTexture
-// (shade.cpp) with the same float operations per lane, so every variant gives the same bits.
+// (shade.cpp) with the same integer and float operations per lane (the bilinear filter's are
+// FixedFilter's, texture.h), so every variant gives the same bits.
 // Bilinear and trilinear filtering, every wrap mode, the sampler's transform; nearest filtering and
 // coordinates of 65536 and beyond are left to the caller, lane by lane.
 #pragma once
 
 #include <algorithm>
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
 
 #include <tessera/scene/color.h>
 #include <tessera/scene/texture.h>
@@ -115,50 +119,103 @@ TESSERA_LANES_INLINE void wrapPair8(I32x8 i, int size, TextureWrap wrap, I32x8& 
   second = one_period(next);
 }
 
-// One channel of eight texels (bits `shift`..`shift + 7`) in linear light, as decodeTexel.
-TESSERA_LANES_INLINE F32x8 decodeChannel(I32x8 texels, int shift, bool srgb, const float* decode) {
-  const I32x8 code = shiftRight(texels, shift) & splat(int32_t{0xff});
-  return srgb ? gather(decode, code) : toFloat(code) / splat(255.0f);
+// One channel of eight texels (bits `shift`..`shift + 7`) as the filter reads it: `table` is
+// texelFixedTable's.
+TESSERA_LANES_INLINE I32x8 fixedChannel(I32x8 texels, int shift, const int32_t* table) {
+  return gatherWords(reinterpret_cast<const uint32_t*>(table),
+                     shiftRight(texels, shift) & splat(int32_t{0xff}));
 }
 
 struct LevelLanes {
   int width, height;
   const uint32_t* texels;
-  const float* linear;  // Texture::linearTexels of this level, or null
+  const int16_t* linear;  // Texture::linearTexels of this level, or null
 };
 
-// The four channels of the texels at `index` (eight lanes) from a level's linear copy: a load of
-// each lane's four floats (two lanes a register) and a transpose, where the RGBA8 texels take a
-// gather and then a table gather per channel. The values are decodeChannel's, so the same bits.
-TESSERA_LANES_INLINE void loadLinear8(const float* linear, I32x8 index, F32x8 out[4]) {
-  alignas(32) int32_t at[8];
-  store(at, index);
-  for (int l = 0; l < 4; ++l)
-    out[l] = load2x4<F32x8>(linear + 4 * static_cast<size_t>(at[l]),
-                            linear + 4 * static_cast<size_t>(at[l + 4]));
-  transpose4x4Halves(out);  // out[k]: channel k of lanes 0-3, then of lanes 4-7
+// Eight lanes of eight 16-bit values from p (unaligned), widened: the generic form of what the
+// AVX2 path of fixedQuads8 reads a register half at a time.
+TESSERA_LANES_INLINE I32x8 widen16(const int16_t* p) {
+  alignas(32) int32_t v[8];
+  for (int i = 0; i < 8; ++i) v[i] = p[i];
+  return load<I32x8>(v);
 }
 
-// loadLinear8 of the four texels (x, y), (x + 1, y), (x, y + 1) and (x + 1, y + 1) of a level
-// `width` texels wide, where `index` is each lane's (x, y): each lane's texel and its right
-// neighbour are eight consecutive floats, one load a row and a transpose. top[k] and bottom[k]:
-// channel k of (x, y) and (x, y + 1); top[4 + k] and bottom[4 + k] of their right neighbours.
-TESSERA_LANES_INLINE void loadLinearQuads8(const float* linear, I32x8 index, int width,
-                                           F32x8 top[8], F32x8 bottom[8]) {
-  alignas(32) int32_t at[8];
+// The filter across and down (FixedFilter) for one channel of eight lanes: a and b the upper row's
+// left and right texels, c and d the lower row's, w0 and w1 their weights.
+TESSERA_LANES_INLINE F32x8 fixedLerp8(I32x8 a, I32x8 b, I32x8 c, I32x8 d, I32x8 w0, I32x8 w1,
+                                      F32x8 ty) {
+  const F32x8 upper = toFloat(a * w0 + b * w1), lower = toFloat(c * w0 + d * w1);
+  return (upper + (lower - upper) * ty) * splat(FixedFilter::kScale);
+}
+
+// The four channels of the texels at `index` (eight lanes) of a level's copy, channel by channel.
+TESSERA_LANES_INLINE void loadFixed8(const int16_t* linear, I32x8 index, I32x8 out[4]) {
+  alignas(32) int32_t at[8], channel[4][8];
   store(at, index);
+  for (int l = 0; l < 8; ++l)
+    for (int k = 0; k < 4; ++k) channel[k][l] = linear[4 * static_cast<size_t>(at[l]) + k];
+  for (int k = 0; k < 4; ++k) out[k] = load<I32x8>(channel[k]);
+}
+
+// The filter of the quads whose upper left texels are at `at` (each lane's index in a level
+// `width` texels wide, its right and lower neighbours inside the level) from the level's copy,
+// `channels` channels into out. Each lane's texel and its right neighbour are 16 consecutive
+// bytes. On AVX2 two lanes a register: the pair's channels interleaved by a byte shuffle and
+// blended across by one vpmaddwd (fixedLerp8's integers), down in float, then one in-lane 4x4
+// transpose; elsewhere a 16-bit load widened per lane and row, an 8x8 transpose each, and
+// fixedLerp8. The same bits either way.
+TESSERA_LANES_INLINE void fixedQuads8(const int16_t* linear, const int32_t at[8], int width,
+                                      I32x8 w1, F32x8 ty, int channels, F32x8 out[4]) {
   const size_t down = 4 * static_cast<size_t>(width);
+#if defined(__AVX2__)
+  const __m256i right = reinterpret_cast<__m256i>(w1);
+  const __m256i weights =
+      _mm256_or_si256(_mm256_slli_epi32(right, 16),
+                      _mm256_sub_epi32(_mm256_set1_epi32(FixedFilter::kWeightOne), right));
+  const __m256i interleave = _mm256_setr_epi8(0, 1, 8, 9, 2, 3, 10, 11, 4, 5, 12, 13, 6, 7, 14, 15,
+                                              0, 1, 8, 9, 2, 3, 10, 11, 4, 5, 12, 13, 6, 7, 14, 15);
+  const auto pair = [&](const int16_t* a, const int16_t* b, __m256i w) {
+    const __m256i texels = _mm256_inserti128_si256(
+        _mm256_castsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(a))),
+        _mm_loadu_si128(reinterpret_cast<const __m128i*>(b)), 1);
+    return _mm256_cvtepi32_ps(_mm256_madd_epi16(_mm256_shuffle_epi8(texels, interleave), w));
+  };
+  __m256 o[4];
+  for (int p = 0; p < 4; ++p) {
+    // Lanes p and p + 4: the low and high halves.
+    const __m256i lanes = _mm256_setr_epi32(p, p, p, p, p + 4, p + 4, p + 4, p + 4);
+    const __m256i w = _mm256_permutevar8x32_epi32(weights, lanes);
+    const __m256 t = _mm256_permutevar8x32_ps(reinterpret_cast<__m256>(ty), lanes);
+    const int16_t* a = linear + 4 * static_cast<size_t>(at[p]);
+    const int16_t* b = linear + 4 * static_cast<size_t>(at[p + 4]);
+    const __m256 upper = pair(a, b, w), lower = pair(a + down, b + down, w);
+    o[p] = _mm256_add_ps(upper, _mm256_mul_ps(_mm256_sub_ps(lower, upper), t));
+  }
+  const __m256 t0 = _mm256_unpacklo_ps(o[0], o[1]), t1 = _mm256_unpacklo_ps(o[2], o[3]);
+  const __m256 t2 = _mm256_unpackhi_ps(o[0], o[1]), t3 = _mm256_unpackhi_ps(o[2], o[3]);
+  const __m256 columns[4] = {_mm256_shuffle_ps(t0, t1, 0x44), _mm256_shuffle_ps(t0, t1, 0xee),
+                             _mm256_shuffle_ps(t2, t3, 0x44), _mm256_shuffle_ps(t2, t3, 0xee)};
+  for (int k = 0; k < channels; ++k)
+    out[k] = reinterpret_cast<F32x8>(columns[k]) * splat(FixedFilter::kScale);
+#else
+  F32x8 top[8], bottom[8];  // as bits: channels 0-3 of the left texel, then of the right one
   for (int l = 0; l < 8; ++l) {
-    const float* p = linear + 4 * static_cast<size_t>(at[l]);
-    top[l] = load<F32x8>(p);
-    bottom[l] = load<F32x8>(p + down);
+    const int16_t* p = linear + 4 * static_cast<size_t>(at[l]);
+    top[l] = fromBits(widen16(p));
+    bottom[l] = fromBits(widen16(p + down));
   }
   transpose8x8(top);
   transpose8x8(bottom);
+  const I32x8 w0 = splat(FixedFilter::kWeightOne) - w1;
+  for (int k = 0; k < channels; ++k)
+    out[k] = fixedLerp8(bitsOf(top[k]), bitsOf(top[4 + k]), bitsOf(bottom[k]),
+                        bitsOf(bottom[4 + k]), w0, w1, ty);
+#endif
 }
 
-// sampleLevel's bilinear filter (texture.cpp) in one level for the lanes of `mask` (the others
-// read texel 0), `channels` channels (3: RGB, 4: RGBA); coordinates below 65536 in magnitude.
+// sampleLevel's bilinear filter (texture.cpp, FixedFilter) in one level for the lanes of `mask`
+// (the others read texel 0), `channels` channels (3: RGB, 4: RGBA); coordinates below 65536 in
+// magnitude.
 TESSERA_LANES_INLINE void bilinear8(const LevelLanes& level, bool srgb, const Sampler& sampler,
                                     I32x8 mask, const Uv8& uv, int channels, F32x8 out[4]) {
   const F32x8 sx = uv.u * splat(static_cast<float>(level.width)) - splat(0.5f);
@@ -171,44 +228,38 @@ TESSERA_LANES_INLINE void bilinear8(const LevelLanes& level, bool srgb, const Sa
   wrapPair8(x0, level.width, sampler.wrap_s, xa, xb);
   wrapPair8(y0, level.height, sampler.wrap_t, ya, yb);
   const I32x8 w = splat(int32_t{level.width});
-  const uint32_t* texels = level.texels;
   const I32x8 row_a = ya * w, row_b = yb * w;
-  // lerp(a, b, t) = a + (b - a) * t: across, then down.
+  const I32x8 w1 = truncate(tx * splat(static_cast<float>(FixedFilter::kWeightOne)));
+  const I32x8 w0 = splat(FixedFilter::kWeightOne) - w1;
+  I32x8 q[4][4];  // the channels of the quad's texels (xa, ya), (xb, ya), (xa, yb), (xb, yb)
   if (level.linear) {
-    F32x8 top[8], bottom[8];  // channels 0-3 of the left texel, then of the right one
     const I32x8 one = splat(int32_t{1});
-    if (any(~(equal(xb, xa + one) & equal(yb, ya + one)))) {  // a lane at a wrap or a clamp
-      loadLinear8(level.linear, row_a + xa, top);
-      loadLinear8(level.linear, row_a + xb, top + 4);
-      loadLinear8(level.linear, row_b + xa, bottom);
-      loadLinear8(level.linear, row_b + xb, bottom + 4);
-    } else {
-      loadLinearQuads8(level.linear, row_a + xa, level.width, top, bottom);
+    if (!any(~(equal(xb, xa + one) & equal(yb, ya + one)))) {  // no lane at a wrap or a clamp
+      alignas(32) int32_t at[8];
+      store(at, row_a + xa);
+      fixedQuads8(level.linear, at, level.width, w1, ty, channels, out);
+      return;
     }
-    for (int k = 0; k < channels; ++k) {
-      const F32x8 upper = top[k] + (top[4 + k] - top[k]) * tx;
-      const F32x8 lower = bottom[k] + (bottom[4 + k] - bottom[k]) * tx;
-      out[k] = upper + (lower - upper) * ty;
-    }
-    return;
+    loadFixed8(level.linear, row_a + xa, q[0]);
+    loadFixed8(level.linear, row_a + xb, q[1]);
+    loadFixed8(level.linear, row_b + xa, q[2]);
+    loadFixed8(level.linear, row_b + xb, q[3]);
+  } else {
+    const uint32_t* texels = level.texels;
+    const I32x8 c[4] = {gatherWords(texels, row_a + xa), gatherWords(texels, row_a + xb),
+                        gatherWords(texels, row_b + xa), gatherWords(texels, row_b + xb)};
+    const int32_t* colour = texelFixedTable(srgb);
+    const int32_t* unorm = texelFixedTable(false);
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < channels; ++k)
+        q[i][k] = fixedChannel(c[i], 8 * k, k < 3 ? colour : unorm);
   }
-  const I32x8 c00 = gatherWords(texels, row_a + xa), c10 = gatherWords(texels, row_a + xb);
-  const I32x8 c01 = gatherWords(texels, row_b + xa), c11 = gatherWords(texels, row_b + xb);
-  const float* decode = kSrgbDecode.data();
-  for (int k = 0; k < channels; ++k) {
-    const bool encoded = srgb && k < 3;  // alpha is linear
-    const F32x8 t00 = decodeChannel(c00, 8 * k, encoded, decode);
-    const F32x8 t10 = decodeChannel(c10, 8 * k, encoded, decode);
-    const F32x8 t01 = decodeChannel(c01, 8 * k, encoded, decode);
-    const F32x8 t11 = decodeChannel(c11, 8 * k, encoded, decode);
-    const F32x8 top = t00 + (t10 - t00) * tx;
-    const F32x8 bottom = t01 + (t11 - t01) * tx;
-    out[k] = top + (bottom - top) * ty;
-  }
+  for (int k = 0; k < channels; ++k)
+    out[k] = fixedLerp8(q[0][k], q[1][k], q[2][k], q[3][k], w0, w1, ty);
 }
 
 TESSERA_LANES_INLINE LevelLanes levelLanes(const Texture& texture, int level) {
-  const float* linear = texture.linearTexels(level);
+  const int16_t* linear = texture.linearTexels(level);
   if (level == 0) return {texture.width, texture.height, texture.texels.data(), linear};
   const TextureLevel& m = texture.mips[static_cast<size_t>(level - 1)];
   return {m.width, m.height, m.texels.data(), linear};

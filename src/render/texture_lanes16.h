@@ -1,9 +1,10 @@
 // Two textured groups of a row filtered side by side in sixteen lanes (a 512-bit register each),
-// for the AVX-512 kernels (TESSERA_LANES16): the coordinates, wraps, transposes and lerps of
-// texture_lanes.h's bilinear8 once for both groups instead of once for each. The same float
-// operations per lane as bilinear8, so the same bits. It takes the common case only (one level,
-// the decoded copy, no transform, repeat on a power of two or clamp, every lane's four texels in
-// one quad); the caller filters the two groups eight lanes at a time otherwise.
+// for the AVX-512 kernels (TESSERA_LANES16): the coordinates, wraps and weights of
+// texture_lanes.h's bilinear8 once for both groups instead of once for each, then each group's
+// texels through fixedQuads8. The same operations per lane as bilinear8, so the same bits. It
+// takes the common case only (one level, the texture's copy, no transform, repeat on a power of
+// two or clamp, every lane's four texels in one quad); the caller filters the two groups eight
+// lanes at a time otherwise.
 #pragma once
 
 #if defined(TESSERA_LANES16)
@@ -82,6 +83,46 @@ TESSERA_LANES_INLINE bool isPairWrap(TextureWrap wrap, int size) {
   return wrap == TextureWrap::kClamp || (wrap == TextureWrap::kRepeat && (size & (size - 1)) == 0);
 }
 
+// fixedQuads8 for sixteen lanes (the RGB channels): four lanes a 512-bit register, lanes p, p + 4,
+// p + 8 and p + 12 in its four quarters, so that the in-lane 4x4 transpose leaves the lanes in
+// order. The same integers and floats per lane, so the same bits.
+TESSERA_LANES_INLINE void fixedQuads16(const int16_t* linear, const int32_t at[16], int width,
+                                       I32x16 w1, F32x16 ty, F32x16 out[3]) {
+  const size_t down = 4 * static_cast<size_t>(width);
+  const __m512i right = reinterpret_cast<__m512i>(w1);
+  const __m512i weights =
+      _mm512_or_si512(_mm512_slli_epi32(right, 16),
+                      _mm512_sub_epi32(_mm512_set1_epi32(FixedFilter::kWeightOne), right));
+  const __m512i interleave =
+      _mm512_broadcast_i32x4(_mm_setr_epi8(0, 1, 8, 9, 2, 3, 10, 11, 4, 5, 12, 13, 6, 7, 14, 15));
+  const auto quarters = [&](int p, size_t offset, __m512i w) {
+    const auto at_lane = [&](int l) {
+      return _mm_loadu_si128(
+          reinterpret_cast<const __m128i*>(linear + 4 * static_cast<size_t>(at[l]) + offset));
+    };
+    __m512i texels = _mm512_castsi128_si512(at_lane(p));
+    texels = _mm512_inserti32x4(texels, at_lane(p + 4), 1);
+    texels = _mm512_inserti32x4(texels, at_lane(p + 8), 2);
+    texels = _mm512_inserti32x4(texels, at_lane(p + 12), 3);
+    return _mm512_cvtepi32_ps(_mm512_madd_epi16(_mm512_shuffle_epi8(texels, interleave), w));
+  };
+  __m512 o[4];
+  for (int p = 0; p < 4; ++p) {
+    const __m512i lanes = _mm512_setr_epi32(p, p, p, p, p + 4, p + 4, p + 4, p + 4, p + 8, p + 8,
+                                            p + 8, p + 8, p + 12, p + 12, p + 12, p + 12);
+    const __m512i w = _mm512_permutexvar_epi32(lanes, weights);
+    const __m512 t = _mm512_permutexvar_ps(lanes, reinterpret_cast<__m512>(ty));
+    const __m512 upper = quarters(p, 0, w), lower = quarters(p, down, w);
+    o[p] = _mm512_add_ps(upper, _mm512_mul_ps(_mm512_sub_ps(lower, upper), t));
+  }
+  const __m512 t0 = _mm512_unpacklo_ps(o[0], o[1]), t1 = _mm512_unpacklo_ps(o[2], o[3]);
+  const __m512 t2 = _mm512_unpackhi_ps(o[0], o[1]), t3 = _mm512_unpackhi_ps(o[2], o[3]);
+  const __m512 columns[3] = {_mm512_shuffle_ps(t0, t1, 0x44), _mm512_shuffle_ps(t0, t1, 0xee),
+                             _mm512_shuffle_ps(t2, t3, 0x44)};
+  for (int k = 0; k < 3; ++k)
+    out[k] = reinterpret_cast<F32x16>(columns[k]) * splat16(FixedFilter::kScale);
+}
+
 // Whether groups of a material whose albedo is read as `reads` can be filtered two side by side:
 // in one level, from its decoded copy, untransformed, with wraps wrapPair16 takes.
 TESSERA_LANES_INLINE bool pairReads(const TextureReads& reads) {
@@ -116,26 +157,14 @@ TESSERA_LANES_INLINE bool filterTexturedPair(const TexturedGroup& a, const Textu
   if (any16(~((xb == xa + 1) & (yb == ya + 1)))) return false;
   alignas(64) int32_t at[16];
   *reinterpret_cast<I32x16*>(at) = ya * width + xa;
-  const float* linear = reads.base.linear;
-  const size_t down = 4 * static_cast<size_t>(width);
-  // Rows l and l + 8 of loadLinearQuads8's matrices for a and b, one register.
-  F32x16 top[8], bottom[8];
-  for (int l = 0; l < 8; ++l) {
-    const float* p = linear + 4 * static_cast<size_t>(at[l]);
-    const float* q = linear + 4 * static_cast<size_t>(at[l + 8]);
-    top[l] = join16(load<F32x8>(p), load<F32x8>(q));
-    bottom[l] = join16(load<F32x8>(p + down), load<F32x8>(q + down));
-  }
-  transpose8x8Halves(top);
-  transpose8x8Halves(bottom);
+  const I32x16 w1 = truncate16(tx * splat16(static_cast<float>(FixedFilter::kWeightOne)));
+  F32x16 albedo[3];
+  fixedQuads16(reads.base.linear, at, width, w1, ty, albedo);
   const Vec3x8* colors[2] = {&a.color, &b.color};
   F32x16 out[3];
   for (int k = 0; k < 3; ++k) {
-    const F32x16 upper = top[k] + (top[4 + k] - top[k]) * tx;
-    const F32x16 lower = bottom[k] + (bottom[4 + k] - bottom[k]) * tx;
-    const F32x16 albedo = upper + (lower - upper) * ty;
     const F32x8 Vec3x8::*channel = k == 0 ? &Vec3x8::x : k == 1 ? &Vec3x8::y : &Vec3x8::z;
-    out[k] = join16(colors[0]->*channel, colors[1]->*channel) * albedo;
+    out[k] = join16(colors[0]->*channel, colors[1]->*channel) * albedo[k];
   }
   ca = {lowHalf(out[0]), lowHalf(out[1]), lowHalf(out[2])};
   cb = {highHalf(out[0]), highHalf(out[1]), highHalf(out[2])};

@@ -1,6 +1,7 @@
 #include <tessera/scene/texture.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <new>
 #include <utility>
@@ -35,6 +36,15 @@ inline __attribute__((always_inline)) float4 decodeTexel(uint32_t c, bool srgb,
           static_cast<float>((c >> 16) & 0xff) / 255.0f, a};
 }
 
+// A texel's four channels as the bilinear filter reads them (texelFixedTable).
+inline __attribute__((always_inline)) void fixedTexel(uint32_t c, const int32_t* colour,
+                                                      const int32_t* unorm, int32_t out[4]) {
+  out[0] = colour[c & 0xff];
+  out[1] = colour[(c >> 8) & 0xff];
+  out[2] = colour[(c >> 16) & 0xff];
+  out[3] = unorm[c >> 24];
+}
+
 // Keeps float-to-int conversions defined for huge or non-finite coordinates (fmod only where
 // it changes something: below 65536 it is the identity).
 float sanitize(float v) {
@@ -55,7 +65,8 @@ float4 sampleLevel(const LevelView& level, bool srgb, float2 uv, TextureFilter f
     return texel(wrapTexel(static_cast<int>(std::floor(fx)), level.width, wrap_s),
                  wrapTexel(static_cast<int>(std::floor(fy)), level.height, wrap_t));
   }
-  // Bilinear between the four nearest texel centres, in linear space.
+  // Bilinear between the four nearest texel centres, in linear space, in fixed point across
+  // (FixedFilter).
   const float sx = fx - 0.5f, sy = fy - 0.5f;
   const float x0f = std::floor(sx), y0f = std::floor(sy);
   const float tx = sx - x0f, ty = sy - y0f;
@@ -63,9 +74,22 @@ float4 sampleLevel(const LevelView& level, bool srgb, float2 uv, TextureFilter f
   int xa, xb, ya, yb;
   wrapPair(x0, level.width, wrap_s, xa, xb);
   wrapPair(y0, level.height, wrap_t, ya, yb);
-  const float4 top = lerp(texel(xa, ya), texel(xb, ya), tx);
-  const float4 bottom = lerp(texel(xa, yb), texel(xb, yb), tx);
-  return lerp(top, bottom, ty);
+  const int32_t* colour = texelFixedTable(srgb);
+  const int32_t* unorm = texelFixedTable(false);
+  int32_t q[4][4];  // the quad's texels: (xa, ya), (xb, ya), (xa, yb), (xb, yb)
+  const int xs[2] = {xa, xb}, ys[2] = {ya, yb};
+  for (int i = 0; i < 4; ++i)
+    fixedTexel(level.texels[static_cast<size_t>(ys[i / 2]) * level.width + xs[i % 2]], colour,
+               unorm, q[i]);
+  const int32_t w1 = static_cast<int32_t>(tx * static_cast<float>(FixedFilter::kWeightOne));
+  const int32_t w0 = FixedFilter::kWeightOne - w1;
+  float out[4];
+  for (int k = 0; k < 4; ++k) {
+    const float upper = static_cast<float>(q[0][k] * w0 + q[1][k] * w1);
+    const float lower = static_cast<float>(q[2][k] * w0 + q[3][k] * w1);
+    out[k] = (upper + (lower - upper) * ty) * FixedFilter::kScale;
+  }
+  return {out[0], out[1], out[2], out[3]};
 }
 
 LevelView levelView(const Texture& t, int level) {
@@ -85,9 +109,10 @@ bool levelsHoldTheirTexels(const Texture& t) {
   return t.width >= 0;
 }
 
-// Every level of t decoded to linear float RGBA (Texture::linearTexels).
+// Every level of t as the bilinear filter reads it (Texture::linearTexels).
 void decodeLevels(const Texture& t, std::vector<LinearTexelCache::LinearLevel>& levels) {
-  const float* decode = srgbDecodeTable();
+  const int32_t* colour = texelFixedTable(t.srgb);
+  const int32_t* unorm = texelFixedTable(false);
   levels.resize(static_cast<size_t>(t.levelCount()));
   for (int l = 0; l < t.levelCount(); ++l) {
     const LevelView view = levelView(t, l);
@@ -95,11 +120,9 @@ void decodeLevels(const Texture& t, std::vector<LinearTexelCache::LinearLevel>& 
     LinearTexelCache::LinearLevel& out = levels[static_cast<size_t>(l)];
     out.resize(4 * count);
     for (size_t i = 0; i < count; ++i) {
-      const float4 c = decodeTexel(view.texels[i], t.srgb, decode);
-      out[4 * i] = c.x;
-      out[4 * i + 1] = c.y;
-      out[4 * i + 2] = c.z;
-      out[4 * i + 3] = c.w;
+      int32_t c[4];
+      fixedTexel(view.texels[i], colour, unorm, c);
+      for (int k = 0; k < 4; ++k) out[4 * i + k] = static_cast<int16_t>(c[k]);
     }
   }
 }
@@ -141,6 +164,21 @@ UvAffine TextureTransform::affine() const {
   m.m11 = static_cast<float>(c * sy);
   m.m12 = static_cast<float>(1.0 - c * sy - oy);
   return m;
+}
+
+const int32_t* texelFixedTable(bool srgb) {
+  static const auto tables = [] {
+    std::array<std::array<int32_t, 256>, 2> t{};
+    const float* decode = srgbDecodeTable();
+    for (int c = 0; c < 256; ++c) {
+      t[0][static_cast<size_t>(c)] = static_cast<int32_t>(
+          std::lround(static_cast<double>(c) * FixedFilter::kTexelOne / 255.0));
+      t[1][static_cast<size_t>(c)] = static_cast<int32_t>(
+          std::lround(static_cast<double>(decode[c]) * FixedFilter::kTexelOne));
+    }
+    return t;
+  }();
+  return tables[srgb ? 1 : 0].data();
 }
 
 float4 Texture::sample(float2 uv, const Sampler& sampler) const {
@@ -185,14 +223,14 @@ bool reserveLinearTexels(size_t bytes) {
   return true;
 }
 
-// The bytes of the linear copy of every level of t: four floats a texel.
+// The bytes of the linear copy of every level of t: four 16-bit channels a texel.
 size_t linearBytes(const Texture& t) {
   size_t texels = 0;
   for (int l = 0; l < t.levelCount(); ++l) {
     const LevelView view = levelView(t, l);
     texels += static_cast<size_t>(view.width) * static_cast<size_t>(view.height);
   }
-  return 4 * sizeof(float) * texels;
+  return 4 * sizeof(int16_t) * texels;
 }
 
 }  // namespace
@@ -206,9 +244,9 @@ size_t Texture::setLinearTexelBudget(size_t bytes) {
 }
 
 void LinearTexelCache::drop() {
-  size_t floats = 0;  // what makeLinearTexels reserved: linearBytes of the texture it was made of
-  for (const LinearLevel& level : levels_) floats += level.size();
-  linear_texel_bytes.fetch_sub(sizeof(float) * floats);
+  size_t channels = 0;  // what makeLinearTexels reserved: linearBytes of the texture it was made of
+  for (const LinearLevel& level : levels_) channels += level.size();
+  linear_texel_bytes.fetch_sub(sizeof(int16_t) * channels);
   levels_.clear();
   levels_.shrink_to_fit();
 }
@@ -246,7 +284,7 @@ void Texture::makeLinearTexels() const {
     const size_t bytes = linearBytes(*this);
     if (reserveLinearTexels(bytes)) {
       try {
-        decodeLevels(*this, cache.levels_);  // sizeof(float) * its floats == bytes
+        decodeLevels(*this, cache.levels_);  // 2 bytes a channel: bytes in all
         state = 1;
       } catch (const std::bad_alloc&) {
         cache.levels_.clear();  // without the copy, sampling reads the RGBA8 texels

@@ -67,12 +67,29 @@ struct TextureLevel {
   std::vector<uint32_t> texels;  // RGBA8, R in the low byte, row 0 at the top
 };
 
+// The bilinear filter's arithmetic, the same on every path (Texture::sample and the renderer's
+// lanes, so every SIMD level gives the same bits): each texel channel is read as linear light in
+// 15 bits (texelFixedTable: kTexelOne is 1.0); across a row the two texels are blended in integers
+// with 14-bit weights (the right texel's is truncate(t * kWeightOne), the left's what is left of
+// kWeightOne), down the two rows' blends in float, and the result is scaled by kScale. Within a
+// 15-bit step of the float filter it replaced; it lets the renderer blend a row's texels in one
+// multiply-add of 16-bit pairs and read half the bytes (docs/perf-notes/textured-shading.md).
+struct FixedFilter {
+  static constexpr int32_t kTexelOne = 32767;
+  static constexpr int32_t kWeightOne = 16384;
+  static constexpr float kScale = 1.0f / (32767.0f * 16384.0f);
+};
+// A channel's code (0..255) as the filter reads it, 256 entries: decoded from sRGB (`srgb`, the
+// colour channels of an sRGB texture) or code / 255 (the rest, and alpha), times kTexelOne,
+// rounded.
+const int32_t* texelFixedTable(bool srgb);
+
 // Texture::linearTexels' copy: made once, by the first caller, and not copied with the texture
 // (a copy makes its own on first use); a moved texture takes it along with its texels. Its bytes
 // count against the process's budget (Texture::kLinearTexelBudget) until it is dropped.
 class LinearTexelCache {
  public:
-  using LinearLevel = std::vector<float, HugePageAllocator<float>>;
+  using LinearLevel = std::vector<int16_t, HugePageAllocator<int16_t>>;
   LinearTexelCache() = default;
   LinearTexelCache(const LinearTexelCache&) {}
   LinearTexelCache(LinearTexelCache&& other) noexcept { *this = std::move(other); }
@@ -108,24 +125,24 @@ struct Texture {
   float4 sampleLod(float2 uv, float lod, const Sampler& sampler) const;
   int levelCount() const { return 1 + static_cast<int>(mips.size()); }
 
-  // Level `level`'s texels decoded to linear light as sampling decodes them (sRGB through the
-  // table, the rest and alpha as code / 255): four floats a texel, in the order of `texels`. The
-  // renderer's eight-lane filter loads a texel's four channels at once from it, where the RGBA8
-  // texels take a gather and then a table gather per channel. Made on the first call, for every
-  // level at once (other callers wait); null above kLinearTexelLimit texels at level 0 (the copy
-  // is four times the texels' memory). The texels must not change once it is made: materials
-  // hold their textures const.
-  const float* linearTexels(int level) const {
+  // Level `level`'s texels as the bilinear filter reads them (FixedFilter: texelFixedTable's
+  // values), four 16-bit channels a texel, in the order of `texels`. The renderer's eight-lane
+  // filter loads a texel and its right neighbour at once from it, where the RGBA8 texels take a
+  // gather and then a table gather per channel. Made on the first call, for every level at once
+  // (other callers wait); null above kLinearTexelLimit texels at level 0 (the copy is twice the
+  // texels' memory). The texels must not change once it is made: materials hold their textures
+  // const.
+  const int16_t* linearTexels(int level) const {
     if (linear_cache.state_.load(std::memory_order_acquire) == 0) makeLinearTexels();
     if (linear_cache.state_.load(std::memory_order_relaxed) != 1 || level < 0 ||
         static_cast<size_t>(level) >= linear_cache.levels_.size())
       return nullptr;
     return linear_cache.levels_[static_cast<size_t>(level)].data();
   }
-  static constexpr size_t kLinearTexelLimit = size_t{1} << 20;  // 1024 x 1024: 21 MB with mips
+  static constexpr size_t kLinearTexelLimit = size_t{1} << 20;  // 1024 x 1024: 11 MB with mips
   // The most memory the copies of every texture alive in the process take together: a texture
   // whose copy would pass it samples its RGBA8 texels instead (the same values, more slowly), so
-  // that a model with many large maps does not hold four times their memory again.
+  // that a model with many large maps does not hold twice their memory again.
   static constexpr size_t kLinearTexelBudget = size_t{256} << 20;
   // The copies' bytes now held of the budget; and, for tests, the budget itself (returns the
   // previous one; copies already made keep their memory).
