@@ -6,7 +6,7 @@
 #pragma once
 
 #include <algorithm>
-#if defined(__AVX2__)
+#if defined(__SSE2__)
 #include <immintrin.h>
 #endif
 
@@ -135,16 +135,52 @@ struct LevelLanes {
 // Eight lanes of eight 16-bit values from p (unaligned), widened: the generic form of what the
 // AVX2 path of fixedQuads8 reads a register half at a time.
 TESSERA_LANES_INLINE I32x8 widen16(const int16_t* p) {
+#if defined(TESSERA_SIMD_SCALAR)
   alignas(32) int32_t v[8];
   for (int i = 0; i < 8; ++i) v[i] = p[i];
   return load<I32x8>(v);
+#else
+  typedef int16_t I16x8 __attribute__((vector_size(16), aligned(2)));
+  return __builtin_convertvector(*reinterpret_cast<const I16x8*>(p), I32x8);
+#endif
+}
+
+// The weights of the filter across (w0 for the left texel, w1 for the right) as the 16-bit pair
+// w0 | w1 << 16 that maddPairs takes.
+TESSERA_LANES_INLINE I32x8 weightPairs(I32x8 w1) {
+  return (splat(FixedFilter::kWeightOne) - w1) | shiftLeft(w1, 16);
+}
+
+// a * w0 + b * w1 in each lane, for a and b in [0, kTexelOne] and `weights` = weightPairs: one
+// multiply-add of 16-bit pairs (pmaddwd) where the target has it (SSE2 has no 32-bit multiply:
+// five instructions each).
+TESSERA_LANES_INLINE I32x8 maddPairs(I32x8 a, I32x8 b, I32x8 weights) {
+#if defined(__AVX2__)
+  const I32x8 pairs = a | shiftLeft(b, 16);
+  return reinterpret_cast<I32x8>(
+      _mm256_madd_epi16(reinterpret_cast<__m256i>(pairs), reinterpret_cast<__m256i>(weights)));
+#elif defined(__SSE2__) && !defined(TESSERA_SIMD_SCALAR)
+  typedef int32_t I32x4 __attribute__((vector_size(16)));
+  const I32x8 pairs = a | shiftLeft(b, 16);
+  const auto madd = [](I32x4 x, I32x4 w) {
+    return reinterpret_cast<I32x4>(
+        _mm_madd_epi16(reinterpret_cast<__m128i>(x), reinterpret_cast<__m128i>(w)));
+  };
+  const I32x4 low = madd(__builtin_shufflevector(pairs, pairs, 0, 1, 2, 3),
+                         __builtin_shufflevector(weights, weights, 0, 1, 2, 3));
+  const I32x4 high = madd(__builtin_shufflevector(pairs, pairs, 4, 5, 6, 7),
+                          __builtin_shufflevector(weights, weights, 4, 5, 6, 7));
+  return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
+#else
+  return a * (weights & splat(int32_t{0xffff})) + b * shiftRight(weights, 16);
+#endif
 }
 
 // The filter across and down (FixedFilter) for one channel of eight lanes: a and b the upper row's
-// left and right texels, c and d the lower row's, w0 and w1 their weights.
-TESSERA_LANES_INLINE F32x8 fixedLerp8(I32x8 a, I32x8 b, I32x8 c, I32x8 d, I32x8 w0, I32x8 w1,
-                                      F32x8 ty) {
-  const F32x8 upper = toFloat(a * w0 + b * w1), lower = toFloat(c * w0 + d * w1);
+// left and right texels, c and d the lower row's, `weights` their weightPairs.
+TESSERA_LANES_INLINE F32x8 fixedLerp8(I32x8 a, I32x8 b, I32x8 c, I32x8 d, I32x8 weights, F32x8 ty) {
+  const F32x8 upper = toFloat(maddPairs(a, b, weights));
+  const F32x8 lower = toFloat(maddPairs(c, d, weights));
   return (upper + (lower - upper) * ty) * splat(FixedFilter::kScale);
 }
 
@@ -168,10 +204,7 @@ TESSERA_LANES_INLINE void fixedQuads8(const int16_t* linear, const int32_t at[8]
                                       I32x8 w1, F32x8 ty, int channels, F32x8 out[4]) {
   const size_t down = 4 * static_cast<size_t>(width);
 #if defined(__AVX2__)
-  const __m256i right = reinterpret_cast<__m256i>(w1);
-  const __m256i weights =
-      _mm256_or_si256(_mm256_slli_epi32(right, 16),
-                      _mm256_sub_epi32(_mm256_set1_epi32(FixedFilter::kWeightOne), right));
+  const __m256i weights = reinterpret_cast<__m256i>(weightPairs(w1));
   const __m256i interleave = _mm256_setr_epi8(0, 1, 8, 9, 2, 3, 10, 11, 4, 5, 12, 13, 6, 7, 14, 15,
                                               0, 1, 8, 9, 2, 3, 10, 11, 4, 5, 12, 13, 6, 7, 14, 15);
   const auto pair = [&](const int16_t* a, const int16_t* b, __m256i w) {
@@ -206,10 +239,10 @@ TESSERA_LANES_INLINE void fixedQuads8(const int16_t* linear, const int32_t at[8]
   }
   transpose8x8(top);
   transpose8x8(bottom);
-  const I32x8 w0 = splat(FixedFilter::kWeightOne) - w1;
+  const I32x8 weights = weightPairs(w1);
   for (int k = 0; k < channels; ++k)
     out[k] = fixedLerp8(bitsOf(top[k]), bitsOf(top[4 + k]), bitsOf(bottom[k]),
-                        bitsOf(bottom[4 + k]), w0, w1, ty);
+                        bitsOf(bottom[4 + k]), weights, ty);
 #endif
 }
 
@@ -230,7 +263,6 @@ TESSERA_LANES_INLINE void bilinear8(const LevelLanes& level, bool srgb, const Sa
   const I32x8 w = splat(int32_t{level.width});
   const I32x8 row_a = ya * w, row_b = yb * w;
   const I32x8 w1 = truncate(tx * splat(static_cast<float>(FixedFilter::kWeightOne)));
-  const I32x8 w0 = splat(FixedFilter::kWeightOne) - w1;
   I32x8 q[4][4];  // the channels of the quad's texels (xa, ya), (xb, ya), (xa, yb), (xb, yb)
   if (level.linear) {
     const I32x8 one = splat(int32_t{1});
@@ -255,7 +287,7 @@ TESSERA_LANES_INLINE void bilinear8(const LevelLanes& level, bool srgb, const Sa
         q[i][k] = fixedChannel(c[i], 8 * k, k < 3 ? colour : unorm);
   }
   for (int k = 0; k < channels; ++k)
-    out[k] = fixedLerp8(q[0][k], q[1][k], q[2][k], q[3][k], w0, w1, ty);
+    out[k] = fixedLerp8(q[0][k], q[1][k], q[2][k], q[3][k], weightPairs(w1), ty);
 }
 
 TESSERA_LANES_INLINE LevelLanes levelLanes(const Texture& texture, int level) {

@@ -89,10 +89,7 @@ TESSERA_LANES_INLINE bool isPairWrap(TextureWrap wrap, int size) {
 TESSERA_LANES_INLINE void fixedQuads16(const int16_t* linear, const int32_t at[16], int width,
                                        I32x16 w1, F32x16 ty, F32x16 out[3]) {
   const size_t down = 4 * static_cast<size_t>(width);
-  const __m512i right = reinterpret_cast<__m512i>(w1);
-  const __m512i weights =
-      _mm512_or_si512(_mm512_slli_epi32(right, 16),
-                      _mm512_sub_epi32(_mm512_set1_epi32(FixedFilter::kWeightOne), right));
+  const __m512i weights = reinterpret_cast<__m512i>((FixedFilter::kWeightOne - w1) | (w1 << 16));
   const __m512i interleave =
       _mm512_broadcast_i32x4(_mm_setr_epi8(0, 1, 8, 9, 2, 3, 10, 11, 4, 5, 12, 13, 6, 7, 14, 15));
   const auto quarters = [&](int p, size_t offset, __m512i w) {
