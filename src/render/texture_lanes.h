@@ -198,8 +198,8 @@ TESSERA_LANES_INLINE void loadFixed8(const int16_t* linear, I32x8 index, I32x8 o
 // `channels` channels into out. Each lane's texel and its right neighbour are 16 consecutive
 // bytes. On AVX2 two lanes a register: the pair's channels interleaved by a byte shuffle and
 // blended across by one vpmaddwd (fixedLerp8's integers), down in float, then one in-lane 4x4
-// transpose; elsewhere a 16-bit load widened per lane and row, an 8x8 transpose each, and
-// fixedLerp8. The same bits either way.
+// transpose; on SSE2 one lane a register and two 4x4 transposes; elsewhere a 16-bit load widened
+// per lane and row, an 8x8 transpose each, and fixedLerp8. The same bits every way.
 TESSERA_LANES_INLINE void fixedQuads8(const int16_t* linear, const int32_t at[8], int width,
                                       I32x8 w1, F32x8 ty, int channels, F32x8 out[4]) {
   const size_t down = 4 * static_cast<size_t>(width);
@@ -230,6 +230,32 @@ TESSERA_LANES_INLINE void fixedQuads8(const int16_t* linear, const int32_t at[8]
                              _mm256_shuffle_ps(t2, t3, 0x44), _mm256_shuffle_ps(t2, t3, 0xee)};
   for (int k = 0; k < channels; ++k)
     out[k] = reinterpret_cast<F32x8>(columns[k]) * splat(FixedFilter::kScale);
+#elif defined(__SSE2__) && !defined(TESSERA_SIMD_SCALAR)
+  // One lane a register: its two texels' channels interleaved by two unpacks, blended across by
+  // one pmaddwd a row, down in float; then a 4x4 transpose for lanes 0-3 and one for 4-7.
+  alignas(32) int32_t weights[8];
+  alignas(32) float fractions[8];
+  store(weights, weightPairs(w1));
+  store(fractions, ty);
+  const auto across = [](const int16_t* p, __m128i w) {
+    const __m128i texels = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+    return _mm_cvtepi32_ps(
+        _mm_madd_epi16(_mm_unpacklo_epi16(texels, _mm_unpackhi_epi64(texels, texels)), w));
+  };
+  __m128 o[8];
+  for (int l = 0; l < 8; ++l) {
+    const int16_t* p = linear + 4 * static_cast<size_t>(at[l]);
+    const __m128i w = _mm_set1_epi32(weights[l]);
+    const __m128 upper = across(p, w), lower = across(p + down, w);
+    o[l] = _mm_add_ps(upper, _mm_mul_ps(_mm_sub_ps(lower, upper), _mm_set1_ps(fractions[l])));
+  }
+  _MM_TRANSPOSE4_PS(o[0], o[1], o[2], o[3]);
+  _MM_TRANSPOSE4_PS(o[4], o[5], o[6], o[7]);
+  typedef float F32x4 __attribute__((vector_size(16)));
+  for (int k = 0; k < channels; ++k)
+    out[k] = __builtin_shufflevector(reinterpret_cast<F32x4>(o[k]),
+                                     reinterpret_cast<F32x4>(o[4 + k]), 0, 1, 2, 3, 4, 5, 6, 7) *
+             splat(FixedFilter::kScale);
 #else
   F32x8 top[8], bottom[8];  // as bits: channels 0-3 of the left texel, then of the right one
   for (int l = 0; l < 8; ++l) {
