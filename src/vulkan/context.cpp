@@ -5,7 +5,9 @@
 #include <iostream>
 #include <sstream>
 
+#include <tessera/base/check.h>
 #include <tessera/scene/color.h>
+#include <tessera/scene/texture.h>
 
 #include "vulkan/gpu_types.h"
 
@@ -590,8 +592,15 @@ std::vector<uint32_t> makeColorTables() {
   values.push_back(SrgbEncode::kLinearEnd);
   values.push_back(SrgbEncode::kLinearFactor);
   values.push_back(SrgbEncode::kOffset);
+  TESSERA_CHECK(values.size() == 274) << "shading.glsl's kFixedScale expects 274 floats before it";
+  values.push_back(FixedFilter::kScale);
   std::vector<uint32_t> words(values.size());
   std::memcpy(words.data(), values.data(), values.size() * sizeof(float));
+  // The bilinear filter's 15-bit texel values (texelFixedTable): unorm, then sRGB.
+  for (bool srgb : {false, true}) {
+    const int32_t* table = texelFixedTable(srgb);
+    words.insert(words.end(), table, table + 256);
+  }
   return words;
 }
 

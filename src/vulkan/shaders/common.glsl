@@ -131,7 +131,8 @@ layout(std430, set = 0, binding = 5) readonly buffer TriangleMaterialBuffer {
 layout(std430, set = 0, binding = 6) readonly buffer TexelBuffer { uint texels[]; };
 layout(std430, set = 0, binding = 7) readonly buffer ColorTableBuffer {
   // Float bits: [0, 256) the decode table; then the encode's constants (tessera::SrgbEncode; see
-  // encodeSrgb8 in shading.glsl).
+  // encodeSrgb8 in shading.glsl) and FixedFilter::kScale; then the bilinear filter's 15-bit texel
+  // values as integers, unorm and sRGB (texelFixedTable; see sampleLevel in shading.glsl).
   uint color_tables[];
 };
 

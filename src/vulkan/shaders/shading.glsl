@@ -130,6 +130,20 @@ vec4 texelLinear(TextureLevel level, bool srgb, int x, int y) {
               float((c >> 16) & 255u) / 255.0, a);
 }
 
+// The bilinear filter's fixed point (tessera::FixedFilter, texture.h): its scale after the
+// encode's 18 constants (makeColorTables checks the place), then texelFixedTable's values.
+const uint kFixedScale = 274u;
+const uint kFixedUnorm = kFixedScale + 1u;
+const uint kFixedSrgb = kFixedUnorm + 256u;
+ivec4 texelFixed(TextureLevel level, bool srgb, int x, int y) {
+  const uint c = texels[level.offset + uint(y) * uint(level.width) + uint(x)];
+  const uint colour = srgb ? kFixedSrgb : kFixedUnorm;
+  return ivec4(int(color_tables[colour + (c & 255u)]),
+               int(color_tables[colour + ((c >> 8) & 255u)]),
+               int(color_tables[colour + ((c >> 16) & 255u)]),
+               int(color_tables[kFixedUnorm + (c >> 24)]));
+}
+
 // std::fmod(v, 65536) for finite v (exact: 65536 is a power of two), 0 otherwise.
 float sanitizeCoordinate(float v) {
   if (isinf(v) || isnan(v)) return 0.0;
@@ -162,10 +176,16 @@ vec4 sampleLevel(TextureLevel level, bool srgb, vec2 uv, bool nearest, ivec2 wra
   const int xb = wrapCoord(x0 + 1, level.width, wrap.x);
   const int ya = wrapCoord(y0, level.height, wrap.y);
   const int yb = wrapCoord(y0 + 1, level.height, wrap.y);
-  const vec4 top = lerp4(texelLinear(level, srgb, xa, ya), texelLinear(level, srgb, xb, ya), tx);
-  const vec4 bottom =
-      lerp4(texelLinear(level, srgb, xa, yb), texelLinear(level, srgb, xb, yb), tx);
-  return lerp4(top, bottom, ty);
+  // FixedFilter: across a row in integers with 14-bit weights, down in float, then scaled.
+  precise float weight = tx * 16384.0;
+  const int w1 = int(weight), w0 = 16384 - w1;
+  const ivec4 upper_sum =
+      texelFixed(level, srgb, xa, ya) * w0 + texelFixed(level, srgb, xb, ya) * w1;
+  const ivec4 lower_sum =
+      texelFixed(level, srgb, xa, yb) * w0 + texelFixed(level, srgb, xb, yb) * w1;
+  precise vec4 upper = vec4(upper_sum), lower = vec4(lower_sum);
+  precise vec4 r = (upper + (lower - upper) * ty) * uintBitsToFloat(color_tables[kFixedScale]);
+  return r;
 }
 
 // Texture::sample (level 0, nearest or bilinear) or, with `trilinear`, Texture::sampleLod
