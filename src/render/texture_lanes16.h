@@ -1,7 +1,7 @@
 // Two textured groups of a row filtered side by side in sixteen lanes (a 512-bit register each),
 // for the AVX-512 kernels (TESSERA_LANES16): the coordinates, wraps and weights of
-// texture_lanes.h's bilinear8 once for both groups instead of once for each, then each group's
-// texels through fixedQuads8. The same operations per lane as bilinear8, so the same bits. It
+// texture_lanes.h's bilinear8 once for both groups instead of once for each, then both groups'
+// texels through fixedQuads16. The same operations per lane as bilinear8, so the same bits. It
 // takes the common case only (one level, the texture's copy, no transform, repeat on a power of
 // two or clamp, every lane's four texels in one quad); the caller filters the two groups eight
 // lanes at a time otherwise.

@@ -19,7 +19,7 @@ void* mapHugePages(size_t bytes);
 void unmapHugePages(void* memory, size_t bytes) noexcept;
 
 // A standard allocator that takes blocks of kHugePage / 2 and more from mapHugePages (rounded up
-// to whole huge pages: at most a third of such a block's pages unused) and smaller ones from
+// to whole huge pages: less than half of such a block's memory unused) and smaller ones from
 // operator new (a huge page for each would waste most of its memory).
 template <class T>
 struct HugePageAllocator {
