@@ -23,11 +23,6 @@ size_t roundUp(size_t bytes, size_t unit) {
   return (bytes + unit - 1) / unit * unit;
 }
 
-// `bytes` (a multiple of kRegion) on a region boundary, marked for huge pages.
-char* mapRegion(size_t bytes) {
-  return static_cast<char*>(mapHugePages(bytes));
-}
-
 struct FreeBlock {
   FreeBlock* next;
 };
@@ -53,7 +48,7 @@ int sizeClass(size_t bytes) {
 
 void* poolAllocate(size_t bytes) {
   const int k = sizeClass(bytes);
-  if (k > kMaxClass) return mapRegion(roundUp(bytes, kRegion));
+  if (k > kMaxClass) return mapHugePages(roundUp(bytes, kRegion));
   const size_t size = size_t{1} << k;
   Pool& p = pool();
   std::lock_guard<std::mutex> lock(p.mutex);
@@ -64,7 +59,7 @@ void* poolAllocate(size_t bytes) {
   // Blocks are multiples of 64 bytes, so the rest of a region stays line-aligned; what is left
   // at a region's end when a block does not fit is not used.
   if (static_cast<size_t>(p.end - p.next) < size) {
-    p.next = mapRegion(kRegion);
+    p.next = static_cast<char*>(mapHugePages(kRegion));
     p.end = p.next + kRegion;
   }
   void* block = p.next;

@@ -5,10 +5,6 @@
 #include <iostream>
 #include <sstream>
 
-#include <tessera/base/check.h>
-#include <tessera/scene/color.h>
-#include <tessera/scene/texture.h>
-
 #include "vulkan/gpu_types.h"
 
 namespace tessera::vulkan {
@@ -583,25 +579,6 @@ void memoryBarrier(const VulkanFunctions& vk, VkCommandBuffer commands,
   barrier.srcAccessMask = src_access;
   barrier.dstAccessMask = dst_access;
   vk.vkCmdPipelineBarrier(commands, src_stage, dst_stage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-}
-
-std::vector<uint32_t> makeColorTables() {
-  std::vector<float> values(srgbDecodeTable(), srgbDecodeTable() + 256);
-  values.insert(values.end(), SrgbEncode::kScale, SrgbEncode::kScale + 10);
-  values.insert(values.end(), SrgbEncode::kPoly, SrgbEncode::kPoly + 5);
-  values.push_back(SrgbEncode::kLinearEnd);
-  values.push_back(SrgbEncode::kLinearFactor);
-  values.push_back(SrgbEncode::kOffset);
-  TESSERA_CHECK(values.size() == 274) << "shading.glsl's kFixedScale expects 274 floats before it";
-  values.push_back(FixedFilter::kScale);
-  std::vector<uint32_t> words(values.size());
-  std::memcpy(words.data(), values.data(), values.size() * sizeof(float));
-  // The bilinear filter's 15-bit texel values (texelFixedTable): unorm, then sRGB.
-  for (bool srgb : {false, true}) {
-    const int32_t* table = texelFixedTable(srgb);
-    words.insert(words.end(), table, table + 256);
-  }
-  return words;
 }
 
 }  // namespace tessera::vulkan

@@ -130,10 +130,4 @@ void memoryBarrier(const VulkanFunctions& vk, VkCommandBuffer commands,
                    VkPipelineStageFlags src_stage, VkAccessFlags src_access,
                    VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
 
-// The CPU's sRGB constants (tessera/scene/color.h) as float words: the decode table (256), then the
-// encode's (SrgbEncode): scale (10), polynomial (5), end of the linear segment, its factor, the
-// offset.
-std::vector<uint32_t> makeColorTables();
-constexpr size_t kColorTableWords = 256 + 10 + 5 + 3;
-
 }  // namespace tessera::vulkan

@@ -9,6 +9,7 @@
 #include <tessera/base/check.h>
 #include <tessera/render/composite.h>
 #include <tessera/scene/color.h>
+#include <tessera/scene/texture.h>
 
 #include "render/clip.h"
 #include "render/fixed_point.h"
@@ -389,6 +390,26 @@ Expected<void> uploadArray(Context& context, Buffer& buffer, const T* data, size
 }
 
 }  // namespace
+
+std::vector<uint32_t> makeColorTables() {
+  std::vector<float> values(srgbDecodeTable(), srgbDecodeTable() + 256);
+  values.insert(values.end(), SrgbEncode::kScale, SrgbEncode::kScale + 10);
+  values.insert(values.end(), SrgbEncode::kPoly, SrgbEncode::kPoly + 5);
+  values.push_back(SrgbEncode::kLinearEnd);
+  values.push_back(SrgbEncode::kLinearFactor);
+  values.push_back(SrgbEncode::kOffset);
+  TESSERA_CHECK(values.size() == kColorConstantWords)
+      << "shading.glsl's kFixedScale expects " << kColorConstantWords << " floats before it";
+  values.push_back(FixedFilter::kScale);
+  std::vector<uint32_t> words(values.size());
+  std::memcpy(words.data(), values.data(), values.size() * sizeof(float));
+  // The bilinear filter's 15-bit texel values (texelFixedTable): unorm, then sRGB.
+  for (bool srgb : {false, true}) {
+    const int32_t* table = texelFixedTable(srgb);
+    words.insert(words.end(), table, table + 256);
+  }
+  return words;
+}
 
 Expected<void> uploadScene(Context& context, const PackedScene& packed, SceneBuffers& buffers) {
   constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;

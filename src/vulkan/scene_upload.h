@@ -55,6 +55,14 @@ struct SceneBuffers {
 };
 
 // Copies the packed scene into the mapped buffers, growing them as needed.
+// The colour-table buffer (common.glsl's color_tables): the CPU's sRGB constants
+// (tessera/scene/color.h) as float words, the decode table (256) then the encode's (SrgbEncode:
+// scale (10), polynomial (5), end of the linear segment, its factor, the offset), then
+// FixedFilter::kScale as a float word and the bilinear filter's 15-bit texel values as integers,
+// unorm then sRGB (texelFixedTable, 256 each; shading.glsl's kFixedScale and after).
+std::vector<uint32_t> makeColorTables();
+constexpr size_t kColorConstantWords = 256 + 10 + 5 + 3;  // the float words before kScale
+
 Expected<void> uploadScene(Context& context, const PackedScene& packed, SceneBuffers& buffers);
 void destroySceneBuffers(Context& context, SceneBuffers& buffers);
 // Descriptor writes for bindings 0..7.
