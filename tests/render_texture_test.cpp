@@ -15,6 +15,7 @@
 #include "render_test_scenes.h"
 
 using namespace tessera;
+using tessera::test::coveredCount;
 using tessera::test::renderAt;
 using tessera::test::unlitObject;
 
@@ -322,4 +323,46 @@ TEST(TextureLanes, PhongFragmentsLitAlikeGiveTheBitsOfTheCheckedOnes) {
   EXPECT_EQ(differing, 0u);
   EXPECT_GT(compared, 233u * 151u / 8);
   EXPECT_GT(card_pixels, 20u);
+}
+
+// A texture whose linear copy would pass the process's budget (Texture::kLinearTexelBudget) is
+// sampled from its RGBA8 texels: no copy, and the same image, bilinear and trilinear.
+TEST(TextureCopy, ATextureBeyondTheBudgetIsSampledFromItsTexelsToTheSameImage) {
+  Texture checker;
+  checker.width = 48;
+  checker.height = 40;
+  for (int y = 0; y < checker.height; ++y)
+    for (int x = 0; x < checker.width; ++x)
+      checker.texels.push_back((x / 4 + y / 4) % 2 ? 0xff2060e0u
+                                                   : 0xff000000u | static_cast<uint32_t>(x * 5));
+  generateMipmaps(checker);
+  Scene scene;
+  scene.camera.position = {0, 0, 2.6f};
+  scene.lights.push_back({normalize(float3{-1, -2, -1}), float3(0.9f)});
+  Object sphere;
+  sphere.mesh = std::make_shared<Mesh>(makeUvSphere(40, 20));
+  scene.objects.push_back(sphere);
+  RenderOptions options;
+  options.width = 160;
+  options.height = 120;
+  for (TextureFilter filter : {TextureFilter::kBilinear, TextureFilter::kTrilinear}) {
+    auto render = [&](const std::shared_ptr<const Texture>& texture) {
+      Material material;
+      material.albedo = texture;
+      material.sampler.filter = filter;
+      scene.objects[0].materials = {material};
+      return renderAt(scene, options, SimdLevel::kAuto, 2);
+    };
+    auto with_copy = std::make_shared<const Texture>(checker);
+    const Frame reference = render(with_copy);
+    ASSERT_NE(with_copy->linearTexels(0), nullptr);
+    EXPECT_GT(coveredCount(reference), 160 * 120 / 4);
+    // No room left: a new texture of the same texels makes no copy and renders the same image.
+    const size_t budget = Texture::setLinearTexelBudget(Texture::linearTexelBytes());
+    auto without_copy = std::make_shared<const Texture>(checker);
+    const Frame other = render(without_copy);
+    Texture::setLinearTexelBudget(budget);
+    EXPECT_EQ(without_copy->linearTexels(0), nullptr);
+    EXPECT_EQ(reference.color, other.color) << static_cast<int>(filter);
+  }
 }
