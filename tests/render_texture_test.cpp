@@ -250,6 +250,40 @@ TEST(TextureLanes, TrianglesTexturedAlikeShareOneFilterWithTheSameBits) {
   test::expectMixedShadingMatchesPerTriangle(scene, options);
 }
 
+// A tile whose chunks hold triangles of one textured material alone takes its rows' runs without
+// looking at each run's record for the material (TriangleChunk::textured_alike). One sphere alone
+// (the shortcut taken) and two spheres of one mesh but two materials, each thousands of triangles
+// so that chunks hold one, the other or both (not taken where they meet, or the one sphere's
+// pixels would be filtered from the other's texture): every level and worker count gives the
+// scalar kernels' bits, whose shading has no runs.
+TEST(TextureLanes, TilesOfOneTexturedMaterialGiveTheBitsOfTheScalarKernels) {
+  const auto sphere = [](float3 at, uint32_t seed) {
+    Object o;
+    o.mesh = std::make_shared<Mesh>(makeUvSphere(96, 48));
+    o.shading = Shading::kGouraud;
+    o.transform.translation = at;
+    o.materials[0].albedo = noiseTexture(64, 32, true, seed);
+    o.materials[0].sampler =
+        makeSampler(TextureFilter::kBilinear, TextureWrap::kRepeat, TextureWrap::kRepeat);
+    return o;
+  };
+  RenderOptions options;
+  options.width = 240;
+  options.height = 160;
+  for (int objects : {1, 2}) {
+    Scene scene = texturedScene({0, 0.5f, 3.5f});
+    scene.objects.push_back(sphere({objects == 1 ? 0.0f : -0.45f, 0, 0}, 31));
+    if (objects == 2) scene.objects.push_back(sphere({0.45f, 0, 0.3f}, 32));
+    const Frame reference = renderAt(scene, options, SimdLevel::kScalar, 1);
+    EXPECT_GT(coveredCount(reference), options.width * options.height / 8);
+    for (SimdLevel level : {SimdLevel::kAvx2, SimdLevel::kAvx512})
+      for (int workers : {1, 2, 3})
+        EXPECT_EQ(reference.color, renderAt(scene, options, level, workers).color)
+            << objects << " objects, level " << static_cast<int>(level) << ", " << workers
+            << " workers";
+  }
+}
+
 // A frame whose every triangle is Phong without an albedo texture evaluates the lights of a group
 // of several triangles without looking at each lane's record first (TriangleChunk::lit_alike); a
 // textured Phong sphere beside an untextured one keeps the frame from that, and both still give

@@ -115,6 +115,11 @@ struct alignas(128) TriangleChunk {
   // groups of several triangles then evaluate their lights without first looking at each lane's
   // record for that (litAlike). Set by setupChunk; the ray renderer's chunks leave it false.
   bool lit_alike = false;
+  // The one material of every record when all are textured without per-pixel lighting
+  // (texturedPlain) through it, from objects of one material each; null otherwise. A tile whose
+  // chunks all name the same one takes its textured rows' runs without looking at each run's
+  // record for that (row_runs.h). Set by setupChunk; the ray renderer's chunks leave it null.
+  const Material* textured_alike = nullptr;
   ChunkBins bins;
   // Records whose material is alphaMode BLEND, in submission order: left out of `bins` for the
   // transparent pass (blend.h).

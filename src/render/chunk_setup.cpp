@@ -109,6 +109,7 @@ class ChunkSetup {
   const bool want_normals_;
   const int32_t sample_reach_;
   TriangleChunk& chunk_;
+  size_t objects_seen_ = 0;  // objectSetup's calls: the first sets chunk_.textured_alike
   TriangleOrientation orientation_;
   // Unclipped triangles wait here for the rest of their setup (setup_kernel.h). The kernel
   // depends on nothing per object, so one flush per full batch and one at the end of the chunk.
@@ -167,6 +168,13 @@ ObjectSetup ChunkSetup::objectSetup(size_t object_index) {
   }
   // Its records' has_uv: the mesh's UVs and the triangle's material's albedo (setup.cpp).
   chunk_.lit_alike &= ctx.shading == Shading::kPhong && !(ctx.has_uv && albedo);
+  // Its records' material: materials[0] without per-triangle materials (setup.h).
+  const Material* alike = !has_materials && ctx.has_uv && ctx.shading != Shading::kPhong &&
+                                  ctx.shading != Shading::kPbr && object.materials[0].albedo
+                              ? &object.materials[0]
+                              : nullptr;
+  chunk_.textured_alike = objects_seen_ > 0 && chunk_.textured_alike != alike ? nullptr : alike;
+  ++objects_seen_;
   return o;
 }
 
@@ -415,6 +423,7 @@ void CpuRenderer::State::setupChunk(const Scene& scene, const VertexBuffer& vert
   chunk.reads_world = false;
   chunk.textured_plain = false;
   chunk.lit_alike = true;
+  chunk.textured_alike = nullptr;
   chunk.blended.clear();
 
   ChunkSetup setup(objects, cull, lights, kernels, scene, vertices, grid, guard, want_normals,

@@ -91,12 +91,14 @@ enum class RunCorners { kNone, kUv, kNormal };
 // first triangle. False where some run's triangle is not one the row's kind takes: for kUv,
 // texturedPlain with the first's material, the first texturedGroupApplies; for kNormal, Phong
 // without texture coordinates; for kNone, not solid (the caller then shades the row's groups
-// from their records). `extras`: unread for kNone.
+// from their records). `extras`: unread for kNone. `alike` (kUv): every record's material and
+// texturedGroupApplies (TriangleChunk::textured_alike, checked by the caller), or null; the runs'
+// records are then not looked at for that.
 // `material`: the first triangle's (null where no pixel is covered).
 template <RunCorners kCorners>
 TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
                                       const ShadeExtras* const extras[], RowRuns& runs,
-                                      const Material*& material) {
+                                      const Material*& material, const Material* alike = nullptr) {
   // Each run's records; the empty runs' (listed in `empty`) and those past the last filled in
   // below.
   const ShadeTriangle* lanes[kTileSize];
@@ -121,9 +123,9 @@ TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
       if (t->shading != Shading::kPhong || t->has_uv) return false;
       if (first < 0) first = r;
     } else if (first < 0) {
-      if (!texturedGroupApplies(*t)) return false;
+      if (!alike && !texturedGroupApplies(*t)) return false;
       first = r;
-    } else if (t->material != lanes[first]->material || !texturedPlain(*t)) {
+    } else if (!alike && (t->material != lanes[first]->material || !texturedPlain(*t))) {
       return false;
     }
   }
@@ -161,11 +163,12 @@ TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
 template <RunCorners kCorners, typename Body>
 TESSERA_LANES_INLINE bool byRowRuns(const TileVisibility& tile, int ty,
                                     const ShadeTriangle* const records[],
-                                    const ShadeExtras* const extras[], Body&& body) {
+                                    const ShadeExtras* const extras[], Body&& body,
+                                    const Material* alike = nullptr) {
   RowRuns runs;
   findRowRuns(tile, ty, runs);
   const Material* material;
-  if (!fillRowRuns<kCorners>(records, extras, runs, material)) return false;
+  if (!fillRowRuns<kCorners>(records, extras, runs, material, alike)) return false;
   if (!material) return true;                      // no covered pixel
   const int last_from = runs.filledColumns() - 8;  // the last eight columns filled
   const F32x8 py = splat(static_cast<float>(tile.y0 + ty) + 0.5f);
@@ -220,11 +223,11 @@ TESSERA_LANES_INLINE bool preparePlainRow(const TileVisibility& tile, int ty,
 }
 
 // The textured groups of row ty (prepareTexturedFields) into groups[]; their number, or -1 where
-// fillRowRuns found the row not all textured alike.
+// fillRowRuns found the row not all textured alike. `alike`: fillRowRuns'.
 TESSERA_LANES_INLINE int prepareTexturedRow(const TileVisibility& tile, int ty,
                                             const ShadeTriangle* const records[],
                                             const ShadeExtras* const extras[],
-                                            TexturedGroup groups[]) {
+                                            TexturedGroup groups[], const Material* alike) {
   int count = 0;
   const bool taken = byRowRuns<RunCorners::kUv>(
       tile, ty, records, extras,
@@ -233,7 +236,8 @@ TESSERA_LANES_INLINE int prepareTexturedRow(const TileVisibility& tile, int ty,
         TexturedGroup& group = groups[count++];
         prepareTexturedFields(f, uv, material, covered, px, py, group);
         group.tx = tx;
-      });
+      },
+      alike);
   return taken ? count : -1;
 }
 #endif

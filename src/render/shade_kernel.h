@@ -360,15 +360,14 @@ TESSERA_LANES_INLINE void finishPhongRow(const LightRig& lights, const DeferredP
 // Row ty of a tile that is not plain (see shadeTile) into the row's linear colours and, when
 // asked, the tile's normals. A function of its own, as shadePlainRow is: apart from the encode,
 // the compiler keeps more of the row's values in registers. `lit_alike`: every record is
-// TriangleChunk::lit_alike.
+// TriangleChunk::lit_alike; `textured_alike`: every record's (TriangleChunk::textured_alike), or
+// null.
 template <bool kSampled>
-__attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
-                                        const ShadeTriangle* const records[],
-                                        const ShadeExtras* const extras[], const LightRig& lights,
-                                        bool want_normals, bool textured, bool lit_alike,
-                                        const MsaaShading* msaa, FragmentQueue* queue,
-                                        AlbedoReads& albedo, float linear[3][kTileSize],
-                                        ShadedTile& out) {
+__attribute__((noinline)) void shadeRow(
+    const TileVisibility& tile, int ty, const ShadeTriangle* const records[],
+    const ShadeExtras* const extras[], const LightRig& lights, bool want_normals, bool textured,
+    bool lit_alike, [[maybe_unused]] const Material* textured_alike, const MsaaShading* msaa,
+    FragmentQueue* queue, AlbedoReads& albedo, float linear[3][kTileSize], ShadedTile& out) {
   const F32x8 zero = splat(0.0f);
   const float py = static_cast<float>(tile.y0 + ty) + 0.5f;
   TexturedGroup textured_groups[kTileSize / 8];
@@ -379,7 +378,7 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
   // Rows whose every covered pixel is textured alike without per-pixel lighting, or Phong without
   // textures, take each lane's fields from its run's column (row_runs.h).
   if (!kSampled && textured && !want_normals) {
-    textured_count = prepareTexturedRow(tile, ty, records, extras, textured_groups);
+    textured_count = prepareTexturedRow(tile, ty, records, extras, textured_groups, textured_alike);
     if (textured_count >= 0) {
       filterTexturedRow(tile, ty, textured_groups, textured_count, records, extras, lights, albedo,
                         linear);
@@ -490,6 +489,20 @@ __attribute__((noinline)) void shadeRow(const TileVisibility& tile, int ty,
     resolveMixedRow(*msaa, tile, ty, records, extras, lights, lit_alike, *queue, linear);
 }
 
+// The material every record of the tile's chunks is textured alike through
+// (TriangleChunk::textured_alike; chunks without records aside), where the eight-lane filter takes
+// it (texturedGroupApplies); null otherwise.
+TESSERA_LANES_INLINE const Material* texturedAlike(const std::vector<TriangleChunk>& chunks,
+                                                   size_t chunk_count) {
+  const Material* alike = nullptr;
+  for (size_t c = 0; c < chunk_count; ++c) {
+    if (chunks[c].size == 0) continue;
+    if (!chunks[c].textured_alike || (alike && chunks[c].textured_alike != alike)) return nullptr;
+    alike = chunks[c].textured_alike;
+  }
+  return alike && texture8Applies(*alike->albedo, alike->sampler) ? alike : nullptr;
+}
+
 // Shades the tile in pixel order, eight pixels of a row at a time, then encodes the row to sRGB
 // and stores it whole (no read-modify-write of partly written pixels). Eight pixels of one triangle
 // take one evaluation. A tile whose triangles are all plain (`plain`: untextured, not Phong, no
@@ -517,6 +530,7 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
     textured |= chunks[c].textured_plain;
     lit_alike &= chunks[c].lit_alike;
   }
+  const Material* textured_alike = texturedAlike(chunks, chunk_count);
   // A row's colours in linear light, encoded once the row is shaded: the encode is a long chain
   // of dependent operations, and eight groups of it side by side keep the core busy where one
   // after each group's shading left it waiting.
@@ -540,8 +554,8 @@ TESSERA_LANES_INLINE void shadeTile(const TileVisibility& tile,
                               solids);
       encodeShadedRow(tile, ty, linear, solid, background, out);
     } else {
-      shadeRow<kSampled>(tile, ty, records, extras, lights, want_normals, textured, lit_alike, msaa,
-                         queue ? &*queue : nullptr, albedo, linear, out);
+      shadeRow<kSampled>(tile, ty, records, extras, lights, want_normals, textured, lit_alike,
+                         textured_alike, msaa, queue ? &*queue : nullptr, albedo, linear, out);
       encodeShadedRow(tile, ty, linear, nullptr, background, out);
     }
   }
