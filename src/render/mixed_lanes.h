@@ -318,6 +318,16 @@ TESSERA_LANES_INLINE void prepareTexturedGroup(const ShadeTriangle& a, const Sha
       a.material, covered, px, py, group);
 }
 
+// The prepared group's colour from its filtered albedo: the vertex colours times the albedo,
+// tone-mapped.
+TESSERA_LANES_INLINE Vec3x8 texturedColour(const TexturedGroup& group, const F32x8 albedo[3],
+                                           const LightRig& lights) {
+  Vec3x8 c = group.color;
+  c = {c.x * albedo[0], c.y * albedo[1], c.z * albedo[2]};
+  if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
+  return c;
+}
+
 // The prepared group's colour: its vertex colours times the filtered albedo, tone-mapped, the
 // albedo read as `reads` (textureReads of the group's material's albedo and sampler) says. The
 // same operations per lane as shadeLanes, so the same bits. False, with `color` untouched, where a
@@ -328,10 +338,7 @@ TESSERA_LANES_INLINE bool filterTexturedGroup(const TexturedGroup& group, const 
   if (!sampleTexture8(reads, group.covered, group.uv, reads.lod ? group.right : group.uv,
                       reads.lod ? group.down : group.uv, 3, albedo))
     return false;
-  Vec3x8 c = group.color;
-  c = {c.x * albedo[0], c.y * albedo[1], c.z * albedo[2]};
-  if (lights.tone.active()) toneMap8(lights.tone, c.x, c.y, c.z);
-  color = c;
+  color = texturedColour(group, albedo, lights);
   return true;
 }
 

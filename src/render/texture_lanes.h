@@ -272,27 +272,48 @@ TESSERA_LANES_INLINE void fixedQuads8(const int16_t* linear, const int32_t at[8]
 #endif
 }
 
+// Where sampleLevel's bilinear filter reads a level for the lanes of `mask` (the others read texel
+// 0): the quad's columns xa, xb and rows ya, yb (wrapped), the right texels' weights w1 and the
+// lower row's fraction ty.
+struct BilinearQuads {
+  I32x8 xa, xb, ya, yb, w1;
+  F32x8 ty;
+  // Every lane's quad is two neighbouring texels of two neighbouring rows (none at a wrap or a
+  // clamp): what fixedQuads8 reads.
+  TESSERA_LANES_INLINE bool adjacent() const {
+    const I32x8 one = splat(int32_t{1});
+    return !any(~(equal(xb, xa + one) & equal(yb, ya + one)));
+  }
+};
+TESSERA_LANES_INLINE BilinearQuads bilinearQuads8(const LevelLanes& level, const Sampler& sampler,
+                                                  I32x8 mask, const Uv8& uv) {
+  const F32x8 sx = uv.u * splat(static_cast<float>(level.width)) - splat(0.5f);
+  const F32x8 sy = (splat(1.0f) - uv.v) * splat(static_cast<float>(level.height)) - splat(0.5f);
+  const F32x8 x0f = floorLanes(sx), y0f = floorLanes(sy);
+  const F32x8 tx = sx - x0f;
+  const I32x8 x0 = select(mask, truncate(x0f), splat(int32_t{0}));
+  const I32x8 y0 = select(mask, truncate(y0f), splat(int32_t{0}));
+  BilinearQuads q;
+  wrapPair8(x0, level.width, sampler.wrap_s, q.xa, q.xb);
+  wrapPair8(y0, level.height, sampler.wrap_t, q.ya, q.yb);
+  q.w1 = truncate(tx * splat(static_cast<float>(FixedFilter::kWeightOne)));
+  q.ty = sy - y0f;
+  return q;
+}
+
 // sampleLevel's bilinear filter (texture.cpp, FixedFilter) in one level for the lanes of `mask`
 // (the others read texel 0), `channels` channels (3: RGB, 4: RGBA); coordinates below 65536 in
 // magnitude.
 TESSERA_LANES_INLINE void bilinear8(const LevelLanes& level, bool srgb, const Sampler& sampler,
                                     I32x8 mask, const Uv8& uv, int channels, F32x8 out[4]) {
-  const F32x8 sx = uv.u * splat(static_cast<float>(level.width)) - splat(0.5f);
-  const F32x8 sy = (splat(1.0f) - uv.v) * splat(static_cast<float>(level.height)) - splat(0.5f);
-  const F32x8 x0f = floorLanes(sx), y0f = floorLanes(sy);
-  const F32x8 tx = sx - x0f, ty = sy - y0f;
-  const I32x8 x0 = select(mask, truncate(x0f), splat(int32_t{0}));
-  const I32x8 y0 = select(mask, truncate(y0f), splat(int32_t{0}));
-  I32x8 xa, xb, ya, yb;
-  wrapPair8(x0, level.width, sampler.wrap_s, xa, xb);
-  wrapPair8(y0, level.height, sampler.wrap_t, ya, yb);
+  const BilinearQuads quads = bilinearQuads8(level, sampler, mask, uv);
+  const I32x8 xa = quads.xa, xb = quads.xb, w1 = quads.w1;
+  const F32x8 ty = quads.ty;
   const I32x8 w = splat(int32_t{level.width});
-  const I32x8 row_a = ya * w, row_b = yb * w;
-  const I32x8 w1 = truncate(tx * splat(static_cast<float>(FixedFilter::kWeightOne)));
+  const I32x8 row_a = quads.ya * w, row_b = quads.yb * w;
   I32x8 q[4][4];  // the channels of the quad's texels (xa, ya), (xb, ya), (xa, yb), (xb, yb)
   if (level.linear) {
-    const I32x8 one = splat(int32_t{1});
-    if (!any(~(equal(xb, xa + one) & equal(yb, ya + one)))) {  // no lane at a wrap or a clamp
+    if (quads.adjacent()) {
       alignas(32) int32_t at[8];
       store(at, row_a + xa);
       fixedQuads8(level.linear, at, level.width, w1, ty, channels, out);
@@ -355,6 +376,14 @@ TESSERA_LANES_INLINE TextureReads textureReads(const Texture& texture, const Sam
   return r;
 }
 
+// Whether every lane of `mask` has coordinates below 65536 in magnitude (where sanitize is the
+// identity), which sampleTexture8 takes.
+TESSERA_LANES_INLINE bool inReach8(I32x8 mask, const Uv8& uv) {
+  const F32x8 limit = splat(65536.0f), low = splat(-65536.0f);
+  return !any(mask & ~(lessThan(uv.u, limit) & lessThan(low, uv.u) & lessThan(uv.v, limit) &
+                       lessThan(low, uv.v)));
+}
+
 // sampleTexture (shade.cpp) for the lanes of `mask`, where texture8Applies: uv before the
 // sampler's transform, right and down the same at the next pixel centres (read where needsLod).
 // False, with nothing computed, when a lane's coordinates reach 65536 in magnitude (where
@@ -368,10 +397,7 @@ TESSERA_LANES_INLINE bool sampleTexture8(const TextureReads& reads, I32x8 mask, 
     right = applyAffine(reads.affine, right);
     down = applyAffine(reads.affine, down);
   }
-  const F32x8 limit = splat(65536.0f), low = splat(-65536.0f);
-  if (any(mask & ~(lessThan(uv.u, limit) & lessThan(low, uv.u) & lessThan(uv.v, limit) &
-                   lessThan(low, uv.v))))
-    return false;
+  if (!inReach8(mask, uv)) return false;
   if (!reads.lod) {
     bilinear8(reads.base, texture.srgb, sampler, mask, uv, channels, out);
     return true;

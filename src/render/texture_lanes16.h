@@ -65,7 +65,7 @@ TESSERA_LANES_INLINE void transpose8x8Halves(F32x16 r[8]) {
   }
 }
 
-// wrapPair8 for the two wraps filterTexturedPair takes (isPairWrap).
+// wrapPair8 for the two wraps pairQuads16 takes (isPairWrap).
 TESSERA_LANES_INLINE void wrapPair16(I32x16 i, int size, TextureWrap wrap, I32x16& first,
                                      I32x16& second) {
   const I32x16 next = i + 1;
@@ -128,13 +128,14 @@ TESSERA_LANES_INLINE bool pairReads(const TextureReads& reads) {
          isPairWrap(sampler.wrap_t, reads.base.height) && reads.base.linear != nullptr;
 }
 
-// filterTexturedGroup of a and b (groups of one material, whose albedo's `reads` pairReads takes),
-// into ca and cb. False, with nothing written, where a lane's coordinates are beyond the
-// eight-lane filter's reach or its four texels are not one quad of the copy (at a clamped edge or
-// a repeat's seam): the caller filters each group.
-TESSERA_LANES_INLINE bool filterTexturedPair(const TexturedGroup& a, const TexturedGroup& b,
-                                             const TextureReads& reads, const LightRig& lights,
-                                             Vec3x8& ca, Vec3x8& cb) {
+// Where filterTexturedGroup of a and b (groups of one material, whose albedo's `reads` pairReads
+// takes) reads its texels, side by side in sixteen lanes: fixedQuads16's `at`, weights and
+// fractions into at[0..15], w1[0..15] and ty[0..15]. False, with nothing written, where a lane's
+// coordinates are beyond the eight-lane filter's reach or its four texels are not one quad of the
+// copy (at a clamped edge or a repeat's seam): the caller filters each group.
+TESSERA_LANES_INLINE bool pairQuads16(const TexturedGroup& a, const TexturedGroup& b,
+                                      const TextureReads& reads, int32_t at[16], int32_t w1[16],
+                                      float ty[16]) {
   const Sampler& sampler = *reads.sampler;
   const I32x16 mask = join16(a.covered, b.covered);
   const F32x16 u = join16(a.uv.u, b.uv.u), v = join16(a.uv.v, b.uv.v);
@@ -144,7 +145,7 @@ TESSERA_LANES_INLINE bool filterTexturedPair(const TexturedGroup& a, const Textu
   const F32x16 sx = u * splat16(static_cast<float>(width)) - splat16(0.5f);
   const F32x16 sy = (splat16(1.0f) - v) * splat16(static_cast<float>(height)) - splat16(0.5f);
   const F32x16 x0f = floor16(sx), y0f = floor16(sy);
-  const F32x16 tx = sx - x0f, ty = sy - y0f;
+  const F32x16 tx = sx - x0f;
   const I32x16 zero = splat16(int32_t{0});
   const I32x16 x0 = mask != 0 ? truncate16(x0f) : zero;
   const I32x16 y0 = mask != 0 ? truncate16(y0f) : zero;
@@ -152,11 +153,19 @@ TESSERA_LANES_INLINE bool filterTexturedPair(const TexturedGroup& a, const Textu
   wrapPair16(x0, width, sampler.wrap_s, xa, xb);
   wrapPair16(y0, height, sampler.wrap_t, ya, yb);
   if (any16(~((xb == xa + 1) & (yb == ya + 1)))) return false;
-  alignas(64) int32_t at[16];
-  *reinterpret_cast<I32x16*>(at) = ya * width + xa;
-  const I32x16 w1 = truncate16(tx * splat16(static_cast<float>(FixedFilter::kWeightOne)));
+  store(at, ya * width + xa);
+  store(w1, truncate16(tx * splat16(static_cast<float>(FixedFilter::kWeightOne))));
+  store(ty, sy - y0f);
+  return true;
+}
+
+// filterTexturedGroup of a and b from their quads (pairQuads16's at, w1 and ty), into ca and cb.
+TESSERA_LANES_INLINE void filterPairQuads(const TexturedGroup& a, const TexturedGroup& b,
+                                          const TextureReads& reads, const int32_t at[16],
+                                          const int32_t w1[16], const float ty[16],
+                                          const LightRig& lights, Vec3x8& ca, Vec3x8& cb) {
   F32x16 albedo[3];
-  fixedQuads16(reads.base.linear, at, width, w1, ty, albedo);
+  fixedQuads16(reads.base.linear, at, reads.base.width, load<I32x16>(w1), load<F32x16>(ty), albedo);
   const Vec3x8* colors[2] = {&a.color, &b.color};
   F32x16 out[3];
   for (int k = 0; k < 3; ++k) {
@@ -169,7 +178,6 @@ TESSERA_LANES_INLINE bool filterTexturedPair(const TexturedGroup& a, const Textu
     toneMap8(lights.tone, ca.x, ca.y, ca.z);
     toneMap8(lights.tone, cb.x, cb.y, cb.z);
   }
-  return true;
 }
 
 }  // namespace
