@@ -155,11 +155,20 @@ TESSERA_LANES_INLINE Vec3x8 interpolate9(const F32x8 v[9], F32x8 b0, F32x8 b1, F
 
 // The interpolated vertex colours of the lanes' triangles at barycentrics b1, b2:
 // interpolateColor's operations with each lane's own corners.
+// Fields whose 12..17 already hold those differences (the row runs' columns: RunFields) say so
+// by a kColourDifferences of true.
+template <typename Fields>
+concept ColourDifferences = Fields::kColourDifferences;
 template <typename Fields>
 TESSERA_LANES_INLINE Vec3x8 plainColor(Fields f, F32x8 b1, F32x8 b2) {
-  return {f[9] + (f[12] - f[9]) * b1 + (f[15] - f[9]) * b2,
-          f[10] + (f[13] - f[10]) * b1 + (f[16] - f[10]) * b2,
-          f[11] + (f[14] - f[11]) * b1 + (f[17] - f[11]) * b2};
+  if constexpr (ColourDifferences<Fields>) {
+    return {f[9] + f[12] * b1 + f[15] * b2, f[10] + f[13] * b1 + f[16] * b2,
+            f[11] + f[14] * b1 + f[17] * b2};
+  } else {
+    return {f[9] + (f[12] - f[9]) * b1 + (f[15] - f[9]) * b2,
+            f[10] + (f[13] - f[10]) * b1 + (f[16] - f[10]) * b2,
+            f[11] + (f[14] - f[11]) * b1 + (f[17] - f[11]) * b2};
+  }
 }
 
 // Whether each of eight records' corners share one colour (ShadeTriangle::solid). The first

@@ -53,6 +53,8 @@ struct RunFields {
   const float (*rows)[RowRuns::kColumns];
   int from;
   I32x8 offset;
+  // Fields 12..17 hold the corners' colours 1 and 2 less corner 0's (fillRowRuns).
+  static constexpr bool kColourDifferences = true;
   TESSERA_LANES_INLINE F32x8 operator[](int k) const { return lookup8(rows[k] + from, offset); }
 };
 
@@ -139,9 +141,14 @@ TESSERA_LANES_INLINE bool fillRowRuns(const ShadeTriangle* const records[],
   for (int e = 0; e < empty_count; ++e) from_first(empty[e]);
   for (int r = runs.count; r < columns; ++r) from_first(r);
   for (int c = 0; c < columns; c += 8) {
+    // The corners' colours 1 and 2 as their differences from corner 0's (RunFields' colours):
+    // plainColor's subtractions once a run instead of once a group, the same floats.
+    F32x8 colour0[3];
     loadPlainFieldsBy(
-        lanes + c, [&](int k, F32x8 v)
-                       __attribute__((always_inline)) { store(runs.plain[k] + c, v); });
+        lanes + c, [&](int k, F32x8 v) __attribute__((always_inline)) {
+          if (k >= 9 && k < 12) colour0[k - 9] = v;
+          store(runs.plain[k] + c, k < 12 ? v : v - colour0[(k - 9) % 3]);
+        });
     F32x8 corner[9];
     if (kCorners == RunCorners::kNone) continue;
     if (kCorners == RunCorners::kNormal) {
