@@ -153,12 +153,13 @@ TESSERA_LANES_INLINE Vec3x8 interpolate9(const F32x8 v[9], F32x8 b0, F32x8 b1, F
           v[2] * b0 + v[5] * b1 + v[8] * b2};
 }
 
-// The interpolated vertex colours of the lanes' triangles at barycentrics b1, b2:
-// interpolateColor's operations with each lane's own corners.
-// Fields whose 12..17 already hold those differences (the row runs' columns: RunFields) say so
-// by a kColourDifferences of true.
+// Fields whose 12..17 hold the corners' colours 1 and 2 less corner 0's instead of the colours
+// (the row runs' columns: RunFields) say so by a kColourDifferences of true.
 template <typename Fields>
 concept ColourDifferences = Fields::kColourDifferences;
+// The interpolated vertex colours of the lanes' triangles at barycentrics b1, b2:
+// interpolateColor's operations with each lane's own corners (c0 + (c1 - c0) b1 + (c2 - c0) b2,
+// the differences taken from the fields where they hold them).
 template <typename Fields>
 TESSERA_LANES_INLINE Vec3x8 plainColor(Fields f, F32x8 b1, F32x8 b2) {
   if constexpr (ColourDifferences<Fields>) {

@@ -62,7 +62,7 @@ struct RowQuads {
 // where the wraps allow (pairReads). Their texels are then read one group after another with
 // nothing between but the blends, so that the core has the loads of several groups in flight:
 // with each group's coordinates, wraps and indices between them it had one group's (the textured
-// sphere at 1920x1080, AVX2 kernels: 0.88-0.90 of the frame). The first group's material decides;
+// sphere at 1920x1080, AVX2 kernels: 0.84-0.93 of the frame). The first group's material decides;
 // groups of another are not planned.
 TESSERA_LANES_INLINE void planRowQuads(const TexturedGroup groups[], int count, AlbedoReads& albedo,
                                        RowQuads& quads) {
