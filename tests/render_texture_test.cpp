@@ -200,7 +200,8 @@ TEST(TextureLanes, TexturedSceneIsBitIdenticalForEverySimdLevelAndWorkerCount) {
 // Eight pixels of textured triangles without per-pixel lighting are filtered with the rest of
 // their row, one filter for the eight however many triangles they hold (prepareTexturedGroup); with
 // the normal AOV on they are shaded triangle by triangle. Both give the same bits: Gouraud and flat
-// spheres of small triangles (trilinear, a transform, UV set 1 on one), an unlit floor (bilinear),
+// spheres of small triangles (trilinear, a transform, UV set 1 on one; trilinear without a
+// transform on another), an unlit floor (bilinear),
 // a card whose coordinates are beyond the eight-lane filter's reach (the row's deferred filter
 // hands it back to the triangle-by-triangle shading), tone mapping on and off, at 1 and 4 samples.
 TEST(TextureLanes, TrianglesTexturedAlikeShareOneFilterWithTheSameBits) {
@@ -242,6 +243,13 @@ TEST(TextureLanes, TrianglesTexturedAlikeShareOneFilterWithTheSameBits) {
   plain.materials[0].sampler =
       makeSampler(TextureFilter::kBilinear, TextureWrap::kRepeat, TextureWrap::kRepeat);
   scene.objects.push_back(plain);
+  // Trilinear without a transform: the row's reads planned level by level (planRowQuads).
+  Object mipped = plain;
+  mipped.transform.translation = {0.2f, 0.7f, 0.6f};
+  mipped.materials[0].albedo = noiseTexture(64, 64, true, 26);
+  mipped.materials[0].sampler =
+      makeSampler(TextureFilter::kTrilinear, TextureWrap::kRepeat, TextureWrap::kMirroredRepeat);
+  scene.objects.push_back(mipped);
 
   // The spheres' triangles are a few pixels across: most groups of eight hold several.
   RenderOptions options;

@@ -376,6 +376,50 @@ TESSERA_LANES_INLINE TextureReads textureReads(const Texture& texture, const Sam
   return r;
 }
 
+// The levels sampleTexture8 reads where needsLod, as sampleLod: the level of detail clamped to
+// [0, last] (NaN to 0), bilinear in level floor(lod), blended with the next where the fraction is
+// not 0. Lanes may need different levels: each level in use is read for the lanes that need it.
+struct LodLevels {
+  I32x8 lower;       // each lane's lower level
+  I32x8 two_levels;  // the lanes of `mask` that blend their lower level with the next
+  F32x8 blend;       // the fraction towards the next
+  int first, last;   // the levels in use by the lanes of `mask`
+  // The lanes that read `level` as their lower level, and as their upper one.
+  TESSERA_LANES_INLINE I32x8 asLower(I32x8 mask, int level) const {
+    return mask & equal(lower, splat(int32_t{level}));
+  }
+  TESSERA_LANES_INLINE I32x8 asUpper(int level) const {
+    return two_levels & equal(lower + splat(int32_t{1}), splat(int32_t{level}));
+  }
+  // A channel of the lower levels' reads `a` blended towards the upper levels' `b`.
+  TESSERA_LANES_INLINE F32x8 blended(F32x8 a, F32x8 b) const {
+    return select(two_levels, a + (b - a) * blend, a);
+  }
+};
+TESSERA_LANES_INLINE LodLevels lodLevels8(const Texture& texture, I32x8 mask, const Uv8& uv,
+                                          const Uv8& right, const Uv8& down) {
+  F32x8 lod = textureLod8(uv, right, down, static_cast<float>(texture.width),
+                          static_cast<float>(texture.height));
+  const int last = texture.levelCount() - 1;
+  const F32x8 last_f = splat(static_cast<float>(last));
+  lod = select(positive(lod), lod, splat(0.0f));
+  lod = select(lessThan(last_f, lod), last_f, lod);
+  LodLevels levels;
+  levels.lower = truncate(lod);
+  levels.blend = lod - toFloat(levels.lower);
+  levels.two_levels =
+      mask & ~equal(levels.blend, splat(0.0f)) & lessThan(levels.lower, splat(last));
+  levels.first = last;
+  levels.last = 0;
+  for (int l = 0; l < 8; ++l) {
+    if (!lane(mask, l)) continue;
+    levels.first = std::min(levels.first, lane(levels.lower, l));
+    levels.last =
+        std::max(levels.last, lane(levels.lower, l) + (lane(levels.two_levels, l) ? 1 : 0));
+  }
+  return levels;
+}
+
 // Whether every lane of `mask` has coordinates below 65536 in magnitude (where sanitize is the
 // identity), which sampleTexture8 takes.
 TESSERA_LANES_INLINE bool inReach8(I32x8 mask, const Uv8& uv) {
@@ -402,30 +446,11 @@ TESSERA_LANES_INLINE bool sampleTexture8(const TextureReads& reads, I32x8 mask, 
     bilinear8(reads.base, texture.srgb, sampler, mask, uv, channels, out);
     return true;
   }
-  F32x8 lod = textureLod8(uv, right, down, static_cast<float>(texture.width),
-                          static_cast<float>(texture.height));
-  // As sampleLod: clamped to [0, last] (NaN to 0), bilinear in level floor(lod), blended with the
-  // next where the fraction is not 0. Lanes may need different levels: each level in use is
-  // sampled for the lanes that need it.
-  const int last = texture.levelCount() - 1;
-  const F32x8 last_f = splat(static_cast<float>(last));
-  lod = select(positive(lod), lod, splat(0.0f));
-  lod = select(lessThan(last_f, lod), last_f, lod);
-  const I32x8 lower = truncate(lod);
-  const F32x8 blend = lod - toFloat(lower);
-  const I32x8 two_levels = mask & ~equal(blend, splat(0.0f)) & lessThan(lower, splat(last));
-  int first_level = last, last_level = 0;
-  for (int l = 0; l < 8; ++l) {
-    if (!lane(mask, l)) continue;
-    first_level = std::min(first_level, lane(lower, l));
-    last_level = std::max(last_level, lane(lower, l) + (lane(two_levels, l) ? 1 : 0));
-  }
+  const LodLevels levels = lodLevels8(texture, mask, uv, right, down);
   F32x8 a[4], b[4], level_out[4];
   for (int k = 0; k < 4; ++k) a[k] = b[k] = splat(0.0f);
-  for (int level = first_level; level <= last_level; ++level) {
-    const I32x8 at = splat(int32_t{level});
-    const I32x8 as_a = mask & equal(lower, at);
-    const I32x8 as_b = two_levels & equal(lower + splat(int32_t{1}), at);
+  for (int level = levels.first; level <= levels.last; ++level) {
+    const I32x8 as_a = levels.asLower(mask, level), as_b = levels.asUpper(level);
     if (!any(as_a | as_b)) continue;
     bilinear8(levelLanes(texture, level), texture.srgb, sampler, as_a | as_b, uv, channels,
               level_out);
@@ -434,8 +459,7 @@ TESSERA_LANES_INLINE bool sampleTexture8(const TextureReads& reads, I32x8 mask, 
       b[k] = select(as_b, level_out[k], b[k]);
     }
   }
-  for (int k = 0; k < channels; ++k)
-    out[k] = select(two_levels, a[k] + (b[k] - a[k]) * blend, a[k]);
+  for (int k = 0; k < channels; ++k) out[k] = levels.blended(a[k], b[k]);
   return true;
 }
 

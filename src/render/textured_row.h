@@ -46,50 +46,119 @@ struct AlbedoReads {
 };
 
 // Where a row's textured groups read their texels, planned before any is read (planRowQuads):
-// group g's quads at 8 g of each array (fixedQuads8's `at`, weights and fractions; a pair's
-// sixteen lanes, pairQuads16's, at its first group's).
+// group g's quads at 8 g of each slot's arrays (fixedQuads8's `at`, weights and fractions; a
+// pair's sixteen lanes, pairQuads16's, at its first group's). A group read with a level of detail
+// (kLevels) takes a slot a level, at most two, and `levels` says which lanes take each.
 struct RowQuads {
-  enum Kind : uint8_t { kNone, kOne, kPair };  // kPair: with the next group
-  alignas(64) int32_t at[kTileSize];
-  alignas(64) int32_t w1[kTileSize];
-  alignas(64) float ty[kTileSize];
+  enum Kind : uint8_t { kNone, kOne, kPair, kLevels };  // kPair: with the next group
+  alignas(64) int32_t at[2][kTileSize];
+  alignas(64) int32_t w1[2][kTileSize];
+  alignas(64) float ty[2][kTileSize];
+  struct Levels {
+    LodLevels lod;
+    const int16_t* linear[2];  // each slot's level's copy, or null for a slot no lane reads
+    int width[2];
+    I32x8 as_lower[2], as_upper[2];
+  };
+  Levels levels[kTileSize / 8];
   Kind kind[kTileSize / 8];
 };
 
-// The row's groups whose filter reads one level's adjacent quads from its fixed-point copy (their
-// material's albedo read without a transform or a level of detail, every covered lane in reach
-// and none at a wrap or a clamp), planned into `quads`; on AVX-512 two such groups side by side
-// where the wraps allow (pairReads). Their texels are then read one group after another with
-// nothing between but the blends, so that the core has the loads of several groups in flight:
-// with each group's coordinates, wraps and indices between them it had one group's (the textured
-// sphere at 1920x1080, AVX2 kernels: 0.84-0.93 of the frame). The first group's material decides;
-// groups of another are not planned.
+// Slot `slot`'s quads of group g (fixedQuads8's), from `quads` of a level `width` texels wide.
+TESSERA_LANES_INLINE void storeQuads(RowQuads& row, int slot, int g, const BilinearQuads& quads,
+                                     int width) {
+  const int at = 8 * g;
+  store(row.at[slot] + at, quads.ya * splat(int32_t{width}) + quads.xa);
+  store(row.w1[slot] + at, quads.w1);
+  store(row.ty[slot] + at, quads.ty);
+}
+
+// planRowQuads of a group read with a level of detail (sampleTexture8's levels): true, with its
+// slots filled, where its lanes read at most two levels, each from its copy and in adjacent quads.
+TESSERA_LANES_INLINE bool planLevels(const TexturedGroup& group, const TextureReads& reads, int g,
+                                     RowQuads& row) {
+  RowQuads::Levels& plan = row.levels[g];
+  plan.lod = lodLevels8(*reads.texture, group.covered, group.uv, group.right, group.down);
+  if (plan.lod.last - plan.lod.first > 1) return false;
+  for (int slot = 0; slot < 2; ++slot) {
+    const int level = plan.lod.first + slot;
+    plan.linear[slot] = nullptr;
+    if (level > plan.lod.last) continue;
+    plan.as_lower[slot] = plan.lod.asLower(group.covered, level);
+    plan.as_upper[slot] = plan.lod.asUpper(level);
+    const I32x8 mask = plan.as_lower[slot] | plan.as_upper[slot];
+    if (!any(mask)) continue;
+    const LevelLanes lanes = levelLanes(*reads.texture, level);
+    if (!lanes.linear) return false;
+    const BilinearQuads quads = bilinearQuads8(lanes, *reads.sampler, mask, group.uv);
+    if (!quads.adjacent()) return false;
+    storeQuads(row, slot, g, quads, lanes.width);
+    plan.linear[slot] = lanes.linear;
+    plan.width[slot] = lanes.width;
+  }
+  return true;
+}
+
+// The row's groups whose filter reads adjacent quads from its levels' fixed-point copies (their
+// material's albedo read without a transform, every covered lane in reach and none at a wrap or a
+// clamp), planned into `quads`; on AVX-512 two such groups side by side where the wraps allow
+// (pairReads). Their texels are then read one group after another with nothing between but the
+// blends, so that the core has the loads of several groups in flight: with each group's
+// coordinates, wraps and indices between them it had one group's (the textured sphere at
+// 1920x1080, AVX2 kernels: 0.84-0.93 of the frame). The first group's material decides; groups
+// of another are not planned.
 TESSERA_LANES_INLINE void planRowQuads(const TexturedGroup groups[], int count, AlbedoReads& albedo,
                                        RowQuads& quads) {
   for (int g = 0; g < count; ++g) quads.kind[g] = RowQuads::kNone;
   if (count == 0) return;
   albedo.use(groups[0].material);
   const TextureReads& reads = albedo.reads;
-  if (reads.moved || reads.lod || !reads.base.linear) return;
+  if (reads.moved || !reads.base.linear) return;
   for (int g = 0; g < count; ++g) {
     const TexturedGroup& group = groups[g];
-    if (group.material != albedo.material) continue;
-    const int at = 8 * g;
+    if (group.material != albedo.material || !inReach8(group.covered, group.uv)) continue;
+    if (reads.lod) {
+      if (planLevels(group, reads, g, quads)) quads.kind[g] = RowQuads::kLevels;
+      continue;
+    }
 #if defined(TESSERA_LANES16)
+    const int at = 8 * g;
     if (albedo.pairs && g + 1 < count && groups[g + 1].material == albedo.material &&
-        pairQuads16(group, groups[g + 1], reads, quads.at + at, quads.w1 + at, quads.ty + at)) {
+        pairQuads16(group, groups[g + 1], reads, quads.at[0] + at, quads.w1[0] + at,
+                    quads.ty[0] + at)) {
       quads.kind[g++] = RowQuads::kPair;
       continue;
     }
 #endif
-    if (!inReach8(group.covered, group.uv)) continue;
     const BilinearQuads q = bilinearQuads8(reads.base, *reads.sampler, group.covered, group.uv);
     if (!q.adjacent()) continue;
-    store(quads.at + at, q.ya * splat(int32_t{reads.base.width}) + q.xa);
-    store(quads.w1 + at, q.w1);
-    store(quads.ty + at, q.ty);
+    storeQuads(quads, 0, g, q, reads.base.width);
     quads.kind[g] = RowQuads::kOne;
   }
+}
+
+// The albedo of planned group g (planRowQuads: kOne or kLevels) from its quads.
+TESSERA_LANES_INLINE void filterPlannedQuads(const RowQuads& quads, int g,
+                                             const TextureReads& reads, F32x8 texel[4]) {
+  const int at = 8 * g;
+  if (quads.kind[g] == RowQuads::kOne) {
+    fixedQuads8(reads.base.linear, quads.at[0] + at, reads.base.width,
+                load<I32x8>(quads.w1[0] + at), load<F32x8>(quads.ty[0] + at), 3, texel);
+    return;
+  }
+  const RowQuads::Levels& plan = quads.levels[g];
+  F32x8 a[3], b[3], level_out[4];
+  for (int k = 0; k < 3; ++k) a[k] = b[k] = splat(0.0f);
+  for (int slot = 0; slot < 2; ++slot) {
+    if (!plan.linear[slot]) continue;
+    fixedQuads8(plan.linear[slot], quads.at[slot] + at, plan.width[slot],
+                load<I32x8>(quads.w1[slot] + at), load<F32x8>(quads.ty[slot] + at), 3, level_out);
+    for (int k = 0; k < 3; ++k) {
+      a[k] = select(plan.as_lower[slot], level_out[k], a[k]);
+      b[k] = select(plan.as_upper[slot], level_out[k], b[k]);
+    }
+  }
+  for (int k = 0; k < 3; ++k) texel[k] = plan.lod.blended(a[k], b[k]);
 }
 
 // The textured groups of row ty that shadeTile prepared, filtered one after another (the quads
@@ -114,21 +183,20 @@ TESSERA_LANES_INLINE void filterTexturedRow(const TileVisibility& tile, int ty,
     const TexturedGroup& group = groups[g];
     albedo.use(group.material);
     const TextureReads& reads = albedo.reads;
-    const int at = 8 * g;
 #if defined(TESSERA_LANES16)
     if (quads.kind[g] == RowQuads::kPair) {
+      const int at = 8 * g;
       Vec3x8 color, next;
-      filterPairQuads(group, groups[g + 1], reads, quads.at + at, quads.w1 + at, quads.ty + at,
-                      lights, color, next);
+      filterPairQuads(group, groups[g + 1], reads, quads.at[0] + at, quads.w1[0] + at,
+                      quads.ty[0] + at, lights, color, next);
       store_group(group, color);
       store_group(groups[++g], next);
       continue;
     }
 #endif
-    if (quads.kind[g] == RowQuads::kOne) {
+    if (quads.kind[g] != RowQuads::kNone) {
       F32x8 texel[4];
-      fixedQuads8(reads.base.linear, quads.at + at, reads.base.width, load<I32x8>(quads.w1 + at),
-                  load<F32x8>(quads.ty + at), 3, texel);
+      filterPlannedQuads(quads, g, reads, texel);
       store_group(group, texturedColour(group, texel, lights));
       continue;
     }
